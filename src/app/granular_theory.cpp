@@ -1,1 +1,161 @@
-int main() { return 0; }
+// granular-theory: the kinetic-theory predictions for the system of a namelist, as one JSON object
+// on stdout (INTERFACE.md "granular-theory JSON keys").
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "io/config.hpp"
+#include "io/namelist.hpp"
+#include "theory/theory.hpp"
+
+namespace {
+
+const char* kUsage =
+    "usage: granular-theory FILE.nml [--set group:variable=value]...\n"
+    "Prints the theory for the namelist's system as one JSON object on stdout:\n"
+    "  collision_frequency  [nu_k] collisions suffered per particle of species k per unit time at t=0\n"
+    "  cooling_rate         [zeta_k] = sum_j xi_kj at t = 0 (ERRATA §4; one species: ERRATA §3)\n"
+    "  temperature          {time, value[t][k]} the partial-temperature ODEs (CVODE) on the sample times\n"
+    "  total_temperature, collisions_per_particle   {time, value} on the same times\n"
+    "  asymptotic_temperature_ratio  [T_k/T_1] at long times (mixtures, constant restitution)\n"
+    "  sonine_a2, cooling_rate_sonine               one species: van Noije-Ernst a2 and (1+3a2/16) zeta\n";
+
+std::string number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+std::string array(const std::vector<double>& v) {
+  std::string s = "[";
+  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + number(v[i]);
+  return s + "]";
+}
+
+/// Times at which the ODE's collisions per particle (2 x events / n) reach `targets`.
+std::vector<double> times_for_collisions(const gdsmc::species::Mixture& mix,
+                                         const std::vector<double>& t0,
+                                         const std::vector<double>& targets) {
+  const double n = mix.total_density();
+  // Bracket the last target on a doubling time scale, then tabulate densely and interpolate.
+  double horizon = 1.0;
+  const double rate0 = gdsmc::theory::total_collision_rate(mix, t0);
+  horizon = std::max(horizon, targets.back() * n / (2.0 * rate0));
+  for (int guard = 0; guard < 200; ++guard) {
+    const auto h = gdsmc::theory::integrate_partial_temperatures(mix, t0, {0.0, horizon});
+    if (2.0 * h.collisions.back() / n >= targets.back()) break;
+    horizon *= 2.0;
+  }
+  const std::size_t grid = 20000;
+  std::vector<double> t(grid);
+  for (std::size_t i = 0; i < grid; ++i) t[i] = horizon * static_cast<double>(i) / (grid - 1);
+  const auto h = gdsmc::theory::integrate_partial_temperatures(mix, t0, t);
+  std::vector<double> out;
+  std::size_t i = 1;
+  for (double c : targets) {
+    if (c <= 0.0) {
+      out.push_back(0.0);
+      continue;
+    }
+    while (i < grid - 1 && 2.0 * h.collisions[i] / n < c) ++i;
+    const double c0 = 2.0 * h.collisions[i - 1] / n, c1 = 2.0 * h.collisions[i] / n;
+    out.push_back(t[i - 1] + (t[i] - t[i - 1]) * (c - c0) / (c1 - c0));
+  }
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string input;
+  std::vector<std::string> overrides;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") {
+      std::cout << kUsage;
+      return 0;
+    } else if (arg == "--set" && i + 1 < argc) {
+      overrides.push_back(argv[++i]);
+    } else if (!arg.empty() && arg[0] == '-') {
+      std::cerr << "granular-theory: unknown option " << arg << "\n" << kUsage;
+      return 2;
+    } else {
+      input = arg;
+    }
+  }
+  if (input.empty()) {
+    std::cerr << kUsage;
+    return 2;
+  }
+  gdsmc::io::config::Config config;
+  try {
+    config = gdsmc::io::config::read_file(input, overrides);
+  } catch (const gdsmc::io::namelist::Error& e) {
+    std::cerr << "granular-theory: " << e.what() << "\n";
+    return 2;
+  }
+
+  try {
+    namespace th = gdsmc::theory;
+    const auto mix = config.mixture();
+    const std::size_t s = mix.size();
+    const auto& t0 = config.initial.temperature;
+    const double n = mix.total_density();
+
+    // Collisions suffered by species k per unit volume: 2 P_kk + sum_{j != k} P_kj (ERRATA §2).
+    const auto pair = th::pair_collision_rate(mix, t0);
+    std::vector<double> frequency(s), cooling(s);
+    const auto xi = th::cooling_rate_matrix(mix, t0);
+    for (std::size_t k = 0; k < s; ++k) {
+      double suffered = 0.0, z = 0.0;
+      for (std::size_t j = 0; j < s; ++j) {
+        suffered += (j == k ? 2.0 : 1.0) * pair(k, j);
+        z += xi(k, j);
+      }
+      frequency[k] = suffered / mix.number_density[k];
+      cooling[k] = z;
+    }
+
+    std::vector<double> times = config.sample_times();
+    if (times.empty()) times = times_for_collisions(mix, t0, config.sample_collisions());
+    const auto history = th::integrate_partial_temperatures(mix, t0, times);
+
+    std::ostringstream json;
+    json << "{\n  \"n_species\": " << s << ",\n";
+    json << "  \"collision_frequency\": " << array(frequency) << ",\n";
+    json << "  \"cooling_rate\": " << array(cooling) << ",\n";
+    json << "  \"temperature\": {\"time\": " << array(history.time) << ", \"value\": [";
+    std::vector<double> total, collisions;
+    for (std::size_t i = 0; i < history.time.size(); ++i) {
+      json << (i ? ", " : "") << array(history.temperature[i]);
+      double tt = 0.0;
+      for (std::size_t k = 0; k < s; ++k) tt += mix.number_density[k] * history.temperature[i][k];
+      total.push_back(tt / n);
+      collisions.push_back(2.0 * history.collisions[i] / n);
+    }
+    json << "]},\n";
+    json << "  \"total_temperature\": {\"time\": " << array(history.time) << ", \"value\": "
+         << array(total) << "},\n";
+    json << "  \"collisions_per_particle\": {\"time\": " << array(history.time)
+         << ", \"value\": " << array(collisions) << "}";
+    if (s == 1) {
+      const double alpha = mix.restitution(0, 0);
+      const double a2 = th::sonine_a2(alpha);
+      json << ",\n  \"sonine_a2\": " << number(a2) << ",\n  \"sonine_c\": [" << number(2.0 * a2)
+           << "],\n  \"cooling_rate_sonine\": [" << number(cooling[0] * (1.0 + 3.0 * a2 / 16.0)) << "]";
+    } else {
+      bool constant = true;
+      for (double a : mix.restitution.values) constant = constant && a < 1.0;
+      if (constant) json << ",\n  \"asymptotic_temperature_ratio\": " << array(th::asymptotic_temperature_ratios(mix));
+    }
+    json << "\n}\n";
+    std::cout << json.str();
+  } catch (const std::exception& e) {
+    std::cerr << "granular-theory: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

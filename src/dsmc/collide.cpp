@@ -1,0 +1,207 @@
+#include "dsmc/collide.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace gdsmc::collide {
+
+namespace {
+enum class Stop { reached_time, bound_raised, reached_events };
+}
+
+Scheme parse_scheme(const std::string& name) {
+  if (name == "majorant") return Scheme::majorant;
+  if (name == "pairs") return Scheme::pairs;
+  throw std::invalid_argument("unknown scheme '" + name + "'");
+}
+
+Collider::Collider(Scheme scheme, const species::Mixture& mix, particles::System& sys,
+                   rng::Xoshiro256pp gen, double step_fraction)
+    : scheme_(scheme), mix_(mix), sys_(sys), gen_(gen), step_fraction_(step_fraction),
+      s_(mix.size()) {
+  cross_section_.resize(s_ * s_);
+  alpha_.resize(s_ * s_);
+  mass_fraction_.resize(s_ * s_);
+  for (std::size_t k = 0; k < s_; ++k)
+    for (std::size_t j = 0; j < s_; ++j) {
+      const double sigma = mix.contact_distance(k, j);
+      cross_section_[k * s_ + j] = std::numbers::pi * sigma * sigma * mix.pair_correlation(k, j);
+      alpha_[k * s_ + j] = mix.restitution(k, j);
+      mass_fraction_[k * s_ + j] = mix.mass[j] / (mix.mass[k] + mix.mass[j]);
+    }
+  max_speed_.assign(s_, 0.0);
+  pair_rate_.assign(s_ * s_, 0.0);
+  pair_cumulative_.assign(s_ * s_, 0.0);
+  counters_.pair_events.assign(s_ * s_, 0);
+}
+
+void Collider::recompute_max_speeds() {
+  for (std::size_t k = 0; k < s_; ++k) {
+    double max2 = 0.0;
+    const std::size_t end = sys_.first[k] + sys_.count[k];
+    for (std::size_t i = sys_.first[k]; i < end; ++i)
+      max2 = std::max(max2, sys_.vx[i] * sys_.vx[i] + sys_.vy[i] * sys_.vy[i] + sys_.vz[i] * sys_.vz[i]);
+    max_speed_[k] = std::sqrt(max2);
+  }
+}
+
+void Collider::rebuild_bounds() {
+  const double n = mix_.total_density();
+  const double n_sim = static_cast<double>(sys_.size());
+  if (scheme_ == Scheme::majorant) {
+    bound_ = 0.0;
+    for (std::size_t k = 0; k < s_; ++k)
+      for (std::size_t j = 0; j < s_; ++j)
+        bound_ = std::max(bound_, cross_section_[k * s_ + j] * (max_speed_[k] + max_speed_[j]));
+    rate_ = 0.5 * n_sim * n * bound_;  // R = N n B / 2 (seed 000 eq 8 with ERRATA §2)
+  } else {
+    double total = 0.0;
+    for (std::size_t i = 0; i < s_; ++i)
+      for (std::size_t j = 0; j < s_; ++j) {
+        // The simulated density of species j, n N_j / N, so that both schemes see the same gas.
+        const double n_j = n * static_cast<double>(sys_.count[j]) / n_sim;
+        // R_ij = (1/2) N_i omega_max^(ij), omega_max = 4 pi sigma_ij^2 n_j chi_ij g_max (seed 003 sec. 3)
+        pair_rate_[i * s_ + j] = 2.0 * static_cast<double>(sys_.count[i]) * n_j *
+                                 cross_section_[i * s_ + j] * (max_speed_[i] + max_speed_[j]);
+        total += pair_rate_[i * s_ + j];
+        pair_cumulative_[i * s_ + j] = total;
+      }
+    rate_ = total;
+  }
+}
+
+bool Collider::raise_max_speed(std::size_t particle) {
+  const std::uint32_t k = sys_.species[particle];
+  const double v2 = sys_.vx[particle] * sys_.vx[particle] + sys_.vy[particle] * sys_.vy[particle] +
+                    sys_.vz[particle] * sys_.vz[particle];
+  if (v2 <= max_speed_[k] * max_speed_[k]) return false;
+  max_speed_[k] = std::sqrt(v2);
+  return true;
+}
+
+void Collider::count_event(std::uint32_t k, std::uint32_t j) {
+  ++counters_.events;
+  ++counters_.pair_events[std::min(k, j) * s_ + std::max(k, j)];
+}
+
+bool Collider::advance(double t_target, std::uint64_t event_target) {
+  while (time_ < t_target) {
+    if (counters_.events >= event_target) return true;
+    if (time_ >= next_step_time_) {
+      recompute_max_speeds();
+      rebuild_bounds();
+      if (rate_ <= 0.0) {  // all particles at rest: nothing can ever collide
+        time_ = t_target;
+        return false;
+      }
+      // dt = step_fraction / nu_max, nu_max = 2 R / N (header)
+      const double step = step_fraction_ * static_cast<double>(sys_.size()) / (2.0 * rate_);
+      next_step_time_ = time_ + step;
+      ++counters_.steps;
+      counters_.step_sum += step;
+    }
+    const double t_stop = std::min(t_target, next_step_time_);
+    const bool majorant = scheme_ == Scheme::majorant;
+    const int stop = majorant ? run_majorant(t_stop, event_target) : run_pairs(t_stop, event_target);
+    if (stop == static_cast<int>(Stop::bound_raised)) rebuild_bounds();
+    if (stop == static_cast<int>(Stop::reached_events)) return true;
+  }
+  return false;
+}
+
+// Candidates of one sub-step at a fixed rate: candidate c (0-based) happens at
+// time_ - credit_ + (c + 1)/R; what is left of the sub-step is carried in credit_.
+int Collider::run_majorant(double t_stop, std::uint64_t event_target) {
+  const std::size_t n = sys_.size();
+  const double dt_candidate = 1.0 / rate_;
+  const double available = credit_ + (t_stop - time_);
+  const auto n_candidates = static_cast<std::uint64_t>(available * rate_);
+  const double t0 = time_ - credit_;
+  double* vx = sys_.vx.data();
+  double* vy = sys_.vy.data();
+  double* vz = sys_.vz.data();
+  const std::uint32_t* sp = sys_.species.data();
+  for (std::uint64_t c = 0; c < n_candidates; ++c) {
+    const std::size_t a = gen_.below(n);
+    std::size_t b = gen_.below(n - 1);
+    if (b >= a) ++b;
+    const std::uint32_t ka = sp[a], kb = sp[b];
+    const std::size_t pair = ka * s_ + kb;
+    const double gx = vx[a] - vx[b], gy = vy[a] - vy[b], gz = vz[a] - vz[b];
+    const double g = std::sqrt(gx * gx + gy * gy + gz * gz);
+    // Accept with pi sigma^2 chi |g| / B (seed 000 eq 7).
+    if (gen_.uniform() * bound_ >= cross_section_[pair] * g) continue;
+    // e ~ (g_hat.e) on the hemisphere (ERRATA §2): e = (g_hat + w)/|g_hat + w|, w uniform on the
+    // sphere, has exactly that density (the ray from the origin meets the sphere |p - g_hat| = 1
+    // at distance 2 cos(theta), with area element 4 cos(theta) dOmega).
+    double wx, wy, wz;
+    rng::unit_vector(gen_, wx, wy, wz);
+    double ex = gx / g + wx, ey = gy / g + wy, ez = gz / g + wz;
+    const double norm = std::sqrt(ex * ex + ey * ey + ez * ez);
+    if (norm == 0.0) continue;  // w = -g_hat exactly: probability zero
+    ex /= norm;
+    ey /= norm;
+    ez /= norm;
+    apply_collision(sys_, a, b, ex, ey, ez, alpha_[pair], mass_fraction_[pair]);
+    count_event(ka, kb);
+    const bool raised = raise_max_speed(a) | raise_max_speed(b);
+    if (raised || counters_.events >= event_target) {
+      counters_.candidates += c + 1;
+      time_ = t0 + static_cast<double>(c + 1) * dt_candidate;
+      credit_ = 0.0;
+      return static_cast<int>(raised ? Stop::bound_raised : Stop::reached_events);
+    }
+  }
+  counters_.candidates += n_candidates;
+  credit_ = available - static_cast<double>(n_candidates) * dt_candidate;
+  time_ = t_stop;
+  return static_cast<int>(Stop::reached_time);
+}
+
+int Collider::run_pairs(double t_stop, std::uint64_t event_target) {
+  const double dt_candidate = 1.0 / rate_;
+  const double available = credit_ + (t_stop - time_);
+  const auto n_candidates = static_cast<std::uint64_t>(available * rate_);
+  const double t0 = time_ - credit_;
+  for (std::uint64_t c = 0; c < n_candidates; ++c) {
+    // The ordered species pair (i, j) with probability R_ij / R.
+    const double u = gen_.uniform() * rate_;
+    const std::size_t pair = static_cast<std::size_t>(
+        std::upper_bound(pair_cumulative_.begin(), pair_cumulative_.end(), u) -
+        pair_cumulative_.begin());
+    if (pair >= s_ * s_) continue;  // u == R to round-off
+    const std::size_t i = pair / s_, j = pair % s_;
+    const std::size_t k = sys_.first[i] + gen_.below(sys_.count[i]);
+    std::size_t l;
+    if (i == j) {
+      l = sys_.first[j] + gen_.below(sys_.count[j] - 1);
+      if (l >= k) ++l;
+    } else {
+      l = sys_.first[j] + gen_.below(sys_.count[j]);
+    }
+    double ex, ey, ez;
+    rng::unit_vector(gen_, ex, ey, ez);  // seed 003 step (1): e uniform on the sphere
+    const double g_dot_e = (sys_.vx[k] - sys_.vx[l]) * ex + (sys_.vy[k] - sys_.vy[l]) * ey +
+                           (sys_.vz[k] - sys_.vz[l]) * ez;
+    // Step (2): accept with Theta(g.e) |g.e| / g_max, g_max = vmax_i + vmax_j.
+    if (g_dot_e <= 0.0 || gen_.uniform() * (max_speed_[i] + max_speed_[j]) >= g_dot_e) continue;
+    apply_collision(sys_, k, l, ex, ey, ez, alpha_[pair], mass_fraction_[pair]);
+    count_event(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
+    const bool raised = raise_max_speed(k) | raise_max_speed(l);
+    if (raised || counters_.events >= event_target) {
+      counters_.candidates += c + 1;
+      time_ = t0 + static_cast<double>(c + 1) * dt_candidate;
+      credit_ = 0.0;
+      return static_cast<int>(raised ? Stop::bound_raised : Stop::reached_events);
+    }
+  }
+  counters_.candidates += n_candidates;
+  credit_ = available - static_cast<double>(n_candidates) * dt_candidate;
+  time_ = t_stop;
+  return static_cast<int>(Stop::reached_time);
+}
+
+}  // namespace gdsmc::collide

@@ -1,0 +1,134 @@
+/**
+ * \file collide.hpp
+ * \brief Binary inelastic collisions of smooth hard spheres and the two homogeneous DSMC schemes.
+ *
+ * **Collision rule** (seed 001 eq 3, seed 003 eqs 23-24; ERRATA §1). For particles a (species k)
+ * and b (species j), g = v_a - v_b and e a unit vector along the line of centres:
+ *   v_a' = v_a - mu_jk (1 + alpha_kj) (g.e) e,   v_b' = v_b + mu_kj (1 + alpha_kj) (g.e) e,
+ * with mu_kj = m_k/(m_k + m_j). Momentum is conserved, (g'.e) = -alpha (g.e), and the energy
+ * lost is (1 - alpha^2) m_kj (g.e)^2 / 2.
+ *
+ * **Rates** (ERRATA §2). A species-k particle meets species-j partners at the rate
+ * n_j pi sigma_kj^2 chi_kj <|g|>: one unordered pair collides at pi sigma_kj^2 chi_kj |g| / V, or
+ * equivalently at 2 pi sigma_kj^2 chi_kj |g.e| / V with e uniform on the full sphere.
+ *
+ * **Scheme `majorant`** (seed 000, the algorithm of its steps 1-13 with the rate of ERRATA §2).
+ * Candidate pairs (a, b), a != b uniform among all particles, arrive at the total rate
+ *   R = N n B / 2,   B = max_kj pi sigma_kj^2 chi_kj (vmax_k + vmax_j)    (seed 000 eq 8, N^2 F_N/V_c = N n)
+ * where vmax_k is the largest speed of species k, so that B >= (sigma g)_kj for every pair: the
+ * majorant is exact, not an estimate. A candidate is accepted with probability
+ * pi sigma_kj^2 chi_kj |g| / B (seed 000 eq 7), and e is then drawn with density proportional to
+ * (g_hat . e) on the hemisphere (ERRATA §2), which samples the same process as seed 000's step 9
+ * with the correct rate, at twice its acceptance. A post-collision speed above vmax_k raises the
+ * bound at once ("(sigma g)_max raised when exceeded"); the bound is recomputed exactly (lowered as
+ * the gas cools) at the start of each time step.
+ *
+ * **Scheme `pairs`** (seed 003 sec. 3). For each ordered species pair (i, j), candidates arrive at
+ * R_ij = (1/2) N_i omega_max^(ij), omega_max^(ij) = 4 pi sigma_ij^2 n_j chi_ij (vmax_i + vmax_j); a
+ * candidate is a random particle of species i, a random other particle of species j and a direction
+ * e uniform on the sphere, accepted with probability Theta(g.e) omega_kl / omega_max^(ij),
+ * omega_kl = 4 pi sigma_ij^2 n_j chi_ij |g.e|. Seed 003 sweeps the four pairs one after another in a
+ * step; here the pair of each candidate is drawn with probability R_ij / sum R, which samples the
+ * same rates without the operator-splitting error of a sweep (ERRATA §9).
+ *
+ * **Time.** Both schemes are uniformised continuous-time processes: each candidate advances time by
+ * 1 / R (the mean waiting time; the N_p = R dt candidates of seed 000 eq 8 per step, with the
+ * fraction carried over). Collisions are processed one after another with current velocities, so
+ * there is none of the batch time-step bias of ERRATA §9. The time step dt only sets how often the
+ * bounds are recomputed: dt = step_fraction / nu_max, nu_max = 2 R / N the majorant collision
+ * frequency of one particle (the majorant mean free time). It is written to the output.
+ *
+ * Units: the user's; time in the user's time unit, e.g. sigma sqrt(m/T0).
+ * Checked by tests/collide_test.cpp and validation/ (haff_cooling, collision_rate, schemes_agree).
+ */
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "dsmc/particles.hpp"
+#include "dsmc/rng.hpp"
+#include "dsmc/species.hpp"
+
+namespace gdsmc::collide {
+
+enum class Scheme { majorant, pairs };
+
+/// Applies the collision rule of ERRATA §1 to particles a and b along the unit vector (ex, ey, ez).
+/// `mass_fraction_b` = m_b/(m_a + m_b). Returns (g.e) before the collision.
+inline double apply_collision(particles::System& sys, std::size_t a, std::size_t b, double ex,
+                              double ey, double ez, double alpha, double mass_fraction_b) {
+  const double g_dot_e =
+      (sys.vx[a] - sys.vx[b]) * ex + (sys.vy[a] - sys.vy[b]) * ey + (sys.vz[a] - sys.vz[b]) * ez;
+  const double impulse = (1.0 + alpha) * g_dot_e;  // per unit reduced mass ratio
+  const double da = mass_fraction_b * impulse;          // mu_jk (1 + alpha)(g.e)
+  const double db = (1.0 - mass_fraction_b) * impulse;  // mu_kj (1 + alpha)(g.e)
+  sys.vx[a] -= da * ex;
+  sys.vy[a] -= da * ey;
+  sys.vz[a] -= da * ez;
+  sys.vx[b] += db * ex;
+  sys.vy[b] += db * ey;
+  sys.vz[b] += db * ez;
+  return g_dot_e;
+}
+
+/// Counts kept by a run: the observables `collisions` and `collisions_pair` come from here.
+struct Counters {
+  std::uint64_t events = 0;                ///< accepted collisions (binary events)
+  std::uint64_t candidates = 0;            ///< candidate pairs tested
+  std::vector<std::uint64_t> pair_events;  ///< S x S, events between species k and j at (min, max)
+  std::uint64_t steps = 0;                 ///< time steps (bound recomputations)
+  double step_sum = 0.0;                   ///< sum of the step lengths, for the mean dt
+};
+
+/// The collision stage of one replica: particles, pair constants, bounds, clock and generator.
+class Collider {
+ public:
+  Collider(Scheme scheme, const species::Mixture& mix, particles::System& sys,
+           rng::Xoshiro256pp gen, double step_fraction);
+
+  /// Advances until time `t_target` or until `event_target` events, whichever comes first.
+  /// Returns true when the event target stopped it.
+  bool advance(double t_target, std::uint64_t event_target = UINT64_MAX);
+
+  double time() const { return time_; }
+  const Counters& counters() const { return counters_; }
+  /// Mean length of the time steps so far (0 before the first step).
+  double mean_step() const { return counters_.steps ? counters_.step_sum / counters_.steps : 0.0; }
+  double candidate_rate() const { return rate_; }
+
+ private:
+  void recompute_max_speeds();
+  void rebuild_bounds();
+  bool raise_max_speed(std::size_t particle);
+  int run_majorant(double t_stop, std::uint64_t event_target);  // returns a Stop (collide.cpp)
+  int run_pairs(double t_stop, std::uint64_t event_target);
+  void count_event(std::uint32_t k, std::uint32_t j);
+
+  Scheme scheme_;
+  const species::Mixture& mix_;
+  particles::System& sys_;
+  rng::Xoshiro256pp gen_;
+  double step_fraction_;
+  std::size_t s_;
+  // Pair constants, row-major S x S.
+  std::vector<double> cross_section_;   ///< pi sigma_kj^2 chi_kj
+  std::vector<double> alpha_;           ///< alpha_kj
+  std::vector<double> mass_fraction_;   ///< m_j/(m_k + m_j): the share of the impulse taken by k
+  std::vector<double> max_speed_;       ///< vmax_k
+  // Bounds.
+  double bound_ = 0.0;                  ///< B (majorant)
+  std::vector<double> pair_rate_;       ///< R_ij (pairs), cumulative in pair_cumulative_
+  std::vector<double> pair_cumulative_;
+  double rate_ = 0.0;                   ///< total candidate rate R
+  double time_ = 0.0;
+  double credit_ = 0.0;          ///< time since the last candidate, carried between sub-steps
+  double next_step_time_ = 0.0;  ///< when the bounds are next recomputed
+  Counters counters_;
+};
+
+Scheme parse_scheme(const std::string& name);  ///< throws std::invalid_argument
+
+}  // namespace gdsmc::collide

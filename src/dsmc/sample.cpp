@@ -1,0 +1,99 @@
+#include "dsmc/sample.hpp"
+
+#include <cmath>
+
+namespace gdsmc::sample {
+
+Moments measure(const species::Mixture& mix, const particles::System& sys) {
+  const std::size_t s = sys.n_species();
+  Moments m;
+  m.temperature.assign(s, 0.0);
+  m.sonine_c.assign(s, 0.0);
+  m.number.assign(s, 0.0);
+  double momentum[3] = {0.0, 0.0, 0.0}, total_mass = 0.0;
+  for (std::size_t k = 0; k < s; ++k) {
+    double sum[3] = {0.0, 0.0, 0.0};
+    const std::size_t end = sys.first[k] + sys.count[k];
+    for (std::size_t i = sys.first[k]; i < end; ++i) {
+      sum[0] += sys.vx[i];
+      sum[1] += sys.vy[i];
+      sum[2] += sys.vz[i];
+    }
+    for (int d = 0; d < 3; ++d) momentum[d] += mix.mass[k] * sum[d];
+    total_mass += mix.mass[k] * static_cast<double>(sys.count[k]);
+  }
+  const double u[3] = {momentum[0] / total_mass, momentum[1] / total_mass, momentum[2] / total_mass};
+  double weighted = 0.0, n_total = 0.0;
+  for (std::size_t k = 0; k < s; ++k) {
+    double v2_sum = 0.0, v4_sum = 0.0;
+    const std::size_t end = sys.first[k] + sys.count[k];
+    for (std::size_t i = sys.first[k]; i < end; ++i) {
+      const double cx = sys.vx[i] - u[0], cy = sys.vy[i] - u[1], cz = sys.vz[i] - u[2];
+      const double c2 = cx * cx + cy * cy + cz * cz;
+      v2_sum += c2;
+      v4_sum += c2 * c2;
+    }
+    const double n_k = static_cast<double>(sys.count[k]);
+    const double v2 = v2_sum / n_k, v4 = v4_sum / n_k;
+    m.number[k] = n_k;
+    m.temperature[k] = mix.mass[k] * v2 / 3.0;               // INTERFACE.md
+    m.sonine_c[k] = 2.0 * (0.6 * v4 / (v2 * v2) - 1.0);      // seed 003 eq 17, ERRATA §6
+    weighted += n_k * m.temperature[k];
+    n_total += n_k;
+  }
+  m.total_temperature = weighted / n_total;
+  return m;
+}
+
+std::vector<double> velocity_histogram(const species::Mixture& mix, const particles::System& sys,
+                                       const std::vector<double>& temperature, std::size_t bins,
+                                       double range) {
+  const std::size_t s = sys.n_species();
+  std::vector<double> h(s * bins, 0.0);
+  const double width = 2.0 * range / static_cast<double>(bins);
+  for (std::size_t k = 0; k < s; ++k) {
+    const double inv_scale = std::sqrt(mix.mass[k] / temperature[k]);
+    double* hk = h.data() + k * bins;
+    const std::size_t end = sys.first[k] + sys.count[k];
+    auto put = [&](double v) {
+      const double c = v * inv_scale;
+      if (c < -range || c >= range) return;
+      const auto b = static_cast<std::size_t>((c + range) / width);
+      hk[b < bins ? b : bins - 1] += 1.0;
+    };
+    for (std::size_t i = sys.first[k]; i < end; ++i) {
+      put(sys.vx[i]);
+      put(sys.vy[i]);
+      put(sys.vz[i]);
+    }
+    const double norm = 1.0 / (3.0 * static_cast<double>(sys.count[k]) * width);
+    for (std::size_t b = 0; b < bins; ++b) hk[b] *= norm;
+  }
+  return h;
+}
+
+void Accumulator::add(std::size_t replica, const std::vector<double>& row) {
+  if (values.size() <= replica) values.resize(replica + 1);
+  values[replica].insert(values[replica].end(), row.begin(), row.end());
+}
+
+std::vector<double> Accumulator::mean() const {
+  std::vector<double> m(values.front().size(), 0.0);
+  for (const auto& r : values)
+    for (std::size_t i = 0; i < m.size(); ++i) m[i] += r[i];
+  for (double& x : m) x /= static_cast<double>(values.size());
+  return m;
+}
+
+std::vector<double> Accumulator::standard_error() const {
+  const std::size_t n = values.size();
+  if (n < 2) return {};
+  const std::vector<double> m = mean();
+  std::vector<double> var(m.size(), 0.0);
+  for (const auto& r : values)
+    for (std::size_t i = 0; i < m.size(); ++i) var[i] += (r[i] - m[i]) * (r[i] - m[i]);
+  for (double& v : var) v = std::sqrt(v / static_cast<double>(n - 1) / static_cast<double>(n));
+  return var;
+}
+
+}  // namespace gdsmc::sample

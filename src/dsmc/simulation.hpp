@@ -1,0 +1,49 @@
+/**
+ * \file simulation.hpp
+ * \brief A whole run: Config -> System -> collide -> sample -> H5MD file, for every replica.
+ *
+ * Replica r draws its initial velocities from stream (seed, r, initial_state) and its collisions
+ * from stream (seed, r, collisions) (see rng.hpp), so a replica's trajectory does not depend on how
+ * many replicas run or in which order. Replicas run one after another; observables are reduced to
+ * the mean and standard error over replicas (sample.hpp) and written by io::h5md.
+ *
+ * A time-driven run (`t_end`) samples at the times of Config::sample_times(). A collision-driven
+ * run (`collisions_per_particle`) samples when 2 x events / N reaches each value of
+ * Config::sample_collisions(); its `time` datasets then hold the mean over replicas of the times
+ * at which that happened, with the spread in the observable `time`.
+ *
+ * The output file is opened (under a temporary name) before the first collision, so an
+ * unwritable path fails at once, and renamed into place only when complete.
+ */
+#pragma once
+
+#include <atomic>
+#include <string>
+
+#include "io/config.hpp"
+
+namespace gdsmc::simulation {
+
+struct Options {
+  bool progress = false;                         ///< progress line on stderr
+  const std::atomic<bool>* interrupt = nullptr;  ///< set by a signal handler: stop, write nothing
+};
+
+/// What the run measured, as written to the file (for the caller's summary).
+struct Summary {
+  double final_time = 0.0;
+  double final_total_temperature = 0.0;
+  double collisions_per_particle = 0.0;
+  double wall_seconds = 0.0;
+  double events_per_second = 0.0;
+};
+
+/// Runs the simulation the Config describes and writes `output_path`. Throws std::runtime_error
+/// on failure (nothing is left behind) and simulation::Interrupted when interrupted.
+Summary run(const io::config::Config& config, const std::string& output_path, const Options& options);
+
+struct Interrupted : std::runtime_error {
+  Interrupted() : std::runtime_error("interrupted: no output written") {}
+};
+
+}  // namespace gdsmc::simulation

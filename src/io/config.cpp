@@ -1,0 +1,628 @@
+#include "io/config.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <type_traits>
+#include <variant>
+
+#include "dsmc/particles.hpp"
+
+namespace gdsmc::io::config {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+using namelist::Error;
+
+/// Where a value may lie: [lo, hi] with optionally open ends; only for numbers.
+struct Range {
+  double lo = -kInf, hi = kInf;
+  bool lo_open = false, hi_open = false;
+  bool contains(double x) const {
+    return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
+  }
+  std::string text() const {
+    std::ostringstream s;
+    s << (lo_open ? "(" : "[") << lo << ", " << hi << (hi_open ? ")" : "]");
+    return s.str();
+  }
+};
+const Range kPositive{0.0, kInf, true, false};
+const Range kUnit{0.0, 1.0, false, false};
+Range at_least(double lo) { return Range{lo, kInf, false, false}; }
+
+/// One variable of a group: declared once, used by the reader, the checks and the writers.
+template <class G>
+struct Field {
+  using Member = std::variant<long long G::*, double G::*, bool G::*, std::string G::*,
+                              std::optional<double> G::*, std::vector<double> G::*,
+                              species::PairMatrix G::*>;
+  std::string name;
+  Member member;
+  std::string units;
+  std::string help;
+  Range range{};
+  std::vector<std::string> choices{};
+  bool required = false;
+};
+
+// ---------------------------------------------------------------------------------------------
+// The four tables. Defaults are the member initialisers in config.hpp, nowhere else.
+// ---------------------------------------------------------------------------------------------
+const std::vector<Field<System>>& system_fields() {
+  static const std::vector<Field<System>> fields = {
+      {"n_species", &System::n_species, "", "number of species S", Range{1, 1e7}},
+      {"mass", &System::mass, "mass", "m_k, one per species (or species 1 with mass_law)",
+       kPositive, {}, true},
+      {"diameter", &System::diameter, "length",
+       "sigma_k, one per species (or species 1 with diameter_law)", kPositive, {}, true},
+      {"number_density", &System::number_density, "1/length^3",
+       "n_k, one per species (or species 1 with density_law)", kPositive, {}, true},
+      {"restitution", &System::restitution, "",
+       "alpha_kj: one value for all pairs, or restitution(i,j) = ... (symmetric)", kUnit, {}, true},
+      {"restitution_model", &System::restitution_model, "", "how alpha depends on the impact",
+       {}, {"constant", "viscoelastic"}},
+      {"enskog", &System::enskog, "",
+       ".true.: Carnahan-Starling chi_ij multiplies the collision rates (seed 003 eq 26)"},
+      {"mass_law", &System::mass_law, "", "'list', or 'linear': m_k = k m_1", {},
+       {"list", "linear"}},
+      {"diameter_law", &System::diameter_law, "", "'list', or 'cube_root': sigma_k = k^(1/3) sigma_1",
+       {}, {"list", "cube_root"}},
+      {"density_law", &System::density_law, "", "'list', or 'power': n_k = n_1 k^-theta", {},
+       {"list", "power"}},
+      {"density_exponent", &System::density_exponent, "", "theta of density_law = 'power'"},
+  };
+  return fields;
+}
+
+const std::vector<Field<Initial>>& initial_fields() {
+  static const std::vector<Field<Initial>> fields = {
+      {"temperature", &Initial::temperature, "energy",
+       "T_k(0), one per species or one for all (k_B = 1)", kPositive},
+      {"distribution", &Initial::distribution, "",
+       "initial velocities: 'maxwell', 'shell' (equal speeds) or 'cube' (uniform in a cube)", {},
+       {"maxwell", "shell", "cube"}},
+  };
+  return fields;
+}
+
+const std::vector<Field<Dsmc>>& dsmc_fields() {
+  static const std::vector<Field<Dsmc>> fields = {
+      {"scheme", &Dsmc::scheme, "",
+       "'majorant' (seed 000), 'pairs' (seed 003) or 'lowrank' (seed 001)", {},
+       {"majorant", "pairs", "lowrank"}},
+      {"n_particles", &Dsmc::n_particles, "", "simulated particles, split in proportion to n_k",
+       Range{2, 2e9}},
+      {"t_end", &Dsmc::t_end, "time", "end of the run (or give collisions_per_particle)",
+       kPositive},
+      {"collisions_per_particle", &Dsmc::collisions_per_particle, "",
+       "end of the run in collisions per particle, 2 x events / N (or give t_end)", kPositive},
+      {"replicas", &Dsmc::replicas, "", "independent realisations, averaged", Range{1, 1e6}},
+      {"seed", &Dsmc::seed, "", "seed of all random streams", at_least(0)},
+      {"step_fraction", &Dsmc::step_fraction, "",
+       "time step (bound refresh) in units of the majorant mean free time", Range{0, 100, true}},
+  };
+  return fields;
+}
+
+const std::vector<Field<Output>>& output_fields() {
+  static const std::vector<Field<Output>> fields = {
+      {"file", &Output::file, "", "HDF5 (H5MD) output file"},
+      {"n_samples", &Output::n_samples, "", "sample times, t = 0 included", Range{2, 1e7}},
+      {"spacing", &Output::spacing, "", "'linear' or 'log' spacing of the sample times", {},
+       {"linear", "log"}},
+      {"first_sample", &Output::first_sample, "time (or collisions per particle)",
+       "first sample after 0 with spacing = 'log' (default: end / 1000)", kPositive},
+      {"histogram_bins", &Output::histogram_bins, "", "bins of the velocity histograms",
+       Range{1, 1e5}},
+      {"histogram_range", &Output::histogram_range, "sqrt(T_k/m_k)",
+       "velocity histograms cover [-range, range] in thermal units", kPositive},
+  };
+  return fields;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading
+// ---------------------------------------------------------------------------------------------
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+const char* kind_name(namelist::Value::Kind kind) {
+  switch (kind) {
+    case namelist::Value::Kind::Integer: return "an integer";
+    case namelist::Value::Kind::Real: return "a real number";
+    case namelist::Value::Kind::Logical: return "a logical";
+    case namelist::Value::Kind::String: return "a string";
+  }
+  return "a value";
+}
+
+/// Where each variable was last assigned, and the raw element assignments of pair matrices.
+struct Provenance {
+  std::string file;
+  std::map<std::string, int> line;  ///< variable -> line of its last assignment
+  std::map<std::string, std::vector<const namelist::Assignment*>> pair_assignments;
+  std::map<std::string, std::string> pair_files;
+};
+
+struct GroupReader {
+  const std::string& file;
+  const std::string& group;
+  Error error(int line, const std::string& variable, const std::string& message) const {
+    return Error(file, line, group, variable, message);
+  }
+  double number(const namelist::Value& v, const std::string& name, const Range& range) const {
+    if (v.kind != namelist::Value::Kind::Integer && v.kind != namelist::Value::Kind::Real)
+      throw error(v.line, name, "expected a real number, got " + std::string(kind_name(v.kind)) +
+                                    " '" + v.text + "'");
+    if (!std::isfinite(v.real)) throw error(v.line, name, "value '" + v.text + "' is not finite");
+    if (!range.contains(v.real))
+      throw error(v.line, name, name + " = " + v.text + " is outside " + range.text());
+    return v.real;
+  }
+};
+
+template <class G>
+void assign(G& target, const Field<G>& field, const namelist::Assignment& a, const GroupReader& r,
+            Provenance& prov) {
+  const std::string& name = field.name;
+  auto one_value = [&]() -> const namelist::Value& {
+    if (!a.index.empty()) throw r.error(a.line, name, name + " is a scalar and takes no index");
+    if (a.values.size() != 1)
+      throw r.error(a.line, name,
+                    "expected one value, got " + std::to_string(a.values.size()));
+    return a.values.front();
+  };
+  std::visit(
+      [&](auto member) {
+        using T = std::remove_reference_t<decltype(target.*member)>;
+        if constexpr (std::is_same_v<T, long long>) {
+          const auto& v = one_value();
+          if (v.kind != namelist::Value::Kind::Integer)
+            throw r.error(v.line, name, "expected an integer, got " +
+                                            std::string(kind_name(v.kind)) + " '" + v.text + "'");
+          if (!field.range.contains(static_cast<double>(v.integer)))
+            throw r.error(v.line, name, name + " = " + v.text + " is outside " + field.range.text());
+          target.*member = v.integer;
+        } else if constexpr (std::is_same_v<T, double>) {
+          target.*member = r.number(one_value(), name, field.range);
+        } else if constexpr (std::is_same_v<T, std::optional<double>>) {
+          target.*member = r.number(one_value(), name, field.range);
+        } else if constexpr (std::is_same_v<T, bool>) {
+          const auto& v = one_value();
+          if (v.kind != namelist::Value::Kind::Logical)
+            throw r.error(v.line, name, "expected a logical (.true. or .false.), got " +
+                                            std::string(kind_name(v.kind)) + " '" + v.text + "'");
+          target.*member = v.logical;
+        } else if constexpr (std::is_same_v<T, std::string>) {
+          const auto& v = one_value();
+          if (v.kind != namelist::Value::Kind::String)
+            throw r.error(v.line, name, "expected a quoted string, got " +
+                                            std::string(kind_name(v.kind)) + " '" + v.text + "'");
+          if (!field.choices.empty()) {
+            const std::string choice = lower(v.string);
+            if (std::find(field.choices.begin(), field.choices.end(), choice) == field.choices.end()) {
+              std::string list;
+              for (const auto& c : field.choices) list += (list.empty() ? "'" : ", '") + c + "'";
+              throw r.error(v.line, name, "'" + v.string + "' is not one of " + list);
+            }
+            target.*member = choice;
+          } else {
+            if (v.string.empty()) throw r.error(v.line, name, name + " must not be empty");
+            target.*member = v.string;
+          }
+        } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+          std::vector<double>& vec = target.*member;
+          if (a.index.size() > 1)
+            throw r.error(a.line, name, name + " is one-dimensional: use " + name + "(k)");
+          if (a.index.empty()) vec.clear();
+          const std::size_t start = a.index.empty() ? 0 : static_cast<std::size_t>(a.index[0] - 1);
+          if (vec.size() < start + a.values.size())
+            vec.resize(start + a.values.size(), std::numeric_limits<double>::quiet_NaN());
+          for (std::size_t i = 0; i < a.values.size(); ++i)
+            vec[start + i] = r.number(a.values[i], name, field.range);
+        } else if constexpr (std::is_same_v<T, species::PairMatrix>) {
+          // Resolved once n_species is known (check stage); the values are checked now.
+          if (a.index.size() == 1 || a.index.size() > 2)
+            throw r.error(a.line, name, name + " is a matrix: use " + name + "(i,j)");
+          for (const auto& v : a.values) r.number(v, name, field.range);
+          if (a.index.empty()) prov.pair_assignments[name].clear();
+          prov.pair_assignments[name].push_back(&a);
+          prov.pair_files[name] = r.file;
+        }
+      },
+      field.member);
+  prov.line[name] = a.line;
+}
+
+template <class G>
+void read_group(G& target, const std::vector<Field<G>>& fields, const namelist::Group& group,
+                const std::string& file, Provenance& prov) {
+  GroupReader reader{file, group.name};
+  for (const auto& a : group.assignments) {
+    const auto it = std::find_if(fields.begin(), fields.end(),
+                                 [&](const Field<G>& f) { return f.name == a.name; });
+    if (it == fields.end()) {
+      std::vector<std::string> names;
+      for (const auto& f : fields) names.push_back(f.name);
+      const std::string hint = namelist::closest_name(a.name, names);
+      throw reader.error(a.line, a.name,
+                         "unknown variable" + (hint.empty() ? std::string()
+                                                            : " (did you mean '" + hint + "'?)"));
+    }
+    assign(target, *it, a, reader, prov);
+  }
+}
+
+template <class G>
+void check_required(const std::vector<Field<G>>& fields, const Provenance& prov,
+                    const std::string& file, const std::string& group, int group_line) {
+  for (const auto& f : fields)
+    if (f.required && !prov.line.count(f.name))
+      throw Error(file, group_line, group, f.name, "required variable is missing");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Checking and deriving, group by group
+// ---------------------------------------------------------------------------------------------
+void resolve_restitution(System& sys, const Provenance& prov, const std::string& group) {
+  const std::size_t s = static_cast<std::size_t>(sys.n_species);
+  species::PairMatrix m(s, std::numeric_limits<double>::quiet_NaN());
+  const auto& list = prov.pair_assignments.at("restitution");
+  const std::string& file = prov.pair_files.at("restitution");
+  for (const auto* a : list) {
+    if (a->index.empty()) {
+      if (a->values.size() == 1) {
+        std::fill(m.values.begin(), m.values.end(), a->values[0].real);
+      } else if (a->values.size() == s * s) {
+        for (std::size_t c = 0; c < s * s; ++c) m(c % s, c / s) = a->values[c].real;  // column-major
+      } else {
+        throw Error(file, a->line, group, "restitution",
+                    "expected 1 or n_species^2 = " + std::to_string(s * s) + " values, got " +
+                        std::to_string(a->values.size()));
+      }
+      continue;
+    }
+    std::size_t i = static_cast<std::size_t>(a->index[0] - 1);
+    std::size_t j = static_cast<std::size_t>(a->index[1] - 1);
+    for (const auto& v : a->values) {  // consecutive elements in column-major order
+      if (i >= s || j >= s)
+        throw Error(file, v.line, group, "restitution",
+                    "element (" + std::to_string(i + 1) + "," + std::to_string(j + 1) +
+                        ") is outside the " + std::to_string(s) + " x " + std::to_string(s) +
+                        " matrix");
+      m(i, j) = v.real;
+      m(j, i) = v.real;
+      if (++i == s) {
+        i = 0;
+        ++j;
+      }
+    }
+  }
+  for (std::size_t i = 0; i < s; ++i)
+    for (std::size_t j = 0; j < s; ++j)
+      if (std::isnan(m(i, j)))
+        throw Error(file, prov.line.at("restitution"), group, "restitution",
+                    "restitution(" + std::to_string(i + 1) + "," + std::to_string(j + 1) +
+                        ") is not given");
+  sys.restitution = m;
+}
+
+void check_species_list(std::vector<double>& values, const std::string& name, const std::string& law,
+                        std::size_t s, const Provenance& prov, const std::string& group) {
+  const int line = prov.line.count(name) ? prov.line.at(name) : 0;
+  const std::size_t expected = law == "list" ? s : 1;
+  if (values.size() != expected)
+    throw Error(prov.file, line, group, name,
+                "expected " + std::to_string(expected) + " value(s) (" +
+                    (law == "list" ? "n_species = " + std::to_string(s)
+                                   : "species 1 only, with the law '" + law + "'") +
+                    "), got " + std::to_string(values.size()));
+  for (std::size_t k = 0; k < values.size(); ++k)
+    if (std::isnan(values[k]))
+      throw Error(prov.file, line, group, name, name + "(" + std::to_string(k + 1) + ") is not given");
+}
+
+void check_system(System& sys, const Provenance& prov) {
+  const std::string group = "system";
+  const auto s = static_cast<std::size_t>(sys.n_species);
+  if (sys.restitution_model != "constant")
+    throw Error(prov.file, prov.line.at("restitution_model"), group, "restitution_model",
+                "'" + sys.restitution_model + "' is not available in this version (only 'constant')");
+  check_species_list(sys.mass, "mass", sys.mass_law, s, prov, group);
+  check_species_list(sys.diameter, "diameter", sys.diameter_law, s, prov, group);
+  check_species_list(sys.number_density, "number_density", sys.density_law, s, prov, group);
+  if (sys.density_law != "power" && prov.line.count("density_exponent"))
+    throw Error(prov.file, prov.line.at("density_exponent"), group, "density_exponent",
+                "only used with density_law = 'power'");
+  // derive: the species laws (seed 001 sec. II: m_k = k m_1, sigma_k = k^(1/3) sigma_1, n_k = n_1 k^-theta)
+  for (std::size_t k = 2; k <= s; ++k) {
+    const double kk = static_cast<double>(k);
+    if (sys.mass_law == "linear") sys.mass.push_back(kk * sys.mass[0]);
+    if (sys.diameter_law == "cube_root") sys.diameter.push_back(std::cbrt(kk) * sys.diameter[0]);
+    if (sys.density_law == "power")
+      sys.number_density.push_back(sys.number_density[0] * std::pow(kk, -sys.density_exponent));
+  }
+  resolve_restitution(sys, prov, group);
+  if (sys.enskog) {
+    double phi = 0.0;
+    for (std::size_t k = 0; k < s; ++k) phi += sys.number_density[k] * std::pow(sys.diameter[k], 3);
+    phi *= std::acos(-1.0) / 6.0;
+    if (phi >= 0.5)
+      throw Error(prov.file, prov.line.count("number_density") ? prov.line.at("number_density") : 0,
+                  group, "number_density",
+                  "packing fraction " + std::to_string(phi) +
+                      " is beyond the Carnahan-Starling fluid range (phi < 0.5)");
+  }
+}
+
+void check_initial(Initial& ini, std::size_t s, const Provenance& prov) {
+  const int line = prov.line.count("temperature") ? prov.line.at("temperature") : 0;
+  for (std::size_t k = 0; k < ini.temperature.size(); ++k)
+    if (std::isnan(ini.temperature[k]))
+      throw Error(prov.file, line, "initial", "temperature",
+                  "temperature(" + std::to_string(k + 1) + ") is not given");
+  if (ini.temperature.size() == 1 && s > 1) ini.temperature.assign(s, ini.temperature[0]);
+  if (ini.temperature.size() != s)
+    throw Error(prov.file, line, "initial", "temperature",
+                "expected 1 or n_species = " + std::to_string(s) + " values, got " +
+                    std::to_string(ini.temperature.size()));
+}
+
+void check_dsmc(const Dsmc& d, const species::Mixture& mix, const Provenance& prov, int group_line) {
+  const std::string group = "dsmc";
+  if (d.scheme == "lowrank")
+    throw Error(prov.file, prov.line.at("scheme"), group, "scheme",
+                "'lowrank' is not available in this version (use 'majorant' or 'pairs')");
+  if (d.t_end.has_value() == d.collisions_per_particle.has_value())
+    throw Error(prov.file, d.t_end ? prov.line.at("collisions_per_particle") : group_line, group,
+                d.t_end ? "collisions_per_particle" : "t_end",
+                "give exactly one of t_end and collisions_per_particle");
+  const auto counts = particles::species_counts(static_cast<std::size_t>(d.n_particles), mix);
+  for (std::size_t k = 0; k < counts.size(); ++k)
+    if (counts[k] < 2)
+      throw Error(prov.file, prov.line.count("n_particles") ? prov.line.at("n_particles") : group_line,
+                  group, "n_particles",
+                  "n_particles = " + std::to_string(d.n_particles) + " gives " +
+                      std::to_string(counts[k]) + " particle(s) of species " + std::to_string(k + 1) +
+                      "; at least 2 per species are needed");
+}
+
+void check_output(Output& out, const Dsmc& d, const Provenance& prov) {
+  const double end = d.t_end ? *d.t_end : *d.collisions_per_particle;
+  if (out.spacing == "log") {
+    if (!out.first_sample) out.first_sample = end / 1000.0;  // derive
+    if (*out.first_sample >= end)
+      throw Error(prov.file, prov.line.at("first_sample"), "output", "first_sample",
+                  "first_sample must be below the end of the run (" + std::to_string(end) + ")");
+  } else if (prov.line.count("first_sample")) {
+    throw Error(prov.file, prov.line.at("first_sample"), "output", "first_sample",
+                "only used with spacing = 'log'");
+  }
+}
+
+std::vector<double> spaced(const Output& out, double end) {
+  const auto n = static_cast<std::size_t>(out.n_samples);
+  std::vector<double> t(n, 0.0);
+  if (out.spacing == "linear") {
+    for (std::size_t i = 1; i < n; ++i) t[i] = end * static_cast<double>(i) / static_cast<double>(n - 1);
+  } else {
+    const double first = *out.first_sample;
+    for (std::size_t i = 1; i < n; ++i)
+      t[i] = n == 2 ? end
+                    : first * std::pow(end / first, static_cast<double>(i - 1) / static_cast<double>(n - 2));
+  }
+  t.back() = end;
+  return t;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Writing: resolved values, template, reference
+// ---------------------------------------------------------------------------------------------
+template <class G>
+void append_resolved(std::vector<h5md::Parameter>& out, const std::string& group, const G& target,
+                     const std::vector<Field<G>>& fields) {
+  for (const auto& f : fields)
+    std::visit(
+        [&](auto member) {
+          using T = std::remove_cv_t<std::remove_reference_t<decltype(target.*member)>>;
+          const auto& v = target.*member;
+          if constexpr (std::is_same_v<T, std::optional<double>>) {
+            if (v) out.push_back({group, f.name, *v});
+          } else if constexpr (std::is_same_v<T, species::PairMatrix>) {
+            out.push_back({group, f.name, v.values});
+          } else {
+            out.push_back({group, f.name, v});
+          }
+        },
+        f.member);
+}
+
+template <class G>
+std::string default_text(const G& defaults, const Field<G>& f) {
+  std::ostringstream s;
+  s.precision(10);
+  std::visit(
+      [&](auto member) {
+        using T = std::remove_cv_t<std::remove_reference_t<decltype(defaults.*member)>>;
+        const auto& v = defaults.*member;
+        if constexpr (std::is_same_v<T, long long> || std::is_same_v<T, double>) s << v;
+        else if constexpr (std::is_same_v<T, bool>) s << (v ? ".true." : ".false.");
+        else if constexpr (std::is_same_v<T, std::string>) s << "'" << v << "'";
+        else if constexpr (std::is_same_v<T, std::vector<double>>) {
+          for (std::size_t i = 0; i < v.size(); ++i) s << (i ? ", " : "") << v[i];
+        }
+      },
+      f.member);
+  return s.str();
+}
+
+template <class G>
+void template_group(std::ostringstream& s, const std::string& group, const std::vector<Field<G>>& fields,
+                    const std::map<std::string, std::string>& examples) {
+  const G defaults{};
+  s << "&" << group << "\n";
+  for (const auto& f : fields) {
+    std::string value = default_text(defaults, f);
+    std::string prefix = "  ";
+    std::string note;
+    if (f.required) {
+      value = examples.count(f.name) ? examples.at(f.name) : "...";
+      note = " (required)";
+    } else if (value.empty()) {
+      prefix = "! ";
+      value = examples.count(f.name) ? examples.at(f.name) : "...";
+      note = " (not set by default)";
+    }
+    std::string line = prefix + f.name + " = " + value;
+    if (line.size() < 36) line.resize(36, ' ');
+    s << line << " ! " << f.help << (f.units.empty() ? "" : " [" + f.units + "]") << note << "\n";
+  }
+  s << "/\n\n";
+}
+
+template <class G>
+void reference_group(std::ostringstream& s, const std::string& group, const std::vector<Field<G>>& fields) {
+  const G defaults{};
+  s << "### &" << group << "\n\n| variable | default | allowed | units | meaning |\n|---|---|---|---|---|\n";
+  for (const auto& f : fields) {
+    std::string allowed;
+    if (!f.choices.empty())
+      for (const auto& c : f.choices) allowed += (allowed.empty() ? "'" : ", '") + c + "'";
+    else if (std::isfinite(f.range.lo) || std::isfinite(f.range.hi))
+      allowed = f.range.text();
+    std::string def = f.required ? "(required)" : default_text(defaults, f);
+    if (def.empty()) def = "(unset)";
+    s << "| `" << f.name << "` | " << def << " | " << allowed << " | " << f.units << " | " << f.help
+      << " |\n";
+  }
+  s << "\n";
+}
+
+namelist::Document parse_override(const std::string& text) {
+  const auto colon = text.find(':');
+  const auto equal = text.find('=');
+  if (colon == std::string::npos || equal == std::string::npos || colon > equal)
+    throw Error("--set", 0, "", "", "'" + text + "' is not of the form group:variable=value");
+  const std::string group = text.substr(0, colon);
+  return namelist::parse("&" + group + " " + text.substr(colon + 1) + " /", "--set " + text);
+}
+
+}  // namespace
+
+species::Mixture Config::mixture() const {
+  return species::make_mixture(system.mass, system.diameter, system.number_density,
+                               system.restitution, system.enskog);
+}
+
+std::vector<double> Config::sample_times() const {
+  return dsmc.t_end ? spaced(output, *dsmc.t_end) : std::vector<double>{};
+}
+
+std::vector<double> Config::sample_collisions() const {
+  return dsmc.collisions_per_particle ? spaced(output, *dsmc.collisions_per_particle)
+                                      : std::vector<double>{};
+}
+
+std::vector<h5md::Parameter> Config::resolved() const {
+  std::vector<h5md::Parameter> out;
+  append_resolved(out, "system", system, system_fields());
+  append_resolved(out, "initial", initial, initial_fields());
+  append_resolved(out, "dsmc", dsmc, dsmc_fields());
+  append_resolved(out, "output", output, output_fields());
+  return out;
+}
+
+Config read(const namelist::Document& document, const std::vector<std::string>& overrides) {
+  Config c;
+  c.source_file = document.file;
+  c.namelist_text = document.text;
+  c.overrides = overrides;
+
+  static const std::vector<std::string> known = {"system", "initial", "dsmc", "output"};
+  for (const auto& g : document.groups)
+    if (std::find(known.begin(), known.end(), g.name) == known.end()) {
+      const std::string hint = namelist::closest_name(g.name, known);
+      throw Error(document.file, g.line, g.name, "",
+                  "unknown group" + (hint.empty() ? std::string() : " (did you mean '&" + hint + "'?)"));
+    }
+  for (const char* required : {"system", "dsmc"})
+    if (!document.find(required))
+      throw Error(document.file, 0, required, "", "required group is missing");
+
+  std::vector<namelist::Document> extra;
+  extra.reserve(overrides.size());
+  for (const auto& o : overrides) extra.push_back(parse_override(o));
+
+  std::map<std::string, Provenance> prov;
+  auto read_all = [&](const std::string& name, auto& target, const auto& fields) {
+    Provenance& p = prov[name];
+    p.file = document.file;
+    if (const auto* g = document.find(name)) read_group(target, fields, *g, document.file, p);
+    for (const auto& doc : extra)
+      if (const auto* g = doc.find(name)) {
+        p.file = doc.file;  // errors and origins of what the override sets name the override
+        read_group(target, fields, *g, doc.file, p);
+      }
+      else if (!doc.groups.empty() && std::find(known.begin(), known.end(), doc.groups[0].name) == known.end())
+        throw Error(doc.file, 0, doc.groups[0].name, "", "unknown group");
+  };
+  read_all("system", c.system, system_fields());
+  read_all("initial", c.initial, initial_fields());
+  read_all("dsmc", c.dsmc, dsmc_fields());
+  read_all("output", c.output, output_fields());
+
+  for (const auto& [group, p] : prov)
+    for (const auto& [variable, line] : p.line) c.origin[group + ":" + variable] = {p.file, line};
+  check_required(system_fields(), prov["system"], document.file, "system", document.find("system")->line);
+  check_system(c.system, prov["system"]);
+  check_initial(c.initial, static_cast<std::size_t>(c.system.n_species), prov["initial"]);
+  check_dsmc(c.dsmc, c.mixture(), prov["dsmc"], document.find("dsmc")->line);
+  check_output(c.output, c.dsmc, prov["output"]);
+  return c;
+}
+
+Config read_file(const std::string& path, const std::vector<std::string>& overrides) {
+  return read(namelist::parse_file(path), overrides);
+}
+
+Config read_from_output(const std::string& h5_path) {
+  const std::string text = h5md::read_string_attribute(h5_path, "/parameters", "namelist");
+  const std::string file = h5md::read_string_attribute(h5_path, "/parameters", "source_file");
+  const std::string joined = h5md::read_string_attribute(h5_path, "/parameters", "overrides");
+  std::vector<std::string> overrides;
+  std::istringstream lines(joined);
+  for (std::string line; std::getline(lines, line);)
+    if (!line.empty()) overrides.push_back(line);
+  return read(namelist::parse(text, file), overrides);
+}
+
+std::string defaults_template() {
+  std::ostringstream s;
+  s << "! granular-dsmc input: every variable with its default (granular-dsmc --print-defaults).\n"
+       "! Fortran namelist rules: case-insensitive names, '!' comments, 'a = 1.0, 2.0' arrays,\n"
+       "! '3*1.0' repeats, .true./.false., quoted strings, a(2) = ... element assignment.\n\n";
+  template_group(s, "system", system_fields(),
+                 {{"mass", "1.0"}, {"diameter", "1.0"}, {"number_density", "0.01"}, {"restitution", "0.9"}});
+  template_group(s, "initial", initial_fields(), {});
+  template_group(s, "dsmc", dsmc_fields(), {{"t_end", "100.0"}, {"collisions_per_particle", "50.0"}});
+  template_group(s, "output", output_fields(), {{"first_sample", "0.1"}});
+  return s.str();
+}
+
+std::string reference_markdown() {
+  std::ostringstream s;
+  reference_group(s, "system", system_fields());
+  reference_group(s, "initial", initial_fields());
+  reference_group(s, "dsmc", dsmc_fields());
+  reference_group(s, "output", output_fields());
+  return s.str();
+}
+
+}  // namespace gdsmc::io::config

@@ -1,0 +1,111 @@
+/**
+ * \file config.hpp
+ * \brief The validated input of a run: one parameter struct per namelist group, one table per group.
+ *
+ * Input goes through one fixed pipeline for every group, in the manner of Quantum ESPRESSO's
+ * read_namelists but with each default written exactly once:
+ *
+ *   defaults (the member initialisers below) -> read (the group's field table assigns what the
+ *   namelist gives, checking type, index and range of every value) -> check (cross-field rules,
+ *   array lengths against n_species) -> derive (species laws, sample times) -> freeze (const Config).
+ *
+ * The field table of each group (name, type, shape, range or choices, units, help) is the only
+ * place a variable is declared: it drives the reader, the checks, `--print-defaults`, the input
+ * reference in docs/ and the resolved input written to `/parameters` of every output file.
+ *
+ * Groups (INTERFACE.md): `&system` (required), `&initial`, `&dsmc` (required), `&output`.
+ * Every error is an io::namelist::Error: `FILE:LINE: &group: variable: message`.
+ * Checked by tests/config_test.cpp.
+ */
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <utility>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dsmc/species.hpp"
+#include "io/h5md.hpp"
+#include "io/namelist.hpp"
+
+namespace gdsmc::io::config {
+
+/// &system: the mixture (seed 000 "polydisperse system", seed 003 sec. 2).
+struct System {
+  long long n_species = 1;
+  std::vector<double> mass;            ///< m_k (required)
+  std::vector<double> diameter;        ///< sigma_k (required)
+  std::vector<double> number_density;  ///< n_k (required)
+  species::PairMatrix restitution;     ///< alpha_kj (required; one value fills all pairs)
+  std::string restitution_model = "constant";
+  bool enskog = false;
+  std::string mass_law = "list";
+  std::string diameter_law = "list";
+  std::string density_law = "list";
+  double density_exponent = 0.0;
+};
+
+/// &initial: the state at t = 0.
+struct Initial {
+  std::vector<double> temperature{1.0};  ///< T_k(0); one value applies to every species
+  std::string distribution = "maxwell";
+};
+
+/// &dsmc: the scheme and the size and length of the run.
+struct Dsmc {
+  std::string scheme = "majorant";
+  long long n_particles = 20000;
+  std::optional<double> t_end;                   ///< exactly one of t_end and
+  std::optional<double> collisions_per_particle; ///< collisions_per_particle (2 x events / N)
+  long long replicas = 1;
+  long long seed = 12345;
+  double step_fraction = 1.0;
+};
+
+/// &output: where and when.
+struct Output {
+  std::string file = "run.h5";
+  long long n_samples = 100;
+  std::string spacing = "linear";
+  std::optional<double> first_sample;  ///< log spacing: first sample after 0 (default end / 1000)
+  long long histogram_bins = 50;
+  double histogram_range = 5.0;
+};
+
+struct Config {
+  System system;
+  Initial initial;
+  Dsmc dsmc;
+  Output output;
+  std::string source_file;               ///< name of the namelist file
+  std::string namelist_text;             ///< its text, verbatim
+  std::vector<std::string> overrides;    ///< `--set group:variable=value`, in order
+  /// Where each variable was last set: "group:variable" -> (file, line), for later error messages.
+  std::map<std::string, std::pair<std::string, int>> origin;
+
+  /// The mixture of &system with its pair data.
+  species::Mixture mixture() const;
+  /// Sample times, including t = 0, when the run is time-driven (empty otherwise).
+  std::vector<double> sample_times() const;
+  /// Sample points in collisions per particle, including 0, when the run is collision-driven.
+  std::vector<double> sample_collisions() const;
+  /// Every variable of every group, defaults included, for /parameters.
+  std::vector<h5md::Parameter> resolved() const;
+};
+
+/// Reads, checks and derives a Config from a parsed namelist plus command-line overrides
+/// (each `group:variable=value`, Fortran syntax for the value). Throws namelist::Error.
+Config read(const namelist::Document& document, const std::vector<std::string>& overrides = {});
+/// Parses and reads a namelist file.
+Config read_file(const std::string& path, const std::vector<std::string>& overrides = {});
+/// Rebuilds the Config of an output file from its stored namelist text and overrides.
+Config read_from_output(const std::string& h5_path);
+
+/// A commented namelist with every variable, its default, units and help (`--print-defaults`).
+std::string defaults_template();
+/// The input reference as Markdown tables (docs/input.md is generated from it).
+std::string reference_markdown();
+
+}  // namespace gdsmc::io::config

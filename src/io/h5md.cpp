@@ -1,0 +1,683 @@
+// H5MD 1.1 output through the HDF5 C API; layout and guarantees are described in h5md.hpp.
+#include "io/h5md.hpp"
+
+#include <hdf5.h>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <utility>
+
+namespace gdsmc::io::h5md {
+namespace {
+
+namespace fs = std::filesystem;
+
+static_assert(sizeof(long long) == 8, "the int64 datasets are read and written as long long");
+
+template <class... Ts>
+struct Overloaded : Ts... {
+  using Ts::operator()...;
+};
+
+/// Keeps HDF5 from printing its error stack to stderr while a function of this module runs: the
+/// module reports errors itself, by exception. The previous handler is restored so that the rest
+/// of the program keeps whatever setting it chose.
+class ErrorSilencer {
+ public:
+  ErrorSilencer() {
+    if (H5Eget_auto2(H5E_DEFAULT, &func_, &data_) >= 0)
+      restore_ = H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr) >= 0;
+  }
+  ~ErrorSilencer() {
+    if (restore_) H5Eset_auto2(H5E_DEFAULT, func_, data_);
+  }
+  ErrorSilencer(const ErrorSilencer&) = delete;
+  ErrorSilencer& operator=(const ErrorSilencer&) = delete;
+
+ private:
+  H5E_auto2_t func_ = nullptr;
+  void* data_ = nullptr;
+  bool restore_ = false;
+};
+
+/// HDF5's own explanation of the last failure: the outermost entry of its error stack (what the API
+/// function could not do) and the innermost one (why, often with errno and its text).
+std::string hdf5_detail() {
+  const hid_t stack = H5Eget_current_stack();  // takes the stack, so the next call starts clean
+  if (stack < 0) return "no details from HDF5";
+  std::vector<std::string> descriptions;
+  H5Ewalk2(
+      stack, H5E_WALK_DOWNWARD,
+      [](unsigned, const H5E_error2_t* error, void* out) -> herr_t {
+        if (error != nullptr && error->desc != nullptr)
+          static_cast<std::vector<std::string>*>(out)->emplace_back(error->desc);
+        return 0;
+      },
+      &descriptions);
+  H5Eclose_stack(stack);
+  if (descriptions.empty()) return "no details from HDF5";
+  if (descriptions.size() == 1 || descriptions.front() == descriptions.back())
+    return descriptions.front();
+  return descriptions.front() + ": " + descriptions.back();
+}
+
+/// Throws without naming the file: the public functions add "cannot write/read output file '...'".
+[[noreturn]] void fail(const char* call, const std::string& object) {
+  throw std::runtime_error(std::string(call) + " failed for '" + object + "': " + hdf5_detail());
+}
+
+/// For herr_t and htri_t results (negative = failure); returns the value so htri_t stays usable.
+int check(int status, const char* call, const std::string& object) {
+  if (status < 0) fail(call, object);
+  return status;
+}
+
+/// Owns one hid_t and closes it with the matching H5?close, so no exit path leaks an identifier.
+class Handle {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Handle() = default;
+  Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
+  Handle(Handle&& other) noexcept
+      : id_(std::exchange(other.id_, invalid)), closer_(other.closer_) {}
+  Handle& operator=(Handle&& other) noexcept {
+    if (this != &other) {
+      reset();
+      id_ = std::exchange(other.id_, invalid);
+      closer_ = other.closer_;
+    }
+    return *this;
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  ~Handle() { reset(); }
+
+  hid_t get() const { return id_; }
+  bool is_open() const { return id_ >= 0; }
+  /// For the one place where a failing close matters: the file, before it is renamed.
+  herr_t close() {
+    const herr_t status = is_open() ? closer_(id_) : 0;
+    id_ = invalid;
+    return status;
+  }
+  void reset() noexcept {
+    if (is_open()) closer_(id_);  // a destructor cannot report; the explicit paths use close()
+    id_ = invalid;
+  }
+
+ private:
+  static constexpr hid_t invalid = -1;
+  hid_t id_ = invalid;
+  Closer closer_ = nullptr;
+};
+
+Handle make(hid_t id, Handle::Closer closer, const char* call, const std::string& object) {
+  if (id < 0) fail(call, object);
+  return Handle(id, closer);
+}
+
+/// Runs `body` with HDF5's error printing off and prefixes a runtime_error with `context`.
+/// Argument errors (std::logic_error) pass unchanged: they are the caller's bug, not the file's.
+template <class Body>
+auto with_context(const std::string& context, Body&& body) -> decltype(body()) {
+  const ErrorSilencer silence;
+  try {
+    return body();
+  } catch (const std::runtime_error& error) {
+    throw std::runtime_error(context + ": " + error.what());
+  }
+}
+
+std::string write_context(const std::string& path) {
+  return "cannot write output file '" + path + "'";
+}
+std::string read_context(const std::string& path) {
+  return "cannot read output file '" + path + "'";
+}
+
+std::vector<std::string> split_path(const std::string& path) {
+  std::vector<std::string> parts;
+  std::size_t begin = 0;
+  while (begin <= path.size()) {
+    const std::size_t end = std::min(path.find('/', begin), path.size());
+    if (end > begin) parts.push_back(path.substr(begin, end - begin));
+    begin = end + 1;
+  }
+  return parts;
+}
+
+std::string join_path(const std::vector<std::string>& parts, std::size_t count) {
+  std::string path;
+  for (std::size_t i = 0; i < count; ++i) path += "/" + parts[i];
+  return path.empty() ? "/" : path;
+}
+
+/// File access shared by writer and readers. The 1.8 format bounds give the superblock version 2
+/// that H5MD recommends and dense attribute storage (so a long vector parameter cannot overflow the
+/// 64 KiB object header), while keeping the file readable by HDF5 1.8. STRONG close degree makes
+/// H5Fclose really close the file even if some object were still open, so the rename that follows
+/// never moves a file HDF5 is still writing.
+Handle file_access(const std::string& object) {
+  Handle fapl = make(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate(H5P_FILE_ACCESS)", object);
+  check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), "H5Pset_fclose_degree", object);
+#if H5_VERSION_GE(1, 10, 2)
+  check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_V18), "H5Pset_libver_bounds",
+        object);
+#else
+  check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_LATEST, H5F_LIBVER_LATEST),
+        "H5Pset_libver_bounds", object);
+#endif
+  return fapl;
+}
+
+Handle utf8_string_type(const std::string& object) {
+  Handle type = make(H5Tcopy(H5T_C_S1), H5Tclose, "H5Tcopy(H5T_C_S1)", object);
+  check(H5Tset_size(type.get(), H5T_VARIABLE), "H5Tset_size", object);
+  check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "H5Tset_cset", object);
+  return type;
+}
+
+/// Opens every group along `path`, creating the missing ones, and returns the last.
+Handle ensure_group(hid_t file, const std::string& path) {
+  const std::vector<std::string> parts = split_path(path);
+  Handle group = make(H5Gopen2(file, "/", H5P_DEFAULT), H5Gclose, "H5Gopen2", "/");
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const std::string where = join_path(parts, i + 1);
+    const char* name = parts[i].c_str();
+    if (check(H5Lexists(group.get(), name, H5P_DEFAULT), "H5Lexists", where) > 0)
+      group = make(H5Gopen2(group.get(), name, H5P_DEFAULT), H5Gclose, "H5Gopen2", where);
+    else
+      group = make(H5Gcreate2(group.get(), name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                   "H5Gcreate2", where);
+  }
+  return group;
+}
+
+/// One attribute; `dims` = nullptr gives a scalar dataspace.
+void put_attribute(hid_t object, const std::string& where, const std::string& name, hid_t file_type,
+                   hid_t memory_type, const hsize_t* dims, const void* data) {
+  Handle space = dims == nullptr
+                     ? make(H5Screate(H5S_SCALAR), H5Sclose, "H5Screate", where)
+                     : make(H5Screate_simple(1, dims, nullptr), H5Sclose, "H5Screate_simple", where);
+  Handle attribute =
+      make(H5Acreate2(object, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+           H5Aclose, "H5Acreate2", where);
+  if (dims == nullptr || dims[0] > 0)
+    check(H5Awrite(attribute.get(), memory_type, data), "H5Awrite", where);
+}
+
+/// `replace` = false makes a second value for the same name an error (a duplicate parameter is a
+/// bug upstream that should not pass silently); true is for explicit annotations.
+void put_value(hid_t object, const std::string& object_path, const std::string& name,
+               const ParameterValue& value, bool replace) {
+  const std::string where = object_path + "@" + name;
+  if (replace && check(H5Aexists(object, name.c_str()), "H5Aexists", where) > 0)
+    check(H5Adelete(object, name.c_str()), "H5Adelete", where);
+  auto put = [&](hid_t file_type, hid_t memory_type, const hsize_t* dims, const void* data) {
+    put_attribute(object, where, name, file_type, memory_type, dims, data);
+  };
+  std::visit(
+      Overloaded{
+          [&](bool v) {
+            const std::int8_t flag = v ? 1 : 0;
+            put(H5T_STD_I8LE, H5T_NATIVE_INT8, nullptr, &flag);
+          },
+          [&](long long v) { put(H5T_STD_I64LE, H5T_NATIVE_LLONG, nullptr, &v); },
+          [&](double v) { put(H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, nullptr, &v); },
+          [&](const std::string& v) {
+            const Handle type = utf8_string_type(where);
+            const char* text = v.c_str();
+            put(type.get(), type.get(), nullptr, &text);
+          },
+          [&](const std::vector<long long>& v) {
+            const hsize_t n = v.size();
+            put(H5T_STD_I64LE, H5T_NATIVE_LLONG, &n, v.data());
+          },
+          [&](const std::vector<double>& v) {
+            const hsize_t n = v.size();
+            put(H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &n, v.data());
+          },
+          [&](const std::vector<std::string>& v) {
+            const Handle type = utf8_string_type(where);
+            std::vector<const char*> texts;
+            texts.reserve(v.size());
+            for (const std::string& s : v) texts.push_back(s.c_str());
+            const hsize_t n = v.size();
+            put(type.get(), type.get(), &n, texts.data());
+          },
+      },
+      value);
+}
+
+/// `extensible` makes the first dimension H5S_UNLIMITED (H5MD's "[variable]"), which needs
+/// chunked storage; chunks of about 256 KiB keep partial reads cheap without many tiny chunks.
+void put_dataset(hid_t group, const std::string& group_path, const std::string& name,
+                 hid_t file_type, hid_t memory_type, const std::vector<hsize_t>& dims,
+                 bool extensible, const void* data) {
+  const std::string where = (group_path == "/" ? "" : group_path) + "/" + name;
+  const int rank = static_cast<int>(dims.size());
+  std::vector<hsize_t> max_dims = dims;
+  Handle dcpl = make(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "H5Pcreate(H5P_DATASET_CREATE)",
+                     where);
+  if (extensible) {
+    max_dims[0] = H5S_UNLIMITED;
+    hsize_t row = 1;
+    for (std::size_t i = 1; i < dims.size(); ++i) row *= std::max<hsize_t>(dims[i], 1);
+    std::vector<hsize_t> chunk = dims;
+    for (std::size_t i = 1; i < chunk.size(); ++i) chunk[i] = std::max<hsize_t>(chunk[i], 1);
+    chunk[0] = std::clamp<hsize_t>(dims[0], 1, std::max<hsize_t>(1, (hsize_t{1} << 15) / row));
+    check(H5Pset_chunk(dcpl.get(), rank, chunk.data()), "H5Pset_chunk", where);
+  }
+  Handle space = make(H5Screate_simple(rank, dims.data(), max_dims.data()), H5Sclose,
+                      "H5Screate_simple", where);
+  Handle dataset = make(H5Dcreate2(group, name.c_str(), file_type, space.get(), H5P_DEFAULT,
+                                   dcpl.get(), H5P_DEFAULT),
+                        H5Dclose, "H5Dcreate2", where);
+  hsize_t count = 1;
+  for (const hsize_t d : dims) count *= d;
+  if (count > 0)  // HDF5 rejects a null buffer even when there is nothing to write
+    check(H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "H5Dwrite",
+          where);
+}
+
+void sync_file(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw std::runtime_error("cannot open '" + path + "' to sync it: " + std::strerror(errno));
+  if (::fsync(fd) != 0) {
+    const int error = errno;
+    ::close(fd);
+    throw std::runtime_error("fsync of '" + path + "' failed: " + std::strerror(error));
+  }
+  ::close(fd);
+}
+
+/// Makes the rename itself durable. Best effort: some filesystems cannot sync a directory, and the
+/// file is already complete under its final name either way.
+void sync_directory(const std::string& path) noexcept {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+
+std::string parent_directory(const std::string& path) {
+  const fs::path parent = fs::path(path).parent_path();
+  return parent.empty() ? std::string(".") : parent.string();
+}
+
+// ---- reading ----
+
+Handle open_for_reading(const std::string& file) {
+  std::error_code ec;
+  if (!fs::exists(file, ec)) throw std::runtime_error("no such file");
+  Handle fapl = make(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate(H5P_FILE_ACCESS)", file);
+  check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), "H5Pset_fclose_degree", file);
+  return make(H5Fopen(file.c_str(), H5F_ACC_RDONLY, fapl.get()), H5Fclose, "H5Fopen", file);
+}
+
+std::vector<std::size_t> extent(hid_t space, const std::string& where, hssize_t& count) {
+  const int rank = check(H5Sget_simple_extent_ndims(space), "H5Sget_simple_extent_ndims", where);
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+  check(H5Sget_simple_extent_dims(space, dims.data(), nullptr), "H5Sget_simple_extent_dims", where);
+  count = H5Sget_simple_extent_npoints(space);
+  if (count < 0) fail("H5Sget_simple_extent_npoints", where);
+  return {dims.begin(), dims.end()};
+}
+
+template <class T>
+std::vector<T> read_numbers(hid_t group, const std::string& group_path, const std::string& name,
+                            hid_t memory_type, std::vector<std::size_t>* shape = nullptr) {
+  const std::string where = (group_path == "/" ? "" : group_path) + "/" + name;
+  Handle dataset = make(H5Dopen2(group, name.c_str(), H5P_DEFAULT), H5Dclose, "H5Dopen2", where);
+  Handle space = make(H5Dget_space(dataset.get()), H5Sclose, "H5Dget_space", where);
+  hssize_t count = 0;
+  const std::vector<std::size_t> dims = extent(space.get(), where, count);
+  std::vector<T> data(static_cast<std::size_t>(count));
+  if (count > 0)
+    check(H5Dread(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
+          "H5Dread", where);
+  if (shape != nullptr) *shape = dims;
+  return data;
+}
+
+std::vector<std::string> read_strings(hid_t attribute, hid_t file_type, hid_t space,
+                                      std::size_t count, const std::string& where) {
+  std::vector<std::string> texts;
+  if (count == 0) return texts;
+  const H5T_cset_t cset = H5Tget_cset(file_type);
+  if (cset < 0) fail("H5Tget_cset", where);
+  Handle memory_type = make(H5Tcopy(H5T_C_S1), H5Tclose, "H5Tcopy(H5T_C_S1)", where);
+  check(H5Tset_cset(memory_type.get(), cset), "H5Tset_cset", where);
+  if (check(H5Tis_variable_str(file_type), "H5Tis_variable_str", where) > 0) {
+    check(H5Tset_size(memory_type.get(), H5T_VARIABLE), "H5Tset_size", where);
+    std::vector<char*> pointers(count, nullptr);
+    check(H5Aread(attribute, memory_type.get(), pointers.data()), "H5Aread", where);
+    // HDF5 allocated the strings; give them back even if copying throws.
+    struct Reclaim {
+      hid_t type, space;
+      std::vector<char*>& buffer;
+      ~Reclaim() {
+#if H5_VERSION_GE(1, 12, 0)
+        H5Treclaim(type, space, H5P_DEFAULT, buffer.data());
+#else
+        H5Dvlen_reclaim(type, space, H5P_DEFAULT, buffer.data());
+#endif
+      }
+    } reclaim{memory_type.get(), space, pointers};
+    for (const char* p : pointers) texts.emplace_back(p == nullptr ? "" : p);
+  } else {
+    const std::size_t size = H5Tget_size(file_type);
+    if (size == 0) fail("H5Tget_size", where);
+    // One byte more than stored, so a NULLPAD string of full length keeps its last character.
+    check(H5Tset_size(memory_type.get(), size + 1), "H5Tset_size", where);
+    check(H5Tset_strpad(memory_type.get(), H5T_STR_NULLTERM), "H5Tset_strpad", where);
+    std::vector<char> buffer(count * (size + 1), '\0');
+    check(H5Aread(attribute, memory_type.get(), buffer.data()), "H5Aread", where);
+    for (std::size_t i = 0; i < count; ++i) texts.emplace_back(buffer.data() + i * (size + 1));
+  }
+  return texts;
+}
+
+ParameterValue read_attribute_value(hid_t file, const std::string& object_path,
+                                    const std::string& name) {
+  const std::string where = object_path + "@" + name;
+  Handle attribute = make(H5Aopen_by_name(file, object_path.c_str(), name.c_str(), H5P_DEFAULT,
+                                          H5P_DEFAULT),
+                          H5Aclose, "H5Aopen_by_name", where);
+  Handle type = make(H5Aget_type(attribute.get()), H5Tclose, "H5Aget_type", where);
+  Handle space = make(H5Aget_space(attribute.get()), H5Sclose, "H5Aget_space", where);
+  const H5S_class_t space_class = H5Sget_simple_extent_type(space.get());
+  if (space_class < 0) fail("H5Sget_simple_extent_type", where);
+  hssize_t count = 0;
+  const bool scalar = space_class == H5S_SCALAR;
+  if (!scalar) {
+    if (space_class != H5S_SIMPLE || extent(space.get(), where, count).size() != 1)
+      throw std::runtime_error("attribute '" + where + "' is neither a scalar nor 1-D");
+  } else {
+    count = 1;
+  }
+  const auto n = static_cast<std::size_t>(count);
+
+  auto numbers = [&]<class T>(hid_t memory_type, T) {
+    std::vector<T> data(n);
+    if (n > 0) check(H5Aread(attribute.get(), memory_type, data.data()), "H5Aread", where);
+    return data;
+  };
+  const H5T_class_t type_class = H5Tget_class(type.get());
+  switch (type_class) {
+    case H5T_INTEGER: {
+      if (scalar && H5Tget_size(type.get()) == 1)
+        return numbers(H5T_NATIVE_INT8, std::int8_t{})[0] != 0;
+      std::vector<long long> data = numbers(H5T_NATIVE_LLONG, 0LL);
+      if (scalar) return data[0];
+      return data;
+    }
+    case H5T_FLOAT: {
+      std::vector<double> data = numbers(H5T_NATIVE_DOUBLE, 0.0);
+      if (scalar) return data[0];
+      return data;
+    }
+    case H5T_STRING: {
+      std::vector<std::string> texts = read_strings(attribute.get(), type.get(), space.get(), n, where);
+      if (scalar) return std::move(texts[0]);
+      return texts;
+    }
+    case H5T_NO_CLASS:
+      fail("H5Tget_class", where);
+    default:
+      throw std::runtime_error("attribute '" + where +
+                               "' is not an integer, float or string (HDF5 type class " +
+                               std::to_string(static_cast<int>(type_class)) + ")");
+  }
+}
+
+}  // namespace
+
+// ---- Writer ----
+
+struct Writer::Impl {
+  std::string final_path;
+  std::string temp_path;
+  Handle file;
+  bool created = false;    // the temporary file is ours to remove
+  bool committed = false;
+  bool keep_temp = false;  // set when only the rename failed: the file holds a complete run
+
+  // In Impl rather than Writer so that a constructor failing after H5Fcreate also cleans up.
+  ~Impl() {
+    const ErrorSilencer silence;
+    file.reset();
+    if (created && !committed && !keep_temp) {
+      std::error_code ignored;
+      fs::remove(temp_path, ignored);
+    }
+  }
+
+  std::string context() const { return write_context(final_path); }
+
+  hid_t open_file() const {
+    if (committed)
+      throw std::logic_error("h5md::Writer for '" + final_path + "' used after commit()");
+    if (!file.is_open())
+      throw std::logic_error("h5md::Writer for '" + final_path + "' used after a failed commit()");
+    return file.get();
+  }
+};
+
+Writer::Writer(std::string final_path, std::string author, std::string creator_name,
+               std::string creator_version)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& d = *impl_;
+  d.final_path = std::move(final_path);
+  d.temp_path = d.final_path + ".tmp." + std::to_string(::getpid());
+  with_context(d.context(), [&] {
+    if (d.final_path.empty()) throw std::runtime_error("the path is empty");
+    Handle fapl = file_access(d.temp_path);
+    // TRUNC, not EXCL: a leftover from a killed run with the same pid (common in containers)
+    // must not block the next run; HDF5 itself refuses a file this process still has open.
+    const hid_t id = H5Fcreate(d.temp_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
+    if (id < 0) {
+      const std::string detail = hdf5_detail();
+      const std::string directory = parent_directory(d.temp_path);
+      std::error_code ec;
+      if (!fs::exists(directory, ec))
+        throw std::runtime_error("directory '" + directory + "' does not exist");
+      if (!fs::is_directory(directory, ec))
+        throw std::runtime_error("'" + directory + "' is not a directory");
+      throw std::runtime_error("H5Fcreate failed for '" + d.temp_path + "': " + detail);
+    }
+    d.file = Handle(id, H5Fclose);
+    d.created = true;
+
+    const hid_t file = d.file.get();
+    const Handle h5md = ensure_group(file, "/h5md");
+    const std::int32_t version[2] = {1, 1};
+    const hsize_t two = 2;
+    put_attribute(h5md.get(), "/h5md@version", "version", H5T_STD_I32LE, H5T_NATIVE_INT32, &two,
+                  version);
+    put_value(ensure_group(file, "/h5md/author").get(), "/h5md/author", "name", author, false);
+    const Handle creator = ensure_group(file, "/h5md/creator");
+    put_value(creator.get(), "/h5md/creator", "name", creator_name, false);
+    put_value(creator.get(), "/h5md/creator", "version", creator_version, false);
+  });
+}
+
+Writer::~Writer() = default;
+
+void Writer::write_parameters(const std::vector<Parameter>& parameters,
+                              const std::string& namelist_text) {
+  for (const Parameter& p : parameters)
+    if (p.group.empty() || p.group.find('/') != std::string::npos)
+      throw std::invalid_argument("h5md: invalid namelist group name '" + p.group +
+                                  "' for parameter '" + p.name + "'");
+  const hid_t file = impl_->open_file();
+  with_context(impl_->context(), [&] {
+    const Handle root = ensure_group(file, "/parameters");
+    put_value(root.get(), "/parameters", "namelist", namelist_text, false);
+    for (const Parameter& p : parameters) {
+      const std::string path = "/parameters/" + p.group;
+      put_value(ensure_group(file, path).get(), path, p.name, p.value, false);
+    }
+  });
+}
+
+void Writer::write_observable(const std::string& name, const Series& series) {
+  const std::vector<std::string> parts = split_path(name);
+  const std::size_t nt = series.time.size();
+  const std::string what = "h5md: observable '" + name + "': ";
+  if (parts.empty()) throw std::invalid_argument(what + "empty name");
+  if (series.columns == 0) throw std::invalid_argument(what + "columns must be at least 1");
+  if (series.step.size() != nt)
+    throw std::invalid_argument(what + std::to_string(series.step.size()) + " steps but " +
+                                std::to_string(nt) + " times");
+  if (series.value.size() != nt * series.columns)
+    throw std::invalid_argument(what + std::to_string(series.value.size()) + " values, expected " +
+                                std::to_string(nt) + " times x " + std::to_string(series.columns) +
+                                " columns");
+  if (!series.error.empty() && series.error.size() != series.value.size())
+    throw std::invalid_argument(what + std::to_string(series.error.size()) + " errors but " +
+                                std::to_string(series.value.size()) + " values");
+
+  const hid_t file = impl_->open_file();
+  with_context(impl_->context(), [&] {
+    const std::string path = "/observables" + join_path(parts, parts.size());
+    const Handle group = ensure_group(file, path);
+    const std::vector<hsize_t> times = {nt};
+    const std::vector<hsize_t> dims =
+        series.columns == 1 ? times : std::vector<hsize_t>{nt, series.columns};
+    put_dataset(group.get(), path, "step", H5T_STD_I64LE, H5T_NATIVE_LLONG, times, true,
+                series.step.data());
+    put_dataset(group.get(), path, "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, times, true,
+                series.time.data());
+    put_dataset(group.get(), path, "value", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, dims, true,
+                series.value.data());
+    if (!series.error.empty())
+      put_dataset(group.get(), path, "error", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, dims, true,
+                  series.error.data());
+  });
+}
+
+void Writer::write_attribute(const std::string& object_path, const std::string& name,
+                             const ParameterValue& value) {
+  const hid_t file = impl_->open_file();
+  with_context(impl_->context(), [&] {
+    const Handle object =
+        make(H5Oopen(file, object_path.c_str(), H5P_DEFAULT), H5Oclose, "H5Oopen", object_path);
+    put_value(object.get(), object_path, name, value, true);
+  });
+}
+
+void Writer::write_dataset(const std::string& path, const std::vector<double>& data,
+                           std::vector<std::size_t> shape) {
+  const std::vector<std::string> parts = split_path(path);
+  if (parts.empty()) throw std::invalid_argument("h5md: dataset path '" + path + "' names no dataset");
+  if (shape.empty()) shape = {data.size()};
+  std::size_t count = 1;
+  for (const std::size_t d : shape) count *= d;
+  if (count != data.size())
+    throw std::invalid_argument("h5md: dataset '" + path + "': " + std::to_string(data.size()) +
+                                " values do not fill its shape (" + std::to_string(count) +
+                                " elements)");
+  const hid_t file = impl_->open_file();
+  with_context(impl_->context(), [&] {
+    const std::string parent = join_path(parts, parts.size() - 1);
+    const Handle group = ensure_group(file, parent);
+    const std::vector<hsize_t> dims(shape.begin(), shape.end());
+    put_dataset(group.get(), parent, parts.back(), H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, dims, false,
+                data.data());
+  });
+}
+
+void Writer::commit() {
+  Impl& d = *impl_;
+  const hid_t file = d.open_file();
+  with_context(d.context(), [&] {
+    check(H5Fflush(file, H5F_SCOPE_GLOBAL), "H5Fflush", d.temp_path);
+    check(d.file.close(), "H5Fclose", d.temp_path);
+    sync_file(d.temp_path);  // otherwise a crash right after the rename could leave an empty file
+    std::error_code ec;
+    fs::rename(d.temp_path, d.final_path, ec);
+    if (ec) {
+      d.keep_temp = true;
+      throw std::runtime_error("renaming '" + d.temp_path + "' failed (" + ec.message() +
+                               "); the complete output is kept in '" + d.temp_path + "'");
+    }
+    d.committed = true;
+    sync_directory(parent_directory(d.final_path));
+  });
+}
+
+const std::string& Writer::temporary_path() const { return impl_->temp_path; }
+const std::string& Writer::final_path() const { return impl_->final_path; }
+
+// ---- reading ----
+
+ObservableData read_observable(const std::string& file, const std::string& name) {
+  return with_context(read_context(file), [&] {
+    const std::vector<std::string> parts = split_path(name);
+    if (parts.empty()) throw std::runtime_error("empty observable name");
+    const Handle f = open_for_reading(file);
+    const std::string path = "/observables" + join_path(parts, parts.size());
+    const Handle group =
+        make(H5Gopen2(f.get(), path.c_str(), H5P_DEFAULT), H5Gclose, "H5Gopen2", path);
+    ObservableData out;
+    out.time = read_numbers<double>(group.get(), path, "time", H5T_NATIVE_DOUBLE);
+    out.step = read_numbers<long long>(group.get(), path, "step", H5T_NATIVE_LLONG);
+    out.value = read_numbers<double>(group.get(), path, "value", H5T_NATIVE_DOUBLE, &out.shape);
+    if (check(H5Lexists(group.get(), "error", H5P_DEFAULT), "H5Lexists", path + "/error") > 0)
+      out.error = read_numbers<double>(group.get(), path, "error", H5T_NATIVE_DOUBLE);
+    return out;
+  });
+}
+
+ArrayData read_dataset(const std::string& file, const std::string& path) {
+  return with_context(read_context(file), [&] {
+    const std::vector<std::string> parts = split_path(path);
+    if (parts.empty()) throw std::runtime_error("dataset path '" + path + "' names no dataset");
+    const Handle f = open_for_reading(file);
+    const std::string parent = join_path(parts, parts.size() - 1);
+    const Handle group =
+        make(H5Gopen2(f.get(), parent.c_str(), H5P_DEFAULT), H5Gclose, "H5Gopen2", parent);
+    ArrayData out;
+    out.data = read_numbers<double>(group.get(), parent, parts.back(), H5T_NATIVE_DOUBLE, &out.shape);
+    return out;
+  });
+}
+
+ParameterValue read_attribute(const std::string& file, const std::string& object_path,
+                              const std::string& name) {
+  return with_context(read_context(file), [&] {
+    const Handle f = open_for_reading(file);
+    return read_attribute_value(f.get(), object_path, name);
+  });
+}
+
+std::string read_string_attribute(const std::string& file, const std::string& object_path,
+                                  const std::string& name) {
+  ParameterValue value = read_attribute(file, object_path, name);
+  if (auto* text = std::get_if<std::string>(&value)) return std::move(*text);
+  throw std::runtime_error(read_context(file) + ": attribute '" + object_path + "@" + name +
+                           "' is not a scalar string");
+}
+
+double read_double_attribute(const std::string& file, const std::string& object_path,
+                             const std::string& name) {
+  const ParameterValue value = read_attribute(file, object_path, name);
+  if (const auto* v = std::get_if<double>(&value)) return *v;
+  if (const auto* v = std::get_if<long long>(&value)) return static_cast<double>(*v);
+  if (const auto* v = std::get_if<bool>(&value)) return *v ? 1.0 : 0.0;
+  if (const auto* v = std::get_if<std::vector<double>>(&value); v && v->size() == 1) return (*v)[0];
+  if (const auto* v = std::get_if<std::vector<long long>>(&value); v && v->size() == 1)
+    return static_cast<double>((*v)[0]);
+  throw std::runtime_error(read_context(file) + ": attribute '" + object_path + "@" + name +
+                           "' is not a single number");
+}
+
+}  // namespace gdsmc::io::h5md

@@ -1,0 +1,153 @@
+/**
+ * \file h5md.hpp
+ * \brief The output file of granular-dsmc: an H5MD 1.1 file (https://www.nongnu.org/h5md/) with the
+ *        resolved input and the time series of the observables, plus readers for tests and validation.
+ *
+ * Layout (the contract with external scripts, /work/shared/INTERFACE.md "Output file: H5MD 1.1"):
+ * \verbatim
+ * /
+ * +-- h5md                              +-- version: int32 [2] = {1, 1}
+ * |   +-- author                        +-- name: string
+ * |   \-- creator                       +-- name: string, +-- version: string
+ * +-- parameters                        +-- namelist: string (the input file as given)
+ * |   +-- system                        +-- <variable>: one attribute per resolved variable
+ * |   \-- <namelist group> ...              (defaults included)
+ * \-- observables
+ *     +-- temperature                   (H5MD time-dependent data element)
+ *     |   +-- step: int64 [Nt]
+ *     |   +-- time: float64 [Nt]
+ *     |   +-- value: float64 [Nt] or [Nt][S]
+ *     |   \-- error: float64, shape of value (only when there are several replicas)
+ *     +-- histogram
+ *     |   \-- species_1 ...             (names may nest: "histogram/species_1")
+ *     \-- ...
+ * \endverbatim
+ * The first dimension of step, time and value is extensible (H5S_UNLIMITED), which is what H5MD
+ * means by "[variable]"; the datasets are written in one piece all the same.
+ *
+ * Attribute types: strings are variable-length UTF-8 (h5py returns them as str); logicals are
+ * 8-bit signed integers 0/1, because HDF5 has no boolean class and an enum would read back as a
+ * numpy enum rather than a number; integers are int64, reals float64; vectors are 1-D attributes,
+ * scalars have a scalar dataspace, so a one-element vector and a scalar stay distinguishable.
+ *
+ * Atomic write guarantee: everything goes to `<final path>.tmp.<pid>` in the same directory, and
+ * only Writer::commit() renames it onto the final path (rename(2) within one filesystem is atomic,
+ * and the data are fsync'ed first). A reader therefore sees either the previous file or the complete
+ * new one, never a truncated one; a Writer destroyed without commit (an exception, a failed run)
+ * deletes its temporary file, so a crashed run leaves no half-written output behind. Only a hard
+ * crash of the process can leave a `.tmp.<pid>` file, and never under the final name.
+ *
+ * Errors: every HDF5 call is checked; a failure throws std::runtime_error naming the output file,
+ * the HDF5 call, the object, and HDF5's own description. HDF5's automatic printing of its error
+ * stack is switched off while a function of this module runs and restored afterwards, so other
+ * HDF5 users in the program keep their setting. Inconsistent arguments (e.g. a Series whose sizes
+ * disagree) throw std::invalid_argument; using a Writer after commit() throws std::logic_error.
+ */
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace gdsmc::io::h5md {
+
+/// Value of one resolved namelist variable, or of any attribute this module writes or reads.
+using ParameterValue = std::variant<bool, long long, double, std::string, std::vector<long long>,
+                                    std::vector<double>, std::vector<std::string>>;
+
+/// One resolved namelist variable; group = namelist group name, e.g. "system".
+struct Parameter {
+  std::string group;
+  std::string name;
+  ParameterValue value;
+};
+
+/// One time series: value is row-major [time][column]; columns = 1 writes a 1-D dataset of shape
+/// (Nt), else (Nt, columns). time and step have Nt entries, value Nt * columns.
+struct Series {
+  std::vector<double> time;
+  std::vector<long long> step;
+  std::vector<double> value;
+  std::size_t columns = 1;
+  std::vector<double> error;  ///< empty = no error dataset; else same size as value
+};
+
+/// Writes one H5MD file through a temporary file; see the file comment for the guarantees.
+class Writer {
+ public:
+  /// Creates `<final_path>.tmp.<pid>` and writes /h5md. Throws std::runtime_error("cannot write
+  /// output file '<final_path>': <reason>") if the temporary file cannot be created.
+  Writer(std::string final_path, std::string author, std::string creator_name,
+         std::string creator_version);
+  /// Without a successful commit(): closes and removes the temporary file.
+  ~Writer();
+  Writer(const Writer&) = delete;
+  Writer& operator=(const Writer&) = delete;
+
+  /// /parameters/<group>@<name> for every parameter and /parameters@namelist = namelist_text.
+  /// A group name must be non-empty and free of '/'; a duplicate (group, name) is an error.
+  void write_parameters(const std::vector<Parameter>& parameters, const std::string& namelist_text);
+
+  /// /observables/<name>/{step,time,value[,error]}; `name` may contain '/' for nested groups.
+  void write_observable(const std::string& name, const Series& series);
+
+  /// Attaches (or replaces) attribute `name` on the existing group or dataset `object_path`.
+  void write_attribute(const std::string& object_path, const std::string& name,
+                       const ParameterValue& value);
+  /// Keeps a string literal a string also with standard libraries older than P0608/P1957, where
+  /// "energy" converts to the variant's bool.
+  void write_attribute(const std::string& object_path, const std::string& name, const char* value) {
+    write_attribute(object_path, name, ParameterValue(std::string(value)));
+  }
+
+  /// Plain float64 dataset at absolute `path`, creating intermediate groups. An empty shape means
+  /// 1-D of data.size(); otherwise the product of shape must equal data.size().
+  void write_dataset(const std::string& path, const std::vector<double>& data,
+                     std::vector<std::size_t> shape);
+
+  /// Flushes, closes, fsyncs and renames the temporary file onto the final path. If the rename
+  /// itself fails, the complete temporary file is kept (and named in the exception), because it
+  /// holds a finished run.
+  void commit();
+
+  const std::string& temporary_path() const;
+  const std::string& final_path() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// ---- Reading back (tests, validation programs). All throw std::runtime_error("cannot read output
+// ---- file '<file>': ...") on failure, including a type that does not fit the request.
+
+struct ObservableData {
+  std::vector<double> time;
+  std::vector<double> value;              ///< row-major, shape as below
+  std::vector<double> error;              ///< empty if the file has no error dataset
+  std::vector<std::size_t> shape;         ///< shape of value: {Nt} or {Nt, S}
+  std::vector<long long> step;
+};
+ObservableData read_observable(const std::string& file, const std::string& name);
+
+/// A float64 (or any numeric) dataset, flattened row-major, with its shape.
+struct ArrayData {
+  std::vector<double> data;
+  std::vector<std::size_t> shape;
+};
+ArrayData read_dataset(const std::string& file, const std::string& path);
+
+/// Reads any attribute this module writes (and fixed-length strings, int32, ...): integer class of
+/// size 1 with scalar dataspace -> bool, other integers -> long long, floats -> double, strings ->
+/// std::string; a 1-D dataspace gives the vector alternative.
+ParameterValue read_attribute(const std::string& file, const std::string& object_path,
+                              const std::string& name);
+std::string read_string_attribute(const std::string& file, const std::string& object_path,
+                                  const std::string& name);
+/// Any scalar (or one-element) numeric attribute, converted to double.
+double read_double_attribute(const std::string& file, const std::string& object_path,
+                             const std::string& name);
+
+}  // namespace gdsmc::io::h5md

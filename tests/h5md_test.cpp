@@ -1,0 +1,431 @@
+// Unit tests for gdsmc::io::h5md: the H5MD 1.1 layout of INTERFACE.md, round trips of every
+// attribute type, and the atomic-write guarantee (no temporary or half-written file left behind).
+#include "io/h5md.hpp"
+
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using namespace gdsmc::io::h5md;
+
+namespace {
+
+/// A fresh directory per test, removed afterwards whatever the test left in it.
+class TempDir {
+ public:
+  TempDir() {
+    std::random_device random;
+    path_ = fs::temp_directory_path() /
+            ("gdsmc-h5md-test-" + std::to_string(::getpid()) + "-" + std::to_string(random()));
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    for (const auto& entry : fs::recursive_directory_iterator(path_, ignored))
+      if (entry.is_directory(ignored))
+        fs::permissions(entry.path(), fs::perms::owner_all, fs::perm_options::add, ignored);
+    fs::remove_all(path_, ignored);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+
+  const fs::path& path() const { return path_; }
+  std::string file(const std::string& name) const { return (path_ / name).string(); }
+
+  /// Files whose name marks them as a Writer's temporary file.
+  std::vector<std::string> temporaries() const {
+    std::vector<std::string> found;
+    for (const auto& entry : fs::directory_iterator(path_))
+      if (entry.path().filename().string().find(".tmp.") != std::string::npos)
+        found.push_back(entry.path().string());
+    return found;
+  }
+
+ private:
+  fs::path path_;
+};
+
+template <class Body>
+std::string runtime_error_message(Body&& body) {
+  try {
+    body();
+  } catch (const std::runtime_error& error) {
+    return error.what();
+  }
+  ADD_FAILURE() << "expected std::runtime_error";
+  return {};
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+std::vector<Parameter> every_kind_of_parameter() {
+  return {
+      {"system", "enskog", true},
+      {"system", "thermostat", false},
+      {"system", "species", 2LL},
+      {"system", "alpha", 0.9},
+      {"system", "seeds", std::vector<long long>{1, -2, 1LL << 40}},
+      {"system", "masses", std::vector<double>{1.0, 4.5}},
+      {"system", "one_mass", std::vector<double>{2.5}},
+      {"system", "no_seeds", std::vector<long long>{}},
+      {"output", "file", std::string("run_α.h5")},
+      {"output", "names", std::vector<std::string>{"small", "βig", ""}},
+      {"output", "empty_text", std::string()},
+  };
+}
+
+const std::string namelist_text =
+    "&system\n  alpha = 0.9  ! restitution, \xc3\xbc\n  masses = 1.0, 4.5\n/\n&output\n/\n";
+
+Series temperature_series() {  // Nt = 3, S = 2
+  Series s;
+  s.time = {0.0, 0.5, 1.0};
+  s.step = {0, 10, 20};
+  s.value = {1.0, 2.0, 0.9, 1.8, 0.8, 1.6};
+  s.columns = 2;
+  s.error = {0.01, 0.02, 0.03, 0.04, 0.05, 0.06};
+  return s;
+}
+
+Series total_temperature_series() {  // Nt = 4, 1-D
+  Series s;
+  s.time = {0.0, 0.25, 0.5, 0.75};
+  s.step = {0, 5, 10, 15};
+  s.value = {1.5, 1.4, 1.3, 1.2};
+  s.error = {0.1, 0.2, 0.3, 0.4};
+  return s;
+}
+
+/// A complete, committed file as the simulation would write it.
+void write_example(const std::string& path, const std::string& author = "A. Uthor") {
+  Writer writer(path, author, "granular-dsmc", "0.1.0");
+  writer.write_parameters(every_kind_of_parameter(), namelist_text);
+  writer.write_observable("temperature", temperature_series());
+  writer.write_observable("total_temperature", total_temperature_series());
+  Series histogram;
+  histogram.time = {1.0};
+  histogram.step = {100};
+  histogram.value = {0.1, 0.2, 0.3};
+  histogram.columns = 3;
+  writer.write_observable("histogram/species_1", histogram);
+  writer.write_dataset("/observables/histogram/edges", {0.0, 1.0, 2.0, 3.0}, {});
+  writer.write_dataset("/extra/matrix", {1, 2, 3, 4, 5, 6}, {2, 3});
+  writer.write_attribute("/observables/temperature", "unit", "energy");
+  writer.write_attribute("/observables/temperature/value", "scale", 2.5);
+  writer.commit();
+}
+
+}  // namespace
+
+TEST(H5md, RoundTripOfParametersObservablesAndMetadata) {
+  const TempDir dir;
+  const std::string path = dir.file("out.h5");
+  write_example(path);
+  ASSERT_TRUE(fs::exists(path));
+  EXPECT_TRUE(dir.temporaries().empty());
+
+  EXPECT_EQ(read_attribute(path, "/h5md", "version"), ParameterValue(std::vector<long long>{1, 1}));
+  EXPECT_EQ(read_string_attribute(path, "/h5md/author", "name"), "A. Uthor");
+  EXPECT_EQ(read_string_attribute(path, "/h5md/creator", "name"), "granular-dsmc");
+  EXPECT_EQ(read_string_attribute(path, "/h5md/creator", "version"), "0.1.0");
+
+  for (const Parameter& p : every_kind_of_parameter())
+    EXPECT_EQ(read_attribute(path, "/parameters/" + p.group, p.name), p.value)
+        << p.group << "/" << p.name;
+  EXPECT_EQ(read_string_attribute(path, "/parameters", "namelist"), namelist_text);
+  EXPECT_DOUBLE_EQ(read_double_attribute(path, "/parameters/system", "alpha"), 0.9);
+  EXPECT_DOUBLE_EQ(read_double_attribute(path, "/parameters/system", "species"), 2.0);
+
+  const Series t = temperature_series();
+  const ObservableData temperature = read_observable(path, "temperature");
+  EXPECT_EQ(temperature.shape, (std::vector<std::size_t>{3, 2}));
+  EXPECT_EQ(temperature.time, t.time);
+  EXPECT_EQ(temperature.step, t.step);
+  EXPECT_EQ(temperature.value, t.value);
+  EXPECT_EQ(temperature.error, t.error);
+
+  const Series total = total_temperature_series();
+  const ObservableData total_read = read_observable(path, "total_temperature");
+  EXPECT_EQ(total_read.shape, (std::vector<std::size_t>{4}));
+  EXPECT_EQ(total_read.time, total.time);
+  EXPECT_EQ(total_read.step, total.step);
+  EXPECT_EQ(total_read.value, total.value);
+  EXPECT_EQ(total_read.error, total.error);
+
+  const ObservableData histogram = read_observable(path, "histogram/species_1");
+  EXPECT_EQ(histogram.shape, (std::vector<std::size_t>{1, 3}));
+  EXPECT_EQ(histogram.value, (std::vector<double>{0.1, 0.2, 0.3}));
+  EXPECT_TRUE(histogram.error.empty());
+
+  const ArrayData edges = read_dataset(path, "/observables/histogram/edges");
+  EXPECT_EQ(edges.shape, (std::vector<std::size_t>{4}));
+  EXPECT_EQ(edges.data, (std::vector<double>{0.0, 1.0, 2.0, 3.0}));
+  const ArrayData matrix = read_dataset(path, "/extra/matrix");
+  EXPECT_EQ(matrix.shape, (std::vector<std::size_t>{2, 3}));
+  EXPECT_EQ(matrix.data, (std::vector<double>{1, 2, 3, 4, 5, 6}));
+
+  EXPECT_EQ(read_string_attribute(path, "/observables/temperature", "unit"), "energy");
+  EXPECT_DOUBLE_EQ(read_double_attribute(path, "/observables/temperature/value", "scale"), 2.5);
+}
+
+TEST(H5md, TemporaryFileUntilCommit) {
+  const TempDir dir;
+  const std::string path = dir.file("out.h5");
+  Writer writer(path, "me", "granular-dsmc", "0.1.0");
+  EXPECT_EQ(writer.temporary_path(), path + ".tmp." + std::to_string(::getpid()));
+  EXPECT_TRUE(fs::exists(writer.temporary_path()));
+  EXPECT_FALSE(fs::exists(path));
+  writer.commit();
+  EXPECT_TRUE(fs::exists(path));
+  EXPECT_FALSE(fs::exists(writer.temporary_path()));
+}
+
+TEST(H5md, DestructionWithoutCommitLeavesNothing) {
+  const TempDir dir;
+  const std::string path = dir.file("out.h5");
+  std::string temporary;
+  {
+    Writer writer(path, "me", "granular-dsmc", "0.1.0");
+    writer.write_parameters(every_kind_of_parameter(), namelist_text);
+    writer.write_observable("temperature", temperature_series());
+    temporary = writer.temporary_path();
+    ASSERT_TRUE(fs::exists(temporary));
+  }
+  EXPECT_FALSE(fs::exists(temporary));
+  EXPECT_FALSE(fs::exists(path));
+  EXPECT_TRUE(fs::is_empty(dir.path()));
+}
+
+TEST(H5md, ExceptionDuringWritingLeavesNothing) {
+  const TempDir dir;
+  const std::string path = dir.file("out.h5");
+  try {
+    Writer writer(path, "me", "granular-dsmc", "0.1.0");
+    writer.write_observable("temperature", temperature_series());
+    writer.write_observable("temperature", temperature_series());  // already there
+    FAIL() << "a second observable of the same name must be refused";
+  } catch (const std::runtime_error& error) {
+    const std::string message = error.what();
+    EXPECT_TRUE(contains(message, "cannot write output file '" + path + "'")) << message;
+    EXPECT_TRUE(contains(message, "H5Dcreate2")) << message;
+    EXPECT_TRUE(contains(message, "/observables/temperature/step")) << message;
+  }
+  EXPECT_TRUE(fs::is_empty(dir.path()));
+}
+
+TEST(H5md, DuplicateParameterIsAnError) {
+  const TempDir dir;
+  const std::string path = dir.file("out.h5");
+  Writer writer(path, "me", "granular-dsmc", "0.1.0");
+  const std::string message = runtime_error_message([&] {
+    writer.write_parameters({{"system", "alpha", 0.9}, {"system", "alpha", 0.8}}, "");
+  });
+  EXPECT_TRUE(contains(message, "/parameters/system@alpha")) << message;
+  EXPECT_THROW(writer.write_parameters({{"", "alpha", 0.9}}, ""), std::invalid_argument);
+  EXPECT_THROW(writer.write_parameters({{"a/b", "alpha", 0.9}}, ""), std::invalid_argument);
+}
+
+TEST(H5md, WriteAttributeReplacesAndNeedsAnExistingObject) {
+  const TempDir dir;
+  const std::string path = dir.file("out.h5");
+  {
+    Writer writer(path, "me", "granular-dsmc", "0.1.0");
+    writer.write_observable("temperature", total_temperature_series());
+    writer.write_attribute("/observables/temperature", "unit", "energy");
+    writer.write_attribute("/observables/temperature", "unit", std::string("kT"));
+    const std::string message =
+        runtime_error_message([&] { writer.write_attribute("/observables/nothing", "unit", 1LL); });
+    EXPECT_TRUE(contains(message, "/observables/nothing")) << message;
+    writer.commit();
+  }
+  EXPECT_EQ(read_string_attribute(path, "/observables/temperature", "unit"), "kT");
+}
+
+TEST(H5md, InconsistentArgumentsAreRejected) {
+  const TempDir dir;
+  Writer writer(dir.file("out.h5"), "me", "granular-dsmc", "0.1.0");
+  Series s = temperature_series();
+  s.step.pop_back();
+  EXPECT_THROW(writer.write_observable("a", s), std::invalid_argument);
+  s = temperature_series();
+  s.columns = 3;
+  EXPECT_THROW(writer.write_observable("a", s), std::invalid_argument);
+  s = temperature_series();
+  s.error.pop_back();
+  EXPECT_THROW(writer.write_observable("a", s), std::invalid_argument);
+  s = temperature_series();
+  s.columns = 0;
+  EXPECT_THROW(writer.write_observable("a", s), std::invalid_argument);
+  EXPECT_THROW(writer.write_observable("/", temperature_series()), std::invalid_argument);
+  EXPECT_THROW(writer.write_dataset("/edges", {1.0, 2.0}, {3}), std::invalid_argument);
+  writer.commit();
+  EXPECT_THROW(writer.write_observable("b", temperature_series()), std::logic_error);
+  EXPECT_THROW(writer.commit(), std::logic_error);
+}
+
+TEST(H5md, EmptySeriesRoundTrip) {
+  const TempDir dir;
+  const std::string path = dir.file("out.h5");
+  {
+    Writer writer(path, "me", "granular-dsmc", "0.1.0");
+    Series empty;
+    empty.columns = 2;
+    writer.write_observable("msd", empty);
+    writer.commit();
+  }
+  const ObservableData msd = read_observable(path, "msd");
+  EXPECT_EQ(msd.shape, (std::vector<std::size_t>{0, 2}));
+  EXPECT_TRUE(msd.time.empty());
+  EXPECT_TRUE(msd.value.empty());
+}
+
+TEST(H5md, NonexistentDirectoryThrowsWithPath) {
+  const TempDir dir;
+  const std::string path = dir.file("missing/out.h5");
+  const std::string message =
+      runtime_error_message([&] { Writer writer(path, "me", "granular-dsmc", "0.1.0"); });
+  EXPECT_TRUE(contains(message, "cannot write output file '" + path + "'")) << message;
+  EXPECT_TRUE(fs::is_empty(dir.path()));
+}
+
+TEST(H5md, ReadOnlyDirectoryThrowsWithPath) {
+  const TempDir dir;
+  const fs::path read_only = dir.path() / "read-only";
+  fs::create_directory(read_only);
+  fs::permissions(read_only, fs::perms::owner_read | fs::perms::owner_exec, fs::perm_options::replace);
+  {
+    std::ofstream probe(read_only / "probe");
+    if (probe) {
+      probe.close();
+      fs::remove(read_only / "probe");
+      GTEST_SKIP() << "this user (root?) can write into a read-only directory";
+    }
+  }
+  const std::string path = (read_only / "out.h5").string();
+  const std::string message =
+      runtime_error_message([&] { Writer writer(path, "me", "granular-dsmc", "0.1.0"); });
+  EXPECT_TRUE(contains(message, "cannot write output file '" + path + "'")) << message;
+  EXPECT_TRUE(fs::is_empty(read_only));
+}
+
+// A hard link to the old file keeps the old inode: if commit rewrote the file in place, the link
+// would show the new content; with rename it still shows the old one.
+TEST(H5md, CommitReplacesExistingFileAtomically) {
+  const TempDir dir;
+  const std::string path = dir.file("out.h5");
+  write_example(path, "old author");
+  fs::create_hard_link(path, dir.file("old-link.h5"));
+
+  Writer writer(path, "new author", "granular-dsmc", "0.1.0");
+  writer.write_observable("total_temperature", total_temperature_series());
+  EXPECT_EQ(read_string_attribute(path, "/h5md/author", "name"), "old author");
+  writer.commit();
+
+  EXPECT_EQ(read_string_attribute(path, "/h5md/author", "name"), "new author");
+  EXPECT_THROW(read_observable(path, "temperature"), std::runtime_error);
+  EXPECT_EQ(read_string_attribute(dir.file("old-link.h5"), "/h5md/author", "name"), "old author");
+  EXPECT_TRUE(dir.temporaries().empty());
+}
+
+TEST(H5md, ReadErrorsNameTheFile) {
+  const TempDir dir;
+  const std::string path = dir.file("out.h5");
+  write_example(path);
+  const std::string missing = dir.file("missing.h5");
+  EXPECT_TRUE(contains(runtime_error_message([&] { read_observable(missing, "temperature"); }),
+                       missing));
+  std::string message = runtime_error_message([&] { read_observable(path, "pressure"); });
+  EXPECT_TRUE(contains(message, "cannot read output file '" + path + "'")) << message;
+  EXPECT_TRUE(contains(message, "/observables/pressure")) << message;
+  message = runtime_error_message([&] { read_double_attribute(path, "/h5md/author", "name"); });
+  EXPECT_TRUE(contains(message, "/h5md/author@name")) << message;
+  message = runtime_error_message([&] { read_string_attribute(path, "/parameters/system", "alpha"); });
+  EXPECT_TRUE(contains(message, "/parameters/system@alpha")) << message;
+}
+
+// HDF5 would print its error stack to stderr on every failure; the module must keep it quiet and
+// leave the program's own setting untouched.
+TEST(H5md, HdfErrorStackIsNotPrintedAndSettingIsRestored) {
+  const TempDir dir;
+  const std::string not_hdf5 = dir.file("not.h5");
+  std::ofstream(not_hdf5) << "not an HDF5 file\n";
+
+  H5E_auto2_t function_before = nullptr;
+  void* data_before = nullptr;
+  ASSERT_GE(H5Eget_auto2(H5E_DEFAULT, &function_before, &data_before), 0);
+
+  testing::internal::CaptureStderr();
+  EXPECT_THROW(read_observable(not_hdf5, "temperature"), std::runtime_error);
+  EXPECT_THROW(Writer(dir.file("missing/out.h5"), "me", "granular-dsmc", "0.1.0"),
+               std::runtime_error);
+  const std::string printed = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(printed, "");
+
+  H5E_auto2_t function_after = nullptr;
+  void* data_after = nullptr;
+  ASSERT_GE(H5Eget_auto2(H5E_DEFAULT, &function_after, &data_after), 0);
+  EXPECT_EQ(function_after, function_before);
+  EXPECT_EQ(data_after, data_before);
+}
+
+TEST(H5md, H5dumpReadsTheHeader) {
+  if (std::system("command -v h5dump > /dev/null 2>&1") != 0) GTEST_SKIP() << "h5dump not on PATH";
+  const TempDir dir;
+  const std::string path = dir.file("out.h5");
+  write_example(path);
+  const std::string listing = dir.file("header.txt");
+  const std::string command = "h5dump -H '" + path + "' > '" + listing + "' 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  std::stringstream header;
+  header << std::ifstream(listing).rdbuf();
+  // Types external scripts rely on: UTF-8 strings for h5py's str, int32 version, int64 step.
+  EXPECT_TRUE(contains(header.str(), "H5T_CSET_UTF8")) << header.str();
+  EXPECT_TRUE(contains(header.str(), "H5T_STD_I32LE")) << header.str();
+  EXPECT_TRUE(contains(header.str(), "H5T_STD_I64LE")) << header.str();
+  EXPECT_TRUE(contains(header.str(), "GROUP \"observables\"")) << header.str();
+}
+
+// Every hid_t the module opens must be closed again, on success and on the error paths.
+TEST(H5md, NoHdf5IdentifiersLeak) {
+  const TempDir dir;
+  const std::string path = dir.file("out.h5");
+  write_example(path);  // initialises the library, whose predefined types count as identifiers
+  const H5I_type_t kinds[] = {H5I_FILE, H5I_GROUP, H5I_DATATYPE, H5I_DATASPACE,
+                              H5I_DATASET, H5I_ATTR, H5I_GENPROP_LST};
+  auto count = [&] {
+    std::vector<hsize_t> counts;
+    for (const H5I_type_t kind : kinds) {
+      hsize_t n = 0;
+      EXPECT_GE(H5Inmembers(kind, &n), 0);
+      counts.push_back(n);
+    }
+    return counts;
+  };
+  const std::vector<hsize_t> before = count();
+
+  write_example(path);
+  read_observable(path, "temperature");
+  read_dataset(path, "/extra/matrix");
+  for (const Parameter& p : every_kind_of_parameter()) read_attribute(path, "/parameters/" + p.group, p.name);
+  EXPECT_THROW(read_observable(path, "pressure"), std::runtime_error);
+  EXPECT_THROW(read_double_attribute(path, "/h5md/author", "name"), std::runtime_error);
+  {
+    Writer writer(path, "me", "granular-dsmc", "0.1.0");
+    writer.write_observable("temperature", temperature_series());
+    EXPECT_THROW(writer.write_observable("temperature", temperature_series()), std::runtime_error);
+    EXPECT_THROW(writer.write_attribute("/nothing", "unit", "energy"), std::runtime_error);
+  }
+  EXPECT_EQ(count(), before);
+}
