@@ -203,9 +203,10 @@ Handle ensure_group(hid_t file, const std::string& path) {
 /// One attribute; `dims` = nullptr gives a scalar dataspace.
 void put_attribute(hid_t object, const std::string& where, const std::string& name, hid_t file_type,
                    hid_t memory_type, const hsize_t* dims, const void* data) {
-  Handle space = dims == nullptr
-                     ? make(H5Screate(H5S_SCALAR), H5Sclose, "H5Screate", where)
-                     : make(H5Screate_simple(1, dims, nullptr), H5Sclose, "H5Screate_simple", where);
+  Handle space =
+      dims == nullptr
+          ? make(H5Screate(H5S_SCALAR), H5Sclose, "H5Screate", where)
+          : make(H5Screate_simple(1, dims, nullptr), H5Sclose, "H5Screate_simple", where);
   Handle attribute =
       make(H5Acreate2(object, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
            H5Aclose, "H5Acreate2", where);
@@ -289,7 +290,8 @@ void put_dataset(hid_t group, const std::string& group_path, const std::string& 
 
 void sync_file(const std::string& path) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw std::runtime_error("cannot open '" + path + "' to sync it: " + std::strerror(errno));
+  if (fd < 0)
+    throw std::runtime_error("cannot open '" + path + "' to sync it: " + std::strerror(errno));
   if (::fsync(fd) != 0) {
     const int error = errno;
     ::close(fd);
@@ -317,9 +319,7 @@ std::string parent_directory(const std::string& path) {
 Handle open_for_reading(const std::string& file) {
   std::error_code ec;
   if (!fs::exists(file, ec)) throw std::runtime_error("no such file");
-  Handle fapl = make(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate(H5P_FILE_ACCESS)", file);
-  check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), "H5Pset_fclose_degree", file);
-  return make(H5Fopen(file.c_str(), H5F_ACC_RDONLY, fapl.get()), H5Fclose, "H5Fopen", file);
+  return make(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "H5Fopen", file);
 }
 
 std::vector<std::size_t> extent(hid_t space, const std::string& where, hssize_t& count) {
@@ -425,7 +425,8 @@ ParameterValue read_attribute_value(hid_t file, const std::string& object_path,
       return data;
     }
     case H5T_STRING: {
-      std::vector<std::string> texts = read_strings(attribute.get(), type.get(), space.get(), n, where);
+      std::vector<std::string> texts =
+          read_strings(attribute.get(), type.get(), space.get(), n, where);
       if (scalar) return std::move(texts[0]);
       return texts;
     }
@@ -577,7 +578,8 @@ void Writer::write_attribute(const std::string& object_path, const std::string& 
 void Writer::write_dataset(const std::string& path, const std::vector<double>& data,
                            std::vector<std::size_t> shape) {
   const std::vector<std::string> parts = split_path(path);
-  if (parts.empty()) throw std::invalid_argument("h5md: dataset path '" + path + "' names no dataset");
+  if (parts.empty())
+    throw std::invalid_argument("h5md: dataset path '" + path + "' names no dataset");
   if (shape.empty()) shape = {data.size()};
   std::size_t count = 1;
   for (const std::size_t d : shape) count *= d;
@@ -646,7 +648,8 @@ ArrayData read_dataset(const std::string& file, const std::string& path) {
     const Handle group =
         make(H5Gopen2(f.get(), parent.c_str(), H5P_DEFAULT), H5Gclose, "H5Gopen2", parent);
     ArrayData out;
-    out.data = read_numbers<double>(group.get(), parent, parts.back(), H5T_NATIVE_DOUBLE, &out.shape);
+    out.data =
+        read_numbers<double>(group.get(), parent, parts.back(), H5T_NATIVE_DOUBLE, &out.shape);
     return out;
   });
 }

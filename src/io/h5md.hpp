@@ -1,7 +1,8 @@
 /**
  * \file h5md.hpp
- * \brief The output file of granular-dsmc: an H5MD 1.1 file (https://www.nongnu.org/h5md/) with the
- *        resolved input and the time series of the observables, plus readers for tests and validation.
+ * \brief The output file of granular-dsmc: an H5MD 1.1 file (https://www.nongnu.org/h5md/) with
+ *        the resolved input and the time series of the observables, plus readers for tests and
+ *        validation.
  *
  * Layout (the contract with external scripts, /work/shared/INTERFACE.md "Output file: H5MD 1.1"):
  * \verbatim
@@ -26,16 +27,17 @@
  * means by "[variable]"; the datasets are written in one piece all the same.
  *
  * Attribute types: strings are variable-length UTF-8 (h5py returns them as str); logicals are
- * 8-bit signed integers 0/1, because HDF5 has no boolean class and an enum would read back as a
- * numpy enum rather than a number; integers are int64, reals float64; vectors are 1-D attributes,
- * scalars have a scalar dataspace, so a one-element vector and a scalar stay distinguishable.
+ * 8-bit signed integers 0/1, because HDF5 has no boolean class and a plain integer reads the same
+ * in every tool (h5py's bool is an enum convention other readers do not share); integers are
+ * int64, reals float64; vectors are 1-D attributes, scalars have a scalar dataspace, so a
+ * one-element vector and a scalar stay distinguishable.
  *
  * Atomic write guarantee: everything goes to `<final path>.tmp.<pid>` in the same directory, and
  * only Writer::commit() renames it onto the final path (rename(2) within one filesystem is atomic,
- * and the data are fsync'ed first). A reader therefore sees either the previous file or the complete
- * new one, never a truncated one; a Writer destroyed without commit (an exception, a failed run)
- * deletes its temporary file, so a crashed run leaves no half-written output behind. Only a hard
- * crash of the process can leave a `.tmp.<pid>` file, and never under the final name.
+ * and the data are fsync'ed first). A reader therefore sees either the previous file or the
+ * complete new one, never a truncated one. A Writer destroyed without commit (an exception, a
+ * failed run) deletes its temporary file, so a failed run leaves no half-written output behind;
+ * only a killed process can leave a `.tmp.<pid>` file, and never under the final name.
  *
  * Errors: every HDF5 call is checked; a failure throws std::runtime_error naming the output file,
  * the HDF5 call, the object, and HDF5's own description. HDF5's automatic printing of its error

@@ -1,0 +1,76 @@
+// Collision counts against seed 000 eq 36 (ERRATA §2), Figs 2 and 4. See README.md in this folder.
+#include <cmath>
+
+#include "theory/theory.hpp"
+#include "validation.hpp"
+
+using namespace gdsmc;
+
+int main(int argc, char** argv) {
+  const auto run = validation::run_case(argc, argv, "collision_rate.h5");
+  const auto& sys = run.config.system;
+  const double m = sys.mass[0], sigma = sys.diameter[0], n = sys.number_density[0];
+  const double alpha = sys.restitution(0, 0);
+  const double chi = run.config.mixture().pair_correlation(0, 0);
+  const double temperature0 = run.config.initial.temperature[0];
+  const double nu0 = theory::collision_frequency(n, sigma, chi, m, temperature0);
+
+  validation::Report report("collisions against temperature, alpha = " + std::to_string(alpha));
+  const auto temperature = validation::observable(run, "total_temperature");
+  const auto collisions = validation::observable(run, "collisions_per_particle");
+  const std::size_t nt = temperature.time.size();
+  if (!report.require("replicas > 1, so standard errors exist", !collisions.error.empty()))
+    return report.exit_code();
+
+  if (alpha == 1.0) {
+    for (std::size_t i = 1; i < nt; i += std::max<std::size_t>(1, nt / 10)) {
+      char name[64];
+      std::snprintf(name, sizeof name, "C(t = %.4g) = nu0 t", collisions.time[i]);
+      report.check(name, collisions.value[i], collisions.error[i], nu0 * collisions.time[i], 4.0);
+    }
+    report.check("C(t_end) = nu0 t_end", collisions.value[nt - 1], collisions.error[nt - 1],
+                 nu0 * collisions.time[nt - 1], 4.0);
+    return report.exit_code();
+  }
+
+  // Early times: eq 36 integrated along the measured T (trapezoid on sqrt(T)), a2 ~ 0 there.
+  {
+    double predicted = 0.0;
+    std::size_t i = 1;
+    for (; i < nt && collisions.value[i] < 1.0; ++i)
+      predicted += 0.5 * (collisions.time[i] - collisions.time[i - 1]) * nu0 *
+                   (std::sqrt(temperature.value[i] / temperature0) +
+                    std::sqrt(temperature.value[i - 1] / temperature0));
+    if (i < nt && i > 1) {
+      --i;
+      report.check("C over the first collision vs eq 36", collisions.value[i], collisions.error[i],
+                   predicted, 4.0, 0.01 * predicted);
+    }
+  }
+
+  const double a2 = theory::sonine_a2(alpha);
+  const double maxwell_slope = 3.0 / (1.0 - alpha * alpha);
+  const double sonine_slope = maxwell_slope * (1.0 - a2 / 16.0) / (1.0 + 3.0 * a2 / 16.0);
+  std::size_t first = nt;
+  for (std::size_t i = 0; i < nt; ++i)
+    if (collisions.value[i] >= 10.0) {
+      first = i;
+      break;
+    }
+  if (report.require("the run passes 10 collisions per particle before its end", first + 2 < nt)) {
+    const std::size_t last = nt - 1;
+    const double dc = collisions.value[last] - collisions.value[first];
+    const double dlog = std::log(temperature.value[first] / temperature.value[last]);
+    const double dlog_error = std::hypot(temperature.error[first] / temperature.value[first],
+                                         temperature.error[last] / temperature.value[last]);
+    const double slope = dc / dlog;
+    const double slope_error =
+        slope * std::hypot(dlog_error / dlog,
+                           std::hypot(collisions.error[first], collisions.error[last]) / dc);
+    report.check("dC/dln(T0/T), scaling regime", slope, slope_error, sonine_slope, 3.0,
+                 0.15 * std::abs(sonine_slope - maxwell_slope));
+    report.note("Maxwellian value " + std::to_string(maxwell_slope) + ", first Sonine " +
+                std::to_string(sonine_slope));
+  }
+  return report.exit_code();
+}

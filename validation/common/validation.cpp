@@ -1,0 +1,81 @@
+#include "validation.hpp"
+
+#include <filesystem>
+#include <iostream>
+
+#include "io/namelist.hpp"
+
+namespace gdsmc::validation {
+
+Case run_case(int argc, char** argv, const std::string& default_output) {
+  std::string input, output = default_output;
+  std::vector<std::string> overrides;
+  bool reuse = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--set" && i + 1 < argc) overrides.push_back(argv[++i]);
+    else if (arg == "--output" && i + 1 < argc) output = argv[++i];
+    else if (arg == "--reuse") reuse = true;
+    else input = arg;
+  }
+  if (input.empty()) {
+    std::cerr << "usage: " << argv[0] << " INPUT.nml [--set group:variable=value]... [--output FILE] [--reuse]\n";
+    std::exit(2);
+  }
+  Case c;
+  try {
+    c.config = io::config::read_file(input, overrides);
+  } catch (const io::namelist::Error& e) {
+    std::cerr << e.what() << "\n";
+    std::exit(2);
+  }
+  c.file = output;
+  std::printf("input %s", input.c_str());
+  for (const auto& o : overrides) std::printf(" --set %s", o.c_str());
+  std::printf("\noutput %s\n", output.c_str());
+  if (!(reuse && std::filesystem::exists(output))) {
+    const auto summary = simulation::run(c.config, output, simulation::Options{});
+    std::printf("ran %lld replica(s) x %lld particles: %.4g collisions per particle, %.3g collisions/s, %.1f s\n",
+                c.config.dsmc.replicas, c.config.dsmc.n_particles, summary.collisions_per_particle,
+                summary.events_per_second, summary.wall_seconds);
+  }
+  return c;
+}
+
+Report::Report(std::string title) : title_(std::move(title)) {
+  std::printf("== %s\n", title_.c_str());
+}
+
+bool Report::check(const std::string& quantity, double measured, double standard_error,
+                   double theory, double z, double systematic) {
+  const double diff = std::abs(measured - theory);
+  const double tolerance = z * standard_error + systematic;
+  const bool pass = std::isfinite(measured) && diff <= tolerance;
+  ++checks_;
+  if (!pass) ++failures_;
+  std::printf("%s %-34s measured %.6g +- %.2g (SE)  theory %.6g  |diff| %.3g = %.2f SE  "
+              "tolerance %g SE + %.3g systematic\n",
+              pass ? "PASS" : "FAIL", quantity.c_str(), measured, standard_error, theory, diff,
+              standard_error > 0 ? diff / standard_error : INFINITY, z, systematic);
+  return pass;
+}
+
+bool Report::require(const std::string& what, bool condition) {
+  ++checks_;
+  if (!condition) ++failures_;
+  std::printf("%s %s\n", condition ? "PASS" : "FAIL", what.c_str());
+  return condition;
+}
+
+void Report::note(const std::string& text) { std::printf("     %s\n", text.c_str()); }
+
+int Report::exit_code() const {
+  std::printf("== %s: %d checks, %d failed\n", title_.c_str(), checks_, failures_);
+  return failures_ ? 1 : 0;
+}
+
+io::h5md::ObservableData observable(const Case& c, const std::string& name) {
+  return io::h5md::read_observable(c.file, name);
+}
+
+}  // namespace gdsmc::validation

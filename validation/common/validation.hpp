@@ -1,0 +1,53 @@
+/**
+ * \file validation.hpp
+ * \brief Shared plumbing of the validation programs: run a namelist, read the file, report checks.
+ *
+ * Every validation program is invoked as
+ *   PROGRAM INPUT.nml [--set group:variable=value]... [--output FILE.h5]
+ * It runs the simulation the namelist describes (the same code path as `granular-dsmc`, in
+ * process), reads the H5MD file back, and compares with the theory module. Each comparison prints
+ * one line: quantity, measured value, its standard error over replicas, the theory value, the
+ * tolerance (z standard errors plus a stated systematic allowance) and PASS or FAIL. The program
+ * exits non-zero when any check fails, so ctest fails.
+ */
+#pragma once
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "dsmc/simulation.hpp"
+#include "io/config.hpp"
+#include "io/h5md.hpp"
+
+namespace gdsmc::validation {
+
+struct Case {
+  io::config::Config config;
+  std::string file;  ///< the H5MD output
+};
+
+/// Parses the command line, reads the namelist and runs it (unless --reuse and the file exists).
+Case run_case(int argc, char** argv, const std::string& default_output);
+
+/// Collects checks and prints them; `exit_code()` is 1 if any failed.
+class Report {
+ public:
+  explicit Report(std::string title);
+  /// |measured - theory| <= z * standard_error + systematic. Returns whether it passed.
+  bool check(const std::string& quantity, double measured, double standard_error, double theory,
+             double z, double systematic = 0.0);
+  /// A plain condition (for sanity checks that are not statistical).
+  bool require(const std::string& what, bool condition);
+  void note(const std::string& text);
+  int exit_code() const;
+
+ private:
+  std::string title_;
+  int checks_ = 0, failures_ = 0;
+};
+
+io::h5md::ObservableData observable(const Case& c, const std::string& name);
+
+}  // namespace gdsmc::validation
