@@ -52,6 +52,9 @@ int main(int argc, char** argv) {
     } else if (arg == "--print-defaults") {
       std::cout << gdsmc::io::config::defaults_template();
       return 0;
+    } else if (arg == "--print-reference") {  // Markdown input reference, for docs/
+      std::cout << gdsmc::io::config::reference_markdown();
+      return 0;
     } else if (arg == "--quiet" || arg == "-q") {
       quiet = true;
     } else if (arg == "--output" || arg == "-o") {

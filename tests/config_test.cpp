@@ -1,0 +1,705 @@
+// Unit tests for gdsmc::io::config: defaults, derived quantities, overrides, the writers driven by
+// the field tables, and every input-error path with its message (STYLE.md Habits 4 and 5).
+#include "io/config.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "io/namelist.hpp"
+
+namespace config = gdsmc::io::config;
+namespace namelist = gdsmc::io::namelist;
+
+namespace {
+
+// A valid binary mixture; the line numbers below are those of the messages the tests expect.
+const std::vector<std::string> base_lines = {
+    "&system",                          // 1
+    "  n_species = 2",                  // 2
+    "  mass = 1.0, 10.0",               // 3
+    "  diameter = 1.0, 1.0",            // 4
+    "  number_density = 0.02, 0.01",    // 5
+    "  restitution = 0.5",              // 6
+    "/",                                // 7
+    "&initial",                         // 8
+    "  temperature = 1.0",              // 9
+    "/",                                // 10
+    "&dsmc",                            // 11
+    "  n_particles = 200",              // 12
+    "  t_end = 10.0",                   // 13
+    "/",                                // 14
+    "&output",                          // 15
+    "  n_samples = 3",                  // 16
+    "/",                                // 17
+};
+
+std::string join(const std::vector<std::string>& lines) {
+  std::string s;
+  for (const auto& l : lines) s += l + "\n";
+  return s;
+}
+
+std::string base() { return join(base_lines); }
+
+/// The base text with line `line` (1-based) replaced by `text` (which may hold several lines,
+/// or be empty to blank the line so that the numbering of the rest is kept).
+std::string with_line(int line, const std::string& text) {
+  auto lines = base_lines;
+  lines.at(static_cast<std::size_t>(line - 1)) = text;
+  return join(lines);
+}
+
+config::Config read_text(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  return config::read(namelist::parse(text, "t.nml"), overrides);
+}
+
+/// The message of the error reading `text` raises (parse or read), or a test failure.
+std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  try {
+    read_text(text, overrides);
+  } catch (const namelist::Error& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "not a namelist::Error: " << e.what() << "\nfor:\n" << text;
+    return e.what();
+  }
+  ADD_FAILURE() << "no error for:\n" << text;
+  return "";
+}
+
+/// Asserts that `message` contains every one of `parts`.
+void expect_contains(const std::string& message, const std::vector<std::string>& parts) {
+  for (const auto& p : parts)
+    EXPECT_NE(message.find(p), std::string::npos) << "'" << p << "' missing from: " << message;
+}
+
+/// The message is one line that starts with `t.nml:LINE: &group: variable: `.
+void expect_error(const std::string& message, int line, const std::string& group,
+                  const std::string& variable, const std::vector<std::string>& key_words) {
+  std::string prefix = "t.nml:" + std::to_string(line) + ": &" + group + ": ";
+  if (!variable.empty()) prefix += variable + ": ";
+  EXPECT_EQ(message.rfind(prefix, 0), 0u) << "expected prefix '" << prefix << "' in: " << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  expect_contains(message, key_words);
+}
+
+bool close(double a, double b) { return std::abs(a - b) <= 1e-12 * std::max(1.0, std::abs(b)); }
+
+std::set<std::string> resolved_names(const config::Config& c) {
+  std::set<std::string> names;
+  for (const auto& p : c.resolved()) names.insert(p.group + ":" + p.name);
+  return names;
+}
+
+/// "group:variable" for every row of the reference tables (`### &group` then "| `name` | ...").
+std::set<std::string> reference_names() {
+  std::set<std::string> names;
+  std::istringstream in(config::reference_markdown());
+  std::string group;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("### &", 0) == 0) group = line.substr(5);
+    else if (line.rfind("| `", 0) == 0) {
+      const auto end = line.find('`', 3);
+      names.insert(group + ":" + line.substr(3, end - 3));
+    }
+  }
+  return names;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Valid input
+// ---------------------------------------------------------------------------------------------
+
+TEST(ConfigRead, DefaultsAreResolved) {
+  const auto c = read_text(base());
+  EXPECT_EQ(c.dsmc.scheme, "majorant");
+  EXPECT_EQ(c.dsmc.replicas, 1);
+  EXPECT_EQ(c.dsmc.seed, 12345);
+  EXPECT_EQ(c.dsmc.step_fraction, 1.0);
+  EXPECT_FALSE(c.dsmc.collisions_per_particle.has_value());
+  EXPECT_EQ(c.system.restitution_model, "constant");
+  EXPECT_FALSE(c.system.enskog);
+  EXPECT_EQ(c.system.mass_law, "list");
+  EXPECT_EQ(c.initial.distribution, "maxwell");
+  EXPECT_EQ(c.output.file, "run.h5");
+  EXPECT_EQ(c.output.spacing, "linear");
+  EXPECT_FALSE(c.output.first_sample.has_value());
+  EXPECT_EQ(c.output.histogram_bins, 50);
+  EXPECT_EQ(c.source_file, "t.nml");
+  EXPECT_EQ(c.namelist_text, base());
+  EXPECT_TRUE(c.overrides.empty());
+}
+
+TEST(ConfigRead, DefaultTemperatureIsOneForEverySpecies) {
+  // &initial may be left out altogether, as may &output.
+  const auto c = read_text(
+      "&system n_species = 2, mass = 1.0, 2.0, diameter = 2*1.0, number_density = 2*0.01,\n"
+      "  restitution = 0.9 /\n&dsmc t_end = 1.0 /\n");
+  EXPECT_EQ(c.initial.temperature, (std::vector<double>{1.0, 1.0}));
+  EXPECT_EQ(c.output.n_samples, 100);
+  EXPECT_EQ(c.dsmc.n_particles, 20000);
+}
+
+TEST(ConfigRead, InterfaceExampleReads) {
+  // The namelist of INTERFACE.md, verbatim.
+  const auto c = read_text(R"(&system
+  n_species      = 2
+  mass           = 1.0, 10.0          ! m_k
+  diameter       = 1.0, 1.0           ! sigma_k
+  number_density = 0.02, 0.01         ! n_k
+  restitution    = 0.5                ! one value for all pairs, or restitution(i,j) = ...
+  restitution_model = 'constant'      ! or 'viscoelastic' (then visco_a_kappa = A*kappa^(2/5))
+  enskog         = .false.            ! .true.: Carnahan-Starling chi_ij from the packing fraction
+  ! many species from laws instead of lists (k = 1..n_species, the lists then give species 1 only):
+  ! mass_law = 'linear' (m_k = k m_1), diameter_law = 'cube_root' (sigma_k = k^(1/3) sigma_1),
+  ! density_law = 'power' with density_exponent = theta (n_k = n_1 k^-theta)
+/
+&initial
+  temperature    = 1.0, 1.0           ! T_k(0); Maxwellian velocities, zero total momentum
+/
+&dsmc
+  scheme         = 'majorant'         ! 'majorant' (seed 000), 'pairs' (seed 003), 'lowrank' (seed 001)
+  n_particles    = 20000              ! total simulated particles, split in proportion to n_k
+  t_end          = 50.0               ! physical time; or collisions_per_particle = ... (collisions
+                                      ! each particle suffers on average: 2 x events / N)
+  replicas       = 4                  ! independent realisations, averaged
+  seed           = 12345
+/
+&output
+  file           = 'run.h5'
+  n_samples      = 100                ! sample times, spacing = 'linear' or 'log'
+/
+)");
+  EXPECT_EQ(c.system.n_species, 2);
+  EXPECT_EQ(c.system.mass, (std::vector<double>{1.0, 10.0}));
+  EXPECT_EQ(c.system.diameter, (std::vector<double>{1.0, 1.0}));
+  EXPECT_EQ(c.system.number_density, (std::vector<double>{0.02, 0.01}));
+  EXPECT_EQ(c.initial.temperature, (std::vector<double>{1.0, 1.0}));
+  EXPECT_EQ(c.dsmc.n_particles, 20000);
+  EXPECT_EQ(c.dsmc.t_end, 50.0);
+  EXPECT_EQ(c.dsmc.replicas, 4);
+  EXPECT_EQ(c.output.file, "run.h5");
+  EXPECT_EQ(c.output.n_samples, 100);
+  EXPECT_EQ(c.mixture().size(), 2u);
+}
+
+TEST(ConfigRead, NamesAndChoicesAreCaseInsensitive) {
+  auto lines = base_lines;
+  lines[2] = "  MASS = 1.0, 10.0";
+  lines[10] = "&DSMC";
+  lines[11] = "  N_Particles = 300, Scheme = 'PAIRS'";
+  const auto c = read_text(join(lines));
+  EXPECT_EQ(c.system.mass, (std::vector<double>{1.0, 10.0}));
+  EXPECT_EQ(c.dsmc.n_particles, 300);
+  EXPECT_EQ(c.dsmc.scheme, "pairs");
+}
+
+TEST(ConfigRead, ElementAssignmentAfterAWholeArray) {
+  const auto c = read_text(with_line(3, "  mass = 1.0, 10.0, mass(2) = 5.0"));
+  EXPECT_EQ(c.system.mass, (std::vector<double>{1.0, 5.0}));
+}
+
+TEST(ConfigRestitution, ScalarFillsAllPairs) {
+  const auto c = read_text(base());
+  ASSERT_EQ(c.system.restitution.size, 2u);
+  for (double a : c.system.restitution.values) EXPECT_EQ(a, 0.5);
+}
+
+TEST(ConfigRestitution, ElementSetsBothOrders) {
+  const auto c = read_text(with_line(6, "  restitution = 0.9, restitution(1,2) = 0.5"));
+  EXPECT_EQ(c.system.restitution(0, 0), 0.9);
+  EXPECT_EQ(c.system.restitution(1, 1), 0.9);
+  EXPECT_EQ(c.system.restitution(0, 1), 0.5);
+  EXPECT_EQ(c.system.restitution(1, 0), 0.5);
+}
+
+TEST(ConfigRestitution, ElementsOnly) {
+  const auto c = read_text(
+      with_line(6, "  restitution(1,1) = 0.9, restitution(2,1) = 0.5, restitution(2,2) = 0.7"));
+  EXPECT_EQ(c.system.restitution(0, 0), 0.9);
+  EXPECT_EQ(c.system.restitution(0, 1), 0.5);
+  EXPECT_EQ(c.system.restitution(1, 0), 0.5);
+  EXPECT_EQ(c.system.restitution(1, 1), 0.7);
+}
+
+TEST(ConfigRestitution, FullMatrixIsColumnMajor) {
+  // Fortran order: (1,1), (2,1), (1,2), (2,2); the last assignment of a symmetric pair wins.
+  const auto c = read_text(with_line(6, "  restitution = 0.9, 0.5, 0.5, 0.7"));
+  EXPECT_EQ(c.system.restitution(0, 0), 0.9);
+  EXPECT_EQ(c.system.restitution(0, 1), 0.5);
+  EXPECT_EQ(c.system.restitution(1, 1), 0.7);
+}
+
+TEST(ConfigRestitution, MissingPairIsNamed) {
+  const std::string m =
+      error_of(with_line(6, "  restitution(1,1) = 0.9\n  restitution(1,2) = 0.5"));
+  // Line 7 is the last restitution assignment.
+  expect_error(m, 7, "system", "restitution", {"restitution(2,2)", "not given"});
+}
+
+TEST(ConfigRestitution, WrongNumberOfValues) {
+  const std::string m = error_of(with_line(6, "  restitution = 0.5, 0.5, 0.5"));
+  expect_error(m, 6, "system", "restitution", {"expected 1 or n_species^2 = 4 values", "got 3"});
+}
+
+TEST(ConfigRestitution, ElementOutsideTheMatrix) {
+  const std::string m = error_of(with_line(6, "  restitution = 0.5, restitution(3,1) = 0.5"));
+  expect_error(m, 6, "system", "restitution", {"(3,1)", "outside the 2 x 2 matrix"});
+}
+
+TEST(ConfigRestitution, OneIndexIsAnError) {
+  const std::string m = error_of(with_line(6, "  restitution(1) = 0.5"));
+  expect_error(m, 6, "system", "restitution", {"is a matrix", "restitution(i,j)"});
+}
+
+TEST(ConfigLaws, DeriveTheSpeciesLists) {
+  const auto c = read_text(join({"&system", "  n_species = 4",
+                                       "  mass = 2.0, mass_law = 'linear'",
+                                       "  diameter = 1.0, diameter_law = 'cube_root'",
+                                       "  number_density = 0.01, density_law = 'power'",
+                                       "  density_exponent = 2.0", "  restitution = 0.9", "/",
+                                       "&dsmc", "  n_particles = 1000, t_end = 1.0", "/"}));
+  ASSERT_EQ(c.system.mass.size(), 4u);
+  ASSERT_EQ(c.system.diameter.size(), 4u);
+  ASSERT_EQ(c.system.number_density.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) {
+    const double kk = static_cast<double>(k + 1);
+    EXPECT_TRUE(close(c.system.mass[k], 2.0 * kk)) << k;
+    EXPECT_TRUE(close(c.system.diameter[k], std::cbrt(kk))) << k;
+    EXPECT_TRUE(close(c.system.number_density[k], 0.01 / (kk * kk))) << k;
+  }
+  EXPECT_EQ(c.system.restitution.size, 4u);
+  EXPECT_EQ(c.initial.temperature.size(), 4u);
+}
+
+TEST(ConfigInitial, TemperatureBroadcast) {
+  const auto c = read_text(with_line(9, "  temperature = 2.5"));
+  EXPECT_EQ(c.initial.temperature, (std::vector<double>{2.5, 2.5}));
+  const auto d = read_text(with_line(9, "  temperature = 2.5, 0.5"));
+  EXPECT_EQ(d.initial.temperature, (std::vector<double>{2.5, 0.5}));
+}
+
+TEST(ConfigSamples, LinearTimes) {
+  const auto c = read_text(with_line(16, "  n_samples = 5"));
+  const auto t = c.sample_times();
+  ASSERT_EQ(t.size(), 5u);
+  for (std::size_t i = 0; i < t.size(); ++i) EXPECT_TRUE(close(t[i], 2.5 * static_cast<double>(i))) << i;
+  EXPECT_EQ(t.front(), 0.0);
+  EXPECT_EQ(t.back(), 10.0);
+  EXPECT_TRUE(c.sample_collisions().empty());
+}
+
+TEST(ConfigSamples, LogTimesAreGeometric) {
+  const auto c = read_text(
+      with_line(16, "  n_samples = 6, spacing = 'log', first_sample = 0.001"));
+  const auto t = c.sample_times();
+  ASSERT_EQ(t.size(), 6u);
+  EXPECT_EQ(t.front(), 0.0);
+  EXPECT_EQ(t.back(), 10.0);
+  EXPECT_TRUE(close(t[1], 0.001));
+  for (std::size_t i = 2; i < t.size(); ++i) EXPECT_TRUE(close(t[i] / t[i - 1], 10.0)) << i;
+}
+
+TEST(ConfigSamples, LogFirstSampleDefaultsToEndOverThousand) {
+  const auto c = read_text(with_line(16, "  n_samples = 4, spacing = 'log'"));
+  ASSERT_TRUE(c.output.first_sample.has_value());
+  EXPECT_TRUE(close(*c.output.first_sample, 0.01));
+  const auto t = c.sample_times();
+  ASSERT_EQ(t.size(), 4u);
+  EXPECT_EQ(t.front(), 0.0);
+  EXPECT_TRUE(close(t[1], 0.01));
+  EXPECT_EQ(t.back(), 10.0);
+  EXPECT_TRUE(close(t[2] / t[1], t[3] / t[2]));
+}
+
+TEST(ConfigSamples, TwoSamplesAreStartAndEnd) {
+  const auto c = read_text(with_line(16, "  n_samples = 2, spacing = 'log'"));
+  EXPECT_EQ(c.sample_times(), (std::vector<double>{0.0, 10.0}));
+}
+
+TEST(ConfigSamples, CollisionDriven) {
+  const auto c = read_text(with_line(13, "  collisions_per_particle = 8.0"));
+  EXPECT_TRUE(c.sample_times().empty());
+  const auto s = c.sample_collisions();
+  EXPECT_EQ(s, (std::vector<double>{0.0, 4.0, 8.0}));
+}
+
+TEST(ConfigOverrides, WinOverTheFileAndAreRecorded) {
+  const std::vector<std::string> o = {"dsmc:n_particles=500", "output:file='x.h5'",
+                                      "dsmc:seed=1", "dsmc:seed=2"};
+  const auto c = read_text(base(), o);
+  EXPECT_EQ(c.dsmc.n_particles, 500);
+  EXPECT_EQ(c.output.file, "x.h5");
+  EXPECT_EQ(c.dsmc.seed, 2);  // the last one wins
+  EXPECT_EQ(c.overrides, o);
+  // The namelist text is kept verbatim: overrides are recorded separately.
+  EXPECT_EQ(c.namelist_text, base());
+  ASSERT_TRUE(c.origin.count("dsmc:n_particles"));
+  EXPECT_EQ(c.origin.at("dsmc:n_particles").first, "--set dsmc:n_particles=500");
+}
+
+TEST(ConfigOverrides, OriginsOfOtherVariablesStayInTheFile) {
+  const auto c = read_text(base(), {"dsmc:seed=7", "output:n_samples=4"});
+  ASSERT_TRUE(c.origin.count("dsmc:n_particles"));
+  EXPECT_EQ(c.origin.at("dsmc:n_particles"), (std::pair<std::string, int>{"t.nml", 12}));
+  EXPECT_EQ(c.origin.at("system:restitution"), (std::pair<std::string, int>{"t.nml", 6}));
+  EXPECT_EQ(c.origin.at("dsmc:seed").first, "--set dsmc:seed=7");
+}
+
+TEST(ConfigOverrides, CanSupplyAGroupTheFileLacks) {
+  const auto c = read_text(with_line(16, "  ! nothing"), {"output:n_samples=7"});
+  EXPECT_EQ(c.output.n_samples, 7);
+}
+
+TEST(ConfigResolved, ContainsEveryFieldOfEveryGroup) {
+  const auto c = read_text(with_line(16, "  n_samples = 3, spacing = 'log', first_sample = 0.1"));
+  const auto names = resolved_names(c);
+  // Everything the reference lists, except the optional end that this run does not use.
+  auto expected = reference_names();
+  ASSERT_GT(expected.size(), 20u);
+  expected.erase("dsmc:collisions_per_particle");
+  EXPECT_EQ(names, expected);
+  for (const char* n : {"system:n_species", "system:mass", "system:diameter", "system:number_density",
+                        "system:restitution", "system:restitution_model", "system:enskog",
+                        "initial:temperature", "dsmc:scheme", "dsmc:n_particles", "dsmc:t_end",
+                        "dsmc:replicas", "dsmc:seed", "output:file", "output:n_samples",
+                        "output:spacing", "output:first_sample"})
+    EXPECT_TRUE(names.count(n)) << n;
+  // Values are the resolved ones: defaults filled in, restitution as the full matrix.
+  for (const auto& p : c.resolved()) {
+    if (p.group == "dsmc" && p.name == "scheme")
+      EXPECT_EQ(std::get<std::string>(p.value), "majorant");
+    if (p.group == "dsmc" && p.name == "replicas") EXPECT_EQ(std::get<long long>(p.value), 1);
+    if (p.group == "system" && p.name == "restitution")
+      EXPECT_EQ(std::get<std::vector<double>>(p.value), (std::vector<double>(4, 0.5)));
+    if (p.group == "initial" && p.name == "temperature")
+      EXPECT_EQ(std::get<std::vector<double>>(p.value), (std::vector<double>{1.0, 1.0}));
+  }
+}
+
+TEST(ConfigResolved, CollisionDrivenRunListsItsEnd) {
+  const auto names = resolved_names(read_text(with_line(13, "  collisions_per_particle = 8.0")));
+  EXPECT_TRUE(names.count("dsmc:collisions_per_particle"));
+  EXPECT_FALSE(names.count("dsmc:t_end"));
+}
+
+TEST(ConfigTemplate, ParsesBackAfterUncommentingTEnd) {
+  std::string text = config::defaults_template();
+  const auto at = text.find("! t_end");
+  ASSERT_NE(at, std::string::npos) << text;
+  text.replace(at, 1, " ");
+  const auto c = read_text(text);
+  EXPECT_EQ(c.dsmc.t_end, 100.0);
+  EXPECT_EQ(c.dsmc.scheme, "majorant");
+  EXPECT_EQ(c.dsmc.n_particles, 20000);
+  EXPECT_EQ(c.output.n_samples, 100);
+  EXPECT_EQ(c.system.n_species, 1);
+}
+
+TEST(ConfigTemplate, AsPrintedItAsksForTheEndOfTheRun) {
+  const std::string text = config::defaults_template();
+  const std::string m = error_of(text);
+  expect_contains(m, {"t.nml:", "&dsmc: t_end: ", "exactly one of t_end and collisions_per_particle"});
+}
+
+TEST(ConfigTemplate, MentionsEveryVariable) {
+  const std::string text = config::defaults_template();
+  for (const auto& name : reference_names()) {
+    const std::string variable = name.substr(name.find(':') + 1);
+    EXPECT_NE(text.find(variable + " = "), std::string::npos) << variable;
+  }
+}
+
+TEST(ConfigReference, MentionsEveryVariable) {
+  const std::string md = config::reference_markdown();
+  std::set<std::string> all = resolved_names(
+      read_text(with_line(16, "  n_samples = 3, spacing = 'log', first_sample = 0.1")));
+  const auto more = resolved_names(read_text(with_line(13, "  collisions_per_particle = 8.0")));
+  all.insert(more.begin(), more.end());
+  for (const auto& name : all) {
+    const std::string variable = name.substr(name.find(':') + 1);
+    EXPECT_NE(md.find("`" + variable + "`"), std::string::npos) << variable;
+  }
+  for (const char* group : {"### &system", "### &initial", "### &dsmc", "### &output"})
+    EXPECT_NE(md.find(group), std::string::npos) << group;
+  EXPECT_EQ(reference_names(), all);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Every input error, with its message
+// ---------------------------------------------------------------------------------------------
+
+TEST(ConfigError, UnknownVariableSuggestsTheClosestName) {
+  const std::string m = error_of(with_line(6, "  restituion = 0.5"));
+  expect_error(m, 6, "system", "restituion",
+               {"unknown variable", "did you mean 'restitution'"});
+}
+
+TEST(ConfigError, UnknownVariableWithoutACloseName) {
+  const std::string m = error_of(with_line(12, "  n_particles = 200, zzzzzzzz = 1"));
+  expect_error(m, 12, "dsmc", "zzzzzzzz", {"unknown variable"});
+  EXPECT_EQ(m.find("did you mean"), std::string::npos) << m;
+}
+
+TEST(ConfigError, StringWhereANumberIsExpected) {
+  const std::string m = error_of(with_line(3, "  mass = 'heavy', 10.0"));
+  expect_error(m, 3, "system", "mass", {"expected a real number", "a string", "'heavy'"});
+  const std::string t = error_of(with_line(13, "  t_end = 'long'"));
+  expect_error(t, 13, "dsmc", "t_end", {"expected a real number", "'long'"});
+}
+
+TEST(ConfigError, RealWhereAnIntegerIsExpected) {
+  const std::string m = error_of(with_line(12, "  n_particles = 1.5"));
+  expect_error(m, 12, "dsmc", "n_particles", {"expected an integer", "a real number", "'1.5'"});
+}
+
+TEST(ConfigError, LogicalExpected) {
+  const std::string m = error_of(with_line(6, "  restitution = 0.5, enskog = 1"));
+  expect_error(m, 6, "system", "enskog", {"expected a logical", ".true.", "an integer", "'1'"});
+}
+
+TEST(ConfigError, StringExpected) {
+  const std::string m = error_of(with_line(16, "  n_samples = 3, file = 5"));
+  expect_error(m, 16, "output", "file", {"expected a quoted string", "an integer", "'5'"});
+}
+
+TEST(ConfigError, EmptyFileName) {
+  const std::string m = error_of(with_line(16, "  n_samples = 3, file = ''"));
+  expect_error(m, 16, "output", "file", {"must not be empty"});
+}
+
+TEST(ConfigError, ScalarGivenTwoValuesOrAnIndex) {
+  expect_error(error_of(with_line(2, "  n_species = 2, 3")), 2, "system", "n_species",
+               {"expected one value", "got 2"});
+  expect_error(error_of(with_line(2, "  n_species(1) = 2")), 2, "system", "n_species",
+               {"scalar", "takes no index"});
+}
+
+TEST(ConfigError, WrongArrayLength) {
+  const std::string m = error_of(with_line(3, "  mass = 1.0, 10.0, 3.0"));
+  expect_error(m, 3, "system", "mass", {"expected 2 value(s)", "n_species = 2", "got 3"});
+  const std::string d = error_of(with_line(4, "  diameter = 1.0"));
+  expect_error(d, 4, "system", "diameter", {"expected 2 value(s)", "got 1"});
+}
+
+TEST(ConfigError, ArrayElementNotGiven) {
+  const std::string m = error_of(with_line(3, "  mass(2) = 10.0"));
+  expect_error(m, 3, "system", "mass", {"mass(1)", "not given"});
+}
+
+TEST(ConfigError, LawTakesOneValue) {
+  const std::string m = error_of(with_line(3, "  mass = 1.0, 10.0, mass_law = 'linear'"));
+  expect_error(m, 3, "system", "mass", {"expected 1 value(s)", "species 1 only", "'linear'", "got 2"});
+}
+
+TEST(ConfigError, DensityExponentWithoutPowerLaw) {
+  const std::string m = error_of(with_line(6, "  restitution = 0.5\n  density_exponent = 1.0"));
+  expect_error(m, 7, "system", "density_exponent", {"only used with density_law = 'power'"});
+}
+
+TEST(ConfigError, ZeroOrNegativeMassDiameterDensity) {
+  expect_error(error_of(with_line(3, "  mass = 0.0, 10.0")), 3, "system", "mass",
+               {"mass = 0.0 is outside (0, inf]"});
+  expect_error(error_of(with_line(3, "  mass = 1.0, -10.0")), 3, "system", "mass",
+               {"mass = -10.0 is outside"});
+  expect_error(error_of(with_line(4, "  diameter = 1.0, 0")), 4, "system", "diameter",
+               {"diameter = 0 is outside"});
+  expect_error(error_of(with_line(5, "  number_density = -0.02, 0.01")), 5, "system",
+               "number_density", {"number_density = -0.02 is outside"});
+  expect_error(error_of(with_line(9, "  temperature = 0.0")), 9, "initial", "temperature",
+               {"temperature = 0.0 is outside"});
+}
+
+TEST(ConfigError, RestitutionOutsideTheUnitInterval) {
+  expect_error(error_of(with_line(6, "  restitution = 1.3")), 6, "system", "restitution",
+               {"restitution = 1.3 is outside [0, 1]"});
+  expect_error(error_of(with_line(6, "  restitution = -0.1")), 6, "system", "restitution",
+               {"restitution = -0.1 is outside [0, 1]"});
+  expect_error(error_of(with_line(6, "  restitution = 0.5, restitution(1,2) = 1.3")), 6, "system",
+               "restitution", {"restitution = 1.3 is outside [0, 1]"});
+}
+
+TEST(ConfigError, RestitutionModelNotAvailable) {
+  const std::string m = error_of(with_line(6, "  restitution = 0.5, restitution_model = 'viscoelastic'"));
+  expect_error(m, 6, "system", "restitution_model", {"'viscoelastic'", "not available"});
+}
+
+TEST(ConfigError, PackingFractionBeyondCarnahanStarling) {
+  const std::string m =
+      error_of(with_line(5, "  number_density = 1.0, 1.0\n  enskog = .true."));
+  expect_error(m, 5, "system", "number_density", {"packing fraction", "phi < 0.5"});
+}
+
+TEST(ConfigError, MissingRequiredGroup) {
+  // Lines 1-7 are &system; dropping them leaves the numbering of nothing else relevant.
+  auto lines = base_lines;
+  lines.erase(lines.begin(), lines.begin() + 7);
+  const std::string m = error_of(join(lines));
+  EXPECT_EQ(m, "t.nml: &system: required group is missing");
+  auto no_dsmc = base_lines;
+  no_dsmc.erase(no_dsmc.begin() + 10, no_dsmc.begin() + 14);
+  EXPECT_EQ(error_of(join(no_dsmc)), "t.nml: &dsmc: required group is missing");
+}
+
+TEST(ConfigError, UnknownGroupSuggestsTheClosestName) {
+  const std::string m = error_of(with_line(8, "&inital"));
+  expect_error(m, 8, "inital", "", {"unknown group", "did you mean '&initial'"});
+  const std::string s = error_of(with_line(1, "&sytem"));
+  expect_error(s, 1, "sytem", "", {"unknown group", "did you mean '&system'"});
+}
+
+TEST(ConfigError, UnterminatedString) {
+  const std::string m = error_of(with_line(12, "  n_particles = 200, scheme = 'pairs"));
+  expect_error(m, 12, "dsmc", "scheme", {"unterminated string"});
+}
+
+TEST(ConfigError, UnterminatedGroup) {
+  // The last group without its '/': reported at the line where the group starts.
+  const std::string m = error_of(with_line(17, ""));
+  expect_error(m, 15, "output", "", {"unterminated group", "without '/'"});
+  // A middle group without its '/': the next group starts inside it.
+  const std::string g = error_of(with_line(7, ""));
+  expect_error(g, 8, "system", "", {"&initial starts inside group &system", "'/' missing"});
+}
+
+TEST(ConfigError, TooFewParticlesForADiluteSpecies) {
+  // 200 * 0.0001 / 0.0201 rounds to 1 particle of species 2.
+  const std::string m = error_of(with_line(5, "  number_density = 0.02, 0.0001"));
+  expect_error(m, 12, "dsmc", "n_particles",
+               {"n_particles = 200", "1 particle(s) of species 2", "at least 2 per species"});
+}
+
+TEST(ConfigError, TooFewParticlesByDefaultNamesTheGroup) {
+  // n_particles not given: the default 20000 is too few; reported at the &dsmc line.
+  auto text = with_line(5, "  number_density = 1.0, 1e-5");
+  text = text.replace(text.find("  n_particles = 200\n"), 20, "\n");
+  const std::string m = error_of(text);
+  expect_error(m, 11, "dsmc", "n_particles", {"n_particles = 20000", "species 2"});
+}
+
+TEST(ConfigError, NParticlesBelowTwo) {
+  expect_error(error_of(with_line(12, "  n_particles = 1")), 12, "dsmc", "n_particles",
+               {"n_particles = 1 is outside [2, "});
+}
+
+TEST(ConfigError, NonPositiveEnd) {
+  expect_error(error_of(with_line(13, "  t_end = -1")), 13, "dsmc", "t_end",
+               {"t_end = -1 is outside (0, inf]"});
+  expect_error(error_of(with_line(13, "  t_end = 0.0")), 13, "dsmc", "t_end",
+               {"t_end = 0.0 is outside"});
+  expect_error(error_of(with_line(13, "  collisions_per_particle = 0")), 13, "dsmc",
+               "collisions_per_particle", {"is outside"});
+}
+
+TEST(ConfigError, BothEnds) {
+  const std::string m = error_of(with_line(13, "  t_end = 10.0\n  collisions_per_particle = 5.0"));
+  expect_error(m, 14, "dsmc", "collisions_per_particle",
+               {"exactly one of t_end and collisions_per_particle"});
+}
+
+TEST(ConfigError, NeitherEnd) {
+  const std::string m = error_of(with_line(13, ""));
+  expect_error(m, 11, "dsmc", "t_end", {"exactly one of t_end and collisions_per_particle"});
+}
+
+TEST(ConfigError, BadChoice) {
+  const std::string m = error_of(with_line(12, "  n_particles = 200, scheme = 'bird'"));
+  expect_error(m, 12, "dsmc", "scheme", {"'bird' is not one of", "'majorant'", "'pairs'"});
+  const std::string s = error_of(with_line(16, "  n_samples = 3, spacing = 'cubic'"));
+  expect_error(s, 16, "output", "spacing", {"'cubic' is not one of", "'linear'", "'log'"});
+}
+
+TEST(ConfigError, SchemeNotAvailable) {
+  const std::string m = error_of(with_line(12, "  n_particles = 200, scheme = 'lowrank'"));
+  expect_error(m, 12, "dsmc", "scheme", {"'lowrank'", "not available"});
+}
+
+TEST(ConfigError, FirstSampleWithLinearSpacing) {
+  const std::string m = error_of(with_line(16, "  n_samples = 3, first_sample = 0.1"));
+  expect_error(m, 16, "output", "first_sample", {"only used with spacing = 'log'"});
+}
+
+TEST(ConfigError, FirstSampleAfterTheEnd) {
+  const std::string m =
+      error_of(with_line(16, "  n_samples = 3, spacing = 'log', first_sample = 20.0"));
+  expect_error(m, 16, "output", "first_sample", {"below the end of the run"});
+}
+
+TEST(ConfigError, TooFewSamples) {
+  expect_error(error_of(with_line(16, "  n_samples = 1")), 16, "output", "n_samples",
+               {"n_samples = 1 is outside [2, "});
+}
+
+TEST(ConfigError, NSpeciesBelowOne) {
+  expect_error(error_of(with_line(2, "  n_species = 0")), 2, "system", "n_species",
+               {"n_species = 0 is outside [1, "});
+}
+
+TEST(ConfigError, MissingRequiredVariable) {
+  const std::string m = error_of(with_line(5, ""));
+  expect_error(m, 1, "system", "number_density", {"required variable is missing"});
+  const std::string r = error_of(with_line(6, ""));
+  expect_error(r, 1, "system", "restitution", {"required variable is missing"});
+}
+
+TEST(ConfigError, TemperatureListOfWrongLength) {
+  const std::string m = error_of(with_line(9, "  temperature = 1.0, 1.0, 1.0"));
+  expect_error(m, 9, "initial", "temperature", {"expected 1 or n_species = 2 values", "got 3"});
+}
+
+// ---- Errors in overrides name the override, errors in the file name the file ----
+
+TEST(ConfigError, OverrideWithABadValueNamesTheOverride) {
+  const std::string m = error_of(base(), {"dsmc:n_particles=1.5"});
+  EXPECT_EQ(m.rfind("--set dsmc:n_particles=1.5: &dsmc: n_particles: ", 0), 0u) << m;
+  expect_contains(m, {"expected an integer", "'1.5'"});
+}
+
+TEST(ConfigError, OverrideWithAnUnknownVariable) {
+  const std::string m = error_of(base(), {"dsmc:n_partcles=500"});
+  EXPECT_EQ(m.rfind("--set dsmc:n_partcles=500: &dsmc: n_partcles: ", 0), 0u) << m;
+  expect_contains(m, {"unknown variable", "did you mean 'n_particles'"});
+}
+
+TEST(ConfigError, OverrideWithAnUnknownGroup) {
+  const std::string m = error_of(base(), {"sytem:n_species=1"});
+  EXPECT_EQ(m.rfind("--set sytem:n_species=1: &sytem: ", 0), 0u) << m;
+  expect_contains(m, {"unknown group", "did you mean '&system'"});
+}
+
+TEST(ConfigError, OverrideWithASyntaxError) {
+  const std::string m = error_of(base(), {"output:file='x.h5"});
+  EXPECT_EQ(m.rfind("--set output:file='x.h5: &output: file: ", 0), 0u) << m;
+  expect_contains(m, {"unterminated string"});
+}
+
+TEST(ConfigError, OverrideNotOfTheForm) {
+  const std::string m = error_of(base(), {"n_particles=500"});
+  expect_contains(m, {"--set", "'n_particles=500'", "group:variable=value"});
+}
+
+TEST(ConfigError, OverrideThatBreaksACheckNamesTheOverride) {
+  // The file is fine; the override leaves too few particles for species 2.
+  const std::string m = error_of(base(), {"dsmc:n_particles=3"});
+  EXPECT_EQ(m.rfind("--set dsmc:n_particles=3: &dsmc: n_particles: ", 0), 0u) << m;
+  expect_contains(m, {"at least 2 per species"});
+}
+
+TEST(ConfigError, FileErrorAfterAnOverrideOfTheSameGroupNamesTheFile) {
+  // An override of another variable of &system must not take over the file's line numbers.
+  const std::string m = error_of(with_line(3, "  mass = 1.0, 10.0, 3.0"), {"system:enskog=.false."});
+  expect_error(m, 3, "system", "mass", {"expected 2 value(s)"});
+  const std::string d = error_of(with_line(13, ""), {"dsmc:seed=3"});
+  expect_error(d, 11, "dsmc", "t_end", {"exactly one of"});
+  const std::string r = error_of(with_line(6, "  restitution = 0.5, 0.5, 0.5"), {"system:enskog=.false."});
+  expect_error(r, 6, "system", "restitution", {"got 3"});
+}
+
+}  // namespace
