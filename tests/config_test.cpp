@@ -374,13 +374,16 @@ TEST(ConfigResolved, ContainsEveryFieldOfEveryGroup) {
     EXPECT_TRUE(names.count(n)) << n;
   // Values are the resolved ones: defaults filled in, restitution as the full matrix.
   for (const auto& p : c.resolved()) {
-    if (p.group == "dsmc" && p.name == "scheme")
+    const std::string key = p.group + ":" + p.name;
+    if (key == "dsmc:scheme") {
       EXPECT_EQ(std::get<std::string>(p.value), "majorant");
-    if (p.group == "dsmc" && p.name == "replicas") EXPECT_EQ(std::get<long long>(p.value), 1);
-    if (p.group == "system" && p.name == "restitution")
+    } else if (key == "dsmc:replicas") {
+      EXPECT_EQ(std::get<long long>(p.value), 1);
+    } else if (key == "system:restitution") {
       EXPECT_EQ(std::get<std::vector<double>>(p.value), (std::vector<double>(4, 0.5)));
-    if (p.group == "initial" && p.name == "temperature")
+    } else if (key == "initial:temperature") {
       EXPECT_EQ(std::get<std::vector<double>>(p.value), (std::vector<double>{1.0, 1.0}));
+    }
   }
 }
 

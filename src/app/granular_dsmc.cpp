@@ -34,6 +34,8 @@ int main(int argc, char** argv) {
   std::string input;
   std::vector<std::string> overrides;
   bool quiet = false;
+  std::string output_option;  // the --output argument and the override it became, for messages
+  std::string output_override;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto next = [&]() -> std::string {
@@ -62,6 +64,8 @@ int main(int argc, char** argv) {
       std::string quoted;
       for (char c : path) quoted += (c == '\'') ? std::string("''") : std::string(1, c);
       overrides.push_back("output:file='" + quoted + "'");
+      output_option = "--output " + path;
+      output_override = "--set " + overrides.back();
     } else if (arg == "--set") {
       overrides.push_back(next());
     } else if (!arg.empty() && arg[0] == '-') {
@@ -109,8 +113,10 @@ int main(int argc, char** argv) {
     const auto it = config.origin.find("output:file");
     const std::string message = e.what();
     if (message.find("cannot write") != std::string::npos && it != config.origin.end()) {
-      std::cerr << "granular-dsmc: " << it->second.first << ":" << it->second.second
-                << ": &output: file: " << message << "\n";
+      const std::string& where = it->second.first == output_override ? output_option : it->second.first;
+      std::cerr << "granular-dsmc: "
+                << gdsmc::io::namelist::Error(where, it->second.second, "output", "file", message).what()
+                << "\n";
       return 2;
     }
     std::cerr << "granular-dsmc: " << message << "\n";

@@ -145,10 +145,17 @@ const char* kind_name(namelist::Value::Kind kind) {
 
 /// Where each variable was last assigned, and the raw element assignments of pair matrices.
 struct Provenance {
-  std::string file;
-  std::map<std::string, int> line;  ///< variable -> line of its last assignment
-  std::map<std::string, std::vector<const namelist::Assignment*>> pair_assignments;
-  std::map<std::string, std::string> pair_files;
+  std::string file;                             ///< the namelist file (for group-level errors)
+  std::map<std::string, int> line;              ///< variable -> line of its last assignment
+  std::map<std::string, std::string> set_in;    ///< variable -> file (or override) of that line
+  /// Pair-matrix assignments in order, each with the file (or override) it came from.
+  std::map<std::string, std::vector<std::pair<const namelist::Assignment*, std::string>>>
+      pair_assignments;
+  /// The file where `variable` was last set; the namelist file if it was not set.
+  const std::string& file_of(const std::string& variable) const {
+    const auto it = set_in.find(variable);
+    return it == set_in.end() ? file : it->second;
+  }
 };
 
 struct GroupReader {
@@ -233,12 +240,12 @@ void assign(G& target, const Field<G>& field, const namelist::Assignment& a, con
             throw r.error(a.line, name, name + " is a matrix: use " + name + "(i,j)");
           for (const auto& v : a.values) r.number(v, name, field.range);
           if (a.index.empty()) prov.pair_assignments[name].clear();
-          prov.pair_assignments[name].push_back(&a);
-          prov.pair_files[name] = r.file;
+          prov.pair_assignments[name].emplace_back(&a, r.file);
         }
       },
       field.member);
   prov.line[name] = a.line;
+  prov.set_in[name] = r.file;
 }
 
 template <class G>
@@ -275,8 +282,7 @@ void resolve_restitution(System& sys, const Provenance& prov, const std::string&
   const std::size_t s = static_cast<std::size_t>(sys.n_species);
   species::PairMatrix m(s, std::numeric_limits<double>::quiet_NaN());
   const auto& list = prov.pair_assignments.at("restitution");
-  const std::string& file = prov.pair_files.at("restitution");
-  for (const auto* a : list) {
+  for (const auto& [a, file] : list) {
     if (a->index.empty()) {
       if (a->values.size() == 1) {
         std::fill(m.values.begin(), m.values.end(), a->values[0].real);
@@ -308,7 +314,7 @@ void resolve_restitution(System& sys, const Provenance& prov, const std::string&
   for (std::size_t i = 0; i < s; ++i)
     for (std::size_t j = 0; j < s; ++j)
       if (std::isnan(m(i, j)))
-        throw Error(file, prov.line.at("restitution"), group, "restitution",
+        throw Error(prov.file_of("restitution"), prov.line.at("restitution"), group, "restitution",
                     "restitution(" + std::to_string(i + 1) + "," + std::to_string(j + 1) +
                         ") is not given");
   sys.restitution = m;
@@ -319,27 +325,31 @@ void check_species_list(std::vector<double>& values, const std::string& name, co
   const int line = prov.line.count(name) ? prov.line.at(name) : 0;
   const std::size_t expected = law == "list" ? s : 1;
   if (values.size() != expected)
-    throw Error(prov.file, line, group, name,
+    throw Error(prov.file_of(name), line, group, name,
                 "expected " + std::to_string(expected) + " value(s) (" +
                     (law == "list" ? "n_species = " + std::to_string(s)
                                    : "species 1 only, with the law '" + law + "'") +
                     "), got " + std::to_string(values.size()));
   for (std::size_t k = 0; k < values.size(); ++k)
     if (std::isnan(values[k]))
-      throw Error(prov.file, line, group, name, name + "(" + std::to_string(k + 1) + ") is not given");
+      throw Error(prov.file_of(name), line, group, name,
+                  name + "(" + std::to_string(k + 1) + ") is not given");
 }
 
 void check_system(System& sys, const Provenance& prov) {
   const std::string group = "system";
   const auto s = static_cast<std::size_t>(sys.n_species);
   if (sys.restitution_model != "constant")
-    throw Error(prov.file, prov.line.at("restitution_model"), group, "restitution_model",
+    throw Error(prov.file_of("restitution_model"), prov.line.at("restitution_model"), group, "restitution_model",
                 "'" + sys.restitution_model + "' is not available in this version (only 'constant')");
   check_species_list(sys.mass, "mass", sys.mass_law, s, prov, group);
   check_species_list(sys.diameter, "diameter", sys.diameter_law, s, prov, group);
   check_species_list(sys.number_density, "number_density", sys.density_law, s, prov, group);
-  if (sys.density_law != "power" && prov.line.count("density_exponent"))
-    throw Error(prov.file, prov.line.at("density_exponent"), group, "density_exponent",
+  // The default value is accepted, so that the --print-defaults template reads back.
+  if (sys.density_law != "power" && prov.line.count("density_exponent") &&
+      sys.density_exponent != System{}.density_exponent)
+    throw Error(prov.file_of("density_exponent"), prov.line.at("density_exponent"), group,
+                "density_exponent",
                 "only used with density_law = 'power'");
   // derive: the species laws (seed 001 sec. II: m_k = k m_1, sigma_k = k^(1/3) sigma_1, n_k = n_1 k^-theta)
   for (std::size_t k = 2; k <= s; ++k) {
@@ -355,7 +365,8 @@ void check_system(System& sys, const Provenance& prov) {
     for (std::size_t k = 0; k < s; ++k) phi += sys.number_density[k] * std::pow(sys.diameter[k], 3);
     phi *= std::acos(-1.0) / 6.0;
     if (phi >= 0.5)
-      throw Error(prov.file, prov.line.count("number_density") ? prov.line.at("number_density") : 0,
+      throw Error(prov.file_of("number_density"),
+                  prov.line.count("number_density") ? prov.line.at("number_density") : 0,
                   group, "number_density",
                   "packing fraction " + std::to_string(phi) +
                       " is beyond the Carnahan-Starling fluid range (phi < 0.5)");
@@ -366,11 +377,11 @@ void check_initial(Initial& ini, std::size_t s, const Provenance& prov) {
   const int line = prov.line.count("temperature") ? prov.line.at("temperature") : 0;
   for (std::size_t k = 0; k < ini.temperature.size(); ++k)
     if (std::isnan(ini.temperature[k]))
-      throw Error(prov.file, line, "initial", "temperature",
+      throw Error(prov.file_of("temperature"), line, "initial", "temperature",
                   "temperature(" + std::to_string(k + 1) + ") is not given");
   if (ini.temperature.size() == 1 && s > 1) ini.temperature.assign(s, ini.temperature[0]);
   if (ini.temperature.size() != s)
-    throw Error(prov.file, line, "initial", "temperature",
+    throw Error(prov.file_of("temperature"), line, "initial", "temperature",
                 "expected 1 or n_species = " + std::to_string(s) + " values, got " +
                     std::to_string(ini.temperature.size()));
 }
@@ -378,16 +389,18 @@ void check_initial(Initial& ini, std::size_t s, const Provenance& prov) {
 void check_dsmc(const Dsmc& d, const species::Mixture& mix, const Provenance& prov, int group_line) {
   const std::string group = "dsmc";
   if (d.scheme == "lowrank")
-    throw Error(prov.file, prov.line.at("scheme"), group, "scheme",
+    throw Error(prov.file_of("scheme"), prov.line.at("scheme"), group, "scheme",
                 "'lowrank' is not available in this version (use 'majorant' or 'pairs')");
   if (d.t_end.has_value() == d.collisions_per_particle.has_value())
-    throw Error(prov.file, d.t_end ? prov.line.at("collisions_per_particle") : group_line, group,
+    throw Error(d.t_end ? prov.file_of("collisions_per_particle") : prov.file,
+                d.t_end ? prov.line.at("collisions_per_particle") : group_line, group,
                 d.t_end ? "collisions_per_particle" : "t_end",
                 "give exactly one of t_end and collisions_per_particle");
   const auto counts = particles::species_counts(static_cast<std::size_t>(d.n_particles), mix);
   for (std::size_t k = 0; k < counts.size(); ++k)
     if (counts[k] < 2)
-      throw Error(prov.file, prov.line.count("n_particles") ? prov.line.at("n_particles") : group_line,
+      throw Error(prov.file_of("n_particles"),
+                  prov.line.count("n_particles") ? prov.line.at("n_particles") : group_line,
                   group, "n_particles",
                   "n_particles = " + std::to_string(d.n_particles) + " gives " +
                       std::to_string(counts[k]) + " particle(s) of species " + std::to_string(k + 1) +
@@ -399,10 +412,10 @@ void check_output(Output& out, const Dsmc& d, const Provenance& prov) {
   if (out.spacing == "log") {
     if (!out.first_sample) out.first_sample = end / 1000.0;  // derive
     if (*out.first_sample >= end)
-      throw Error(prov.file, prov.line.at("first_sample"), "output", "first_sample",
+      throw Error(prov.file_of("first_sample"), prov.line.at("first_sample"), "output", "first_sample",
                   "first_sample must be below the end of the run (" + std::to_string(end) + ")");
   } else if (prov.line.count("first_sample")) {
-    throw Error(prov.file, prov.line.at("first_sample"), "output", "first_sample",
+    throw Error(prov.file_of("first_sample"), prov.line.at("first_sample"), "output", "first_sample",
                 "only used with spacing = 'log'");
   }
 }
@@ -511,7 +524,21 @@ namelist::Document parse_override(const std::string& text) {
   if (colon == std::string::npos || equal == std::string::npos || colon > equal)
     throw Error("--set", 0, "", "", "'" + text + "' is not of the form group:variable=value");
   const std::string group = text.substr(0, colon);
-  return namelist::parse("&" + group + " " + text.substr(colon + 1) + " /", "--set " + text);
+  // One command-line argument, not a file: its messages and origins carry no line number.
+  namelist::Document doc;
+  try {
+    doc = namelist::parse("&" + group + " " + text.substr(colon + 1) + " /", "--set " + text);
+  } catch (const Error& e) {
+    throw Error(e.file, 0, e.group, e.variable, e.message);
+  }
+  for (auto& g : doc.groups) {
+    g.line = 0;
+    for (auto& a : g.assignments) {
+      a.line = 0;
+      for (auto& v : a.values) v.line = 0;
+    }
+  }
+  return doc;
 }
 
 }  // namespace
@@ -565,13 +592,15 @@ Config read(const namelist::Document& document, const std::vector<std::string>& 
     Provenance& p = prov[name];
     p.file = document.file;
     if (const auto* g = document.find(name)) read_group(target, fields, *g, document.file, p);
-    for (const auto& doc : extra)
+    for (const auto& doc : extra)  // errors and origins of what an override sets name the override
       if (const auto* g = doc.find(name)) {
-        p.file = doc.file;  // errors and origins of what the override sets name the override
         read_group(target, fields, *g, doc.file, p);
+      } else if (!doc.groups.empty() &&
+                 std::find(known.begin(), known.end(), doc.groups[0].name) == known.end()) {
+        const std::string hint = namelist::closest_name(doc.groups[0].name, known);
+        throw Error(doc.file, 0, doc.groups[0].name, "",
+                    "unknown group" + (hint.empty() ? std::string() : " (did you mean '&" + hint + "'?)"));
       }
-      else if (!doc.groups.empty() && std::find(known.begin(), known.end(), doc.groups[0].name) == known.end())
-        throw Error(doc.file, 0, doc.groups[0].name, "", "unknown group");
   };
   read_all("system", c.system, system_fields());
   read_all("initial", c.initial, initial_fields());
@@ -579,7 +608,8 @@ Config read(const namelist::Document& document, const std::vector<std::string>& 
   read_all("output", c.output, output_fields());
 
   for (const auto& [group, p] : prov)
-    for (const auto& [variable, line] : p.line) c.origin[group + ":" + variable] = {p.file, line};
+    for (const auto& [variable, line] : p.line)
+      c.origin[group + ":" + variable] = {p.file_of(variable), line};
   check_required(system_fields(), prov["system"], document.file, "system", document.find("system")->line);
   check_system(c.system, prov["system"]);
   check_initial(c.initial, static_cast<std::size_t>(c.system.n_species), prov["initial"]);

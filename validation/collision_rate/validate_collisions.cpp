@@ -15,7 +15,7 @@ int main(int argc, char** argv) {
   const double temperature0 = run.config.initial.temperature[0];
   const double nu0 = theory::collision_frequency(n, sigma, chi, m, temperature0);
 
-  validation::Report report("collisions against temperature, alpha = " + std::to_string(alpha));
+  validation::Report report("collisions against temperature, alpha = " + std::to_string(alpha), run.report_file());
   const auto temperature = validation::observable(run, "total_temperature");
   const auto collisions = validation::observable(run, "collisions_per_particle");
   const std::size_t nt = temperature.time.size();

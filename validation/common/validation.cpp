@@ -1,5 +1,6 @@
 #include "validation.hpp"
 
+#include <cstdarg>
 #include <filesystem>
 #include <iostream>
 
@@ -42,8 +43,24 @@ Case run_case(int argc, char** argv, const std::string& default_output) {
   return c;
 }
 
-Report::Report(std::string title) : title_(std::move(title)) {
-  std::printf("== %s\n", title_.c_str());
+Report::Report(std::string title, std::string copy_to) : title_(std::move(title)) {
+  if (!copy_to.empty()) copy_ = std::fopen(copy_to.c_str(), "w");
+  print("== %s\n", title_.c_str());
+}
+
+Report::~Report() {
+  if (copy_) std::fclose(copy_);
+}
+
+void Report::print(const char* format, ...) {
+  std::va_list args;
+  va_start(args, format);
+  std::va_list again;
+  va_copy(again, args);
+  std::vprintf(format, args);
+  if (copy_) std::vfprintf(copy_, format, again);
+  va_end(again);
+  va_end(args);
 }
 
 bool Report::check(const std::string& quantity, double measured, double standard_error,
@@ -53,7 +70,7 @@ bool Report::check(const std::string& quantity, double measured, double standard
   const bool pass = std::isfinite(measured) && diff <= tolerance;
   ++checks_;
   if (!pass) ++failures_;
-  std::printf("%s %-34s measured %.6g +- %.2g (SE)  theory %.6g  |diff| %.3g = %.2f SE  "
+  print("%s %-34s measured %.6g +- %.2g (SE)  theory %.6g  |diff| %.3g = %.2f SE  "
               "tolerance %g SE + %.3g systematic\n",
               pass ? "PASS" : "FAIL", quantity.c_str(), measured, standard_error, theory, diff,
               standard_error > 0 ? diff / standard_error : INFINITY, z, systematic);
@@ -63,14 +80,14 @@ bool Report::check(const std::string& quantity, double measured, double standard
 bool Report::require(const std::string& what, bool condition) {
   ++checks_;
   if (!condition) ++failures_;
-  std::printf("%s %s\n", condition ? "PASS" : "FAIL", what.c_str());
+  print("%s %s\n", condition ? "PASS" : "FAIL", what.c_str());
   return condition;
 }
 
-void Report::note(const std::string& text) { std::printf("     %s\n", text.c_str()); }
+void Report::note(const std::string& text) { print("     %s\n", text.c_str()); }
 
-int Report::exit_code() const {
-  std::printf("== %s: %d checks, %d failed\n", title_.c_str(), checks_, failures_);
+int Report::exit_code() {
+  print("== %s: %d checks, %d failed\n", title_.c_str(), checks_, failures_);
   return failures_ ? 1 : 0;
 }
 

@@ -26,6 +26,7 @@ namespace gdsmc::validation {
 struct Case {
   io::config::Config config;
   std::string file;  ///< the H5MD output
+  std::string report_file() const { return file + ".report.txt"; }
 };
 
 /// Parses the command line, reads the namelist and runs it (unless --reuse and the file exists).
@@ -34,17 +35,21 @@ Case run_case(int argc, char** argv, const std::string& default_output);
 /// Collects checks and prints them; `exit_code()` is 1 if any failed.
 class Report {
  public:
-  explicit Report(std::string title);
+  /// Prints to stdout and, when `copy_to` is not empty, also to that file (the docs quote it).
+  explicit Report(std::string title, std::string copy_to = "");
+  ~Report();
   /// |measured - theory| <= z * standard_error + systematic. Returns whether it passed.
   bool check(const std::string& quantity, double measured, double standard_error, double theory,
              double z, double systematic = 0.0);
   /// A plain condition (for sanity checks that are not statistical).
   bool require(const std::string& what, bool condition);
   void note(const std::string& text);
-  int exit_code() const;
+  int exit_code();
 
  private:
+  void print(const char* format, ...);
   std::string title_;
+  std::FILE* copy_ = nullptr;
   int checks_ = 0, failures_ = 0;
 };
 

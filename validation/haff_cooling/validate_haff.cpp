@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
   const double zeta0 = theory::haff_cooling_rate(n, sigma, chi, m, alpha, t0_temperature);
   const double sonine_error = 0.15 * std::abs(sonine - 1.0);  // ERRATA §6: 9-14 % on the cumulant
 
-  validation::Report report("Haff cooling, alpha = " + std::to_string(alpha));
+  validation::Report report("Haff cooling, alpha = " + std::to_string(alpha), run.report_file());
   report.note("zeta0 = " + std::to_string(zeta0) + ", t0 = " + std::to_string(2.0 / zeta0) +
               ", a2 = " + std::to_string(a2) + ", Sonine factor " + std::to_string(sonine));
 

@@ -12,7 +12,7 @@ int main(int argc, char** argv) {
   const auto mix = run.config.mixture();
   const std::size_t s = mix.size();
   const auto& t0 = run.config.initial.temperature;
-  validation::Report report("polydisperse partial temperatures, " + std::to_string(s) + " species");
+  validation::Report report("polydisperse partial temperatures, " + std::to_string(s) + " species", run.report_file());
 
   const auto temperature = validation::observable(run, "temperature");
   const auto sonine = validation::observable(run, "sonine_c");

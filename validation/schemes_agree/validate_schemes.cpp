@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
     runs.push_back(validation::run_case(static_cast<int>(a.size()), a.data(), stem + ".h5"));
   }
   const std::size_t s = runs[0].config.mixture().size();
-  validation::Report report("majorant vs pairs, binary mixture");
+  validation::Report report("majorant vs pairs, binary mixture", stem + ".report.txt");
   const auto t1 = validation::observable(runs[0], "temperature");
   const auto t2 = validation::observable(runs[1], "temperature");
   if (!report.require("replicas > 1, so standard errors exist", !t1.error.empty()))

@@ -58,7 +58,8 @@ int main(int argc, char** argv) {
   const double n_particles = static_cast<double>(run.config.dsmc.n_particles);
   const double replicas = static_cast<double>(run.config.dsmc.replicas);
   validation::Report report("velocity distribution, alpha = " + std::to_string(alpha) +
-                            ", initial '" + run.config.initial.distribution + "'");
+                            ", initial '" + run.config.initial.distribution + "'",
+                            run.report_file());
 
   const auto sonine = validation::observable(run, "sonine_c");
   const std::size_t last = sonine.value.size() - 1;

@@ -1,0 +1,21 @@
+# Writes input.md (from `granular-dsmc --print-reference` and --print-defaults) and
+# validation_results.md (the reports the validation programs wrote in this build tree).
+file(READ ${TABLES} tables)
+execute_process(COMMAND ${TEMPLATE_CMD} --print-defaults OUTPUT_VARIABLE template)
+file(WRITE ${OUT}/input.md "# Input reference {#input}\n\n"
+  "Generated from the parameter tables of `src/io/config.cpp` (the same tables the reader uses).\n\n"
+  "${tables}\n## Template (`granular-dsmc --print-defaults`)\n\n```\n${template}```\n")
+file(GLOB reports ${REPORTS}/*.report.txt)
+set(body "# Validation results {#validation_results}\n\n"
+  "The reports below were written by the validation programs when ctest ran them in this build "
+  "tree (`ctest -L quick` or `ctest -L paper`). Each line: measured value +- its standard error over "
+  "replicas, theory, difference in standard errors, tolerance.\n\n")
+if(NOT reports)
+  string(APPEND body "No validation has been run in this build tree yet.\n")
+endif()
+foreach(r ${reports})
+  get_filename_component(name ${r} NAME)
+  file(READ ${r} text)
+  string(APPEND body "## ${name}\n\n```\n${text}```\n\n")
+endforeach()
+file(WRITE ${OUT}/validation_results.md "${body}")
