@@ -135,7 +135,9 @@ TEST(Collide, ApplyCollisionConservesMomentumAndLosesRightEnergy) {
           const double loss = e_before - e_after;
           const double expected = (1.0 - alpha * alpha) * mab * g_e * g_e / 2.0;
           ASSERT_NEAR(loss, expected, 1e-13 * e_before) << "alpha " << alpha;
-          if (alpha == 1.0) ASSERT_NEAR(e_after, e_before, 1e-14 * e_before);
+          if (alpha == 1.0) {
+            ASSERT_NEAR(e_after, e_before, 1e-14 * e_before);
+          }
           if (expected >= 0.01 * e_before) {
             ++relative_checks;
             worst_rel = std::max(worst_rel, std::abs(loss / expected - 1.0));

@@ -5,8 +5,10 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "dsmc/simulation.hpp"
@@ -97,6 +99,23 @@ int main(int argc, char** argv) {
   options.progress = !quiet && isatty(STDERR_FILENO);
   options.interrupt = &g_interrupted;
   const std::string& path = config.output.file;
+  // An output path that cannot be written is an input error: name where it was set (the namelist
+  // line, --set or --output; the namelist file itself for the default).
+  const auto output_error = [&](const std::string& message) {
+    const auto it = config.origin.find("output:file");
+    const bool set = it != config.origin.end();
+    const std::string where =
+        !set ? input : it->second.first == output_override ? output_option : it->second.first;
+    std::cerr << "granular-dsmc: "
+              << gdsmc::io::namelist::Error(where, set ? it->second.second : 0, "output", "file",
+                                            message)
+                     .what()
+              << "\n";
+    return 2;
+  };
+  // A directory would only be found when the finished run is renamed into place.
+  if (std::error_code ec; std::filesystem::is_directory(path, ec))
+    return output_error("cannot write output file '" + path + "': it is a directory");
   try {
     const auto summary = gdsmc::simulation::run(config, path, options);
     if (!quiet)
@@ -109,16 +128,9 @@ int main(int argc, char** argv) {
     std::cerr << "\ngranular-dsmc: " << e.what() << "\n";
     return 130;
   } catch (const std::exception& e) {
-    // An output path that cannot be written is an input error: name where it was set.
-    const auto it = config.origin.find("output:file");
     const std::string message = e.what();
-    if (message.find("cannot write") != std::string::npos && it != config.origin.end()) {
-      const std::string& where = it->second.first == output_override ? output_option : it->second.first;
-      std::cerr << "granular-dsmc: "
-                << gdsmc::io::namelist::Error(where, it->second.second, "output", "file", message).what()
-                << "\n";
-      return 2;
-    }
+    if (message.find("cannot write") != std::string::npos && config.origin.count("output:file"))
+      return output_error(message);
     std::cerr << "granular-dsmc: " << message << "\n";
     return 1;
   }
