@@ -312,6 +312,35 @@ TEST(Collide, AdvanceStopsAtEventTargetAndTimeIsMonotone) {
     EXPECT_FALSE(collider.advance(now - 1.0));
     EXPECT_EQ(collider.time(), now);
     EXPECT_EQ(collider.counters().events, events);
+    // Interleaved one-event and short-time targets (sub-steps cut by events, bound raises and
+    // step boundaries in every order): the clock never goes back.
+    for (int i = 0; i < 3000; ++i) {
+      double before = collider.time();
+      collider.advance(1e12, collider.counters().events + 1);
+      ASSERT_GE(collider.time(), before) << "event stop " << i;
+      before = collider.time();
+      collider.advance(before + 0.003);
+      ASSERT_GE(collider.time(), before) << "time stop " << i;
+    }
+  }
+}
+
+// A gas at rest has no candidates: the clock jumps to the target and nothing collides.
+TEST(Collide, GasAtRestNeverCollides) {
+  const auto mix = one_species(0.5);
+  particles::System sys;
+  sys.vx.assign(10, 0.0);
+  sys.vy.assign(10, 0.0);
+  sys.vz.assign(10, 0.0);
+  sys.species.assign(10, 0);
+  sys.first = {0};
+  sys.count = {10};
+  for (Scheme scheme : {Scheme::majorant, Scheme::pairs}) {
+    auto copy = sys;
+    Collider collider(scheme, mix, copy, rng::make_stream(1, 0, rng::Purpose::collisions), 1.0);
+    EXPECT_FALSE(collider.advance(3.5, 10));
+    EXPECT_EQ(collider.time(), 3.5);
+    EXPECT_EQ(collider.counters().events, 0u);
   }
 }
 

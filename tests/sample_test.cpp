@@ -123,6 +123,24 @@ TEST(Sample, MeasureIsGalileanInvariant) {
   EXPECT_NEAR(after.total_temperature / before.total_temperature, 1.0, 1e-12);
 }
 
+// Moments with the given temperatures and no mean flow, for histograms built by hand.
+sample::Moments at_rest(std::vector<double> temperature) {
+  sample::Moments m;
+  m.temperature = std::move(temperature);
+  return m;
+}
+
+// The histogram is of velocities relative to the mean flow: a drift of the whole gas changes nothing.
+TEST(Sample, VelocityHistogramIgnoresMeanFlow) {
+  const auto mix = mixture({1.0});
+  auto gen = rng::make_stream(5, 0, rng::Purpose::initial_state);
+  auto sys = particles::make_system(mix, {1000}, {1.0}, particles::InitialDistribution::maxwell, gen);
+  const auto still = sample::velocity_histogram(mix, sys, sample::measure(mix, sys), 10, 3.0);
+  for (std::size_t i = 0; i < sys.size(); ++i) sys.vx[i] += 0.7;
+  const auto moving = sample::velocity_histogram(mix, sys, sample::measure(mix, sys), 10, 3.0);
+  for (std::size_t b = 0; b < 10; ++b) EXPECT_NEAR(moving[b], still[b], 1e-12) << "bin " << b;
+}
+
 // Bins by hand. Species 0: m = 4, T = 1, so c = 2 v; species 1: m = 1, T = 4, so c = v / 2.
 // bins = 4 on [-2, 2): [-2,-1), [-1,0), [0,1), [1,2), width 1; density = count / (3 N_k width).
 TEST(Sample, VelocityHistogramBinsAndNormalisation) {
@@ -131,7 +149,7 @@ TEST(Sample, VelocityHistogramBinsAndNormalisation) {
   // Species 1 components c: (0.5, 1.0, -1.0), (-0.25, 1.999, -2.0) -> bins 2,3,1 and 1,3,0.
   auto sys = build({{{0.25, -0.25, 0.75}, {-1.0, 0.0, 0.4999}},
                     {{1.0, 2.0, -2.0}, {-0.5, 3.998, -4.0}}});
-  const auto h = sample::velocity_histogram(mix, sys, {1.0, 4.0}, 4, 2.0);
+  const auto h = sample::velocity_histogram(mix, sys, at_rest({1.0, 4.0}), 4, 2.0);
   ASSERT_EQ(h.size(), 8u);
   const double u = 1.0 / 6.0;  // one count of 3 * 2 components, width 1
   const std::vector<double> expected{u, u, 3 * u, u, u, 2 * u, u, 2 * u};
@@ -144,7 +162,7 @@ TEST(Sample, VelocityHistogramBinsAndNormalisation) {
   // Components at or beyond the range are dropped ([-range, range) is kept): c = 2 and c = -2.02.
   auto out = build({{{1.0, -1.01, 0.0}}});
   const auto mix1 = mixture({4.0});
-  const auto ho = sample::velocity_histogram(mix1, out, {1.0}, 4, 2.0);
+  const auto ho = sample::velocity_histogram(mix1, out, at_rest({1.0}), 4, 2.0);
   EXPECT_NEAR(ho[0] + ho[1] + ho[2] + ho[3], 1.0 / 3.0, 1e-15);
   EXPECT_NEAR(ho[2], 1.0 / 3.0, 1e-15);
 }
@@ -158,14 +176,14 @@ TEST(Sample, VelocityHistogramOfMaxwellian) {
   auto gen = rng::make_stream(31, 0, rng::Purpose::initial_state);
   const std::size_t n = 100000;
   const auto sys = particles::make_system(mix, {n}, {2.0}, particles::InitialDistribution::maxwell, gen);
-  const auto wide = sample::velocity_histogram(mix, sys, {2.0}, 60, 12.0);
+  const auto wide = sample::velocity_histogram(mix, sys, at_rest({2.0}), 60, 12.0);
   double integral = 0.0;
   for (double x : wide) integral += x * (24.0 / 60.0);
   EXPECT_NEAR(integral, 1.0, 1e-12);
 
   const std::size_t bins = 20;
   const double range = 4.0, width = 2.0 * range / bins, samples = 3.0 * n;
-  const auto h = sample::velocity_histogram(mix, sys, {2.0}, bins, range);
+  const auto h = sample::velocity_histogram(mix, sys, at_rest({2.0}), bins, range);
   double worst = 0.0;
   for (std::size_t b = 0; b < bins; ++b) {
     const double lo = -range + b * width, hi = lo + width;

@@ -22,7 +22,8 @@ Moments measure(const species::Mixture& mix, const particles::System& sys) {
     for (int d = 0; d < 3; ++d) momentum[d] += mix.mass[k] * sum[d];
     total_mass += mix.mass[k] * static_cast<double>(sys.count[k]);
   }
-  const double u[3] = {momentum[0] / total_mass, momentum[1] / total_mass, momentum[2] / total_mass};
+  for (int d = 0; d < 3; ++d) m.mean_flow[d] = momentum[d] / total_mass;
+  const double* u = m.mean_flow;
   double weighted = 0.0, n_total = 0.0;
   for (std::size_t k = 0; k < s; ++k) {
     double v2_sum = 0.0, v4_sum = 0.0;
@@ -46,13 +47,13 @@ Moments measure(const species::Mixture& mix, const particles::System& sys) {
 }
 
 std::vector<double> velocity_histogram(const species::Mixture& mix, const particles::System& sys,
-                                       const std::vector<double>& temperature, std::size_t bins,
-                                       double range) {
+                                       const Moments& moments, std::size_t bins, double range) {
   const std::size_t s = sys.n_species();
   std::vector<double> h(s * bins, 0.0);
   const double width = 2.0 * range / static_cast<double>(bins);
   for (std::size_t k = 0; k < s; ++k) {
-    const double inv_scale = std::sqrt(mix.mass[k] / temperature[k]);
+    const double inv_scale = std::sqrt(mix.mass[k] / moments.temperature[k]);
+    const double* u = moments.mean_flow;
     double* hk = h.data() + k * bins;
     const std::size_t end = sys.first[k] + sys.count[k];
     auto put = [&](double v) {
@@ -62,9 +63,9 @@ std::vector<double> velocity_histogram(const species::Mixture& mix, const partic
       hk[b < bins ? b : bins - 1] += 1.0;
     };
     for (std::size_t i = sys.first[k]; i < end; ++i) {
-      put(sys.vx[i]);
-      put(sys.vy[i]);
-      put(sys.vz[i]);
+      put(sys.vx[i] - u[0]);
+      put(sys.vy[i] - u[1]);
+      put(sys.vz[i] - u[2]);
     }
     const double norm = 1.0 / (3.0 * static_cast<double>(sys.count[k]) * width);
     for (std::size_t b = 0; b < bins; ++b) hk[b] *= norm;

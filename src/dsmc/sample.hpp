@@ -35,14 +35,15 @@ struct Moments {
   std::vector<double> sonine_c;     ///< c_k
   std::vector<double> number;       ///< N_k
   double total_temperature = 0.0;   ///< T
+  double mean_flow[3] = {0.0, 0.0, 0.0};  ///< u = sum m v / sum m
 };
 
 Moments measure(const species::Mixture& mix, const particles::System& sys);
 
-/// Velocity-component histograms, S x bins, each a probability density over [-range, range].
+/// Velocity-component histograms of (v - u)/sqrt(T_k/m_k), S x bins, each a probability density
+/// over [-range, range]; `moments` gives T_k and u.
 std::vector<double> velocity_histogram(const species::Mixture& mix, const particles::System& sys,
-                                       const std::vector<double>& temperature, std::size_t bins,
-                                       double range);
+                                       const Moments& moments, std::size_t bins, double range);
 
 /// One observable's samples from all replicas: values[replica][sample * columns + column].
 struct Accumulator {

@@ -126,7 +126,7 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
       column("collisions_pair", n_pairs).add(r, pairs);
       column("time", 1).add(r, {collider.time()});
       column("velocity_histogram", s * bins)
-          .add(r, sample::velocity_histogram(mix, sys, m.temperature, bins, range));
+          .add(r, sample::velocity_histogram(mix, sys, m, bins, range));
 
       const double fraction = (static_cast<double>(r) + static_cast<double>(i + 1) / n_samples) / replicas;
       const double rate = collide_seconds > 0

@@ -1,0 +1,440 @@
+// Tests of the executables granular-dsmc and granular-theory as a user calls them (INTERFACE.md):
+// exit status, the one-line message on stderr for bad input, and what is left in the directory.
+// Each test runs the real programs in a fresh temporary directory; every run is tiny.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// A valid binary mixture; messages below quote its line numbers.
+const std::vector<std::string> base_lines = {
+    "&system",                           // 1
+    "  n_species = 2",                   // 2
+    "  mass = 1.0, 10.0",                // 3
+    "  diameter = 1.0, 1.0",             // 4
+    "  number_density = 0.02, 0.01",     // 5
+    "  restitution = 0.5",               // 6
+    "/",                                 // 7
+    "&initial",                          // 8
+    "  temperature = 1.0",               // 9
+    "/",                                 // 10
+    "&dsmc",                             // 11
+    "  n_particles = 200",               // 12
+    "  t_end = 10.0",                    // 13
+    "/",                                 // 14
+    "&output",                           // 15
+    "  file = 'out.h5', n_samples = 3",  // 16
+    "/",                                 // 17
+};
+
+std::string join(const std::vector<std::string>& lines) {
+  std::string s;
+  for (const auto& l : lines) s += l + "\n";
+  return s;
+}
+
+std::string base() { return join(base_lines); }
+
+/// The base text with line `line` (1-based) replaced by `text` ("" blanks it, keeping the numbering).
+std::string with_line(int line, const std::string& text) {
+  auto lines = base_lines;
+  lines.at(static_cast<std::size_t>(line - 1)) = text;
+  return join(lines);
+}
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string quoted(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+struct Result {
+  int status = -1;  ///< exit status, or -1 if the program did not exit normally
+  std::string out;
+  std::string err;
+};
+
+/// A fresh directory per test: `run/` is the working directory of the programs (and holds only
+/// what they write besides the input), `capture/` receives their stdout and stderr.
+class CliFixture : public ::testing::Test {
+ protected:
+  fs::path root, dir, capture;
+
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    root = fs::temp_directory_path() /
+           ("gdsmc-cli-" + std::to_string(::getpid()) + "-" + info->test_suite_name() + "-" +
+            info->name());
+    fs::remove_all(root);
+    dir = root / "run";
+    capture = root / "capture";
+    fs::create_directories(dir);
+    fs::create_directories(capture);
+    for (const char* tool : {"granular-dsmc", "granular-theory"})
+      ASSERT_TRUE(fs::exists(fs::path(GDSMC_BIN_DIR) / tool))
+          << tool << " is not built in " << GDSMC_BIN_DIR << " (build all targets first)";
+  }
+
+  void TearDown() override {
+    if (HasFailure()) {
+      std::cerr << "kept for inspection: " << root << "\n";
+      return;
+    }
+    std::error_code ignored;
+    fs::remove_all(root, ignored);
+  }
+
+  void write(const std::string& name, const std::string& text) {
+    std::ofstream(dir / name, std::ios::binary) << text;
+  }
+
+  /// Runs `tool args` in `dir` (args are passed to the shell as written).
+  Result run(const std::string& tool, const std::string& args) {
+    const std::string command = "cd " + quoted(dir.string()) + " && " +
+                                quoted((fs::path(GDSMC_BIN_DIR) / tool).string()) + " " + args +
+                                " >" + quoted((capture / "stdout").string()) + " 2>" +
+                                quoted((capture / "stderr").string()) + " </dev/null";
+    const int raw = std::system(command.c_str());
+    Result r;
+    r.status = (raw != -1 && WIFEXITED(raw)) ? WEXITSTATUS(raw) : -1;
+    r.out = read_text(capture / "stdout");
+    r.err = read_text(capture / "stderr");
+    return r;
+  }
+
+  Result dsmc(const std::string& text, const std::string& extra_args = "") {
+    write("t.nml", text);
+    return run("granular-dsmc", "t.nml --quiet " + extra_args);
+  }
+
+  /// Names of the files in the working directory, sorted.
+  std::vector<std::string> files() const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+
+  void expect_no_temporary_file() const {
+    for (const auto& name : files())
+      EXPECT_EQ(name.find(".tmp"), std::string::npos) << "temporary file left: " << name;
+  }
+
+  /// Exit status 2, nothing on stdout, stderr one line `tool: <prefix>...` with every key word,
+  /// and nothing in the directory but the input.
+  void expect_input_error(const Result& r, const std::string& tool, const std::string& prefix,
+                          const std::vector<std::string>& key_words,
+                          const std::vector<std::string>& expected_files = {"t.nml"}) const {
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(r.out, "");
+    ASSERT_FALSE(r.err.empty());
+    EXPECT_EQ(r.err.back(), '\n') << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "not one line:\n" << r.err;
+    const std::string full = tool + ": " + prefix;
+    EXPECT_EQ(r.err.rfind(full, 0), 0u) << "expected '" << full << "' at the start of: " << r.err;
+    for (const auto& k : key_words)
+      EXPECT_NE(r.err.find(k), std::string::npos) << "'" << k << "' missing from: " << r.err;
+    EXPECT_EQ(files(), expected_files);
+    expect_no_temporary_file();
+  }
+};
+
+class CliDsmc : public CliFixture {};
+class CliTheory : public CliFixture {};
+
+// ---------------------------------------------------------------------------------------------
+// granular-dsmc: valid runs
+// ---------------------------------------------------------------------------------------------
+
+TEST_F(CliDsmc, TinyRunWritesTheFileQuietly) {
+  const Result r = dsmc(base());
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err, "");  // --quiet: no progress and no summary
+  EXPECT_EQ(files(), (std::vector<std::string>{"out.h5", "t.nml"}));
+  expect_no_temporary_file();
+  // An HDF5 file: the format signature at offset 0.
+  EXPECT_EQ(read_text(dir / "out.h5").substr(0, 8), std::string("\x89HDF\r\n\x1a\n", 8));
+}
+
+TEST_F(CliDsmc, WithoutQuietASummaryGoesToStderrNotStdout) {
+  write("t.nml", base());
+  const Result r = run("granular-dsmc", "t.nml");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out, "");
+  EXPECT_NE(r.err.find("wrote out.h5"), std::string::npos) << r.err;
+}
+
+TEST_F(CliDsmc, OutputOptionOverridesTheFile) {
+  const Result r = dsmc(base(), "--output other.h5");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(files(), (std::vector<std::string>{"other.h5", "t.nml"}));
+  expect_no_temporary_file();
+}
+
+TEST_F(CliDsmc, SetOverridesAVariable) {
+  const Result r = dsmc(base(), "--set \"output:file='set.h5'\"");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(files(), (std::vector<std::string>{"set.h5", "t.nml"}));
+}
+
+TEST_F(CliDsmc, PrintDefaults) {
+  const Result r = run("granular-dsmc", "--print-defaults");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  for (const char* group : {"&system", "&initial", "&dsmc", "&output"})
+    EXPECT_NE(r.out.find(group), std::string::npos) << group;
+  EXPECT_EQ(files(), std::vector<std::string>{});
+  // The template, with the end of the run filled in, is a valid input.
+  std::string text = r.out;
+  const auto at = text.find("! t_end");
+  ASSERT_NE(at, std::string::npos) << text;
+  text[at] = ' ';
+  write("defaults.nml", text);
+  const Result t = run("granular-theory", "defaults.nml");
+  EXPECT_EQ(t.status, 0) << t.err;
+}
+
+TEST_F(CliDsmc, Help) {
+  const Result r = run("granular-dsmc", "--help");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("usage:"), std::string::npos) << r.out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// granular-dsmc: bad input. Exit 2, one line naming FILE:LINE, &group and variable, no file left.
+// ---------------------------------------------------------------------------------------------
+
+TEST_F(CliDsmc, UnknownVariable) {
+  expect_input_error(dsmc(with_line(6, "  restituion = 0.5")), "granular-dsmc",
+                     "t.nml:6: &system: restituion: ",
+                     {"unknown variable", "did you mean 'restitution'"});
+}
+
+TEST_F(CliDsmc, UnknownGroup) {
+  expect_input_error(dsmc(with_line(8, "&inital")), "granular-dsmc", "t.nml:8: &inital: ",
+                     {"unknown group", "did you mean '&initial'"});
+}
+
+TEST_F(CliDsmc, WrongTypeRealForInteger) {
+  expect_input_error(dsmc(with_line(12, "  n_particles = 1.5")), "granular-dsmc",
+                     "t.nml:12: &dsmc: n_particles: ", {"expected an integer", "'1.5'"});
+}
+
+TEST_F(CliDsmc, WrongTypeStringForNumber) {
+  expect_input_error(dsmc(with_line(3, "  mass = 'heavy', 10.0")), "granular-dsmc",
+                     "t.nml:3: &system: mass: ", {"expected a real number", "'heavy'"});
+}
+
+TEST_F(CliDsmc, WrongTypeLogical) {
+  expect_input_error(dsmc(with_line(6, "  restitution = 0.5, enskog = 'yes'")), "granular-dsmc",
+                     "t.nml:6: &system: enskog: ", {"expected a logical"});
+}
+
+TEST_F(CliDsmc, WrongArrayLength) {
+  expect_input_error(dsmc(with_line(3, "  mass = 1.0, 10.0, 3.0")), "granular-dsmc",
+                     "t.nml:3: &system: mass: ", {"expected 2 value(s)", "got 3"});
+}
+
+TEST_F(CliDsmc, ZeroMass) {
+  expect_input_error(dsmc(with_line(3, "  mass = 0.0, 10.0")), "granular-dsmc",
+                     "t.nml:3: &system: mass: ", {"mass = 0.0 is outside"});
+}
+
+TEST_F(CliDsmc, NegativeDiameter) {
+  expect_input_error(dsmc(with_line(4, "  diameter = 1.0, -1.0")), "granular-dsmc",
+                     "t.nml:4: &system: diameter: ", {"diameter = -1.0 is outside"});
+}
+
+TEST_F(CliDsmc, RestitutionAboveOne) {
+  expect_input_error(dsmc(with_line(6, "  restitution = 1.3")), "granular-dsmc",
+                     "t.nml:6: &system: restitution: ", {"restitution = 1.3 is outside [0, 1]"});
+}
+
+TEST_F(CliDsmc, RestitutionPairMissing) {
+  expect_input_error(dsmc(with_line(6, "  restitution(1,1) = 0.9, restitution(1,2) = 0.5")),
+                     "granular-dsmc", "t.nml:6: &system: restitution: ",
+                     {"restitution(2,2)", "not given"});
+}
+
+TEST_F(CliDsmc, MissingGroup) {
+  auto lines = base_lines;
+  lines.erase(lines.begin() + 10, lines.begin() + 14);  // &dsmc ... /
+  // A missing group has no line of its own: the message names the file and the group.
+  expect_input_error(dsmc(join(lines)), "granular-dsmc", "t.nml: &dsmc: ",
+                     {"required group is missing"});
+}
+
+TEST_F(CliDsmc, MissingVariable) {
+  expect_input_error(dsmc(with_line(5, "")), "granular-dsmc", "t.nml:1: &system: number_density: ",
+                     {"required variable is missing"});
+}
+
+TEST_F(CliDsmc, UnterminatedString) {
+  expect_input_error(dsmc(with_line(16, "  file = 'out.h5, n_samples = 3")), "granular-dsmc",
+                     "t.nml:16: &output: file: ", {"unterminated string"});
+}
+
+TEST_F(CliDsmc, UnterminatedGroup) {
+  expect_input_error(dsmc(with_line(17, "")), "granular-dsmc", "t.nml:15: &output: ",
+                     {"unterminated group"});
+}
+
+TEST_F(CliDsmc, TooFewParticlesForADiluteSpecies) {
+  expect_input_error(dsmc(with_line(5, "  number_density = 0.02, 0.0001")), "granular-dsmc",
+                     "t.nml:12: &dsmc: n_particles: ", {"species 2", "at least 2 per species"});
+}
+
+TEST_F(CliDsmc, NegativeEnd) {
+  expect_input_error(dsmc(with_line(13, "  t_end = -1")), "granular-dsmc", "t.nml:13: &dsmc: t_end: ",
+                     {"t_end = -1 is outside"});
+}
+
+TEST_F(CliDsmc, NeitherEnd) {
+  expect_input_error(dsmc(with_line(13, "")), "granular-dsmc", "t.nml:11: &dsmc: t_end: ",
+                     {"exactly one of t_end and collisions_per_particle"});
+}
+
+TEST_F(CliDsmc, BadChoice) {
+  expect_input_error(dsmc(with_line(12, "  n_particles = 200, scheme = 'bird'")), "granular-dsmc",
+                     "t.nml:12: &dsmc: scheme: ", {"'bird' is not one of"});
+}
+
+TEST_F(CliDsmc, FirstSampleWithLinearSpacing) {
+  expect_input_error(dsmc(with_line(16, "  file = 'out.h5', n_samples = 3, first_sample = 1.0")),
+                     "granular-dsmc", "t.nml:16: &output: first_sample: ",
+                     {"only used with spacing = 'log'"});
+}
+
+TEST_F(CliDsmc, UnwritableOutputInTheNamelist) {
+  expect_input_error(dsmc(with_line(16, "  file = '/nonexistent-dir/x.h5', n_samples = 3")),
+                     "granular-dsmc", "t.nml:16: &output: file: ",
+                     {"cannot write", "/nonexistent-dir/x.h5"});
+}
+
+TEST_F(CliDsmc, UnwritableOutputInAMissingSubdirectory) {
+  expect_input_error(dsmc(with_line(16, "  file = 'missing/x.h5', n_samples = 3")), "granular-dsmc",
+                     "t.nml:16: &output: file: ", {"cannot write", "missing/x.h5"});
+}
+
+TEST_F(CliDsmc, OutputIsADirectory) {
+  // Must fail before the run, not when the finished run cannot be renamed into place.
+  fs::create_directory(dir / "taken");
+  expect_input_error(dsmc(with_line(16, "  file = 'taken', n_samples = 3")), "granular-dsmc",
+                     "t.nml:16: &output: file: ", {"cannot write", "'taken'", "directory"},
+                     {"t.nml", "taken"});
+  EXPECT_TRUE(fs::is_empty(dir / "taken"));
+}
+
+TEST_F(CliDsmc, UnwritableOutputOption) {
+  expect_input_error(dsmc(base(), "--output /nonexistent-dir/x.h5"), "granular-dsmc",
+                     "--output /nonexistent-dir/x.h5: &output: file: ",
+                     {"cannot write", "/nonexistent-dir/x.h5"});
+}
+
+TEST_F(CliDsmc, UnwritableOutputOverrideNamesTheOverride) {
+  // Another override of &output must not take the blame, nor the file's line numbers.
+  expect_input_error(dsmc(base(), "--set output:n_samples=4 --set \"output:file='/nonexistent-dir/x.h5'\""),
+                     "granular-dsmc", "--set output:file='/nonexistent-dir/x.h5': &output: file: ",
+                     {"cannot write"});
+}
+
+TEST_F(CliDsmc, UnwritableOutputInTheFileWithAnotherOverride) {
+  expect_input_error(dsmc(with_line(16, "  file = '/nonexistent-dir/x.h5', n_samples = 3"),
+                          "--set output:n_samples=4"),
+                     "granular-dsmc", "t.nml:16: &output: file: ", {"cannot write"});
+}
+
+TEST_F(CliDsmc, BadOverride) {
+  expect_input_error(dsmc(base(), "--set dsmc:n_particles=1.5"), "granular-dsmc",
+                     "--set dsmc:n_particles=1.5: &dsmc: n_particles: ", {"expected an integer"});
+}
+
+TEST_F(CliDsmc, MissingInputFile) {
+  const Result r = run("granular-dsmc", "absent.nml --quiet");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err.rfind("granular-dsmc: absent.nml: cannot open", 0), 0u) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(files(), std::vector<std::string>{});
+}
+
+TEST_F(CliDsmc, UnknownOptionOrNoInput) {
+  write("t.nml", base());
+  const Result r = run("granular-dsmc", "t.nml --bogus");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("unknown option --bogus"), std::string::npos) << r.err;
+  EXPECT_EQ(run("granular-dsmc", "").status, 2);
+  EXPECT_EQ(run("granular-dsmc", "t.nml --output").status, 2);
+  EXPECT_EQ(files(), std::vector<std::string>{"t.nml"});
+}
+
+// ---------------------------------------------------------------------------------------------
+// granular-theory
+// ---------------------------------------------------------------------------------------------
+
+TEST_F(CliTheory, PrintsOneJsonObject) {
+  write("t.nml", base());
+  const Result r = run("granular-theory", "t.nml");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  std::string out = r.out;
+  while (!out.empty() && std::isspace(static_cast<unsigned char>(out.back()))) out.pop_back();
+  ASSERT_FALSE(out.empty());
+  EXPECT_EQ(out.front(), '{') << out;
+  EXPECT_EQ(out.back(), '}') << out;
+  for (const char* key : {"\"cooling_rate\"", "\"collision_frequency\"", "\"temperature\""})
+    EXPECT_NE(out.find(key), std::string::npos) << key;
+  EXPECT_EQ(std::count(out.begin(), out.end(), '{'), std::count(out.begin(), out.end(), '}'));
+  EXPECT_EQ(std::count(out.begin(), out.end(), '['), std::count(out.begin(), out.end(), ']'));
+  EXPECT_EQ(files(), std::vector<std::string>{"t.nml"});  // writes no file
+}
+
+TEST_F(CliTheory, BadInput) {
+  write("t.nml", with_line(6, "  restitution = 1.3"));
+  expect_input_error(run("granular-theory", "t.nml"), "granular-theory",
+                     "t.nml:6: &system: restitution: ", {"is outside [0, 1]"});
+}
+
+TEST_F(CliTheory, UnknownVariable) {
+  write("t.nml", with_line(9, "  temprature = 1.0"));
+  expect_input_error(run("granular-theory", "t.nml"), "granular-theory",
+                     "t.nml:9: &initial: temprature: ", {"did you mean 'temperature'"});
+}
+
+TEST_F(CliTheory, MissingGroup) {
+  auto lines = base_lines;
+  lines.erase(lines.begin(), lines.begin() + 7);  // &system ... /
+  write("t.nml", join(lines));
+  expect_input_error(run("granular-theory", "t.nml"), "granular-theory", "t.nml: &system: ",
+                     {"required group is missing"});
+}
+
+TEST_F(CliTheory, BadOverride) {
+  write("t.nml", base());
+  expect_input_error(run("granular-theory", "t.nml --set system:restitution=1.3"),
+                     "granular-theory", "--set system:restitution=1.3: &system: restitution: ",
+                     {"is outside [0, 1]"});
+}
+
+}  // namespace
