@@ -11,6 +11,7 @@ packages=(
   libeigen3-dev         # small dense linear algebra (theory)
   libgtest-dev googletest # unit tests
   doxygen graphviz      # `cmake --build build --target docs`
+  python3-matplotlib python3-h5py python3-numpy  # paper-figures/
 )
 
 missing=()
