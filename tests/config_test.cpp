@@ -249,6 +249,12 @@ TEST(ConfigRestitution, WrongNumberOfValues) {
   expect_error(m, 6, "system", "restitution", {"expected 1 or n_species^2 = 4 values", "got 3"});
 }
 
+TEST(ConfigRestitution, FullMatrixMustBeSymmetric) {
+  const std::string m = error_of(with_line(6, "  restitution = 0.9, 0.5, 0.6, 0.7"));
+  expect_error(m, 6, "system", "restitution",
+               {"not symmetric", "restitution(1,2) = 0.6", "restitution(2,1) = 0.5"});
+}
+
 TEST(ConfigRestitution, ElementOutsideTheMatrix) {
   const std::string m = error_of(with_line(6, "  restitution = 0.5, restitution(3,1) = 0.5"));
   expect_error(m, 6, "system", "restitution", {"(3,1)", "outside the 2 x 2 matrix"});

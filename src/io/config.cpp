@@ -288,6 +288,14 @@ void resolve_restitution(System& sys, const Provenance& prov, const std::string&
         std::fill(m.values.begin(), m.values.end(), a->values[0].real);
       } else if (a->values.size() == s * s) {
         for (std::size_t c = 0; c < s * s; ++c) m(c % s, c / s) = a->values[c].real;  // column-major
+        for (std::size_t i = 0; i < s; ++i)  // alpha_ij = alpha_ji: one event, whichever is "first"
+          for (std::size_t j = i + 1; j < s; ++j)
+            if (m(i, j) != m(j, i))
+              throw Error(file, a->line, group, "restitution",
+                          "the matrix is not symmetric: restitution(" + std::to_string(i + 1) + "," +
+                              std::to_string(j + 1) + ") = " + a->values[i + j * s].text +
+                              " but restitution(" + std::to_string(j + 1) + "," +
+                              std::to_string(i + 1) + ") = " + a->values[j + i * s].text);
       } else {
         throw Error(file, a->line, group, "restitution",
                     "expected 1 or n_species^2 = " + std::to_string(s * s) + " values, got " +
