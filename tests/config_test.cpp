@@ -712,3 +712,18 @@ TEST(ConfigError, FileErrorAfterAnOverrideOfTheSameGroupNamesTheFile) {
 }
 
 }  // namespace
+
+// A variable written in the wrong group is pointed to its own group.
+TEST(ConfigError, VariableInTheWrongGroupNamesItsGroup) {
+  const std::string text =
+      "&system\n mass = 1.0\n diameter = 1.0\n number_density = 0.01\n restitution = 0.9\n"
+      " temperature = 2.0\n/\n&dsmc t_end = 1.0 /\n";
+  try {
+    gdsmc::io::config::read(gdsmc::io::namelist::parse(text, "t.nml"));
+    FAIL() << "no error";
+  } catch (const gdsmc::io::namelist::Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("t.nml:6: &system: temperature:"), std::string::npos) << what;
+    EXPECT_NE(what.find("belongs to &initial"), std::string::npos) << what;
+  }
+}

@@ -127,11 +127,10 @@ int main(int argc, char** argv) {
   } catch (const gdsmc::simulation::Interrupted& e) {
     std::cerr << "\ngranular-dsmc: " << e.what() << "\n";
     return 130;
+  } catch (const gdsmc::simulation::OutputPathError& e) {
+    return output_error(e.what());
   } catch (const std::exception& e) {
-    const std::string message = e.what();
-    if (message.find("cannot write") != std::string::npos && config.origin.count("output:file"))
-      return output_error(message);
-    std::cerr << "granular-dsmc: " << message << "\n";
+    std::cerr << "granular-dsmc: " << e.what() << "\n";
     return 1;
   }
   return 0;

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <optional>
 
 #include "dsmc/collide.hpp"
 #include "dsmc/particles.hpp"
@@ -74,7 +75,13 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
   const std::size_t n_samples = targets.size();
 
   // Open first: an unwritable path fails before any work is done.
-  io::h5md::Writer writer(output_path, "granular-dsmc user", "granular-dsmc", GDSMC_VERSION);
+  std::optional<io::h5md::Writer> writer_storage;
+  try {
+    writer_storage.emplace(output_path, "granular-dsmc user", "granular-dsmc", GDSMC_VERSION);
+  } catch (const std::runtime_error& e) {
+    throw OutputPathError(e.what());
+  }
+  io::h5md::Writer& writer = *writer_storage;
 
   std::map<std::string, sample::Accumulator> acc;
   auto column = [&](const std::string& name, std::size_t columns) -> sample::Accumulator& {

@@ -38,12 +38,20 @@ struct Summary {
   double events_per_second = 0.0;
 };
 
-/// Runs the simulation the Config describes and writes `output_path`. Throws std::runtime_error
-/// on failure (nothing is left behind) and simulation::Interrupted when interrupted.
-Summary run(const io::config::Config& config, const std::string& output_path, const Options& options);
+
+
+/// The output file could not be created: an input error (the path), raised before any work.
+struct OutputPathError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 struct Interrupted : std::runtime_error {
   Interrupted() : std::runtime_error("interrupted: no output written") {}
 };
+
+/// Runs the simulation the Config describes and writes `output_path`. Throws OutputPathError when
+/// the file cannot be created (before any work), simulation::Interrupted when interrupted, and
+/// std::runtime_error on any other failure; nothing is left behind in every case.
+Summary run(const io::config::Config& config, const std::string& output_path, const Options& options);
 
 }  // namespace gdsmc::simulation

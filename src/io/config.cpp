@@ -248,6 +248,18 @@ void assign(G& target, const Field<G>& field, const namelist::Assignment& a, con
   prov.set_in[name] = r.file;
 }
 
+/// The group a variable belongs to, if it belongs to another one (for "did you mean" hints).
+std::string owning_group(const std::string& name) {
+  auto has = [&](const auto& fields) {
+    return std::any_of(fields.begin(), fields.end(), [&](const auto& f) { return f.name == name; });
+  };
+  if (has(system_fields())) return "system";
+  if (has(initial_fields())) return "initial";
+  if (has(dsmc_fields())) return "dsmc";
+  if (has(output_fields())) return "output";
+  return "";
+}
+
 template <class G>
 void read_group(G& target, const std::vector<Field<G>>& fields, const namelist::Group& group,
                 const std::string& file, Provenance& prov) {
@@ -256,6 +268,9 @@ void read_group(G& target, const std::vector<Field<G>>& fields, const namelist::
     const auto it = std::find_if(fields.begin(), fields.end(),
                                  [&](const Field<G>& f) { return f.name == a.name; });
     if (it == fields.end()) {
+      const std::string home = owning_group(a.name);
+      if (!home.empty())
+        throw reader.error(a.line, a.name, "unknown variable here: it belongs to &" + home);
       std::vector<std::string> names;
       for (const auto& f : fields) names.push_back(f.name);
       const std::string hint = namelist::closest_name(a.name, names);
