@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "base_namelist.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -19,40 +21,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A valid binary mixture; messages below quote its line numbers.
-const std::vector<std::string> base_lines = {
-    "&system",                           // 1
-    "  n_species = 2",                   // 2
-    "  mass = 1.0, 10.0",                // 3
-    "  diameter = 1.0, 1.0",             // 4
-    "  number_density = 0.02, 0.01",     // 5
-    "  restitution = 0.5",               // 6
-    "/",                                 // 7
-    "&initial",                          // 8
-    "  temperature = 1.0",               // 9
-    "/",                                 // 10
-    "&dsmc",                             // 11
-    "  n_particles = 200",               // 12
-    "  t_end = 10.0",                    // 13
-    "/",                                 // 14
-    "&output",                           // 15
-    "  file = 'out.h5', n_samples = 3",  // 16
-    "/",                                 // 17
-};
+const std::vector<std::string> base_lines = gdsmc::test::base_namelist_lines("  file = 'out.h5', n_samples = 3");
 
-std::string join(const std::vector<std::string>& lines) {
-  std::string s;
-  for (const auto& l : lines) s += l + "\n";
-  return s;
-}
+std::string base() { return gdsmc::test::join_lines(base_lines); }
 
-std::string base() { return join(base_lines); }
-
-/// The base text with line `line` (1-based) replaced by `text` ("" blanks it, keeping the numbering).
 std::string with_line(int line, const std::string& text) {
-  auto lines = base_lines;
-  lines.at(static_cast<std::size_t>(line - 1)) = text;
-  return join(lines);
+  return gdsmc::test::with_line(base_lines, line, text);
 }
 
 std::string read_text(const fs::path& p) {
@@ -282,7 +256,7 @@ TEST_F(CliDsmc, MissingGroup) {
   auto lines = base_lines;
   lines.erase(lines.begin() + 10, lines.begin() + 14);  // &dsmc ... /
   // A missing group has no line of its own: the message names the file and the group.
-  expect_input_error(dsmc(join(lines)), "granular-dsmc", "t.nml: &dsmc: ",
+  expect_input_error(dsmc(gdsmc::test::join_lines(lines)), "granular-dsmc", "t.nml: &dsmc: ",
                      {"required group is missing"});
 }
 
@@ -425,7 +399,7 @@ TEST_F(CliTheory, UnknownVariable) {
 TEST_F(CliTheory, MissingGroup) {
   auto lines = base_lines;
   lines.erase(lines.begin(), lines.begin() + 7);  // &system ... /
-  write("t.nml", join(lines));
+  write("t.nml", gdsmc::test::join_lines(lines));
   expect_input_error(run("granular-theory", "t.nml"), "granular-theory", "t.nml: &system: ",
                      {"required group is missing"});
 }

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "base_namelist.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -19,41 +21,12 @@ namespace namelist = gdsmc::io::namelist;
 
 namespace {
 
-// A valid binary mixture; the line numbers below are those of the messages the tests expect.
-const std::vector<std::string> base_lines = {
-    "&system",                          // 1
-    "  n_species = 2",                  // 2
-    "  mass = 1.0, 10.0",               // 3
-    "  diameter = 1.0, 1.0",            // 4
-    "  number_density = 0.02, 0.01",    // 5
-    "  restitution = 0.5",              // 6
-    "/",                                // 7
-    "&initial",                         // 8
-    "  temperature = 1.0",              // 9
-    "/",                                // 10
-    "&dsmc",                            // 11
-    "  n_particles = 200",              // 12
-    "  t_end = 10.0",                   // 13
-    "/",                                // 14
-    "&output",                          // 15
-    "  n_samples = 3",                  // 16
-    "/",                                // 17
-};
+const std::vector<std::string> base_lines = gdsmc::test::base_namelist_lines("  n_samples = 3");
 
-std::string join(const std::vector<std::string>& lines) {
-  std::string s;
-  for (const auto& l : lines) s += l + "\n";
-  return s;
-}
+std::string base() { return gdsmc::test::join_lines(base_lines); }
 
-std::string base() { return join(base_lines); }
-
-/// The base text with line `line` (1-based) replaced by `text` (which may hold several lines,
-/// or be empty to blank the line so that the numbering of the rest is kept).
 std::string with_line(int line, const std::string& text) {
-  auto lines = base_lines;
-  lines.at(static_cast<std::size_t>(line - 1)) = text;
-  return join(lines);
+  return gdsmc::test::with_line(base_lines, line, text);
 }
 
 config::Config read_text(const std::string& text, const std::vector<std::string>& overrides = {}) {
@@ -195,7 +168,7 @@ TEST(ConfigRead, NamesAndChoicesAreCaseInsensitive) {
   lines[2] = "  MASS = 1.0, 10.0";
   lines[10] = "&DSMC";
   lines[11] = "  N_Particles = 300, Scheme = 'PAIRS'";
-  const auto c = read_text(join(lines));
+  const auto c = read_text(gdsmc::test::join_lines(lines));
   EXPECT_EQ(c.system.mass, (std::vector<double>{1.0, 10.0}));
   EXPECT_EQ(c.dsmc.n_particles, 300);
   EXPECT_EQ(c.dsmc.scheme, "pairs");
@@ -266,7 +239,7 @@ TEST(ConfigRestitution, OneIndexIsAnError) {
 }
 
 TEST(ConfigLaws, DeriveTheSpeciesLists) {
-  const auto c = read_text(join({"&system", "  n_species = 4",
+  const auto c = read_text(gdsmc::test::join_lines({"&system", "  n_species = 4",
                                        "  mass = 2.0, mass_law = 'linear'",
                                        "  diameter = 1.0, diameter_law = 'cube_root'",
                                        "  number_density = 0.01, density_law = 'power'",
@@ -550,11 +523,11 @@ TEST(ConfigError, MissingRequiredGroup) {
   // Lines 1-7 are &system; dropping them leaves the numbering of nothing else relevant.
   auto lines = base_lines;
   lines.erase(lines.begin(), lines.begin() + 7);
-  const std::string m = error_of(join(lines));
+  const std::string m = error_of(gdsmc::test::join_lines(lines));
   EXPECT_EQ(m, "t.nml: &system: required group is missing");
   auto no_dsmc = base_lines;
   no_dsmc.erase(no_dsmc.begin() + 10, no_dsmc.begin() + 14);
-  EXPECT_EQ(error_of(join(no_dsmc)), "t.nml: &dsmc: required group is missing");
+  EXPECT_EQ(error_of(gdsmc::test::join_lines(no_dsmc)), "t.nml: &dsmc: required group is missing");
 }
 
 TEST(ConfigError, UnknownGroupSuggestsTheClosestName) {
