@@ -1,7 +1,5 @@
 #include "dsmc/simulation.hpp"
 
-#include <unistd.h>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -92,6 +90,13 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
   const std::size_t n_pairs = s * (s + 1) / 2;
 
   ProgressLine progress(options.progress);
+  // Share of one replica's work done: simulated time over t_end, or events over the last target.
+  const double final_events = time_driven ? 0.0 : std::ceil(targets.back() * static_cast<double>(n_total) / 2.0);
+  auto replica_fraction = [&](const collide::Collider& c) {
+    const double f = time_driven ? c.time() / targets.back()
+                                 : static_cast<double>(c.counters().events) / std::max(1.0, final_events);
+    return std::min(f, 1.0);
+  };
   std::uint64_t events_all = 0;
   double collide_seconds = 0.0;
   double mean_step_sum = 0.0;
@@ -106,13 +111,24 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
     for (std::size_t i = 0; i < n_samples; ++i) {
       if (options.interrupt && options.interrupt->load()) throw Interrupted();
       const auto t0 = Clock::now();
-      if (time_driven) {
-        collider.advance(targets[i]);
-      } else {
-        // 2 x events / N reaches the target (INTERFACE.md collisions_per_particle)
-        const auto event_target =
-            static_cast<std::uint64_t>(std::ceil(targets[i] * static_cast<double>(n_total) / 2.0));
-        collider.advance(std::numeric_limits<double>::infinity(), event_target);
+      // Advance in chunks of events so that the progress line and an interrupt are seen at least
+      // every ~1e6 collisions. Stopping at an event does not change the process (collide.hpp).
+      const double t_target = time_driven ? targets[i] : std::numeric_limits<double>::infinity();
+      // 2 x events / N reaches the target (INTERFACE.md collisions_per_particle)
+      const std::uint64_t event_target =
+          time_driven ? std::numeric_limits<std::uint64_t>::max()
+                      : static_cast<std::uint64_t>(std::ceil(targets[i] * static_cast<double>(n_total) / 2.0));
+      constexpr std::uint64_t kChunk = 1u << 20;
+      for (;;) {
+        const std::uint64_t done = collider.counters().events;
+        const std::uint64_t chunk_end = event_target - done > kChunk ? done + kChunk : event_target;
+        const bool stopped_by_events = collider.advance(t_target, chunk_end);
+        if (!stopped_by_events || collider.counters().events >= event_target) break;
+        if (options.interrupt && options.interrupt->load()) throw Interrupted();
+        const double elapsed = collide_seconds + std::chrono::duration<double>(Clock::now() - t0).count();
+        const double fraction = (static_cast<double>(r) + replica_fraction(collider)) / static_cast<double>(replicas);
+        progress.update(std::min(fraction, 0.999), r, replicas, collider.time(),
+                        static_cast<double>(events_all + collider.counters().events) / elapsed);
       }
       collide_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
 
@@ -135,7 +151,7 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
       column("velocity_histogram", s * bins)
           .add(r, sample::velocity_histogram(mix, sys, m, bins, range));
 
-      const double fraction = (static_cast<double>(r) + static_cast<double>(i + 1) / n_samples) / replicas;
+      const double fraction = (static_cast<double>(r) + replica_fraction(collider)) / static_cast<double>(replicas);
       const double rate = collide_seconds > 0
                               ? static_cast<double>(events_all + counters.events) / collide_seconds
                               : 0.0;
