@@ -88,11 +88,11 @@ class Writer {
   Writer(const Writer&) = delete;
   Writer& operator=(const Writer&) = delete;
 
-  /// /parameters/<group>@<name> for every parameter and /parameters@namelist = namelist_text.
+  /// `/parameters/GROUP@NAME` for every parameter and `/parameters@namelist` = namelist_text.
   /// A group name must be non-empty and free of '/'; a duplicate (group, name) is an error.
   void write_parameters(const std::vector<Parameter>& parameters, const std::string& namelist_text);
 
-  /// /observables/<name>/{step,time,value[,error]}; `name` may contain '/' for nested groups.
+  /// `/observables/NAME/{step,time,value[,error]}`; `name` may contain '/' for nested groups.
   void write_observable(const std::string& name, const Series& series);
 
   /// Attaches (or replaces) attribute `name` on the existing group or dataset `object_path`.
