@@ -114,39 +114,17 @@ bool Collider::advance(double t_target, std::uint64_t event_target) {
 
 // Candidates of one sub-step at a fixed rate: candidate c (0-based) happens at
 // time_ - credit_ + (c + 1)/R; what is left of the sub-step is carried in credit_.
-int Collider::run_majorant(double t_stop, std::uint64_t event_target) {
-  const std::size_t n = sys_.size();
+// `try_candidate(a, b)` draws one candidate and, when it is accepted, collides and counts it,
+// sets the two particles and returns true. A template, so each scheme's loop is inlined whole.
+template <class TryCandidate>
+int Collider::run_substep(double t_stop, std::uint64_t event_target, TryCandidate&& try_candidate) {
   const double dt_candidate = 1.0 / rate_;
   const double available = credit_ + (t_stop - time_);
   const auto n_candidates = static_cast<std::uint64_t>(available * rate_);
   const double t0 = time_ - credit_;
-  double* vx = sys_.vx.data();
-  double* vy = sys_.vy.data();
-  double* vz = sys_.vz.data();
-  const std::uint32_t* sp = sys_.species.data();
   for (std::uint64_t c = 0; c < n_candidates; ++c) {
-    const std::size_t a = gen_.below(n);
-    std::size_t b = gen_.below(n - 1);
-    if (b >= a) ++b;
-    const std::uint32_t ka = sp[a], kb = sp[b];
-    const std::size_t pair = ka * s_ + kb;
-    const double gx = vx[a] - vx[b], gy = vy[a] - vy[b], gz = vz[a] - vz[b];
-    const double g = std::sqrt(gx * gx + gy * gy + gz * gz);
-    // Accept with pi sigma^2 chi |g| / B (seed 000 eq 7).
-    if (gen_.uniform() * bound_ >= cross_section_[pair] * g) continue;
-    // e ~ (g_hat.e) on the hemisphere (ERRATA §2): e = (g_hat + w)/|g_hat + w|, w uniform on the
-    // sphere, has exactly that density (the ray from the origin meets the sphere |p - g_hat| = 1
-    // at distance 2 cos(theta), with area element 4 cos(theta) dOmega).
-    double wx, wy, wz;
-    rng::unit_vector(gen_, wx, wy, wz);
-    double ex = gx / g + wx, ey = gy / g + wy, ez = gz / g + wz;
-    const double norm = std::sqrt(ex * ex + ey * ey + ez * ez);
-    if (norm == 0.0) continue;  // w = -g_hat exactly: probability zero
-    ex /= norm;
-    ey /= norm;
-    ez /= norm;
-    apply_collision(sys_, a, b, ex, ey, ez, alpha_[pair], mass_fraction_[pair]);
-    count_event(ka, kb);
+    std::size_t a, b;
+    if (!try_candidate(a, b)) continue;
     const bool raised = raise_max_speed(a) | raise_max_speed(b);
     if (raised || counters_.events >= event_target) {
       counters_.candidates += c + 1;
@@ -161,21 +139,49 @@ int Collider::run_majorant(double t_stop, std::uint64_t event_target) {
   return static_cast<int>(Stop::reached_time);
 }
 
+int Collider::run_majorant(double t_stop, std::uint64_t event_target) {
+  const std::size_t n = sys_.size();
+  double* vx = sys_.vx.data();
+  double* vy = sys_.vy.data();
+  double* vz = sys_.vz.data();
+  const std::uint32_t* sp = sys_.species.data();
+  return run_substep(t_stop, event_target, [&](std::size_t& a, std::size_t& b) {
+    a = gen_.below(n);
+    b = gen_.below(n - 1);
+    if (b >= a) ++b;
+    const std::uint32_t ka = sp[a], kb = sp[b];
+    const std::size_t pair = ka * s_ + kb;
+    const double gx = vx[a] - vx[b], gy = vy[a] - vy[b], gz = vz[a] - vz[b];
+    const double g = std::sqrt(gx * gx + gy * gy + gz * gz);
+    // Accept with pi sigma^2 chi |g| / B (seed 000 eq 7).
+    if (gen_.uniform() * bound_ >= cross_section_[pair] * g) return false;
+    // e ~ (g_hat.e) on the hemisphere (ERRATA §2): e = (g_hat + w)/|g_hat + w|, w uniform on the
+    // sphere, has exactly that density (the ray from the origin meets the sphere |p - g_hat| = 1
+    // at distance 2 cos(theta), with area element 4 cos(theta) dOmega).
+    double wx, wy, wz;
+    rng::unit_vector(gen_, wx, wy, wz);
+    double ex = gx / g + wx, ey = gy / g + wy, ez = gz / g + wz;
+    const double norm = std::sqrt(ex * ex + ey * ey + ez * ez);
+    if (norm == 0.0) return false;  // w = -g_hat exactly: probability zero
+    ex /= norm;
+    ey /= norm;
+    ez /= norm;
+    apply_collision(sys_, a, b, ex, ey, ez, alpha_[pair], mass_fraction_[pair]);
+    count_event(ka, kb);
+    return true;
+  });
+}
+
 int Collider::run_pairs(double t_stop, std::uint64_t event_target) {
-  const double dt_candidate = 1.0 / rate_;
-  const double available = credit_ + (t_stop - time_);
-  const auto n_candidates = static_cast<std::uint64_t>(available * rate_);
-  const double t0 = time_ - credit_;
-  for (std::uint64_t c = 0; c < n_candidates; ++c) {
+  return run_substep(t_stop, event_target, [&](std::size_t& k, std::size_t& l) {
     // The ordered species pair (i, j) with probability R_ij / R.
     const double u = gen_.uniform() * rate_;
     const std::size_t pair = static_cast<std::size_t>(
         std::upper_bound(pair_cumulative_.begin(), pair_cumulative_.end(), u) -
         pair_cumulative_.begin());
-    if (pair >= s_ * s_) continue;  // u == R to round-off
+    if (pair >= s_ * s_) return false;  // u == R to round-off
     const std::size_t i = pair / s_, j = pair % s_;
-    const std::size_t k = sys_.first[i] + gen_.below(sys_.count[i]);
-    std::size_t l;
+    k = sys_.first[i] + gen_.below(sys_.count[i]);
     if (i == j) {
       l = sys_.first[j] + gen_.below(sys_.count[j] - 1);
       if (l >= k) ++l;
@@ -187,21 +193,11 @@ int Collider::run_pairs(double t_stop, std::uint64_t event_target) {
     const double g_dot_e = (sys_.vx[k] - sys_.vx[l]) * ex + (sys_.vy[k] - sys_.vy[l]) * ey +
                            (sys_.vz[k] - sys_.vz[l]) * ez;
     // Step (2): accept with Theta(g.e) |g.e| / g_max, g_max = vmax_i + vmax_j.
-    if (g_dot_e <= 0.0 || gen_.uniform() * (max_speed_[i] + max_speed_[j]) >= g_dot_e) continue;
+    if (g_dot_e <= 0.0 || gen_.uniform() * (max_speed_[i] + max_speed_[j]) >= g_dot_e) return false;
     apply_collision(sys_, k, l, ex, ey, ez, alpha_[pair], mass_fraction_[pair]);
     count_event(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
-    const bool raised = raise_max_speed(k) | raise_max_speed(l);
-    if (raised || counters_.events >= event_target) {
-      counters_.candidates += c + 1;
-      time_ = t0 + static_cast<double>(c + 1) * dt_candidate;
-      credit_ = 0.0;
-      return static_cast<int>(raised ? Stop::bound_raised : Stop::reached_events);
-    }
-  }
-  counters_.candidates += n_candidates;
-  credit_ = available - static_cast<double>(n_candidates) * dt_candidate;
-  time_ = t_stop;
-  return static_cast<int>(Stop::reached_time);
+    return true;
+  });
 }
 
 }  // namespace gdsmc::collide

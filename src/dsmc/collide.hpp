@@ -103,6 +103,8 @@ class Collider {
   void recompute_max_speeds();
   void rebuild_bounds();
   bool raise_max_speed(std::size_t particle);
+  template <class TryCandidate>
+  int run_substep(double t_stop, std::uint64_t event_target, TryCandidate&& try_candidate);
   int run_majorant(double t_stop, std::uint64_t event_target);  // returns a Stop (collide.cpp)
   int run_pairs(double t_stop, std::uint64_t event_target);
   void count_event(std::uint32_t k, std::uint32_t j);

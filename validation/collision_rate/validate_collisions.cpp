@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
 
   if (alpha == 1.0) {
     for (std::size_t i = 1; i < nt; i += std::max<std::size_t>(1, nt / 10)) {
-      char name[64];
+      char name[128];
       std::snprintf(name, sizeof name, "C(t = %.4g) = nu0 t", collisions.time[i]);
       report.check(name, collisions.value[i], collisions.error[i], nu0 * collisions.time[i], 4.0);
     }

@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
                      t0_temperature - maxwell);
     const double middle = 0.5 * (maxwell + scaled);
     const double half_band = 0.5 * std::abs(maxwell - scaled) + scaled_error;
-    char name[64];
+    char name[128];
     std::snprintf(name, sizeof name, "T/T0 at t = %.4g", t);
     report.check(name, temperature.value[i] / t0_temperature, temperature.error[i] / t0_temperature,
                  middle, 4.0, half_band);

@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
       // First sample: the cumulants have barely started, so only the Sonine-size allowance applies.
       const double gap = i == 1 || k >= measured_gap.size() ? 0.0 : 1.25 * measured_gap[k];
       const double allowance = std::max(eps * std::abs(std::log(theory_ratio)), gap);
-      char name[64];
+      char name[128];
       std::snprintf(name, sizeof name, "T_%zu/T_%zu(0) at t = %.4g", k + 1, k + 1, temperature.time[i]);
       report.check(name, temperature.value[i * s + k] / t0[k], temperature.error[i * s + k] / t0[k],
                    theory_ratio, 4.0, theory_ratio * allowance);
@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
     for (std::size_t k = 0; k < s; ++k)
       for (std::size_t j = k; j < s; ++j, ++column) {
         const std::size_t idx = (nt - 1) * (s * (s + 1) / 2) + column;
-        char name[64];
+        char name[128];
         std::snprintf(name, sizeof name, "events %zu-%zu by t_end", k + 1, j + 1);
         report.check(name, pairs.value[idx], pairs.error[idx], expected[k * s + j], 4.0,
                      expected[k * s + j] * final_eps);

@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
   };
   for (std::size_t i = 1; i < nt; i += 2)
     for (std::size_t k = 0; k < s; ++k) {
-      char name[64];
+      char name[128];
       std::snprintf(name, sizeof name, "T_%zu at t = %.4g (pairs = 'theory')", k + 1, t1.time[i]);
       compare(name, t1, t2, i * s + k);
     }
