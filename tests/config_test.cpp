@@ -344,6 +344,8 @@ TEST(ConfigResolved, ContainsEveryFieldOfEveryGroup) {
   auto expected = reference_names();
   ASSERT_GT(expected.size(), 20u);
   expected.erase("dsmc:collisions_per_particle");
+  expected.erase("sweep:variable");  // written only by a sweep
+  expected.erase("sweep:values");
   EXPECT_EQ(names, expected);
   for (const char* n : {"system:n_species", "system:mass", "system:diameter", "system:number_density",
                         "system:restitution", "system:restitution_model", "system:enskog",
@@ -405,6 +407,9 @@ TEST(ConfigReference, MentionsEveryVariable) {
       read_text(with_line(16, "  n_samples = 3, spacing = 'log', first_sample = 0.1")));
   const auto more = resolved_names(read_text(with_line(13, "  collisions_per_particle = 8.0")));
   all.insert(more.begin(), more.end());
+  const auto swept = resolved_names(read_text(
+      with_line(17, "/\n&sweep variable = 'system:restitution', values = 0.5, 0.9 /")));
+  all.insert(swept.begin(), swept.end());
   for (const auto& name : all) {
     const std::string variable = name.substr(name.find(':') + 1);
     EXPECT_NE(md.find("`" + variable + "`"), std::string::npos) << variable;
@@ -699,4 +704,68 @@ TEST(ConfigError, VariableInTheWrongGroupNamesItsGroup) {
     EXPECT_NE(what.find("t.nml:6: &system: temperature:"), std::string::npos) << what;
     EXPECT_NE(what.find("belongs to &initial"), std::string::npos) << what;
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// &sweep
+// ---------------------------------------------------------------------------------------------
+namespace {
+std::string with_sweep(const std::string& sweep_group) { return with_line(17, "/\n" + sweep_group); }
+}  // namespace
+
+TEST(ConfigSweep, PointsApplyEachValue) {
+  const auto c = read_text(with_sweep("&sweep variable = 'system:restitution', values = 0.5, 0.7, 0.9 /"));
+  ASSERT_TRUE(c.is_sweep());
+  const auto points = c.sweep_points();
+  ASSERT_EQ(points.size(), 3u);
+  const double expected[3] = {0.5, 0.7, 0.9};
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_FALSE(points[k].is_sweep());
+    for (double a : points[k].system.restitution.values) EXPECT_DOUBLE_EQ(a, expected[k]);
+    EXPECT_EQ(points[k].overrides.back(), "system:restitution=" + std::to_string(expected[k]).substr(0, 3));
+  }
+}
+
+TEST(ConfigSweep, StringValuesAreQuoted) {
+  const auto c = read_text(with_sweep("&sweep variable = 'dsmc:scheme', values = 'majorant', 'pairs' /"));
+  const auto points = c.sweep_points();
+  ASSERT_EQ(points.size(), 2u);
+  EXPECT_EQ(points[0].dsmc.scheme, "majorant");
+  EXPECT_EQ(points[1].dsmc.scheme, "pairs");
+}
+
+TEST(ConfigSweep, NoSweepIsOnePoint) {
+  const auto c = read_text(base());
+  EXPECT_FALSE(c.is_sweep());
+  EXPECT_EQ(c.sweep_points().size(), 1u);
+}
+
+TEST(ConfigError, SweepBadValueNamesThePoint) {
+  try {
+    read_text(with_sweep("&sweep variable = 'system:restitution',\n values = 0.5, 1.3 /"));
+    FAIL() << "no error";
+  } catch (const namelist::Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("t.nml:19: &sweep: values:"), std::string::npos) << what;
+    EXPECT_NE(what.find("point 2"), std::string::npos) << what;
+    EXPECT_NE(what.find("outside [0, 1]"), std::string::npos) << what;
+  }
+}
+
+TEST(ConfigError, SweepVariableMustNameAVariable) {
+  for (const char* variable : {"'restitution'", "'system:restitutio'", "'sweep:values'", "'initial:mass'"}) {
+    try {
+      read_text(with_sweep(std::string("&sweep variable = ") + variable + ", values = 0.5 /"));
+      FAIL() << variable;
+    } catch (const namelist::Error& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("t.nml:18: &sweep: variable:"), std::string::npos) << what;
+      EXPECT_NE(what.find("is not 'group:name'"), std::string::npos) << what;
+    }
+  }
+}
+
+TEST(ConfigError, SweepNeedsBothVariables) {
+  EXPECT_THROW(read_text(with_sweep("&sweep values = 0.5 /")), namelist::Error);
+  EXPECT_THROW(read_text(with_sweep("&sweep variable = 'system:restitution' /")), namelist::Error);
 }

@@ -40,6 +40,7 @@ template <class G>
 struct Field {
   using Member = std::variant<long long G::*, double G::*, bool G::*, std::string G::*,
                               std::optional<double> G::*, std::vector<double> G::*,
+                              std::vector<std::string> G::*,
                               species::PairMatrix G::*>;
   std::string name;
   Member member;
@@ -121,6 +122,15 @@ const std::vector<Field<Output>>& output_fields() {
        Range{1, 1e5}},
       {"histogram_range", &Output::histogram_range, "sqrt(T_k/m_k)",
        "velocity histograms cover [-range, range] in thermal units", kPositive},
+  };
+  return fields;
+}
+
+const std::vector<Field<Sweep>>& sweep_fields() {
+  static const std::vector<Field<Sweep>> fields = {
+      {"variable", &Sweep::variable, "",
+       "the swept variable as 'group:name', e.g. 'system:restitution' (no sweep when unset)"},
+      {"values", &Sweep::values, "", "its values, one run (and one output group) per value"},
   };
   return fields;
 }
@@ -234,6 +244,20 @@ void assign(G& target, const Field<G>& field, const namelist::Assignment& a, con
             vec.resize(start + a.values.size(), std::numeric_limits<double>::quiet_NaN());
           for (std::size_t i = 0; i < a.values.size(); ++i)
             vec[start + i] = r.number(a.values[i], name, field.range);
+        } else if constexpr (std::is_same_v<T, std::vector<std::string>>) {
+          // Kept as namelist text, to be applied later as `group:variable=value`.
+          if (!a.index.empty()) throw r.error(a.line, name, name + " takes no index");
+          std::vector<std::string>& list = target.*member;
+          list.clear();
+          for (const auto& v : a.values) {
+            if (v.kind != namelist::Value::Kind::String) {
+              list.push_back(v.text);
+              continue;
+            }
+            std::string quoted = "'";
+            for (char ch : v.string) quoted += ch == '\'' ? std::string("''") : std::string(1, ch);
+            list.push_back(quoted + "'");
+          }
         } else if constexpr (std::is_same_v<T, species::PairMatrix>) {
           // Resolved once n_species is known (check stage); the values are checked now.
           if (a.index.size() == 1 || a.index.size() > 2)
@@ -257,6 +281,7 @@ std::string owning_group(const std::string& name) {
   if (has(initial_fields())) return "initial";
   if (has(dsmc_fields())) return "dsmc";
   if (has(output_fields())) return "output";
+  if (has(sweep_fields())) return "sweep";
   return "";
 }
 
@@ -490,8 +515,11 @@ std::string default_text(const G& defaults, const Field<G>& f) {
         const auto& v = defaults.*member;
         if constexpr (std::is_same_v<T, long long> || std::is_same_v<T, double>) s << v;
         else if constexpr (std::is_same_v<T, bool>) s << (v ? ".true." : ".false.");
-        else if constexpr (std::is_same_v<T, std::string>) s << "'" << v << "'";
-        else if constexpr (std::is_same_v<T, std::vector<double>>) {
+        else if constexpr (std::is_same_v<T, std::string>) {
+          if (!v.empty()) s << "'" << v << "'";  // empty: unset, shown commented out
+        }
+        else if constexpr (std::is_same_v<T, std::vector<double>> ||
+                           std::is_same_v<T, std::vector<std::string>>) {
           for (std::size_t i = 0; i < v.size(); ++i) s << (i ? ", " : "") << v[i];
         }
       },
@@ -541,6 +569,40 @@ void reference_group(std::ostringstream& s, const std::string& group, const std:
   s << "\n";
 }
 
+Config read_point(const namelist::Document& document, const std::vector<std::string>& overrides,
+                  bool expand_sweep);
+
+/// &sweep: the variable names a variable of another group, there are values, and every point
+/// reads and checks as a Config of its own (so a bad value stops the run before any work).
+void check_sweep(const Config& c, const Provenance& prov, const namelist::Document& document,
+                 const std::vector<std::string>& overrides) {
+  const std::string group = "sweep";
+  const auto line_of = [&](const char* v) { return prov.line.count(v) ? prov.line.at(v) : 0; };
+  const Sweep& sweep = c.sweep;
+  if (sweep.variable.empty())
+    throw Error(prov.file, line_of("values"), group, "variable", "required with values");
+  if (sweep.values.empty())
+    throw Error(prov.file, line_of("variable"), group, "values", "required with variable");
+  const auto colon = sweep.variable.find(':');
+  const std::string target_group = lower(sweep.variable.substr(0, colon));
+  const std::string target = colon == std::string::npos ? "" : lower(sweep.variable.substr(colon + 1));
+  if (colon == std::string::npos || target_group == "sweep" || owning_group(target) != target_group)
+    throw Error(prov.file, line_of("variable"), group, "variable",
+                "'" + sweep.variable + "' is not 'group:name' of a variable of &system, &initial, "
+                "&dsmc or &output");
+  for (std::size_t k = 0; k < sweep.values.size(); ++k) {
+    auto o = overrides;
+    o.push_back(sweep.variable + "=" + sweep.values[k]);
+    try {
+      read_point(document, o, false);
+    } catch (const Error& e) {
+      throw Error(prov.file, line_of("values"), group, "values",
+                  "point " + std::to_string(k + 1) + " (" + target + " = " + sweep.values[k] +
+                      "): " + e.message);
+    }
+  }
+}
+
 namelist::Document parse_override(const std::string& text) {
   const auto colon = text.find(':');
   const auto equal = text.find('=');
@@ -586,16 +648,40 @@ std::vector<h5md::Parameter> Config::resolved() const {
   append_resolved(out, "initial", initial, initial_fields());
   append_resolved(out, "dsmc", dsmc, dsmc_fields());
   append_resolved(out, "output", output, output_fields());
+  if (is_sweep()) append_resolved(out, "sweep", sweep, sweep_fields());
   return out;
 }
 
+namespace {
+Config read_point(const namelist::Document& document, const std::vector<std::string>& overrides,
+                  bool expand_sweep);
+}
+
 Config read(const namelist::Document& document, const std::vector<std::string>& overrides) {
+  return read_point(document, overrides, true);
+}
+
+std::vector<Config> Config::sweep_points() const {
+  if (!is_sweep()) return {*this};
+  const namelist::Document document = namelist::parse(namelist_text, source_file);
+  std::vector<Config> points;
+  for (const auto& value : sweep.values) {
+    auto o = overrides;
+    o.push_back(sweep.variable + "=" + value);
+    points.push_back(read_point(document, o, false));
+  }
+  return points;
+}
+
+namespace {
+Config read_point(const namelist::Document& document, const std::vector<std::string>& overrides,
+                  bool expand_sweep) {
   Config c;
   c.source_file = document.file;
   c.namelist_text = document.text;
   c.overrides = overrides;
 
-  static const std::vector<std::string> known = {"system", "initial", "dsmc", "output"};
+  static const std::vector<std::string> known = {"system", "initial", "dsmc", "output", "sweep"};
   for (const auto& g : document.groups)
     if (std::find(known.begin(), known.end(), g.name) == known.end()) {
       const std::string hint = namelist::closest_name(g.name, known);
@@ -629,6 +715,7 @@ Config read(const namelist::Document& document, const std::vector<std::string>& 
   read_all("initial", c.initial, initial_fields());
   read_all("dsmc", c.dsmc, dsmc_fields());
   read_all("output", c.output, output_fields());
+  read_all("sweep", c.sweep, sweep_fields());
 
   for (const auto& [group, p] : prov)
     for (const auto& [variable, line] : p.line)
@@ -638,8 +725,14 @@ Config read(const namelist::Document& document, const std::vector<std::string>& 
   check_initial(c.initial, static_cast<std::size_t>(c.system.n_species), prov["initial"]);
   check_dsmc(c.dsmc, c.mixture(), prov["dsmc"], document.find("dsmc")->line);
   check_output(c.output, c.dsmc, prov["output"]);
+  if (!expand_sweep) {
+    c.sweep = Sweep{};
+  } else if (!prov["sweep"].line.empty()) {
+    check_sweep(c, prov["sweep"], document, overrides);
+  }
   return c;
 }
+}  // namespace
 
 Config read_file(const std::string& path, const std::vector<std::string>& overrides) {
   return read(namelist::parse_file(path), overrides);
@@ -666,6 +759,8 @@ std::string defaults_template() {
   template_group(s, "initial", initial_fields(), {});
   template_group(s, "dsmc", dsmc_fields(), {{"t_end", "100.0"}, {"collisions_per_particle", "50.0"}});
   template_group(s, "output", output_fields(), {{"first_sample", "0.1"}});
+  template_group(s, "sweep", sweep_fields(),
+                 {{"variable", "'system:restitution'"}, {"values", "0.5, 0.7, 0.9"}});
   return s.str();
 }
 
@@ -675,6 +770,7 @@ std::string reference_markdown() {
   reference_group(s, "initial", initial_fields());
   reference_group(s, "dsmc", dsmc_fields());
   reference_group(s, "output", output_fields());
+  reference_group(s, "sweep", sweep_fields());
   return s.str();
 }
 

@@ -13,7 +13,8 @@
  * place a variable is declared: it drives the reader, the checks, `--print-defaults`, the input
  * reference in docs/ and the resolved input written to `/parameters` of every output file.
  *
- * Groups (INTERFACE.md): `&system` (required), `&initial`, `&dsmc` (required), `&output`.
+ * Groups (INTERFACE.md): `&system` (required), `&initial`, `&dsmc` (required), `&output`, and
+ * `&sweep` (one variable over a list of values, each point its own run and output group).
  * Every error is an io::namelist::Error: `FILE:LINE: &group: variable: message`.
  * Checked by tests/config_test.cpp.
  */
@@ -74,11 +75,19 @@ struct Output {
   double histogram_range = 5.0;
 };
 
+/// &sweep: one variable over a list of values; every point is a run of its own (seed 003 figures
+/// are curves against alpha, mu, ...). Absent or empty variable: no sweep.
+struct Sweep {
+  std::string variable;             ///< "group:name", e.g. 'system:restitution'
+  std::vector<std::string> values;  ///< the values as namelist text (strings quoted), in order
+};
+
 struct Config {
   System system;
   Initial initial;
   Dsmc dsmc;
-  Output output;
+ Output output;
+  Sweep sweep;
   std::string source_file;               ///< name of the namelist file
   std::string namelist_text;             ///< its text, verbatim
   std::vector<std::string> overrides;    ///< `--set group:variable=value`, in order
@@ -91,6 +100,10 @@ struct Config {
   std::vector<double> sample_times() const;
   /// Sample points in collisions per particle, including 0, when the run is collision-driven.
   std::vector<double> sample_collisions() const;
+  /// The Config of every sweep point (this one's overrides plus `variable=value`), or just this
+  /// Config when there is no sweep. Each was checked when the namelist was read.
+  std::vector<Config> sweep_points() const;
+  bool is_sweep() const { return !sweep.variable.empty(); }
   /// Every variable of every group, defaults included, for /parameters.
   std::vector<h5md::Parameter> resolved() const;
 };

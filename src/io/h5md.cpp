@@ -153,6 +153,15 @@ std::vector<std::string> split_path(const std::string& path) {
   return parts;
 }
 
+std::string join_path(const std::vector<std::string>& parts, std::size_t count);
+
+/// Where an observable lives: /observables/NAME, or NAME itself when it is an absolute path
+/// (e.g. /sweep/point_1/observables/temperature for the points of a parameter sweep).
+std::string observable_path(const std::string& name, const std::vector<std::string>& parts) {
+  return (name.front() == '/' ? std::string() : std::string("/observables")) +
+         join_path(parts, parts.size());
+}
+
 std::string join_path(const std::vector<std::string>& parts, std::size_t count) {
   std::string path;
   for (std::size_t i = 0; i < count; ++i) path += "/" + parts[i];
@@ -548,7 +557,7 @@ void Writer::write_observable(const std::string& name, const Series& series) {
 
   const hid_t file = impl_->open_file();
   with_context(impl_->context(), [&] {
-    const std::string path = "/observables" + join_path(parts, parts.size());
+    const std::string path = observable_path(name, parts);
     const Handle group = ensure_group(file, path);
     const std::vector<hsize_t> times = {nt};
     const std::vector<hsize_t> dims =
@@ -626,7 +635,7 @@ ObservableData read_observable(const std::string& file, const std::string& name)
     const std::vector<std::string> parts = split_path(name);
     if (parts.empty()) throw std::runtime_error("empty observable name");
     const Handle f = open_for_reading(file);
-    const std::string path = "/observables" + join_path(parts, parts.size());
+    const std::string path = observable_path(name, parts);
     const Handle group =
         make(H5Gopen2(f.get(), path.c_str(), H5P_DEFAULT), H5Gclose, "H5Gopen2", path);
     ObservableData out;

@@ -93,6 +93,7 @@ class Writer {
   void write_parameters(const std::vector<Parameter>& parameters, const std::string& namelist_text);
 
   /// `/observables/NAME/{step,time,value[,error]}`; `name` may contain '/' for nested groups.
+  /// A `name` starting with '/' is an absolute path instead (points of a sweep).
   void write_observable(const std::string& name, const Series& series);
 
   /// Attaches (or replaces) attribute `name` on the existing group or dataset `object_path`.
@@ -132,6 +133,7 @@ struct ObservableData {
   std::vector<std::size_t> shape;         ///< shape of value: {Nt} or {Nt, S}
   std::vector<long long> step;
 };
+/// `name` as for Writer::write_observable: relative to /observables, or an absolute path.
 ObservableData read_observable(const std::string& file, const std::string& name);
 
 /// A float64 (or any numeric) dataset, flattened row-major, with its shape.

@@ -1,0 +1,103 @@
+/**
+ * \file sonine.hpp
+ * \brief Homogeneous cooling state (HCS) of a binary granular mixture in the first Sonine
+ *        approximation of Garzo and Dufty: temperature ratio gamma = T1/T2, the fourth-moment
+ *        coefficients c_1, c_2, the reduced cooling rate zeta* and the high-velocity tails.
+ *
+ * \section sonine_intro What this module computes
+ *
+ * In the HCS each species' distribution scales with the mixture temperature T (seed 003 eq 12),
+ * f_i(v; t) = n_i v0^-3 Phi_i(v/v0), v0 = sqrt(2 T (m1 + m2)/(m1 m2)), and both partial
+ * temperatures cool at the same rate, zeta_1 = zeta_2 (seed 003 eq 10), which fixes
+ * gamma = T1/T2. The first Sonine approximation (seed 003 eq 17) is
+ * Phi_i(v*) = (lambda_i/pi)^(3/2) exp(-lambda_i v*^2) [1 + (c_i/4)(lambda_i^2 v*^4 - 5 lambda_i v*^2 + 15/4)],
+ * lambda_i = T/(T_i mu_ji). Its c_i are twice the usual a2: c_i = 2 [(3/5) <v^4>_i/<v^2>_i^2 - 1]
+ * (ERRATA §6), so one species gives c = 2 a2 with the van Noije-Ernst a2 of theory::sonine_a2.
+ *
+ * Notation (ERRATA §6, seed 003 Sec. 3): species 1 and 2 are entries 0 and 1 of the Mixture;
+ * mu = m1/m2, delta = n1/n2, w = sigma_1/sigma_2, x_i = n_i/n, mu_ij = m_i/(m_i + m_j),
+ * sigma_12 = (sigma_1 + sigma_2)/2, chi_ij the pair correlation at contact of the Mixture
+ * (1 dilute, Carnahan-Starling for Enskog, ERRATA §5), alpha_11, alpha_22, alpha_12 independent.
+ * T/T2 = 1 + x1 (gamma - 1), T/T1 = (T/T2)/gamma (seed 003 eqs 13-14),
+ * lambda_1 = T/(T1 mu_21), lambda_2 = T/(T2 mu_12), eta = lambda_1/lambda_2 = mu_12/(mu_21 gamma).
+ * Reduced rates: zeta* = zeta/(n sigma_12^2 v0) (seed 003 eq 15, ERRATA §6).
+ *
+ * \section sonine_steps Steps (seed 003 App. A; ERRATA §6)
+ * 1. For a given gamma, the coefficients of seed 003 eqs 39-44 as corrected in ERRATA §6:
+ *    zeta_i^(0), zeta_ii^(1), zeta_ij^(1), Omega_i^(0), Omega_ii^(1), Omega_ij^(1); species 2 from
+ *    species 1 by interchanging 1 <-> 2 and eta -> 1/eta (seed 003 after eq 44).
+ *    The partial cooling rate is zeta_i* = zeta_i^(0) + zeta_ii^(1) c_i + zeta_ij^(1) c_j and the
+ *    collisional fourth moment sum_j int v*^4 J*_ij = Omega_i^(0) + Omega_ii^(1) c_i + Omega_ij^(1) c_j.
+ * 2. The fourth-moment equations of seed 003 eq 15 (multiply by v*^4 and integrate:
+ *    -2 zeta_i* <v*^4>_i = Omega_i, <v*^4>_i = 15 (1 + c_i/2)/(4 lambda_i^2)), linearised in the
+ *    c's, are the 2 x 2 system B c1 + D c2 = A, F c1 + G c2 = E with A..G of seed 003 eqs 33-38,
+ *    solved by Cramer's rule as in eqs 31-32.
+ * 3. gamma solves zeta_1* = zeta_2* (seed 003 eq 45), where each zeta_i* includes its c-terms.
+ *    f(gamma) = zeta_1* - zeta_2* is tabulated on a logarithmic grid of gamma (1e-4 .. 1e4,
+ *    40 points per decade); each sign change is refined with GSL's Brent solver
+ *    (gsl_root_fsolver_brent) to a relative width of 1e-14. A sign change across which the
+ *    determinant BG - DF of the linear system changes sign is a pole of the c's, not a root, and
+ *    is skipped. Exactly one root must remain, else std::runtime_error (ERRATA §6: one root exists
+ *    for the cases of the papers).
+ * 4. zeta* = sum_i x_i (T_i/T) zeta_i* (seed 003 eq 11), equal to zeta_1* = zeta_2* at the root.
+ * 5. Tails (seed 003 eqs 18-21, 29-30; ERRATA §6): beta_i = pi sum_j x_j chi_ij (sigma_ij/sigma_12)^2
+ *    and Phi_i ~ A_i exp(-(2 beta_i/zeta_i*) v*).
+ *
+ * The module is dimensionless: only mass ratios, diameter ratios, mole fractions, chi_ij and the
+ * restitution coefficients enter; the overall number density enters only through chi_ij.
+ * Checked by tests/sonine_test.cpp.
+ */
+#pragma once
+
+#include "dsmc/species.hpp"
+
+namespace gdsmc::theory {
+
+/// HCS of a binary mixture in the first Sonine approximation (seed 003 App. A, ERRATA §6).
+struct BinaryHcs {
+  double temperature_ratio;  ///< gamma = T1/T2 (root of seed 003 eq 45)
+  double sonine_c[2];        ///< c1, c2 of seed 003 eq 17 (= 2 a2 for one species, ERRATA §6)
+  double cooling_rate;       ///< zeta* = zeta/(n sigma_12^2 v0), common to both species (ERRATA §6)
+  double tail_beta[2];       ///< beta_i = pi sum_j x_j chi_ij (sigma_ij/sigma_12)^2 (seed 003 eq 20)
+};
+
+/// Reduced partial cooling rates zeta_i* (with their c-terms, seed 003 eq 45) and the c_i of the
+/// linearised fourth-moment equations (seed 003 eqs 31-38) at a given gamma.
+struct SonineAtGamma {
+  double zeta[2];
+  double c[2];
+};
+
+/// The coefficients of seed 003 eqs 39-44 (ERRATA §6) at a given gamma, indexed by species
+/// (0 = species 1, 1 = species 2). zeta1[i][j] is zeta_ij^(1): zeta_i* = zeta0[i] + sum_j
+/// zeta1[i][j] c_j; likewise omega1[i][j] = Omega_ij^(1). lambda[i] = lambda_i, eta = lambda_1/lambda_2.
+struct SonineCoefficients {
+  double lambda[2];
+  double eta;
+  double zeta0[2];
+  double zeta1[2][2];
+  double omega0[2];
+  double omega1[2][2];
+};
+
+/// Coefficients of seed 003 eqs 39-44 (ERRATA §6) at gamma = T1/T2. Throws std::invalid_argument
+/// unless the mixture has 2 species and gamma is positive and finite.
+SonineCoefficients binary_sonine_coefficients(const species::Mixture& mix, double gamma);
+
+/// zeta_i* and c_i at gamma = T1/T2 (seed 003 eqs 31-38 and the two sides of eq 45). Throws
+/// std::invalid_argument unless 2 species and gamma > 0 finite, std::runtime_error if the linear
+/// system is singular.
+SonineAtGamma binary_sonine_at_gamma(const species::Mixture& mix, double gamma);
+
+/// Solves seed 003 eq 45 for gamma (see \ref sonine_steps). Throws std::invalid_argument unless the
+/// mixture has 2 species, std::runtime_error if zeta_1* - zeta_2* has no root or several roots in
+/// 1e-4 <= gamma <= 1e4.
+BinaryHcs binary_hcs_first_sonine(const species::Mixture& mix);
+
+/// Predicted high-velocity decay of Phi_i(v*) ~ A_i exp(-k v*): k = 2 beta_i/zeta*_i (seed 003
+/// eqs 21, 29-30; ERRATA §6), zeta*_i = hcs.cooling_rate (equal for both species in the HCS).
+/// `species` is 0 or 1 (else std::invalid_argument). Elastic mixtures (zeta* = 0) give +infinity:
+/// no exponential tail.
+double tail_decay_rate(const BinaryHcs& hcs, int species);
+
+}  // namespace gdsmc::theory
