@@ -46,7 +46,8 @@ int main(int argc, char** argv) {
   const auto mix = species::make_mixture({1.0}, {1.0}, {0.01}, species::PairMatrix(1, alpha), false);
   std::printf("monodisperse, N = %zu, alpha = %g, %g collisions per particle timed\n", n, alpha, per_particle);
   std::printf("%-10s %18s %18s %12s %10s\n", "scheme", "collisions/s", "candidates/s", "acceptance", "seconds");
-  for (auto [name, scheme] : {std::pair{"majorant", collide::Scheme::majorant}, std::pair{"pairs", collide::Scheme::pairs}}) {
+  for (auto [name, scheme] : {std::pair{"majorant", collide::Scheme::majorant}, std::pair{"lowrank", collide::Scheme::lowrank},
+                              std::pair{"pairs", collide::Scheme::pairs}}) {
     const Result r = measure(scheme, mix, n, per_particle);
     std::printf("%-10s %18.4g %18.4g %12.4f %10.2f\n", name, r.events_per_second, r.candidates_per_second,
                 r.acceptance, r.seconds);

@@ -27,7 +27,9 @@ namespace {
 
 const double kPi = std::numbers::pi;
 
-const char* name(Scheme s) { return s == Scheme::majorant ? "majorant" : "pairs"; }
+const char* name(Scheme s) {
+  return s == Scheme::majorant ? "majorant" : s == Scheme::pairs ? "pairs" : "lowrank";
+}
 
 species::Mixture one_species(double alpha, double n = 0.01) {
   return species::make_mixture({1.0}, {1.0}, {n}, species::PairMatrix(1, alpha), false);
@@ -74,6 +76,7 @@ void momentum(const species::Mixture& mix, const particles::System& sys, double 
 TEST(Collide, ParseScheme) {
   EXPECT_EQ(collide::parse_scheme("majorant"), Scheme::majorant);
   EXPECT_EQ(collide::parse_scheme("pairs"), Scheme::pairs);
+  EXPECT_EQ(collide::parse_scheme("lowrank"), Scheme::lowrank);
   EXPECT_THROW(collide::parse_scheme("bird"), std::invalid_argument);
 }
 
@@ -176,7 +179,7 @@ TEST(Collide, ApplyCollisionIndependentOfSignOfE) {
 // schemes: the drift stays below 1e-12 of sum m|v| (round-off, ~sqrt(1e5) eps per particle scale).
 TEST(Collide, ColliderConservesMomentum) {
   const auto mix = binary(0.9, 0.8, 0.7);
-  for (Scheme scheme : {Scheme::majorant, Scheme::pairs}) {
+  for (Scheme scheme : {Scheme::majorant, Scheme::pairs, Scheme::lowrank}) {
     SCOPED_TRACE(name(scheme));
     auto sys = initial(mix, {2000, 1000}, {1.0, 1.0}, 5);
     double p0[3], scale;
@@ -195,7 +198,7 @@ TEST(Collide, ColliderConservesMomentum) {
 // collisions (100 per particle), both schemes.
 TEST(Collide, ColliderElasticConservesEnergy) {
   const auto mix = one_species(1.0);
-  for (Scheme scheme : {Scheme::majorant, Scheme::pairs}) {
+  for (Scheme scheme : {Scheme::majorant, Scheme::pairs, Scheme::lowrank}) {
     SCOPED_TRACE(name(scheme));
     auto sys = initial(mix, {4000}, {1.0}, 6);
     const double e0 = kinetic_energy(mix, sys);
@@ -221,7 +224,7 @@ TEST(Collide, CollisionRateOneSpecies) {
   const double nu = 4.0 * std::sqrt(kPi) * n * sigma * sigma * std::sqrt(temperature / mass);
   const double expected = 2e5;
   const double t = 2.0 * expected / (n_particles * nu);
-  for (Scheme scheme : {Scheme::majorant, Scheme::pairs}) {
+  for (Scheme scheme : {Scheme::majorant, Scheme::pairs, Scheme::lowrank}) {
     auto sys = initial(mix, {n_particles}, {temperature}, 7);
     Collider collider(scheme, mix, sys, rng::make_stream(7, 0, rng::Purpose::collisions), 1.0);
     EXPECT_FALSE(collider.advance(t));
@@ -257,7 +260,7 @@ TEST(Collide, CollisionRateBinaryMixture) {
       expected[k][j] = mix.number_density[k] * mix.number_density[j] * kPi * sigma * sigma * mean_g *
                        volume * t * (k == j ? 0.5 : 1.0);
     }
-  for (Scheme scheme : {Scheme::majorant, Scheme::pairs}) {
+  for (Scheme scheme : {Scheme::majorant, Scheme::pairs, Scheme::lowrank}) {
     auto sys = initial(mix, counts, temperature, 8);
     Collider collider(scheme, mix, sys, rng::make_stream(8, 0, rng::Purpose::collisions), 0.25);
     collider.advance(t);
@@ -280,7 +283,7 @@ TEST(Collide, CollisionRateBinaryMixture) {
 // passes the target time.
 TEST(Collide, AdvanceStopsAtEventTargetAndTimeIsMonotone) {
   const auto mix = binary(0.8, 0.8, 0.8);
-  for (Scheme scheme : {Scheme::majorant, Scheme::pairs}) {
+  for (Scheme scheme : {Scheme::majorant, Scheme::pairs, Scheme::lowrank}) {
     SCOPED_TRACE(name(scheme));
     auto sys = initial(mix, {600, 400}, {1.0, 2.0}, 9);
     Collider collider(scheme, mix, sys, rng::make_stream(9, 0, rng::Purpose::collisions), 0.5);
@@ -335,7 +338,7 @@ TEST(Collide, GasAtRestNeverCollides) {
   sys.species.assign(10, 0);
   sys.first = {0};
   sys.count = {10};
-  for (Scheme scheme : {Scheme::majorant, Scheme::pairs}) {
+  for (Scheme scheme : {Scheme::majorant, Scheme::pairs, Scheme::lowrank}) {
     auto copy = sys;
     Collider collider(scheme, mix, copy, rng::make_stream(1, 0, rng::Purpose::collisions), 1.0);
     EXPECT_FALSE(collider.advance(3.5, 10));
@@ -348,7 +351,7 @@ TEST(Collide, GasAtRestNeverCollides) {
 // bitwise identical velocities after the same advance calls; another seed gives other velocities.
 TEST(Collide, ReproducibleFromSameSeed) {
   const auto mix = binary(0.7, 0.9, 0.5);
-  for (Scheme scheme : {Scheme::majorant, Scheme::pairs}) {
+  for (Scheme scheme : {Scheme::majorant, Scheme::pairs, Scheme::lowrank}) {
     SCOPED_TRACE(name(scheme));
     const auto start = initial(mix, {700, 300}, {1.0, 1.0}, 10);
     auto sys_a = start, sys_b = start, sys_c = start;
@@ -377,7 +380,7 @@ TEST(Collide, ReproducibleFromSameSeed) {
 TEST(Collide, SmallIncrementsSampleTheSameProcess) {
   const auto mix = one_species(1.0);
   const double t_end = 40.0;
-  for (Scheme scheme : {Scheme::majorant, Scheme::pairs}) {
+  for (Scheme scheme : {Scheme::majorant, Scheme::pairs, Scheme::lowrank}) {
     auto sys_a = initial(mix, {5000}, {1.0}, 12), sys_b = sys_a;
     Collider a(scheme, mix, sys_a, rng::make_stream(12, 0, rng::Purpose::collisions), 1.0);
     Collider b(scheme, mix, sys_b, rng::make_stream(12, 0, rng::Purpose::collisions), 1.0);
@@ -409,7 +412,7 @@ TEST(Collide, HaffCoolingRate) {
   const double expected = (1.0 - 1.0 / std::pow(1.0 + zeta0 * dt / 2.0, 2)) / dt;
   const int replicas = 20;
   const std::size_t n_particles = 100000;
-  for (Scheme scheme : {Scheme::majorant, Scheme::pairs}) {
+  for (Scheme scheme : {Scheme::majorant, Scheme::pairs, Scheme::lowrank}) {
     std::vector<double> rate(replicas);
     for (int r = 0; r < replicas; ++r) {
       auto sys = initial(mix, {n_particles}, {t0}, 100 + r);

@@ -603,9 +603,10 @@ TEST(ConfigError, BadChoice) {
   expect_error(s, 16, "output", "spacing", {"'cubic' is not one of", "'linear'", "'log'"});
 }
 
-TEST(ConfigError, SchemeNotAvailable) {
-  const std::string m = error_of(with_line(12, "  n_particles = 200, scheme = 'lowrank'"));
-  expect_error(m, 12, "dsmc", "scheme", {"'lowrank'", "not available"});
+TEST(ConfigRead, EverySchemeReads) {
+  for (const char* scheme : {"majorant", "pairs", "lowrank"})
+    EXPECT_EQ(read_text(with_line(12, std::string("  n_particles = 200, scheme = '") + scheme + "'")).dsmc.scheme,
+              scheme);
 }
 
 TEST(ConfigError, FirstSampleWithLinearSpacing) {

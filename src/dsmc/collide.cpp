@@ -15,6 +15,7 @@ enum class Stop { reached_time, bound_raised, reached_events };
 Scheme parse_scheme(const std::string& name) {
   if (name == "majorant") return Scheme::majorant;
   if (name == "pairs") return Scheme::pairs;
+  if (name == "lowrank") return Scheme::lowrank;
   throw std::invalid_argument("unknown scheme '" + name + "'");
 }
 
@@ -36,6 +37,20 @@ Collider::Collider(Scheme scheme, const species::Mixture& mix, particles::System
   pair_rate_.assign(s_ * s_, 0.0);
   pair_cumulative_.assign(s_ * s_, 0.0);
   counters_.pair_events.assign(s_ * s_, 0);
+  if (scheme_ == Scheme::lowrank) {
+    for (double chi : mix.pair_correlation.values) chi_max_ = std::max(chi_max_, chi);
+    lowrank_ = segment_tree::LowRankSampler<3>(s_);
+    lowrank_volume_ = static_cast<double>(sys.size() - 1) / mix.total_density();
+  }
+}
+
+void Collider::set_lowrank_row(std::size_t k) {
+  // A_ik = pi sigma_ik^2 chi_max w_i N_i N_k / V in rank-3 form (segment_tree.hpp, ERRATA §7)
+  auto f = segment_tree::hard_sphere_factors(static_cast<double>(sys_.count[k]), mix_.diameter[k],
+                                             max_speed_[k], lowrank_volume_);
+  for (double& x : f.row) x *= chi_max_;
+  lowrank_.set_row(k, f.row);
+  lowrank_.set_column(k, f.column);
 }
 
 void Collider::recompute_max_speeds() {
@@ -51,7 +66,11 @@ void Collider::recompute_max_speeds() {
 void Collider::rebuild_bounds() {
   const double n = mix_.total_density();
   const double n_sim = static_cast<double>(sys_.size());
-  if (scheme_ == Scheme::majorant) {
+  if (scheme_ == Scheme::lowrank) {
+    for (std::size_t k = 0; k < s_; ++k) set_lowrank_row(k);
+    raised_.clear();
+    rate_ = lowrank_.total();
+  } else if (scheme_ == Scheme::majorant) {
     bound_ = 0.0;
     for (std::size_t k = 0; k < s_; ++k)
       for (std::size_t j = 0; j < s_; ++j)
@@ -79,6 +98,7 @@ bool Collider::raise_max_speed(std::size_t particle) {
                     sys_.vz[particle] * sys_.vz[particle];
   if (v2 <= max_speed_[k] * max_speed_[k]) return false;
   max_speed_[k] = std::sqrt(v2);
+  raised_.push_back(k);
   return true;
 }
 
@@ -104,9 +124,18 @@ bool Collider::advance(double t_target, std::uint64_t event_target) {
       counters_.step_sum += step;
     }
     const double t_stop = std::min(t_target, next_step_time_);
-    const bool majorant = scheme_ == Scheme::majorant;
-    const int stop = majorant ? run_majorant(t_stop, event_target) : run_pairs(t_stop, event_target);
-    if (stop == static_cast<int>(Stop::bound_raised)) rebuild_bounds();
+    const int stop = scheme_ == Scheme::majorant ? run_majorant(t_stop, event_target)
+                     : scheme_ == Scheme::pairs  ? run_pairs(t_stop, event_target)
+                                                 : run_lowrank(t_stop, event_target);
+    if (stop == static_cast<int>(Stop::bound_raised)) {
+      if (scheme_ == Scheme::lowrank) {  // O(log M) per raised species, not a rebuild
+        for (std::size_t k : raised_) set_lowrank_row(k);
+        raised_.clear();
+        rate_ = lowrank_.total();
+      } else {
+        rebuild_bounds();
+      }
+    }
     if (stop == static_cast<int>(Stop::reached_events)) return true;
   }
   return false;
@@ -196,6 +225,35 @@ int Collider::run_pairs(double t_stop, std::uint64_t event_target) {
     if (g_dot_e <= 0.0 || gen_.uniform() * (max_speed_[i] + max_speed_[j]) >= g_dot_e) return false;
     apply_collision(sys_, k, l, ex, ey, ez, alpha_[pair], mass_fraction_[pair]);
     count_event(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
+    return true;
+  });
+}
+
+int Collider::run_lowrank(double t_stop, std::uint64_t event_target) {
+  double* vx = sys_.vx.data();
+  double* vy = sys_.vy.data();
+  double* vz = sys_.vz.data();
+  return run_substep(t_stop, event_target, [&](std::size_t& a, std::size_t& b) {
+    const auto [i, k] = lowrank_.sample(gen_);  // (i, k) with probability A_ik / R
+    a = sys_.first[i] + gen_.below(sys_.count[i]);
+    b = sys_.first[k] + gen_.below(sys_.count[k]);
+    if (a == b) return false;  // the self pair is part of the majorant's sum, never a collision
+    const std::size_t pair = i * s_ + k;
+    const double gx = vx[a] - vx[b], gy = vy[a] - vy[b], gz = vz[a] - vz[b];
+    const double g = std::sqrt(gx * gx + gy * gy + gz * gz);
+    // Accept with chi_ik |g| / (chi_max (w_i + w_k)) (seed 001 eq 11 with ERRATA §2).
+    if (gen_.uniform() * chi_max_ * (max_speed_[i] + max_speed_[k]) >= mix_.pair_correlation(i, k) * g)
+      return false;
+    double wx, wy, wz;  // e ~ (g_hat.e) on the hemisphere, as in run_majorant
+    rng::unit_vector(gen_, wx, wy, wz);
+    double ex = gx / g + wx, ey = gy / g + wy, ez = gz / g + wz;
+    const double norm = std::sqrt(ex * ex + ey * ey + ez * ez);
+    if (norm == 0.0) return false;
+    ex /= norm;
+    ey /= norm;
+    ez /= norm;
+    apply_collision(sys_, a, b, ex, ey, ez, alpha_[pair], mass_fraction_[pair]);
+    count_event(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(k));
     return true;
   });
 }

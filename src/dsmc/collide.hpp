@@ -31,7 +31,16 @@
  * step; here the pair of each candidate is drawn with probability R_ij / sum R, which samples the
  * same rates without the operator-splitting error of a sweep (ERRATA §9).
  *
- * **Time.** Both schemes are uniformised continuous-time processes: each candidate advances time by
+ * **Scheme `lowrank`** (seed 001 sec. II B, eqs 9-14 with ERRATA §2 and §7). The ordered species pair
+ * (i, k) of a candidate is drawn with probability A_ik / R from the rank-3 majorant
+ * A_ik = pi sigma_ik^2 chi_max w_i N_i N_k / V, w_i = vmax_i, through segment trees in O(log M)
+ * (segment_tree.hpp, which derives the decomposition); then a particle of each species, uniformly
+ * (the same particle twice is rejected), accepted with chi_ik |g| / (chi_max (w_i + w_k)), and e drawn
+ * as in `majorant`. V = (N - 1)/n gives every particle pair the candidate rate of `majorant`, so the
+ * two schemes sample exactly the same process. A raised vmax_i updates species i's row in O(log M).
+ * (For very many species the S x S pair tables below are the next limit: issue 4.)
+ *
+ * **Time.** All schemes are uniformised continuous-time processes: each candidate advances time by
  * 1 / R (the mean waiting time; the N_p = R dt candidates of seed 000 eq 8 per step, with the
  * fraction carried over). Collisions are processed one after another with current velocities, so
  * there is none of the batch time-step bias of ERRATA §9. The time step dt only sets how often the
@@ -50,11 +59,12 @@
 
 #include "dsmc/particles.hpp"
 #include "dsmc/rng.hpp"
+#include "dsmc/segment_tree.hpp"
 #include "dsmc/species.hpp"
 
 namespace gdsmc::collide {
 
-enum class Scheme { majorant, pairs };
+enum class Scheme { majorant, pairs, lowrank };
 
 /// Applies the collision rule of ERRATA §1 to particles a and b along the unit vector (ex, ey, ez).
 /// `mass_fraction_b` = m_b/(m_a + m_b). Returns (g.e) before the collision.
@@ -107,6 +117,8 @@ class Collider {
   int run_substep(double t_stop, std::uint64_t event_target, TryCandidate&& try_candidate);
   int run_majorant(double t_stop, std::uint64_t event_target);  // returns a Stop (collide.cpp)
   int run_pairs(double t_stop, std::uint64_t event_target);
+  int run_lowrank(double t_stop, std::uint64_t event_target);
+  void set_lowrank_row(std::size_t species);
   void count_event(std::uint32_t k, std::uint32_t j);
 
   Scheme scheme_;
@@ -120,6 +132,10 @@ class Collider {
   std::vector<double> alpha_;           ///< alpha_kj
   std::vector<double> mass_fraction_;   ///< m_j/(m_k + m_j): the share of the impulse taken by k
   std::vector<double> max_speed_;       ///< vmax_k
+  std::vector<std::size_t> raised_;     ///< species whose vmax was raised since the last rebuild
+  segment_tree::LowRankSampler<3> lowrank_;  ///< A_ik (lowrank)
+  double chi_max_ = 1.0;                ///< max_ik chi_ik (lowrank)
+  double lowrank_volume_ = 0.0;         ///< V = (N - 1)/n (lowrank)
   // Bounds.
   double bound_ = 0.0;                  ///< B (majorant)
   std::vector<double> pair_rate_;       ///< R_ij (pairs), cumulative in pair_cumulative_

@@ -436,9 +436,6 @@ void check_initial(Initial& ini, std::size_t s, const Provenance& prov) {
 
 void check_dsmc(const Dsmc& d, const species::Mixture& mix, const Provenance& prov, int group_line) {
   const std::string group = "dsmc";
-  if (d.scheme == "lowrank")
-    throw Error(prov.file_of("scheme"), prov.line.at("scheme"), group, "scheme",
-                "'lowrank' is not available in this version (use 'majorant' or 'pairs')");
   if (d.t_end.has_value() == d.collisions_per_particle.has_value())
     throw Error(d.t_end ? prov.file_of("collisions_per_particle") : prov.file,
                 d.t_end ? prov.line.at("collisions_per_particle") : group_line, group,

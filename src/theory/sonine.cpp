@@ -5,6 +5,7 @@
 #include <gsl/gsl_roots.h>
 
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <limits>
 #include <memory>
@@ -28,13 +29,30 @@ constexpr int root_max_iterations = 200;
 
 void require_binary(const species::Mixture& mix, const char* caller) {
   if (mix.size() != 2)
-    throw std::invalid_argument(std::string(caller) + ": the first Sonine HCS theory is for 2 species, got " +
+    throw std::invalid_argument(std::string(caller) +
+                                ": the first Sonine HCS theory is for 2 species, got " +
                                 std::to_string(mix.size()));
+  const auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
+  for (std::size_t k = 0; k < 2; ++k)
+    if (!positive(mix.mass[k]) || !positive(mix.diameter[k]) || !positive(mix.number_density[k]) ||
+        !positive(mix.pair_correlation(k, k)))
+      throw std::invalid_argument(std::string(caller) +
+                                  ": masses, diameters, number densities and chi must be positive "
+                                  "and finite");
+  if (!positive(mix.pair_correlation(0, 1)))
+    throw std::invalid_argument(std::string(caller) + ": chi_12 must be positive and finite");
+  for (std::size_t k = 0; k < 2; ++k)
+    for (std::size_t j = 0; j < 2; ++j)
+      if (!(mix.restitution(k, j) >= 0.0 && mix.restitution(k, j) <= 1.0))
+        throw std::invalid_argument(std::string(caller) + ": restitution must lie in [0, 1]");
+  if (mix.restitution(0, 1) != mix.restitution(1, 0))
+    throw std::invalid_argument(std::string(caller) + ": alpha_12 != alpha_21");
 }
 
 void require_gamma(double gamma, const char* caller) {
   if (!(gamma > 0.0) || !std::isfinite(gamma))
-    throw std::invalid_argument(std::string(caller) + ": gamma = T1/T2 must be positive and finite");
+    throw std::invalid_argument(std::string(caller) +
+                                ": gamma = T1/T2 must be positive and finite");
 }
 
 /// Inputs of seed 003 eqs 39-44 written for species i with partner j (i = 1, j = 2 as printed;
@@ -63,8 +81,8 @@ SpeciesCoefficients species_coefficients(const SpeciesInput& in) {
   const double a_ii = in.alpha_ii;
   const double a_ij = in.alpha_ij;
   const double e = in.eta;
-  const double p = 1.0 + e;                // 1 + eta
-  const double A = mu * (1.0 + a_ij);      // ERRATA §6: A = mu_21 (1 + alpha_12)
+  const double p = 1.0 + e;            // 1 + eta
+  const double A = mu * (1.0 + a_ij);  // ERRATA §6: A = mu_21 (1 + alpha_12)
   const double Ap = A * p, Ap2 = Ap * Ap, Ap3 = Ap2 * Ap;
   const double inelastic_ii = 1.0 - a_ii * a_ii;
   const double li_half = std::pow(in.lambda_i, -0.5);   // lambda_i^(-1/2)
@@ -90,13 +108,12 @@ SpeciesCoefficients species_coefficients(const SpeciesInput& in) {
                 std::sqrt(2.0) * cross * std::pow(p, -0.5) *
                     (-2.0 * (6.0 + 5.0 * e) + Ap * (14.0 + 5.0 * e) - 8.0 * Ap2 + 2.0 * Ap3));
   // seed 003 eq 43, ERRATA §6 Omega11_1
-  out.omega_self =
-      -std::sqrt(2.0 * pi) * li_5half *
-      (s * (1.0 + a_ii + (3.0 / 64.0) * (69.0 + 10.0 * a_ii * a_ii) * inelastic_ii) -
-       (std::sqrt(2.0) / 16.0) * cross * std::pow(p, -2.5) *
-           (-2.0 * (90.0 + 231.0 * e + 184.0 * e * e + 40.0 * e * e * e) +
-            3.0 * Ap * (70.0 + 117.0 * e + 44.0 * e * e) - 24.0 * Ap2 * (5.0 + 4.0 * e) +
-            30.0 * Ap3));
+  out.omega_self = -std::sqrt(2.0 * pi) * li_5half *
+                   (s * (1.0 + a_ii + (3.0 / 64.0) * (69.0 + 10.0 * a_ii * a_ii) * inelastic_ii) -
+                    (std::sqrt(2.0) / 16.0) * cross * std::pow(p, -2.5) *
+                        (-2.0 * (90.0 + 231.0 * e + 184.0 * e * e + 40.0 * e * e * e) +
+                         3.0 * Ap * (70.0 + 117.0 * e + 44.0 * e * e) -
+                         24.0 * Ap2 * (5.0 + 4.0 * e) + 30.0 * Ap3));
   // seed 003 eq 44, ERRATA §6 Omega12_1
   out.omega_cross = (sqrt_pi / 8.0) * cross * li_5half * e * e * std::pow(p, -2.5) *
                     (2.0 * (2.0 + 5.0 * e) + 3.0 * Ap * (2.0 + 5.0 * e) - 24.0 * Ap2 + 30.0 * Ap3);
@@ -114,12 +131,12 @@ LinearSystem linear_system(const SonineCoefficients& k) {
   const double w1 = 15.0 / (2.0 * k.lambda[0] * k.lambda[0]);  // 15/(2 lambda_1^2)
   const double w2 = 15.0 / (2.0 * k.lambda[1] * k.lambda[1]);  // 15/(2 lambda_2^2)
   LinearSystem sys{};
-  sys.A = -w1 * k.zeta0[0] - k.omega0[0];                              // seed 003 eq 33
-  sys.B = w1 * (k.zeta1[0][0] + 0.5 * k.zeta0[0]) + k.omega1[0][0];    // seed 003 eq 34
-  sys.D = w1 * k.zeta1[0][1] + k.omega1[0][1];                         // seed 003 eq 35
-  sys.E = -w2 * k.zeta0[1] - k.omega0[1];                              // seed 003 eq 36
-  sys.F = w2 * k.zeta1[1][0] + k.omega1[1][0];                         // seed 003 eq 37
-  sys.G = w2 * (k.zeta1[1][1] + 0.5 * k.zeta0[1]) + k.omega1[1][1];    // seed 003 eq 38
+  sys.A = -w1 * k.zeta0[0] - k.omega0[0];                            // seed 003 eq 33
+  sys.B = w1 * (k.zeta1[0][0] + 0.5 * k.zeta0[0]) + k.omega1[0][0];  // seed 003 eq 34
+  sys.D = w1 * k.zeta1[0][1] + k.omega1[0][1];                       // seed 003 eq 35
+  sys.E = -w2 * k.zeta0[1] - k.omega0[1];                            // seed 003 eq 36
+  sys.F = w2 * k.zeta1[1][0] + k.omega1[1][0];                       // seed 003 eq 37
+  sys.G = w2 * (k.zeta1[1][1] + 0.5 * k.zeta0[1]) + k.omega1[1][1];  // seed 003 eq 38
   return sys;
 }
 
@@ -127,8 +144,9 @@ SonineAtGamma solve_at(const SonineCoefficients& k) {
   const LinearSystem sys = linear_system(k);
   const double det = sys.determinant();
   if (det == 0.0 || !std::isfinite(det))
-    throw std::runtime_error("binary_sonine_at_gamma: the linearised fourth-moment system (seed 003 "
-                             "eqs 31-38) is singular");
+    throw std::runtime_error(
+        "binary_sonine_at_gamma: the linearised fourth-moment system (seed 003 "
+        "eqs 31-38) is singular");
   SonineAtGamma out{};
   out.c[0] = (sys.A * sys.G - sys.E * sys.D) / det;  // seed 003 eq 31
   out.c[1] = (sys.B * sys.E - sys.A * sys.F) / det;  // seed 003 eq 32
@@ -183,9 +201,9 @@ double refine_root(const species::Mixture& mix, double lo, double hi) {
   gsl_function fn{&eq45_residual, &ctx};
   const auto check = [&ctx, lo, hi]() {
     if (ctx.failed)
-      throw std::runtime_error("binary_hcs_first_sonine: zeta_1* - zeta_2* (seed 003 eq 45) is not "
-                               "finite between gamma = " + format_gamma(lo) + " and " +
-                               format_gamma(hi));
+      throw std::runtime_error(
+          "binary_hcs_first_sonine: zeta_1* - zeta_2* (seed 003 eq 45) is not finite between "
+          "gamma = " + format_gamma(lo) + " and " + format_gamma(hi));
   };
   std::unique_ptr<gsl_root_fsolver, SolverDeleter> solver(
       gsl_root_fsolver_alloc(gsl_root_fsolver_brent));
@@ -201,8 +219,9 @@ double refine_root(const species::Mixture& mix, double lo, double hi) {
     if (gsl_root_test_interval(a, b, 0.0, root_relative_width) == GSL_SUCCESS)
       return gsl_root_fsolver_root(solver.get());
   }
-  throw std::runtime_error("binary_hcs_first_sonine: Brent iteration for gamma (seed 003 eq 45) did "
-                           "not converge");
+  throw std::runtime_error(
+      "binary_hcs_first_sonine: Brent iteration for gamma (seed 003 eq 45) did "
+      "not converge");
 }
 
 }  // namespace
@@ -258,15 +277,16 @@ BinaryHcs binary_hcs_first_sonine(const species::Mixture& mix) {
   std::vector<double> grid(points), f(points), det(points);
   for (int p = 0; p < points; ++p) {
     // the exponent is exactly 0 at p = -gamma_decade_min * grid_points_per_decade: gamma = 1 is a
-    // grid point (where f = 0 exactly for elastic or mechanically equivalent species)
+    // grid point (the root for elastic or mechanically equivalent species)
     grid[p] = std::pow(10.0, gamma_decade_min + static_cast<double>(p) / grid_points_per_decade);
     const SonineCoefficients k = binary_sonine_coefficients(mix, grid[p]);
     det[p] = linear_system(k).determinant();
     const SonineAtGamma s = solve_at(k);
     f[p] = s.zeta[0] - s.zeta[1];
     if (!std::isfinite(f[p]))
-      throw std::runtime_error("binary_hcs_first_sonine: zeta_1* - zeta_2* (seed 003 eq 45) is not "
-                               "finite at gamma = " + format_gamma(grid[p]));
+      throw std::runtime_error(
+          "binary_hcs_first_sonine: zeta_1* - zeta_2* (seed 003 eq 45) is not finite at gamma = " +
+          format_gamma(grid[p]));
   }
 
   // Roots: exact zeros on the grid, and sign changes of f not accompanied by a sign change of the
@@ -282,9 +302,10 @@ BinaryHcs binary_hcs_first_sonine(const species::Mixture& mix) {
       roots.push_back(refine_root(mix, grid[p], grid[p + 1]));
   }
   if (roots.size() != 1) {
-    std::string msg = "binary_hcs_first_sonine: expected exactly one root of zeta_1* = zeta_2* (seed "
-                      "003 eq 45) for " + format_gamma(std::pow(10.0, gamma_decade_min)) +
-                      " <= gamma <= " + format_gamma(std::pow(10.0, gamma_decade_max)) + ", found " + std::to_string(roots.size());
+    std::string msg =
+        "binary_hcs_first_sonine: expected exactly one root of zeta_1* = zeta_2* (seed 003 eq 45) "
+        "for " + format_gamma(std::pow(10.0, gamma_decade_min)) + " <= gamma <= " +
+        format_gamma(std::pow(10.0, gamma_decade_max)) + ", found " + std::to_string(roots.size());
     for (double r : roots) msg += (r == roots.front() ? ": gamma = " : ", ") + format_gamma(r);
     throw std::runtime_error(msg);
   }

@@ -10,9 +10,11 @@
  * f_i(v; t) = n_i v0^-3 Phi_i(v/v0), v0 = sqrt(2 T (m1 + m2)/(m1 m2)), and both partial
  * temperatures cool at the same rate, zeta_1 = zeta_2 (seed 003 eq 10), which fixes
  * gamma = T1/T2. The first Sonine approximation (seed 003 eq 17) is
- * Phi_i(v*) = (lambda_i/pi)^(3/2) exp(-lambda_i v*^2) [1 + (c_i/4)(lambda_i^2 v*^4 - 5 lambda_i v*^2 + 15/4)],
- * lambda_i = T/(T_i mu_ji). Its c_i are twice the usual a2: c_i = 2 [(3/5) <v^4>_i/<v^2>_i^2 - 1]
- * (ERRATA §6), so one species gives c = 2 a2 with the van Noije-Ernst a2 of theory::sonine_a2.
+ * Phi_i(v*) = (lambda_i/pi)^(3/2) exp(-lambda_i v*^2)
+ *            [1 + (c_i/4)(lambda_i^2 v*^4 - 5 lambda_i v*^2 + 15/4)],
+ * lambda_i = T/(T_i mu_ji). Its c_i are twice the usual a2:
+ * c_i = 2 [(3/5) <v^4>_i/<v^2>_i^2 - 1] (ERRATA §6), so one species gives c = 2 a2 with the
+ * van Noije-Ernst a2 of theory::sonine_a2.
  *
  * Notation (ERRATA §6, seed 003 Sec. 3): species 1 and 2 are entries 0 and 1 of the Mixture;
  * mu = m1/m2, delta = n1/n2, w = sigma_1/sigma_2, x_i = n_i/n, mu_ij = m_i/(m_i + m_j),
@@ -23,11 +25,12 @@
  * Reduced rates: zeta* = zeta/(n sigma_12^2 v0) (seed 003 eq 15, ERRATA §6).
  *
  * \section sonine_steps Steps (seed 003 App. A; ERRATA §6)
- * 1. For a given gamma, the coefficients of seed 003 eqs 39-44 as corrected in ERRATA §6:
+ * 1. For a given gamma, the coefficients of seed 003 eqs 39-44 as restated in ERRATA §6:
  *    zeta_i^(0), zeta_ii^(1), zeta_ij^(1), Omega_i^(0), Omega_ii^(1), Omega_ij^(1); species 2 from
  *    species 1 by interchanging 1 <-> 2 and eta -> 1/eta (seed 003 after eq 44).
  *    The partial cooling rate is zeta_i* = zeta_i^(0) + zeta_ii^(1) c_i + zeta_ij^(1) c_j and the
- *    collisional fourth moment sum_j int v*^4 J*_ij = Omega_i^(0) + Omega_ii^(1) c_i + Omega_ij^(1) c_j.
+ *    collisional fourth moment
+ *    sum_j int v*^4 J*_ij = Omega_i^(0) + Omega_ii^(1) c_i + Omega_ij^(1) c_j.
  * 2. The fourth-moment equations of seed 003 eq 15 (multiply by v*^4 and integrate:
  *    -2 zeta_i* <v*^4>_i = Omega_i, <v*^4>_i = 15 (1 + c_i/2)/(4 lambda_i^2)), linearised in the
  *    c's, are the 2 x 2 system B c1 + D c2 = A, F c1 + G c2 = E with A..G of seed 003 eqs 33-38,
@@ -40,12 +43,26 @@
  *    is skipped. Exactly one root must remain, else std::runtime_error (ERRATA §6: one root exists
  *    for the cases of the papers).
  * 4. zeta* = sum_i x_i (T_i/T) zeta_i* (seed 003 eq 11), equal to zeta_1* = zeta_2* at the root.
- * 5. Tails (seed 003 eqs 18-21, 29-30; ERRATA §6): beta_i = pi sum_j x_j chi_ij (sigma_ij/sigma_12)^2
- *    and Phi_i ~ A_i exp(-(2 beta_i/zeta_i*) v*).
+ * 5. Tails (seed 003 eqs 18-21, 29-30; ERRATA §6):
+ *    beta_i = pi sum_j x_j chi_ij (sigma_ij/sigma_12)^2,
+ *    Phi_i ~ A_i exp(-(2 beta_i/zeta_i*) v*).
  *
  * The module is dimensionless: only mass ratios, diameter ratios, mole fractions, chi_ij and the
  * restitution coefficients enter; the overall number density enters only through chi_ij.
- * Checked by tests/sonine_test.cpp.
+ *
+ * Input checks: every function taking a Mixture throws std::invalid_argument unless it has exactly
+ * 2 species with positive finite masses, diameters, number densities and chi_ij, and a symmetric
+ * restitution matrix with entries in [0, 1].
+ *
+ * \section sonine_checks How it is checked
+ * tests/sonine_test.cpp: the ERRATA §6 reference numbers, the one-component limit (gamma = 1,
+ * c = 2 a2, zeta* of ERRATA §3), the elastic limit, the 1 <-> 2 symmetry, zeta_i^(0) against the
+ * Maxwellian partial cooling rates of ERRATA §4, the linearised fourth-moment equations, Enskog
+ * densities. Eqs 39-44 as given in ERRATA §6 were also compared (once, outside the test suite)
+ * with a Monte Carlo integration of the collision integrals of seed 003 eq 16 over the Sonine
+ * distributions (eq 17): all twelve coefficients agreed within 2 standard errors (relative
+ * errors 1e-3 .. 2e-2) for mu = 10, delta = 2, w = 1, alpha = 0.5, gamma = 3.8 and for mu = 1/4,
+ * delta = 1/2, w = 2, alpha_11 = 0.6, alpha_22 = 0.9, alpha_12 = 0.75, n* = 0.3, gamma = 0.7.
  */
 #pragma once
 
@@ -58,7 +75,8 @@ struct BinaryHcs {
   double temperature_ratio;  ///< gamma = T1/T2 (root of seed 003 eq 45)
   double sonine_c[2];        ///< c1, c2 of seed 003 eq 17 (= 2 a2 for one species, ERRATA §6)
   double cooling_rate;       ///< zeta* = zeta/(n sigma_12^2 v0), common to both species (ERRATA §6)
-  double tail_beta[2];       ///< beta_i = pi sum_j x_j chi_ij (sigma_ij/sigma_12)^2 (seed 003 eq 20)
+  /// beta_i = pi sum_j x_j chi_ij (sigma_ij/sigma_12)^2 (seed 003 eq 20, ERRATA §6 "Tails")
+  double tail_beta[2];
 };
 
 /// Reduced partial cooling rates zeta_i* (with their c-terms, seed 003 eq 45) and the c_i of the
@@ -70,7 +88,8 @@ struct SonineAtGamma {
 
 /// The coefficients of seed 003 eqs 39-44 (ERRATA §6) at a given gamma, indexed by species
 /// (0 = species 1, 1 = species 2). zeta1[i][j] is zeta_ij^(1): zeta_i* = zeta0[i] + sum_j
-/// zeta1[i][j] c_j; likewise omega1[i][j] = Omega_ij^(1). lambda[i] = lambda_i, eta = lambda_1/lambda_2.
+/// zeta1[i][j] c_j; likewise omega1[i][j] = Omega_ij^(1). lambda[i] = lambda_i,
+/// eta = lambda_1/lambda_2.
 struct SonineCoefficients {
   double lambda[2];
   double eta;
@@ -81,17 +100,18 @@ struct SonineCoefficients {
 };
 
 /// Coefficients of seed 003 eqs 39-44 (ERRATA §6) at gamma = T1/T2. Throws std::invalid_argument
-/// unless the mixture has 2 species and gamma is positive and finite.
+/// for a bad mixture (see "Input checks" in the file description) or unless gamma is positive and
+/// finite.
 SonineCoefficients binary_sonine_coefficients(const species::Mixture& mix, double gamma);
 
 /// zeta_i* and c_i at gamma = T1/T2 (seed 003 eqs 31-38 and the two sides of eq 45). Throws
-/// std::invalid_argument unless 2 species and gamma > 0 finite, std::runtime_error if the linear
-/// system is singular.
+/// std::invalid_argument for a bad mixture or gamma (as binary_sonine_coefficients),
+/// std::runtime_error if the linear system is singular.
 SonineAtGamma binary_sonine_at_gamma(const species::Mixture& mix, double gamma);
 
-/// Solves seed 003 eq 45 for gamma (see \ref sonine_steps). Throws std::invalid_argument unless the
-/// mixture has 2 species, std::runtime_error if zeta_1* - zeta_2* has no root or several roots in
-/// 1e-4 <= gamma <= 1e4.
+/// Solves seed 003 eq 45 for gamma (see \ref sonine_steps). Throws std::invalid_argument for a bad
+/// mixture (see "Input checks" in the file description), std::runtime_error if zeta_1* - zeta_2*
+/// has no root or several roots in 1e-4 <= gamma <= 1e4.
 BinaryHcs binary_hcs_first_sonine(const species::Mixture& mix);
 
 /// Predicted high-velocity decay of Phi_i(v*) ~ A_i exp(-k v*): k = 2 beta_i/zeta*_i (seed 003

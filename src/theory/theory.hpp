@@ -64,6 +64,7 @@
 #include <vector>
 
 #include "dsmc/species.hpp"
+#include "theory/sonine.hpp"
 
 namespace gdsmc::theory {
 

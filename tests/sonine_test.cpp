@@ -1,0 +1,301 @@
+// Unit tests for the first Sonine HCS of a binary mixture (theory/sonine.hpp; seed 003 App. A,
+// ERRATA §6). Reference values: the numbers quoted in ERRATA §6, the one-component theory of
+// ERRATA §3 (van Noije-Ernst a2, theory::sonine_a2), the Maxwellian partial cooling rates of
+// ERRATA §4 (theory::cooling_rate_matrix, an independent formula), exact limits (elastic,
+// mechanically equivalent species), the 1 <-> 2 symmetry and the qualitative statement of seed 003
+// about its Fig. 6 (Enskog).
+#include "theory/sonine.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <vector>
+
+#include "theory/theory.hpp"
+
+using gdsmc::species::make_mixture;
+using gdsmc::species::Mixture;
+using gdsmc::species::PairMatrix;
+namespace theory = gdsmc::theory;
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+/// Binary mixture in the parameters of seed 003: mu = m1/m2, delta = n1/n2, w = sigma_1/sigma_2
+/// (sigma_2 = 1, m2 = 1), restitution alpha_11, alpha_22, alpha_12. Dilute unless `enskog`, in
+/// which case n is set from the reduced density n* = n sigma_12^3 (ERRATA §5).
+Mixture seed_mixture(double mu, double delta, double w, double alpha_11, double alpha_22,
+                     double alpha_12, bool enskog = false, double n_star = 0.0) {
+  const double sigma_12 = 0.5 * (w + 1.0);
+  const double n = enskog ? n_star / (sigma_12 * sigma_12 * sigma_12) : 1.0;
+  PairMatrix alpha(2);
+  alpha(0, 0) = alpha_11;
+  alpha(1, 1) = alpha_22;
+  alpha(0, 1) = alpha(1, 0) = alpha_12;
+  return make_mixture({mu, 1.0}, {w, 1.0}, {n * delta / (1.0 + delta), n / (1.0 + delta)}, alpha,
+                      enskog);
+}
+
+Mixture seed_mixture(double mu, double delta, double w, double alpha, bool enskog = false,
+                     double n_star = 0.0) {
+  return seed_mixture(mu, delta, w, alpha, alpha, alpha, enskog, n_star);
+}
+
+/// The same mixture with species 1 and 2 interchanged.
+Mixture swapped(const Mixture& mix) {
+  PairMatrix alpha(2);
+  alpha(0, 0) = mix.restitution(1, 1);
+  alpha(1, 1) = mix.restitution(0, 0);
+  alpha(0, 1) = alpha(1, 0) = mix.restitution(0, 1);
+  return make_mixture({mix.mass[1], mix.mass[0]}, {mix.diameter[1], mix.diameter[0]},
+                      {mix.number_density[1], mix.number_density[0]}, alpha, mix.enskog);
+}
+
+}  // namespace
+
+// ERRATA §6 reference: mu = 10, delta = 2, w = 1, alpha = 0.5, dilute gives gamma = 3.8005,
+// c1 = 0.1091, c2 = 0.0180 (seed 003: "about 3.8"); agreement to half a unit of the last printed
+// digit.
+TEST(SonineBinaryHcs, ErrataReferenceMassRatioTen) {
+  const auto hcs = theory::binary_hcs_first_sonine(seed_mixture(10.0, 2.0, 1.0, 0.5));
+  EXPECT_NEAR(hcs.temperature_ratio, 3.8005, 5e-5);
+  EXPECT_NEAR(hcs.sonine_c[0], 0.1091, 5e-5);
+  EXPECT_NEAR(hcs.sonine_c[1], 0.0180, 5e-5);
+}
+
+// ERRATA §6: mu = 2, delta = 1, w = 1, alpha = 0.5 gives gamma = 1.3618 and c1 = 0.1428 in first
+// Sonine approximation (its exact-DSMC values 1.3616 and 0.1280 are not what is tested here).
+TEST(SonineBinaryHcs, ErrataReferenceMassRatioTwo) {
+  const auto hcs = theory::binary_hcs_first_sonine(seed_mixture(2.0, 1.0, 1.0, 0.5));
+  EXPECT_NEAR(hcs.temperature_ratio, 1.3618, 5e-5);
+  EXPECT_NEAR(hcs.sonine_c[0], 0.1428, 5e-5);
+  // the heavier species is closer to a Maxwellian (seed 003 Fig. 2: c2 below c1)
+  EXPECT_LT(hcs.sonine_c[1], hcs.sonine_c[0]);
+}
+
+// Mechanically equivalent species (same m, sigma, alpha) form one component: gamma = 1,
+// c1 = c2 = 2 a2 (ERRATA §6, a2 of van Noije-Ernst, ERRATA §3), and the one-component cooling rate.
+// One-component zeta* derived from ERRATA §3: zeta = (4/3) sqrt(pi) (1 - alpha^2) n sigma^2 chi
+// sqrt(T/m) (1 + 3 a2/16); with m1 = m2 = m, sigma_12 = sigma and T1 = T2 = T,
+// v0 = sqrt(2 T (2m)/m^2) = 2 sqrt(T/m), so zeta* = zeta/(n sigma^2 v0)
+// = (2/3) sqrt(pi) (1 - alpha^2) chi (1 + 3 a2/16). Tails: beta = pi chi (seed 003 eq 20).
+TEST(SonineBinaryHcs, MechanicallyEquivalentSpeciesAreOneComponent) {
+  for (double alpha : {0.3, 0.5, 0.8, 0.95})
+    for (double delta : {1.0, 3.0})
+      for (bool enskog : {false, true}) {
+        SCOPED_TRACE(::testing::Message()
+                     << "alpha " << alpha << " delta " << delta << " enskog " << enskog);
+        const Mixture mix = seed_mixture(1.0, delta, 1.0, alpha, enskog, 0.3);
+        const double chi = mix.pair_correlation(0, 1);
+        if (enskog) {
+          ASSERT_GT(chi, 1.5);  // Carnahan-Starling really is on
+        }
+        const double a2 = theory::sonine_a2(alpha);
+        const double zeta_one =
+            (2.0 / 3.0) * std::sqrt(pi) * (1.0 - alpha * alpha) * chi * (1.0 + 3.0 * a2 / 16.0);
+        const auto hcs = theory::binary_hcs_first_sonine(mix);
+        EXPECT_NEAR(hcs.temperature_ratio, 1.0, 1e-10);
+        EXPECT_NEAR(hcs.sonine_c[0], 2.0 * a2, 1e-10);
+        EXPECT_NEAR(hcs.sonine_c[1], 2.0 * a2, 1e-10);
+        EXPECT_NEAR(hcs.cooling_rate, zeta_one, 1e-10 * zeta_one);
+        for (int i = 0; i < 2; ++i) {
+          EXPECT_NEAR(hcs.tail_beta[i], pi * chi, 1e-12 * pi * chi);
+          EXPECT_NEAR(theory::tail_decay_rate(hcs, i), 2.0 * pi * chi / zeta_one,
+                      1e-9 * pi * chi / zeta_one);
+        }
+      }
+}
+
+// All alpha = 1: equipartition (gamma = 1), Maxwellians (c = 0), no cooling, no exponential tail.
+TEST(SonineBinaryHcs, ElasticMixtureIsInEquilibrium) {
+  for (const Mixture& mix : {seed_mixture(10.0, 2.0, 1.0, 1.0), seed_mixture(0.1, 0.25, 3.0, 1.0),
+                             seed_mixture(4.0, 0.5, 0.5, 1.0, true, 0.4)}) {
+    const auto hcs = theory::binary_hcs_first_sonine(mix);
+    EXPECT_NEAR(hcs.temperature_ratio, 1.0, 1e-10);
+    EXPECT_NEAR(hcs.sonine_c[0], 0.0, 1e-10);
+    EXPECT_NEAR(hcs.sonine_c[1], 0.0, 1e-10);
+    EXPECT_NEAR(hcs.cooling_rate, 0.0, 1e-12);
+    EXPECT_GT(theory::tail_decay_rate(hcs, 0), 1e8);  // zeta* is zero up to rounding
+  }
+  const theory::BinaryHcs exactly_elastic{1.0, {0.0, 0.0}, 0.0, {pi, pi}};
+  EXPECT_EQ(theory::tail_decay_rate(exactly_elastic, 1), std::numeric_limits<double>::infinity());
+}
+
+// Interchanging the labels 1 and 2 gives 1/gamma, swapped c's and beta's and the same zeta*. The
+// mixture differs in every parameter (three different alphas, Enskog with w != 1) so that a
+// misplaced index in any of eqs 39-44 breaks the symmetry.
+TEST(SonineBinaryHcs, SwapSymmetry) {
+  const Mixture mix = seed_mixture(10.0, 2.0, 2.0, 0.7, 0.9, 0.8, true, 0.25);
+  const auto a = theory::binary_hcs_first_sonine(mix);
+  const auto b = theory::binary_hcs_first_sonine(swapped(mix));
+  EXPECT_GT(std::abs(a.temperature_ratio - 1.0), 0.05);  // far from the trivial case
+  EXPECT_NEAR(b.temperature_ratio, 1.0 / a.temperature_ratio, 1e-10 / a.temperature_ratio);
+  EXPECT_NEAR(b.sonine_c[0], a.sonine_c[1], 1e-10);
+  EXPECT_NEAR(b.sonine_c[1], a.sonine_c[0], 1e-10);
+  EXPECT_NEAR(b.cooling_rate, a.cooling_rate, 1e-10 * a.cooling_rate);
+  EXPECT_NEAR(b.tail_beta[0], a.tail_beta[1], 1e-12 * a.tail_beta[1]);
+  EXPECT_NEAR(b.tail_beta[1], a.tail_beta[0], 1e-12 * a.tail_beta[0]);
+  // and at any fixed gamma: species i at gamma is species 1 - i at 1/gamma
+  for (double gamma : {0.2, 1.0, 3.0}) {
+    const auto s = theory::binary_sonine_at_gamma(mix, gamma);
+    const auto t = theory::binary_sonine_at_gamma(swapped(mix), 1.0 / gamma);
+    for (int i = 0; i < 2; ++i) {
+      EXPECT_NEAR(t.zeta[i], s.zeta[1 - i], 1e-12 * std::abs(s.zeta[1 - i]));
+      EXPECT_NEAR(t.c[i], s.c[1 - i], 1e-12 * (1.0 + std::abs(s.c[1 - i])));
+    }
+  }
+}
+
+// The Maxwellian parts zeta_i^(0) (seed 003 eq 39, ERRATA §6) are the partial cooling rates of
+// ERRATA §4 in reduced units: zeta_i^(0) = sum_j xi_ij/(n sigma_12^2 v0),
+// v0 = sqrt(2 T (m1 + m2)/(m1 m2)), T = x1 T1 + x2 T2, T1/T2 = gamma. theory::cooling_rate_matrix
+// is an independent implementation (in dimensional form) of that formula.
+TEST(SonineCoefficients, MaxwellianCoolingRatesMatchErrataSection4) {
+  const Mixture mix = seed_mixture(0.25, 0.5, 2.0, 0.6, 0.9, 0.75, true, 0.3);
+  const double n = mix.total_density();
+  const double sigma_12 = mix.contact_distance(0, 1);
+  for (double gamma : {0.05, 0.7, 1.0, 4.0, 50.0}) {
+    SCOPED_TRACE(::testing::Message() << "gamma " << gamma);
+    const std::vector<double> T = {2.5 * gamma, 2.5};  // any temperature unit
+    const double T_mix = mix.mole_fraction(0) * T[0] + mix.mole_fraction(1) * T[1];
+    const double v0 =
+        std::sqrt(2.0 * T_mix * (mix.mass[0] + mix.mass[1]) / (mix.mass[0] * mix.mass[1]));
+    const PairMatrix xi = theory::cooling_rate_matrix(mix, T);
+    const auto k = theory::binary_sonine_coefficients(mix, gamma);
+    for (int i = 0; i < 2; ++i) {
+      const double expected = (xi(i, 0) + xi(i, 1)) / (n * sigma_12 * sigma_12 * v0);
+      EXPECT_NEAR(k.zeta0[i], expected, 1e-12 * std::abs(expected));
+    }
+    // lambda_i = T/(T_i mu_ji) and eta = mu_12/(mu_21 gamma) (seed 003 after eqs 17 and 44)
+    EXPECT_NEAR(k.lambda[0], T_mix / (T[0] * mix.mass_fraction(1, 0)), 1e-13 * k.lambda[0]);
+    EXPECT_NEAR(k.lambda[1], T_mix / (T[1] * mix.mass_fraction(0, 1)), 1e-13 * k.lambda[1]);
+    EXPECT_NEAR(k.eta, mix.mass_fraction(0, 1) / (mix.mass_fraction(1, 0) * gamma), 1e-13 * k.eta);
+  }
+}
+
+// The c's of eqs 31-32 solve the linearised fourth-moment equations of seed 003 eq 15 written out
+// directly: -2 zeta_i* <v*^4>_i = Omega_i with <v*^4>_i = 15 (1 + c_i/2)/(4 lambda_i^2), to first
+// order in the c's; and at the root of eq 45 both partial cooling rates equal zeta*.
+TEST(SonineAtGamma, SolvesFourthMomentEquationsAndEqualCoolingRates) {
+  const Mixture mix = seed_mixture(4.0, 0.5, 1.5, 0.5, 0.7, 0.6, true, 0.2);
+  for (double gamma : {0.3, 1.0, 2.0}) {
+    const auto k = theory::binary_sonine_coefficients(mix, gamma);
+    const auto s = theory::binary_sonine_at_gamma(mix, gamma);
+    for (int i = 0; i < 2; ++i) {
+      const int j = 1 - i;
+      const double w = 15.0 / (4.0 * k.lambda[i] * k.lambda[i]);
+      // linearised: -2 w [zeta_i0 (1 + c_i/2) + zeta_ii c_i + zeta_ij c_j] = Omega_i0 + ...
+      const double lhs =
+          -2.0 * w *
+          (k.zeta0[i] * (1.0 + 0.5 * s.c[i]) + k.zeta1[i][i] * s.c[i] + k.zeta1[i][j] * s.c[j]);
+      const double rhs = k.omega0[i] + k.omega1[i][i] * s.c[i] + k.omega1[i][j] * s.c[j];
+      EXPECT_NEAR(lhs, rhs, 1e-12 * (std::abs(lhs) + std::abs(rhs)));
+      EXPECT_NEAR(s.zeta[i], k.zeta0[i] + k.zeta1[i][0] * s.c[0] + k.zeta1[i][1] * s.c[1], 1e-14);
+    }
+  }
+  const auto hcs = theory::binary_hcs_first_sonine(mix);
+  const auto at_root = theory::binary_sonine_at_gamma(mix, hcs.temperature_ratio);
+  EXPECT_NEAR(at_root.zeta[0], at_root.zeta[1], 1e-12);
+  EXPECT_NEAR(hcs.cooling_rate, at_root.zeta[0], 1e-12);
+  EXPECT_DOUBLE_EQ(hcs.sonine_c[0], at_root.c[0]);
+  EXPECT_DOUBLE_EQ(hcs.sonine_c[1], at_root.c[1]);
+}
+
+// Enskog (Carnahan-Starling chi, ERRATA §5) for the case of seed 003 Fig. 6 (delta = 1/2, w = 2,
+// mu = 2): gamma is finite and changes smoothly and monotonically with n* = 0.05 .. 0.5, chi really
+// enters, and, as stated for Fig. 6, gamma(alpha, n*)/gamma(alpha, 0) is lower for alpha = 0.6 than
+// for alpha = 0.8 at every density. With alpha = 1, gamma = 1 at every density.
+TEST(SonineBinaryHcs, EnskogDensityDependence) {
+  for (double alpha : {0.6, 0.8}) {
+    SCOPED_TRACE(::testing::Message() << "alpha " << alpha);
+    const double gamma_dilute =
+        theory::binary_hcs_first_sonine(seed_mixture(2.0, 0.5, 2.0, alpha)).temperature_ratio;
+    const double other_alpha = alpha == 0.6 ? 0.8 : 0.6;
+    const double other_dilute =
+        theory::binary_hcs_first_sonine(seed_mixture(2.0, 0.5, 2.0, other_alpha)).temperature_ratio;
+    std::vector<double> gamma;
+    for (int step = 1; step <= 10; ++step) {
+      const double n_star = 0.05 * step;
+      const auto hcs =
+          theory::binary_hcs_first_sonine(seed_mixture(2.0, 0.5, 2.0, alpha, true, n_star));
+      const auto other =
+          theory::binary_hcs_first_sonine(seed_mixture(2.0, 0.5, 2.0, other_alpha, true, n_star));
+      ASSERT_TRUE(std::isfinite(hcs.temperature_ratio) && hcs.temperature_ratio > 0.0);
+      ASSERT_TRUE(std::isfinite(hcs.sonine_c[0]) && std::isfinite(hcs.sonine_c[1]));
+      ASSERT_TRUE(std::isfinite(hcs.cooling_rate) && hcs.cooling_rate > 0.0);
+      gamma.push_back(hcs.temperature_ratio);
+      const double relative = hcs.temperature_ratio / gamma_dilute;
+      const double other_relative = other.temperature_ratio / other_dilute;
+      if (alpha == 0.6)
+        EXPECT_LT(relative, other_relative) << "n* " << n_star;
+      else
+        EXPECT_GT(relative, other_relative) << "n* " << n_star;
+    }
+    // chi enters: at n* = 0.5 gamma differs from the dilute value by more than 1 %
+    EXPECT_GT(std::abs(gamma.back() / gamma_dilute - 1.0), 0.01);
+    // smooth and monotone: first differences of one sign, second differences small against them
+    for (std::size_t p = 1; p < gamma.size(); ++p) {
+      EXPECT_LT(gamma[p], gamma[p - 1]);
+      if (p + 1 < gamma.size()) {
+        const double second = gamma[p + 1] - 2.0 * gamma[p] + gamma[p - 1];
+        EXPECT_LT(std::abs(second), 0.1 * std::abs(gamma[p] - gamma[p - 1]));
+      }
+    }
+  }
+  for (double n_star : {0.1, 0.2, 0.3, 0.4, 0.5}) {
+    const auto hcs =
+        theory::binary_hcs_first_sonine(seed_mixture(2.0, 0.5, 2.0, 1.0, true, n_star));
+    EXPECT_NEAR(hcs.temperature_ratio, 1.0, 1e-10) << "n* " << n_star;
+    EXPECT_NEAR(hcs.sonine_c[0], 0.0, 1e-10);
+    EXPECT_NEAR(hcs.sonine_c[1], 0.0, 1e-10);
+  }
+}
+
+// Tails (seed 003 eq 20, ERRATA §6): beta_i = pi sum_j x_j chi_ij (sigma_ij/sigma_12)^2 and the
+// decay rate 2 beta_i/zeta*, written out here for w = 2 and Enskog chi.
+TEST(SonineTails, BetaAndDecayRate) {
+  const Mixture mix = seed_mixture(4.0, 0.5, 2.0, 0.5, true, 0.3);
+  const auto hcs = theory::binary_hcs_first_sonine(mix);
+  const double x1 = 1.0 / 3.0, x2 = 2.0 / 3.0;  // delta = 1/2
+  const double s1 = 2.0 / 1.5, s2 = 1.0 / 1.5;  // sigma_i/sigma_12, sigma_12 = 1.5
+  const double beta1 =
+      pi * (x1 * mix.pair_correlation(0, 0) * s1 * s1 + x2 * mix.pair_correlation(0, 1));
+  const double beta2 =
+      pi * (x1 * mix.pair_correlation(1, 0) + x2 * mix.pair_correlation(1, 1) * s2 * s2);
+  EXPECT_NEAR(hcs.tail_beta[0], beta1, 1e-12 * beta1);
+  EXPECT_NEAR(hcs.tail_beta[1], beta2, 1e-12 * beta2);
+  EXPECT_NEAR(theory::tail_decay_rate(hcs, 0), 2.0 * beta1 / hcs.cooling_rate,
+              1e-12 * beta1 / hcs.cooling_rate);
+  EXPECT_NEAR(theory::tail_decay_rate(hcs, 1), 2.0 * beta2 / hcs.cooling_rate,
+              1e-12 * beta2 / hcs.cooling_rate);
+  EXPECT_THROW(theory::tail_decay_rate(hcs, 2), std::invalid_argument);
+  EXPECT_THROW(theory::tail_decay_rate(hcs, -1), std::invalid_argument);
+}
+
+TEST(SonineBinaryHcs, RejectsBadInput) {
+  const Mixture one = make_mixture({1.0}, {1.0}, {1.0}, PairMatrix(1, 0.5), false);
+  const Mixture three =
+      make_mixture({1.0, 2.0, 3.0}, {1.0, 1.0, 1.0}, {1.0, 1.0, 1.0}, PairMatrix(3, 0.5), false);
+  EXPECT_THROW(theory::binary_hcs_first_sonine(one), std::invalid_argument);
+  EXPECT_THROW(theory::binary_hcs_first_sonine(three), std::invalid_argument);
+  EXPECT_THROW(theory::binary_sonine_at_gamma(three, 1.0), std::invalid_argument);
+  const Mixture two = seed_mixture(2.0, 1.0, 1.0, 0.5);
+  EXPECT_THROW(theory::binary_sonine_at_gamma(two, 0.0), std::invalid_argument);
+  EXPECT_THROW(theory::binary_sonine_at_gamma(two, -1.0), std::invalid_argument);
+  EXPECT_THROW(theory::binary_sonine_at_gamma(two, std::nan("")), std::invalid_argument);
+  EXPECT_THROW(theory::binary_hcs_first_sonine(seed_mixture(2.0, 1.0, 1.0, 1.5)),
+               std::invalid_argument);
+}
+
+// gamma grows roughly like 0.3 mu at alpha = 0.5 (mu = 1e4 gives gamma = 3196): for mu = 1e6 the
+// root lies beyond the search range 1e-4 .. 1e4 and the solver must say so instead of returning
+// garbage.
+TEST(SonineBinaryHcs, NoRootInRangeIsAnError) {
+  EXPECT_NO_THROW(theory::binary_hcs_first_sonine(seed_mixture(1e4, 2.0, 1.0, 0.5)));
+  EXPECT_THROW(theory::binary_hcs_first_sonine(seed_mixture(1e6, 2.0, 1.0, 0.5)),
+               std::runtime_error);
+}
