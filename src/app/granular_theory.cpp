@@ -22,7 +22,10 @@ const char* kUsage =
     "  temperature          {time, value[t][k]} the partial-temperature ODEs (CVODE) on the sample times\n"
     "  total_temperature, collisions_per_particle   {time, value} on the same times\n"
     "  asymptotic_temperature_ratio  [T_k/T_1] at long times (mixtures, constant restitution)\n"
-    "  sonine_a2, cooling_rate_sonine               one species: van Noije-Ernst a2 and (1+3a2/16) zeta\n";
+    "  sonine_a2, cooling_rate_sonine               one species: van Noije-Ernst a2 and (1+3a2/16) zeta\n"
+    "  temperature_ratio, sonine_c, cooling_rate_reduced, tail_beta, tail_decay_rate\n"
+    "                       binary mixtures: the HCS in first Sonine approximation (seed 003, ERRATA §6)\n"
+    "With &sweep: {\"sweep\": {variable, values}, \"points\": [one object as above per value]}.\n";
 
 std::string number(double x) {
   char buf[32];
@@ -67,6 +70,87 @@ std::vector<double> times_for_collisions(const gdsmc::species::Mixture& mix,
   return out;
 }
 
+
+std::string escape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+/// The theory of one system as a JSON object; `indent` prefixes every line.
+std::string point_json(const gdsmc::io::config::Config& config, const std::string& indent) {
+  namespace th = gdsmc::theory;
+  const auto mix = config.mixture();
+  const std::size_t s = mix.size();
+  const auto& t0 = config.initial.temperature;
+  const double n = mix.total_density();
+
+  // Collisions suffered by species k per unit volume: 2 P_kk + sum_{j != k} P_kj (ERRATA §2).
+  const auto pair = th::pair_collision_rate(mix, t0);
+  std::vector<double> frequency(s), cooling(s);
+  const auto xi = th::cooling_rate_matrix(mix, t0);
+  for (std::size_t k = 0; k < s; ++k) {
+    double suffered = 0.0, z = 0.0;
+    for (std::size_t j = 0; j < s; ++j) {
+      suffered += (j == k ? 2.0 : 1.0) * pair(k, j);
+      z += xi(k, j);
+    }
+    frequency[k] = suffered / mix.number_density[k];
+    cooling[k] = z;
+  }
+
+  std::vector<double> times = config.sample_times();
+  if (times.empty()) times = times_for_collisions(mix, t0, config.sample_collisions());
+  const auto history = th::integrate_partial_temperatures(mix, t0, times);
+
+  const std::string in = indent + "  ";
+  std::ostringstream json;
+  json << indent << "{\n" << in << "\"n_species\": " << s << ",\n";
+  json << in << "\"collision_frequency\": " << array(frequency) << ",\n";
+  json << in << "\"cooling_rate\": " << array(cooling) << ",\n";
+  json << in << "\"temperature\": {\"time\": " << array(history.time) << ", \"value\": [";
+  std::vector<double> total, collisions;
+  for (std::size_t i = 0; i < history.time.size(); ++i) {
+    json << (i ? ", " : "") << array(history.temperature[i]);
+    double tt = 0.0;
+    for (std::size_t k = 0; k < s; ++k) tt += mix.number_density[k] * history.temperature[i][k];
+    total.push_back(tt / n);
+    collisions.push_back(2.0 * history.collisions[i] / n);
+  }
+  json << "]},\n";
+  json << in << "\"total_temperature\": {\"time\": " << array(history.time) << ", \"value\": "
+       << array(total) << "},\n";
+  json << in << "\"collisions_per_particle\": {\"time\": " << array(history.time)
+       << ", \"value\": " << array(collisions) << "}";
+  if (s == 1) {
+    const double alpha = mix.restitution(0, 0);
+    const double a2 = th::sonine_a2(alpha);
+    json << ",\n" << in << "\"sonine_a2\": " << number(a2) << ",\n" << in << "\"sonine_c\": ["
+         << number(2.0 * a2) << "],\n" << in << "\"cooling_rate_sonine\": ["
+         << number(cooling[0] * (1.0 + 3.0 * a2 / 16.0)) << "]";
+  } else {
+    bool inelastic = true;
+    for (double a : mix.restitution.values) inelastic = inelastic && a < 1.0;
+    if (inelastic)
+      json << ",\n" << in << "\"asymptotic_temperature_ratio\": " << array(th::asymptotic_temperature_ratios(mix));
+  }
+  if (s == 2) {  // binary HCS in first Sonine approximation (seed 003 App. A, ERRATA §6)
+    const auto hcs = th::binary_hcs_first_sonine(mix);
+    json << ",\n" << in << "\"temperature_ratio\": " << number(hcs.temperature_ratio);
+    json << ",\n" << in << "\"sonine_c\": " << array({hcs.sonine_c[0], hcs.sonine_c[1]});
+    json << ",\n" << in << "\"cooling_rate_reduced\": " << number(hcs.cooling_rate);
+    json << ",\n" << in << "\"tail_beta\": " << array({hcs.tail_beta[0], hcs.tail_beta[1]});
+    if (hcs.cooling_rate > 0.0)
+      json << ",\n" << in << "\"tail_decay_rate\": "
+           << array({th::tail_decay_rate(hcs, 0), th::tail_decay_rate(hcs, 1)});
+  }
+  json << "\n" << indent << "}";
+  return json.str();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -99,60 +183,21 @@ int main(int argc, char** argv) {
   }
 
   try {
-    namespace th = gdsmc::theory;
-    const auto mix = config.mixture();
-    const std::size_t s = mix.size();
-    const auto& t0 = config.initial.temperature;
-    const double n = mix.total_density();
-
-    // Collisions suffered by species k per unit volume: 2 P_kk + sum_{j != k} P_kj (ERRATA §2).
-    const auto pair = th::pair_collision_rate(mix, t0);
-    std::vector<double> frequency(s), cooling(s);
-    const auto xi = th::cooling_rate_matrix(mix, t0);
-    for (std::size_t k = 0; k < s; ++k) {
-      double suffered = 0.0, z = 0.0;
-      for (std::size_t j = 0; j < s; ++j) {
-        suffered += (j == k ? 2.0 : 1.0) * pair(k, j);
-        z += xi(k, j);
-      }
-      frequency[k] = suffered / mix.number_density[k];
-      cooling[k] = z;
-    }
-
-    std::vector<double> times = config.sample_times();
-    if (times.empty()) times = times_for_collisions(mix, t0, config.sample_collisions());
-    const auto history = th::integrate_partial_temperatures(mix, t0, times);
-
-    std::ostringstream json;
-    json << "{\n  \"n_species\": " << s << ",\n";
-    json << "  \"collision_frequency\": " << array(frequency) << ",\n";
-    json << "  \"cooling_rate\": " << array(cooling) << ",\n";
-    json << "  \"temperature\": {\"time\": " << array(history.time) << ", \"value\": [";
-    std::vector<double> total, collisions;
-    for (std::size_t i = 0; i < history.time.size(); ++i) {
-      json << (i ? ", " : "") << array(history.temperature[i]);
-      double tt = 0.0;
-      for (std::size_t k = 0; k < s; ++k) tt += mix.number_density[k] * history.temperature[i][k];
-      total.push_back(tt / n);
-      collisions.push_back(2.0 * history.collisions[i] / n);
-    }
-    json << "]},\n";
-    json << "  \"total_temperature\": {\"time\": " << array(history.time) << ", \"value\": "
-         << array(total) << "},\n";
-    json << "  \"collisions_per_particle\": {\"time\": " << array(history.time)
-         << ", \"value\": " << array(collisions) << "}";
-    if (s == 1) {
-      const double alpha = mix.restitution(0, 0);
-      const double a2 = th::sonine_a2(alpha);
-      json << ",\n  \"sonine_a2\": " << number(a2) << ",\n  \"sonine_c\": [" << number(2.0 * a2)
-           << "],\n  \"cooling_rate_sonine\": [" << number(cooling[0] * (1.0 + 3.0 * a2 / 16.0)) << "]";
+    if (!config.is_sweep()) {
+      std::cout << point_json(config, "") << "\n";
     } else {
-      bool constant = true;
-      for (double a : mix.restitution.values) constant = constant && a < 1.0;
-      if (constant) json << ",\n  \"asymptotic_temperature_ratio\": " << array(th::asymptotic_temperature_ratios(mix));
+      // One object per point, in the order of &sweep values (as /sweep/point_K of granular-dsmc).
+      std::ostringstream json;
+      json << "{\n  \"sweep\": {\"variable\": \"" << config.sweep.variable << "\", \"values\": [";
+      for (std::size_t k = 0; k < config.sweep.values.size(); ++k)
+        json << (k ? ", " : "") << "\"" << escape(config.sweep.values[k]) << "\"";
+      json << "]},\n  \"points\": [\n";
+      const auto points = config.sweep_points();
+      for (std::size_t k = 0; k < points.size(); ++k)
+        json << (k ? ",\n" : "") << point_json(points[k], "    ");
+      json << "\n  ]\n}\n";
+      std::cout << json.str();
     }
-    json << "\n}\n";
-    std::cout << json.str();
   } catch (const std::exception& e) {
     std::cerr << "granular-theory: " << e.what() << "\n";
     return 1;
