@@ -770,3 +770,11 @@ TEST(ConfigError, SweepNeedsBothVariables) {
   EXPECT_THROW(read_text(with_sweep("&sweep values = 0.5 /")), namelist::Error);
   EXPECT_THROW(read_text(with_sweep("&sweep variable = 'system:restitution' /")), namelist::Error);
 }
+
+TEST(ConfigSweep, QuotedValuesSweepAnArray) {
+  const auto c = read_text(with_sweep(
+      "&sweep variable = 'system:number_density', values = '0.01, 0.02', '0.03, 0.06' /"));
+  const auto points = c.sweep_points();
+  ASSERT_EQ(points.size(), 2u);
+  EXPECT_EQ(points[1].system.number_density, (std::vector<double>{0.03, 0.06}));
+}

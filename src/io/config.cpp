@@ -569,6 +569,38 @@ void reference_group(std::ostringstream& s, const std::string& group, const std:
 Config read_point(const namelist::Document& document, const std::vector<std::string>& overrides,
                   bool expand_sweep);
 
+/// Whether `group:name` is a string variable (a quoted sweep value of any other variable is
+/// inserted without its quotes, so that an array can be swept: values = '0.01, 0.02', ...).
+template <class G>
+bool is_string_field(const std::vector<Field<G>>& fields, const std::string& name) {
+  for (const auto& f : fields)
+    if (f.name == name) return std::holds_alternative<std::string G::*>(f.member);
+  return false;
+}
+
+bool is_string_variable(const std::string& group, const std::string& name) {
+  if (group == "system") return is_string_field(system_fields(), name);
+  if (group == "initial") return is_string_field(initial_fields(), name);
+  if (group == "dsmc") return is_string_field(dsmc_fields(), name);
+  if (group == "output") return is_string_field(output_fields(), name);
+  return false;
+}
+
+/// The override that sets sweep point `value` of `variable` ("group:name").
+std::string sweep_override(const std::string& variable, const std::string& value) {
+  const auto colon = variable.find(':');
+  const bool quoted = value.size() >= 2 && value.front() == '\'' && value.back() == '\'';
+  if (quoted && !is_string_variable(lower(variable.substr(0, colon)), lower(variable.substr(colon + 1)))) {
+    std::string text;  // unquote: '' inside stands for one quote
+    for (std::size_t i = 1; i + 1 < value.size(); ++i) {
+      text += value[i];
+      if (value[i] == '\'' && value[i + 1] == '\'') ++i;
+    }
+    return variable + "=" + text;
+  }
+  return variable + "=" + value;
+}
+
 /// &sweep: the variable names a variable of another group, there are values, and every point
 /// reads and checks as a Config of its own (so a bad value stops the run before any work).
 void check_sweep(const Config& c, const Provenance& prov, const namelist::Document& document,
@@ -589,7 +621,7 @@ void check_sweep(const Config& c, const Provenance& prov, const namelist::Docume
                 "&dsmc or &output");
   for (std::size_t k = 0; k < sweep.values.size(); ++k) {
     auto o = overrides;
-    o.push_back(sweep.variable + "=" + sweep.values[k]);
+    o.push_back(sweep_override(sweep.variable, sweep.values[k]));
     try {
       read_point(document, o, false);
     } catch (const Error& e) {
@@ -664,7 +696,7 @@ std::vector<Config> Config::sweep_points() const {
   std::vector<Config> points;
   for (const auto& value : sweep.values) {
     auto o = overrides;
-    o.push_back(sweep.variable + "=" + value);
+    o.push_back(sweep_override(sweep.variable, value));
     points.push_back(read_point(document, o, false));
   }
   return points;

@@ -79,7 +79,9 @@ struct Output {
 /// are curves against alpha, mu, ...). Absent or empty variable: no sweep.
 struct Sweep {
   std::string variable;             ///< "group:name", e.g. 'system:restitution'
-  std::vector<std::string> values;  ///< the values as namelist text (strings quoted), in order
+  std::vector<std::string> values;  ///< the values as namelist text (strings quoted), in order;
+                                    ///< a quoted value of a non-string variable is inserted as text,
+                                    ///< so arrays sweep too: values = '0.01, 0.02', '0.02, 0.04'
 };
 
 struct Config {
