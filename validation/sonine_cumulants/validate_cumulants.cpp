@@ -1,0 +1,49 @@
+// c1, c2 of the binary HCS against first Sonine (seed 003 Fig 2). See README.md.
+#include <algorithm>
+#include <cmath>
+
+#include "theory/theory.hpp"
+#include "validation.hpp"
+
+using namespace gdsmc;
+
+int main(int argc, char** argv) {
+  const auto run = validation::run_case(argc, argv, "sonine_cumulants.h5");
+  // First Sonine overestimates the cumulants (ERRATA §6: 9-14 % for one species, c1 = 0.1280 +- 0.0004
+  // against 0.1428 at mu = 2, alpha = 0.5). Allowance: a stated fraction of the first-Sonine value,
+  // the gap measured with the paper tier of this check (README.md).
+  const double sonine_gap = 0.20;
+  validation::Report report("Sonine cumulants c1, c2 against alpha", run.report_file());
+  report.note("systematic allowance: " + std::to_string(100.0 * sonine_gap).substr(0, 4) +
+              " % of the first-Sonine value (first Sonine's own error, README.md)");
+  const auto points = run.config.sweep_points();
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    const auto mix = points[p].mixture();
+    const auto hcs = theory::binary_hcs_first_sonine(mix);
+    const std::string root = run.config.is_sweep() ? "/sweep/point_" + std::to_string(p + 1) + "/observables/"
+                                                   : std::string();
+    const auto c = io::h5md::read_observable(run.file, root + "sonine_c");
+    const auto coll = io::h5md::read_observable(run.file, root + "collisions_per_particle");
+    if (!report.require("replicas > 1, so standard errors exist", !c.error.empty())) return report.exit_code();
+    // Average over the scaling regime (>= 10 collisions per particle). The mean of the per-sample SEs
+    // bounds the SE of the average (the samples are positively correlated at most).
+    for (std::size_t k = 0; k < 2; ++k) {
+      double sum = 0.0, se = 0.0;
+      std::size_t count = 0;
+      for (std::size_t i = 0; i < coll.value.size(); ++i)
+        if (coll.value[i] >= 10.0) {
+          sum += c.value[2 * i + k];
+          se += c.error[2 * i + k];
+          ++count;
+        }
+      if (!report.require("samples in the scaling regime", count > 0)) return report.exit_code();
+      const double mean = sum / count, theory_c = hcs.sonine_c[k];
+      char name[160];
+      std::snprintf(name, sizeof name, "alpha = %.2f: c%zu (DSMC/Sonine - 1 = %+.1f %%)", mix.restitution(0, 0),
+                    k + 1, 100.0 * (mean / theory_c - 1.0));
+      report.check(name, mean, se / count, theory_c, 3.0, sonine_gap * std::abs(theory_c));
+    }
+    report.note("one-component first Sonine c = 2 a2 = " + std::to_string(2.0 * theory::sonine_a2(mix.restitution(0, 0))));
+  }
+  return report.exit_code();
+}
