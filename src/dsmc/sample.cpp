@@ -73,6 +73,54 @@ std::vector<double> velocity_histogram(const species::Mixture& mix, const partic
   return h;
 }
 
+double reduced_velocity_scale(const species::Mixture& mix, double total_temperature) {
+  if (mix.size() > 2) return 0.0;
+  const double m1 = mix.mass[0], m2 = mix.size() == 2 ? mix.mass[1] : mix.mass[0];
+  return std::sqrt(2.0 * total_temperature * (m1 + m2) / (m1 * m2));  // ERRATA §6
+}
+
+void add_reduced_speeds(const species::Mixture& /*mix*/, const particles::System& sys,
+                        const Moments& moments, double v0, std::size_t bins, double range,
+                        std::vector<double>& counts) {
+  const std::size_t s = sys.n_species();
+  counts.resize(s * bins, 0.0);
+  const double scale = static_cast<double>(bins) / (range * v0);
+  const double* u = moments.mean_flow;
+  for (std::size_t k = 0; k < s; ++k) {
+    double* ck = counts.data() + k * bins;
+    const std::size_t end = sys.first[k] + sys.count[k];
+    for (std::size_t i = sys.first[k]; i < end; ++i) {
+      const double cx = sys.vx[i] - u[0], cy = sys.vy[i] - u[1], cz = sys.vz[i] - u[2];
+      const auto b = static_cast<std::size_t>(std::sqrt(cx * cx + cy * cy + cz * cz) * scale);
+      if (b < bins) ck[b] += 1.0;
+    }
+  }
+}
+
+std::vector<double> reduced_distribution(const std::vector<double>& counts,
+                                         const std::vector<double>& number, double samples,
+                                         std::size_t bins, double range) {
+  std::vector<double> phi(counts.size(), 0.0);
+  const double width = range / static_cast<double>(bins);
+  for (std::size_t k = 0; k < number.size(); ++k)
+    for (std::size_t b = 0; b < bins; ++b) {
+      const double a = width * static_cast<double>(b), e = a + width;
+      const double shell = 4.0 * M_PI / 3.0 * (e * e * e - a * a * a);
+      phi[k * bins + b] = counts[k * bins + b] / (samples * number[k] * shell);
+    }
+  return phi;
+}
+
+double maxwellian_shell_average(double lambda, double a, double b) {
+  // Q(v) = 1 - P(v) = erfc(x) + (2/sqrt(pi)) x exp(-x^2), x = sqrt(lambda) v: the Maxwell speed
+  // distribution's upper tail, written without the cancellation of 1 - erf in the far tail.
+  auto tail = [lambda](double v) {
+    const double x = std::sqrt(lambda) * v;
+    return std::erfc(x) + 2.0 / std::sqrt(M_PI) * x * std::exp(-x * x);
+  };
+  return (tail(a) - tail(b)) / (4.0 * M_PI / 3.0 * (b * b * b - a * a * a));
+}
+
 void Accumulator::add(std::size_t replica, const std::vector<double>& row) {
   if (values.size() <= replica) values.resize(replica + 1);
   values[replica].insert(values[replica].end(), row.begin(), row.end());

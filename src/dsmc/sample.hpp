@@ -45,6 +45,25 @@ Moments measure(const species::Mixture& mix, const particles::System& sys);
 std::vector<double> velocity_histogram(const species::Mixture& mix, const particles::System& sys,
                                        const Moments& moments, std::size_t bins, double range);
 
+/// v0 = sqrt(2 T (m1 + m2)/(m1 m2)), the velocity unit of the reduced distributions of a binary
+/// mixture (seed 003 sec. 2, ERRATA §6); for one species m1 = m2 = m. 0 for more than two species.
+double reduced_velocity_scale(const species::Mixture& mix, double total_temperature);
+
+/// Adds the reduced speeds v* = |v - u|/v0 of each species to `counts` (S x bins over [0, range)).
+void add_reduced_speeds(const species::Mixture& mix, const particles::System& sys,
+                        const Moments& moments, double v0, std::size_t bins, double range,
+                        std::vector<double>& counts);
+
+/// Phi_i(v*) from speed counts gathered over `samples` sample points: the number density in
+/// reduced velocity space, normalised to 1 (f_i(v) = n_i v0^-3 Phi_i(v/v0), seed 003 sec. 2),
+/// averaged over each spherical shell: counts / (samples N_i (4 pi/3)(e_{b+1}^3 - e_b^3)).
+std::vector<double> reduced_distribution(const std::vector<double>& counts,
+                                         const std::vector<double>& number, double samples,
+                                         std::size_t bins, double range);
+
+/// The Maxwellian (lambda/pi)^(3/2) exp(-lambda v*^2) averaged over the shell [a, b) (exact, with erf).
+double maxwellian_shell_average(double lambda, double a, double b);
+
 /// One observable's samples from all replicas: values[replica][sample * columns + column].
 struct Accumulator {
   std::size_t columns = 1;

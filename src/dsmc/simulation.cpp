@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <map>
@@ -77,6 +78,9 @@ PointResult run_point(const io::config::Config& config, const Options& options, 
   const std::vector<double> targets = time_driven ? config.sample_times() : config.sample_collisions();
   const std::size_t n_samples = targets.size();
   const std::size_t n_pairs = s * (s + 1) / 2;
+  const bool reduced = s <= 2;  // v0 and Phi_i(v*) are defined for one or two species (seed 003)
+  const auto reduced_bins = static_cast<std::size_t>(config.output.reduced_bins);
+  const double reduced_range = config.output.reduced_range;
 
   PointResult result;
   auto column = [&](const std::string& name, std::size_t columns) -> sample::Accumulator& {
@@ -107,6 +111,9 @@ PointResult run_point(const io::config::Config& config, const Options& options, 
                                                    init_stream);
     collide::Collider collider(scheme, mix, sys, rng::make_stream(seed, r, rng::Purpose::collisions),
                                config.dsmc.step_fraction);
+    // The HCS part of this replica: samples past scaling_start collisions per particle.
+    std::vector<double> speed_counts, c_sum(s, 0.0), share_sum(s, 0.0);
+    double scaling_samples = 0.0, t_first = 0.0, t_last = 0.0, temp_first = 0.0, temp_last = 0.0;
     for (std::size_t i = 0; i < n_samples; ++i) {
       if (options.interrupt && options.interrupt->load()) throw Interrupted();
       const auto t0 = Clock::now();
@@ -148,6 +155,22 @@ PointResult run_point(const io::config::Config& config, const Options& options, 
       column("time", 1).add(r, {collider.time()});
       column("velocity_histogram", s * bins)
           .add(r, sample::velocity_histogram(mix, sys, m, bins, range));
+      const double per_particle = 2.0 * static_cast<double>(counters.events) / static_cast<double>(n_total);
+      if (reduced && i > 0 && per_particle >= config.output.scaling_start) {
+        sample::add_reduced_speeds(mix, sys, m, sample::reduced_velocity_scale(mix, m.total_temperature),
+                                   reduced_bins, reduced_range, speed_counts);
+        for (std::size_t k = 0; k < s; ++k) {
+          c_sum[k] += m.sonine_c[k];
+          share_sum[k] += m.temperature[k] / m.total_temperature;
+        }
+        if (scaling_samples == 0.0) {
+          t_first = collider.time();
+          temp_first = m.total_temperature;
+        }
+        t_last = collider.time();
+        temp_last = m.total_temperature;
+        scaling_samples += 1.0;
+      }
 
       const double rate = result.collide_seconds > 0
                               ? static_cast<double>(result.events + counters.events) / result.collide_seconds
@@ -156,9 +179,92 @@ PointResult run_point(const io::config::Config& config, const Options& options, 
     }
     result.events += collider.counters().events;
     mean_step_sum += collider.mean_step();
+    if (scaling_samples >= 2.0 && t_last > t_first) {
+      // Rows are added for the replicas that reached the scaling regime, one after another.
+      const std::size_t row = result.observables["reduced_distribution"].values.size();
+      column("reduced_distribution", s * reduced_bins)
+          .add(row, sample::reduced_distribution(speed_counts, std::vector<double>(counts.begin(), counts.end()),
+                                                 scaling_samples, reduced_bins, reduced_range));
+      for (auto& c : c_sum) c /= scaling_samples;
+      for (auto& x : share_sum) x /= scaling_samples;
+      column("reduced_sonine_c", s).add(row, c_sum);
+      column("reduced_temperature_share", s).add(row, share_sum);
+      // zeta* = zeta/(n sigma_12^2 v0) with zeta = 2 sqrt(T) d(T^-1/2)/dt, constant in the HCS
+      // (ERRATA §3, §6): zeta* = 2 slope / (n sigma_12^2 sqrt(2 (m1 + m2)/(m1 m2))).
+      const double slope = (1.0 / std::sqrt(temp_last) - 1.0 / std::sqrt(temp_first)) / (t_last - t_first);
+      const double sigma12 = mix.contact_distance(0, s - 1);
+      const double v0_unit = sample::reduced_velocity_scale(mix, 1.0);
+      column("reduced_cooling_rate", 1)
+          .add(row, {2.0 * slope / (mix.total_density() * sigma12 * sigma12 * v0_unit)});
+    }
   }
   result.mean_step = mean_step_sum / static_cast<double>(replicas);
   return result;
+}
+
+/// The HCS distributions of one point (seed 003 sec. 4): Phi_i(v*), the deviation Delta_i(v*) of
+/// eq 27 with the measured c_i and lambda_i = T/(T_i mu_ji), and G_i(v*) = exp(2 beta_i v*/zeta*) Phi_i
+/// of eq 30 with beta_i of eq 20 and the measured reduced cooling rate zeta*.
+void write_reduced(io::h5md::Writer& writer, const std::string& root, const io::config::Config& config,
+                   PointResult& result) {
+  auto& acc = result.observables;
+  const auto mix = config.mixture();
+  const std::size_t s = mix.size();
+  const auto bins = static_cast<std::size_t>(config.output.reduced_bins);
+  const double range = config.output.reduced_range, width = range / static_cast<double>(bins);
+  const auto phi = acc["reduced_distribution"].mean();
+  const auto phi_error = acc["reduced_distribution"].standard_error();
+  const auto c = acc["reduced_sonine_c"].mean();
+  const auto share = acc["reduced_temperature_share"].mean();
+  const double zeta = acc["reduced_cooling_rate"].mean()[0];
+  const auto zeta_error = acc["reduced_cooling_rate"].standard_error();
+  const std::string group = root + "/reduced_distribution";
+  std::vector<double> edges(bins + 1);
+  for (std::size_t b = 0; b <= bins; ++b) edges[b] = width * static_cast<double>(b);
+  writer.write_dataset(group + "/bin_edges", edges, {bins + 1});
+  const double sigma12 = mix.contact_distance(0, s - 1);
+  for (std::size_t k = 0; k < s; ++k) {
+    const std::size_t j = s - 1 - k;  // the other species (itself for one species)
+    const double mu_jk = mix.mass[j] / (mix.mass[k] + mix.mass[j]);
+    const double lambda = 1.0 / (share[k] * mu_jk);  // lambda_i = T/(T_i mu_ji), ERRATA §6
+    double beta = 0.0;  // seed 003 eq 20, ERRATA §6
+    for (std::size_t l = 0; l < s; ++l) {
+      const double ratio = mix.contact_distance(k, l) / sigma12;
+      beta += M_PI * mix.mole_fraction(l) * mix.pair_correlation(k, l) * ratio * ratio;
+    }
+    std::vector<double> value(bins), error(bins), delta(bins), delta_error(bins), g(bins), g_error(bins);
+    for (std::size_t b = 0; b < bins; ++b) {
+      value[b] = phi[k * bins + b];
+      error[b] = phi_error.empty() ? 0.0 : phi_error[k * bins + b];
+      const double maxwell = sample::maxwellian_shell_average(lambda, edges[b], edges[b + 1]);
+      // eq 27; far out the Maxwellian underflows to 0 and Delta is undefined: written as 0 there
+      // (never NaN), and Phi itself, always finite, is the quantity to read in the far tail.
+      const bool defined = maxwell > 0.0 && c[k] != 0.0;
+      delta[b] = defined ? 2.0 / c[k] * (value[b] / maxwell - 1.0) : 0.0;
+      delta_error[b] = defined ? 2.0 / std::abs(c[k]) * error[b] / maxwell : 0.0;
+      const double weight = std::exp(2.0 * beta * 0.5 * (edges[b] + edges[b + 1]) / zeta);  // eq 30
+      g[b] = weight * value[b];
+      g_error[b] = weight * error[b];
+    }
+    const std::string sp = group + "/species_" + std::to_string(k + 1);
+    writer.write_dataset(sp + "/value", value, {bins});
+    if (!phi_error.empty()) writer.write_dataset(sp + "/error", error, {bins});
+    writer.write_dataset(sp + "/delta", delta, {bins});
+    if (!phi_error.empty()) writer.write_dataset(sp + "/delta_error", delta_error, {bins});
+    writer.write_dataset(sp + "/g", g, {bins});
+    if (!phi_error.empty()) writer.write_dataset(sp + "/g_error", g_error, {bins});
+    writer.write_attribute(sp, "sonine_c", c[k]);
+    writer.write_attribute(sp, "lambda", lambda);
+    writer.write_attribute(sp, "tail_beta", beta);
+  }
+  writer.write_attribute(group, "cooling_rate_reduced", zeta);
+  if (!zeta_error.empty()) writer.write_attribute(group, "cooling_rate_reduced_error", zeta_error[0]);
+  writer.write_attribute(group, "replicas", static_cast<long long>(acc["reduced_distribution"].values.size()));
+  writer.write_attribute(group, "scaling_start", config.output.scaling_start);
+  writer.write_attribute(group, "description",
+                         std::string("Phi_i(v*), v* = |v - u|/v0, v0 = sqrt(2T(m1+m2)/(m1 m2)), averaged over the "
+                                     "samples past scaling_start collisions per particle; delta = Delta_i of "
+                                     "seed 003 eq 27, g = G_i of eq 30 (measured c_i, lambda_i, zeta*)"));
 }
 
 /// Writes one point's observables under `root` ("/observables" or "/sweep/point_K/observables").
@@ -174,7 +280,7 @@ void write_point(io::h5md::Writer& writer, const std::string& root, const io::co
   for (std::size_t i = 0; i < n_samples; ++i) step[i] = static_cast<long long>(i);
 
   for (const auto& [name, a] : acc) {
-    if (name == "velocity_histogram") continue;
+    if (name == "velocity_histogram" || name.rfind("reduced_", 0) == 0) continue;
     io::h5md::Series series;
     series.time = time_mean;
     series.step = step;
@@ -203,6 +309,7 @@ void write_point(io::h5md::Writer& writer, const std::string& root, const io::co
       edges[b] = -range + 2.0 * range * static_cast<double>(b) / static_cast<double>(bins);
     writer.write_dataset(root + "/velocity_histogram/bin_edges", edges, {bins + 1});
   }
+  if (acc.count("reduced_distribution")) write_reduced(writer, root, config, result);
   writer.write_attribute(root + "/temperature", "description",
                          std::string("partial temperatures T_k = m_k <|v-u|^2>/3, columns = species"));
   writer.write_attribute(root + "/sonine_c", "description",

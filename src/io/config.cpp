@@ -120,6 +120,13 @@ const std::vector<Field<Output>>& output_fields() {
        "first sample after 0 with spacing = 'log' (default: end / 1000)", kPositive},
       {"histogram_bins", &Output::histogram_bins, "", "bins of the velocity histograms",
        Range{1, 1e5}},
+      {"reduced_bins", &Output::reduced_bins, "",
+       "bins of the reduced speed distributions Phi_i(v*) (seed 003 eq 22; one or two species)",
+       Range{1, 1e5}},
+      {"reduced_range", &Output::reduced_range, "v0", "Phi_i(v*) covers 0 <= v* < range", kPositive},
+      {"scaling_start", &Output::scaling_start, "collisions per particle",
+       "Phi_i, Delta_i, G_i are accumulated over the samples from here on (the HCS after its transient)",
+       at_least(0)},
       {"histogram_range", &Output::histogram_range, "sqrt(T_k/m_k)",
        "velocity histograms cover [-range, range] in thermal units", kPositive},
   };

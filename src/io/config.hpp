@@ -73,6 +73,9 @@ struct Output {
   std::optional<double> first_sample;  ///< log spacing: first sample after 0 (default end / 1000)
   long long histogram_bins = 50;
   double histogram_range = 5.0;
+  long long reduced_bins = 100;   ///< bins of Phi_i(v*) (one or two species)
+  double reduced_range = 5.0;     ///< Phi_i(v*) covers 0 <= v* < reduced_range
+  double scaling_start = 10.0;    ///< collisions per particle after which the HCS is sampled
 };
 
 /// &sweep: one variable over a list of values; every point is a run of its own (seed 003 figures
