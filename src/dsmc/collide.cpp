@@ -143,7 +143,7 @@ bool Collider::advance(double t_target, std::uint64_t event_target) {
 
 // Candidates of one sub-step at a fixed rate: candidate c (0-based) happens at
 // time_ - credit_ + (c + 1)/R; what is left of the sub-step is carried in credit_.
-// `try_candidate(a, b)` draws one candidate and, when it is accepted, collides and counts it,
+// `try_candidate(a, b, t)` draws one candidate at time t and, when it is accepted, collides and counts it,
 // sets the two particles and returns true. A template, so each scheme's loop is inlined whole.
 template <class TryCandidate>
 int Collider::run_substep(double t_stop, std::uint64_t event_target, TryCandidate&& try_candidate) {
@@ -153,7 +153,7 @@ int Collider::run_substep(double t_stop, std::uint64_t event_target, TryCandidat
   const double t0 = time_ - credit_;
   for (std::uint64_t c = 0; c < n_candidates; ++c) {
     std::size_t a, b;
-    if (!try_candidate(a, b)) continue;
+    if (!try_candidate(a, b, t0 + static_cast<double>(c + 1) * dt_candidate)) continue;
     const bool raised = raise_max_speed(a) | raise_max_speed(b);
     if (raised || counters_.events >= event_target) {
       counters_.candidates += c + 1;
@@ -169,12 +169,13 @@ int Collider::run_substep(double t_stop, std::uint64_t event_target, TryCandidat
 }
 
 int Collider::run_majorant(double t_stop, std::uint64_t event_target) {
+  const bool track = sys_.tracks_displacements();  // may start in the middle of a run
   const std::size_t n = sys_.size();
   double* vx = sys_.vx.data();
   double* vy = sys_.vy.data();
   double* vz = sys_.vz.data();
   const std::uint32_t* sp = sys_.species.data();
-  return run_substep(t_stop, event_target, [&](std::size_t& a, std::size_t& b) {
+  return run_substep(t_stop, event_target, [&](std::size_t& a, std::size_t& b, double t_collision) {
     a = gen_.below(n);
     b = gen_.below(n - 1);
     if (b >= a) ++b;
@@ -195,6 +196,10 @@ int Collider::run_majorant(double t_stop, std::uint64_t event_target) {
     ex /= norm;
     ey /= norm;
     ez /= norm;
+    if (track) {
+      particles::flush_free_flight(sys_, a, t_collision);
+      particles::flush_free_flight(sys_, b, t_collision);
+    }
     apply_collision(sys_, a, b, ex, ey, ez, alpha_[pair], mass_fraction_[pair]);
     count_event(ka, kb);
     return true;
@@ -202,7 +207,8 @@ int Collider::run_majorant(double t_stop, std::uint64_t event_target) {
 }
 
 int Collider::run_pairs(double t_stop, std::uint64_t event_target) {
-  return run_substep(t_stop, event_target, [&](std::size_t& k, std::size_t& l) {
+  const bool track = sys_.tracks_displacements();  // may start in the middle of a run
+  return run_substep(t_stop, event_target, [&](std::size_t& k, std::size_t& l, double t_collision) {
     // The ordered species pair (i, j) with probability R_ij / R.
     const double u = gen_.uniform() * rate_;
     const std::size_t pair = static_cast<std::size_t>(
@@ -223,6 +229,10 @@ int Collider::run_pairs(double t_stop, std::uint64_t event_target) {
                            (sys_.vz[k] - sys_.vz[l]) * ez;
     // Step (2): accept with Theta(g.e) |g.e| / g_max, g_max = vmax_i + vmax_j.
     if (g_dot_e <= 0.0 || gen_.uniform() * (max_speed_[i] + max_speed_[j]) >= g_dot_e) return false;
+    if (track) {
+      particles::flush_free_flight(sys_, k, t_collision);
+      particles::flush_free_flight(sys_, l, t_collision);
+    }
     apply_collision(sys_, k, l, ex, ey, ez, alpha_[pair], mass_fraction_[pair]);
     count_event(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
     return true;
@@ -230,10 +240,11 @@ int Collider::run_pairs(double t_stop, std::uint64_t event_target) {
 }
 
 int Collider::run_lowrank(double t_stop, std::uint64_t event_target) {
+  const bool track = sys_.tracks_displacements();  // may start in the middle of a run
   double* vx = sys_.vx.data();
   double* vy = sys_.vy.data();
   double* vz = sys_.vz.data();
-  return run_substep(t_stop, event_target, [&](std::size_t& a, std::size_t& b) {
+  return run_substep(t_stop, event_target, [&](std::size_t& a, std::size_t& b, double t_collision) {
     const auto [i, k] = lowrank_.sample(gen_);  // (i, k) with probability A_ik / R
     a = sys_.first[i] + gen_.below(sys_.count[i]);
     b = sys_.first[k] + gen_.below(sys_.count[k]);
@@ -252,6 +263,10 @@ int Collider::run_lowrank(double t_stop, std::uint64_t event_target) {
     ex /= norm;
     ey /= norm;
     ez /= norm;
+    if (track) {
+      particles::flush_free_flight(sys_, a, t_collision);
+      particles::flush_free_flight(sys_, b, t_collision);
+    }
     apply_collision(sys_, a, b, ex, ey, ez, alpha_[pair], mass_fraction_[pair]);
     count_event(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(k));
     return true;

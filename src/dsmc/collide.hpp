@@ -40,6 +40,9 @@
  * two schemes sample exactly the same process. A raised vmax_i updates species i's row in O(log M).
  * (For very many species the S x S pair tables below are the next limit: issue 4.)
  *
+ * **Displacements** (seed 001 eq 15, ERRATA §7), when the System tracks them: at a collision at
+ * time t both partners add their free flight v (t - t_last) to R before their velocities change.
+ *
  * **Time.** All schemes are uniformised continuous-time processes: each candidate advances time by
  * 1 / R (the mean waiting time; the N_p = R dt candidates of seed 000 eq 8 per step, with the
  * fraction carried over). Collisions are processed one after another with current velocities, so

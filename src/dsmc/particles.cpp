@@ -76,4 +76,12 @@ System make_system(const species::Mixture& mix, const std::vector<std::size_t>& 
   return sys;
 }
 
+void start_tracking(System& sys, double t) {
+  const std::size_t n = sys.size();
+  sys.rx.assign(n, 0.0);
+  sys.ry.assign(n, 0.0);
+  sys.rz.assign(n, 0.0);
+  sys.t_last.assign(n, t);
+}
+
 }  // namespace gdsmc::particles

@@ -37,9 +37,27 @@ struct System {
   std::vector<std::size_t> first;      ///< first index of species k
   std::vector<std::size_t> count;      ///< N_k
 
+  /// Displacement tracking (seed 001 eq 15, ERRATA §7); empty when not tracked. R is the
+  /// displacement accumulated up to t_last, the time of the particle's last collision (or of the
+  /// start of tracking); its displacement at t >= t_last is R + v (t - t_last).
+  std::vector<double> rx, ry, rz, t_last;
+
   std::size_t size() const { return vx.size(); }
   std::size_t n_species() const { return count.size(); }
+  bool tracks_displacements() const { return !t_last.empty(); }
 };
+
+/// Starts (or restarts) displacement tracking at time t: R = 0 and t_last = t for every particle.
+void start_tracking(System& sys, double t);
+
+/// Adds particle i's free flight since t_last to R and sets t_last = t (before its velocity changes).
+inline void flush_free_flight(System& sys, std::size_t i, double t) {
+  const double dt = t - sys.t_last[i];
+  sys.rx[i] += sys.vx[i] * dt;
+  sys.ry[i] += sys.vy[i] * dt;
+  sys.rz[i] += sys.vz[i] * dt;
+  sys.t_last[i] = t;
+}
 
 /// N_k = round(N x_k) for each species (the caller checks N_k >= 2).
 std::vector<std::size_t> species_counts(std::size_t n_particles, const species::Mixture& mix);

@@ -73,6 +73,22 @@ std::vector<double> velocity_histogram(const species::Mixture& mix, const partic
   return h;
 }
 
+std::vector<double> mean_squared_displacement(const particles::System& sys, double t) {
+  std::vector<double> msd(sys.n_species(), 0.0);
+  for (std::size_t k = 0; k < sys.n_species(); ++k) {
+    double sum = 0.0;
+    const std::size_t end = sys.first[k] + sys.count[k];
+    for (std::size_t i = sys.first[k]; i < end; ++i) {
+      const double dt = t - sys.t_last[i];
+      const double x = sys.rx[i] + sys.vx[i] * dt, y = sys.ry[i] + sys.vy[i] * dt,
+                   z = sys.rz[i] + sys.vz[i] * dt;
+      sum += x * x + y * y + z * z;
+    }
+    msd[k] = sum / static_cast<double>(sys.count[k]);
+  }
+  return msd;
+}
+
 double reduced_velocity_scale(const species::Mixture& mix, double total_temperature) {
   if (mix.size() > 2) return 0.0;
   const double m1 = mix.mass[0], m2 = mix.size() == 2 ? mix.mass[1] : mix.mass[0];

@@ -45,6 +45,10 @@ Moments measure(const species::Mixture& mix, const particles::System& sys);
 std::vector<double> velocity_histogram(const species::Mixture& mix, const particles::System& sys,
                                        const Moments& moments, std::size_t bins, double range);
 
+/// Mean-squared displacement of each species at time t >= every t_last (seed 001 eq 15, ERRATA §7):
+/// <|R + v (t - t_last)|^2>, the free flight since the last collision added without changing the state.
+std::vector<double> mean_squared_displacement(const particles::System& sys, double t);
+
 /// v0 = sqrt(2 T (m1 + m2)/(m1 m2)), the velocity unit of the reduced distributions of a binary
 /// mixture (seed 003 sec. 2, ERRATA §6); for one species m1 = m2 = m. 0 for more than two species.
 double reduced_velocity_scale(const species::Mixture& mix, double total_temperature);

@@ -111,6 +111,16 @@ PointResult run_point(const io::config::Config& config, const Options& options, 
                                                    init_stream);
     collide::Collider collider(scheme, mix, sys, rng::make_stream(seed, r, rng::Purpose::collisions),
                                config.dsmc.step_fraction);
+    // Displacements (seed 001 eq 15) from t = 0, from msd_start_time, or from the first sample
+    // with T <= msd_start_temperature.
+    const bool track = config.output.track_displacements;
+    const bool start_at_zero = track && !config.output.msd_start_time && !config.output.msd_start_temperature;
+    bool tracking = false;
+    if (start_at_zero) {
+      particles::start_tracking(sys, 0.0);
+      tracking = true;
+    }
+    double msd_start = 0.0;
     // The HCS part of this replica: samples past scaling_start collisions per particle.
     std::vector<double> speed_counts, c_sum(s, 0.0), share_sum(s, 0.0);
     double scaling_samples = 0.0, t_first = 0.0, t_last = 0.0, temp_first = 0.0, temp_last = 0.0;
@@ -124,6 +134,14 @@ PointResult run_point(const io::config::Config& config, const Options& options, 
       const std::uint64_t event_target =
           time_driven ? std::numeric_limits<std::uint64_t>::max()
                       : static_cast<std::uint64_t>(std::ceil(targets[i] * static_cast<double>(n_total) / 2.0));
+      if (track && !tracking && config.output.msd_start_time && *config.output.msd_start_time <= t_target) {
+        collider.advance(*config.output.msd_start_time, event_target);  // stop exactly at the start
+        if (collider.time() >= *config.output.msd_start_time) {
+          particles::start_tracking(sys, collider.time());
+          tracking = true;
+          msd_start = collider.time();
+        }
+      }
       constexpr std::uint64_t kChunk = 1u << 20;
       for (;;) {
         const std::uint64_t done = collider.counters().events;
@@ -155,6 +173,16 @@ PointResult run_point(const io::config::Config& config, const Options& options, 
       column("time", 1).add(r, {collider.time()});
       column("velocity_histogram", s * bins)
           .add(r, sample::velocity_histogram(mix, sys, m, bins, range));
+      if (track && !tracking && config.output.msd_start_temperature &&
+          m.total_temperature <= *config.output.msd_start_temperature) {
+        particles::start_tracking(sys, collider.time());
+        tracking = true;
+        msd_start = collider.time();
+      }
+      if (track) {
+        column("msd", s).add(r, tracking ? sample::mean_squared_displacement(sys, collider.time())
+                                         : std::vector<double>(s, 0.0));
+      }
       const double per_particle = 2.0 * static_cast<double>(counters.events) / static_cast<double>(n_total);
       if (reduced && i > 0 && per_particle >= config.output.scaling_start) {
         sample::add_reduced_speeds(mix, sys, m, sample::reduced_velocity_scale(mix, m.total_temperature),
@@ -179,6 +207,7 @@ PointResult run_point(const io::config::Config& config, const Options& options, 
     }
     result.events += collider.counters().events;
     mean_step_sum += collider.mean_step();
+    if (track) column("msd_start", 1).add(r, {tracking ? msd_start : -1.0});
     if (scaling_samples >= 2.0 && t_last > t_first) {
       // Rows are added for the replicas that reached the scaling regime, one after another.
       const std::size_t row = result.observables["reduced_distribution"].values.size();
@@ -280,7 +309,7 @@ void write_point(io::h5md::Writer& writer, const std::string& root, const io::co
   for (std::size_t i = 0; i < n_samples; ++i) step[i] = static_cast<long long>(i);
 
   for (const auto& [name, a] : acc) {
-    if (name == "velocity_histogram" || name.rfind("reduced_", 0) == 0) continue;
+    if (name == "velocity_histogram" || name == "msd_start" || name.rfind("reduced_", 0) == 0) continue;
     io::h5md::Series series;
     series.time = time_mean;
     series.step = step;
@@ -310,6 +339,15 @@ void write_point(io::h5md::Writer& writer, const std::string& root, const io::co
     writer.write_dataset(root + "/velocity_histogram/bin_edges", edges, {bins + 1});
   }
   if (acc.count("reduced_distribution")) write_reduced(writer, root, config, result);
+  if (acc.count("msd")) {
+    // Each replica's start (-1 if it never started); the mean is the time origin of msd.
+    const auto starts = acc["msd_start"].values;
+    std::vector<double> start_times;
+    for (const auto& row : starts) start_times.push_back(row[0]);
+    writer.write_dataset(root + "/msd/start_time", start_times, {start_times.size()});
+    writer.write_attribute(root + "/msd", "description",
+                           std::string("<|R_k|^2> per species, displacement since start_time (seed 001 eq 15)"));
+  }
   writer.write_attribute(root + "/temperature", "description",
                          std::string("partial temperatures T_k = m_k <|v-u|^2>/3, columns = species"));
   writer.write_attribute(root + "/sonine_c", "description",

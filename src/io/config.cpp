@@ -127,6 +127,12 @@ const std::vector<Field<Output>>& output_fields() {
       {"scaling_start", &Output::scaling_start, "collisions per particle",
        "Phi_i, Delta_i, G_i are accumulated over the samples from here on (the HCS after its transient)",
        at_least(0)},
+      {"track_displacements", &Output::track_displacements, "",
+       ".true.: track every particle's displacement and write the observable msd (seed 001 eq 15)"},
+      {"msd_start_time", &Output::msd_start_time, "time",
+       "displacements are measured from this time (default: from t = 0)", at_least(0)},
+      {"msd_start_temperature", &Output::msd_start_temperature, "energy",
+       "... or from the first sample at which the total temperature is at or below this value", kPositive},
       {"histogram_range", &Output::histogram_range, "sqrt(T_k/m_k)",
        "velocity histograms cover [-range, range] in thermal units", kPositive},
   };
@@ -460,6 +466,15 @@ void check_dsmc(const Dsmc& d, const species::Mixture& mix, const Provenance& pr
 }
 
 void check_output(Output& out, const Dsmc& d, const Provenance& prov) {
+  for (const char* v : {"msd_start_time", "msd_start_temperature"})
+    if (prov.line.count(v) && !out.track_displacements)
+      throw Error(prov.file, prov.line.at(v), "output", v, "only used with track_displacements = .true.");
+  if (out.msd_start_time && out.msd_start_temperature)
+    throw Error(prov.file, prov.line.at("msd_start_temperature"), "output", "msd_start_temperature",
+                "give at most one of msd_start_time and msd_start_temperature");
+  if (out.msd_start_time && d.t_end && *out.msd_start_time >= *d.t_end)
+    throw Error(prov.file, prov.line.at("msd_start_time"), "output", "msd_start_time",
+                "msd_start_time must be below t_end");
   const double end = d.t_end ? *d.t_end : *d.collisions_per_particle;
   if (out.spacing == "log") {
     if (!out.first_sample) out.first_sample = end / 1000.0;  // derive
