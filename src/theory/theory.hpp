@@ -144,3 +144,5 @@ TemperatureHistory integrate_partial_temperatures(const Mixture& mix,
 std::vector<double> asymptotic_temperature_ratios(const Mixture& mix);
 
 }  // namespace gdsmc::theory
+
+#include "theory/diffusion.hpp"  // diffusion theory (seed 001 eqs 16-24, A1-A4; ERRATA §8, §11)

@@ -1,0 +1,704 @@
+// Self-diffusion in a cooling granular mixture: see diffusion.hpp for the equations and numerics.
+#include "theory/diffusion.hpp"
+
+#include <cvode/cvode.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
+#include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <memory>
+#include <numbers>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+
+namespace gdsmc::theory {
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+// ---------------------------------------------------------------------------------------------
+// Series coefficients (ERRATA §11, §8)
+// ---------------------------------------------------------------------------------------------
+
+constexpr int square_terms = 2 * restitution_series_terms;  // A_n runs to n = 40 (ERRATA §8)
+
+/// h_j, index j (entry 0 unused). ERRATA §11: h_2 = -C_1, h_4 = C_2 = 3 C_1^2/5, h_5 = 4/15.
+// clang-format off
+constexpr std::array<double, restitution_series_terms + 1> h_coeff = {
+    0.0,
+    0.0,        -restitution_c1, 0.0,        3.0 * restitution_c1 * restitution_c1 / 5.0, 4.0 / 15.0,
+    -0.5228826, -0.4613795,      0.3487427,  0.4523511,  -0.1464315,
+    -0.3677283, -0.0432490,      0.2818042,  0.1478526,  -0.1794421,
+    -0.1784660, 0.0659336,       0.1713586,  0.0252498,  -0.1379235};  // h_1 .. h_20
+// clang-format on
+
+/// ERRATA §8: A_n = 4 h_n + sum_{j+l=n, 1<=j,l<=20} h_j h_l (h_n = 0 for n > 20), index n.
+constexpr std::array<double, square_terms + 1> square_coefficients() {
+  std::array<double, square_terms + 1> a{};
+  for (int n = 1; n <= square_terms; ++n) {
+    a[n] = n <= restitution_series_terms ? 4.0 * h_coeff[n] : 0.0;
+    for (int j = 1; j <= restitution_series_terms; ++j) {
+      const int l = n - j;
+      if (l >= 1 && l <= restitution_series_terms) a[n] += h_coeff[j] * h_coeff[l];
+    }
+  }
+  return a;
+}
+constexpr std::array<double, square_terms + 1> a_coeff = square_coefficients();
+
+/// (1/2) Gamma(2 + n/20), so that B_n = half_gamma[n] u_ki^n (ERRATA §8).
+const std::array<double, square_terms + 1>& half_gamma() {
+  static const std::array<double, square_terms + 1> table = [] {
+    std::array<double, square_terms + 1> t{};
+    for (int n = 0; n <= square_terms; ++n) t[n] = 0.5 * std::tgamma(2.0 + n / 20.0);
+    return t;
+  }();
+  return table;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Input checks
+// ---------------------------------------------------------------------------------------------
+
+void require_temperatures(const Mixture& mix, std::span<const double> temperature,
+                          const char* caller) {
+  if (temperature.size() != mix.size())
+    throw std::invalid_argument(std::string(caller) + ": " + std::to_string(temperature.size()) +
+                                " temperatures for " + std::to_string(mix.size()) + " species");
+  for (double t : temperature)
+    if (!(t > 0.0) || !std::isfinite(t))
+      throw std::invalid_argument(std::string(caller) +
+                                  ": temperatures must be positive and finite");
+}
+
+void require_beta(const Mixture& mix, const PairMatrix& beta, const char* caller) {
+  if (beta.size != mix.size() || beta.values.size() != mix.size() * mix.size())
+    throw std::invalid_argument(std::string(caller) + ": beta must be S x S for S species");
+  for (std::size_t k = 0; k < mix.size(); ++k)
+    for (std::size_t i = 0; i < mix.size(); ++i) {
+      const double b = beta(k, i);
+      if (!(b >= 0.0) || !std::isfinite(b))
+        throw std::invalid_argument(std::string(caller) + ": beta must be finite and >= 0");
+      if (std::abs(b - beta(i, k)) > 1e-12 * std::max(b, beta(i, k)))
+        throw std::invalid_argument(std::string(caller) + ": beta must be symmetric");
+    }
+}
+
+void require_times(const std::vector<double>& times, const char* caller) {
+  for (std::size_t i = 0; i < times.size(); ++i)
+    if (!std::isfinite(times[i]) || times[i] < 0.0 || (i > 0 && !(times[i] > times[i - 1])))
+      throw std::invalid_argument(std::string(caller) +
+                                  ": times must be finite, non-negative and increasing");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Pair kernels on raw temperature arrays (no input checks)
+// ---------------------------------------------------------------------------------------------
+
+/// s_ki = T_k/m_k + T_i/m_i.
+double thermal_speed_sum(const Mixture& mix, std::span<const double> T, std::size_t k,
+                         std::size_t i) {
+  return T[k] / mix.mass[k] + T[i] / mix.mass[i];
+}
+
+/// ERRATA §4/§8: X_ki = (T_k m_i + T_i m_k)/(T_k (m_i + m_k)).
+double x_factor(const Mixture& mix, std::span<const double> T, std::size_t k, std::size_t i) {
+  return (T[k] * mix.mass[i] + T[i] * mix.mass[k]) / (T[k] * (mix.mass[i] + mix.mass[k]));
+}
+
+/// ERRATA §8: base_ki = (8 sqrt(2 pi)/3) n_i sigma_ki^2 chi_ki mu_ik sqrt(s_ki),
+/// mu_ik = m_i/(m_i + m_k).
+double base_rate(const Mixture& mix, std::span<const double> T, std::size_t k, std::size_t i) {
+  const double sigma_ki = mix.contact_distance(k, i);
+  return (8.0 / 3.0) * std::sqrt(2.0 * pi) * mix.number_density[i] * sigma_ki * sigma_ki *
+         mix.pair_correlation(k, i) * mix.mass_fraction(i, k) *
+         std::sqrt(thermal_speed_sum(mix, T, k, i));
+}
+
+/// A1 (ERRATA §8): tau_v,ki^-1 = base_ki X_ki (1 + alpha_ki)^2/4.
+double inverse_tau_constant(const Mixture& mix, std::span<const double> T, std::size_t k,
+                            std::size_t i) {
+  const double one_plus_alpha = 1.0 + mix.restitution(k, i);
+  return base_rate(mix, T, k, i) * x_factor(mix, T, k, i) * one_plus_alpha * one_plus_alpha / 4.0;
+}
+
+/// Typical u of a pair, u_ki = beta_ki^(1/2) (2 s_ki)^(1/20): B_n = (1/2) Gamma(2 + n/20) u_ki^n.
+double typical_u(double beta_ki, double s_ki) {
+  return std::sqrt(beta_ki) * std::pow(2.0 * s_ki, 0.05);
+}
+
+struct SeriesSums {
+  double ab = 0.0;  ///< sum_{n=1}^{40} A_n B_n
+  double hb = 0.0;  ///< sum_{n=1}^{20} h_n B_n
+};
+
+/// ERRATA §8 sums over the series index n with B_n = (1/2) Gamma(2 + n/20) beta^(n/2) (2 s)^(n/20).
+SeriesSums series_sums(double u) {
+  const auto& g = half_gamma();
+  SeriesSums sums;
+  double power = 1.0;
+  for (int n = 1; n <= square_terms; ++n) {
+    power *= u;
+    const double b_n = g[n] * power;
+    sums.ab += a_coeff[n] * b_n;
+    if (n <= restitution_series_terms) sums.hb += h_coeff[n] * b_n;
+  }
+  return sums;
+}
+
+/// A3 (ERRATA §8): tau_v,ki^-1 = base_ki X_ki (1 + (1/2) sum_n A_n B_n).
+double inverse_tau_viscoelastic(const Mixture& mix, const PairMatrix& beta,
+                                std::span<const double> T, std::size_t k, std::size_t i) {
+  const SeriesSums sums = series_sums(typical_u(beta(k, i), thermal_speed_sum(mix, T, k, i)));
+  return base_rate(mix, T, k, i) * x_factor(mix, T, k, i) * (1.0 + 0.5 * sums.ab);
+}
+
+/// A4 (ERRATA §8): xi_ki = 2 base_ki [1 - X_ki + sum_n B_n (h_n - (1/2) X_ki A_n)].
+double cooling_rate_viscoelastic(const Mixture& mix, const PairMatrix& beta,
+                                 std::span<const double> T, std::size_t k, std::size_t i) {
+  const SeriesSums sums = series_sums(typical_u(beta(k, i), thermal_speed_sum(mix, T, k, i)));
+  const double x = x_factor(mix, T, k, i);
+  return 2.0 * base_rate(mix, T, k, i) * (1.0 - x + sums.hb - 0.5 * x * sums.ab);
+}
+
+/// Throws std::domain_error if some pair's typical u exceeds the series cut-off (diffusion.hpp).
+void require_within_cutoff(const Mixture& mix, const PairMatrix& beta, std::span<const double> T,
+                           const char* caller) {
+  for (std::size_t k = 0; k < mix.size(); ++k)
+    for (std::size_t i = 0; i < mix.size(); ++i) {
+      const double u = typical_u(beta(k, i), thermal_speed_sum(mix, T, k, i));
+      if (u > viscoelastic_u_max)
+        throw std::domain_error(
+            std::string(caller) + ": typical u = beta^(1/2) (2 s)^(1/20) = " + std::to_string(u) +
+            " of pair (" + std::to_string(k) + ", " + std::to_string(i) +
+            ") exceeds the series cut-off " + std::to_string(viscoelastic_u_max));
+    }
+}
+
+/// tau_v,k^-1 = sum_i tau_v,ki^-1 (seed 001 eq 20), A1 or (beta) A3.
+double inverse_tau_row(const Mixture& mix, const PairMatrix* beta, std::span<const double> T,
+                       std::size_t k) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < mix.size(); ++i)
+    sum +=
+        beta ? inverse_tau_viscoelastic(mix, *beta, T, k, i) : inverse_tau_constant(mix, T, k, i);
+  return sum;
+}
+
+// ---------------------------------------------------------------------------------------------
+// A small CVODE driver (BDF, dense Newton, per-component tolerances) for the viscoelastic ODEs.
+// theory.cpp keeps its own in an anonymous namespace; this one follows the same conventions.
+// ---------------------------------------------------------------------------------------------
+
+static_assert(std::is_same_v<sunrealtype, double>, "SUNDIALS must be built in double precision");
+
+void free_context(SUNContext context) { SUNContext_Free(&context); }
+void free_cvode(void* memory) { CVodeFree(&memory); }
+
+/// unique_ptr to a SUNDIALS object released by Free.
+template <class Pointer, auto Free>
+struct FreeWith {
+  void operator()(Pointer p) const { Free(p); }
+};
+template <class Pointer, auto Free>
+using Owner = std::unique_ptr<std::remove_pointer_t<Pointer>, FreeWith<Pointer, Free>>;
+
+class OdeSolver {
+ public:
+  using RightHandSide = std::function<void(std::span<const double>, std::span<double>)>;
+
+  OdeSolver(RightHandSide rhs, const std::vector<double>& y0, std::vector<double> rtol,
+            std::vector<double> atol)
+      : rhs_(std::move(rhs)), size_(y0.size()), rtol_(std::move(rtol)), atol_(std::move(atol)) {
+    const auto n = static_cast<sunindextype>(size_);
+    SUNContext raw = nullptr;
+    check(SUNContext_Create(nullptr, &raw), "SUNContext_Create");
+    context_.reset(raw);
+    state_.reset(not_null(N_VNew_Serial(n, context_.get()), "N_VNew_Serial"));
+    std::copy(y0.begin(), y0.end(), N_VGetArrayPointer(state_.get()));
+    memory_.reset(not_null(CVodeCreate(CV_BDF, context_.get()), "CVodeCreate"));
+    check(CVodeSetErrHandlerFn(memory_.get(), &OdeSolver::record_error, this),
+          "CVodeSetErrHandlerFn");
+    check(CVodeInit(memory_.get(), &OdeSolver::evaluate, 0.0, state_.get()), "CVodeInit");
+    check(CVodeSetUserData(memory_.get(), this), "CVodeSetUserData");
+    check(CVodeWFtolerances(memory_.get(), &OdeSolver::weights), "CVodeWFtolerances");
+    check(CVodeSetMaxNumSteps(memory_.get(), 200000), "CVodeSetMaxNumSteps");
+    matrix_.reset(not_null(SUNDenseMatrix(n, n, context_.get()), "SUNDenseMatrix"));
+    solver_.reset(
+        not_null(SUNLinSol_Dense(state_.get(), matrix_.get(), context_.get()), "SUNLinSol_Dense"));
+    check(CVodeSetLinearSolver(memory_.get(), solver_.get(), matrix_.get()),
+          "CVodeSetLinearSolver");
+  }
+  OdeSolver(const OdeSolver&) = delete;  // CVODE holds `this` as user data
+  OdeSolver& operator=(const OdeSolver&) = delete;
+
+  void advance_to(double t) {
+    sunrealtype reached = 0.0;
+    check(CVode(memory_.get(), t, state_.get(), &reached, CV_NORMAL), "CVode");
+  }
+  std::span<const double> state() const { return {N_VGetArrayPointer(state_.get()), size_}; }
+
+ private:
+  static int evaluate(sunrealtype, N_Vector y, N_Vector ydot, void* data) {
+    auto* self = static_cast<OdeSolver*>(data);
+    const std::span<double> out{N_VGetArrayPointer(ydot), self->size_};
+    try {
+      self->rhs_({N_VGetArrayPointer(y), self->size_}, out);
+    } catch (const std::exception& error) {
+      self->message_ += std::string("; right-hand side: ") + error.what();
+      return -1;  // unrecoverable
+    }
+    for (double d : out)
+      if (!std::isfinite(d)) return 1;  // recoverable: CVODE retries with a smaller step
+    return 0;
+  }
+  static int weights(N_Vector y, N_Vector w, void* data) {
+    const auto* self = static_cast<const OdeSolver*>(data);
+    for (std::size_t i = 0; i < self->size_; ++i) {
+      const double tol = self->rtol_[i] * std::abs(N_VGetArrayPointer(y)[i]) + self->atol_[i];
+      if (!(tol > 0.0)) return -1;
+      N_VGetArrayPointer(w)[i] = 1.0 / tol;
+    }
+    return 0;
+  }
+  static void record_error(int, const char*, const char* function, char* message, void* data) {
+    static_cast<OdeSolver*>(data)->message_ += std::string("; ") + function + ": " + message;
+  }
+  void check(int flag, const char* call) {
+    if (flag < 0)
+      throw std::runtime_error(std::string("SUNDIALS call ") + call + " failed (flag " +
+                               std::to_string(flag) + ")" + message_);
+  }
+  template <class Pointer>
+  Pointer not_null(Pointer p, const char* call) {
+    if (p == nullptr)
+      throw std::runtime_error(std::string("SUNDIALS call ") + call + " returned NULL");
+    return p;
+  }
+
+  RightHandSide rhs_;
+  std::size_t size_;
+  std::vector<double> rtol_, atol_;
+  std::string message_;
+  // Declaration order = reverse destruction order: the integrator goes first, the context last.
+  Owner<SUNContext, free_context> context_;
+  Owner<N_Vector, N_VDestroy> state_;
+  Owner<SUNMatrix, SUNMatDestroy> matrix_;
+  Owner<SUNLinearSolver, SUNLinSolFree> solver_;
+  Owner<void*, free_cvode> memory_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// GSL quadrature
+// ---------------------------------------------------------------------------------------------
+
+/// Switches GSL's abort-on-error handler off for its lifetime (restores the previous one).
+struct GslErrorsReturned {
+  gsl_error_handler_t* previous = gsl_set_error_handler_off();
+  GslErrorsReturned() = default;
+  GslErrorsReturned(const GslErrorsReturned&) = delete;
+  GslErrorsReturned& operator=(const GslErrorsReturned&) = delete;
+  ~GslErrorsReturned() { gsl_set_error_handler(previous); }
+};
+
+class Quadrature {
+ public:
+  Quadrature() : workspace_(gsl_integration_workspace_alloc(limit)) {
+    if (!workspace_) throw std::runtime_error("gsl_integration_workspace_alloc failed");
+  }
+  /// int_a^b f with gsl_integration_qag (rule key GSL_INTEG_GAUSS15..61), relative tolerance rtol.
+  template <class F>
+  double integrate(F& f, double a, double b, double rtol, int key) {
+    gsl_function fn{[](double x, void* p) { return (*static_cast<F*>(p))(x); }, &f};
+    double result = 0.0, error = 0.0;
+    const int status =
+        gsl_integration_qag(&fn, a, b, 0.0, rtol, limit, key, workspace_.get(), &result, &error);
+    // A round-off stop is accepted when the error estimate is still small.
+    if (status != GSL_SUCCESS && !(status == GSL_EROUND && error <= 1e-8 * std::abs(result)))
+      throw std::runtime_error(std::string("gsl_integration_qag failed: ") + gsl_strerror(status));
+    return result;
+  }
+
+ private:
+  static constexpr std::size_t limit = 1000;
+  GslErrorsReturned handler_;
+  std::unique_ptr<gsl_integration_workspace,
+                  FreeWith<gsl_integration_workspace*, gsl_integration_workspace_free>>
+      workspace_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Dense solution T_k(t), tau_k(t) on a node grid (diffusion.hpp, "Numerics of the MSD")
+// ---------------------------------------------------------------------------------------------
+
+constexpr double nodes_per_unit_s = 64.0;
+constexpr std::size_t nodes_per_piece = 32;
+constexpr double tau_rtol = 1e-12;
+constexpr double msd_rtol = 1e-10;
+
+/// Cubic Hermite interpolation on [0, 1] with values y0, y1 and slopes d0, d1 (per unit x) times h.
+double hermite(double x, double h, double y0, double d0, double y1, double d1) {
+  const double xm = 1.0 - x;
+  return (1.0 + 2.0 * x) * xm * xm * y0 + x * xm * xm * h * d0 + x * x * (3.0 - 2.0 * x) * y1 -
+         x * x * xm * h * d1;
+}
+
+class DenseSolution {
+ public:
+  DenseSolution(const Mixture& mix, const PairMatrix* beta, const std::vector<double>& T0,
+                double t_max)
+      : species_(mix.size()), log_T0_(species_) {
+    for (std::size_t k = 0; k < species_; ++k) log_T0_[k] = std::log(T0[k]);
+    // Node grid uniform in s = ln(1 + t/t_c), t_c = 1/max_k(tau_v,k^-1 + sum_i |xi_ki|) at t = 0.
+    const PairMatrix xi0 =
+        beta ? cooling_rate_matrix_viscoelastic(mix, *beta, T0) : cooling_rate_matrix(mix, T0);
+    double fastest = 0.0;
+    for (std::size_t k = 0; k < species_; ++k) {
+      double rate = inverse_tau_row(mix, beta, T0, k);
+      for (std::size_t i = 0; i < species_; ++i) rate += std::abs(xi0(k, i));
+      fastest = std::max(fastest, rate);
+    }
+    if (!(fastest > 0.0) || !std::isfinite(fastest))
+      throw std::invalid_argument("mean_squared_displacement: no collisions (zero rates)");
+    const double t_c = 1.0 / fastest;
+    const double s_max = std::log1p(t_max / t_c);
+    const auto intervals =
+        std::max<std::size_t>(16, static_cast<std::size_t>(std::ceil(s_max * nodes_per_unit_s)));
+    time_.resize(intervals + 1);
+    for (std::size_t i = 0; i <= intervals; ++i)
+      time_[i] = t_c * std::expm1(s_max * static_cast<double>(i) / static_cast<double>(intervals));
+    time_.front() = 0.0;
+    time_.back() = t_max;
+
+    const TemperatureHistory history =
+        beta ? integrate_partial_temperatures_viscoelastic(mix, *beta, T0, time_)
+             : integrate_partial_temperatures(mix, T0, time_);
+    log_T_.resize(time_.size() * species_);
+    slope_.resize(time_.size() * species_);
+    for (std::size_t i = 0; i < time_.size(); ++i) {
+      const std::vector<double>& T = history.temperature[i];
+      // d ln T_k/dt = -sum_i xi_ki: ERRATA §4 (partial_temperature_rates) or A4.
+      std::vector<double> rate;
+      if (beta) {
+        const PairMatrix xi = cooling_rate_matrix_viscoelastic(mix, *beta, T);
+        rate.assign(species_, 0.0);
+        for (std::size_t k = 0; k < species_; ++k)
+          for (std::size_t j = 0; j < species_; ++j) rate[k] -= xi(k, j);
+      } else {
+        rate = partial_temperature_rates(mix, T);
+        for (std::size_t k = 0; k < species_; ++k) rate[k] /= T[k];
+      }
+      for (std::size_t k = 0; k < species_; ++k) {
+        log_T_[i * species_ + k] = std::log(T[k]);
+        slope_[i * species_ + k] = rate[k];
+      }
+    }
+
+    // tau_k at the nodes: GSL quadrature of sqrt(T_k/T_k(0)) over each interval of the interpolant.
+    tau_.assign(time_.size() * species_, 0.0);
+    Quadrature quadrature;
+    for (std::size_t i = 0; i + 1 < time_.size(); ++i)
+      for (std::size_t k = 0; k < species_; ++k) {
+        auto speed_ratio = [&](double t) {
+          return std::exp(0.5 * (log_T_at(i, k, t) - log_T0_[k]));
+        };
+        tau_[(i + 1) * species_ + k] =
+            tau_[i * species_ + k] +
+            quadrature.integrate(speed_ratio, time_[i], time_[i + 1], tau_rtol, GSL_INTEG_GAUSS15);
+      }
+  }
+
+  const std::vector<double>& nodes() const { return time_; }
+
+  /// T_k(t) and tau_k(t) for every k, t in [0, t_max].
+  void evaluate(double t, std::span<double> T, std::span<double> tau) const {
+    const std::size_t i = interval_of(t);
+    const double h = time_[i + 1] - time_[i];
+    const double x = std::clamp((t - time_[i]) / h, 0.0, 1.0);
+    for (std::size_t k = 0; k < species_; ++k) {
+      T[k] = std::exp(log_T_at(i, k, t));
+      const double r0 = std::exp(0.5 * (log_T_[i * species_ + k] - log_T0_[k]));
+      const double r1 = std::exp(0.5 * (log_T_[(i + 1) * species_ + k] - log_T0_[k]));
+      tau[k] = hermite(x, h, tau_[i * species_ + k], r0, tau_[(i + 1) * species_ + k], r1);
+    }
+  }
+
+ private:
+  std::size_t interval_of(double t) const {
+    const auto after = std::upper_bound(time_.begin(), time_.end(), t);
+    const auto index = static_cast<std::size_t>(std::max<std::ptrdiff_t>(after - time_.begin(), 1));
+    return std::min(index - 1, time_.size() - 2);
+  }
+  double log_T_at(std::size_t i, std::size_t k, double t) const {
+    const double h = time_[i + 1] - time_[i];
+    const double x = std::clamp((t - time_[i]) / h, 0.0, 1.0);
+    return hermite(x, h, log_T_[i * species_ + k], slope_[i * species_ + k],
+                   log_T_[(i + 1) * species_ + k], slope_[(i + 1) * species_ + k]);
+  }
+
+  std::size_t species_;
+  std::vector<double> log_T0_;
+  std::vector<double> time_;
+  std::vector<double> log_T_, slope_, tau_;  // [node * species + k]
+};
+
+/// Eq 17 (long_time = false) or eq 21 (long_time = true) with eq 16, see diffusion.hpp.
+MsdResult displacement(const Mixture& mix, const std::vector<double>& T0,
+                       const std::vector<double>& times, const PairMatrix* beta, bool long_time,
+                       const char* caller) {
+  if (mix.size() == 0) throw std::invalid_argument(std::string(caller) + ": no species");
+  require_temperatures(mix, T0, caller);
+  require_times(times, caller);
+  if (beta) {
+    require_beta(mix, *beta, caller);
+    require_within_cutoff(mix, *beta, T0, caller);
+  }
+  const std::size_t species = mix.size();
+  MsdResult result;
+  result.time = times;
+  result.msd.assign(times.size(), std::vector<double>(species, 0.0));
+  result.total.assign(times.size(), 0.0);
+  if (times.empty() || times.back() == 0.0) return result;
+
+  const DenseSolution solution(mix, beta, T0, times.back());
+  const std::vector<double>& nodes = solution.nodes();
+  Quadrature quadrature;
+  std::vector<double> T(species), tau(species), tau_now(species);
+  for (std::size_t it = 0; it < times.size(); ++it) {
+    const double t = times[it];
+    if (t == 0.0) continue;
+    solution.evaluate(t, T, tau_now);
+    for (std::size_t k = 0; k < species; ++k) {
+      // Integrand of eq 17: D_k(t1) [1 - exp(-(tau_k(t) - tau_k(t1))/tauhat_v,k(t1))] (eqs 18, 19).
+      auto integrand = [&](double t1) {
+        solution.evaluate(t1, T, tau);
+        const double inverse_tau_v = inverse_tau_row(mix, beta, T, k);   // eq 20
+        const double d_k = T[k] / (mix.mass[k] * inverse_tau_v);         // eq 19
+        if (long_time) return d_k;                                       // eq 21
+        const double tau_hat = std::sqrt(T[k] / T0[k]) / inverse_tau_v;  // eq 18
+        const double x = std::max(0.0, (tau_now[k] - tau[k]) / tau_hat);
+        return -d_k * std::expm1(-x);
+      };
+      double integral = 0.0, a = 0.0;
+      for (std::size_t node = nodes_per_piece; a < t; node += nodes_per_piece) {
+        const double b = node < nodes.size() ? std::min(nodes[node], t) : t;
+        integral += quadrature.integrate(integrand, a, b, msd_rtol, GSL_INTEG_GAUSS21);
+        a = b;
+      }
+      result.msd[it][k] = 6.0 * integral;  // eq 17 / eq 21
+    }
+    double total = 0.0;
+    for (std::size_t k = 0; k < species; ++k) total += mix.number_density[k] * result.msd[it][k];
+    result.total[it] = total / mix.total_density();  // eq 16
+  }
+  return result;
+}
+
+}  // namespace
+
+// -------------------------------------------------------------------------------------------------
+// Viscoelastic restitution (ERRATA §11)
+// -------------------------------------------------------------------------------------------------
+
+double restitution_series_coefficient(int j) {
+  if (j < 1 || j > restitution_series_terms)
+    throw std::out_of_range("restitution_series_coefficient: j must be in 1..20");
+  return h_coeff[j];
+}
+
+double restitution_series_square_coefficient(int n) {
+  if (n < 1 || n > square_terms)
+    throw std::out_of_range("restitution_series_square_coefficient: n must be in 1..40");
+  return a_coeff[n];
+}
+
+double viscoelastic_restitution(double beta_ki, double normal_speed) {
+  if (!(beta_ki >= 0.0) || !std::isfinite(beta_ki) || !std::isfinite(normal_speed))
+    throw std::domain_error("viscoelastic_restitution: beta must be finite and >= 0, g.e finite");
+  const double u = std::sqrt(beta_ki) * std::pow(std::abs(normal_speed), 0.1);  // ERRATA §11
+  if (u > viscoelastic_u_max)
+    throw std::domain_error(
+        "viscoelastic_restitution: u = beta^(1/2) |g.e|^(1/10) = " + std::to_string(u) +
+        " exceeds the series cut-off " + std::to_string(viscoelastic_u_max));
+  // ERRATA §11 / seed 001 eq 5: alpha = 1 + sum_j h_j u^j (Horner).
+  double sum = 0.0;
+  for (int j = restitution_series_terms; j >= 1; --j) sum = (sum + h_coeff[j]) * u;
+  return 1.0 + sum;
+}
+
+PairMatrix viscoelastic_beta(const Mixture& mix, double beta_11) {
+  if (!(beta_11 >= 0.0) || !std::isfinite(beta_11))
+    throw std::invalid_argument("viscoelastic_beta: beta_11 must be finite and >= 0");
+  if (mix.size() == 0) return PairMatrix(0);
+  // seed 001 eq 8: sigma_eff = sigma_i sigma_k/(sigma_i + sigma_k); ERRATA §11 scaling.
+  auto sigma_eff = [&](std::size_t k, std::size_t i) {
+    return mix.diameter[k] * mix.diameter[i] / (mix.diameter[k] + mix.diameter[i]);
+  };
+  PairMatrix beta(mix.size());
+  for (std::size_t k = 0; k < mix.size(); ++k)
+    for (std::size_t i = k; i < mix.size(); ++i) {
+      const double ratio = std::sqrt(sigma_eff(k, i) / sigma_eff(0, 0)) * mix.reduced_mass(0, 0) /
+                           mix.reduced_mass(k, i);
+      beta(k, i) = beta(i, k) = beta_11 * std::pow(ratio, 0.4);  // ERRATA §11
+    }
+  return beta;
+}
+
+// -------------------------------------------------------------------------------------------------
+// Velocity correlation times and cooling rates (ERRATA §8)
+// -------------------------------------------------------------------------------------------------
+
+PairMatrix velocity_correlation_base_rate(const Mixture& mix,
+                                          const std::vector<double>& temperature) {
+  require_temperatures(mix, temperature, "velocity_correlation_base_rate");
+  PairMatrix base(mix.size());
+  for (std::size_t k = 0; k < mix.size(); ++k)
+    for (std::size_t i = 0; i < mix.size(); ++i) base(k, i) = base_rate(mix, temperature, k, i);
+  return base;
+}
+
+PairMatrix inverse_velocity_correlation_time(const Mixture& mix,
+                                             const std::vector<double>& temperature) {
+  require_temperatures(mix, temperature, "inverse_velocity_correlation_time");
+  PairMatrix rate(mix.size());
+  for (std::size_t k = 0; k < mix.size(); ++k)
+    for (std::size_t i = 0; i < mix.size(); ++i)
+      rate(k, i) = inverse_tau_constant(mix, temperature, k, i);  // A1
+  return rate;
+}
+
+PairMatrix inverse_velocity_correlation_time_viscoelastic(const Mixture& mix,
+                                                          const PairMatrix& beta,
+                                                          const std::vector<double>& temperature) {
+  constexpr const char* caller = "inverse_velocity_correlation_time_viscoelastic";
+  require_temperatures(mix, temperature, caller);
+  require_beta(mix, beta, caller);
+  require_within_cutoff(mix, beta, temperature, caller);
+  PairMatrix rate(mix.size());
+  for (std::size_t k = 0; k < mix.size(); ++k)
+    for (std::size_t i = 0; i < mix.size(); ++i)
+      rate(k, i) = inverse_tau_viscoelastic(mix, beta, temperature, k, i);  // A3
+  return rate;
+}
+
+PairMatrix cooling_rate_matrix_viscoelastic(const Mixture& mix, const PairMatrix& beta,
+                                            const std::vector<double>& temperature) {
+  constexpr const char* caller = "cooling_rate_matrix_viscoelastic";
+  require_temperatures(mix, temperature, caller);
+  require_beta(mix, beta, caller);
+  require_within_cutoff(mix, beta, temperature, caller);
+  PairMatrix xi(mix.size());
+  for (std::size_t k = 0; k < mix.size(); ++k)
+    for (std::size_t i = 0; i < mix.size(); ++i)
+      xi(k, i) = cooling_rate_viscoelastic(mix, beta, temperature, k, i);  // A4
+  return xi;
+}
+
+std::vector<double> diffusion_coefficients(const Mixture& mix,
+                                           const std::vector<double>& temperature,
+                                           const PairMatrix* beta) {
+  require_temperatures(mix, temperature, "diffusion_coefficients");
+  if (beta) {
+    require_beta(mix, *beta, "diffusion_coefficients");
+    require_within_cutoff(mix, *beta, temperature, "diffusion_coefficients");
+  }
+  std::vector<double> d(mix.size());
+  for (std::size_t k = 0; k < mix.size(); ++k)  // seed 001 eqs 19-20
+    d[k] = temperature[k] / (mix.mass[k] * inverse_tau_row(mix, beta, temperature, k));
+  return d;
+}
+
+std::vector<double> diffusion_coefficient_ratio(const Mixture& mix,
+                                                const std::vector<double>& temperature,
+                                                const PairMatrix* beta) {
+  std::vector<double> d = diffusion_coefficients(mix, temperature, beta);
+  if (d.empty()) throw std::invalid_argument("diffusion_coefficient_ratio: no species");
+  const double d1 = d[0];
+  for (double& value : d) value /= d1;
+  return d;
+}
+
+std::vector<double> diffusion_coefficient_ratio(const Mixture& mix) {
+  std::vector<double> temperature = asymptotic_temperature_ratios(mix);  // ERRATA §4, T_1 = 1 unit
+  for (double& t : temperature) t *= mix.mass[0];  // any scale: D_k is homogeneous in T
+  return diffusion_coefficient_ratio(mix, temperature);
+}
+
+// -------------------------------------------------------------------------------------------------
+// Partial temperatures with viscoelastic restitution
+// -------------------------------------------------------------------------------------------------
+
+TemperatureHistory integrate_partial_temperatures_viscoelastic(
+    const Mixture& mix, const PairMatrix& beta, const std::vector<double>& initial_temperature,
+    const std::vector<double>& times) {
+  constexpr const char* caller = "integrate_partial_temperatures_viscoelastic";
+  require_temperatures(mix, initial_temperature, caller);
+  require_beta(mix, beta, caller);
+  require_times(times, caller);
+  require_within_cutoff(mix, beta, initial_temperature, caller);
+
+  // State y_k = ln(T_k/T_ref), T_ref = sum_k x_k T_k(0); y_S = collisions per unit volume. The same
+  // tolerances as integrate_partial_temperatures (theory.hpp, "Numerical integration").
+  const std::size_t species = mix.size();
+  double reference = 0.0;
+  for (std::size_t k = 0; k < species; ++k)
+    reference += mix.mole_fraction(k) * initial_temperature[k];
+  std::vector<double> y0(species + 1, 0.0);
+  for (std::size_t k = 0; k < species; ++k) y0[k] = std::log(initial_temperature[k] / reference);
+  std::vector<double> rtol(species + 1, 0.0), atol(species + 1, 1e-11);
+  rtol[species] = 1e-10;
+  atol[species] = 1e-12 * mix.total_density();
+
+  std::vector<double> T(species);
+  auto rhs = [&](std::span<const double> y, std::span<double> dydt) {
+    for (std::size_t k = 0; k < species; ++k) T[k] = reference * std::exp(y[k]);
+    require_within_cutoff(mix, beta, T, caller);
+    for (std::size_t k = 0; k < species; ++k) {
+      double sum = 0.0;
+      for (std::size_t i = 0; i < species; ++i)
+        sum += cooling_rate_viscoelastic(mix, beta, T, k, i);
+      dydt[k] = -sum;  // seed 001 eqs 22-23 with A4: d ln T_k/dt = -sum_i xi_ki
+    }
+    dydt[species] = total_collision_rate(mix, T);  // ERRATA §2
+  };
+  OdeSolver solver(rhs, y0, rtol, atol);
+
+  TemperatureHistory history;
+  history.time = times;
+  for (double t : times) {
+    if (t > 0.0) solver.advance_to(t);
+    const auto y = solver.state();
+    std::vector<double> now(species);
+    for (std::size_t k = 0; k < species; ++k) now[k] = reference * std::exp(y[k]);
+    history.temperature.push_back(std::move(now));
+    history.collisions.push_back(y[species]);
+  }
+  return history;
+}
+
+// -------------------------------------------------------------------------------------------------
+// Mean squared displacement
+// -------------------------------------------------------------------------------------------------
+
+MsdResult mean_squared_displacement(const Mixture& mix,
+                                    const std::vector<double>& initial_temperature,
+                                    const std::vector<double>& times, const PairMatrix* beta) {
+  return displacement(mix, initial_temperature, times, beta, false, "mean_squared_displacement");
+}
+
+MsdResult long_time_msd(const Mixture& mix, const std::vector<double>& initial_temperature,
+                        const std::vector<double>& times, const PairMatrix* beta) {
+  return displacement(mix, initial_temperature, times, beta, true, "long_time_msd");
+}
+
+}  // namespace gdsmc::theory

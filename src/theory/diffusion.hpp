@@ -1,0 +1,230 @@
+/**
+ * \file diffusion.hpp
+ * \brief Self-diffusion in a homogeneously cooling granular mixture: viscoelastic restitution,
+ *        velocity correlation times, diffusion coefficients, partial temperatures with
+ *        viscoelastic restitution and the mean squared displacement (MSD) of each species.
+ *
+ * \section diffusion_intro What this module computes
+ *
+ * The theory of Bodrova and Osinsky (seed 001 eqs 5-8, 16-24 and Appendix A1-A4) in the corrected
+ * form of ERRATA §8 and §11. Notation as in theory.hpp and ERRATA: s_ki = T_k/m_k + T_i/m_i,
+ * sigma_ki = (sigma_k + sigma_i)/2, mu_ik = m_i/(m_i + m_k), chi_ki the pair correlation at contact
+ * (seed 001's g_2(sigma_ki)), X_ki = (T_k m_i + T_i m_k)/(T_k (m_i + m_k)) (not symmetric).
+ * Every species is Maxwellian with its own partial temperature T_k (as in theory.hpp).
+ *
+ * \subsection diffusion_visco Viscoelastic restitution (ERRATA §11; seed 001 eqs 5-8)
+ * alpha_ki(g.e) = 1 + sum_{j=1}^{20} h_j u^j, u = beta_ki^(1/2) |g.e|^(1/10), with the h_j of
+ * ERRATA §11 (h_2 = -C_1, C_1 = 1.1534488580952888, h_4 = C_2 = 3 C_1^2/5 and h_5 = 4/15 are used
+ * at full precision, the others as listed). The series is that of the viscoelastic (Hertz plus
+ * dissipative) contact x'' + x^(3/2) + u^2 x^(1/2) x' = 0, x(0) = 0, x'(0) = 1, which ends when
+ * the contact force vanishes (x + u^2 x' = 0) with alpha = -x'(end). Integrating that contact
+ * (tests/diffusion_test.cpp does so up to u = 0.8) the series is off by 3.1e-7 at u = 0.65,
+ * 1.1e-4 at u = 0.8, 2.2e-3 at u = 0.9 and 2.7e-2 at u = 1 (it diverges beyond u about 1.05).
+ * Cut-off: viscoelastic_u_max = 0.8; above it viscoelastic_restitution throws std::domain_error
+ * instead of returning an untrusted (possibly negative) alpha.
+ * beta_ki = A kappa_ki^(2/5) carries units of (velocity)^(-1/5). One material (ERRATA §11; seed
+ * 001 eqs 7-8): beta_ki/beta_11 = [sqrt(sigma_eff,ki/sigma_eff,11) m_11/m_ki]^(2/5) with
+ * sigma_eff,ki = sigma_i sigma_k/(sigma_i + sigma_k) (not the contact distance) and m_ki the
+ * reduced mass. Convention: the seed's "A kappa^(2/5) = 0.09" is beta_11 = 0.09 for the pair of
+ * species 1 (index 0); callers record that convention in their output.
+ *
+ * \subsection diffusion_rates Correlation times and cooling rates (ERRATA §8; seed 001 A1-A4)
+ * base_ki = (8 sqrt(2 pi)/3) n_i sigma_ki^2 chi_ki mu_ik sqrt(s_ki), with n_i the density of the
+ * partner species i and mu_ik = m_i/(m_i + m_k) the partner's mass fraction.
+ * - A1, constant alpha: tau_v,ki^-1 = base_ki X_ki (1 + alpha_ki)^2/4. This is nu_ki - xi_ki/2,
+ *   with nu_ki = base_ki (1 + alpha_ki)/2 the momentum relaxation rate of a k particle drifting
+ *   through Maxwellian i particles and xi_ki the cooling rate (A2); ERRATA §8: keep
+ *   (1 + alpha)^2/4.
+ * - A2 = ERRATA §4: xi_ki = base_ki (1 + alpha_ki) [1 - (1/2)(1 + alpha_ki) X_ki], which is
+ *   theory::cooling_rate_matrix.
+ * - A3, viscoelastic: tau_v,ki^-1 = base_ki X_ki (1 + (1/2) sum_{n=1}^{40} A_n B_n).
+ * - A4, viscoelastic: xi_ki = 2 base_ki [1 - X_ki + sum_n B_n (h_n - (1/2) X_ki A_n)]
+ *   (n runs to 40, with h_n = 0 for n > 20).
+ * - A_n = 4 h_n + sum_{j+l=n; 1<=j,l<=20} h_j h_l, B_n = (1/2) Gamma(2 + n/20) beta_ki^(n/2)
+ *   (2 s_ki)^(n/20) (ERRATA §8; equal to the printed (20 + n) n Gamma(n/20)/800 form).
+ * A3 and A4 are A1 and A2 averaged term by term over the restitution series with the weight
+ * g_n^3 exp(-g_n^2/(2 s_ki)) of the normal relative speed g_n (then B_n = <u^n>/2):
+ * tau_v,ki^-1 = base_ki X_ki <(1 + alpha)^2>/4 and
+ * xi_ki = base_ki [<1 + alpha> - (1/2) X_ki <(1 + alpha)^2>]; tests/diffusion_test.cpp checks this
+ * against quadrature of viscoelastic_restitution. With beta = 0 they are A1 and A2 at alpha = 1
+ * (for a mixture A4 then keeps the elastic energy exchange 2 base_ki (1 - X_ki)).
+ * Cut-off of the averaged series: the typical u of a pair, u_ki = beta_ki^(1/2) (2 s_ki)^(1/20)
+ * (B_n = Gamma(2 + n/20) u_ki^n/2), must not exceed viscoelastic_u_max, else std::domain_error.
+ * Collisions in the Maxwellian tail beyond the cut-off enter through the term-by-term average;
+ * their share is negligible for u_ki well below the cut-off (0.32 for beta = 0.09, T = m = 1).
+ * With viscoelastic restitution Mixture::restitution is ignored.
+ *
+ * \subsection diffusion_coefficients Diffusion coefficients (seed 001 eqs 19-20; ERRATA §8)
+ * D_k = T_k tau_v,k/m_k with tau_v,k^-1 = sum_i tau_v,ki^-1. One species, constant alpha:
+ * D = 3/(2 (1 + alpha)^2 n sigma^2 chi) sqrt(T/(pi m)) (Brilliantov and Poeschel; alpha = 1 gives
+ * the Chapman-Enskog 3/(8 n sigma^2) sqrt(T/(pi m))).
+ *
+ * \subsection diffusion_msd Mean squared displacement (seed 001 eqs 16-18, 21; ERRATA §8)
+ * <R_k^2(t)> = 6 int_0^t dt1 D_k(t1) [1 - exp(-(tau_k(t) - tau_k(t1))/tauhat_v,k(t1))]  (eq 17)
+ * with tauhat_v,k(t) = tau_v,k(t) sqrt(T_k(t)/T_k(0)) (eq 18) and, as ERRATA §8 defines it,
+ * tau_k(t) = int_0^t sqrt(T_k(t')/T_k(0)) dt'. <R^2> = (1/n) sum_k n_k <R_k^2> (eq 16).
+ * Long-time form (eq 21): <R_k^2> = 6 int_0^t D_k(t1) dt1.
+ * Properties (checked in tests/diffusion_test.cpp):
+ * - t << tau_v,k: <R_k^2> = 3 T_k(0) t^2/m_k (ballistic).
+ * - Constant temperatures (elastic, one species):
+ *   <R_k^2> = 6 D_k t - 6 D_k tau_v,k (1 - exp(-t/tau_v,k)) (Ornstein-Uhlenbeck).
+ * - One species, constant alpha (Haff, T = T0/(1 + t/t0)^2, t0 = 2/zeta_0, ERRATA §3), exactly:
+ *   <R^2> = 6 D0 t0 ln(1 + t/t0) - 6 D0 tau_v0 [1 - (1 + t/t0)^(-t0/tau_v0)], so the logarithmic
+ *   law 6 D0 tau0 ln(1 + t/tau0) of ERRATA §8 holds with tau0 = t0 = 2/zeta_0 (the Haff time), up
+ *   to the constant -6 D0 tau_v0; eq 21 gives 6 D0 t0 ln(1 + t/t0) exactly. A mixture started at
+ *   the asymptotic temperature ratios follows the same form species by species (common t0).
+ * Eq 17 is the adiabatic form of the velocity autocorrelation integral (the correlation decays
+ * with the correlation time frozen at t1); it is implemented as printed, not replaced by the
+ * exact double integral.
+ *
+ * \subsection diffusion_numerics Numerics of the MSD
+ * T_k(t) comes from CVODE (integrate_partial_temperatures for constant alpha, or
+ * integrate_partial_temperatures_viscoelastic) on a node grid uniform in s = ln(1 + t/t_c), 64
+ * nodes per unit of s, t_c = 1/max_k (tau_v,k^-1 + sum_i |xi_ki|) at t = 0: every rate of the
+ * problem scales like 1/(t_c + t), so this grid resolves the transient and the power-law regime
+ * alike. Between nodes ln T_k(t) is a cubic Hermite interpolant (node values from CVODE, slopes
+ * -sum_i xi_ki from the rate formulas). tau_k at the nodes is accumulated with GSL quadrature
+ * (gsl_integration_qag, 15-point Gauss-Kronrod, rtol 1e-12) of sqrt(T_k/T_k(0)) over each interval
+ * of the interpolant, and interpolated between nodes by cubic Hermite (slope sqrt(T_k/T_k(0))).
+ * The t1 integrals of eqs 17 and 21 use gsl_integration_qag (21-point rule, rtol 1e-10) on pieces
+ * of [0, t] bounded by every 32nd node, 1 - exp(-x) evaluated as -expm1(-x) so that the ballistic
+ * regime keeps full precision. Measured against the closed forms above: relative error below 1e-8.
+ * The GSL error handler is switched off (and restored) around these calls; a failed quadrature
+ * throws std::runtime_error. Not thread-safe for that reason (GSL's handler is global).
+ *
+ * \subsection diffusion_units Units
+ * Consistent user units, k_B = 1 (T is an energy), as in theory.hpp.
+ */
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "dsmc/species.hpp"
+#include "theory/theory.hpp"
+
+namespace gdsmc::theory {
+
+// ---------------------------------------------------------------------------------------------
+// Viscoelastic restitution (ERRATA §11; seed 001 eqs 5-8)
+// ---------------------------------------------------------------------------------------------
+
+/// Number of terms of the restitution series (ERRATA §11).
+inline constexpr int restitution_series_terms = 20;
+
+/// C_1 of the first term, h_2 = -C_1 (ERRATA §11).
+inline constexpr double restitution_c1 = 1.1534488580952888;
+
+/// Largest u = beta^(1/2) |g.e|^(1/10) at which the 20-term series is used (series error 1.1e-4
+/// against the contact model there, see \ref diffusion_visco).
+inline constexpr double viscoelastic_u_max = 0.8;
+
+/// h_j of ERRATA §11, j = 1..20 (h_2 = -C_1, h_4 = 3 C_1^2/5, h_5 = 4/15 at full precision).
+/// Throws std::out_of_range for other j.
+double restitution_series_coefficient(int j);
+
+/// A_n = 4 h_n + sum_{j+l=n} h_j h_l, n = 1..40 (ERRATA §8). Throws std::out_of_range otherwise.
+double restitution_series_square_coefficient(int n);
+
+/**
+ * ERRATA §11 / seed 001 eq 5: alpha = 1 + sum_{j=1}^{20} h_j u^j, u = beta_ki^(1/2) |g.e|^(1/10).
+ * `normal_speed` is g.e (its sign does not matter). Throws std::domain_error if beta_ki < 0, an
+ * argument is not finite, or u > viscoelastic_u_max (the series is not trusted there).
+ */
+double viscoelastic_restitution(double beta_ki, double normal_speed);
+
+/**
+ * One-material beta_ki (ERRATA §11): beta_ki = beta_11 [sqrt(sigma_eff,ki/sigma_eff,11)
+ * m_11/m_ki]^(2/5), sigma_eff,ki = sigma_i sigma_k/(sigma_i + sigma_k), m_ki the reduced mass;
+ * species 1 is index 0. Symmetric. Throws std::invalid_argument if beta_11 < 0 or not finite.
+ */
+PairMatrix viscoelastic_beta(const Mixture& mix, double beta_11);
+
+// ---------------------------------------------------------------------------------------------
+// Velocity correlation times and cooling rates (ERRATA §8; seed 001 App. A)
+// temperature[k] = T_k; beta is an S x S matrix of beta_ki >= 0 (viscoelastic_beta)
+// ---------------------------------------------------------------------------------------------
+
+/// ERRATA §8: base_ki = (8 sqrt(2 pi)/3) n_i sigma_ki^2 chi_ki mu_ik sqrt(s_ki), row k, column i.
+PairMatrix velocity_correlation_base_rate(const Mixture& mix,
+                                          const std::vector<double>& temperature);
+
+/// A1 (ERRATA §8): tau_v,ki^-1 = base_ki X_ki (1 + alpha_ki)^2/4, constant restitution.
+PairMatrix inverse_velocity_correlation_time(const Mixture& mix,
+                                             const std::vector<double>& temperature);
+
+/// A3 (ERRATA §8): tau_v,ki^-1 = base_ki X_ki (1 + (1/2) sum_n A_n B_n). Throws std::domain_error
+/// if a pair's typical u exceeds viscoelastic_u_max (\ref diffusion_rates).
+PairMatrix inverse_velocity_correlation_time_viscoelastic(const Mixture& mix,
+                                                          const PairMatrix& beta,
+                                                          const std::vector<double>& temperature);
+
+/// A4 (ERRATA §8): xi_ki = 2 base_ki [1 - X_ki + sum_n B_n (h_n - (1/2) X_ki A_n)], such that
+/// dT_k/dt = -T_k sum_i xi_ki. Throws std::domain_error like A3.
+PairMatrix cooling_rate_matrix_viscoelastic(const Mixture& mix, const PairMatrix& beta,
+                                            const std::vector<double>& temperature);
+
+/// Seed 001 eqs 19-20: D_k = T_k tau_v,k/m_k, tau_v,k^-1 = sum_i tau_v,ki^-1, from A1 or, when
+/// `beta` is given, from A3.
+std::vector<double> diffusion_coefficients(const Mixture& mix,
+                                           const std::vector<double>& temperature,
+                                           const PairMatrix* beta = nullptr);
+
+/// D_k/D_1 (entry 0 is 1) at the given temperatures, A1 or (with beta) A3.
+std::vector<double> diffusion_coefficient_ratio(const Mixture& mix,
+                                                const std::vector<double>& temperature,
+                                                const PairMatrix* beta = nullptr);
+
+/**
+ * D_k/D_1 at long times for constant restitution (the JSON key `diffusion_coefficient_ratio`, seed
+ * 001 Figs 4, 5, 7): D_k is homogeneous of degree 1/2 in the temperatures, so once T_k/T_1 has
+ * settled (asymptotic_temperature_ratios, ERRATA §4) the ratio is constant. With viscoelastic
+ * restitution there is no such constant: the mixture drifts towards equipartition and the elastic
+ * limit as T -> 0 (seed 001 Sec. III); use the overload above at the temperatures of interest.
+ */
+std::vector<double> diffusion_coefficient_ratio(const Mixture& mix);
+
+// ---------------------------------------------------------------------------------------------
+// Partial temperatures with viscoelastic restitution (seed 001 eqs 22-23 with A4)
+// ---------------------------------------------------------------------------------------------
+
+/**
+ * Integrates dT_k/dt = -T_k sum_i xi_ki with xi from A4 by CVODE, as integrate_partial_temperatures
+ * does for constant restitution (BDF, dense Newton, state ln(T_k/T_ref), T_ref = sum_k x_k T_k(0),
+ * absolute tolerance 1e-11 on ln T_k; collisions per unit volume with rtol 1e-10). Reports at
+ * `times` (non-negative, strictly increasing). Throws std::invalid_argument for bad input and
+ * std::runtime_error naming the failing SUNDIALS call (a std::domain_error of A4 in the right-hand
+ * side is quoted in that message).
+ */
+TemperatureHistory integrate_partial_temperatures_viscoelastic(
+    const Mixture& mix, const PairMatrix& beta, const std::vector<double>& initial_temperature,
+    const std::vector<double>& times);
+
+// ---------------------------------------------------------------------------------------------
+// Mean squared displacement (seed 001 eqs 16-18, 21; ERRATA §8)
+// ---------------------------------------------------------------------------------------------
+
+struct MsdResult {
+  std::vector<double> time;              ///< the requested times
+  std::vector<std::vector<double>> msd;  ///< [time][species] <R_k^2(t)>
+  std::vector<double> total;             ///< eq 16: (1/n) sum_k n_k <R_k^2(t)>
+};
+
+/**
+ * Eq 17 (with eq 16 for `total`) from T_k(0) = initial_temperature[k] at `times` (non-negative,
+ * strictly increasing; times[0] may be 0). Constant restitution (A1, A2) unless `beta` is given
+ * (A3, A4). Numerics: \ref diffusion_numerics. Throws std::invalid_argument for bad input,
+ * std::domain_error beyond the viscoelastic cut-off, std::runtime_error if CVODE or GSL fails.
+ */
+MsdResult mean_squared_displacement(const Mixture& mix,
+                                    const std::vector<double>& initial_temperature,
+                                    const std::vector<double>& times,
+                                    const PairMatrix* beta = nullptr);
+
+/// Eq 21, the long-time form 6 int_0^t D_k(t1) dt1 (and eq 16), same arguments and numerics as
+/// mean_squared_displacement. It exceeds eq 17 by 6 int_0^t D_k(t1) exp(...) dt1 > 0, which tends
+/// to the constant 6 D0 tau_v0 for one species with constant restitution.
+MsdResult long_time_msd(const Mixture& mix, const std::vector<double>& initial_temperature,
+                        const std::vector<double>& times, const PairMatrix* beta = nullptr);
+
+}  // namespace gdsmc::theory
