@@ -345,6 +345,7 @@ TEST(ConfigResolved, ContainsEveryFieldOfEveryGroup) {
   ASSERT_GT(expected.size(), 20u);
   expected.erase("dsmc:collisions_per_particle");
   expected.erase("output:msd_start_time");  // unset optionals are not written
+  expected.erase("system:visco_a_kappa");
   expected.erase("output:msd_start_temperature");
   expected.erase("sweep:variable");  // written only by a sweep
   expected.erase("sweep:values");
@@ -416,6 +417,7 @@ TEST(ConfigReference, MentionsEveryVariable) {
       with_line(16, "  n_samples = 3, track_displacements = .true., msd_start_time = 1.0")));
   all.insert(tracked.begin(), tracked.end());
   all.insert("output:msd_start_temperature");
+  all.insert("system:visco_a_kappa");
   for (const auto& name : all) {
     const std::string variable = name.substr(name.find(':') + 1);
     EXPECT_NE(md.find("`" + variable + "`"), std::string::npos) << variable;
@@ -519,9 +521,23 @@ TEST(ConfigError, RestitutionOutsideTheUnitInterval) {
                "restitution", {"restitution = 1.3 is outside [0, 1]"});
 }
 
-TEST(ConfigError, RestitutionModelNotAvailable) {
-  const std::string m = error_of(with_line(6, "  restitution = 0.5, restitution_model = 'viscoelastic'"));
-  expect_error(m, 6, "system", "restitution_model", {"'viscoelastic'", "not available"});
+TEST(ConfigError, ViscoelasticNeedsItsParameterAndNoAlpha) {
+  const std::string m = error_of(with_line(6, "  restitution_model = 'viscoelastic'"));
+  expect_error(m, 6, "system", "visco_a_kappa", {"required with restitution_model = 'viscoelastic'"});
+  const std::string both = error_of(with_line(6, "  restitution = 0.5, restitution_model = 'viscoelastic', visco_a_kappa = 0.09"));
+  expect_error(both, 6, "system", "restitution", {"not used with restitution_model = 'viscoelastic'"});
+  const std::string stray = error_of(with_line(6, "  restitution = 0.5, visco_a_kappa = 0.09"));
+  expect_error(stray, 6, "system", "visco_a_kappa", {"only used with restitution_model = 'viscoelastic'"});
+}
+
+TEST(ConfigRead, ViscoelasticBetaFollowsOneMaterialScaling) {
+  const auto c = read_text(with_line(6, "  restitution_model = 'viscoelastic', visco_a_kappa = 0.09"));
+  const auto beta = c.viscoelastic_beta();
+  ASSERT_TRUE(beta.has_value());
+  EXPECT_DOUBLE_EQ((*beta)(0, 0), 0.09);
+  // m = 1, 10, sigma = 1, 1: beta_22/beta_11 = [m_11/m_22]^(2/5) = (0.5/5)^(2/5) (ERRATA §11)
+  EXPECT_NEAR((*beta)(1, 1), 0.09 * std::pow(0.1, 0.4), 1e-15);
+  EXPECT_FALSE(read_text(base()).viscoelastic_beta().has_value());
 }
 
 TEST(ConfigError, PackingFractionBeyondCarnahanStarling) {

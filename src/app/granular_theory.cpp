@@ -25,6 +25,8 @@ const char* kUsage =
     "  sonine_a2, cooling_rate_sonine               one species: van Noije-Ernst a2 and (1+3a2/16) zeta\n"
     "  temperature_ratio, sonine_c, cooling_rate_reduced, tail_beta, tail_decay_rate\n"
     "                       binary mixtures: the HCS in first Sonine approximation (seed 003, ERRATA §6)\n"
+    "  diffusion_coefficient_ratio  [D_k/D_1] (seed 001 eq 19, ERRATA §8); msd {time, value[t][k]} (eq 17)\n"
+    "                       when &output track_displacements = .true. (not with msd_start_temperature)\n"
     "With &sweep: {\"sweep\": {variable, values}, \"points\": [one object as above per value]}.\n";
 
 std::string number(double x) {
@@ -91,7 +93,8 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
   // Collisions suffered by species k per unit volume: 2 P_kk + sum_{j != k} P_kj (ERRATA §2).
   const auto pair = th::pair_collision_rate(mix, t0);
   std::vector<double> frequency(s), cooling(s);
-  const auto xi = th::cooling_rate_matrix(mix, t0);
+  const auto beta = config.viscoelastic_beta();  // viscoelastic restitution: A3, A4 (ERRATA §8)
+  const auto xi = beta ? th::cooling_rate_matrix_viscoelastic(mix, *beta, t0) : th::cooling_rate_matrix(mix, t0);
   for (std::size_t k = 0; k < s; ++k) {
     double suffered = 0.0, z = 0.0;
     for (std::size_t j = 0; j < s; ++j) {
@@ -104,7 +107,8 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
 
   std::vector<double> times = config.sample_times();
   if (times.empty()) times = times_for_collisions(mix, t0, config.sample_collisions());
-  const auto history = th::integrate_partial_temperatures(mix, t0, times);
+  const auto history = beta ? th::integrate_partial_temperatures_viscoelastic(mix, *beta, t0, times)
+                            : th::integrate_partial_temperatures(mix, t0, times);
 
   const std::string in = indent + "  ";
   std::ostringstream json;
@@ -125,7 +129,38 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
        << array(total) << "},\n";
   json << in << "\"collisions_per_particle\": {\"time\": " << array(history.time)
        << ", \"value\": " << array(collisions) << "}";
-  if (s == 1) {
+  // Diffusion (seed 001 eqs 16-21, ERRATA §8): D_k/D_1 at long times (constant alpha) or at the end
+  // of the run (viscoelastic, where the ratios drift), and eq 17's MSD when displacements are tracked.
+  {
+    const auto ratio = beta ? th::diffusion_coefficient_ratio(mix, history.temperature.back(), &*beta)
+                            : th::diffusion_coefficient_ratio(mix);
+    json << ",\n" << in << "\"diffusion_coefficient_ratio\": " << array(ratio);
+  }
+  if (config.output.track_displacements) {
+    // The MSD counts from msd_start_time (or t = 0), starting from the theory's temperatures then.
+    const double start = config.output.msd_start_time.value_or(0.0);
+    std::vector<double> start_temperature = t0;
+    if (start > 0.0) {
+      const auto at = beta ? th::integrate_partial_temperatures_viscoelastic(mix, *beta, t0, {0.0, start})
+                           : th::integrate_partial_temperatures(mix, t0, {0.0, start});
+      start_temperature = at.temperature.back();
+    }
+    std::vector<double> since, shifted_times;
+    for (double t : history.time)
+      if (t >= start) {
+        since.push_back(t - start);
+        shifted_times.push_back(t);
+      }
+    if (!config.output.msd_start_temperature && !since.empty()) {
+      const auto msd = th::mean_squared_displacement(mix, start_temperature, since, beta ? &*beta : nullptr);
+      json << ",\n" << in << "\"msd\": {\"time\": " << array(shifted_times) << ", \"value\": [";
+      for (std::size_t i = 0; i < msd.msd.size(); ++i) json << (i ? ", " : "") << array(msd.msd[i]);
+      json << "]}";
+    }
+  }
+  if (beta) {
+    // Constant-alpha keys (Sonine HCS, asymptotic ratios) do not apply to viscoelastic spheres.
+  } else if (s == 1) {
     const double alpha = mix.restitution(0, 0);
     const double a2 = th::sonine_a2(alpha);
     json << ",\n" << in << "\"sonine_a2\": " << number(a2) << ",\n" << in << "\"sonine_c\": ["
@@ -137,7 +172,7 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
     if (inelastic)
       json << ",\n" << in << "\"asymptotic_temperature_ratio\": " << array(th::asymptotic_temperature_ratios(mix));
   }
-  if (s == 2) {  // binary HCS in first Sonine approximation (seed 003 App. A, ERRATA §6)
+  if (s == 2 && !beta) {  // binary HCS in first Sonine approximation (seed 003 App. A, ERRATA §6)
     const auto hcs = th::binary_hcs_first_sonine(mix);
     json << ",\n" << in << "\"temperature_ratio\": " << number(hcs.temperature_ratio);
     json << ",\n" << in << "\"sonine_c\": " << array({hcs.sonine_c[0], hcs.sonine_c[1]});

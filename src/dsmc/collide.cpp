@@ -20,7 +20,8 @@ Scheme parse_scheme(const std::string& name) {
 }
 
 Collider::Collider(Scheme scheme, const species::Mixture& mix, particles::System& sys,
-                   rng::Xoshiro256pp gen, double step_fraction)
+                   rng::Xoshiro256pp gen, double step_fraction,
+                   const species::PairMatrix* viscoelastic_beta)
     : scheme_(scheme), mix_(mix), sys_(sys), gen_(gen), step_fraction_(step_fraction),
       s_(mix.size()) {
   cross_section_.resize(s_ * s_);
@@ -37,11 +38,23 @@ Collider::Collider(Scheme scheme, const species::Mixture& mix, particles::System
   pair_rate_.assign(s_ * s_, 0.0);
   pair_cumulative_.assign(s_ * s_, 0.0);
   counters_.pair_events.assign(s_ * s_, 0);
+  if (viscoelastic_beta)
+    for (double beta : viscoelastic_beta->values) sqrt_beta_.push_back(std::sqrt(beta));
   if (scheme_ == Scheme::lowrank) {
     for (double chi : mix.pair_correlation.values) chi_max_ = std::max(chi_max_, chi);
     lowrank_ = segment_tree::LowRankSampler<3>(s_);
     lowrank_volume_ = static_cast<double>(sys.size() - 1) / mix.total_density();
   }
+}
+
+double Collider::restitution_of(std::size_t pair, std::size_t a, std::size_t b, double ex, double ey,
+                                double ez) const {
+  if (sqrt_beta_.empty()) return alpha_[pair];
+  const double g_dot_e = (sys_.vx[a] - sys_.vx[b]) * ex + (sys_.vy[a] - sys_.vy[b]) * ey +
+                         (sys_.vz[a] - sys_.vz[b]) * ez;
+  const double u = sqrt_beta_[pair] * std::pow(std::abs(g_dot_e), 0.1);  // ERRATA §11
+  if (u > restitution::u_max) return restitution::viscoelastic(sqrt_beta_[pair] * sqrt_beta_[pair], g_dot_e);  // throws
+  return restitution::series(u);
 }
 
 void Collider::set_lowrank_row(std::size_t k) {
@@ -200,7 +213,7 @@ int Collider::run_majorant(double t_stop, std::uint64_t event_target) {
       particles::flush_free_flight(sys_, a, t_collision);
       particles::flush_free_flight(sys_, b, t_collision);
     }
-    apply_collision(sys_, a, b, ex, ey, ez, alpha_[pair], mass_fraction_[pair]);
+    apply_collision(sys_, a, b, ex, ey, ez, restitution_of(pair, a, b, ex, ey, ez), mass_fraction_[pair]);
     count_event(ka, kb);
     return true;
   });
@@ -233,7 +246,7 @@ int Collider::run_pairs(double t_stop, std::uint64_t event_target) {
       particles::flush_free_flight(sys_, k, t_collision);
       particles::flush_free_flight(sys_, l, t_collision);
     }
-    apply_collision(sys_, k, l, ex, ey, ez, alpha_[pair], mass_fraction_[pair]);
+    apply_collision(sys_, k, l, ex, ey, ez, restitution_of(pair, k, l, ex, ey, ez), mass_fraction_[pair]);
     count_event(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
     return true;
   });
@@ -267,7 +280,7 @@ int Collider::run_lowrank(double t_stop, std::uint64_t event_target) {
       particles::flush_free_flight(sys_, a, t_collision);
       particles::flush_free_flight(sys_, b, t_collision);
     }
-    apply_collision(sys_, a, b, ex, ey, ez, alpha_[pair], mass_fraction_[pair]);
+    apply_collision(sys_, a, b, ex, ey, ez, restitution_of(pair, a, b, ex, ey, ez), mass_fraction_[pair]);
     count_event(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(k));
     return true;
   });

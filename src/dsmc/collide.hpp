@@ -40,6 +40,10 @@
  * two schemes sample exactly the same process. A raised vmax_i updates species i's row in O(log M).
  * (For very many species the S x S pair tables below are the next limit: issue 4.)
  *
+ * **Restitution.** Constant alpha_kj, or viscoelastic (seed 001 eqs 5-8, ERRATA §11): alpha from the
+ * normal impact speed |g.e| of each collision (restitution.hpp). The bounds and the acceptance do not
+ * change: only the collision rule does (seed 001 sec. II).
+ *
  * **Displacements** (seed 001 eq 15, ERRATA §7), when the System tracks them: at a collision at
  * time t both partners add their free flight v (t - t_last) to R before their velocities change.
  *
@@ -62,6 +66,7 @@
 
 #include "dsmc/particles.hpp"
 #include "dsmc/rng.hpp"
+#include "dsmc/restitution.hpp"
 #include "dsmc/segment_tree.hpp"
 #include "dsmc/species.hpp"
 
@@ -99,8 +104,11 @@ struct Counters {
 /// The collision stage of one replica: particles, pair constants, bounds, clock and generator.
 class Collider {
  public:
+  /// `viscoelastic_beta`: beta_ki of the viscoelastic restitution (restitution.hpp), or nullptr
+  /// for the constant alpha_kj of the mixture.
   Collider(Scheme scheme, const species::Mixture& mix, particles::System& sys,
-           rng::Xoshiro256pp gen, double step_fraction);
+           rng::Xoshiro256pp gen, double step_fraction,
+           const species::PairMatrix* viscoelastic_beta = nullptr);
 
   /// Advances until time `t_target` or until `event_target` events, whichever comes first.
   /// Returns true when the event target stopped it.
@@ -132,7 +140,10 @@ class Collider {
   std::size_t s_;
   // Pair constants, row-major S x S.
   std::vector<double> cross_section_;   ///< pi sigma_kj^2 chi_kj
-  std::vector<double> alpha_;           ///< alpha_kj
+  std::vector<double> alpha_;           ///< alpha_kj (constant restitution)
+  std::vector<double> sqrt_beta_;       ///< beta_kj^(1/2) (viscoelastic; empty otherwise)
+  /// alpha of pair `pair` for the collision of a and b along e (ERRATA §1, §11).
+  double restitution_of(std::size_t pair, std::size_t a, std::size_t b, double ex, double ey, double ez) const;
   std::vector<double> mass_fraction_;   ///< m_j/(m_k + m_j): the share of the impulse taken by k
   std::vector<double> max_speed_;       ///< vmax_k
   std::vector<std::size_t> raised_;     ///< species whose vmax was raised since the last rebuild

@@ -78,6 +78,7 @@ PointResult run_point(const io::config::Config& config, const Options& options, 
   const std::vector<double> targets = time_driven ? config.sample_times() : config.sample_collisions();
   const std::size_t n_samples = targets.size();
   const std::size_t n_pairs = s * (s + 1) / 2;
+  const auto viscoelastic_beta = config.viscoelastic_beta();
   const bool reduced = s <= 2;  // v0 and Phi_i(v*) are defined for one or two species (seed 003)
   const auto reduced_bins = static_cast<std::size_t>(config.output.reduced_bins);
   const double reduced_range = config.output.reduced_range;
@@ -110,7 +111,7 @@ PointResult run_point(const io::config::Config& config, const Options& options, 
                                                    parse_distribution(config.initial.distribution),
                                                    init_stream);
     collide::Collider collider(scheme, mix, sys, rng::make_stream(seed, r, rng::Purpose::collisions),
-                               config.dsmc.step_fraction);
+                               config.dsmc.step_fraction, viscoelastic_beta ? &*viscoelastic_beta : nullptr);
     // Displacements (seed 001 eq 15) from t = 0, from msd_start_time, or from the first sample
     // with T <= msd_start_temperature.
     const bool track = config.output.track_displacements;

@@ -10,6 +10,7 @@
 #include <variant>
 
 #include "dsmc/particles.hpp"
+#include "dsmc/restitution.hpp"
 
 namespace gdsmc::io::config {
 
@@ -64,9 +65,14 @@ const std::vector<Field<System>>& system_fields() {
       {"number_density", &System::number_density, "1/length^3",
        "n_k, one per species (or species 1 with density_law)", kPositive, {}, true},
       {"restitution", &System::restitution, "",
-       "alpha_kj: one value for all pairs, or restitution(i,j) = ... (symmetric)", kUnit, {}, true},
-      {"restitution_model", &System::restitution_model, "", "how alpha depends on the impact",
-       {}, {"constant", "viscoelastic"}},
+       "alpha_kj: one value for all pairs, or restitution(i,j) = ... (symmetric; required when constant)",
+       kUnit, {}, true},
+      {"restitution_model", &System::restitution_model, "",
+       "'constant' (alpha_kj), or 'viscoelastic' (alpha from the impact speed, seed 001 eqs 5-8)", {},
+       {"constant", "viscoelastic"}},
+      {"visco_a_kappa", &System::visco_a_kappa, "velocity^(-1/5)",
+       "beta_11 = A kappa_11^(2/5) of the viscoelastic model; other pairs by the one-material scaling "
+       "of ERRATA §11", at_least(0)},
       {"enskog", &System::enskog, "",
        ".true.: Carnahan-Starling chi_ij multiplies the collision rates (seed 003 eq 26)"},
       {"mass_law", &System::mass_law, "", "'list', or 'linear': m_k = k m_1", {},
@@ -169,6 +175,7 @@ const char* kind_name(namelist::Value::Kind kind) {
 /// Where each variable was last assigned, and the raw element assignments of pair matrices.
 struct Provenance {
   std::string file;                             ///< the namelist file (for group-level errors)
+  int group_line = 0;                           ///< line of '&group' (0 if absent)
   std::map<std::string, int> line;              ///< variable -> line of its last assignment
   std::map<std::string, std::string> set_in;    ///< variable -> file (or override) of that line
   /// Pair-matrix assignments in order, each with the file (or override) it came from.
@@ -322,9 +329,10 @@ void read_group(G& target, const std::vector<Field<G>>& fields, const namelist::
 
 template <class G>
 void check_required(const std::vector<Field<G>>& fields, const Provenance& prov,
-                    const std::string& file, const std::string& group, int group_line) {
+                    const std::string& file, const std::string& group, int group_line,
+                    const std::string& not_required = "") {
   for (const auto& f : fields)
-    if (f.required && !prov.line.count(f.name))
+    if (f.required && f.name != not_required && !prov.line.count(f.name))
       throw Error(file, group_line, group, f.name, "required variable is missing");
 }
 
@@ -400,9 +408,20 @@ void check_species_list(std::vector<double>& values, const std::string& name, co
 void check_system(System& sys, const Provenance& prov) {
   const std::string group = "system";
   const auto s = static_cast<std::size_t>(sys.n_species);
-  if (sys.restitution_model != "constant")
-    throw Error(prov.file_of("restitution_model"), prov.line.at("restitution_model"), group, "restitution_model",
-                "'" + sys.restitution_model + "' is not available in this version (only 'constant')");
+  if (sys.restitution_model == "viscoelastic") {
+    if (!sys.visco_a_kappa)
+      throw Error(prov.file_of("restitution_model"), prov.line.at("restitution_model"), group, "visco_a_kappa",
+                  "required with restitution_model = 'viscoelastic'");
+    if (prov.line.count("restitution"))
+      throw Error(prov.file_of("restitution"), prov.line.at("restitution"), group, "restitution",
+                  "not used with restitution_model = 'viscoelastic' (alpha follows from visco_a_kappa)");
+  } else {
+    if (!prov.line.count("restitution"))
+      throw Error(prov.file, prov.group_line, group, "restitution", "required variable is missing");
+    if (prov.line.count("visco_a_kappa"))
+      throw Error(prov.file_of("visco_a_kappa"), prov.line.at("visco_a_kappa"), group, "visco_a_kappa",
+                  "only used with restitution_model = 'viscoelastic'");
+  }
   check_species_list(sys.mass, "mass", sys.mass_law, s, prov, group);
   check_species_list(sys.diameter, "diameter", sys.diameter_law, s, prov, group);
   check_species_list(sys.number_density, "number_density", sys.density_law, s, prov, group);
@@ -420,7 +439,8 @@ void check_system(System& sys, const Provenance& prov) {
     if (sys.density_law == "power")
       sys.number_density.push_back(sys.number_density[0] * std::pow(kk, -sys.density_exponent));
   }
-  resolve_restitution(sys, prov, group);
+  if (sys.restitution_model == "constant") resolve_restitution(sys, prov, group);
+  else sys.restitution = species::PairMatrix(s, 1.0);  // placeholder; alpha comes from the impact
   if (sys.enskog) {
     double phi = 0.0;
     for (std::size_t k = 0; k < s; ++k) phi += sys.number_density[k] * std::pow(sys.diameter[k], 3);
@@ -679,6 +699,11 @@ namelist::Document parse_override(const std::string& text) {
 
 }  // namespace
 
+std::optional<species::PairMatrix> Config::viscoelastic_beta() const {
+  if (system.restitution_model != "viscoelastic") return std::nullopt;
+  return restitution::one_material_beta(mixture(), *system.visco_a_kappa);
+}
+
 species::Mixture Config::mixture() const {
   return species::make_mixture(system.mass, system.diameter, system.number_density,
                                system.restitution, system.enskog);
@@ -771,7 +796,10 @@ Config read_point(const namelist::Document& document, const std::vector<std::str
   for (const auto& [group, p] : prov)
     for (const auto& [variable, line] : p.line)
       c.origin[group + ":" + variable] = {p.file_of(variable), line};
-  check_required(system_fields(), prov["system"], document.file, "system", document.find("system")->line);
+  // restitution is required by the constant model only (the viscoelastic one derives alpha).
+  check_required(system_fields(), prov["system"], document.file, "system", document.find("system")->line,
+                 c.system.restitution_model == "viscoelastic" ? "restitution" : "");
+  prov["system"].group_line = document.find("system")->line;
   check_system(c.system, prov["system"]);
   check_initial(c.initial, static_cast<std::size_t>(c.system.n_species), prov["initial"]);
   check_dsmc(c.dsmc, c.mixture(), prov["dsmc"], document.find("dsmc")->line);

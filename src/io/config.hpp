@@ -39,8 +39,9 @@ struct System {
   std::vector<double> mass;            ///< m_k (required)
   std::vector<double> diameter;        ///< sigma_k (required)
   std::vector<double> number_density;  ///< n_k (required)
-  species::PairMatrix restitution;     ///< alpha_kj (required; one value fills all pairs)
+  species::PairMatrix restitution;     ///< alpha_kj (required with the constant model; one value fills all pairs)
   std::string restitution_model = "constant";
+  std::optional<double> visco_a_kappa;  ///< beta_11 = A kappa_11^(2/5) of the viscoelastic model
   bool enskog = false;
   std::string mass_law = "list";
   std::string diameter_law = "list";
@@ -104,6 +105,8 @@ struct Config {
 
   /// The mixture of &system with its pair data.
   species::Mixture mixture() const;
+  /// beta_ki of the viscoelastic restitution (ERRATA §11), empty when the model is constant.
+  std::optional<species::PairMatrix> viscoelastic_beta() const;
   /// Sample times, including t = 0, when the run is time-driven (empty otherwise).
   std::vector<double> sample_times() const;
   /// Sample points in collisions per particle, including 0, when the run is collision-driven.

@@ -32,15 +32,7 @@ constexpr double pi = std::numbers::pi;
 
 constexpr int square_terms = 2 * restitution_series_terms;  // A_n runs to n = 40 (ERRATA §8)
 
-/// h_j, index j (entry 0 unused). ERRATA §11: h_2 = -C_1, h_4 = C_2 = 3 C_1^2/5, h_5 = 4/15.
-// clang-format off
-constexpr std::array<double, restitution_series_terms + 1> h_coeff = {
-    0.0,
-    0.0,        -restitution_c1, 0.0,        3.0 * restitution_c1 * restitution_c1 / 5.0, 4.0 / 15.0,
-    -0.5228826, -0.4613795,      0.3487427,  0.4523511,  -0.1464315,
-    -0.3677283, -0.0432490,      0.2818042,  0.1478526,  -0.1794421,
-    -0.1784660, 0.0659336,       0.1713586,  0.0252498,  -0.1379235};  // h_1 .. h_20
-// clang-format on
+const auto& h_coeff = restitution::h;  // ERRATA §11
 
 /// ERRATA §8: A_n = 4 h_n + sum_{j+l=n, 1<=j,l<=20} h_j h_l (h_n = 0 for n > 20), index n.
 constexpr std::array<double, square_terms + 1> square_coefficients() {
@@ -520,38 +512,6 @@ double restitution_series_square_coefficient(int n) {
   if (n < 1 || n > square_terms)
     throw std::out_of_range("restitution_series_square_coefficient: n must be in 1..40");
   return a_coeff[n];
-}
-
-double viscoelastic_restitution(double beta_ki, double normal_speed) {
-  if (!(beta_ki >= 0.0) || !std::isfinite(beta_ki) || !std::isfinite(normal_speed))
-    throw std::domain_error("viscoelastic_restitution: beta must be finite and >= 0, g.e finite");
-  const double u = std::sqrt(beta_ki) * std::pow(std::abs(normal_speed), 0.1);  // ERRATA §11
-  if (u > viscoelastic_u_max)
-    throw std::domain_error(
-        "viscoelastic_restitution: u = beta^(1/2) |g.e|^(1/10) = " + std::to_string(u) +
-        " exceeds the series cut-off " + std::to_string(viscoelastic_u_max));
-  // ERRATA §11 / seed 001 eq 5: alpha = 1 + sum_j h_j u^j (Horner).
-  double sum = 0.0;
-  for (int j = restitution_series_terms; j >= 1; --j) sum = (sum + h_coeff[j]) * u;
-  return 1.0 + sum;
-}
-
-PairMatrix viscoelastic_beta(const Mixture& mix, double beta_11) {
-  if (!(beta_11 >= 0.0) || !std::isfinite(beta_11))
-    throw std::invalid_argument("viscoelastic_beta: beta_11 must be finite and >= 0");
-  if (mix.size() == 0) return PairMatrix(0);
-  // seed 001 eq 8: sigma_eff = sigma_i sigma_k/(sigma_i + sigma_k); ERRATA §11 scaling.
-  auto sigma_eff = [&](std::size_t k, std::size_t i) {
-    return mix.diameter[k] * mix.diameter[i] / (mix.diameter[k] + mix.diameter[i]);
-  };
-  PairMatrix beta(mix.size());
-  for (std::size_t k = 0; k < mix.size(); ++k)
-    for (std::size_t i = k; i < mix.size(); ++i) {
-      const double ratio = std::sqrt(sigma_eff(k, i) / sigma_eff(0, 0)) * mix.reduced_mass(0, 0) /
-                           mix.reduced_mass(k, i);
-      beta(k, i) = beta(i, k) = beta_11 * std::pow(ratio, 0.4);  // ERRATA §11
-    }
-  return beta;
 }
 
 // -------------------------------------------------------------------------------------------------

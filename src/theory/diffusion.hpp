@@ -100,6 +100,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "dsmc/restitution.hpp"
 #include "dsmc/species.hpp"
 #include "theory/theory.hpp"
 
@@ -109,36 +110,27 @@ namespace gdsmc::theory {
 // Viscoelastic restitution (ERRATA §11; seed 001 eqs 5-8)
 // ---------------------------------------------------------------------------------------------
 
-/// Number of terms of the restitution series (ERRATA §11).
-inline constexpr int restitution_series_terms = 20;
+// The series itself lives in dsmc/restitution.hpp (the collision rule uses it); these names keep
+// the theory's vocabulary.
+inline constexpr int restitution_series_terms = restitution::series_terms;
+inline constexpr double restitution_c1 = restitution::series_c1;
+inline constexpr double viscoelastic_u_max = restitution::u_max;
 
-/// C_1 of the first term, h_2 = -C_1 (ERRATA §11).
-inline constexpr double restitution_c1 = 1.1534488580952888;
-
-/// Largest u = beta^(1/2) |g.e|^(1/10) at which the 20-term series is used (series error 1.1e-4
-/// against the contact model there, see \ref diffusion_visco).
-inline constexpr double viscoelastic_u_max = 0.8;
-
-/// h_j of ERRATA §11, j = 1..20 (h_2 = -C_1, h_4 = 3 C_1^2/5, h_5 = 4/15 at full precision).
-/// Throws std::out_of_range for other j.
+/// h_j of ERRATA §11, j = 1..20. Throws std::out_of_range for other j.
 double restitution_series_coefficient(int j);
 
 /// A_n = 4 h_n + sum_{j+l=n} h_j h_l, n = 1..40 (ERRATA §8). Throws std::out_of_range otherwise.
 double restitution_series_square_coefficient(int n);
 
-/**
- * ERRATA §11 / seed 001 eq 5: alpha = 1 + sum_{j=1}^{20} h_j u^j, u = beta_ki^(1/2) |g.e|^(1/10).
- * `normal_speed` is g.e (its sign does not matter). Throws std::domain_error if beta_ki < 0, an
- * argument is not finite, or u > viscoelastic_u_max (the series is not trusted there).
- */
-double viscoelastic_restitution(double beta_ki, double normal_speed);
+/// ERRATA §11 / seed 001 eq 5 (restitution::viscoelastic).
+inline double viscoelastic_restitution(double beta_ki, double normal_speed) {
+  return restitution::viscoelastic(beta_ki, normal_speed);
+}
 
-/**
- * One-material beta_ki (ERRATA §11): beta_ki = beta_11 [sqrt(sigma_eff,ki/sigma_eff,11)
- * m_11/m_ki]^(2/5), sigma_eff,ki = sigma_i sigma_k/(sigma_i + sigma_k), m_ki the reduced mass;
- * species 1 is index 0. Symmetric. Throws std::invalid_argument if beta_11 < 0 or not finite.
- */
-PairMatrix viscoelastic_beta(const Mixture& mix, double beta_11);
+/// One-material beta_ki (ERRATA §11; restitution::one_material_beta).
+inline PairMatrix viscoelastic_beta(const Mixture& mix, double beta_11) {
+  return restitution::one_material_beta(mix, beta_11);
+}
 
 // ---------------------------------------------------------------------------------------------
 // Velocity correlation times and cooling rates (ERRATA §8; seed 001 App. A)
