@@ -1,0 +1,68 @@
+// Partial MSDs against seed 001 eq 17 (ERRATA §8), Figs 1, 2, 6, 9, 10. See README.md.
+//
+// usage: validate_msd INPUT.nml [--set ...] [--output FILE] --gap g1,g2[,g3]
+// `--gap` gives, per species, the relative systematic allowance of eq 17 for this case: the gap
+// between eq 17 and DSMC measured once and stated in README.md (ERRATA §8: eq 17 is itself an
+// approximation), never adjusted to make a run pass.
+#include <cmath>
+#include <cstring>
+#include <sstream>
+
+#include "theory/theory.hpp"
+#include "validation.hpp"
+
+using namespace gdsmc;
+
+int main(int argc, char** argv) {
+  std::vector<double> gap;
+  std::vector<char*> args;
+  for (int i = 0; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--gap") == 0 && i + 1 < argc) {
+      std::stringstream list(argv[++i]);
+      for (std::string item; std::getline(list, item, ',');) gap.push_back(std::stod(item));
+      continue;
+    }
+    args.push_back(argv[i]);
+  }
+  const auto run = validation::run_case(static_cast<int>(args.size()), args.data(), "msd.h5");
+  const auto mix = run.config.mixture();
+  const std::size_t s = mix.size();
+  validation::Report report("partial MSDs against eq 17, " + std::to_string(s) + " species, " +
+                                run.config.system.restitution_model + " restitution",
+                            run.report_file());
+  if (!report.require("--gap gives one allowance per species", gap.size() == s)) return report.exit_code();
+  const auto beta = run.config.viscoelastic_beta();
+  const auto msd = validation::observable(run, "msd");
+  if (!report.require("replicas > 1, so standard errors exist", !msd.error.empty())) return report.exit_code();
+  const std::vector<double> times(msd.time.begin(), msd.time.end());
+  const auto theory_msd = theory::mean_squared_displacement(mix, run.config.initial.temperature, times,
+                                                            beta ? &*beta : nullptr);
+  const std::size_t nt = times.size();
+  for (std::size_t i = 1; i < nt; ++i)
+    for (std::size_t k = 0; k < s; ++k) {
+      const double th = theory_msd.msd[i][k], measured = msd.value[i * s + k];
+      // Short times: eq 17 is ballistic to within its first collision correction (gap measured
+      // <= 0.3 % at the first sample), so the first sample gets 1 %, the others the stated gap.
+      const double allowance = (i == 1 ? 0.01 : gap[k]) * th;
+      char name[128];
+      std::snprintf(name, sizeof name, "<R_%zu^2>(t = %.3g) (DSMC/eq 17 - 1 = %+.1f %%)", k + 1, times[i],
+                    100.0 * (measured / th - 1.0));
+      report.check(name, measured, msd.error[i * s + k], th, 4.0, allowance);
+    }
+  // Regimes: the start as ballistic as eq 17 says (within 0.05 in log-slope), slow at the end
+  // (log-slope over the last decade of time).
+  for (std::size_t k = 0; k < s; ++k) {
+    std::size_t a = nt - 1;
+    while (a > 1 && times[a] > times[nt - 1] / 10.0) --a;
+    const double slope = std::log(msd.value[(nt - 1) * s + k] / msd.value[a * s + k]) / std::log(times[nt - 1] / times[a]);
+    const double start = std::log(msd.value[2 * s + k] / msd.value[1 * s + k]) / std::log(times[2] / times[1]);
+    const double theory_start =
+        std::log(theory_msd.msd[2][k] / theory_msd.msd[1][k]) / std::log(times[2] / times[1]);
+    char text[240];
+    std::snprintf(text, sizeof text,
+                  "species %zu: d ln<R^2>/d ln t = %.3f at the start (eq 17: %.3f; ballistic 2) and %.3f over the "
+                  "last decade (< 1: slower than normal diffusion)", k + 1, start, theory_start, slope);
+    report.require(text, std::abs(start - theory_start) < 0.05 && slope < 1.0);
+  }
+  return report.exit_code();
+}
