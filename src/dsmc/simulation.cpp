@@ -53,6 +53,10 @@ class ProgressLine {
   Clock::time_point start_, last_{};
 };
 
+/// Mixtures with more species than this record neither `collisions_pair` (S(S+1)/2 columns) nor
+/// the per-species velocity histograms.
+constexpr std::size_t kMaxPairSpecies = 64;
+
 /// What one point (all its replicas) measured.
 struct PointResult {
   std::map<std::string, sample::Accumulator> observables;
@@ -165,15 +169,17 @@ PointResult run_point(const io::config::Config& config, const Options& options, 
       column("collisions", 1).add(r, {static_cast<double>(counters.events)});
       column("collisions_per_particle", 1).add(r, {2.0 * static_cast<double>(counters.events) /
                                                    static_cast<double>(n_total)});
-      std::vector<double> pairs;
-      pairs.reserve(n_pairs);
-      for (std::size_t k = 0; k < s; ++k)
-        for (std::size_t j = k; j < s; ++j)
-          pairs.push_back(static_cast<double>(counters.pair_events[k * s + j]));
-      column("collisions_pair", n_pairs).add(r, pairs);
+      if (s <= kMaxPairSpecies) {  // S(S+1)/2 columns: only for mixtures of a few species
+        std::vector<double> pairs;
+        pairs.reserve(n_pairs);
+        for (std::size_t k = 0; k < s; ++k)
+          for (std::size_t j = k; j < s; ++j)
+            pairs.push_back(static_cast<double>(counters.pair_events[k * s + j]));
+        column("collisions_pair", n_pairs).add(r, pairs);
+      }
       column("time", 1).add(r, {collider.time()});
-      column("velocity_histogram", s * bins)
-          .add(r, sample::velocity_histogram(mix, sys, m, bins, range));
+      if (s <= kMaxPairSpecies)  // one histogram per species: only for a few species
+        column("velocity_histogram", s * bins).add(r, sample::velocity_histogram(mix, sys, m, bins, range));
       if (track && !tracking && config.output.msd_start_temperature &&
           m.total_temperature <= *config.output.msd_start_temperature) {
         particles::start_tracking(sys, collider.time());
@@ -319,7 +325,7 @@ void write_point(io::h5md::Writer& writer, const std::string& root, const io::co
     series.error = a.standard_error();
     writer.write_observable(root + "/" + name, series);
   }
-  {  // one histogram observable per species: value (Nt x bins)
+  if (acc.count("velocity_histogram")) {  // one histogram observable per species: value (Nt x bins)
     const auto mean = acc["velocity_histogram"].mean();
     const auto error = acc["velocity_histogram"].standard_error();
     for (std::size_t k = 0; k < s; ++k) {
@@ -353,10 +359,12 @@ void write_point(io::h5md::Writer& writer, const std::string& root, const io::co
                          std::string("partial temperatures T_k = m_k <|v-u|^2>/3, columns = species"));
   writer.write_attribute(root + "/sonine_c", "description",
                          std::string("c_k = 2[(3/5)<v^4>/<v^2>^2 - 1] (seed 003 eq 17)"));
-  writer.write_attribute(root + "/collisions_pair", "description",
-                         std::string("cumulative events per species pair (k <= j, row-major upper triangle)"));
-  writer.write_attribute(root + "/velocity_histogram", "description",
-                         std::string("pdf of velocity components in units of sqrt(T_k/m_k), per species"));
+  if (acc.count("collisions_pair"))
+    writer.write_attribute(root + "/collisions_pair", "description",
+                           std::string("cumulative events per species pair (k <= j, row-major upper triangle)"));
+  if (acc.count("velocity_histogram"))
+    writer.write_attribute(root + "/velocity_histogram", "description",
+                           std::string("pdf of velocity components in units of sqrt(T_k/m_k), per species"));
 }
 
 }  // namespace

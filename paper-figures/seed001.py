@@ -1,0 +1,417 @@
+#!/usr/bin/python3
+"""Seed 001 (Bodrova and Osinsky) Figs 1, 2, 4, 5, 6, 7, 9, 10 from the validation outputs: partial MSDs
+from DSMC (replica mean +- standard error) over eq 17 of `granular-theory` for the same input, and the
+ratios of diffusion coefficients D_k/D_1 (eq 19, long-time limit) against n_2 and the restitution.
+
+usage: /usr/bin/python3 paper-figures/seed001.py [BUILD_DIR] [OUT_DIR]
+Reads BUILD_DIR/validation-output/msd_fig{1,2,6,9,10}.h5 (written by `ctest -L validation`, paper tier
+preferred, quick tier otherwise) and writes OUT_DIR/seed001_fig{N}_*.png (default OUT_DIR:
+paper-figures/out). Figs 4, 5, 7 are theory lines (`granular-theory` with a `&sweep`, temporary
+namelists only) with DSMC points only when `diffusion_ratio_*` outputs exist. A figure whose DSMC output
+is missing is skipped with a note.
+
+Eq 17 is an approximation: DSMC lies up to ~14-16 % below it for the light species (ERRATA §8,
+validation/msd_binary/README.md), which the lower panels (DSMC / eq 17) show.
+"""
+import glob
+import json
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+import h5py
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+BUILD = os.path.abspath(sys.argv[1]) if len(sys.argv) > 1 else os.path.join(ROOT, "build")
+OUT = os.path.abspath(sys.argv[2]) if len(sys.argv) > 2 else os.path.join(ROOT, "paper-figures", "out")
+RUNS = os.path.join(BUILD, "validation-output")
+THEORY = os.path.join(BUILD, "bin", "granular-theory")
+
+LINE_SAMPLES = 161  # sample times of the smooth eq 17 lines (the DSMC runs have 41)
+COLORS = ("C0", "C3", "C2", "C1")
+MARKERS = ("o", "s", "^", "D")
+
+
+class Missing(Exception):
+    pass
+
+
+class TheoryError(RuntimeError):
+    pass
+
+
+def pick(name):
+    """The paper-tier file of a validation case, or its quick variant."""
+    for candidate in (name, name + "_quick"):
+        path = os.path.join(RUNS, candidate + ".h5")
+        if os.path.exists(path):
+            return path
+    raise Missing(f"no output for {name} in {RUNS}: run `ctest --test-dir {BUILD} -L validation` first")
+
+
+def tier(path):
+    return "quick tier" if path.endswith("_quick.h5") else "paper tier"
+
+
+def observable(f, name):
+    g = f["observables"][name]
+    err = g["error"][()] if "error" in g else None
+    return g["time"][()], g["value"][()], err
+
+
+def stored_input(path):
+    """Namelist text and overrides (without output:) stored in an output file's /parameters."""
+    with h5py.File(path) as f:
+        p = f["parameters"].attrs
+        text = p["namelist"]
+        overrides = [o for o in p["overrides"].split("\n") if o and not o.startswith("output:")]
+    return text, overrides
+
+
+def run_theory(text, overrides=()):
+    with tempfile.TemporaryDirectory(prefix="seed001-theory-") as tmp:
+        nml = os.path.join(tmp, "theory.nml")
+        with open(nml, "w") as out:
+            out.write(text)
+        cmd = [THEORY, nml]
+        for o in overrides:
+            cmd += ["--set", o]
+        r = subprocess.run(cmd, capture_output=True, text=True, cwd=tmp)
+        if r.returncode:
+            raise TheoryError(f"granular-theory failed on\n{text}\n{r.stderr.strip()}")
+        return json.loads(r.stdout)
+
+
+def theory(path, extra=()):
+    """granular-theory on the namelist and overrides stored in the output file (plus `extra`)."""
+    text, overrides = stored_input(path)
+    return run_theory(text, overrides + list(extra))
+
+
+def save(fig, name):
+    os.makedirs(OUT, exist_ok=True)
+    fig.savefig(os.path.join(OUT, name), dpi=120, bbox_inches="tight")
+    plt.close(fig)
+    print("wrote", os.path.join(OUT, name))
+
+
+# ---------------------------------------------------------------------------------------------
+# MSD figures (1, 2, 6, 9, 10)
+# ---------------------------------------------------------------------------------------------
+
+def rescaled_time(t, T1):
+    """t_s(t) = int_0^t sqrt(T_1(t')/T_1(0)) dt' by the trapezoid rule; t[0] = 0. Past the first interval
+    the trapezoid runs in ln t on t sqrt(T_1/T_1(0)) (exact for the power laws of a log-spaced grid)."""
+    w = np.sqrt(np.clip(T1 / T1[0], 0.0, None))
+    ts = np.zeros_like(t)
+    ts[1] = 0.5 * (w[0] + w[1]) * (t[1] - t[0])
+    g = t[1:] * w[1:]
+    ts[2:] = ts[1] + np.cumsum(0.5 * (g[1:] + g[:-1]) * np.diff(np.log(t[1:])))
+    return ts
+
+
+def msd_data(path):
+    """DSMC and eq 17 of one MSD case: a dict with times, values, errors, theory on the sample times and on
+    a dense grid, temperatures, species parameters."""
+    with h5py.File(path) as f:
+        t, R, dR = observable(f, "msd")
+        tT, T, _ = observable(f, "temperature")
+        s = f["parameters/system"].attrs
+        d = dict(t=t, R=R, dR=dR, tT=tT, T=T, mass=s["mass"], diameter=s["diameter"],
+                 n=s["number_density"], N=f["parameters/dsmc"].attrs["n_particles"],
+                 replicas=f["parameters/dsmc"].attrs["replicas"],
+                 model=s["restitution_model"] if "restitution_model" in s else "constant")
+    th = theory(path)  # on the DSMC sample times, for the ratio panel
+    assert np.allclose(th["msd"]["time"], d["t"], rtol=1e-9), "theory and DSMC sample times differ"
+    d["Rth"] = np.array(th["msd"]["value"])
+    dense = theory(path, [f"output:n_samples={LINE_SAMPLES}"])
+    d["tl"] = np.array(dense["msd"]["time"])
+    d["Rl"] = np.array(dense["msd"]["value"])
+    d["Tl"] = np.array(dense["temperature"]["value"])
+    d["x"] = np.asarray(d["n"], float) / np.sum(d["n"])
+    return d
+
+
+def species_label(d, k):
+    return f"m = {d['mass'][k]:g}, sigma = {d['diameter'][k]:.3g}"
+
+
+def slope_guide(ax, x0, x1, y0, power, label, ls="--", where="above"):
+    x = np.array([x0, x1])
+    ax.plot(x, y0 * (x / x0) ** power, ls, color="0.45", lw=1.1)
+    xm = np.sqrt(x0 * x1)
+    ym = y0 * (xm / x0) ** power
+    if where == "left":
+        ax.annotate(label, (xm, ym), textcoords="offset points", xytext=(-8, 0), ha="right", va="center",
+                    fontsize=9)
+    else:
+        ax.annotate(label, (xm, ym), textcoords="offset points", xytext=(-14, 6), fontsize=9)
+
+
+def msd_figure(case, fig_no, title, filename, total=False, rescale=False, guides=("t^2",)):
+    try:
+        path = pick(case)
+    except Missing as e:
+        print(f"Fig {fig_no} skipped: {e}")
+        return
+    d = msd_data(path)
+    S = d["R"].shape[1]
+    t, tl = d["t"], d["tl"]
+    if rescale:  # each against its own T_1: DSMC from the measured T_1, eq 17 from the theory's T_1
+        assert np.allclose(d["tT"], t)
+        xd, xl = rescaled_time(t, d["T"][:, 0]), rescaled_time(tl, d["Tl"][:, 0])
+    else:
+        xd, xl = t, tl
+    fig, (ax, ar) = plt.subplots(2, 1, figsize=(6.4, 6.4), sharex=True, gridspec_kw=dict(height_ratios=(3, 1.2)))
+    sel, sl = t > 0, tl > 0
+    for k in range(S):
+        c = COLORS[k]
+        ax.plot(xl[sl], d["Rl"][sl, k], "-", color=c, lw=1.5, label=f"eq 17, {species_label(d, k)}")
+        ax.errorbar(xd[sel], d["R"][sel, k], yerr=d["dR"][sel, k], fmt=MARKERS[k], ms=4, mfc="none", color=c,
+                    capsize=2, label=f"DSMC, species {k + 1}")
+        ar.errorbar(xd[sel], d["R"][sel, k] / d["Rth"][sel, k], yerr=d["dR"][sel, k] / d["Rth"][sel, k],
+                    fmt=MARKERS[k], ms=3.5, mfc="none", color=c, capsize=1.5)
+    if total:  # eq 16: number-fraction weighted mean of the partial MSDs
+        x = d["x"]
+        Rt_l = d["Rl"] @ x
+        Rt_th = d["Rth"] @ x
+        Rt = d["R"] @ x
+        dRt = np.sqrt((d["dR"] ** 2) @ (x ** 2))  # species treated as independent
+        ax.plot(xl[sl], Rt_l[sl], "--", color="k", lw=1.5, label="eq 16 total, from eq 17")
+        ax.errorbar(xd[sel], Rt[sel], yerr=dRt[sel], fmt="x", ms=5, color="k", capsize=2,
+                    label="DSMC total (eq 16)")
+        ar.errorbar(xd[sel], Rt[sel] / Rt_th[sel], yerr=dRt[sel] / Rt_th[sel], fmt="x", ms=4, color="k",
+                    capsize=1.5)
+    # slope guides, offset from the light species' line so they do not hide data
+    x0 = xl[sl][0]
+    y_first = d["Rl"][sl, 0][0]
+    if "t^2" in guides:
+        x1 = x0 * 30.0
+        slope_guide(ax, x0, x1, 4.0 * y_first, 2.0, "t_s^2" if rescale else "t^2", where="left")
+    xe, ye = xl[sl][-1], d["Rl"][sl][-1].max()  # late guides end 3x above the highest line
+    if "t" in guides:  # normal diffusion (Fig 1, dotted as in the paper)
+        slope_guide(ax, xe / 30.0, xe, 3.0 * ye / 30.0, 1.0, "t_s", ls=":")
+    if "t^(1/6)" in guides:
+        slope_guide(ax, xe / 1e3, xe, 3.0 * ye / 1e3 ** (1 / 6), 1.0 / 6.0, "t^(1/6)")
+    ax.set(xscale="log", yscale="log", ylabel="<R_k^2>")
+    ax.set_title(title + f"\n(N = {d['N']}, {d['replicas']} replicas, {tier(path)})", fontsize=10)
+    ax.legend(fontsize=7.5, ncol=2, loc="lower right")
+    ar.axhline(1.0, color="0.5", lw=0.8)
+    ar.set(xlabel="t_s = int sqrt(T_1(t)/T_1(0)) dt" if rescale else "t", ylabel="DSMC / eq 17")
+    lo, hi = ar.get_ylim()
+    ar.set_ylim(min(lo, 0.8), max(hi, 1.2))
+    fig.tight_layout()
+    save(fig, filename)
+
+
+# ---------------------------------------------------------------------------------------------
+# D_k/D_1 figures (4, 5, 7): theory lines from temporary namelists with a &sweep
+# ---------------------------------------------------------------------------------------------
+
+SIGMA2_EQUAL = "1.0"
+SIGMA2_MATERIAL = f"{100.0 ** (1 / 3):.9f}"
+EPS_LINE = np.round(np.r_[np.arange(0.05, 0.951, 0.025), 0.96, 0.97, 0.98, 0.985, 0.99, 0.995, 1.0], 3)
+N2_LINE = np.logspace(-4, 0, 41)
+
+
+def sweep_namelist(mass, diameter, density, restitution, variable, values):
+    """A theory-only namelist (small &dsmc, two samples) with a &sweep of `variable` over `values`."""
+    fmt = lambda a: ", ".join(str(v) for v in a)  # noqa: E731
+    return (f"! seed001.py: temporary theory-only input\n"
+            f"&system\n  n_species = {len(mass)}\n  mass = {fmt(mass)}\n  diameter = {fmt(diameter)}\n"
+            f"  number_density = {fmt(density)}\n  restitution = {restitution}\n/\n"
+            f"&dsmc\n  n_particles = 100000\n  t_end = 1.0\n/\n"
+            f"&output\n  file = 'unused.h5'\n  n_samples = 2\n/\n"
+            f"&sweep\n  variable = '{variable}'\n  values = {', '.join(values)}\n/\n")
+
+
+def ratio_line(mass, diameter, density, restitution, variable, xs, fmt):
+    """(x, D_k/D_1) along xs (sweep values fmt(x)). granular-theory also solves the binary first-Sonine HCS
+    and stops when that has no root in its bracket (gamma < 1e-4: heavy intruders of equal size at very
+    small n_2); then the points are computed one by one and those are left out, with a note."""
+    values = [fmt(x) for x in xs]
+    try:
+        pts = run_theory(sweep_namelist(mass, diameter, density, restitution, variable, values))["points"]
+        return np.asarray(xs), np.array([p["diffusion_coefficient_ratio"] for p in pts])
+    except TheoryError:
+        pass
+    keep, rows, dropped = [], [], []
+    for x, v in zip(xs, values):
+        try:
+            p = run_theory(sweep_namelist(mass, diameter, density, restitution, variable, [v]))["points"][0]
+        except TheoryError as e:
+            dropped.append((x, e.args[0].splitlines()[-1]))
+            continue
+        keep.append(x)
+        rows.append(p["diffusion_coefficient_ratio"])
+    if dropped:
+        print(f"note: granular-theory gives no point for {variable} = {', '.join(f'{x:g}' for x, _ in dropped)} "
+              f"(masses {mass}, diameters {diameter}): {dropped[0][1]}")
+    return np.asarray(keep), np.array(rows)
+
+
+def increment_ratio(t, R, dR=None):
+    """D_k/D_1 from the MSD increments over the last decade of t (as validate_diffusion_ratio does): from
+    the last sample with t <= t_end/10 to t_end. <R_k^2> grows as 6 int D_k dt and in the HCS every D_k(t)
+    has the same time dependence, so the increments have the ratio D_k/D_1."""
+    a = max(1, int(np.searchsorted(t, t[-1] / 10.0, side="right")) - 1)
+    inc = R[-1] - R[a]
+    r = inc / inc[0]
+    if dR is None:
+        return r
+    dinc = np.hypot(dR[-1], dR[a])
+    return r, r * np.hypot(dinc / inc, dinc[0] / inc[0])
+
+
+def dsmc_ratio_points():
+    """D_k/D_1 measured by the `diffusion_ratio_*` validation cases (validation/diffusion_ratio), if any:
+    a list of dicts (system parameters, sweep variable, rows of (value, DSMC ratio, its SE, eq 17's ratio
+    over the same decade)). The paper tier of a case is preferred to its quick variant."""
+    files = sorted(glob.glob(os.path.join(RUNS, "diffusion_ratio_*.h5")))
+    names = {os.path.basename(p)[:-3] for p in files}
+    out = []
+    for p in files:
+        name = os.path.basename(p)[:-3]
+        if name.endswith("_quick") and name[:-6] in names:
+            continue  # the paper tier exists
+        try:
+            with h5py.File(p) as f:
+                s = f["parameters/system"].attrs
+                dsmc = f["parameters/dsmc"].attrs
+                variable = f["sweep"].attrs["variable"]
+                vals = [v.decode() if isinstance(v, bytes) else str(v) for v in f["sweep"].attrs["values"]]
+                rows = []
+                for i, v in enumerate(vals):
+                    t, R, dR = observable(f[f"sweep/point_{i + 1}"], "msd")
+                    rows.append([v, *increment_ratio(t, R, dR), t])
+                m = dict(name=name, variable=variable, mass=s["mass"], diameter=s["diameter"],
+                         tier=tier(p), N=dsmc["n_particles"], replicas=dsmc["replicas"])
+            pts = theory(p)["points"]  # eq 17 on the same sample times, per sweep point
+            for row, pt in zip(rows, pts):
+                assert np.allclose(pt["msd"]["time"], row[3], rtol=1e-9), "theory and DSMC sample times differ"
+                row[3] = increment_ratio(np.array(pt["msd"]["time"]), np.array(pt["msd"]["value"]))
+            m["rows"] = rows
+            out.append(m)
+        except (KeyError, ValueError, IndexError, TheoryError) as e:
+            print(f"note: {name} not understood as a D_k/D_1 measurement ({e}); not plotted")
+    return out
+
+
+def sweep_x(variable, value):
+    """Abscissa of a DSMC sweep point: n_2 for number_density sweeps, the restitution otherwise."""
+    nums = [float(x) for x in re.split(r"[,\s]+", value.strip("'\" ")) if x]
+    return nums[1] if "number_density" in variable else nums[0]
+
+
+def overlay_dsmc(ax, measured, want, fig_no):
+    """Plots the DSMC D_k/D_1 points (and eq 17's ratio over the same decade of t) of the measurements for
+    which want(m) gives (colors per k, label prefix)."""
+    shown = 0
+    for m in measured:
+        spec = want(m)
+        if spec is None:
+            continue
+        colors, prefix = spec
+        for v, r, e, r17 in m["rows"]:
+            x = sweep_x(m["variable"], v)
+            for k in range(1, len(r)):
+                ax.errorbar([x], [r[k]], yerr=[e[k]], fmt=MARKERS[k - 1], ms=6, color=colors[k], mfc="none",
+                            capsize=3, label=f"DSMC {prefix}D_{k + 1}/D_1, last decade (N = {m['N']}, "
+                                             f"{m['replicas']} rep., {m['tier']})")
+                ax.plot([x], [r17[k]], "+", ms=9, mew=1.4, color="0.35",
+                        label="eq 17 over the same decade of t")
+        shown += 1
+        print(f"Fig {fig_no}: DSMC points from {m['name']}")
+    if not shown:
+        print(f"Fig {fig_no}: no diffusion_ratio_* DSMC outputs in {RUNS}; theory lines only")
+    h, lab = ax.get_legend_handles_labels()
+    keep = dict(zip(lab, h))  # one legend entry per label
+    ax.legend(keep.values(), keep.keys(), fontsize=7.5, loc="upper center", bbox_to_anchor=(0.5, -0.15), ncol=1)
+
+
+def binary(m):
+    return len(m["mass"]) == 2 and np.isclose(m["mass"][1] / m["mass"][0], 100.0)
+
+
+def sigma_kind(m):
+    return "equal" if np.isclose(m["diameter"][1], m["diameter"][0]) else "material"
+
+
+def fig4_fig5(measured):
+    fig4, ax4 = plt.subplots(figsize=(6, 6))
+    fig5, ax5 = plt.subplots(figsize=(6, 6))
+    styles = {"equal": ("k", "sigma_2 = 1"), "material": ("C0", "sigma_2 = 100^(1/3)")}
+    for kind, s2 in (("equal", SIGMA2_EQUAL), ("material", SIGMA2_MATERIAL)):
+        color, label = styles[kind]
+        x, r = ratio_line([1.0, 100.0], [1.0, s2], [0.1, 0.1], 0.5, "system:number_density", N2_LINE,
+                          lambda n2: f"'0.1, {n2:.6g}'")
+        note = f" (no theory below n_2 = {x[0]:.1g})" if x[0] > N2_LINE[0] else ""
+        ax4.plot(x, r[:, 1], "-", color=color, lw=1.6, label=f"eq 19, {label}{note}")
+        x, r = ratio_line([1.0, 100.0], [1.0, s2], [0.1, 0.1], 0.5, "system:restitution", EPS_LINE,
+                          lambda e: f"{e:g}")
+        ax5.plot(x, r[:, 1], "-", color=color, lw=1.6, label=f"eq 19, {label}")
+    ax4.set(xscale="log", yscale="log", xlabel="n_2 (n_1 = 0.1)", ylabel="D_2 / D_1",
+            title="Seed 001 Fig 4: D_2/D_1 vs n_2, m = 1, 100, epsilon = 0.5")
+    ax5.set(xlabel="restitution coefficient epsilon", ylabel="D_2 / D_1", xlim=(0.0, 1.0), yscale="log",
+            title="Seed 001 Fig 5: D_2/D_1 vs epsilon, m = 1, 100, n_1 = n_2 = 0.1")
+    for ax in (ax4, ax5):
+        ax.title.set_fontsize(10)
+        ax.grid(alpha=0.3, which="both")
+        ax.yaxis.set_major_locator(matplotlib.ticker.LogLocator(subs=(1.0, 2.0, 5.0)))
+        ax.yaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+        ax.yaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+
+    def want(variable):
+        def f(m):
+            if not (binary(m) and variable in m["variable"]):
+                return None
+            color, label = styles[sigma_kind(m)]
+            return (None, color), label + ", "
+        return f
+
+    overlay_dsmc(ax4, measured, want("number_density"), 4)
+    overlay_dsmc(ax5, measured, want("restitution"), 5)
+    for fig in (fig4, fig5):
+        fig.tight_layout()
+    save(fig4, "seed001_fig4_diffusion_ratio_n2.png")
+    save(fig5, "seed001_fig5_diffusion_ratio_epsilon.png")
+
+
+def fig7(measured):
+    mass = [1.0, 2.0, 3.0, 4.0]
+    diameter = [f"{k ** (1 / 3):.9f}" for k in (1, 2, 3, 4)]
+    x, r = ratio_line(mass, diameter, [0.1] * 4, 0.5, "system:restitution", EPS_LINE, lambda e: f"{e:g}")
+    fig, ax = plt.subplots(figsize=(6, 6))
+    for k in range(1, 4):
+        ax.plot(x, r[:, k], "-", color=COLORS[k - 1], lw=1.6, label=f"eq 19, D_{k + 1}/D_1")
+    ax.set(xlabel="restitution coefficient epsilon", ylabel="D_k / D_1", xlim=(0.0, 1.0),
+           title="Seed 001 Fig 7: D_k/D_1 vs epsilon, m_k = k, sigma_k = k^(1/3), n_k = 0.1")
+    ax.title.set_fontsize(10)
+    ax.grid(alpha=0.3)
+    overlay_dsmc(ax, measured, lambda m: ((None,) + COLORS[:3], "") if len(m["mass"]) == 4
+                 and "restitution" in m["variable"] else None, 7)
+    fig.tight_layout()
+    save(fig, "seed001_fig7_diffusion_ratio_4species.png")
+
+
+if __name__ == "__main__":
+    msd_figure("msd_fig1", 1, "Seed 001 Fig 1: partial MSDs vs rescaled time, epsilon = 0.5, m = 1, 100, sigma = 1, 1",
+               "seed001_fig1_msd_rescaled.png", rescale=True, guides=("t^2", "t"))
+    msd_figure("msd_fig2", 2, "Seed 001 Fig 2: partial MSDs, epsilon = 0.5, m = 1, 100, sigma_2 = 100^(1/3)",
+               "seed001_fig2_msd_binary.png")
+    msd_figure("msd_fig6", 6, "Seed 001 Fig 6: partial and total MSDs, epsilon = 0.5, m = 1, 100, 500",
+               "seed001_fig6_msd_ternary.png", total=True)
+    msd_figure("msd_fig9", 9, "Seed 001 Fig 9: partial MSDs, viscoelastic (A kappa^(2/5) = 0.09), m = 1, 100",
+               "seed001_fig9_msd_viscoelastic.png", guides=("t^2", "t^(1/6)"))
+    msd_figure("msd_fig10", 10, "Seed 001 Fig 10: partial and total MSDs, viscoelastic, m = 1, 100, 500",
+               "seed001_fig10_msd_viscoelastic_ternary.png", total=True, guides=("t^2", "t^(1/6)"))
+    measured = dsmc_ratio_points()
+    fig4_fig5(measured)
+    fig7(measured)
