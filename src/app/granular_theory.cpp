@@ -168,8 +168,7 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
          << number(2.0 * a2) << "],\n" << in << "\"cooling_rate_sonine\": ["
          << number(cooling[0] * (1.0 + 3.0 * a2 / 16.0)) << "]";
   } else {
-    bool inelastic = true;
-    for (double a : mix.restitution.values) inelastic = inelastic && a < 1.0;
+    const bool inelastic = mix.restitution.max() < 1.0;
     if (inelastic) {
       try {
         const auto ratios = th::asymptotic_temperature_ratios(mix);

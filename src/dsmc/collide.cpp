@@ -23,38 +23,55 @@ Collider::Collider(Scheme scheme, const species::Mixture& mix, particles::System
                    rng::Xoshiro256pp gen, double step_fraction,
                    const species::PairMatrix* viscoelastic_beta)
     : scheme_(scheme), mix_(mix), sys_(sys), gen_(gen), step_fraction_(step_fraction),
-      s_(mix.size()) {
-  cross_section_.resize(s_ * s_);
-  alpha_.resize(s_ * s_);
-  mass_fraction_.resize(s_ * s_);
-  for (std::size_t k = 0; k < s_; ++k)
-    for (std::size_t j = 0; j < s_; ++j) {
-      const double sigma = mix.contact_distance(k, j);
-      cross_section_[k * s_ + j] = std::numbers::pi * sigma * sigma * mix.pair_correlation(k, j);
-      alpha_[k * s_ + j] = mix.restitution(k, j);
-      mass_fraction_[k * s_ + j] = mix.mass[j] / (mix.mass[k] + mix.mass[j]);
-    }
+      s_(mix.size()), tables_(!(scheme == Scheme::lowrank && s_ > species::dense_pair_limit)) {
+  // The S x S tables make the majorant and pairs loops table lookups; the lowrank scheme with
+  // thousands of species computes the few pair quantities it needs per accepted collision instead.
+  if (tables_) {
+    cross_section_.resize(s_ * s_);
+    alpha_.resize(s_ * s_);
+    mass_fraction_.resize(s_ * s_);
+    for (std::size_t k = 0; k < s_; ++k)
+      for (std::size_t j = 0; j < s_; ++j) {
+        const double sigma = mix.contact_distance(k, j);
+        cross_section_[k * s_ + j] = std::numbers::pi * sigma * sigma * mix.pair_correlation(k, j);
+        alpha_[k * s_ + j] = mix.restitution(k, j);
+        mass_fraction_[k * s_ + j] = mix.mass[j] / (mix.mass[k] + mix.mass[j]);
+      }
+  }
   max_speed_.assign(s_, 0.0);
-  pair_rate_.assign(s_ * s_, 0.0);
-  pair_cumulative_.assign(s_ * s_, 0.0);
-  counters_.pair_events.assign(s_ * s_, 0);
-  if (viscoelastic_beta)
-    for (double beta : viscoelastic_beta->values) sqrt_beta_.push_back(std::sqrt(beta));
+  if (scheme_ == Scheme::pairs) {
+    pair_rate_.assign(s_ * s_, 0.0);
+    pair_cumulative_.assign(s_ * s_, 0.0);
+  }
+  if (s_ <= pair_event_limit) counters_.pair_events.assign(s_ * s_, 0);
+  if (viscoelastic_beta) {
+    viscoelastic_ = true;
+    if (tables_)
+      for (std::size_t k = 0; k < s_; ++k)
+        for (std::size_t j = 0; j < s_; ++j) sqrt_beta_.push_back(std::sqrt((*viscoelastic_beta)(k, j)));
+    else
+      beta_ = *viscoelastic_beta;
+  }
   if (scheme_ == Scheme::lowrank) {
-    for (double chi : mix.pair_correlation.values) chi_max_ = std::max(chi_max_, chi);
+    chi_max_ = mix.enskog ? mix.pair_correlation.max() : 1.0;
     lowrank_ = segment_tree::LowRankSampler<3>(s_);
     lowrank_volume_ = static_cast<double>(sys.size() - 1) / mix.total_density();
   }
 }
 
-double Collider::restitution_of(std::size_t pair, std::size_t a, std::size_t b, double ex, double ey,
-                                double ez) const {
-  if (sqrt_beta_.empty()) return alpha_[pair];
+double Collider::restitution_of(std::size_t i, std::size_t k, std::size_t a, std::size_t b, double ex,
+                                double ey, double ez) const {
+  if (!viscoelastic_) return tables_ ? alpha_[i * s_ + k] : mix_.restitution(i, k);
   const double g_dot_e = (sys_.vx[a] - sys_.vx[b]) * ex + (sys_.vy[a] - sys_.vy[b]) * ey +
                          (sys_.vz[a] - sys_.vz[b]) * ez;
-  const double u = sqrt_beta_[pair] * std::pow(std::abs(g_dot_e), 0.1);  // ERRATA §11
-  if (u > restitution::u_max) return restitution::viscoelastic(sqrt_beta_[pair] * sqrt_beta_[pair], g_dot_e);  // throws
+  const double sqrt_beta = tables_ ? sqrt_beta_[i * s_ + k] : std::sqrt(beta_(i, k));
+  const double u = sqrt_beta * std::pow(std::abs(g_dot_e), 0.1);  // ERRATA §11
+  if (u > restitution::u_max) return restitution::viscoelastic(sqrt_beta * sqrt_beta, g_dot_e);  // throws
   return restitution::series(u);
+}
+
+double Collider::mass_fraction_of(std::size_t i, std::size_t k) const {
+  return tables_ ? mass_fraction_[i * s_ + k] : mix_.mass[k] / (mix_.mass[i] + mix_.mass[k]);
 }
 
 void Collider::set_lowrank_row(std::size_t k) {
@@ -117,6 +134,7 @@ bool Collider::raise_max_speed(std::size_t particle) {
 
 void Collider::count_event(std::uint32_t k, std::uint32_t j) {
   ++counters_.events;
+  if (counters_.pair_events.empty()) return;  // more than pair_event_limit species
   ++counters_.pair_events[std::min(k, j) * s_ + std::max(k, j)];
 }
 
@@ -213,7 +231,7 @@ int Collider::run_majorant(double t_stop, std::uint64_t event_target) {
       particles::flush_free_flight(sys_, a, t_collision);
       particles::flush_free_flight(sys_, b, t_collision);
     }
-    apply_collision(sys_, a, b, ex, ey, ez, restitution_of(pair, a, b, ex, ey, ez), mass_fraction_[pair]);
+    apply_collision(sys_, a, b, ex, ey, ez, restitution_of(ka, kb, a, b, ex, ey, ez), mass_fraction_[pair]);
     count_event(ka, kb);
     return true;
   });
@@ -246,7 +264,7 @@ int Collider::run_pairs(double t_stop, std::uint64_t event_target) {
       particles::flush_free_flight(sys_, k, t_collision);
       particles::flush_free_flight(sys_, l, t_collision);
     }
-    apply_collision(sys_, k, l, ex, ey, ez, restitution_of(pair, k, l, ex, ey, ez), mass_fraction_[pair]);
+    apply_collision(sys_, k, l, ex, ey, ez, restitution_of(i, j, k, l, ex, ey, ez), mass_fraction_[pair]);
     count_event(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
     return true;
   });
@@ -280,7 +298,7 @@ int Collider::run_lowrank(double t_stop, std::uint64_t event_target) {
       particles::flush_free_flight(sys_, a, t_collision);
       particles::flush_free_flight(sys_, b, t_collision);
     }
-    apply_collision(sys_, a, b, ex, ey, ez, restitution_of(pair, a, b, ex, ey, ez), mass_fraction_[pair]);
+    apply_collision(sys_, a, b, ex, ey, ez, restitution_of(i, k, a, b, ex, ey, ez), mass_fraction_of(i, k));
     count_event(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(k));
     return true;
   });

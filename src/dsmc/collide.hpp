@@ -92,11 +92,15 @@ inline double apply_collision(particles::System& sys, std::size_t a, std::size_t
   return g_dot_e;
 }
 
+/// Per-species-pair event counts are kept for mixtures of at most this many species.
+inline constexpr std::size_t pair_event_limit = 64;
+
 /// Counts kept by a run: the observables `collisions` and `collisions_pair` come from here.
 struct Counters {
   std::uint64_t events = 0;                ///< accepted collisions (binary events)
   std::uint64_t candidates = 0;            ///< candidate pairs tested
-  std::vector<std::uint64_t> pair_events;  ///< S x S, events between species k and j at (min, max)
+  std::vector<std::uint64_t> pair_events;  ///< S x S, events between species k and j at (min, max);
+                                           ///< empty above pair_event_limit species
   std::uint64_t steps = 0;                 ///< time steps (bound recomputations)
   double step_sum = 0.0;                   ///< sum of the step lengths, for the mean dt
 };
@@ -138,12 +142,17 @@ class Collider {
   rng::Xoshiro256pp gen_;
   double step_fraction_;
   std::size_t s_;
+  bool tables_;  ///< pair constants stored as S x S tables (all but lowrank with very many species)
   // Pair constants, row-major S x S.
   std::vector<double> cross_section_;   ///< pi sigma_kj^2 chi_kj
   std::vector<double> alpha_;           ///< alpha_kj (constant restitution)
-  std::vector<double> sqrt_beta_;       ///< beta_kj^(1/2) (viscoelastic; empty otherwise)
-  /// alpha of pair `pair` for the collision of a and b along e (ERRATA §1, §11).
-  double restitution_of(std::size_t pair, std::size_t a, std::size_t b, double ex, double ey, double ez) const;
+  std::vector<double> sqrt_beta_;       ///< beta_kj^(1/2) (viscoelastic with tables)
+  species::PairMatrix beta_;            ///< beta_kj (viscoelastic without tables)
+  bool viscoelastic_ = false;
+  /// alpha of species pair (i, k) for the collision of a and b along e (ERRATA §1, §11).
+  double restitution_of(std::size_t i, std::size_t k, std::size_t a, std::size_t b, double ex, double ey,
+                        double ez) const;
+  double mass_fraction_of(std::size_t i, std::size_t k) const;  ///< m_k/(m_i + m_k)
   std::vector<double> mass_fraction_;   ///< m_j/(m_k + m_j): the share of the impulse taken by k
   std::vector<double> max_speed_;       ///< vmax_k
   std::vector<std::size_t> raised_;     ///< species whose vmax was raised since the last rebuild

@@ -21,17 +21,15 @@ species::PairMatrix one_material_beta(const species::Mixture& mix, double beta_1
     throw std::invalid_argument("viscoelastic beta: beta_11 must be finite and >= 0");
   if (mix.size() == 0) return species::PairMatrix(0);
   // seed 001 eq 8: sigma_eff = sigma_i sigma_k/(sigma_i + sigma_k); ERRATA §11 scaling.
-  auto sigma_eff = [&](std::size_t k, std::size_t i) {
-    return mix.diameter[k] * mix.diameter[i] / (mix.diameter[k] + mix.diameter[i]);
+  auto beta = [beta_11, d = mix.diameter, m = mix.mass](std::size_t k, std::size_t i) {
+    const auto sigma_eff = [&d](std::size_t a, std::size_t b) { return d[a] * d[b] / (d[a] + d[b]); };
+    const auto reduced = [&m](std::size_t a, std::size_t b) { return m[a] * m[b] / (m[a] + m[b]); };
+    const double ratio = std::sqrt(sigma_eff(k, i) / sigma_eff(0, 0)) * reduced(0, 0) / reduced(k, i);
+    return beta_11 * std::pow(ratio, 0.4);  // ERRATA §11
   };
-  species::PairMatrix beta(mix.size());
-  for (std::size_t k = 0; k < mix.size(); ++k)
-    for (std::size_t i = k; i < mix.size(); ++i) {
-      const double ratio = std::sqrt(sigma_eff(k, i) / sigma_eff(0, 0)) * mix.reduced_mass(0, 0) /
-                           mix.reduced_mass(k, i);
-      beta(k, i) = beta(i, k) = beta_11 * std::pow(ratio, 0.4);  // ERRATA §11
-    }
-  return beta;
+  species::PairMatrix matrix = species::PairMatrix::computed(mix.size(), beta);
+  if (mix.size() <= species::dense_pair_limit) matrix.densify();
+  return matrix;
 }
 
 }  // namespace gdsmc::restitution

@@ -55,7 +55,7 @@ class ProgressLine {
 
 /// Mixtures with more species than this record neither `collisions_pair` (S(S+1)/2 columns) nor
 /// the per-species velocity histograms.
-constexpr std::size_t kMaxPairSpecies = 64;
+constexpr std::size_t kMaxPairSpecies = collide::pair_event_limit;
 
 /// What one point (all its replicas) measured.
 struct PointResult {

@@ -1,9 +1,45 @@
 #include "dsmc/species.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace gdsmc::species {
+
+PairMatrix PairMatrix::computed(std::size_t n, std::function<double(std::size_t, std::size_t)> rule) {
+  PairMatrix m;
+  m.size = n;
+  m.rule = std::move(rule);
+  return m;
+}
+
+PairMatrix PairMatrix::uniform(std::size_t n, double value) {
+  return computed(n, [value](std::size_t, std::size_t) { return value; });
+}
+
+void PairMatrix::densify() {
+  if (!rule) return;
+  std::vector<double> dense(size * size);
+  for (std::size_t k = 0; k < size; ++k)
+    for (std::size_t j = 0; j < size; ++j) dense[k * size + j] = rule(k, j);
+  values = std::move(dense);
+  rule = nullptr;
+}
+
+double PairMatrix::max() const {
+  double m = -std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < size; ++k)
+    for (std::size_t j = 0; j < size; ++j) m = std::max(m, (*this)(k, j));
+  return m;
+}
+
+double PairMatrix::min() const {
+  double m = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < size; ++k)
+    for (std::size_t j = 0; j < size; ++j) m = std::min(m, (*this)(k, j));
+  return m;
+}
 
 double Mixture::total_density() const {
   double n = 0.0;
@@ -31,16 +67,16 @@ PairMatrix carnahan_starling(const std::vector<double>& diameter,
   }
   phi *= std::numbers::pi / 6.0;
   xi *= std::numbers::pi / 6.0;
-  PairMatrix chi(s);
-  for (std::size_t i = 0; i < s; ++i)
-    for (std::size_t j = 0; j < s; ++j) {
-      const double sigma_ij = 0.5 * (diameter[i] + diameter[j]);
-      const double s_ij = diameter[i] * diameter[j] / sigma_ij;  // S_ij of ERRATA §5
-      const double one_minus = 1.0 - phi;
-      chi(i, j) = 1.0 / one_minus + 1.5 * xi * s_ij / (one_minus * one_minus) +
-                  0.5 * xi * xi * s_ij * s_ij / (one_minus * one_minus * one_minus);
-    }
-  return chi;
+  auto chi = [phi, xi, d = diameter](std::size_t i, std::size_t j) {
+    const double sigma_ij = 0.5 * (d[i] + d[j]);
+    const double s_ij = d[i] * d[j] / sigma_ij;  // S_ij of ERRATA §5
+    const double one_minus = 1.0 - phi;
+    return 1.0 / one_minus + 1.5 * xi * s_ij / (one_minus * one_minus) +
+           0.5 * xi * xi * s_ij * s_ij / (one_minus * one_minus * one_minus);
+  };
+  PairMatrix m = PairMatrix::computed(s, chi);
+  if (s <= dense_pair_limit) m.densify();
+  return m;
 }
 
 Mixture make_mixture(std::vector<double> mass, std::vector<double> diameter,
@@ -52,15 +88,18 @@ Mixture make_mixture(std::vector<double> mass, std::vector<double> diameter,
   mix.number_density = std::move(number_density);
   mix.restitution = std::move(restitution);
   mix.enskog = enskog;
-  mix.contact_distance = PairMatrix(s);
-  mix.reduced_mass = PairMatrix(s);
-  for (std::size_t k = 0; k < s; ++k)
-    for (std::size_t j = 0; j < s; ++j) {
-      mix.contact_distance(k, j) = 0.5 * (mix.diameter[k] + mix.diameter[j]);
-      mix.reduced_mass(k, j) = mix.mass[k] * mix.mass[j] / (mix.mass[k] + mix.mass[j]);
-    }
+  mix.contact_distance = PairMatrix::computed(
+      s, [d = mix.diameter](std::size_t k, std::size_t j) { return 0.5 * (d[k] + d[j]); });
+  mix.reduced_mass = PairMatrix::computed(
+      s, [m = mix.mass](std::size_t k, std::size_t j) { return m[k] * m[j] / (m[k] + m[j]); });
   mix.pair_correlation =
-      enskog ? carnahan_starling(mix.diameter, mix.number_density) : PairMatrix(s, 1.0);
+      enskog ? carnahan_starling(mix.diameter, mix.number_density) : PairMatrix::uniform(s, 1.0);
+  if (s <= dense_pair_limit) {
+    mix.contact_distance.densify();
+    mix.reduced_mass.densify();
+    mix.pair_correlation.densify();
+    mix.restitution.densify();
+  }
   return mix;
 }
 

@@ -16,20 +16,41 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 namespace gdsmc::species {
 
-/// Row-major symmetric S x S matrix of pair quantities.
+/// S x S matrix of pair quantities: stored row-major (dense), or computed entry by entry from
+/// per-species data (`rule`), so that mixtures of thousands of species need no S^2 storage.
 struct PairMatrix {
   std::size_t size = 0;
-  std::vector<double> values;
+  std::vector<double> values;  ///< dense storage, row-major; empty when `rule` computes the entries
+  std::function<double(std::size_t, std::size_t)> rule;
 
   PairMatrix() = default;
   explicit PairMatrix(std::size_t n, double fill = 0.0) : size(n), values(n * n, fill) {}
-  double operator()(std::size_t k, std::size_t j) const { return values[k * size + j]; }
-  double& operator()(std::size_t k, std::size_t j) { return values[k * size + j]; }
+  /// A matrix whose entry (k, j) is rule(k, j), evaluated on access.
+  static PairMatrix computed(std::size_t n, std::function<double(std::size_t, std::size_t)> rule);
+  /// Every entry equal to `value`, stored as one number.
+  static PairMatrix uniform(std::size_t n, double value);
+
+  bool is_dense() const { return !rule; }
+  double operator()(std::size_t k, std::size_t j) const {
+    return rule ? rule(k, j) : values[k * size + j];
+  }
+  /// Write access: a computed matrix is first stored densely.
+  double& operator()(std::size_t k, std::size_t j) {
+    if (rule) densify();
+    return values[k * size + j];
+  }
+  void densify();
+  double max() const;  ///< largest entry (O(S^2) for a computed matrix)
+  double min() const;  ///< smallest entry
 };
+
+/// Mixtures with more species than this keep their pair data computed, not stored (S^2 doubles).
+inline constexpr std::size_t dense_pair_limit = 512;
 
 /// A mixture: per-species data and the derived pair data. Built once by make_mixture, then const.
 struct Mixture {
@@ -57,6 +78,7 @@ PairMatrix carnahan_starling(const std::vector<double>& diameter,
 /**
  * Builds a mixture and its pair data. `restitution` is S x S (symmetric). With `enskog` the pair
  * correlation is Carnahan-Starling, else 1. Inputs are assumed validated (io::config checks them).
+ * Above dense_pair_limit species the pair data are computed on access instead of stored.
  */
 Mixture make_mixture(std::vector<double> mass, std::vector<double> diameter,
                      std::vector<double> number_density, PairMatrix restitution, bool enskog);

@@ -341,6 +341,14 @@ void check_required(const std::vector<Field<G>>& fields, const Provenance& prov,
 // ---------------------------------------------------------------------------------------------
 void resolve_restitution(System& sys, const Provenance& prov, const std::string& group) {
   const std::size_t s = static_cast<std::size_t>(sys.n_species);
+  {  // one value for all pairs: a uniform matrix, stored densely only for a few species
+    const auto& only = prov.pair_assignments.at("restitution");
+    if (only.size() == 1 && only[0].first->index.empty() && only[0].first->values.size() == 1) {
+      sys.restitution = species::PairMatrix::uniform(s, only[0].first->values[0].real);
+      if (s <= species::dense_pair_limit) sys.restitution.densify();
+      return;
+    }
+  }
   species::PairMatrix m(s, std::numeric_limits<double>::quiet_NaN());
   const auto& list = prov.pair_assignments.at("restitution");
   for (const auto& [a, file] : list) {
@@ -440,7 +448,10 @@ void check_system(System& sys, const Provenance& prov) {
       sys.number_density.push_back(sys.number_density[0] * std::pow(kk, -sys.density_exponent));
   }
   if (sys.restitution_model == "constant") resolve_restitution(sys, prov, group);
-  else sys.restitution = species::PairMatrix(s, 1.0);  // placeholder; alpha comes from the impact
+  else {  // placeholder: alpha comes from the impact speed
+    sys.restitution = species::PairMatrix::uniform(s, 1.0);
+    if (s <= species::dense_pair_limit) sys.restitution.densify();
+  }
   if (sys.enskog) {
     double phi = 0.0;
     for (std::size_t k = 0; k < s; ++k) phi += sys.number_density[k] * std::pow(sys.diameter[k], 3);
@@ -536,7 +547,8 @@ void append_resolved(std::vector<h5md::Parameter>& out, const std::string& group
           if constexpr (std::is_same_v<T, std::optional<double>>) {
             if (v) out.push_back({group, f.name, *v});
           } else if constexpr (std::is_same_v<T, species::PairMatrix>) {
-            out.push_back({group, f.name, v.values});
+            // A uniform matrix of very many species (not stored densely) is written as its value.
+            out.push_back({group, f.name, v.is_dense() ? v.values : std::vector<double>{v(0, 0)}});
           } else {
             out.push_back({group, f.name, v});
           }
