@@ -3,7 +3,9 @@
 //
 // usage: bench_species [N] [max_M]
 // Prints, for M = 1, 10, 100, ... up to max_M, accepted collisions per second of `lowrank`, `pairs`
-// and `majorant`, and each scheme's cost relative to M = 1. Ratios are what to compare.
+// and `majorant`, and each scheme's cost relative to M = 1. Ratios are what to compare; on a shared
+// virtual machine they vary by +-30 % between runs, so for a deterministic comparison count
+// instructions instead (valgrind --tool=callgrind on granular-dsmc, see docs/validation-summary.md).
 #include <chrono>
 #include <cmath>
 #include <cstdio>

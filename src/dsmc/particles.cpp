@@ -6,9 +6,10 @@ namespace gdsmc::particles {
 
 std::vector<std::size_t> species_counts(std::size_t n_particles, const species::Mixture& mix) {
   std::vector<std::size_t> counts(mix.size());
+  const double n = mix.total_density();  // once: mole_fraction(k) would sum over all species each time
   for (std::size_t k = 0; k < mix.size(); ++k)
-    counts[k] = static_cast<std::size_t>(std::llround(static_cast<double>(n_particles) *
-                                                      mix.mole_fraction(k)));
+    counts[k] = static_cast<std::size_t>(
+        std::llround(static_cast<double>(n_particles) * mix.number_density[k] / n));
   return counts;
 }
 
