@@ -27,7 +27,8 @@ double collisions_per_second(collide::Scheme scheme, std::size_t n, std::size_t 
     mass[k] = static_cast<double>(k + 1);
     diameter[k] = std::cbrt(static_cast<double>(k + 1));
   }
-  const auto mix = species::make_mixture(mass, diameter, density, species::PairMatrix(m, 0.9), false);
+  // One restitution for all pairs, stored as one number (as the namelist reader does for many species).
+  const auto mix = species::make_mixture(mass, diameter, density, species::PairMatrix::uniform(m, 0.9), false);
   auto init = rng::make_stream(1, 0, rng::Purpose::initial_state);
   auto sys = particles::make_system(mix, particles::species_counts(n, mix), std::vector<double>(m, 1.0),
                                     particles::InitialDistribution::maxwell, init);

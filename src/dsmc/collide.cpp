@@ -80,7 +80,8 @@ void Collider::set_lowrank_row(std::size_t k) {
                                              max_speed_[k], lowrank_volume_);
   for (double& x : f.row) x *= chi_max_;
   lowrank_.set_row(k, f.row);
-  lowrank_.set_column(k, f.column);
+  // v_k depends on N_k and sigma_k only: set once, then sampled from alias tables (segment_tree.hpp).
+  if (!lowrank_columns_set_) lowrank_.set_column(k, f.column);
 }
 
 void Collider::recompute_max_speeds() {
@@ -98,6 +99,10 @@ void Collider::rebuild_bounds() {
   const double n_sim = static_cast<double>(sys_.size());
   if (scheme_ == Scheme::lowrank) {
     for (std::size_t k = 0; k < s_; ++k) set_lowrank_row(k);
+    if (!lowrank_columns_set_) {
+      lowrank_.freeze_columns();
+      lowrank_columns_set_ = true;
+    }
     raised_.clear();
     rate_ = lowrank_.total();
   } else if (scheme_ == Scheme::majorant) {

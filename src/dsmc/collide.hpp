@@ -159,6 +159,7 @@ class Collider {
   segment_tree::LowRankSampler<3> lowrank_;  ///< A_ik (lowrank)
   double chi_max_ = 1.0;                ///< max_ik chi_ik (lowrank)
   double lowrank_volume_ = 0.0;         ///< V = (N - 1)/n (lowrank)
+  bool lowrank_columns_set_ = false;    ///< columns v_k set and frozen (they never change in a run)
   // Bounds.
   double bound_ = 0.0;                  ///< B (majorant)
   std::vector<double> pair_rate_;       ///< R_ij (pairs), cumulative in pair_cumulative_

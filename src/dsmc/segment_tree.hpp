@@ -155,6 +155,7 @@ class LowRankSampler {
 
   /// Replaces every row and column (rows[i] = u_i, columns[k] = v_k, equal lengths M); O(Rank M).
   void assign(const std::vector<Vector>& rows, const std::vector<Vector>& columns) {
+    columns_frozen_ = false;
     if (rows.size() != columns.size())
       throw std::invalid_argument("segment_tree::LowRankSampler::assign: " +
                                   std::to_string(rows.size()) + " rows but " +
@@ -175,6 +176,7 @@ class LowRankSampler {
   }
   /// Sets v_k^(r), r = 1..Rank, of species k (each finite and >= 0).
   void set_column(std::size_t k, const Vector& v_k) {
+    columns_frozen_ = false;
     for (std::size_t r = 0; r < Rank; ++r) v_[r].set(k, v_k[r]);
   }
 
@@ -229,14 +231,75 @@ class LowRankSampler {
     // Conditionally on r, x / term[r] is uniform on [0, 1): reuse it for the row. Round-off that
     // leaves x at or past term[r] lands on the last positive leaf (SumTree::find).
     const std::size_t i = u_[r].find(x / v_[r].total());
-    const std::size_t k = v_[r].find(gen.uniform() * v_[r].total());
+    const std::size_t k = columns_frozen_ ? column_alias_[r].sample(gen.uniform())
+                                          : v_[r].find(gen.uniform() * v_[r].total());
     return {i, k};
   }
 
+  /// Declares the columns settled: sample() then draws k from Walker alias tables, O(1) with two
+  /// memory reads instead of a tree descent (with thousands of species the descent's cache misses
+  /// dominate a candidate's cost). Any later set_column()/assign() returns to the trees until
+  /// freeze_columns() is called again.
+  void freeze_columns() {
+    for (std::size_t r = 0; r < Rank; ++r) {
+      std::vector<double> w(size_);
+      for (std::size_t k = 0; k < size_; ++k) w[k] = v_[r].weight(k);
+      column_alias_[r].build(w);
+    }
+    columns_frozen_ = true;
+  }
+
  private:
+  /// Walker's alias table (Vose's construction): k with probability w_k / sum w from one uniform.
+  struct AliasTable {
+    std::vector<double> threshold;
+    std::vector<std::size_t> alias;
+    void build(const std::vector<double>& w) {
+      const std::size_t n = w.size();
+      threshold.assign(n, 0.0);
+      alias.assign(n, 0);
+      double total = 0.0;
+      for (double x : w) total += x;
+      if (!(total > 0.0)) return;
+      std::vector<double> scaled(n);
+      std::vector<std::size_t> small, large;
+      for (std::size_t k = 0; k < n; ++k) {
+        scaled[k] = w[k] * static_cast<double>(n) / total;
+        (scaled[k] < 1.0 ? small : large).push_back(k);
+      }
+      while (!small.empty() && !large.empty()) {
+        const std::size_t s = small.back(), l = large.back();
+        small.pop_back();
+        threshold[s] = scaled[s];
+        alias[s] = l;
+        scaled[l] -= 1.0 - scaled[s];
+        if (scaled[l] < 1.0) {
+          large.pop_back();
+          small.push_back(l);
+        }
+      }
+      // What is left is 1 up to round-off: keep it; a zero weight left over (round-off emptied
+      // `large` first) points to a column of positive weight, so it is never drawn.
+      std::size_t positive = 0;
+      while (!(w[positive] > 0.0)) ++positive;
+      for (std::size_t k : large) threshold[k] = 1.0, alias[k] = k;
+      for (std::size_t k : small) {
+        threshold[k] = w[k] > 0.0 ? 1.0 : 0.0;
+        alias[k] = w[k] > 0.0 ? k : positive;
+      }
+    }
+    std::size_t sample(double u) const {
+      const double x = u * static_cast<double>(threshold.size());
+      const auto k = std::min(static_cast<std::size_t>(x), threshold.size() - 1);
+      return x - static_cast<double>(k) < threshold[k] ? k : alias[k];
+    }
+  };
+
   std::size_t size_ = 0;
   std::array<SumTree, Rank> u_;  ///< u^(r), one tree per term
   std::array<SumTree, Rank> v_;  ///< v^(r)
+  std::array<AliasTable, Rank> column_alias_;
+  bool columns_frozen_ = false;
 };
 
 /// Row u_i and column v_k of species i of the rank-3 hard-sphere majorant A_ik of seed 001 eqs 12-14
