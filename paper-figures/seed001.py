@@ -401,7 +401,43 @@ def fig7(measured):
     save(fig, "seed001_fig7_diffusion_ratio_4species.png")
 
 
+def fig8():
+    """<R_k^2>/<R_1^2> against k at the end of the run, n_k = n_1 k^-theta (validation msd_many_species)."""
+    fig, ax = plt.subplots(figsize=(6, 5))
+    drawn = False
+    for case, marker, color in (("msd_ratio_theta3", "o", "C0"), ("msd_ratio_theta4", "s", "C1")):
+        try:
+            path = pick(case)
+        except Missing as e:
+            print(f"Fig 8 ({case}) skipped: {e}")
+            continue
+        th = theory(path)
+        with h5py.File(path) as f:
+            R = f["observables/msd/value"][()]
+            dR = f["observables/msd/error"][()]
+            theta = float(f["parameters/system"].attrs["density_exponent"])
+        k = np.arange(1, R.shape[1] + 1)
+        ratio = R[-1] / R[-1, 0]
+        err = ratio * np.sqrt((dR[-1] / R[-1]) ** 2 + (dR[-1, 0] / R[-1, 0]) ** 2)
+        Rth = np.array(th["msd"]["value"])[-1]
+        ax.plot(k, Rth / Rth[0], "-", color=color, label=f"eq 17, theta = {theta:g}")
+        ax.errorbar(k, ratio, yerr=err, fmt=marker, ms=4, mfc="none", color=color, capsize=2,
+                    label=f"DSMC, theta = {theta:g} ({tier(path)})")
+        drawn = True
+    if not drawn:
+        plt.close(fig)
+        return
+    ax.set(xscale="log", xlabel="k = m_k / m_1", ylabel="<R_k^2> / <R_1^2>",
+           title="Seed 001 Fig 8: MSD ratios, n_k = n_1 k^-theta, epsilon = 0.5, t = 1e6")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    save(fig, "seed001_fig8_msd_ratio.png")
+
+
 if __name__ == "__main__":
+    msd_figure("msd_fig3", 3, "Seed 001 Fig 3: partial MSDs, dilute heavy species n2 = 0.001, m = 1, 100",
+               "seed001_fig3_msd_dilute_heavy.png")
+    fig8()
     msd_figure("msd_fig1", 1, "Seed 001 Fig 1: partial MSDs vs rescaled time, epsilon = 0.5, m = 1, 100, sigma = 1, 1",
                "seed001_fig1_msd_rescaled.png", rescale=True, guides=("t^2", "t"))
     msd_figure("msd_fig2", 2, "Seed 001 Fig 2: partial MSDs, epsilon = 0.5, m = 1, 100, sigma_2 = 100^(1/3)",
