@@ -1,6 +1,8 @@
 // Self-diffusion in a cooling granular mixture: see diffusion.hpp for the equations and numerics.
 #include "theory/diffusion.hpp"
 
+#include "theory/cvode_solver.hpp"
+
 #include <cvode/cvode.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
@@ -187,108 +189,13 @@ double inverse_tau_row(const Mixture& mix, const PairMatrix* beta, std::span<con
   return sum;
 }
 
-// ---------------------------------------------------------------------------------------------
-// A small CVODE driver (BDF, dense Newton, per-component tolerances) for the viscoelastic ODEs.
-// theory.cpp keeps its own in an anonymous namespace; this one follows the same conventions.
-// ---------------------------------------------------------------------------------------------
-
-static_assert(std::is_same_v<sunrealtype, double>, "SUNDIALS must be built in double precision");
-
-void free_context(SUNContext context) { SUNContext_Free(&context); }
-void free_cvode(void* memory) { CVodeFree(&memory); }
-
-/// unique_ptr to a SUNDIALS object released by Free.
+/// unique_ptr to a C object released by Free.
 template <class Pointer, auto Free>
 struct FreeWith {
   void operator()(Pointer p) const { Free(p); }
 };
 template <class Pointer, auto Free>
 using Owner = std::unique_ptr<std::remove_pointer_t<Pointer>, FreeWith<Pointer, Free>>;
-
-class OdeSolver {
- public:
-  using RightHandSide = std::function<void(std::span<const double>, std::span<double>)>;
-
-  OdeSolver(RightHandSide rhs, const std::vector<double>& y0, std::vector<double> rtol,
-            std::vector<double> atol)
-      : rhs_(std::move(rhs)), size_(y0.size()), rtol_(std::move(rtol)), atol_(std::move(atol)) {
-    const auto n = static_cast<sunindextype>(size_);
-    SUNContext raw = nullptr;
-    check(SUNContext_Create(nullptr, &raw), "SUNContext_Create");
-    context_.reset(raw);
-    state_.reset(not_null(N_VNew_Serial(n, context_.get()), "N_VNew_Serial"));
-    std::copy(y0.begin(), y0.end(), N_VGetArrayPointer(state_.get()));
-    memory_.reset(not_null(CVodeCreate(CV_BDF, context_.get()), "CVodeCreate"));
-    check(CVodeSetErrHandlerFn(memory_.get(), &OdeSolver::record_error, this),
-          "CVodeSetErrHandlerFn");
-    check(CVodeInit(memory_.get(), &OdeSolver::evaluate, 0.0, state_.get()), "CVodeInit");
-    check(CVodeSetUserData(memory_.get(), this), "CVodeSetUserData");
-    check(CVodeWFtolerances(memory_.get(), &OdeSolver::weights), "CVodeWFtolerances");
-    check(CVodeSetMaxNumSteps(memory_.get(), 200000), "CVodeSetMaxNumSteps");
-    matrix_.reset(not_null(SUNDenseMatrix(n, n, context_.get()), "SUNDenseMatrix"));
-    solver_.reset(
-        not_null(SUNLinSol_Dense(state_.get(), matrix_.get(), context_.get()), "SUNLinSol_Dense"));
-    check(CVodeSetLinearSolver(memory_.get(), solver_.get(), matrix_.get()),
-          "CVodeSetLinearSolver");
-  }
-  OdeSolver(const OdeSolver&) = delete;  // CVODE holds `this` as user data
-  OdeSolver& operator=(const OdeSolver&) = delete;
-
-  void advance_to(double t) {
-    sunrealtype reached = 0.0;
-    check(CVode(memory_.get(), t, state_.get(), &reached, CV_NORMAL), "CVode");
-  }
-  std::span<const double> state() const { return {N_VGetArrayPointer(state_.get()), size_}; }
-
- private:
-  static int evaluate(sunrealtype, N_Vector y, N_Vector ydot, void* data) {
-    auto* self = static_cast<OdeSolver*>(data);
-    const std::span<double> out{N_VGetArrayPointer(ydot), self->size_};
-    try {
-      self->rhs_({N_VGetArrayPointer(y), self->size_}, out);
-    } catch (const std::exception& error) {
-      self->message_ += std::string("; right-hand side: ") + error.what();
-      return -1;  // unrecoverable
-    }
-    for (double d : out)
-      if (!std::isfinite(d)) return 1;  // recoverable: CVODE retries with a smaller step
-    return 0;
-  }
-  static int weights(N_Vector y, N_Vector w, void* data) {
-    const auto* self = static_cast<const OdeSolver*>(data);
-    for (std::size_t i = 0; i < self->size_; ++i) {
-      const double tol = self->rtol_[i] * std::abs(N_VGetArrayPointer(y)[i]) + self->atol_[i];
-      if (!(tol > 0.0)) return -1;
-      N_VGetArrayPointer(w)[i] = 1.0 / tol;
-    }
-    return 0;
-  }
-  static void record_error(int, const char*, const char* function, char* message, void* data) {
-    static_cast<OdeSolver*>(data)->message_ += std::string("; ") + function + ": " + message;
-  }
-  void check(int flag, const char* call) {
-    if (flag < 0)
-      throw std::runtime_error(std::string("SUNDIALS call ") + call + " failed (flag " +
-                               std::to_string(flag) + ")" + message_);
-  }
-  template <class Pointer>
-  Pointer not_null(Pointer p, const char* call) {
-    if (p == nullptr)
-      throw std::runtime_error(std::string("SUNDIALS call ") + call + " returned NULL");
-    return p;
-  }
-
-  RightHandSide rhs_;
-  std::size_t size_;
-  std::vector<double> rtol_, atol_;
-  std::string message_;
-  // Declaration order = reverse destruction order: the integrator goes first, the context last.
-  Owner<SUNContext, free_context> context_;
-  Owner<N_Vector, N_VDestroy> state_;
-  Owner<SUNMatrix, SUNMatDestroy> matrix_;
-  Owner<SUNLinearSolver, SUNLinSolFree> solver_;
-  Owner<void*, free_cvode> memory_;
-};
 
 // ---------------------------------------------------------------------------------------------
 // GSL quadrature
@@ -631,7 +538,8 @@ TemperatureHistory integrate_partial_temperatures_viscoelastic(
     }
     dydt[species] = total_collision_rate(mix, T);  // ERRATA §2
   };
-  OdeSolver solver(rhs, y0, rtol, atol);
+  detail::CvodeSolver solver([&rhs](double, std::span<const double> y, std::span<double> dy) { rhs(y, dy); },
+                             y0, rtol, atol);
 
   TemperatureHistory history;
   history.time = times;

@@ -1,6 +1,8 @@
 // Kinetic theory of homogeneous granular gases and mixtures: see theory.hpp for the equations.
 #include "theory/theory.hpp"
 
+#include "theory/cvode_solver.hpp"
+
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
 #include <sunlinsol/sunlinsol_dense.h>
@@ -20,6 +22,8 @@
 namespace gdsmc::theory {
 
 namespace {
+
+using detail::CvodeSolver;
 
 constexpr double pi = std::numbers::pi;
 
@@ -113,156 +117,6 @@ double largest_collision_frequency(const Mixture& mix, std::span<const double> t
   }
   return largest;
 }
-
-// ---------------------------------------------------------------------------------------------
-// RAII wrapper around a CVODE integrator: BDF, dense matrix, dense direct linear solver
-// ---------------------------------------------------------------------------------------------
-
-struct ContextDeleter {
-  void operator()(SUNContext context) const { SUNContext_Free(&context); }
-};
-struct VectorDeleter {
-  void operator()(N_Vector vector) const { N_VDestroy(vector); }
-};
-struct MatrixDeleter {
-  void operator()(SUNMatrix matrix) const { SUNMatDestroy(matrix); }
-};
-struct LinearSolverDeleter {
-  void operator()(SUNLinearSolver solver) const { SUNLinSolFree(solver); }
-};
-struct CvodeDeleter {
-  void operator()(void* memory) const { CVodeFree(&memory); }
-};
-
-using ContextPtr = std::unique_ptr<std::remove_pointer_t<SUNContext>, ContextDeleter>;
-using VectorPtr = std::unique_ptr<std::remove_pointer_t<N_Vector>, VectorDeleter>;
-using MatrixPtr = std::unique_ptr<std::remove_pointer_t<SUNMatrix>, MatrixDeleter>;
-using LinearSolverPtr = std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, LinearSolverDeleter>;
-using CvodeMemoryPtr = std::unique_ptr<void, CvodeDeleter>;
-
-class CvodeSolver {
- public:
-  /// dy/dt = rhs(t, y); rhs may throw, the exception message is reported by the failing CVode call.
-  using RightHandSide = std::function<void(double, std::span<const double>, std::span<double>)>;
-
-  /// Error weights 1/(relative_tolerance[i] |y_i| + absolute_tolerance[i]), one pair per component
-  /// (CVODE's scalar rtol cannot express "absolute only" for the ln T components).
-  CvodeSolver(RightHandSide rhs, const std::vector<double>& y0,
-              std::vector<double> relative_tolerance, std::vector<double> absolute_tolerance)
-      : rhs_(std::move(rhs)),
-        size_(y0.size()),
-        relative_tolerance_(std::move(relative_tolerance)),
-        absolute_tolerance_(std::move(absolute_tolerance)) {
-    const auto n = static_cast<sunindextype>(size_);
-    SUNContext raw_context = nullptr;
-    check(SUNContext_Create(nullptr, &raw_context), "SUNContext_Create");
-    context_.reset(raw_context);
-
-    state_.reset(check_pointer(N_VNew_Serial(n, context_.get()), "N_VNew_Serial"));
-    std::copy(y0.begin(), y0.end(), N_VGetArrayPointer(state_.get()));
-
-    memory_.reset(check_pointer(CVodeCreate(CV_BDF, context_.get()), "CVodeCreate"));
-    check(CVodeSetErrHandlerFn(memory_.get(), &CvodeSolver::record_error, this),
-          "CVodeSetErrHandlerFn");
-    check(CVodeInit(memory_.get(), &CvodeSolver::evaluate_rhs, 0.0, state_.get()), "CVodeInit");
-    check(CVodeSetUserData(memory_.get(), this), "CVodeSetUserData");
-    check(CVodeWFtolerances(memory_.get(), &CvodeSolver::error_weights), "CVodeWFtolerances");
-    check(CVodeSetMaxNumSteps(memory_.get(), 200000), "CVodeSetMaxNumSteps");
-
-    matrix_.reset(check_pointer(SUNDenseMatrix(n, n, context_.get()), "SUNDenseMatrix"));
-    linear_solver_.reset(
-        check_pointer(SUNLinSol_Dense(state_.get(), matrix_.get(), context_.get()),
-                      "SUNLinSol_Dense"));
-    const int flag = CVodeSetLinearSolver(memory_.get(), linear_solver_.get(), matrix_.get());
-    if (flag != CVLS_SUCCESS) fail("CVodeSetLinearSolver", CVodeGetLinReturnFlagName(flag));
-  }
-
-  CvodeSolver(const CvodeSolver&) = delete;  // CVODE holds `this` as user data
-  CvodeSolver& operator=(const CvodeSolver&) = delete;
-
-  /// Advances to t_out (> current time) and interpolates the state there (CV_NORMAL).
-  void advance_to(double t_out) {
-    sunrealtype t_reached = 0.0;
-    check(CVode(memory_.get(), t_out, state_.get(), &t_reached, CV_NORMAL), "CVode");
-  }
-
-  std::span<const double> state() const {
-    return {N_VGetArrayPointer(state_.get()), size_};
-  }
-
- private:
-  static int evaluate_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
-    auto* self = static_cast<CvodeSolver*>(user_data);
-    const std::span<const double> state{N_VGetArrayPointer(y), self->size_};
-    const std::span<double> derivative{N_VGetArrayPointer(ydot), self->size_};
-    try {
-      self->rhs_(t, state, derivative);
-    } catch (const std::exception& error) {
-      self->rhs_error_ = error.what();
-      return -1;  // unrecoverable
-    }
-    for (double d : derivative)
-      if (!std::isfinite(d)) return 1;  // recoverable: CVODE retries with a smaller step
-    return 0;
-  }
-
-  static int error_weights(N_Vector y, N_Vector weight, void* user_data) {
-    const auto* self = static_cast<const CvodeSolver*>(user_data);
-    const double* value = N_VGetArrayPointer(y);
-    double* w = N_VGetArrayPointer(weight);
-    for (std::size_t i = 0; i < self->size_; ++i) {
-      const double tolerance =
-          self->relative_tolerance_[i] * std::abs(value[i]) + self->absolute_tolerance_[i];
-      if (!(tolerance > 0.0)) return -1;
-      w[i] = 1.0 / tolerance;
-    }
-    return 0;
-  }
-
-  static void record_error(int, const char*, const char* function, char* message, void* data) {
-    static_cast<CvodeSolver*>(data)->sundials_message_ = std::string(function) + ": " + message;
-  }
-
-  void check(int flag, const char* call) {
-    if (flag >= 0) return;
-    fail(call, memory_ ? CVodeGetReturnFlagName(flag) : nullptr, flag);
-  }
-
-  template <class Pointer>
-  Pointer check_pointer(Pointer pointer, const char* call) {
-    if (pointer == nullptr) fail(call, "returned NULL");
-    return pointer;
-  }
-
-  [[noreturn]] void fail(const char* call, char* flag_name, int flag = 0) {
-    std::string what = std::string("SUNDIALS call ") + call + " failed";
-    if (flag_name != nullptr) {
-      what += std::string(" (") + flag_name + ")";
-      std::free(flag_name);  // CVodeGet*ReturnFlagName returns malloc'ed memory
-    } else if (flag != 0) {
-      what += " (flag " + std::to_string(flag) + ")";
-    }
-    if (!sundials_message_.empty()) what += ": " + sundials_message_;
-    if (!rhs_error_.empty()) what += "; right-hand side: " + rhs_error_;
-    throw std::runtime_error(what);
-  }
-  [[noreturn]] void fail(const char* call, const char* reason) {
-    throw std::runtime_error(std::string("SUNDIALS call ") + call + " " + reason);
-  }
-
-  RightHandSide rhs_;
-  std::size_t size_;
-  std::vector<double> relative_tolerance_;
-  std::vector<double> absolute_tolerance_;
-  std::string sundials_message_;
-  std::string rhs_error_;
-  // Declaration order = reverse destruction order: the integrator goes first, the context last.
-  ContextPtr context_;
-  VectorPtr state_;
-  MatrixPtr matrix_;
-  LinearSolverPtr linear_solver_;
-  CvodeMemoryPtr memory_;
-};
 
 }  // namespace
 

@@ -2,11 +2,30 @@
 
 #include <cstdarg>
 #include <filesystem>
+#include <sstream>
 #include <iostream>
 
 #include "io/namelist.hpp"
 
 namespace gdsmc::validation {
+
+std::optional<std::string> take_option(int& argc, char** argv, const std::string& name) {
+  for (int i = 1; i + 1 < argc; ++i)
+    if (name == argv[i]) {
+      std::string value = argv[i + 1];
+      for (int j = i; j + 2 < argc; ++j) argv[j] = argv[j + 2];
+      argc -= 2;
+      return value;
+    }
+  return std::nullopt;
+}
+
+std::vector<double> number_list(const std::string& text) {
+  std::vector<double> out;
+  std::stringstream list(text);
+  for (std::string item; std::getline(list, item, ',');) out.push_back(std::stod(item));
+  return out;
+}
 
 Case run_case(int argc, char** argv, const std::string& default_output) {
   std::string input, output = default_output;

@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,12 @@ struct Case {
   std::string file;  ///< the H5MD output
   std::string report_file() const { return file + ".report.txt"; }
 };
+
+/// Removes `name VALUE` from the command line (argc, argv) and returns VALUE: for options of a
+/// program's own, such as `--gap`, before run_case reads the rest.
+std::optional<std::string> take_option(int& argc, char** argv, const std::string& name);
+/// Comma-separated numbers, e.g. "0.1,0.05".
+std::vector<double> number_list(const std::string& text);
 
 /// Parses the command line, reads the namelist and runs it (unless --reuse and the file exists).
 Case run_case(int argc, char** argv, const std::string& default_output);

@@ -12,16 +12,9 @@
 using namespace gdsmc;
 
 int main(int argc, char** argv) {
-  double gap = -1.0;
-  std::vector<char*> args;
-  for (int i = 0; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--gap") == 0 && i + 1 < argc) {
-      gap = std::atof(argv[++i]);
-      continue;
-    }
-    args.push_back(argv[i]);
-  }
-  const auto run = validation::run_case(static_cast<int>(args.size()), args.data(), "diffusion_ratio.h5");
+  const auto gap_option = validation::take_option(argc, argv, "--gap");
+  const double gap = gap_option ? std::stod(*gap_option) : -1.0;
+  const auto run = validation::run_case(argc, argv, "diffusion_ratio.h5");
   validation::Report report("diffusion coefficient ratios D_k/D_1", run.report_file());
   if (!report.require("--gap is given", gap >= 0.0)) return report.exit_code();
   const auto points = run.config.sweep_points();

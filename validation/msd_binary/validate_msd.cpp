@@ -6,7 +6,6 @@
 // approximation), never adjusted to make a run pass.
 #include <cmath>
 #include <cstring>
-#include <sstream>
 
 #include "theory/theory.hpp"
 #include "validation.hpp"
@@ -14,17 +13,9 @@
 using namespace gdsmc;
 
 int main(int argc, char** argv) {
-  std::vector<double> gap;
-  std::vector<char*> args;
-  for (int i = 0; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--gap") == 0 && i + 1 < argc) {
-      std::stringstream list(argv[++i]);
-      for (std::string item; std::getline(list, item, ',');) gap.push_back(std::stod(item));
-      continue;
-    }
-    args.push_back(argv[i]);
-  }
-  const auto run = validation::run_case(static_cast<int>(args.size()), args.data(), "msd.h5");
+  const auto gap_option = validation::take_option(argc, argv, "--gap");
+  const std::vector<double> gap = gap_option ? validation::number_list(*gap_option) : std::vector<double>{};
+  const auto run = validation::run_case(argc, argv, "msd.h5");
   const auto mix = run.config.mixture();
   const std::size_t s = mix.size();
   validation::Report report("partial MSDs against eq 17, " + std::to_string(s) + " species, " +

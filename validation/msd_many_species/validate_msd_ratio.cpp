@@ -10,16 +10,9 @@
 using namespace gdsmc;
 
 int main(int argc, char** argv) {
-  double gap = -1.0;
-  std::vector<char*> args;
-  for (int i = 0; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--gap") == 0 && i + 1 < argc) {
-      gap = std::atof(argv[++i]);
-      continue;
-    }
-    args.push_back(argv[i]);
-  }
-  const auto run = validation::run_case(static_cast<int>(args.size()), args.data(), "msd_many_species.h5");
+  const auto gap_option = validation::take_option(argc, argv, "--gap");
+  const double gap = gap_option ? std::stod(*gap_option) : -1.0;
+  const auto run = validation::run_case(argc, argv, "msd_many_species.h5");
   const auto mix = run.config.mixture();
   const std::size_t s = mix.size();
   validation::Report report("<R_k^2>/<R_1^2> for " + std::to_string(s) + " species, theta = " +
