@@ -6,7 +6,6 @@ usage: /usr/bin/python3 paper-figures/seed000.py [BUILD_DIR] [OUT_DIR]
 Reads BUILD_DIR/validation-output/*.h5 (written by `ctest -L validation`, paper tier preferred,
 quick tier otherwise) and writes OUT_DIR/seed000_fig{1..6}.png (default OUT_DIR: paper-figures/out).
 """
-import json
 import os
 import subprocess
 import sys
@@ -17,49 +16,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-BUILD = os.path.abspath(sys.argv[1]) if len(sys.argv) > 1 else os.path.join(ROOT, "build")
-OUT = os.path.abspath(sys.argv[2]) if len(sys.argv) > 2 else os.path.join(ROOT, "paper-figures", "out")
-RUNS = os.path.join(BUILD, "validation-output")
-
-
-def pick(name):
-    """The paper-tier file of a validation case, or its quick variant."""
-    for candidate in (name, name + "_quick"):
-        path = os.path.join(RUNS, candidate + ".h5")
-        if os.path.exists(path):
-            return path
-    raise SystemExit(f"no output for {name} in {RUNS}: run `ctest --test-dir {BUILD} -L validation` first")
-
-
-def observable(f, name):
-    g = f["observables"][name]
-    err = g["error"][()] if "error" in g else None
-    return g["time"][()], g["value"][()], err
-
-
-def theory(path):
-    """granular-theory on the namelist and overrides stored in the output file."""
-    with h5py.File(path) as f:
-        p = f["parameters"].attrs
-        text = p["namelist"]
-        overrides = [o for o in p["overrides"].split("\n") if o and not o.startswith("output:")]
-    nml = path + ".theory.nml"
-    with open(nml, "w") as out:
-        out.write(text)
-    cmd = [os.path.join(BUILD, "bin", "granular-theory"), nml]
-    for o in overrides:
-        cmd += ["--set", o]
-    return json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout)
-
-
-def save(fig, name):
-    os.makedirs(OUT, exist_ok=True)
-    fig.tight_layout()
-    fig.savefig(os.path.join(OUT, name), dpi=120)
-    plt.close(fig)
-    print("wrote", os.path.join(OUT, name))
+from figures_common import pick, tier, observable, theory, save  # noqa: E402
 
 
 def haff_figures():

@@ -14,7 +14,6 @@ Eq 17 is an approximation: DSMC lies up to ~14-16 % below it for the light speci
 validation/msd_binary/README.md), which the lower panels (DSMC / eq 17) show.
 """
 import glob
-import json
 import os
 import re
 import subprocess
@@ -27,79 +26,12 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from figures_common import RUNS, pick, tier, observable, run_theory, theory, save, Missing, TheoryError  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-BUILD = os.path.abspath(sys.argv[1]) if len(sys.argv) > 1 else os.path.join(ROOT, "build")
-OUT = os.path.abspath(sys.argv[2]) if len(sys.argv) > 2 else os.path.join(ROOT, "paper-figures", "out")
-RUNS = os.path.join(BUILD, "validation-output")
-THEORY = os.path.join(BUILD, "bin", "granular-theory")
 
 LINE_SAMPLES = 161  # sample times of the smooth eq 17 lines (the DSMC runs have 41)
 COLORS = ("C0", "C3", "C2", "C1")
 MARKERS = ("o", "s", "^", "D")
-
-
-class Missing(Exception):
-    pass
-
-
-class TheoryError(RuntimeError):
-    pass
-
-
-def pick(name):
-    """The paper-tier file of a validation case, or its quick variant."""
-    for candidate in (name, name + "_quick"):
-        path = os.path.join(RUNS, candidate + ".h5")
-        if os.path.exists(path):
-            return path
-    raise Missing(f"no output for {name} in {RUNS}: run `ctest --test-dir {BUILD} -L validation` first")
-
-
-def tier(path):
-    return "quick tier" if path.endswith("_quick.h5") else "paper tier"
-
-
-def observable(f, name):
-    g = f["observables"][name]
-    err = g["error"][()] if "error" in g else None
-    return g["time"][()], g["value"][()], err
-
-
-def stored_input(path):
-    """Namelist text and overrides (without output:) stored in an output file's /parameters."""
-    with h5py.File(path) as f:
-        p = f["parameters"].attrs
-        text = p["namelist"]
-        overrides = [o for o in p["overrides"].split("\n") if o and not o.startswith("output:")]
-    return text, overrides
-
-
-def run_theory(text, overrides=()):
-    with tempfile.TemporaryDirectory(prefix="seed001-theory-") as tmp:
-        nml = os.path.join(tmp, "theory.nml")
-        with open(nml, "w") as out:
-            out.write(text)
-        cmd = [THEORY, nml]
-        for o in overrides:
-            cmd += ["--set", o]
-        r = subprocess.run(cmd, capture_output=True, text=True, cwd=tmp)
-        if r.returncode:
-            raise TheoryError(f"granular-theory failed on\n{text}\n{r.stderr.strip()}")
-        return json.loads(r.stdout)
-
-
-def theory(path, extra=()):
-    """granular-theory on the namelist and overrides stored in the output file (plus `extra`)."""
-    text, overrides = stored_input(path)
-    return run_theory(text, overrides + list(extra))
-
-
-def save(fig, name):
-    os.makedirs(OUT, exist_ok=True)
-    fig.savefig(os.path.join(OUT, name), dpi=120, bbox_inches="tight")
-    plt.close(fig)
-    print("wrote", os.path.join(OUT, name))
 
 
 # ---------------------------------------------------------------------------------------------

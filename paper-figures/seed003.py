@@ -8,7 +8,6 @@ otherwise) and writes OUT_DIR/seed003_fig{1..7}_*.png (default OUT_DIR: paper-fi
 theory lines come from `granular-theory` on the stored namelist with a dense `&sweep` of its own
 (temporary files only).
 """
-import json
 import os
 import re
 import subprocess
@@ -21,34 +20,11 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from figures_common import pick, tier, observable, stored_input, run_theory, theory, save, Missing  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-BUILD = os.path.abspath(sys.argv[1]) if len(sys.argv) > 1 else os.path.join(ROOT, "build")
-OUT = os.path.abspath(sys.argv[2]) if len(sys.argv) > 2 else os.path.join(ROOT, "paper-figures", "out")
-RUNS = os.path.join(BUILD, "validation-output")
-THEORY = os.path.join(BUILD, "bin", "granular-theory")
 
 ALPHA_LINE = np.round(np.arange(0.1, 1.0001, 0.02), 2)  # alpha grid of the theory lines
 SCALING_START = 10.0  # collisions per particle after which the HCS is reached (Fig 2 averages)
-
-
-def pick(name):
-    """The paper-tier file of a validation case, or its quick variant."""
-    for candidate in (name, name + "_quick"):
-        path = os.path.join(RUNS, candidate + ".h5")
-        if os.path.exists(path):
-            return path
-    raise SystemExit(f"no output for {name} in {RUNS}: run `ctest --test-dir {BUILD} -L validation` first")
-
-
-def tier(path):
-    return "quick tier" if path.endswith("_quick.h5") else "paper tier"
-
-
-def observable(group, name):
-    g = group["observables"][name]
-    err = g["error"][()] if "error" in g else None
-    return g["time"][()], g["value"][()], err
 
 
 def sweep_points(f):
@@ -61,31 +37,6 @@ def gamma_of(T, dT, i):
     """gamma = T1/T2 at sample i and its standard error (propagated from those of T1, T2)."""
     g = T[i, 0] / T[i, 1]
     return g, g * np.hypot(dT[i, 0] / T[i, 0], dT[i, 1] / T[i, 1])
-
-
-def stored_input(path):
-    """Namelist text and overrides (without output:) stored in an output file's /parameters."""
-    with h5py.File(path) as f:
-        p = f["parameters"].attrs
-        text = p["namelist"]
-        overrides = [o for o in p["overrides"].split("\n") if o and not o.startswith("output:")]
-    return text, overrides
-
-
-def run_theory(text, overrides):
-    with tempfile.TemporaryDirectory(prefix="seed003-theory-") as tmp:
-        nml = os.path.join(tmp, "theory.nml")
-        with open(nml, "w") as out:
-            out.write(text)
-        cmd = [THEORY, nml]
-        for o in overrides:
-            cmd += ["--set", o]
-        return json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True, cwd=tmp).stdout)
-
-
-def theory(path):
-    """granular-theory on the namelist and overrides stored in the output file (its own sweep)."""
-    return run_theory(*stored_input(path))
 
 
 def theory_sweep(path, variable, values, extra=(), stored=None):
@@ -103,14 +54,6 @@ def theory_sweep(path, variable, values, extra=(), stored=None):
 def theory_alpha_line(path):
     points = theory_sweep(path, "system:restitution", [f"{a:.2f}" for a in ALPHA_LINE])
     return ALPHA_LINE, points
-
-
-def save(fig, name):
-    os.makedirs(OUT, exist_ok=True)
-    fig.tight_layout()
-    fig.savefig(os.path.join(OUT, name), dpi=120)
-    plt.close(fig)
-    print("wrote", os.path.join(OUT, name))
 
 
 def fig1_gamma_time():
