@@ -6,9 +6,6 @@ usage: /usr/bin/python3 paper-figures/seed000.py [BUILD_DIR] [OUT_DIR]
 Reads BUILD_DIR/validation-output/*.h5 (written by `ctest -L validation`, paper tier preferred,
 quick tier otherwise) and writes OUT_DIR/seed000_fig{1..6}.png (default OUT_DIR: paper-figures/out).
 """
-import os
-import subprocess
-import sys
 
 import h5py
 import matplotlib
@@ -16,7 +13,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from figures_common import pick, tier, observable, theory, save  # noqa: E402
+from figures_common import pick, observable, theory, save  # noqa: E402
 
 
 def haff_figures():

@@ -16,9 +16,6 @@ validation/msd_binary/README.md), which the lower panels (DSMC / eq 17) show.
 import glob
 import os
 import re
-import subprocess
-import sys
-import tempfile
 
 import h5py
 import matplotlib

@@ -8,11 +8,7 @@ otherwise) and writes OUT_DIR/seed003_fig{1..7}_*.png (default OUT_DIR: paper-fi
 theory lines come from `granular-theory` on the stored namelist with a dense `&sweep` of its own
 (temporary files only).
 """
-import os
 import re
-import subprocess
-import sys
-import tempfile
 
 import h5py
 import matplotlib
@@ -20,7 +16,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from figures_common import pick, tier, observable, stored_input, run_theory, theory, save, Missing  # noqa: E402
+from figures_common import pick, tier, observable, stored_input, run_theory, theory, save  # noqa: E402
 
 
 ALPHA_LINE = np.round(np.arange(0.1, 1.0001, 0.02), 2)  # alpha grid of the theory lines
