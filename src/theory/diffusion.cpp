@@ -2,6 +2,7 @@
 #include "theory/diffusion.hpp"
 
 #include "theory/cvode_solver.hpp"
+#include "theory/input_checks.hpp"
 
 #include <cvode/cvode.h>
 #include <gsl/gsl_errno.h>
@@ -64,16 +65,7 @@ const std::array<double, square_terms + 1>& half_gamma() {
 // Input checks
 // ---------------------------------------------------------------------------------------------
 
-void require_temperatures(const Mixture& mix, std::span<const double> temperature,
-                          const char* caller) {
-  if (temperature.size() != mix.size())
-    throw std::invalid_argument(std::string(caller) + ": " + std::to_string(temperature.size()) +
-                                " temperatures for " + std::to_string(mix.size()) + " species");
-  for (double t : temperature)
-    if (!(t > 0.0) || !std::isfinite(t))
-      throw std::invalid_argument(std::string(caller) +
-                                  ": temperatures must be positive and finite");
-}
+using detail::require_temperatures;  // theory/input_checks.hpp
 
 void require_beta(const Mixture& mix, const PairMatrix& beta, const char* caller) {
   if (beta.size != mix.size() || beta.values.size() != mix.size() * mix.size())

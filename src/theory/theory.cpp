@@ -2,6 +2,7 @@
 #include "theory/theory.hpp"
 
 #include "theory/cvode_solver.hpp"
+#include "theory/input_checks.hpp"
 
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
@@ -40,15 +41,7 @@ static_assert(std::is_same_v<sunrealtype, double>, "SUNDIALS must be built in do
 // Input checks
 // ---------------------------------------------------------------------------------------------
 
-void require_temperatures(const Mixture& mix, std::span<const double> temperature,
-                          const char* caller) {
-  if (temperature.size() != mix.size())
-    throw std::invalid_argument(std::string(caller) + ": " + std::to_string(temperature.size()) +
-                                " temperatures for " + std::to_string(mix.size()) + " species");
-  for (double t : temperature)
-    if (!(t > 0.0) || !std::isfinite(t))
-      throw std::invalid_argument(std::string(caller) + ": temperatures must be positive and finite");
-}
+using detail::require_temperatures;  // theory/input_checks.hpp
 
 // ---------------------------------------------------------------------------------------------
 // Kernels on raw temperature arrays (no checks; the CVODE right-hand sides call these)
