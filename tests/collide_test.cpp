@@ -53,7 +53,7 @@ double kinetic_energy(const species::Mixture& mix, const particles::System& sys)
   double e = 0.0;
   for (std::size_t i = 0; i < sys.size(); ++i)
     e += 0.5 * mix.mass[sys.species[i]] *
-         (sys.vx[i] * sys.vx[i] + sys.vy[i] * sys.vy[i] + sys.vz[i] * sys.vz[i]);
+         (sys.v[i].x * sys.v[i].x + sys.v[i].y * sys.v[i].y + sys.v[i].z * sys.v[i].z);
   return e;
 }
 
@@ -63,10 +63,10 @@ void momentum(const species::Mixture& mix, const particles::System& sys, double 
   double s = 0.0;
   for (std::size_t i = 0; i < sys.size(); ++i) {
     const double m = mix.mass[sys.species[i]];
-    p[0] += m * sys.vx[i];
-    p[1] += m * sys.vy[i];
-    p[2] += m * sys.vz[i];
-    s += m * std::sqrt(sys.vx[i] * sys.vx[i] + sys.vy[i] * sys.vy[i] + sys.vz[i] * sys.vz[i]);
+    p[0] += m * sys.v[i].x;
+    p[1] += m * sys.v[i].y;
+    p[2] += m * sys.v[i].z;
+    s += m * std::sqrt(sys.v[i].x * sys.v[i].x + sys.v[i].y * sys.v[i].y + sys.v[i].z * sys.v[i].z);
   }
   if (scale) *scale = s;
 }
@@ -88,9 +88,7 @@ TEST(Collide, ParseScheme) {
 TEST(Collide, ApplyCollisionConservesMomentumAndLosesRightEnergy) {
   auto gen = rng::make_stream(99, 0, rng::Purpose::sampling);
   particles::System sys;
-  sys.vx.assign(2, 0.0);
-  sys.vy.assign(2, 0.0);
-  sys.vz.assign(2, 0.0);
+  sys.v.assign(2, {});
   sys.species = {0, 1};
   sys.first = {0, 1};
   sys.count = {1, 1};
@@ -103,14 +101,14 @@ TEST(Collide, ApplyCollisionConservesMomentumAndLosesRightEnergy) {
       for (double alpha : {0.0, 0.3, 0.5, 0.8, 0.95, 1.0}) {
         for (int trial = 0; trial < 200; ++trial) {
           for (std::size_t i = 0; i < 2; ++i) {
-            sys.vx[i] = 3.0 * gen.normal();
-            sys.vy[i] = 3.0 * gen.normal();
-            sys.vz[i] = 3.0 * gen.normal();
+            sys.v[i].x = 3.0 * gen.normal();
+            sys.v[i].y = 3.0 * gen.normal();
+            sys.v[i].z = 3.0 * gen.normal();
           }
           double ex, ey, ez;
           rng::unit_vector(gen, ex, ey, ez);
-          const double va[3] = {sys.vx[0], sys.vy[0], sys.vz[0]};
-          const double vb[3] = {sys.vx[1], sys.vy[1], sys.vz[1]};
+          const double va[3] = {sys.v[0].x, sys.v[0].y, sys.v[0].z};
+          const double vb[3] = {sys.v[1].x, sys.v[1].y, sys.v[1].z};
           const double g_e = (va[0] - vb[0]) * ex + (va[1] - vb[1]) * ey + (va[2] - vb[2]) * ez;
           const double e_before = 0.5 * ma * (va[0] * va[0] + va[1] * va[1] + va[2] * va[2]) +
                                   0.5 * mb * (vb[0] * vb[0] + vb[1] * vb[1] + vb[2] * vb[2]);
@@ -124,17 +122,17 @@ TEST(Collide, ApplyCollisionConservesMomentumAndLosesRightEnergy) {
           EXPECT_EQ(returned, g_e);
 
           const double pa[3] = {ma * va[0] + mb * vb[0], ma * va[1] + mb * vb[1], ma * va[2] + mb * vb[2]};
-          const double pb[3] = {ma * sys.vx[0] + mb * sys.vx[1], ma * sys.vy[0] + mb * sys.vy[1],
-                                ma * sys.vz[0] + mb * sys.vz[1]};
+          const double pb[3] = {ma * sys.v[0].x + mb * sys.v[1].x, ma * sys.v[0].y + mb * sys.v[1].y,
+                                ma * sys.v[0].z + mb * sys.v[1].z};
           for (int d = 0; d < 3; ++d) ASSERT_LE(std::abs(pb[d] - pa[d]), 1e-14 * p_scale);
 
-          const double g_e_after = (sys.vx[0] - sys.vx[1]) * ex + (sys.vy[0] - sys.vy[1]) * ey +
-                                   (sys.vz[0] - sys.vz[1]) * ez;
+          const double g_e_after = (sys.v[0].x - sys.v[1].x) * ex + (sys.v[0].y - sys.v[1].y) * ey +
+                                   (sys.v[0].z - sys.v[1].z) * ez;
           ASSERT_NEAR(g_e_after, -alpha * g_e, 1e-14 * g_norm);
 
           const double e_after =
-              0.5 * ma * (sys.vx[0] * sys.vx[0] + sys.vy[0] * sys.vy[0] + sys.vz[0] * sys.vz[0]) +
-              0.5 * mb * (sys.vx[1] * sys.vx[1] + sys.vy[1] * sys.vy[1] + sys.vz[1] * sys.vz[1]);
+              0.5 * ma * (sys.v[0].x * sys.v[0].x + sys.v[0].y * sys.v[0].y + sys.v[0].z * sys.v[0].z) +
+              0.5 * mb * (sys.v[1].x * sys.v[1].x + sys.v[1].y * sys.v[1].y + sys.v[1].z * sys.v[1].z);
           const double loss = e_before - e_after;
           const double expected = (1.0 - alpha * alpha) * mab * g_e * g_e / 2.0;
           ASSERT_NEAR(loss, expected, 1e-13 * e_before) << "alpha " << alpha;
@@ -158,9 +156,7 @@ TEST(Collide, ApplyCollisionConservesMomentumAndLosesRightEnergy) {
 // The sign of e does not matter (ERRATA §1).
 TEST(Collide, ApplyCollisionIndependentOfSignOfE) {
   particles::System a;
-  a.vx = {1.0, -0.5};
-  a.vy = {0.3, 0.2};
-  a.vz = {-0.7, 0.9};
+  a.v = {{1.0, 0.3, -0.7}, {-0.5, 0.2, 0.9}};
   a.species = {0, 0};
   a.first = {0};
   a.count = {2};
@@ -169,9 +165,9 @@ TEST(Collide, ApplyCollisionIndependentOfSignOfE) {
   collide::apply_collision(a, 0, 1, e[0], e[1], e[2], 0.7, 0.25);
   collide::apply_collision(b, 0, 1, -e[0], -e[1], -e[2], 0.7, 0.25);
   for (std::size_t i = 0; i < 2; ++i) {
-    EXPECT_NEAR(a.vx[i], b.vx[i], 1e-15);
-    EXPECT_NEAR(a.vy[i], b.vy[i], 1e-15);
-    EXPECT_NEAR(a.vz[i], b.vz[i], 1e-15);
+    EXPECT_NEAR(a.v[i].x, b.v[i].x, 1e-15);
+    EXPECT_NEAR(a.v[i].y, b.v[i].y, 1e-15);
+    EXPECT_NEAR(a.v[i].z, b.v[i].z, 1e-15);
   }
 }
 
@@ -332,9 +328,7 @@ TEST(Collide, AdvanceStopsAtEventTargetAndTimeIsMonotone) {
 TEST(Collide, GasAtRestNeverCollides) {
   const auto mix = one_species(0.5);
   particles::System sys;
-  sys.vx.assign(10, 0.0);
-  sys.vy.assign(10, 0.0);
-  sys.vz.assign(10, 0.0);
+  sys.v.assign(10, {});
   sys.species.assign(10, 0);
   sys.first = {0};
   sys.count = {10};
@@ -363,13 +357,11 @@ TEST(Collide, ReproducibleFromSameSeed) {
       col->advance(12.5, 4000);
       col->advance(40.0);
     }
-    EXPECT_EQ(sys_a.vx, sys_b.vx);
-    EXPECT_EQ(sys_a.vy, sys_b.vy);
-    EXPECT_EQ(sys_a.vz, sys_b.vz);
+    EXPECT_EQ(sys_a.v, sys_b.v);
     EXPECT_EQ(a.time(), b.time());
     EXPECT_EQ(a.counters().events, b.counters().events);
     EXPECT_EQ(a.counters().candidates, b.counters().candidates);
-    EXPECT_NE(sys_a.vx, sys_c.vx);
+    EXPECT_NE(sys_a.v, sys_c.v);
   }
 }
 

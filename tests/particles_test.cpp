@@ -27,7 +27,7 @@ species::Mixture binary() {
 double temperature_of(const species::Mixture& mix, const particles::System& sys, std::size_t k) {
   double sum = 0.0;
   for (std::size_t i = sys.first[k]; i < sys.first[k] + sys.count[k]; ++i)
-    sum += sys.vx[i] * sys.vx[i] + sys.vy[i] * sys.vy[i] + sys.vz[i] * sys.vz[i];
+    sum += sys.v[i].x * sys.v[i].x + sys.v[i].y * sys.v[i].y + sys.v[i].z * sys.v[i].z;
   return mix.mass[k] * sum / (3.0 * static_cast<double>(sys.count[k]));
 }
 
@@ -35,7 +35,7 @@ double temperature_of(const species::Mixture& mix, const particles::System& sys,
 double flatness(const particles::System& sys, std::size_t k, double* samples) {
   double m2 = 0.0, m4 = 0.0;
   for (std::size_t i = sys.first[k]; i < sys.first[k] + sys.count[k]; ++i)
-    for (double v : {sys.vx[i], sys.vy[i], sys.vz[i]}) {
+    for (double v : {sys.v[i].x, sys.v[i].y, sys.v[i].z}) {
       m2 += v * v;
       m4 += v * v * v * v;
     }
@@ -95,8 +95,6 @@ TEST(Particles, MakeSystemExactTemperatureAndZeroMomentum) {
     const auto sys = particles::make_system(mix, counts, temperature, dist, gen);
     ASSERT_EQ(sys.size(), 20000u);
     ASSERT_EQ(sys.n_species(), 2u);
-    ASSERT_EQ(sys.vy.size(), 20000u);
-    ASSERT_EQ(sys.vz.size(), 20000u);
     ASSERT_EQ(sys.species.size(), 20000u);
     EXPECT_EQ(sys.first, (std::vector<std::size_t>{0, 12000}));
     EXPECT_EQ(sys.count, counts);
@@ -106,9 +104,9 @@ TEST(Particles, MakeSystemExactTemperatureAndZeroMomentum) {
       EXPECT_NEAR(temperature_of(mix, sys, k) / temperature[k], 1.0, 1e-12);
       double p[3] = {0.0, 0.0, 0.0};
       for (std::size_t i = sys.first[k]; i < sys.first[k] + sys.count[k]; ++i) {
-        p[0] += sys.vx[i];
-        p[1] += sys.vy[i];
-        p[2] += sys.vz[i];
+        p[0] += sys.v[i].x;
+        p[1] += sys.v[i].y;
+        p[2] += sys.v[i].z;
       }
       const double scale = static_cast<double>(counts[k]) * std::sqrt(temperature[k] / mix.mass[k]);
       for (double pd : p) EXPECT_LT(std::abs(pd) / scale, 1e-12);
@@ -122,9 +120,7 @@ TEST(Particles, MakeSystemIsReproducible) {
   auto g2 = rng::make_stream(3, 1, rng::Purpose::initial_state);
   const auto a = particles::make_system(mix, {500, 300}, {1.0, 1.0}, InitialDistribution::maxwell, g1);
   const auto b = particles::make_system(mix, {500, 300}, {1.0, 1.0}, InitialDistribution::maxwell, g2);
-  EXPECT_EQ(a.vx, b.vx);
-  EXPECT_EQ(a.vy, b.vy);
-  EXPECT_EQ(a.vz, b.vz);
+  EXPECT_EQ(a.v, b.v);
 }
 
 // 'shell': every velocity is drawn with speed 1, then the species' sample mean u is subtracted and
@@ -146,11 +142,11 @@ TEST(Particles, ShellHasEqualSpeedsUpToMeanRemoval) {
     // Sphere fit: |w|^2 - <|w|^2> = 2 w.c (using sum w = 0), a 3x3 linear least-squares problem.
     double mean_w2 = 0.0;
     for (std::size_t i = b; i < e; ++i)
-      mean_w2 += sys.vx[i] * sys.vx[i] + sys.vy[i] * sys.vy[i] + sys.vz[i] * sys.vz[i];
+      mean_w2 += sys.v[i].x * sys.v[i].x + sys.v[i].y * sys.v[i].y + sys.v[i].z * sys.v[i].z;
     mean_w2 /= static_cast<double>(n);
     double a[3][4] = {};
     for (std::size_t i = b; i < e; ++i) {
-      const double w[3] = {sys.vx[i], sys.vy[i], sys.vz[i]};
+      const double w[3] = {sys.v[i].x, sys.v[i].y, sys.v[i].z};
       const double rhs = w[0] * w[0] + w[1] * w[1] + w[2] * w[2] - mean_w2;
       for (int r = 0; r < 3; ++r) {
         for (int c = 0; c < 3; ++c) a[r][c] += 2.0 * w[r] * w[c];
@@ -172,9 +168,9 @@ TEST(Particles, ShellHasEqualSpeedsUpToMeanRemoval) {
     const double radius = std::sqrt(mean_w2 + c2);  // <|w - c|^2> = <|w|^2> + |c|^2 (sum w = 0)
     double worst_fit = 0.0, s_min = 1e300, s_max = 0.0;
     for (std::size_t i = b; i < e; ++i) {
-      const double dx = sys.vx[i] - centre[0], dy = sys.vy[i] - centre[1], dz = sys.vz[i] - centre[2];
+      const double dx = sys.v[i].x - centre[0], dy = sys.v[i].y - centre[1], dz = sys.v[i].z - centre[2];
       worst_fit = std::max(worst_fit, std::abs(std::sqrt(dx * dx + dy * dy + dz * dz) / radius - 1.0));
-      const double s = std::sqrt(sys.vx[i] * sys.vx[i] + sys.vy[i] * sys.vy[i] + sys.vz[i] * sys.vz[i]);
+      const double s = std::sqrt(sys.v[i].x * sys.v[i].x + sys.v[i].y * sys.v[i].y + sys.v[i].z * sys.v[i].z);
       s_min = std::min(s_min, s);
       s_max = std::max(s_max, s);
     }

@@ -31,9 +31,7 @@ particles::System build(const std::vector<std::vector<std::array<double, 3>>>& v
     sys.first.push_back(sys.size());
     sys.count.push_back(velocities[k].size());
     for (const auto& v : velocities[k]) {
-      sys.vx.push_back(v[0]);
-      sys.vy.push_back(v[1]);
-      sys.vz.push_back(v[2]);
+      sys.v.push_back({v[0], v[1], v[2]});
       sys.species.push_back(static_cast<std::uint32_t>(k));
     }
   }
@@ -42,9 +40,9 @@ particles::System build(const std::vector<std::vector<std::array<double, 3>>>& v
 
 void shift(particles::System& sys, double ux, double uy, double uz) {
   for (std::size_t i = 0; i < sys.size(); ++i) {
-    sys.vx[i] += ux;
-    sys.vy[i] += uy;
-    sys.vz[i] += uz;
+    sys.v[i].x += ux;
+    sys.v[i].y += uy;
+    sys.v[i].z += uz;
   }
 }
 
@@ -107,9 +105,7 @@ TEST(Sample, MeasureIsGalileanInvariant) {
     sys.first.push_back(sys.size());
     sys.count.push_back(counts[k]);
     for (std::size_t i = 0; i < counts[k]; ++i) {  // per-species drifts, non-Gaussian shapes
-      sys.vx.push_back(gen.normal() + 0.2 * k);
-      sys.vy.push_back(gen.uniform() - 0.1 * k);
-      sys.vz.push_back(gen.normal() * gen.normal());
+      sys.v.push_back({gen.normal() + 0.2 * k, gen.uniform() - 0.1 * k, gen.normal() * gen.normal()});
       sys.species.push_back(k);
     }
   }
@@ -136,7 +132,7 @@ TEST(Sample, VelocityHistogramIgnoresMeanFlow) {
   auto gen = rng::make_stream(5, 0, rng::Purpose::initial_state);
   auto sys = particles::make_system(mix, {1000}, {1.0}, particles::InitialDistribution::maxwell, gen);
   const auto still = sample::velocity_histogram(mix, sys, sample::measure(mix, sys), 10, 3.0);
-  for (std::size_t i = 0; i < sys.size(); ++i) sys.vx[i] += 0.7;
+  for (std::size_t i = 0; i < sys.size(); ++i) sys.v[i].x += 0.7;
   const auto moving = sample::velocity_histogram(mix, sys, sample::measure(mix, sys), 10, 3.0);
   for (std::size_t b = 0; b < 10; ++b) EXPECT_NEAR(moving[b], still[b], 1e-12) << "bin " << b;
 }

@@ -24,6 +24,7 @@ Collider::Collider(Scheme scheme, const species::Mixture& mix, particles::System
                    const species::PairMatrix* viscoelastic_beta)
     : scheme_(scheme), mix_(mix), sys_(sys), gen_(gen), step_fraction_(step_fraction),
       s_(mix.size()), tables_(!(scheme == Scheme::lowrank && s_ > species::dense_pair_limit)) {
+  if (sys.size() > UINT32_MAX) throw std::invalid_argument("collide: more than 2^32 - 1 particles in one replica");
   // The S x S tables make the majorant and pairs loops table lookups; the lowrank scheme with
   // thousands of species computes the few pair quantities it needs per accepted collision instead.
   if (tables_) {
@@ -39,6 +40,7 @@ Collider::Collider(Scheme scheme, const species::Mixture& mix, particles::System
       }
   }
   max_speed_.assign(s_, 0.0);
+  max_speed2_.assign(s_, 0.0);
   if (scheme_ == Scheme::pairs) {
     pair_rate_.assign(s_ * s_, 0.0);
     pair_cumulative_.assign(s_ * s_, 0.0);
@@ -62,8 +64,8 @@ Collider::Collider(Scheme scheme, const species::Mixture& mix, particles::System
 double Collider::restitution_of(std::size_t i, std::size_t k, std::size_t a, std::size_t b, double ex,
                                 double ey, double ez) const {
   if (!viscoelastic_) return tables_ ? alpha_[i * s_ + k] : mix_.restitution(i, k);
-  const double g_dot_e = (sys_.vx[a] - sys_.vx[b]) * ex + (sys_.vy[a] - sys_.vy[b]) * ey +
-                         (sys_.vz[a] - sys_.vz[b]) * ez;
+  const double g_dot_e = (sys_.v[a].x - sys_.v[b].x) * ex + (sys_.v[a].y - sys_.v[b].y) * ey +
+                         (sys_.v[a].z - sys_.v[b].z) * ez;
   const double sqrt_beta = tables_ ? sqrt_beta_[i * s_ + k] : std::sqrt(beta_(i, k));
   const double u = sqrt_beta * std::pow(std::abs(g_dot_e), 0.1);  // ERRATA §11
   if (u > restitution::u_max) return restitution::viscoelastic(sqrt_beta * sqrt_beta, g_dot_e);  // throws
@@ -89,8 +91,9 @@ void Collider::recompute_max_speeds() {
     double max2 = 0.0;
     const std::size_t end = sys_.first[k] + sys_.count[k];
     for (std::size_t i = sys_.first[k]; i < end; ++i)
-      max2 = std::max(max2, sys_.vx[i] * sys_.vx[i] + sys_.vy[i] * sys_.vy[i] + sys_.vz[i] * sys_.vz[i]);
+      max2 = std::max(max2, sys_.v[i].x * sys_.v[i].x + sys_.v[i].y * sys_.v[i].y + sys_.v[i].z * sys_.v[i].z);
     max_speed_[k] = std::sqrt(max2);
+    max_speed2_[k] = max2;
   }
 }
 
@@ -105,6 +108,7 @@ void Collider::rebuild_bounds() {
     }
     raised_.clear();
     rate_ = lowrank_.total();
+    pending_filled_ = false;  // drawn from the old A_ik: redraw (header, "Look-ahead")
   } else if (scheme_ == Scheme::majorant) {
     bound_ = 0.0;
     for (std::size_t k = 0; k < s_; ++k)
@@ -128,11 +132,12 @@ void Collider::rebuild_bounds() {
 }
 
 bool Collider::raise_max_speed(std::size_t particle) {
-  const std::uint32_t k = sys_.species[particle];
-  const double v2 = sys_.vx[particle] * sys_.vx[particle] + sys_.vy[particle] * sys_.vy[particle] +
-                    sys_.vz[particle] * sys_.vz[particle];
-  if (v2 <= max_speed_[k] * max_speed_[k]) return false;
+  const std::uint32_t k = s_ > 1 ? sys_.species[particle] : 0;
+  const particles::Vec3& v = sys_.v[particle];
+  const double v2 = v.x * v.x + v.y * v.y + v.z * v.z;
+  if (v2 <= max_speed2_[k]) return false;
   max_speed_[k] = std::sqrt(v2);
+  max_speed2_[k] = v2;
   raised_.push_back(k);
   return true;
 }
@@ -168,6 +173,7 @@ bool Collider::advance(double t_target, std::uint64_t event_target) {
         for (std::size_t k : raised_) set_lowrank_row(k);
         raised_.clear();
         rate_ = lowrank_.total();
+        pending_filled_ = false;  // drawn from the old A_ik: redraw (header, "Look-ahead")
       } else {
         rebuild_bounds();
       }
@@ -204,34 +210,83 @@ int Collider::run_substep(double t_stop, std::uint64_t event_target, TryCandidat
   return static_cast<int>(Stop::reached_time);
 }
 
+// e ~ (g_hat.e) on the hemisphere (ERRATA §2): e = (g_hat + w)/|g_hat + w|, w uniform on the
+// sphere, has exactly that density (the ray from the origin meets the sphere |p - g_hat| = 1 at
+// distance 2 cos(theta), with area element 4 cos(theta) dOmega). Returns false for w = -g_hat
+// exactly (probability zero).
+template <class Gen>
+static bool hemisphere_normal(Gen& gen, double gx, double gy, double gz, double g, double& ex, double& ey,
+                              double& ez) {
+  double wx, wy, wz;
+  rng::unit_vector(gen, wx, wy, wz);
+  const double inv_g = 1.0 / g;
+  ex = gx * inv_g + wx;
+  ey = gy * inv_g + wy;
+  ez = gz * inv_g + wz;
+  const double norm2 = ex * ex + ey * ey + ez * ez;
+  if (norm2 == 0.0) return false;
+  const double inv_norm = 1.0 / std::sqrt(norm2);
+  ex *= inv_norm;
+  ey *= inv_norm;
+  ez *= inv_norm;
+  return true;
+}
+
+void Collider::prefetch(const PendingPair& p) const {
+  // A Vec3 may straddle two cache lines: touch its first and last byte.
+  const auto* v = reinterpret_cast<const char*>(sys_.v.data());
+  for (std::uint32_t i : {p.a, p.b}) {
+    __builtin_prefetch(v + i * sizeof(particles::Vec3), 1);
+    __builtin_prefetch(v + (i + 1) * sizeof(particles::Vec3) - 1, 1);
+    if (s_ > 1) __builtin_prefetch(sys_.species.data() + i);
+    if (sys_.tracks_displacements()) __builtin_prefetch(sys_.r.data() + i, 1);
+  }
+}
+
+template <class Draw>
+Collider::PendingPair Collider::next_pair(Draw&& draw) {
+  if (!pending_filled_) {
+    for (PendingPair& p : pending_) {
+      p = draw();
+      prefetch(p);
+    }
+    pending_next_ = 0;
+    pending_filled_ = true;
+  }
+  PendingPair& slot = pending_[pending_next_];
+  const PendingPair p = slot;
+  slot = draw();
+  prefetch(slot);
+  pending_next_ = (pending_next_ + 1) % lookahead;
+  return p;
+}
+
 int Collider::run_majorant(double t_stop, std::uint64_t event_target) {
   const bool track = sys_.tracks_displacements();  // may start in the middle of a run
-  const std::size_t n = sys_.size();
-  double* vx = sys_.vx.data();
-  double* vy = sys_.vy.data();
-  double* vz = sys_.vz.data();
+  const auto n = static_cast<std::uint32_t>(sys_.size());
+  particles::Vec3* v = sys_.v.data();
   const std::uint32_t* sp = sys_.species.data();
-  return run_substep(t_stop, event_target, [&](std::size_t& a, std::size_t& b, double t_collision) {
-    a = gen_.below(n);
-    b = gen_.below(n - 1);
+  const bool mixture = s_ > 1;
+  const auto draw = [&] {
+    const auto a = static_cast<std::uint32_t>(gen_.below(n));
+    auto b = static_cast<std::uint32_t>(gen_.below(n - 1));
     if (b >= a) ++b;
-    const std::uint32_t ka = sp[a], kb = sp[b];
+    return PendingPair{a, b, 0, 0};
+  };
+  return run_substep(t_stop, event_target, [&](std::size_t& a, std::size_t& b, double t_collision) {
+    const PendingPair p = next_pair(draw);
+    a = p.a;
+    b = p.b;
+    const std::uint32_t ka = mixture ? sp[a] : 0, kb = mixture ? sp[b] : 0;
     const std::size_t pair = ka * s_ + kb;
-    const double gx = vx[a] - vx[b], gy = vy[a] - vy[b], gz = vz[a] - vz[b];
-    const double g = std::sqrt(gx * gx + gy * gy + gz * gz);
-    // Accept with pi sigma^2 chi |g| / B (seed 000 eq 7).
-    if (gen_.uniform() * bound_ >= cross_section_[pair] * g) return false;
-    // e ~ (g_hat.e) on the hemisphere (ERRATA §2): e = (g_hat + w)/|g_hat + w|, w uniform on the
-    // sphere, has exactly that density (the ray from the origin meets the sphere |p - g_hat| = 1
-    // at distance 2 cos(theta), with area element 4 cos(theta) dOmega).
-    double wx, wy, wz;
-    rng::unit_vector(gen_, wx, wy, wz);
-    double ex = gx / g + wx, ey = gy / g + wy, ez = gz / g + wz;
-    const double norm = std::sqrt(ex * ex + ey * ey + ez * ez);
-    if (norm == 0.0) return false;  // w = -g_hat exactly: probability zero
-    ex /= norm;
-    ey /= norm;
-    ez /= norm;
+    const double gx = v[a].x - v[b].x, gy = v[a].y - v[b].y, gz = v[a].z - v[b].z;
+    const double g2 = gx * gx + gy * gy + gz * gz;
+    // Accept with pi sigma^2 chi |g| / B (seed 000 eq 7), compared squared: no root for a rejection.
+    const double threshold = gen_.uniform() * bound_;
+    const double cross_section = cross_section_[pair];
+    if (threshold * threshold >= cross_section * cross_section * g2) return false;
+    double ex, ey, ez;
+    if (!hemisphere_normal(gen_, gx, gy, gz, std::sqrt(g2), ex, ey, ez)) return false;
     if (track) {
       particles::flush_free_flight(sys_, a, t_collision);
       particles::flush_free_flight(sys_, b, t_collision);
@@ -261,8 +316,8 @@ int Collider::run_pairs(double t_stop, std::uint64_t event_target) {
     }
     double ex, ey, ez;
     rng::unit_vector(gen_, ex, ey, ez);  // seed 003 step (1): e uniform on the sphere
-    const double g_dot_e = (sys_.vx[k] - sys_.vx[l]) * ex + (sys_.vy[k] - sys_.vy[l]) * ey +
-                           (sys_.vz[k] - sys_.vz[l]) * ez;
+    const double g_dot_e = (sys_.v[k].x - sys_.v[l].x) * ex + (sys_.v[k].y - sys_.v[l].y) * ey +
+                           (sys_.v[k].z - sys_.v[l].z) * ez;
     // Step (2): accept with Theta(g.e) |g.e| / g_max, g_max = vmax_i + vmax_j.
     if (g_dot_e <= 0.0 || gen_.uniform() * (max_speed_[i] + max_speed_[j]) >= g_dot_e) return false;
     if (track) {
@@ -277,28 +332,27 @@ int Collider::run_pairs(double t_stop, std::uint64_t event_target) {
 
 int Collider::run_lowrank(double t_stop, std::uint64_t event_target) {
   const bool track = sys_.tracks_displacements();  // may start in the middle of a run
-  double* vx = sys_.vx.data();
-  double* vy = sys_.vy.data();
-  double* vz = sys_.vz.data();
-  return run_substep(t_stop, event_target, [&](std::size_t& a, std::size_t& b, double t_collision) {
+  particles::Vec3* v = sys_.v.data();
+  const auto draw = [&] {
     const auto [i, k] = lowrank_.sample(gen_);  // (i, k) with probability A_ik / R
-    a = sys_.first[i] + gen_.below(sys_.count[i]);
-    b = sys_.first[k] + gen_.below(sys_.count[k]);
+    return PendingPair{static_cast<std::uint32_t>(sys_.first[i] + gen_.below(sys_.count[i])),
+                       static_cast<std::uint32_t>(sys_.first[k] + gen_.below(sys_.count[k])),
+                       static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(k)};
+  };
+  return run_substep(t_stop, event_target, [&](std::size_t& a, std::size_t& b, double t_collision) {
+    const PendingPair p = next_pair(draw);
+    a = p.a;
+    b = p.b;
     if (a == b) return false;  // the self pair is part of the majorant's sum, never a collision
-    const std::size_t pair = i * s_ + k;
-    const double gx = vx[a] - vx[b], gy = vy[a] - vy[b], gz = vz[a] - vz[b];
-    const double g = std::sqrt(gx * gx + gy * gy + gz * gz);
-    // Accept with chi_ik |g| / (chi_max (w_i + w_k)) (seed 001 eq 11 with ERRATA §2).
-    if (gen_.uniform() * chi_max_ * (max_speed_[i] + max_speed_[k]) >= mix_.pair_correlation(i, k) * g)
-      return false;
-    double wx, wy, wz;  // e ~ (g_hat.e) on the hemisphere, as in run_majorant
-    rng::unit_vector(gen_, wx, wy, wz);
-    double ex = gx / g + wx, ey = gy / g + wy, ez = gz / g + wz;
-    const double norm = std::sqrt(ex * ex + ey * ey + ez * ez);
-    if (norm == 0.0) return false;
-    ex /= norm;
-    ey /= norm;
-    ez /= norm;
+    const std::size_t i = p.i, k = p.k;
+    const double gx = v[a].x - v[b].x, gy = v[a].y - v[b].y, gz = v[a].z - v[b].z;
+    const double g2 = gx * gx + gy * gy + gz * gz;
+    // Accept with chi_ik |g| / (chi_max (w_i + w_k)) (seed 001 eq 11 with ERRATA §2), compared squared.
+    const double threshold = gen_.uniform() * chi_max_ * (max_speed_[i] + max_speed_[k]);
+    const double chi = mix_.pair_correlation(i, k);
+    if (threshold * threshold >= chi * chi * g2) return false;
+    double ex, ey, ez;  // e ~ (g_hat.e) on the hemisphere, as in run_majorant
+    if (!hemisphere_normal(gen_, gx, gy, gz, std::sqrt(g2), ex, ey, ez)) return false;
     if (track) {
       particles::flush_free_flight(sys_, a, t_collision);
       particles::flush_free_flight(sys_, b, t_collision);

@@ -1,8 +1,29 @@
 #include "dsmc/particles.hpp"
 
+#include <new>
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
 #include <cmath>
 
 namespace gdsmc::particles {
+
+void* allocate_bytes(std::size_t bytes) {
+  constexpr std::size_t huge_page = std::size_t{1} << 21;
+  if (bytes < huge_page) {
+    void* p = std::malloc(bytes == 0 ? 1 : bytes);
+    if (!p) throw std::bad_alloc();
+    return p;
+  }
+  const std::size_t rounded = (bytes + huge_page - 1) / huge_page * huge_page;
+  void* p = std::aligned_alloc(huge_page, rounded);
+  if (!p) throw std::bad_alloc();
+#ifdef MADV_HUGEPAGE
+  madvise(p, rounded, MADV_HUGEPAGE);  // a hint: failure only costs speed
+#endif
+  return p;
+}
 
 std::vector<std::size_t> species_counts(std::size_t n_particles, const species::Mixture& mix) {
   std::vector<std::size_t> counts(mix.size());
@@ -25,9 +46,7 @@ System make_system(const species::Mixture& mix, const std::vector<std::size_t>& 
     sys.first[k] = total;
     total += counts[k];
   }
-  sys.vx.resize(total);
-  sys.vy.resize(total);
-  sys.vz.resize(total);
+  sys.v.resize(total);
   sys.species.resize(total);
 
   for (std::size_t k = 0; k < s; ++k) {
@@ -37,41 +56,41 @@ System make_system(const species::Mixture& mix, const std::vector<std::size_t>& 
       sys.species[i] = static_cast<std::uint32_t>(k);
       switch (distribution) {
         case InitialDistribution::maxwell:
-          sys.vx[i] = gen.normal();
-          sys.vy[i] = gen.normal();
-          sys.vz[i] = gen.normal();
+          sys.v[i].x = gen.normal();
+          sys.v[i].y = gen.normal();
+          sys.v[i].z = gen.normal();
           break;
         case InitialDistribution::shell:
-          rng::unit_vector(gen, sys.vx[i], sys.vy[i], sys.vz[i]);
+          rng::unit_vector(gen, sys.v[i].x, sys.v[i].y, sys.v[i].z);
           break;
         case InitialDistribution::cube:
-          sys.vx[i] = 2.0 * gen.uniform() - 1.0;
-          sys.vy[i] = 2.0 * gen.uniform() - 1.0;
-          sys.vz[i] = 2.0 * gen.uniform() - 1.0;
+          sys.v[i].x = 2.0 * gen.uniform() - 1.0;
+          sys.v[i].y = 2.0 * gen.uniform() - 1.0;
+          sys.v[i].z = 2.0 * gen.uniform() - 1.0;
           break;
       }
     }
     double mean[3] = {0.0, 0.0, 0.0};
     for (std::size_t i = begin; i < end; ++i) {
-      mean[0] += sys.vx[i];
-      mean[1] += sys.vy[i];
-      mean[2] += sys.vz[i];
+      mean[0] += sys.v[i].x;
+      mean[1] += sys.v[i].y;
+      mean[2] += sys.v[i].z;
     }
     for (double& m : mean) m /= static_cast<double>(counts[k]);
     double sum_sq = 0.0;
     for (std::size_t i = begin; i < end; ++i) {
-      sys.vx[i] -= mean[0];
-      sys.vy[i] -= mean[1];
-      sys.vz[i] -= mean[2];
-      sum_sq += sys.vx[i] * sys.vx[i] + sys.vy[i] * sys.vy[i] + sys.vz[i] * sys.vz[i];
+      sys.v[i].x -= mean[0];
+      sys.v[i].y -= mean[1];
+      sys.v[i].z -= mean[2];
+      sum_sq += sys.v[i].x * sys.v[i].x + sys.v[i].y * sys.v[i].y + sys.v[i].z * sys.v[i].z;
     }
     // T_k = m_k <|v|^2> / 3 (INTERFACE.md `temperature`)
     const double current = mix.mass[k] * sum_sq / (3.0 * static_cast<double>(counts[k]));
     const double scale = std::sqrt(temperature[k] / current);
     for (std::size_t i = begin; i < end; ++i) {
-      sys.vx[i] *= scale;
-      sys.vy[i] *= scale;
-      sys.vz[i] *= scale;
+      sys.v[i].x *= scale;
+      sys.v[i].y *= scale;
+      sys.v[i].z *= scale;
     }
   }
   return sys;
@@ -79,10 +98,7 @@ System make_system(const species::Mixture& mix, const std::vector<std::size_t>& 
 
 void start_tracking(System& sys, double t) {
   const std::size_t n = sys.size();
-  sys.rx.assign(n, 0.0);
-  sys.ry.assign(n, 0.0);
-  sys.rz.assign(n, 0.0);
-  sys.t_last.assign(n, t);
+  sys.r.assign(n, Displacement{0.0, 0.0, 0.0, t});
 }
 
 }  // namespace gdsmc::particles

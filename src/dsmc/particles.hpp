@@ -1,6 +1,6 @@
 /**
  * \file particles.hpp
- * \brief The simulated particles of one replica: velocities as a structure of arrays, grouped by species.
+ * \brief The simulated particles of one replica: velocities and species as parallel arrays, grouped by species.
  *
  * A homogeneous gas needs no positions (seed 003 sec. 3: a single cell), so a particle is its
  * velocity and its species. Particles of species k occupy the contiguous index range
@@ -10,6 +10,12 @@
  * The number of simulated particles of species k is N_k = round(N n_k / n) (seed 003 eq 22 and the
  * relation N_i/N_j = n_i/n_j). Each simulated particle stands for n_k V / N_k real ones; the
  * collision schemes use the physical densities n_k directly, so V never appears.
+ *
+ * Layout: each particle's three velocity components are stored together (Vec3, 24 bytes), beside a
+ * parallel species array (4 bytes): a collision reads and writes all three components of two random
+ * particles, so this is one memory access per particle where three separate component arrays would
+ * be three, which is what limits the collision loop at N = 1e6 (bench/bench_collide.cpp).
+ * Tracked displacements keep R and t_last together (32 bytes) for the same reason.
  *
  * Initial velocities (`&initial distribution`): 'maxwell' (Gaussian, seed 003 eq 25), 'shell' (all
  * speeds equal, isotropic directions) or 'cube' (uniform in a cube). Then each species' mean velocity
@@ -21,6 +27,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -31,20 +38,53 @@ namespace gdsmc::particles {
 
 enum class InitialDistribution { maxwell, shell, cube };
 
+/// Allocator for the per-particle arrays: blocks of 2 MiB and more are 2 MiB-aligned and, on Linux,
+/// marked for transparent huge pages (madvise). The collision loop reads particles at random; with
+/// 4 KiB pages, 1e6 particles span 7000 pages, more than the TLB holds, and every read would
+/// also miss the TLB. Falls back to ordinary pages where huge pages are unavailable.
+void* allocate_bytes(std::size_t bytes);  ///< throws std::bad_alloc; free with std::free
+
+template <class T>
+struct LargePageAllocator {
+  using value_type = T;
+  LargePageAllocator() = default;
+  template <class U>
+  LargePageAllocator(const LargePageAllocator<U>&) {}
+  T* allocate(std::size_t n) { return static_cast<T*>(allocate_bytes(n * sizeof(T))); }
+  void deallocate(T* p, std::size_t) { std::free(p); }
+  template <class U>
+  bool operator==(const LargePageAllocator<U>&) const { return true; }
+};
+
+template <class T>
+using ParticleArray = std::vector<T, LargePageAllocator<T>>;
+
+/// A velocity (or any 3-vector) in the user's units.
+struct Vec3 {
+  double x, y, z;
+  bool operator==(const Vec3&) const = default;
+};
+
+/// A tracked displacement R, accumulated up to the time t_last (see System::r).
+struct Displacement {
+  double x, y, z, t_last;
+  bool operator==(const Displacement&) const = default;
+};
+
 struct System {
-  std::vector<double> vx, vy, vz;      ///< velocities, structure of arrays
-  std::vector<std::uint32_t> species;  ///< species index of each particle
+  ParticleArray<Vec3> v;               ///< velocities
+  ParticleArray<std::uint32_t> species;  ///< species index of each particle
   std::vector<std::size_t> first;      ///< first index of species k
   std::vector<std::size_t> count;      ///< N_k
 
   /// Displacement tracking (seed 001 eq 15, ERRATA §7); empty when not tracked. R is the
   /// displacement accumulated up to t_last, the time of the particle's last collision (or of the
   /// start of tracking); its displacement at t >= t_last is R + v (t - t_last).
-  std::vector<double> rx, ry, rz, t_last;
+  ParticleArray<Displacement> r;
 
-  std::size_t size() const { return vx.size(); }
+  std::size_t size() const { return v.size(); }
   std::size_t n_species() const { return count.size(); }
-  bool tracks_displacements() const { return !t_last.empty(); }
+  bool tracks_displacements() const { return !r.empty(); }
 };
 
 /// Starts (or restarts) displacement tracking at time t: R = 0 and t_last = t for every particle.
@@ -52,11 +92,13 @@ void start_tracking(System& sys, double t);
 
 /// Adds particle i's free flight since t_last to R and sets t_last = t (before its velocity changes).
 inline void flush_free_flight(System& sys, std::size_t i, double t) {
-  const double dt = t - sys.t_last[i];
-  sys.rx[i] += sys.vx[i] * dt;
-  sys.ry[i] += sys.vy[i] * dt;
-  sys.rz[i] += sys.vz[i] * dt;
-  sys.t_last[i] = t;
+  Displacement& r = sys.r[i];
+  const Vec3& v = sys.v[i];
+  const double dt = t - r.t_last;
+  r.x += v.x * dt;
+  r.y += v.y * dt;
+  r.z += v.z * dt;
+  r.t_last = t;
 }
 
 /// N_k = round(N x_k) for each species (the caller checks N_k >= 2).

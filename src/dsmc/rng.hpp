@@ -74,15 +74,22 @@ class Xoshiro256pp {
 /// The stream of one replica and purpose, derived from the user's seed.
 Xoshiro256pp make_stream(std::uint64_t seed, std::uint64_t replica, Purpose purpose);
 
-/// A unit vector uniform on the sphere.
+/// A unit vector uniform on the sphere (Marsaglia 1972): (u1, u2) uniform in the unit disc,
+/// s = u1^2 + u2^2, then (2 u1 sqrt(1 - s), 2 u2 sqrt(1 - s), 1 - 2 s). z = 1 - 2s is uniform on
+/// [-1, 1] (Archimedes) and the azimuth is that of (u1, u2): no trigonometric calls, pi/4 of the
+/// pairs accepted.
 template <class Gen>
 inline void unit_vector(Gen& gen, double& x, double& y, double& z) {
-  const double cos_theta = 2.0 * gen.uniform() - 1.0;
-  const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
-  const double phi = 2.0 * 3.14159265358979323846 * gen.uniform();
-  x = sin_theta * std::cos(phi);
-  y = sin_theta * std::sin(phi);
-  z = cos_theta;
+  double u1, u2, s;
+  do {
+    u1 = 2.0 * gen.uniform() - 1.0;
+    u2 = 2.0 * gen.uniform() - 1.0;
+    s = u1 * u1 + u2 * u2;
+  } while (s >= 1.0);
+  const double scale = 2.0 * std::sqrt(1.0 - s);
+  x = u1 * scale;
+  y = u2 * scale;
+  z = 1.0 - 2.0 * s;
 }
 
 }  // namespace gdsmc::rng

@@ -15,9 +15,9 @@ Moments measure(const species::Mixture& mix, const particles::System& sys) {
     double sum[3] = {0.0, 0.0, 0.0};
     const std::size_t end = sys.first[k] + sys.count[k];
     for (std::size_t i = sys.first[k]; i < end; ++i) {
-      sum[0] += sys.vx[i];
-      sum[1] += sys.vy[i];
-      sum[2] += sys.vz[i];
+      sum[0] += sys.v[i].x;
+      sum[1] += sys.v[i].y;
+      sum[2] += sys.v[i].z;
     }
     for (int d = 0; d < 3; ++d) momentum[d] += mix.mass[k] * sum[d];
     total_mass += mix.mass[k] * static_cast<double>(sys.count[k]);
@@ -29,7 +29,7 @@ Moments measure(const species::Mixture& mix, const particles::System& sys) {
     double v2_sum = 0.0, v4_sum = 0.0;
     const std::size_t end = sys.first[k] + sys.count[k];
     for (std::size_t i = sys.first[k]; i < end; ++i) {
-      const double cx = sys.vx[i] - u[0], cy = sys.vy[i] - u[1], cz = sys.vz[i] - u[2];
+      const double cx = sys.v[i].x - u[0], cy = sys.v[i].y - u[1], cz = sys.v[i].z - u[2];
       const double c2 = cx * cx + cy * cy + cz * cz;
       v2_sum += c2;
       v4_sum += c2 * c2;
@@ -63,9 +63,9 @@ std::vector<double> velocity_histogram(const species::Mixture& mix, const partic
       hk[b < bins ? b : bins - 1] += 1.0;
     };
     for (std::size_t i = sys.first[k]; i < end; ++i) {
-      put(sys.vx[i] - u[0]);
-      put(sys.vy[i] - u[1]);
-      put(sys.vz[i] - u[2]);
+      put(sys.v[i].x - u[0]);
+      put(sys.v[i].y - u[1]);
+      put(sys.v[i].z - u[2]);
     }
     const double norm = 1.0 / (3.0 * static_cast<double>(sys.count[k]) * width);
     for (std::size_t b = 0; b < bins; ++b) hk[b] *= norm;
@@ -79,9 +79,9 @@ std::vector<double> mean_squared_displacement(const particles::System& sys, doub
     double sum = 0.0;
     const std::size_t end = sys.first[k] + sys.count[k];
     for (std::size_t i = sys.first[k]; i < end; ++i) {
-      const double dt = t - sys.t_last[i];
-      const double x = sys.rx[i] + sys.vx[i] * dt, y = sys.ry[i] + sys.vy[i] * dt,
-                   z = sys.rz[i] + sys.vz[i] * dt;
+      const double dt = t - sys.r[i].t_last;
+      const double x = sys.r[i].x + sys.v[i].x * dt, y = sys.r[i].y + sys.v[i].y * dt,
+                   z = sys.r[i].z + sys.v[i].z * dt;
       sum += x * x + y * y + z * z;
     }
     msd[k] = sum / static_cast<double>(sys.count[k]);
@@ -106,7 +106,7 @@ void add_reduced_speeds(const species::Mixture& /*mix*/, const particles::System
     double* ck = counts.data() + k * bins;
     const std::size_t end = sys.first[k] + sys.count[k];
     for (std::size_t i = sys.first[k]; i < end; ++i) {
-      const double cx = sys.vx[i] - u[0], cy = sys.vy[i] - u[1], cz = sys.vz[i] - u[2];
+      const double cx = sys.v[i].x - u[0], cy = sys.v[i].y - u[1], cz = sys.v[i].z - u[2];
       const auto b = static_cast<std::size_t>(std::sqrt(cx * cx + cy * cy + cz * cz) * scale);
       if (b < bins) ck[b] += 1.0;
     }
