@@ -18,7 +18,7 @@ using namespace gdsmc;
 namespace {
 
 struct Result {
-  double events_per_second, candidates_per_second, acceptance, seconds;
+  double events_per_second, candidates_per_second, acceptance, seconds, bytes_per_particle;
 };
 
 Result measure(collide::Scheme scheme, const species::Mixture& mix, std::size_t n, double per_particle) {
@@ -34,7 +34,11 @@ Result measure(collide::Scheme scheme, const species::Mixture& mix, std::size_t 
   const auto& after = collider.counters();
   const double events = static_cast<double>(after.events - before.events);
   const double candidates = static_cast<double>(after.candidates - before.candidates);
-  return {events / seconds, candidates / seconds, events / candidates, seconds};
+  // Particle data: velocities and species (the collider's own tables do not grow with N).
+  const double bytes = static_cast<double>(sys.v.capacity() * sizeof(particles::Vec3) +
+                                           sys.species.capacity() * sizeof(std::uint32_t) +
+                                           sys.r.capacity() * sizeof(particles::Displacement));
+  return {events / seconds, candidates / seconds, events / candidates, seconds, bytes / static_cast<double>(n)};
 }
 
 }  // namespace
@@ -45,12 +49,13 @@ int main(int argc, char** argv) {
   const double per_particle = argc > 3 ? std::atof(argv[3]) : 10.0;
   const auto mix = species::make_mixture({1.0}, {1.0}, {0.01}, species::PairMatrix(1, alpha), false);
   std::printf("monodisperse, N = %zu, alpha = %g, %g collisions per particle timed\n", n, alpha, per_particle);
-  std::printf("%-10s %18s %18s %12s %10s\n", "scheme", "collisions/s", "candidates/s", "acceptance", "seconds");
+  std::printf("%-10s %18s %18s %12s %10s %16s\n", "scheme", "collisions/s", "candidates/s", "acceptance", "seconds",
+              "bytes/particle");
   for (auto [name, scheme] : {std::pair{"majorant", collide::Scheme::majorant}, std::pair{"lowrank", collide::Scheme::lowrank},
                               std::pair{"pairs", collide::Scheme::pairs}}) {
     const Result r = measure(scheme, mix, n, per_particle);
-    std::printf("%-10s %18.4g %18.4g %12.4f %10.2f\n", name, r.events_per_second, r.candidates_per_second,
-                r.acceptance, r.seconds);
+    std::printf("%-10s %18.4g %18.4g %12.4f %10.2f %16.1f\n", name, r.events_per_second, r.candidates_per_second,
+                r.acceptance, r.seconds, r.bytes_per_particle);
   }
   return 0;
 }

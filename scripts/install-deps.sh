@@ -12,6 +12,7 @@ packages=(
   libgtest-dev googletest # unit tests
   doxygen graphviz      # `cmake --build build --target docs`
   python3-matplotlib python3-h5py python3-numpy  # paper-figures/
+  libopenmpi-dev openmpi-bin  # mpirun: replicas and sweep points over ranks
 )
 
 missing=()

@@ -347,6 +347,7 @@ TEST(ConfigResolved, ContainsEveryFieldOfEveryGroup) {
   expected.erase("output:msd_start_time");  // unset optionals are not written
   expected.erase("system:visco_a_kappa");
   expected.erase("output:msd_start_temperature");
+  expected.erase("output:checkpoint_every");
   expected.erase("sweep:variable");  // written only by a sweep
   expected.erase("sweep:values");
   EXPECT_EQ(names, expected);
@@ -418,6 +419,9 @@ TEST(ConfigReference, MentionsEveryVariable) {
   all.insert(tracked.begin(), tracked.end());
   all.insert("output:msd_start_temperature");
   all.insert("system:visco_a_kappa");
+  const auto checkpointed = resolved_names(read_text(with_line(16, "  n_samples = 3, checkpoint_every = 60.0")));
+  EXPECT_EQ(checkpointed.count("output:checkpoint_every"), 1u);
+  all.insert(checkpointed.begin(), checkpointed.end());
   for (const auto& name : all) {
     const std::string variable = name.substr(name.find(':') + 1);
     EXPECT_NE(md.find("`" + variable + "`"), std::string::npos) << variable;

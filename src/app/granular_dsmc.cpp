@@ -11,6 +11,7 @@
 #include <system_error>
 #include <vector>
 
+#include "dsmc/parallel.hpp"
 #include "dsmc/simulation.hpp"
 #include "io/config.hpp"
 #include "io/namelist.hpp"
@@ -21,10 +22,12 @@ std::atomic<bool> g_interrupted{false};  // written only by the signal handler
 extern "C" void on_signal(int) { g_interrupted.store(true); }
 
 const char* kUsage =
-    "usage: granular-dsmc FILE.nml [--output PATH] [--quiet] [--set group:variable=value]...\n"
+    "usage: granular-dsmc FILE.nml [--output PATH] [--quiet] [--restart CHECKPOINT] [--set group:variable=value]...\n"
     "       granular-dsmc --print-defaults\n"
     "  --output PATH     write the result to PATH (overrides &output file)\n"
     "  --quiet           no progress line\n"
+    "  --restart FILE    continue the run saved in checkpoint FILE (see &output checkpoint_every);\n"
+    "                    the output is the same as that of an uninterrupted run\n"
     "  --set G:V=X       override variable V of group &G with X (Fortran syntax), e.g.\n"
     "                    --set dsmc:n_particles=2000 --set \"output:file='x.h5'\"\n"
     "  --print-defaults  print a commented namelist with every variable and its default\n"
@@ -33,9 +36,14 @@ const char* kUsage =
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Under mpirun every rank runs this main: all read the input (each reports a bad input the same
+  // way) and run their share of the work; rank 0 alone writes the file and the summary (parallel.hpp).
+  gdsmc::parallel::Session mpi(argc, argv);
+  const bool root = gdsmc::parallel::rank() == 0;
   std::string input;
   std::vector<std::string> overrides;
   bool quiet = false;
+  std::string restart;
   std::string output_option;  // the --output argument and the override it became, for messages
   std::string output_override;
   for (int i = 1; i < argc; ++i) {
@@ -68,6 +76,8 @@ int main(int argc, char** argv) {
       overrides.push_back("output:file='" + quoted + "'");
       output_option = "--output " + path;
       output_override = "--set " + overrides.back();
+    } else if (arg == "--restart") {
+      restart = next();
     } else if (arg == "--set") {
       overrides.push_back(next());
     } else if (!arg.empty() && arg[0] == '-') {
@@ -89,15 +99,16 @@ int main(int argc, char** argv) {
   try {
     config = gdsmc::io::config::read_file(input, overrides);
   } catch (const gdsmc::io::namelist::Error& e) {
-    std::cerr << "granular-dsmc: " << e.what() << "\n";
+    if (root) std::cerr << "granular-dsmc: " << e.what() << "\n";
     return 2;
   }
 
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   gdsmc::simulation::Options options;
-  options.progress = !quiet && isatty(STDERR_FILENO);
+  options.progress = !quiet && root && isatty(STDERR_FILENO);
   options.interrupt = &g_interrupted;
+  options.restart_path = restart;
   const std::string& path = config.output.file;
   // An output path that cannot be written is an input error: name where it was set (the namelist
   // line, --set or --output; the namelist file itself for the default).
@@ -106,7 +117,8 @@ int main(int argc, char** argv) {
     const bool set = it != config.origin.end();
     const std::string where =
         !set ? input : it->second.first == output_override ? output_option : it->second.first;
-    std::cerr << "granular-dsmc: "
+    if (root)
+      std::cerr << "granular-dsmc: "
               << gdsmc::io::namelist::Error(where, set ? it->second.second : 0, "output", "file",
                                             message)
                      .what()
@@ -118,16 +130,20 @@ int main(int argc, char** argv) {
     return output_error("cannot write output file '" + path + "': it is a directory");
   try {
     const auto summary = gdsmc::simulation::run(config, path, options);
-    if (!quiet)
+    if (!quiet && root)
       std::fprintf(stderr,
                    "granular-dsmc: wrote %s: t = %.6g, T = %.6g, %.4g collisions per particle, "
                    "%.3g collisions/s, %.1f s\n",
                    path.c_str(), summary.final_time, summary.final_total_temperature,
                    summary.collisions_per_particle, summary.events_per_second, summary.wall_seconds);
   } catch (const gdsmc::simulation::Interrupted& e) {
-    std::cerr << "\ngranular-dsmc: " << e.what() << "\n";
+    if (root) std::cerr << "\ngranular-dsmc: " << e.what() << "\n";
     return 130;
+  } catch (const gdsmc::simulation::RestartError& e) {
+    if (root) std::cerr << "granular-dsmc: --restart: " << e.what() << "\n";
+    return 2;
   } catch (const gdsmc::simulation::OutputPathError& e) {
+    if (!root) return 2;
     return output_error(e.what());
   } catch (const std::exception& e) {
     std::cerr << "granular-dsmc: " << e.what() << "\n";

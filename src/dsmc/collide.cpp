@@ -148,6 +148,40 @@ void Collider::count_event(std::uint32_t k, std::uint32_t j) {
   ++counters_.pair_events[std::min(k, j) * s_ + std::max(k, j)];
 }
 
+Collider::State Collider::state() const {
+  State st;
+  st.time = time_;
+  st.credit = credit_;
+  st.next_step_time = next_step_time_;
+  st.max_speed = max_speed_;
+  st.max_speed2 = max_speed2_;
+  st.counters = counters_;
+  st.generator = gen_.state();
+  for (const PendingPair& p : pending_) st.pending.insert(st.pending.end(), {p.a, p.b, p.i, p.k});
+  st.pending_next = pending_next_;
+  st.pending_filled = pending_filled_;
+  return st;
+}
+
+void Collider::restore(const State& st) {
+  if (st.max_speed.size() != s_ || st.max_speed2.size() != s_ || st.pending.size() != 4 * lookahead ||
+      st.pending_next >= lookahead || (!counters_.pair_events.empty() && st.counters.pair_events.size() != s_ * s_))
+    throw std::invalid_argument("collide: the saved state does not fit this collider");
+  time_ = st.time;
+  credit_ = st.credit;
+  next_step_time_ = st.next_step_time;
+  max_speed_ = st.max_speed;
+  max_speed2_ = st.max_speed2;
+  counters_ = st.counters;
+  gen_.set_state(st.generator);
+  raised_.clear();
+  if (counters_.steps > 0) rebuild_bounds();  // what the last rebuild or raise computed (header of State)
+  for (std::size_t c = 0; c < lookahead; ++c)
+    pending_[c] = {st.pending[4 * c], st.pending[4 * c + 1], st.pending[4 * c + 2], st.pending[4 * c + 3]};
+  pending_next_ = st.pending_next;
+  pending_filled_ = st.pending_filled;
+}
+
 bool Collider::advance(double t_target, std::uint64_t event_target) {
   while (time_ < t_target) {
     if (counters_.events >= event_target) return true;

@@ -135,6 +135,23 @@ class Collider {
   double mean_step() const { return counters_.steps ? counters_.step_sum / counters_.steps : 0.0; }
   double candidate_rate() const { return rate_; }
 
+  /// Everything that evolves during a run, for checkpoints. The bounds and samplers are not stored:
+  /// they are functions of the speeds vmax_k (rebuilt exactly on restore), and so is every tree
+  /// and table of `lowrank` (segment_tree.hpp recomputes its sums from the leaves).
+  struct State {
+    double time = 0.0, credit = 0.0, next_step_time = 0.0;
+    std::vector<double> max_speed, max_speed2;
+    Counters counters;
+    rng::Xoshiro256pp::State generator{};
+    std::vector<std::uint32_t> pending;  ///< the drawn-ahead candidates, 4 per candidate
+    std::size_t pending_next = 0;
+    bool pending_filled = false;
+  };
+  State state() const;
+  /// Continues from `state`, taken from a Collider of the same scheme, mixture and particle counts
+  /// at the end of an advance(); the System must hold the particles of that moment.
+  void restore(const State& state);
+
  private:
   void recompute_max_speeds();
   void rebuild_bounds();

@@ -63,6 +63,19 @@ class Xoshiro256pp {
 
   bool operator==(const Xoshiro256pp& other) const;
 
+  /// The complete state, for checkpoints: restoring it continues the stream exactly.
+  struct State {
+    std::uint64_t s[4];
+    bool has_spare;
+    double spare;
+  };
+  State state() const { return {{s_[0], s_[1], s_[2], s_[3]}, has_spare_, spare_}; }
+  void set_state(const State& state) {
+    for (int k = 0; k < 4; ++k) s_[k] = state.s[k];
+    has_spare_ = state.has_spare;
+    spare_ = state.spare;
+  }
+
  private:
   static std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
   void apply_jump(const std::uint64_t (&polynomial)[4]);

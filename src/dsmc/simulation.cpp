@@ -7,8 +7,16 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <filesystem>
+#include <functional>
+#include <sstream>
+#include <mutex>
+#include <atomic>
+#include <cstring>
+#include <stdexcept>
 
 #include "dsmc/collide.hpp"
+#include "dsmc/parallel.hpp"
 #include "dsmc/particles.hpp"
 #include "dsmc/rng.hpp"
 #include "dsmc/sample.hpp"
@@ -53,6 +61,21 @@ class ProgressLine {
   Clock::time_point start_, last_{};
 };
 
+/// `<output stem>.checkpoint.h5` (INTERFACE.md), `.rank<k>` before `.h5` for MPI rank k > 0.
+std::string checkpoint_path(const std::string& output_path, int rank) {
+  std::string stem = output_path;
+  if (stem.size() > 3 && stem.compare(stem.size() - 3, 3, ".h5") == 0) stem.resize(stem.size() - 3);
+  return rank == 0 ? stem + ".checkpoint.h5" : stem + ".checkpoint.rank" + std::to_string(rank) + ".h5";
+}
+
+/// Rank k's file of the checkpoint whose rank-0 file is `path`.
+std::string rank_file(const std::string& path, int rank) {
+  if (rank == 0) return path;
+  std::string stem = path;
+  if (stem.size() > 3 && stem.compare(stem.size() - 3, 3, ".h5") == 0) stem.resize(stem.size() - 3);
+  return stem + ".rank" + std::to_string(rank) + ".h5";
+}
+
 /// Mixtures with more species than this record neither `collisions_pair` (S(S+1)/2 columns) nor
 /// the per-species velocity histograms.
 constexpr std::size_t kMaxPairSpecies = collide::pair_event_limit;
@@ -65,15 +88,235 @@ struct PointResult {
   double collide_seconds = 0.0;
 };
 
-/// Runs every replica of one Config. `point`/`n_points` place it in a sweep for the progress line.
-PointResult run_point(const io::config::Config& config, const Options& options, ProgressLine& progress,
-                      std::size_t point, std::size_t n_points) {
+/// What one replica of one point measured: per observable, its column count and its rows (one per
+/// sample, or one for the reduced_* observables), appended in order.
+struct ReplicaResult {
+  std::map<std::string, std::pair<std::size_t, std::vector<double>>> rows;
+  double mean_step = 0.0;
+  std::uint64_t events = 0;
+  double collide_seconds = 0.0;
+
+  void add(const std::string& name, std::size_t columns, const std::vector<double>& row) {
+    auto& entry = rows[name];
+    entry.first = columns;
+    entry.second.insert(entry.second.end(), row.begin(), row.end());
+  }
+};
+
+// Byte serialisation of ReplicaResult, to send it between MPI ranks (same machine type: raw bytes).
+template <class T>
+void put(std::string& out, const T& value) {
+  out.append(reinterpret_cast<const char*>(&value), sizeof(T));
+}
+template <class T>
+T take(const std::string& in, std::size_t& pos) {
+  if (pos + sizeof(T) > in.size()) throw std::runtime_error("corrupt replica result from another rank");
+  T value;
+  std::memcpy(&value, in.data() + pos, sizeof(T));
+  pos += sizeof(T);
+  return value;
+}
+
+void pack(std::string& out, std::uint64_t unit, const ReplicaResult& r) {
+  put(out, unit);
+  put(out, r.mean_step);
+  put(out, r.events);
+  put(out, r.collide_seconds);
+  put(out, static_cast<std::uint64_t>(r.rows.size()));
+  for (const auto& [name, entry] : r.rows) {
+    put(out, static_cast<std::uint64_t>(name.size()));
+    out += name;
+    put(out, static_cast<std::uint64_t>(entry.first));
+    put(out, static_cast<std::uint64_t>(entry.second.size()));
+    out.append(reinterpret_cast<const char*>(entry.second.data()), entry.second.size() * sizeof(double));
+  }
+}
+
+ReplicaResult unpack(const std::string& in, std::size_t& pos, std::uint64_t& unit) {
+  ReplicaResult r;
+  unit = take<std::uint64_t>(in, pos);
+  r.mean_step = take<double>(in, pos);
+  r.events = take<std::uint64_t>(in, pos);
+  r.collide_seconds = take<double>(in, pos);
+  const auto n = take<std::uint64_t>(in, pos);
+  for (std::uint64_t k = 0; k < n; ++k) {
+    const auto length = take<std::uint64_t>(in, pos);
+    if (pos + length > in.size()) throw std::runtime_error("corrupt replica result from another rank");
+    std::string name = in.substr(pos, length);
+    pos += length;
+    auto& entry = r.rows[name];
+    entry.first = take<std::uint64_t>(in, pos);
+    const auto count = take<std::uint64_t>(in, pos);
+    if (pos + count * sizeof(double) > in.size()) throw std::runtime_error("corrupt replica result from another rank");
+    entry.second.resize(count);
+    std::memcpy(entry.second.data(), in.data() + pos, count * sizeof(double));
+    pos += count * sizeof(double);
+  }
+  return r;
+}
+
+/// Progress over all units of this rank, shared by its threads.
+class Progress {
+ public:
+  Progress(bool enabled, std::size_t units) : line_(enabled), partial_(units, 0.0) {}
+  void update(std::size_t slot, double fraction, const std::string& where, double time, std::uint64_t new_events) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    partial_[slot] = fraction;
+    events_ += new_events;
+    double sum = 0.0;
+    for (double f : partial_) sum += f;
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+    line_.update(std::min(sum / static_cast<double>(partial_.size()), fraction >= 1.0 ? 1.0 : 0.999), where, time,
+                 elapsed > 0 ? static_cast<double>(events_) / elapsed : 0.0);
+  }
+  void finish() { line_.finish(); }
+
+ private:
+  std::mutex mutex_;
+  ProgressLine line_;
+  std::vector<double> partial_;
+  std::uint64_t events_ = 0;
+  Clock::time_point start_ = Clock::now();
+};
+
+/// One unit's state in a checkpoint file: named arrays of reals and of exact integers.
+struct Snapshot {
+  std::map<std::string, std::vector<double>> reals;
+  std::map<std::string, std::vector<std::uint64_t>> integers;
+};
+
+void store_result(Snapshot& snap, const ReplicaResult& r) {
+  for (const auto& [name, entry] : r.rows) {
+    snap.reals["result/rows/" + name] = entry.second;
+    snap.integers["result/columns/" + name] = {entry.first};
+  }
+  snap.reals["result/scalars"] = {r.mean_step, r.collide_seconds};
+  snap.integers["result/events"] = {r.events};
+}
+
+ReplicaResult load_result(const Snapshot& snap) {
+  ReplicaResult r;
+  const std::string rows = "result/rows/";
+  for (const auto& [name, values] : snap.reals)
+    if (name.rfind(rows, 0) == 0) {
+      const std::string observable = name.substr(rows.size());
+      r.rows[observable] = {snap.integers.at("result/columns/" + observable).at(0), values};
+    }
+  r.mean_step = snap.reals.at("result/scalars").at(0);
+  r.collide_seconds = snap.reals.at("result/scalars").at(1);
+  r.events = snap.integers.at("result/events").at(0);
+  return r;
+}
+
+/// Where a replica is between two collision chunks: with the particles and the collider, all a
+/// checkpoint needs to continue it exactly.
+struct ReplicaProgress {
+  std::uint64_t next_sample = 0;
+  bool in_sample = false;  ///< the current sample's msd start handling is done, its chunks are running
+  bool tracking = false;
+  double msd_start = 0.0;
+  std::vector<double> speed_counts, c_sum, share_sum;
+  double scaling_samples = 0.0, t_first = 0.0, t_last = 0.0, temp_first = 0.0, temp_last = 0.0;
+};
+
+Snapshot make_snapshot(const particles::System& sys, const collide::Collider& collider, const ReplicaProgress& p,
+                       const ReplicaResult& partial) {
+  Snapshot snap;
+  store_result(snap, partial);
+  auto& v = snap.reals["particles/velocity"];
+  v.reserve(3 * sys.size());
+  for (const auto& x : sys.v) v.insert(v.end(), {x.x, x.y, x.z});
+  snap.integers["particles/species"].assign(sys.species.begin(), sys.species.end());
+  if (sys.tracks_displacements()) {
+    auto& r = snap.reals["particles/displacement"];
+    r.reserve(4 * sys.size());
+    for (const auto& x : sys.r) r.insert(r.end(), {x.x, x.y, x.z, x.t_last});
+  }
+  const collide::Collider::State c = collider.state();
+  snap.reals["collider/clock"] = {c.time, c.credit, c.next_step_time, c.counters.step_sum, c.generator.spare};
+  snap.reals["collider/max_speed"] = c.max_speed;
+  snap.reals["collider/max_speed2"] = c.max_speed2;
+  snap.integers["collider/counters"] = {c.counters.events, c.counters.candidates, c.counters.steps,
+                                        c.pending_next, c.pending_filled, c.generator.has_spare};
+  snap.integers["collider/pair_events"] = c.counters.pair_events;
+  snap.integers["collider/generator"] = {c.generator.s[0], c.generator.s[1], c.generator.s[2], c.generator.s[3]};
+  snap.integers["collider/pending"].assign(c.pending.begin(), c.pending.end());
+  snap.integers["progress/flags"] = {p.next_sample, p.in_sample, p.tracking};
+  snap.reals["progress/values"] = {p.msd_start, p.scaling_samples, p.t_first, p.t_last, p.temp_first, p.temp_last};
+  snap.reals["progress/speed_counts"] = p.speed_counts;
+  snap.reals["progress/c_sum"] = p.c_sum;
+  snap.reals["progress/share_sum"] = p.share_sum;
+  return snap;
+}
+
+/// Restores what make_snapshot saved into a System made for the same point (same counts).
+void load_snapshot(const Snapshot& snap, particles::System& sys, collide::Collider& collider, ReplicaProgress& p,
+                   ReplicaResult& partial) {
+  partial = load_result(snap);
+  const auto& v = snap.reals.at("particles/velocity");
+  const auto& species = snap.integers.at("particles/species");
+  if (v.size() != 3 * sys.size() || species.size() != sys.size())
+    throw std::runtime_error("the checkpoint's particle count does not match the input");
+  for (std::size_t i = 0; i < sys.size(); ++i) {
+    sys.v[i] = {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
+    sys.species[i] = static_cast<std::uint32_t>(species[i]);
+  }
+  if (const auto it = snap.reals.find("particles/displacement"); it != snap.reals.end()) {
+    sys.r.resize(sys.size());
+    for (std::size_t i = 0; i < sys.size(); ++i)
+      sys.r[i] = {it->second[4 * i], it->second[4 * i + 1], it->second[4 * i + 2], it->second[4 * i + 3]};
+  }
+  collide::Collider::State c;
+  const auto& clock = snap.reals.at("collider/clock");
+  const auto& counters = snap.integers.at("collider/counters");
+  const auto& generator = snap.integers.at("collider/generator");
+  c.time = clock.at(0);
+  c.credit = clock.at(1);
+  c.next_step_time = clock.at(2);
+  c.counters.step_sum = clock.at(3);
+  c.generator.spare = clock.at(4);
+  c.max_speed = snap.reals.at("collider/max_speed");
+  c.max_speed2 = snap.reals.at("collider/max_speed2");
+  c.counters.events = counters.at(0);
+  c.counters.candidates = counters.at(1);
+  c.counters.steps = counters.at(2);
+  c.pending_next = counters.at(3);
+  c.pending_filled = counters.at(4) != 0;
+  c.generator.has_spare = counters.at(5) != 0;
+  c.counters.pair_events = snap.integers.at("collider/pair_events");
+  for (int k = 0; k < 4; ++k) c.generator.s[k] = generator.at(k);
+  const auto& pending = snap.integers.at("collider/pending");
+  c.pending.assign(pending.begin(), pending.end());
+  collider.restore(c);
+  const auto& flags = snap.integers.at("progress/flags");
+  const auto& values = snap.reals.at("progress/values");
+  p.next_sample = flags.at(0);
+  p.in_sample = flags.at(1) != 0;
+  p.tracking = flags.at(2) != 0;
+  p.msd_start = values.at(0);
+  p.scaling_samples = values.at(1);
+  p.t_first = values.at(2);
+  p.t_last = values.at(3);
+  p.temp_first = values.at(4);
+  p.temp_last = values.at(5);
+  p.speed_counts = snap.reals.at("progress/speed_counts");
+  p.c_sum = snap.reals.at("progress/c_sum");
+  p.share_sum = snap.reals.at("progress/share_sum");
+}
+
+/// Called between collision chunks and after each sample with a way to snapshot the replica.
+using SafePoint = std::function<void(const std::function<Snapshot()>&)>;
+
+/// Runs replica r of one Config, from the start or from `resume`. `slot` is its place in this
+/// rank's progress; `label` names it.
+ReplicaResult run_replica(const io::config::Config& config, const Options& options, Progress& progress,
+                          std::size_t slot, const std::string& label, std::size_t r, const Snapshot* resume,
+                          const SafePoint& safe_point) {
   const species::Mixture mix = config.mixture();
   const std::size_t s = mix.size();
   const auto counts = particles::species_counts(static_cast<std::size_t>(config.dsmc.n_particles), mix);
   std::size_t n_total = 0;
   for (auto c : counts) n_total += c;
-  const auto replicas = static_cast<std::size_t>(config.dsmc.replicas);
   const auto seed = static_cast<std::uint64_t>(config.dsmc.seed);
   const auto scheme = collide::parse_scheme(config.dsmc.scheme);
   const auto bins = static_cast<std::size_t>(config.output.histogram_bins);
@@ -87,155 +330,268 @@ PointResult run_point(const io::config::Config& config, const Options& options, 
   const auto reduced_bins = static_cast<std::size_t>(config.output.reduced_bins);
   const double reduced_range = config.output.reduced_range;
 
-  PointResult result;
-  auto column = [&](const std::string& name, std::size_t columns) -> sample::Accumulator& {
-    auto& a = result.observables[name];
-    a.columns = columns;
-    return a;
-  };
-  // Share of the whole run done: replicas and points so far, and within a replica the simulated
-  // time over t_end, or the events over the last target.
+  ReplicaResult result;
+  // Share of this replica done: the simulated time over t_end, or the events over the last target.
   const double final_events = time_driven ? 0.0 : std::ceil(targets.back() * static_cast<double>(n_total) / 2.0);
-  auto fraction_done = [&](std::size_t r, const collide::Collider& c) {
+  auto fraction_done = [&](const collide::Collider& c) {
     const double f = time_driven ? c.time() / targets.back()
                                  : static_cast<double>(c.counters().events) / std::max(1.0, final_events);
-    const double in_point = (static_cast<double>(r) + std::min(f, 1.0)) / static_cast<double>(replicas);
-    return (static_cast<double>(point) + in_point) / static_cast<double>(n_points);
+    return std::min(f, 1.0);
   };
-  auto where = [&](std::size_t r) {
-    std::string w = "replica " + std::to_string(r + 1) + "/" + std::to_string(replicas);
-    if (n_points > 1) w = "point " + std::to_string(point + 1) + "/" + std::to_string(n_points) + "  " + w;
-    return w;
+
+  auto init_stream = rng::make_stream(seed, r, rng::Purpose::initial_state);
+  particles::System sys = particles::make_system(mix, counts, config.initial.temperature,
+                                                 parse_distribution(config.initial.distribution), init_stream);
+  collide::Collider collider(scheme, mix, sys, rng::make_stream(seed, r, rng::Purpose::collisions),
+                             config.dsmc.step_fraction, viscoelastic_beta ? &*viscoelastic_beta : nullptr);
+  // Displacements (seed 001 eq 15) from t = 0, from msd_start_time, or from the first sample
+  // with T <= msd_start_temperature. The HCS part: samples past scaling_start collisions per particle.
+  const bool track = config.output.track_displacements;
+  ReplicaProgress p;
+  p.c_sum.assign(s, 0.0);
+  p.share_sum.assign(s, 0.0);
+  if (resume) {
+    load_snapshot(*resume, sys, collider, p, result);
+  } else if (track && !config.output.msd_start_time && !config.output.msd_start_temperature) {
+    particles::start_tracking(sys, 0.0);
+    p.tracking = true;
+  }
+  std::uint64_t reported_events = collider.counters().events;
+  auto report = [&](double fraction) {
+    const std::uint64_t events = collider.counters().events;
+    progress.update(slot, fraction, label, collider.time(), events - reported_events);
+    reported_events = events;
   };
-  double mean_step_sum = 0.0;
+  const std::function<Snapshot()> snapshot = [&] { return make_snapshot(sys, collider, p, result); };
 
-  for (std::size_t r = 0; r < replicas; ++r) {
-    auto init_stream = rng::make_stream(seed, r, rng::Purpose::initial_state);
-    particles::System sys = particles::make_system(mix, counts, config.initial.temperature,
-                                                   parse_distribution(config.initial.distribution),
-                                                   init_stream);
-    collide::Collider collider(scheme, mix, sys, rng::make_stream(seed, r, rng::Purpose::collisions),
-                               config.dsmc.step_fraction, viscoelastic_beta ? &*viscoelastic_beta : nullptr);
-    // Displacements (seed 001 eq 15) from t = 0, from msd_start_time, or from the first sample
-    // with T <= msd_start_temperature.
-    const bool track = config.output.track_displacements;
-    const bool start_at_zero = track && !config.output.msd_start_time && !config.output.msd_start_temperature;
-    bool tracking = false;
-    if (start_at_zero) {
-      particles::start_tracking(sys, 0.0);
-      tracking = true;
-    }
-    double msd_start = 0.0;
-    // The HCS part of this replica: samples past scaling_start collisions per particle.
-    std::vector<double> speed_counts, c_sum(s, 0.0), share_sum(s, 0.0);
-    double scaling_samples = 0.0, t_first = 0.0, t_last = 0.0, temp_first = 0.0, temp_last = 0.0;
-    for (std::size_t i = 0; i < n_samples; ++i) {
-      if (options.interrupt && options.interrupt->load()) throw Interrupted();
-      const auto t0 = Clock::now();
-      // Advance in chunks of events so that the progress line and an interrupt are seen at least
-      // every ~1e6 collisions. Stopping at an event does not change the process (collide.hpp).
-      const double t_target = time_driven ? targets[i] : std::numeric_limits<double>::infinity();
-      // 2 x events / N reaches the target (INTERFACE.md collisions_per_particle)
-      const std::uint64_t event_target =
-          time_driven ? std::numeric_limits<std::uint64_t>::max()
-                      : static_cast<std::uint64_t>(std::ceil(targets[i] * static_cast<double>(n_total) / 2.0));
-      if (track && !tracking && config.output.msd_start_time && *config.output.msd_start_time <= t_target) {
-        collider.advance(*config.output.msd_start_time, event_target);  // stop exactly at the start
-        if (collider.time() >= *config.output.msd_start_time) {
-          particles::start_tracking(sys, collider.time());
-          tracking = true;
-          msd_start = collider.time();
-        }
-      }
-      constexpr std::uint64_t kChunk = 1u << 20;
-      for (;;) {
-        const std::uint64_t done = collider.counters().events;
-        const std::uint64_t chunk_end = event_target - done > kChunk ? done + kChunk : event_target;
-        const bool stopped_by_events = collider.advance(t_target, chunk_end);
-        if (!stopped_by_events || collider.counters().events >= event_target) break;
-        if (options.interrupt && options.interrupt->load()) throw Interrupted();
-        const double elapsed = result.collide_seconds + std::chrono::duration<double>(Clock::now() - t0).count();
-        progress.update(std::min(fraction_done(r, collider), 0.999), where(r), collider.time(),
-                        static_cast<double>(result.events + collider.counters().events) / elapsed);
-      }
-      result.collide_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
-
-      const sample::Moments m = sample::measure(mix, sys);
-      const auto& counters = collider.counters();
-      column("temperature", s).add(r, m.temperature);
-      column("total_temperature", 1).add(r, {m.total_temperature});
-      column("sonine_c", s).add(r, m.sonine_c);
-      column("number", s).add(r, m.number);
-      column("collisions", 1).add(r, {static_cast<double>(counters.events)});
-      column("collisions_per_particle", 1).add(r, {2.0 * static_cast<double>(counters.events) /
-                                                   static_cast<double>(n_total)});
-      if (s <= kMaxPairSpecies) {  // S(S+1)/2 columns: only for mixtures of a few species
-        std::vector<double> pairs;
-        pairs.reserve(n_pairs);
-        for (std::size_t k = 0; k < s; ++k)
-          for (std::size_t j = k; j < s; ++j)
-            pairs.push_back(static_cast<double>(counters.pair_events[k * s + j]));
-        column("collisions_pair", n_pairs).add(r, pairs);
-      }
-      column("time", 1).add(r, {collider.time()});
-      if (s <= kMaxPairSpecies)  // one histogram per species: only for a few species
-        column("velocity_histogram", s * bins).add(r, sample::velocity_histogram(mix, sys, m, bins, range));
-      if (track && !tracking && config.output.msd_start_temperature &&
-          m.total_temperature <= *config.output.msd_start_temperature) {
+  for (; p.next_sample < n_samples; ++p.next_sample, p.in_sample = false, safe_point(snapshot)) {
+    const std::size_t i = p.next_sample;
+    if (options.interrupt && options.interrupt->load()) throw Interrupted();
+    const auto t0 = Clock::now();
+    // Advance in chunks of events so that the progress line, an interrupt and checkpoints are seen
+    // at least every ~1e6 collisions. The chunks end at the same events in every run, wherever and
+    // however often it is stopped and resumed, so the trajectory is the same bit for bit.
+    const double t_target = time_driven ? targets[i] : std::numeric_limits<double>::infinity();
+    // 2 x events / N reaches the target (INTERFACE.md collisions_per_particle)
+    const std::uint64_t event_target =
+        time_driven ? std::numeric_limits<std::uint64_t>::max()
+                    : static_cast<std::uint64_t>(std::ceil(targets[i] * static_cast<double>(n_total) / 2.0));
+    if (!p.in_sample && track && !p.tracking && config.output.msd_start_time &&
+        *config.output.msd_start_time <= t_target) {
+      collider.advance(*config.output.msd_start_time, event_target);  // stop exactly at the start
+      if (collider.time() >= *config.output.msd_start_time) {
         particles::start_tracking(sys, collider.time());
-        tracking = true;
-        msd_start = collider.time();
+        p.tracking = true;
+        p.msd_start = collider.time();
       }
-      if (track) {
-        column("msd", s).add(r, tracking ? sample::mean_squared_displacement(sys, collider.time())
-                                         : std::vector<double>(s, 0.0));
-      }
-      const double per_particle = 2.0 * static_cast<double>(counters.events) / static_cast<double>(n_total);
-      if (reduced && i > 0 && per_particle >= config.output.scaling_start) {
-        sample::add_reduced_speeds(mix, sys, m, sample::reduced_velocity_scale(mix, m.total_temperature),
-                                   reduced_bins, reduced_range, speed_counts);
-        for (std::size_t k = 0; k < s; ++k) {
-          c_sum[k] += m.sonine_c[k];
-          share_sum[k] += m.temperature[k] / m.total_temperature;
-        }
-        if (scaling_samples == 0.0) {
-          t_first = collider.time();
-          temp_first = m.total_temperature;
-        }
-        t_last = collider.time();
-        temp_last = m.total_temperature;
-        scaling_samples += 1.0;
-      }
-
-      const double rate = result.collide_seconds > 0
-                              ? static_cast<double>(result.events + counters.events) / result.collide_seconds
-                              : 0.0;
-      progress.update(fraction_done(r, collider), where(r), collider.time(), rate);
     }
-    result.events += collider.counters().events;
-    mean_step_sum += collider.mean_step();
-    if (track) column("msd_start", 1).add(r, {tracking ? msd_start : -1.0});
-    if (scaling_samples >= 2.0 && t_last > t_first) {
-      // Rows are added for the replicas that reached the scaling regime, one after another.
-      const std::size_t row = result.observables["reduced_distribution"].values.size();
-      column("reduced_distribution", s * reduced_bins)
-          .add(row, sample::reduced_distribution(speed_counts, std::vector<double>(counts.begin(), counts.end()),
-                                                 scaling_samples, reduced_bins, reduced_range));
-      for (auto& c : c_sum) c /= scaling_samples;
-      for (auto& x : share_sum) x /= scaling_samples;
-      column("reduced_sonine_c", s).add(row, c_sum);
-      column("reduced_temperature_share", s).add(row, share_sum);
-      // zeta* = zeta/(n sigma_12^2 v0) with zeta = 2 sqrt(T) d(T^-1/2)/dt, constant in the HCS
-      // (ERRATA §3, §6): zeta* = 2 slope / (n sigma_12^2 sqrt(2 (m1 + m2)/(m1 m2))).
-      const double slope = (1.0 / std::sqrt(temp_last) - 1.0 / std::sqrt(temp_first)) / (t_last - t_first);
-      const double sigma12 = mix.contact_distance(0, s - 1);
-      const double v0_unit = sample::reduced_velocity_scale(mix, 1.0);
-      column("reduced_cooling_rate", 1)
-          .add(row, {2.0 * slope / (mix.total_density() * sigma12 * sigma12 * v0_unit)});
+    p.in_sample = true;
+    constexpr std::uint64_t kChunk = 1u << 20;
+    for (;;) {
+      const std::uint64_t done = collider.counters().events;
+      const std::uint64_t chunk_end = event_target - done > kChunk ? done + kChunk : event_target;
+      const bool stopped_by_events = collider.advance(t_target, chunk_end);
+      if (!stopped_by_events || collider.counters().events >= event_target) break;
+      if (options.interrupt && options.interrupt->load()) throw Interrupted();
+      report(std::min(fraction_done(collider), 0.999));
+      safe_point(snapshot);
+    }
+    result.collide_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+
+    const sample::Moments m = sample::measure(mix, sys);
+    const auto& counters = collider.counters();
+    result.add("temperature", s, m.temperature);
+    result.add("total_temperature", 1, {m.total_temperature});
+    result.add("sonine_c", s, m.sonine_c);
+    result.add("number", s, m.number);
+    result.add("collisions", 1, {static_cast<double>(counters.events)});
+    result.add("collisions_per_particle", 1,
+               {2.0 * static_cast<double>(counters.events) / static_cast<double>(n_total)});
+    if (s <= kMaxPairSpecies) {  // S(S+1)/2 columns: only for mixtures of a few species
+      std::vector<double> pairs;
+      pairs.reserve(n_pairs);
+      for (std::size_t k = 0; k < s; ++k)
+        for (std::size_t j = k; j < s; ++j) pairs.push_back(static_cast<double>(counters.pair_events[k * s + j]));
+      result.add("collisions_pair", n_pairs, pairs);
+    }
+    result.add("time", 1, {collider.time()});
+    if (s <= kMaxPairSpecies)  // one histogram per species: only for a few species
+      result.add("velocity_histogram", s * bins, sample::velocity_histogram(mix, sys, m, bins, range));
+    if (track && !p.tracking && config.output.msd_start_temperature &&
+        m.total_temperature <= *config.output.msd_start_temperature) {
+      particles::start_tracking(sys, collider.time());
+      p.tracking = true;
+      p.msd_start = collider.time();
+    }
+    if (track)
+      result.add("msd", s,
+                 p.tracking ? sample::mean_squared_displacement(sys, collider.time()) : std::vector<double>(s, 0.0));
+    const double per_particle = 2.0 * static_cast<double>(counters.events) / static_cast<double>(n_total);
+    if (reduced && i > 0 && per_particle >= config.output.scaling_start) {
+      sample::add_reduced_speeds(mix, sys, m, sample::reduced_velocity_scale(mix, m.total_temperature),
+                                 reduced_bins, reduced_range, p.speed_counts);
+      for (std::size_t k = 0; k < s; ++k) {
+        p.c_sum[k] += m.sonine_c[k];
+        p.share_sum[k] += m.temperature[k] / m.total_temperature;
+      }
+      if (p.scaling_samples == 0.0) {
+        p.t_first = collider.time();
+        p.temp_first = m.total_temperature;
+      }
+      p.t_last = collider.time();
+      p.temp_last = m.total_temperature;
+      p.scaling_samples += 1.0;
+    }
+    report(i + 1 == n_samples ? 1.0 : std::min(fraction_done(collider), 0.999));
+  }
+  result.events = collider.counters().events;
+  result.mean_step = collider.mean_step();
+  if (track) result.add("msd_start", 1, {p.tracking ? p.msd_start : -1.0});
+  if (p.scaling_samples >= 2.0 && p.t_last > p.t_first) {
+    result.add("reduced_distribution", s * reduced_bins,
+               sample::reduced_distribution(p.speed_counts, std::vector<double>(counts.begin(), counts.end()),
+                                            p.scaling_samples, reduced_bins, reduced_range));
+    for (auto& c : p.c_sum) c /= p.scaling_samples;
+    for (auto& x : p.share_sum) x /= p.scaling_samples;
+    result.add("reduced_sonine_c", s, p.c_sum);
+    result.add("reduced_temperature_share", s, p.share_sum);
+    // zeta* = zeta/(n sigma_12^2 v0) with zeta = 2 sqrt(T) d(T^-1/2)/dt, constant in the HCS
+    // (ERRATA §3, §6): zeta* = 2 slope / (n sigma_12^2 sqrt(2 (m1 + m2)/(m1 m2))).
+    const double slope = (1.0 / std::sqrt(p.temp_last) - 1.0 / std::sqrt(p.temp_first)) / (p.t_last - p.t_first);
+    const double sigma12 = mix.contact_distance(0, s - 1);
+    const double v0_unit = sample::reduced_velocity_scale(mix, 1.0);
+    result.add("reduced_cooling_rate", 1, {2.0 * slope / (mix.total_density() * sigma12 * sigma12 * v0_unit)});
+  }
+  return result;
+}
+
+/// The checkpoint file of this rank (INTERFACE.md): the results of its finished units and the
+/// latest snapshot of each unit in progress, rewritten whole (temporary file + rename, io::h5md)
+/// at most every `every` seconds by whichever thread reaches a safe point when one is due.
+class CheckpointStore {
+ public:
+  CheckpointStore(std::string path, double every, std::string fingerprint, int ranks)
+      : path_(std::move(path)), every_(every), fingerprint_(std::move(fingerprint)), ranks_(ranks) {}
+
+  /// Reads a checkpoint written by this store's write(); checks it belongs to this input.
+  void load(const std::string& file) {
+    namespace h5 = io::h5md;
+    if (h5::read_string_attribute(file, "/checkpoint", "fingerprint") != fingerprint_)
+      throw std::runtime_error("checkpoint '" + file +
+                               "' was written for a different input (namelist text, --set or --output differ)");
+    if (static_cast<int>(h5::read_double_attribute(file, "/checkpoint", "ranks")) != ranks_)
+      throw std::runtime_error("checkpoint '" + file + "' was written by a run with a different number of MPI ranks");
+    for (const char* kind : {"done", "running"}) {
+      std::istringstream units(h5::read_string_attribute(file, "/checkpoint", std::string(kind) + "_units"));
+      for (std::size_t u; units >> u;) {
+        const std::string group = "/checkpoint/" + std::string(kind) + "/unit_" + std::to_string(u);
+        Snapshot snap;
+        std::istringstream reals(h5::read_string_attribute(file, group, "reals"));
+        for (std::string name; std::getline(reals, name);)
+          if (!name.empty()) snap.reals[name] = h5::read_dataset(file, group + "/" + name).data;
+        std::istringstream integers(h5::read_string_attribute(file, group, "integers"));
+        for (std::string name; std::getline(integers, name);)
+          if (!name.empty()) snap.integers[name] = h5::read_integers(file, group + "/" + name);
+        if (std::string(kind) == "done") done_[u] = load_result(snap);
+        else running_[u] = std::move(snap);
+      }
     }
   }
-  result.mean_step = mean_step_sum / static_cast<double>(replicas);
-  return result;
+  const ReplicaResult* finished_result(std::size_t unit) const {
+    const auto it = done_.find(unit);
+    return it == done_.end() ? nullptr : &it->second;
+  }
+  const Snapshot* resume_point(std::size_t unit) const {
+    const auto it = running_.find(unit);
+    return it == running_.end() ? nullptr : &it->second;
+  }
+
+  void finished(std::size_t unit, const ReplicaResult& result) {
+    if (every_ <= 0.0) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    done_[unit] = result;
+    running_.erase(unit);
+  }
+  void safe_point(std::size_t unit, const std::function<Snapshot()>& snapshot) {
+    if (every_ <= 0.0 || std::chrono::duration<double>(Clock::now() - last_write_).count() < every_) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (std::chrono::duration<double>(Clock::now() - last_write_).count() < every_) return;  // another thread wrote
+    running_[unit] = snapshot();
+    write();
+    last_write_ = Clock::now();
+  }
+  void remove() const {
+    std::error_code ec;
+    std::filesystem::remove(path_, ec);
+  }
+
+ private:
+  void write() const {
+    io::h5md::Writer w(path_, "granular-dsmc", "granular-dsmc checkpoint", GDSMC_VERSION);
+    std::string done_units, running_units;
+    auto put_unit = [&](const std::string& group, const Snapshot& snap) {
+      std::string reals, integers;
+      for (const auto& [name, values] : snap.reals) {
+        w.write_dataset(group + "/" + name, values, {});
+        reals += name + "\n";
+      }
+      for (const auto& [name, values] : snap.integers) {
+        w.write_integers(group + "/" + name, values);
+        integers += name + "\n";
+      }
+      w.write_attribute(group, "reals", reals);
+      w.write_attribute(group, "integers", integers);
+    };
+    for (const auto& [u, result] : done_) {
+      Snapshot snap;
+      store_result(snap, result);
+      put_unit("/checkpoint/done/unit_" + std::to_string(u), snap);
+      done_units += std::to_string(u) + " ";
+    }
+    for (const auto& [u, snap] : running_) {
+      put_unit("/checkpoint/running/unit_" + std::to_string(u), snap);
+      running_units += std::to_string(u) + " ";
+    }
+    w.write_dataset("/checkpoint/format", {1.0}, {});
+    w.write_attribute("/checkpoint", "fingerprint", fingerprint_);
+    w.write_attribute("/checkpoint", "ranks", static_cast<double>(ranks_));
+    w.write_attribute("/checkpoint", "done_units", done_units);
+    w.write_attribute("/checkpoint", "running_units", running_units);
+    w.write_attribute("/checkpoint", "description",
+                      std::string("granular-dsmc checkpoint: finished work units (point-major replica index) "
+                                  "and the state of those in progress; resume with granular-dsmc FILE.nml "
+                                  "--restart THIS_FILE"));
+    w.commit();
+  }
+
+  std::string path_;
+  double every_;
+  std::string fingerprint_;
+  int ranks_;
+  std::mutex mutex_;
+  std::map<std::size_t, ReplicaResult> done_;
+  std::map<std::size_t, Snapshot> running_;
+  Clock::time_point last_write_ = Clock::now();
+};
+
+/// The replica results of one point, reduced in replica order (the same order in every run).
+PointResult reduce_point(std::vector<ReplicaResult>& replicas) {
+  PointResult point;
+  double mean_step_sum = 0.0;
+  for (std::size_t r = 0; r < replicas.size(); ++r) {
+    for (auto& [name, entry] : replicas[r].rows) {
+      auto& a = point.observables[name];
+      a.columns = entry.first;
+      // Rows of the reduced_* observables exist only for the replicas that reached the scaling
+      // regime: each such replica adds one row, in replica order.
+      a.values.push_back(std::move(entry.second));
+    }
+    mean_step_sum += replicas[r].mean_step;
+    point.events += replicas[r].events;
+    point.collide_seconds += replicas[r].collide_seconds;
+  }
+  point.mean_step = mean_step_sum / static_cast<double>(replicas.size());
+  return point;
 }
 
 /// The HCS distributions of one point (seed 003 sec. 4): Phi_i(v*), the deviation Delta_i(v*) of
@@ -372,21 +728,127 @@ void write_point(io::h5md::Writer& writer, const std::string& root, const io::co
 Summary run(const io::config::Config& config, const std::string& output_path, const Options& options) {
   const auto started = Clock::now();
   const std::vector<io::config::Config> points = config.sweep_points();
+  const int rank = parallel::rank(), ranks = parallel::size();
 
-  // Open first: an unwritable path fails before any work is done.
+  // Open first (rank 0, which writes): an unwritable path fails before any work is done.
   std::optional<io::h5md::Writer> writer_storage;
-  try {
-    writer_storage.emplace(output_path, "granular-dsmc user", "granular-dsmc", GDSMC_VERSION);
-  } catch (const std::runtime_error& e) {
-    throw OutputPathError(e.what());
+  std::string open_error;
+  if (rank == 0) {
+    try {
+      writer_storage.emplace(output_path, "granular-dsmc user", "granular-dsmc", GDSMC_VERSION);
+    } catch (const std::runtime_error& e) {
+      open_error = e.what();
+      if (open_error.empty()) open_error = "cannot create the output file";
+    }
   }
-  io::h5md::Writer& writer = *writer_storage;
+  open_error = parallel::broadcast_from_root(open_error);
+  if (!open_error.empty()) throw OutputPathError(rank == 0 ? open_error : "");
 
-  ProgressLine progress(options.progress);
-  std::vector<PointResult> results;
-  for (std::size_t k = 0; k < points.size(); ++k)
-    results.push_back(run_point(points[k], options, progress, k, points.size()));
+  // Work units u = point * R_p + replica, point-major; unit u runs on rank u mod K (parallel.hpp).
+  struct Unit {
+    std::size_t point, replica;
+  };
+  std::vector<Unit> units;
+  for (std::size_t p = 0; p < points.size(); ++p)
+    for (std::size_t r = 0; r < static_cast<std::size_t>(points[p].dsmc.replicas); ++r) units.push_back({p, r});
+  std::vector<std::size_t> mine;
+  for (std::size_t u = 0; u < units.size(); ++u)
+    if (u % static_cast<std::size_t>(ranks) == static_cast<std::size_t>(rank)) mine.push_back(u);
+
+  // Checkpoints: one file per rank (rank 0's is the one INTERFACE.md names).
+  const std::string fingerprint = config.namelist_text + "\n--overrides--\n" + [&] {
+    std::string joined;
+    for (const auto& o : config.overrides) joined += o + "\n";
+    return joined;
+  }();
+  CheckpointStore checkpoints(checkpoint_path(output_path, rank), config.output.checkpoint_every.value_or(0.0),
+                              fingerprint, ranks);
+  std::string restart_error;
+  if (!options.restart_path.empty()) {
+    try {
+      checkpoints.load(rank_file(options.restart_path, rank));
+    } catch (const std::exception& e) {
+      restart_error = e.what();
+    }
+  }
+  {
+    std::vector<std::string> errors = parallel::gather_to_root(restart_error);
+    std::string first;
+    for (const auto& e : errors)
+      if (!e.empty() && first.empty()) first = e;
+    first = parallel::broadcast_from_root(first);
+    if (!first.empty()) throw RestartError(first);
+  }
+
+  Progress progress(options.progress && rank == 0, mine.size());
+  std::vector<ReplicaResult> done(mine.size());
+  std::string failure;  // first error of a thread (exceptions must not leave an OpenMP region)
+  std::atomic<bool> interrupted{false}, failed{false};
+  const auto n_mine = static_cast<std::ptrdiff_t>(mine.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::ptrdiff_t k = 0; k < n_mine; ++k) {
+    if (interrupted.load() || failed.load()) continue;
+    const Unit& unit = units[mine[static_cast<std::size_t>(k)]];
+    const auto& point = points[unit.point];
+    std::string label = "replica " + std::to_string(unit.replica + 1) + "/" + std::to_string(point.dsmc.replicas);
+    if (points.size() > 1)
+      label = "point " + std::to_string(unit.point + 1) + "/" + std::to_string(points.size()) + "  " + label;
+    const std::size_t u = mine[static_cast<std::size_t>(k)];
+    try {
+      if (const ReplicaResult* finished = checkpoints.finished_result(u)) {
+        done[static_cast<std::size_t>(k)] = *finished;
+        progress.update(static_cast<std::size_t>(k), 1.0, label, 0.0, 0);
+      } else {
+        const SafePoint safe_point = [&](const std::function<Snapshot()>& snapshot) {
+          checkpoints.safe_point(u, snapshot);
+        };
+        done[static_cast<std::size_t>(k)] = run_replica(point, options, progress, static_cast<std::size_t>(k), label,
+                                                        unit.replica, checkpoints.resume_point(u), safe_point);
+        checkpoints.finished(u, done[static_cast<std::size_t>(k)]);
+      }
+    } catch (const Interrupted&) {
+      interrupted.store(true);
+    } catch (const std::exception& e) {
+#pragma omp critical(gdsmc_failure)
+      if (!failed.exchange(true)) failure = e.what();
+    }
+  }
   progress.finish();
+
+  // Every rank sends its status and results to rank 0, which decides for all.
+  std::string packed(1, interrupted.load() ? 'I' : failed.load() ? 'F' : 'K');
+  if (failed.load()) packed += failure;
+  else if (!interrupted.load())
+    for (std::size_t k = 0; k < mine.size(); ++k) pack(packed, mine[k], done[k]);
+  done.clear();
+  const std::vector<std::string> gathered = parallel::gather_to_root(packed);
+  std::string verdict;
+  if (rank == 0)
+    for (const auto& g : gathered)
+      if (g[0] != 'K' && verdict.empty()) verdict = g;
+  verdict = parallel::broadcast_from_root(verdict);
+  if (!verdict.empty() && verdict[0] == 'I') throw Interrupted();
+  if (!verdict.empty()) throw std::runtime_error(verdict.substr(1));
+  if (rank != 0) {
+    checkpoints.remove();
+    Summary summary;
+    summary.wall_seconds = std::chrono::duration<double>(Clock::now() - started).count();
+    return summary;
+  }
+
+  std::vector<std::vector<ReplicaResult>> by_point(points.size());
+  for (std::size_t p = 0; p < points.size(); ++p) by_point[p].resize(static_cast<std::size_t>(points[p].dsmc.replicas));
+  for (const auto& g : gathered) {
+    std::size_t pos = 1;
+    while (pos < g.size()) {
+      std::uint64_t u = 0;
+      ReplicaResult r = unpack(g, pos, u);
+      by_point[units[u].point][units[u].replica] = std::move(r);
+    }
+  }
+  std::vector<PointResult> results;
+  for (auto& replicas : by_point) results.push_back(reduce_point(replicas));
+  io::h5md::Writer& writer = *writer_storage;
 
   writer.write_parameters(config.resolved(), config.namelist_text);
   writer.write_attribute("/parameters", "source_file", config.source_file);
@@ -419,6 +881,7 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
     writer.write_attribute("/sweep", "values", config.sweep.values);
   }
   writer.commit();
+  checkpoints.remove();  // the run is complete: its checkpoint is stale
 
   summary.wall_seconds = std::chrono::duration<double>(Clock::now() - started).count();
   summary.events_per_second = collide_seconds > 0 ? static_cast<double>(events) / collide_seconds : 0.0;

@@ -12,6 +12,14 @@
  * Config::sample_collisions(); its `time` datasets then hold the mean over replicas of the times
  * at which that happened, with the spread in the observable `time`.
  *
+ * Replicas and sweep points are independent work units spread over MPI ranks and OpenMP threads
+ * (parallel.hpp); their results are reduced in unit order, so the file is the same, byte for byte,
+ * however the run is spread. With `&output checkpoint_every`, each rank rewrites its checkpoint file
+ * (`<stem>.checkpoint.h5`, `<stem>.checkpoint.rank<k>.h5`) at safe points: after each chunk of 2^20
+ * collisions and after each sample, where a stop changes nothing. `--restart` loads it and continues;
+ * the output is the same as that of an uninterrupted run (tests/scale_out/restart.sh). The checkpoint
+ * is removed when the run completes.
+ *
  * The output file is opened (under a temporary name) before the first collision, so an
  * unwritable path fails at once, and renamed into place only when complete.
  */
@@ -27,6 +35,7 @@ namespace gdsmc::simulation {
 struct Options {
   bool progress = false;                         ///< progress line on stderr
   const std::atomic<bool>* interrupt = nullptr;  ///< set by a signal handler: stop, write nothing
+  std::string restart_path;                      ///< continue from this checkpoint (empty: from the start)
 };
 
 /// What the run measured, as written to the file (for the caller's summary).
@@ -42,6 +51,11 @@ struct Summary {
 
 /// The output file could not be created: an input error (the path), raised before any work.
 struct OutputPathError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// The checkpoint given to --restart cannot be used (unreadable, or written for another input).
+struct RestartError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 

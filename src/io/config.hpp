@@ -77,6 +77,7 @@ struct Output {
   long long reduced_bins = 100;   ///< bins of Phi_i(v*) (one or two species)
   double reduced_range = 5.0;     ///< Phi_i(v*) covers 0 <= v* < reduced_range
   double scaling_start = 10.0;    ///< collisions per particle after which the HCS is sampled
+  std::optional<double> checkpoint_every;      ///< wall-clock seconds between checkpoints (unset: none)
   bool track_displacements = false;            ///< msd observable (seed 001 eq 15)
   std::optional<double> msd_start_time;        ///< displacements count from this time, or
   std::optional<double> msd_start_temperature; ///< from the first sample with T at or below this

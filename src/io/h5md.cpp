@@ -202,9 +202,13 @@ Handle ensure_group(hid_t file, const std::string& path) {
     const char* name = parts[i].c_str();
     if (check(H5Lexists(group.get(), name, H5P_DEFAULT), "H5Lexists", where) > 0)
       group = make(H5Gopen2(group.get(), name, H5P_DEFAULT), H5Gclose, "H5Gopen2", where);
-    else
-      group = make(H5Gcreate2(group.get(), name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+    else {
+      // No modification times in object headers: the same run gives the same bytes (issue 5).
+      Handle gcpl = make(H5Pcreate(H5P_GROUP_CREATE), H5Pclose, "H5Pcreate(H5P_GROUP_CREATE)", where);
+      check(H5Pset_obj_track_times(gcpl.get(), false), "H5Pset_obj_track_times", where);
+      group = make(H5Gcreate2(group.get(), name, H5P_DEFAULT, gcpl.get(), H5P_DEFAULT), H5Gclose,
                    "H5Gcreate2", where);
+    }
   }
   return group;
 }
@@ -276,6 +280,7 @@ void put_dataset(hid_t group, const std::string& group_path, const std::string& 
   std::vector<hsize_t> max_dims = dims;
   Handle dcpl = make(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "H5Pcreate(H5P_DATASET_CREATE)",
                      where);
+  check(H5Pset_obj_track_times(dcpl.get(), false), "H5Pset_obj_track_times", where);  // as for groups
   if (extensible) {
     max_dims[0] = H5S_UNLIMITED;
     hsize_t row = 1;
@@ -492,7 +497,9 @@ Writer::Writer(std::string final_path, std::string author, std::string creator_n
     Handle fapl = file_access(d.temp_path);
     // TRUNC, not EXCL: a leftover from a killed run with the same pid (common in containers)
     // must not block the next run; HDF5 itself refuses a file this process still has open.
-    const hid_t id = H5Fcreate(d.temp_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
+    Handle fcpl = make(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "H5Pcreate(H5P_FILE_CREATE)", "/");
+    check(H5Pset_obj_track_times(fcpl.get(), false), "H5Pset_obj_track_times", "/");  // the root group
+    const hid_t id = H5Fcreate(d.temp_path.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get());
     if (id < 0) {
       const std::string detail = hdf5_detail();
       const std::string directory = parent_directory(d.temp_path);
@@ -606,6 +613,18 @@ void Writer::write_dataset(const std::string& path, const std::vector<double>& d
   });
 }
 
+void Writer::write_integers(const std::string& path, const std::vector<std::uint64_t>& data) {
+  const std::vector<std::string> parts = split_path(path);
+  if (parts.empty()) throw std::invalid_argument("h5md: dataset path '" + path + "' names no dataset");
+  const hid_t file = impl_->open_file();
+  with_context(impl_->context(), [&] {
+    const std::string parent = join_path(parts, parts.size() - 1);
+    const Handle group = ensure_group(file, parent);
+    const std::vector<hsize_t> dims{data.size()};
+    put_dataset(group.get(), parent, parts.back(), H5T_STD_U64LE, H5T_NATIVE_UINT64, dims, false, data.data());
+  });
+}
+
 void Writer::commit() {
   Impl& d = *impl_;
   const hid_t file = d.open_file();
@@ -660,6 +679,17 @@ ArrayData read_dataset(const std::string& file, const std::string& path) {
     out.data =
         read_numbers<double>(group.get(), parent, parts.back(), H5T_NATIVE_DOUBLE, &out.shape);
     return out;
+  });
+}
+
+std::vector<std::uint64_t> read_integers(const std::string& file, const std::string& path) {
+  return with_context(read_context(file), [&] {
+    const std::vector<std::string> parts = split_path(path);
+    if (parts.empty()) throw std::runtime_error("dataset path '" + path + "' names no dataset");
+    const Handle f = open_for_reading(file);
+    const std::string parent = join_path(parts, parts.size() - 1);
+    const Handle group = make(H5Gopen2(f.get(), parent.c_str(), H5P_DEFAULT), H5Gclose, "H5Gopen2", parent);
+    return read_numbers<std::uint64_t>(group.get(), parent, parts.back(), H5T_NATIVE_UINT64);
   });
 }
 

@@ -48,6 +48,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <variant>
@@ -110,6 +111,9 @@ class Writer {
   void write_dataset(const std::string& path, const std::vector<double>& data,
                      std::vector<std::size_t> shape);
 
+  /// Plain uint64 dataset (exact integers: generator states, counters), as write_dataset above.
+  void write_integers(const std::string& path, const std::vector<std::uint64_t>& data);
+
   /// Flushes, closes, fsyncs and renames the temporary file onto the final path. If the rename
   /// itself fails, the complete temporary file is kept (and named in the exception), because it
   /// holds a finished run.
@@ -142,6 +146,8 @@ struct ArrayData {
   std::vector<std::size_t> shape;
 };
 ArrayData read_dataset(const std::string& file, const std::string& path);
+/// A uint64 dataset written by Writer::write_integers, flattened.
+std::vector<std::uint64_t> read_integers(const std::string& file, const std::string& path);
 
 /// Reads any attribute this module writes (and fixed-length strings, int32, ...): integer class of
 /// size 1 with scalar dataspace -> bool, other integers -> long long, floats -> double, strings ->

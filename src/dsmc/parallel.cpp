@@ -1,0 +1,129 @@
+#include "dsmc/parallel.hpp"
+
+#include <cstdlib>
+#include <stdexcept>
+
+#ifdef GDSMC_HAVE_MPI
+#include <mpi.h>
+#endif
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace gdsmc::parallel {
+
+namespace {
+bool launched_by_mpirun() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
+    if (std::getenv(name)) return true;
+  return false;
+}
+
+#ifdef GDSMC_HAVE_MPI
+bool active() {
+  int initialized = 0, finalized = 0;
+  MPI_Initialized(&initialized);
+  MPI_Finalized(&finalized);
+  return initialized && !finalized;
+}
+void check(int code, const char* what) {
+  if (code != MPI_SUCCESS) throw std::runtime_error(std::string("MPI: ") + what + " failed");
+}
+#endif
+}  // namespace
+
+Session::Session(int& argc, char**& argv) {
+#ifdef GDSMC_HAVE_MPI
+  if (launched_by_mpirun()) check(MPI_Init(&argc, &argv), "MPI_Init");
+#else
+  (void)argc;
+  (void)argv;
+  (void)launched_by_mpirun;
+#endif
+}
+
+Session::~Session() {
+#ifdef GDSMC_HAVE_MPI
+  if (active()) MPI_Finalize();
+#endif
+}
+
+bool built_with_mpi() {
+#ifdef GDSMC_HAVE_MPI
+  return true;
+#else
+  return false;
+#endif
+}
+
+int rank() {
+#ifdef GDSMC_HAVE_MPI
+  if (active()) {
+    int r = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &r);
+    return r;
+  }
+#endif
+  return 0;
+}
+
+int size() {
+#ifdef GDSMC_HAVE_MPI
+  if (active()) {
+    int s = 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &s);
+    return s;
+  }
+#endif
+  return 1;
+}
+
+int threads() {
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+std::vector<std::string> gather_to_root(const std::string& mine) {
+  if (size() == 1) return {mine};
+#ifdef GDSMC_HAVE_MPI
+  const int n = size(), me = rank();
+  int length = static_cast<int>(mine.size());
+  if (mine.size() > static_cast<std::size_t>(INT32_MAX)) throw std::runtime_error("MPI: result too large to send");
+  std::vector<int> lengths(me == 0 ? n : 0);
+  check(MPI_Gather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, MPI_COMM_WORLD), "MPI_Gather");
+  std::vector<int> offsets(lengths.size(), 0);
+  long long total = 0;
+  for (std::size_t k = 0; k < lengths.size(); ++k) {
+    offsets[k] = static_cast<int>(total);
+    total += lengths[k];
+  }
+  if (total > INT32_MAX) throw std::runtime_error("MPI: results too large to gather");
+  std::string all(static_cast<std::size_t>(total), '\0');
+  check(MPI_Gatherv(mine.data(), length, MPI_CHAR, all.data(), lengths.data(), offsets.data(), MPI_CHAR, 0,
+                    MPI_COMM_WORLD),
+        "MPI_Gatherv");
+  std::vector<std::string> out;
+  for (std::size_t k = 0; k < lengths.size(); ++k) out.push_back(all.substr(offsets[k], lengths[k]));
+  return out;
+#else
+  return {mine};
+#endif
+}
+
+std::string broadcast_from_root(const std::string& value) {
+  if (size() == 1) return value;
+#ifdef GDSMC_HAVE_MPI
+  int length = static_cast<int>(value.size());
+  check(MPI_Bcast(&length, 1, MPI_INT, 0, MPI_COMM_WORLD), "MPI_Bcast");
+  std::string out = rank() == 0 ? value : std::string(static_cast<std::size_t>(length), '\0');
+  check(MPI_Bcast(out.data(), length, MPI_CHAR, 0, MPI_COMM_WORLD), "MPI_Bcast");
+  return out;
+#else
+  return value;
+#endif
+}
+
+}  // namespace gdsmc::parallel

@@ -1,0 +1,43 @@
+/**
+ * \file parallel.hpp
+ * \brief Where a run's work units (one replica of one sweep point) execute: MPI ranks, then threads.
+ *
+ * A run is a list of independent work units u = (point p, replica r), numbered point-major
+ * (u = p R + r). Unit u runs on MPI rank u mod K of K ranks; within a rank, OpenMP threads take the
+ * rank's units one at a time. Each unit's random numbers come from its own streams (seed, r, purpose)
+ * (rng.hpp), so what a unit computes does not depend on where or when it runs. Rank 0 collects every
+ * unit's result, and the replica statistics are then reduced in unit order, always the same order: the
+ * output file is bitwise the same for any number of ranks and threads (simulation.hpp).
+ *
+ * MPI is used only when the executable was started by an MPI launcher (mpirun sets
+ * OMPI_COMM_WORLD_SIZE, PMI_SIZE or PMIX_RANK) and the build found MPI; otherwise there is one
+ * rank, and nothing here calls MPI. Without OpenMP there is one thread per rank.
+ */
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace gdsmc::parallel {
+
+/// Initialises MPI for the lifetime of the object when launched by mpirun (see above).
+class Session {
+ public:
+  Session(int& argc, char**& argv);
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+};
+
+int rank();  ///< this process's rank (0 without MPI)
+int size();  ///< number of ranks (1 without MPI)
+bool built_with_mpi();
+int threads();  ///< OpenMP threads per rank (1 without OpenMP)
+
+/// Rank 0 receives every rank's buffer, in rank order (its own first); other ranks get an empty list.
+std::vector<std::string> gather_to_root(const std::string& mine);
+/// Rank 0's value, on every rank.
+std::string broadcast_from_root(const std::string& value);
+
+}  // namespace gdsmc::parallel

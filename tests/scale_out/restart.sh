@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# Issue 5: a run killed with SIGKILL and resumed with --restart writes the same file, byte for byte,
+# as the same run left alone. Kills it twice (the second time after a restart), with 1 and 2 threads.
+# usage: restart.sh GRANULAR_DSMC INPUT WORKDIR
+set -euo pipefail
+exe=$1 input=$2 work=$3
+rm -rf "$work" && mkdir -p "$work" && cp "$input" "$work/input.nml" && cd "$work"
+
+OMP_NUM_THREADS=2 "$exe" input.nml --quiet
+mv restart.h5 uninterrupted.h5
+[ ! -e restart.checkpoint.h5 ] || { echo "FAIL: a completed run left its checkpoint behind"; exit 1; }
+
+# Starts the command in the background, waits for a fresh checkpoint, kills -9 while it still runs.
+kill_after_checkpoint() {
+  rm -f restart.checkpoint.h5
+  "$@" &
+  local pid=$! waited=0
+  while [ ! -e restart.checkpoint.h5 ]; do
+    sleep 0.1; waited=$((waited + 1))
+    if ! kill -0 $pid 2>/dev/null; then echo "FAIL: the run ended before its first checkpoint"; exit 1; fi
+    [ $waited -lt 600 ] || { echo "FAIL: no checkpoint after 60 s"; kill -9 $pid; exit 1; }
+  done
+  sleep 0.5
+  kill -9 $pid 2>/dev/null || { echo "FAIL: the run ended before it could be killed"; exit 1; }
+  wait $pid 2>/dev/null || true
+  [ ! -e restart.h5 ] || { echo "FAIL: a killed run left an output file"; exit 1; }
+  echo "killed $* after a checkpoint ($(stat -c %s restart.checkpoint.h5) bytes)"
+}
+for threads in 1 2; do
+  export OMP_NUM_THREADS=$threads
+  kill_after_checkpoint "$exe" input.nml --quiet
+  cp restart.checkpoint.h5 first.checkpoint.h5
+  kill_after_checkpoint "$exe" input.nml --quiet --restart first.checkpoint.h5
+  "$exe" input.nml --quiet --restart restart.checkpoint.h5
+  rm -f restart.h5.tmp.*  # left by the killed runs: a killed process cannot remove its temporary file
+  if cmp -s restart.h5 uninterrupted.h5; then
+    echo "PASS ($threads threads): killed twice, resumed twice: identical to the uninterrupted run"
+  else
+    echo "FAIL ($threads threads): the resumed run differs from the uninterrupted run"; exit 1
+  fi
+  [ ! -e restart.checkpoint.h5 ] || { echo "FAIL: the completed run left its checkpoint behind"; exit 1; }
+  rm restart.h5
+done
+
+# A checkpoint of another input is refused with exit status 2 and a message.
+sed 's/seed = 11/seed = 12/' input.nml > other.nml
+set +e
+"$exe" other.nml --quiet --output other.h5 --restart first.checkpoint.h5 2> refused.txt
+status=$?
+set -e
+if [ $status -eq 2 ] && grep -q "different input" refused.txt && [ ! -e other.h5 ]; then
+  echo "PASS: a checkpoint of another input is refused: $(cat refused.txt)"
+else
+  echo "FAIL: status $status, message: $(cat refused.txt)"; exit 1
+fi
