@@ -41,6 +41,8 @@ Collider::Collider(Scheme scheme, const species::Mixture& mix, particles::System
   }
   max_speed_.assign(s_, 0.0);
   max_speed2_.assign(s_, 0.0);
+  range_first_ = 0;
+  range_count_ = sys.size();
   if (scheme_ == Scheme::pairs) {
     pair_rate_.assign(s_ * s_, 0.0);
     pair_cumulative_.assign(s_ * s_, 0.0);
@@ -135,6 +137,11 @@ bool Collider::raise_max_speed(std::size_t particle) {
   const std::uint32_t k = s_ > 1 ? sys_.species[particle] : 0;
   const particles::Vec3& v = sys_.v[particle];
   const double v2 = v.x * v.x + v.y * v.y + v.z * v.z;
+  if (!block_first_.empty()) {  // one species in blocks: the bound of the current block
+    if (v2 <= block_max_speed2_[current_block_]) return false;
+    block_max_speed2_[current_block_] = v2;
+    return true;
+  }
   if (v2 <= max_speed2_[k]) return false;
   max_speed_[k] = std::sqrt(v2);
   max_speed2_[k] = v2;
@@ -160,6 +167,9 @@ Collider::State Collider::state() const {
   for (const PendingPair& p : pending_) st.pending.insert(st.pending.end(), {p.a, p.b, p.i, p.k});
   st.pending_next = pending_next_;
   st.pending_filled = pending_filled_;
+  st.block_max_speed2 = block_max_speed2_;
+  st.block_credit = block_credit_;
+  st.step_start = step_start_;
   return st;
 }
 
@@ -175,14 +185,120 @@ void Collider::restore(const State& st) {
   counters_ = st.counters;
   gen_.set_state(st.generator);
   raised_.clear();
-  if (counters_.steps > 0) rebuild_bounds();  // what the last rebuild or raise computed (header of State)
+  if (st.block_max_speed2.size() != block_max_speed2_.size() || st.block_credit.size() != block_credit_.size())
+    throw std::invalid_argument("collide: the saved state has other blocks than this collider");
+  block_max_speed2_ = st.block_max_speed2;
+  block_credit_ = st.block_credit;
+  step_start_ = st.step_start;
+  // What the last rebuild or raise computed (header of State); with blocks each block sets its own.
+  if (counters_.steps > 0 && block_first_.empty()) rebuild_bounds();
   for (std::size_t c = 0; c < lookahead; ++c)
     pending_[c] = {st.pending[4 * c], st.pending[4 * c + 1], st.pending[4 * c + 2], st.pending[4 * c + 3]};
   pending_next_ = st.pending_next;
   pending_filled_ = st.pending_filled;
 }
 
+
+void Collider::use_blocks(std::size_t block_size) {
+  block_first_.clear();
+  const std::size_t n = sys_.size();
+  if (block_size == 0 || s_ != 1 || scheme_ == Scheme::pairs || n < 2 * block_size) return;
+  if (counters_.steps > 0) throw std::logic_error("collide: use_blocks() after the run has started");
+  const std::size_t blocks = n / block_size;
+  // Block j holds the particles dealt to it by remix(): ceil((N - j)/blocks) of them.
+  block_first_.assign(blocks + 1, 0);
+  for (std::size_t j = 0; j < blocks; ++j) block_first_[j + 1] = block_first_[j] + (n - j + blocks - 1) / blocks;
+  block_max_speed2_.assign(blocks, 0.0);
+  block_credit_.assign(blocks, 0.0);
+  spare_v_.resize(n);
+}
+
+void Collider::remix() {
+  // Deal the particles, from a random starting point, round the blocks like cards: old index
+  // (offset + i) mod N goes to block i mod K, slot i div K. Each new block takes every K-th particle
+  // of every old block, so no two particles stay together unless K divides their distance (header).
+  const std::size_t n = sys_.size(), blocks = block_first_.size() - 1;
+  const std::size_t offset = gen_.below(n);
+  auto deal = [&](auto& data, auto& spare) {
+    for (std::size_t i = 0, from = offset; i < n; ++i, from = from + 1 == n ? 0 : from + 1)
+      spare[block_first_[i % blocks] + i / blocks] = data[from];
+    data.swap(spare);
+  };
+  deal(sys_.v, spare_v_);
+  if (sys_.tracks_displacements()) {
+    spare_r_.resize(n);
+    deal(sys_.r, spare_r_);
+  }
+  // One species: the species array is all zeros and does not move.
+}
+
+double Collider::block_max_speed2(std::size_t j) const {
+  double max2 = 0.0;
+  for (std::size_t i = block_first_[j]; i < block_first_[j + 1]; ++i) {
+    const particles::Vec3& v = sys_.v[i];
+    max2 = std::max(max2, v.x * v.x + v.y * v.y + v.z * v.z);
+  }
+  return max2;
+}
+
+bool Collider::advance_blocks(double t_target, std::uint64_t event_target) {
+  const std::size_t blocks = block_first_.size() - 1;
+  const double n_total = static_cast<double>(sys_.size());
+  const double n = mix_.total_density();
+  const double cross_section = tables_ ? cross_section_[0] : std::numbers::pi * mix_.contact_distance(0, 0) *
+                                                              mix_.contact_distance(0, 0) * mix_.pair_correlation(0, 0);
+  while (time_ < t_target) {
+    if (time_ >= next_step_time_) {
+      // Events are checked between steps only: all blocks are then at the same time.
+      if (counters_.events >= event_target) return true;
+      if (counters_.steps > 0) remix();
+      if (counters_.steps == 0)
+        for (std::size_t j = 0; j < blocks; ++j) block_max_speed2_[j] = block_max_speed2(j);
+      // The step from the largest block bound so far, an upper bound of the gas's vmax (the blocks'
+      // bounds are recomputed when visited): dt = block_steps step_fraction / nu_max.
+      const double global = *std::max_element(block_max_speed2_.begin(), block_max_speed2_.end());
+      max_speed2_[0] = global;
+      max_speed_[0] = std::sqrt(global);
+      const double rate = 0.5 * n_total * n * 2.0 * cross_section * max_speed_[0];
+      if (rate <= 0.0) {
+        time_ = t_target;
+        return false;
+      }
+      const double step = block_steps * step_fraction_ * n_total / (2.0 * rate);
+      step_start_ = time_;
+      next_step_time_ = time_ + step;
+      ++counters_.steps;
+      counters_.step_sum += step;
+    }
+    const double t_start = time_, t_stop = std::min(t_target, next_step_time_);
+    for (std::size_t j = 0; j < blocks; ++j) {
+      current_block_ = j;
+      range_first_ = block_first_[j];
+      range_count_ = block_first_[j + 1] - block_first_[j];
+      pending_filled_ = false;  // the drawn-ahead pairs belong to the previous block
+      // First visit in this step: the block's exact bound, read in order (which also brings the
+      // block into the cache before its random reads).
+      if (t_start == step_start_) block_max_speed2_[j] = block_max_speed2(j);
+      time_ = t_start;
+      credit_ = block_credit_[j];
+      for (;;) {
+        // A block of N_b particles at the gas's density n: R_b = N_b n B_b / 2 (as R, header).
+        bound_ = 2.0 * cross_section * std::sqrt(block_max_speed2_[j]);
+        rate_ = 0.5 * static_cast<double>(range_count_) * n * bound_;
+        if (rate_ <= 0.0) break;
+        if (run_majorant(t_stop, UINT64_MAX) != static_cast<int>(Stop::bound_raised)) break;
+      }
+      block_credit_[j] = rate_ > 0.0 ? credit_ : 0.0;
+    }
+    time_ = t_stop;
+  }
+  range_first_ = 0;
+  range_count_ = sys_.size();
+  return false;
+}
+
 bool Collider::advance(double t_target, std::uint64_t event_target) {
+  if (!block_first_.empty()) return advance_blocks(t_target, event_target);
   while (time_ < t_target) {
     if (counters_.events >= event_target) return true;
     if (time_ >= next_step_time_) {
@@ -297,7 +413,9 @@ Collider::PendingPair Collider::next_pair(Draw&& draw) {
 
 int Collider::run_majorant(double t_stop, std::uint64_t event_target) {
   const bool track = sys_.tracks_displacements();  // may start in the middle of a run
-  const auto n = static_cast<std::uint32_t>(sys_.size());
+  // Candidates among all particles, or among those of the current block (header, "Blocks").
+  const auto first = static_cast<std::uint32_t>(range_first_);
+  const auto n = static_cast<std::uint32_t>(range_count_);
   particles::Vec3* v = sys_.v.data();
   const std::uint32_t* sp = sys_.species.data();
   const bool mixture = s_ > 1;
@@ -305,7 +423,7 @@ int Collider::run_majorant(double t_stop, std::uint64_t event_target) {
     const auto a = static_cast<std::uint32_t>(gen_.below(n));
     auto b = static_cast<std::uint32_t>(gen_.below(n - 1));
     if (b >= a) ++b;
-    return PendingPair{a, b, 0, 0};
+    return PendingPair{first + a, first + b, 0, 0};
   };
   return run_substep(t_stop, event_target, [&](std::size_t& a, std::size_t& b, double t_collision) {
     const PendingPair p = next_pair(draw);

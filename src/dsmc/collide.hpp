@@ -125,8 +125,20 @@ class Collider {
            rng::Xoshiro256pp gen, double step_fraction,
            const species::PairMatrix* viscoelastic_beta = nullptr);
 
+  /// Cache blocks of about `block_size` particles (header, "Blocks"), for one species with the
+  /// `majorant` or `lowrank` scheme and N >= 2 block_size; otherwise (or with 0) the whole gas is one
+  /// block. Call before the first advance().
+  void use_blocks(std::size_t block_size);
+  std::size_t blocks() const { return block_first_.empty() ? 1 : block_first_.size() - 1; }
+  /// Memory the collider holds per particle besides the System (the remix buffers of blocks).
+  std::size_t workspace_bytes() const {
+    return spare_v_.capacity() * sizeof(particles::Vec3) + spare_r_.capacity() * sizeof(particles::Displacement);
+  }
+
   /// Advances until time `t_target` or until `event_target` events, whichever comes first.
-  /// Returns true when the event target stopped it.
+  /// Returns true when the event target stopped it. With blocks, the event target is checked at
+  /// the end of each time step only (all blocks are then at the same time): it may be passed by
+  /// up to one step's events.
   bool advance(double t_target, std::uint64_t event_target = UINT64_MAX);
 
   double time() const { return time_; }
@@ -146,6 +158,8 @@ class Collider {
     std::vector<std::uint32_t> pending;  ///< the drawn-ahead candidates, 4 per candidate
     std::size_t pending_next = 0;
     bool pending_filled = false;
+    std::vector<double> block_max_speed2, block_credit;  ///< with blocks (use_blocks)
+    double step_start = 0.0;                             ///< with blocks: when this step began
   };
   State state() const;
   /// Continues from `state`, taken from a Collider of the same scheme, mixture and particle counts
@@ -159,6 +173,21 @@ class Collider {
   template <class TryCandidate>
   int run_substep(double t_stop, std::uint64_t event_target, TryCandidate&& try_candidate);
   int run_majorant(double t_stop, std::uint64_t event_target);  // returns a Stop (collide.cpp)
+  bool advance_blocks(double t_target, std::uint64_t event_target);
+  void remix();
+  // Blocks (empty block_first_: none). Candidates are drawn in [range_first_, + range_count_).
+  std::vector<std::size_t> block_first_;  ///< K + 1 boundaries
+  std::vector<double> block_max_speed2_;  ///< vmax^2 of each block (raised within a step)
+  std::vector<double> block_credit_;      ///< each block's carried candidate time
+  std::size_t current_block_ = 0;
+  double step_start_ = 0.0;
+  double block_max_speed2(std::size_t block) const;  ///< exact vmax^2 of a block, read in order
+  /// With blocks a step is this many majorant mean free times (times step_fraction): each block
+  /// is then visited for about one collision per particle, which repays bringing it into the cache.
+  static constexpr double block_steps = 5.0;
+  std::size_t range_first_ = 0, range_count_ = 0;
+  particles::ParticleArray<particles::Vec3> spare_v_;  ///< remix() deals into these and swaps
+  particles::ParticleArray<particles::Displacement> spare_r_;
   int run_pairs(double t_stop, std::uint64_t event_target);
   int run_lowrank(double t_stop, std::uint64_t event_target);
   void set_lowrank_row(std::size_t species);

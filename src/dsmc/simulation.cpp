@@ -241,6 +241,9 @@ Snapshot make_snapshot(const particles::System& sys, const collide::Collider& co
   snap.integers["collider/pair_events"] = c.counters.pair_events;
   snap.integers["collider/generator"] = {c.generator.s[0], c.generator.s[1], c.generator.s[2], c.generator.s[3]};
   snap.integers["collider/pending"].assign(c.pending.begin(), c.pending.end());
+  snap.reals["collider/block_max_speed2"] = c.block_max_speed2;
+  snap.reals["collider/block_credit"] = c.block_credit;
+  snap.reals["collider/block_step_start"] = {c.step_start};
   snap.integers["progress/flags"] = {p.next_sample, p.in_sample, p.tracking};
   snap.reals["progress/values"] = {p.msd_start, p.scaling_samples, p.t_first, p.t_last, p.temp_first, p.temp_last};
   snap.reals["progress/speed_counts"] = p.speed_counts;
@@ -287,6 +290,9 @@ void load_snapshot(const Snapshot& snap, particles::System& sys, collide::Collid
   for (int k = 0; k < 4; ++k) c.generator.s[k] = generator.at(k);
   const auto& pending = snap.integers.at("collider/pending");
   c.pending.assign(pending.begin(), pending.end());
+  c.block_max_speed2 = snap.reals.at("collider/block_max_speed2");
+  c.block_credit = snap.reals.at("collider/block_credit");
+  c.step_start = snap.reals.at("collider/block_step_start").at(0);
   collider.restore(c);
   const auto& flags = snap.integers.at("progress/flags");
   const auto& values = snap.reals.at("progress/values");
@@ -347,6 +353,9 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
   // Displacements (seed 001 eq 15) from t = 0, from msd_start_time, or from the first sample
   // with T <= msd_start_temperature. The HCS part: samples past scaling_start collisions per particle.
   const bool track = config.output.track_displacements;
+  // Cache blocks only in time-driven runs: with blocks an event target is met only at the end of a
+  // step (collide.hpp), and collision-driven runs sample at event targets.
+  if (time_driven) collider.use_blocks(static_cast<std::size_t>(config.dsmc.block_size));
   ReplicaProgress p;
   p.c_sum.assign(s, 0.0);
   p.share_sum.assign(s, 0.0);

@@ -64,6 +64,7 @@ struct Dsmc {
   long long replicas = 1;
   long long seed = 12345;
   double step_fraction = 1.0;
+  long long block_size = 32768;  ///< cache blocks (collide.hpp "Blocks"); 0: none
 };
 
 /// &output: where and when.
