@@ -63,6 +63,28 @@
  * A_ik changes, since they were drawn from the old rates, and discarding independent draws biases
  * nothing. The drawn-ahead pairs are part of the collider's state (State below).
  *
+ * **Blocks** (issue 5; one species, `majorant` or `lowrank`, N >= 2 block_size; `use_blocks`). With
+ * 1e6 particles the velocities (24 MB) do not stay in the caches and every candidate waits for
+ * memory. The particles are therefore split into K = N / block_size contiguous blocks, and during
+ * a time step each block is a gas of its own: its candidates are pairs of its own N_b particles at
+ * R_b = N_b n B_b / 2 with its own bound B_b = 2 pi sigma^2 chi vmax_b, so that every particle keeps
+ * the collision frequency n pi sigma^2 chi <|g|> of the whole gas (the pair rate is
+ * pi sigma^2 chi |g| n/(N_b - 1) instead of n/(N - 1): a homogeneous gas of N_b particles at density
+ * n). Each block is an unbiased sub-sample of the homogeneous gas. The blocks run one after another
+ * over the step, each from the step's start to its end, so all of them are at the same time at
+ * every step end (and at every time target). Between steps the particles are dealt round the blocks
+ * like cards from a random starting point (`remix`): each new block takes every K-th particle of
+ * every old one, so the blocks never keep their members and no correlation builds up within one.
+ * What changes against the unblocked gas is the number of possible partners between remixes,
+ * N_b - 1 instead of N - 1, a finite-N effect of order 1/N_b (block_size 32768 by default); the
+ * validation cases `*_blocks_quick` (haff_cooling, collision_rate) compare blocked runs with the
+ * same theory at the same tolerances. With one species the rank-3 majorant of `lowrank` is the
+ * uniform one, so both schemes run the same blocked loop. A blocked step is block_steps = 5 majorant
+ * mean free times long (times step_fraction), about one collision per particle, which repays
+ * bringing a block into the cache; the block's bound is recomputed exactly at its first visit in a
+ * step (a pass in order over the block, which is also what brings it into the cache). Event targets
+ * are checked at step ends only, so the simulation uses blocks in time-driven runs only.
+ *
  * Units: the user's; time in the user's time unit, e.g. sigma sqrt(m/T0).
  * Checked by tests/collide_test.cpp and validation/ (haff_cooling, collision_rate, schemes_agree).
  */
