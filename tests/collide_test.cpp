@@ -377,7 +377,9 @@ TEST(Collide, RestoredStateContinuesBitwise) {
       auto sys_a = initial(mix, {700, 300}, {1.0, 1.0}, 10);
       Collider a(scheme, mix, sys_a, rng::make_stream(10, 2, rng::Purpose::collisions), 1.0);
       a.advance(5.0);
-      if (stop_at_event) EXPECT_TRUE(a.advance(30.0, a.counters().events + 1234));
+      if (stop_at_event) {
+        EXPECT_TRUE(a.advance(30.0, a.counters().events + 1234));
+      }
       const Collider::State saved = a.state();
       auto sys_b = sys_a, sys_c = sys_a;
       // Different streams on purpose: restore() must replace them.

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Issue 5: a run killed with SIGKILL and resumed with --restart writes the same file, byte for byte,
 # as the same run left alone. Kills it twice (the second time after a restart), with 1 and 2 threads.
-# usage: restart.sh GRANULAR_DSMC INPUT WORKDIR
+# With MPIEXEC, also under mpirun -np 2 (one checkpoint file per rank).
+# usage: restart.sh GRANULAR_DSMC INPUT WORKDIR [MPIEXEC]
 set -euo pipefail
-exe=$1 input=$2 work=$3
+exe=$1 input=$2 work=$3 mpiexec=${4:-none}
 rm -rf "$work" && mkdir -p "$work" && cp "$input" "$work/input.nml" && cd "$work"
 
 OMP_NUM_THREADS=2 "$exe" input.nml --quiet
@@ -41,6 +42,34 @@ for threads in 1 2; do
   [ ! -e restart.checkpoint.h5 ] || { echo "FAIL: the completed run left its checkpoint behind"; exit 1; }
   rm restart.h5
 done
+
+if [ "$mpiexec" != "none" ]; then
+  mpi=("$mpiexec" --oversubscribe -np 2)
+  if [ "$(id -u)" -eq 0 ]; then mpi+=(--allow-run-as-root); fi
+  export OMP_NUM_THREADS=1
+  rm -f restart.checkpoint*.h5
+  "${mpi[@]}" "$exe" input.nml --quiet &
+  pid=$! waited=0
+  until [ -e restart.checkpoint.h5 ] && [ -e restart.checkpoint.rank1.h5 ]; do
+    sleep 0.1; waited=$((waited + 1))
+    kill -0 $pid 2>/dev/null || { echo "FAIL: the MPI run ended before both ranks wrote a checkpoint"; exit 1; }
+    [ $waited -lt 600 ] || { echo "FAIL: no MPI checkpoints after 60 s"; exit 1; }
+  done
+  sleep 0.5
+  pkill -9 -f "$exe input.nml" || true  # the ranks, then their launcher
+  kill -9 $pid 2>/dev/null || true
+  wait $pid 2>/dev/null || true
+  rm -f restart.h5.tmp.*
+  [ ! -e restart.h5 ] || { echo "FAIL: a killed MPI run left an output file"; exit 1; }
+  "${mpi[@]}" "$exe" input.nml --quiet --restart restart.checkpoint.h5
+  if cmp -s restart.h5 uninterrupted.h5; then
+    echo "PASS (mpirun -np 2): killed, resumed from 2 checkpoint files: identical to the uninterrupted run"
+  else
+    echo "FAIL (mpirun -np 2): the resumed run differs from the uninterrupted run"; exit 1
+  fi
+  ls restart.checkpoint*.h5 >/dev/null 2>&1 && { echo "FAIL: the completed MPI run left checkpoints"; exit 1; }
+  rm restart.h5
+fi
 
 # A checkpoint of another input is refused with exit status 2 and a message.
 sed 's/seed = 11/seed = 12/' input.nml > other.nml
