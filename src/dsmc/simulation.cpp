@@ -475,12 +475,14 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
 }
 
 /// The checkpoint file of this rank (INTERFACE.md): the results of its finished units and the
-/// latest snapshot of each unit in progress, rewritten whole (temporary file + rename, io::h5md)
-/// at most every `every` seconds by whichever thread reaches a safe point when one is due.
+/// latest snapshot of each unit in progress, rewritten whole (temporary file + rename, io::h5md).
+/// Each unit in progress refreshes its own snapshot (and rewrites the file) when that snapshot is
+/// `every` seconds old, so every thread's unit is saved, not only the first to reach a safe point.
 class CheckpointStore {
  public:
-  CheckpointStore(std::string path, double every, std::string fingerprint, int ranks)
-      : path_(std::move(path)), every_(every), fingerprint_(std::move(fingerprint)), ranks_(ranks) {}
+  CheckpointStore(std::string path, double every, std::string fingerprint, int ranks, std::size_t units)
+      : path_(std::move(path)), every_(every), fingerprint_(std::move(fingerprint)), ranks_(ranks),
+        last_saved_(units, Clock::now()) {}
 
   /// Reads a checkpoint written by this store's write(); checks it belongs to this input.
   void load(const std::string& file) {
@@ -522,12 +524,13 @@ class CheckpointStore {
     running_.erase(unit);
   }
   void safe_point(std::size_t unit, const std::function<Snapshot()>& snapshot) {
-    if (every_ <= 0.0 || std::chrono::duration<double>(Clock::now() - last_write_).count() < every_) return;
+    // last_saved_[unit] is touched only by the thread running that unit.
+    if (every_ <= 0.0 || std::chrono::duration<double>(Clock::now() - last_saved_[unit]).count() < every_) return;
+    Snapshot fresh = snapshot();  // outside the lock: other threads keep running
     std::lock_guard<std::mutex> lock(mutex_);
-    if (std::chrono::duration<double>(Clock::now() - last_write_).count() < every_) return;  // another thread wrote
-    running_[unit] = snapshot();
+    running_[unit] = std::move(fresh);
     write();
-    last_write_ = Clock::now();
+    last_saved_[unit] = Clock::now();
   }
   void remove() const {
     std::error_code ec;
@@ -580,7 +583,7 @@ class CheckpointStore {
   std::mutex mutex_;
   std::map<std::size_t, ReplicaResult> done_;
   std::map<std::size_t, Snapshot> running_;
-  Clock::time_point last_write_ = Clock::now();
+  std::vector<Clock::time_point> last_saved_;  ///< per unit
 };
 
 /// The replica results of one point, reduced in replica order (the same order in every run).
@@ -771,7 +774,7 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
     return joined;
   }();
   CheckpointStore checkpoints(checkpoint_path(output_path, rank), config.output.checkpoint_every.value_or(0.0),
-                              fingerprint, ranks);
+                              fingerprint, ranks, units.size());
   std::string restart_error;
   if (!options.restart_path.empty()) {
     try {
