@@ -4,7 +4,7 @@
  *
  * Replica r draws its initial velocities from stream (seed, r, initial_state) and its collisions
  * from stream (seed, r, collisions) (see rng.hpp), so a replica's trajectory does not depend on how
- * many replicas run or in which order. Replicas run one after another; observables are reduced to
+ * many replicas run or in which order. Observables are reduced, in replica order, to
  * the mean and standard error over replicas (sample.hpp) and written by io::h5md.
  *
  * A time-driven run (`t_end`) samples at the times of Config::sample_times(). A collision-driven
