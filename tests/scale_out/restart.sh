@@ -5,9 +5,11 @@
 # usage: restart.sh GRANULAR_DSMC INPUT WORKDIR [MPIEXEC]
 set -euo pipefail
 exe=$1 input=$2 work=$3 mpiexec=${4:-none}
-rm -rf "$work" && mkdir -p "$work" && cp "$input" "$work/input.nml" && cd "$work"
+# A name of its own, so that killing "$exe $nml" can never hit another test running beside this one.
+nml=run-$$.nml
+rm -rf "$work" && mkdir -p "$work" && cp "$input" "$work/$nml" && cd "$work"
 
-OMP_NUM_THREADS=2 "$exe" input.nml --quiet
+OMP_NUM_THREADS=2 "$exe" "$nml" --quiet
 mv restart.h5 uninterrupted.h5
 [ ! -e restart.checkpoint.h5 ] || { echo "FAIL: a completed run left its checkpoint behind"; exit 1; }
 
@@ -29,10 +31,10 @@ kill_after_checkpoint() {
 }
 for threads in 1 2; do
   export OMP_NUM_THREADS=$threads
-  kill_after_checkpoint "$exe" input.nml --quiet
+  kill_after_checkpoint "$exe" "$nml" --quiet
   cp restart.checkpoint.h5 first.checkpoint.h5
-  kill_after_checkpoint "$exe" input.nml --quiet --restart first.checkpoint.h5
-  "$exe" input.nml --quiet --restart restart.checkpoint.h5
+  kill_after_checkpoint "$exe" "$nml" --quiet --restart first.checkpoint.h5
+  "$exe" "$nml" --quiet --restart restart.checkpoint.h5
   rm -f restart.h5.tmp.*  # left by the killed runs: a killed process cannot remove its temporary file
   if cmp -s restart.h5 uninterrupted.h5; then
     echo "PASS ($threads threads): killed twice, resumed twice: identical to the uninterrupted run"
@@ -48,7 +50,7 @@ if [ "$mpiexec" != "none" ]; then
   if [ "$(id -u)" -eq 0 ]; then mpi+=(--allow-run-as-root); fi
   export OMP_NUM_THREADS=1
   rm -f restart.checkpoint*.h5
-  "${mpi[@]}" "$exe" input.nml --quiet &
+  "${mpi[@]}" "$exe" "$nml" --quiet &
   pid=$! waited=0
   until [ -e restart.checkpoint.h5 ] && [ -e restart.checkpoint.rank1.h5 ]; do
     sleep 0.1; waited=$((waited + 1))
@@ -56,12 +58,12 @@ if [ "$mpiexec" != "none" ]; then
     [ $waited -lt 600 ] || { echo "FAIL: no MPI checkpoints after 60 s"; exit 1; }
   done
   sleep 0.5
-  pkill -9 -f "$exe input.nml" || true  # the ranks, then their launcher
+  pkill -9 -f "$exe $nml" || true  # the ranks, then their launcher
   kill -9 $pid 2>/dev/null || true
   wait $pid 2>/dev/null || true
   rm -f restart.h5.tmp.*
   [ ! -e restart.h5 ] || { echo "FAIL: a killed MPI run left an output file"; exit 1; }
-  "${mpi[@]}" "$exe" input.nml --quiet --restart restart.checkpoint.h5
+  "${mpi[@]}" "$exe" "$nml" --quiet --restart restart.checkpoint.h5
   if cmp -s restart.h5 uninterrupted.h5; then
     echo "PASS (mpirun -np 2): killed, resumed from 2 checkpoint files: identical to the uninterrupted run"
   else
@@ -72,7 +74,7 @@ if [ "$mpiexec" != "none" ]; then
 fi
 
 # A checkpoint of another input is refused with exit status 2 and a message.
-sed 's/seed = 11/seed = 12/' input.nml > other.nml
+sed 's/seed = [0-9]*/seed = 12345/' "$nml" > other.nml
 set +e
 "$exe" other.nml --quiet --output other.h5 --restart first.checkpoint.h5 2> refused.txt
 status=$?
