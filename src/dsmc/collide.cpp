@@ -245,8 +245,7 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target) {
   const std::size_t blocks = block_first_.size() - 1;
   const double n_total = static_cast<double>(sys_.size());
   const double n = mix_.total_density();
-  const double cross_section = tables_ ? cross_section_[0] : std::numbers::pi * mix_.contact_distance(0, 0) *
-                                                              mix_.contact_distance(0, 0) * mix_.pair_correlation(0, 0);
+  const double cross_section = cross_section_[0];  // one species: the tables always exist
   while (time_ < t_target) {
     if (time_ >= next_step_time_) {
       // Events are checked between steps only: all blocks are then at the same time.

@@ -61,19 +61,21 @@ class ProgressLine {
   Clock::time_point start_, last_{};
 };
 
+/// `path` without a trailing ".h5".
+std::string without_h5(std::string path) {
+  if (path.size() > 3 && path.compare(path.size() - 3, 3, ".h5") == 0) path.resize(path.size() - 3);
+  return path;
+}
+
 /// `<output stem>.checkpoint.h5` (INTERFACE.md), `.rank<k>` before `.h5` for MPI rank k > 0.
 std::string checkpoint_path(const std::string& output_path, int rank) {
-  std::string stem = output_path;
-  if (stem.size() > 3 && stem.compare(stem.size() - 3, 3, ".h5") == 0) stem.resize(stem.size() - 3);
-  return rank == 0 ? stem + ".checkpoint.h5" : stem + ".checkpoint.rank" + std::to_string(rank) + ".h5";
+  const std::string stem = without_h5(output_path) + ".checkpoint";
+  return rank == 0 ? stem + ".h5" : stem + ".rank" + std::to_string(rank) + ".h5";
 }
 
 /// Rank k's file of the checkpoint whose rank-0 file is `path`.
 std::string rank_file(const std::string& path, int rank) {
-  if (rank == 0) return path;
-  std::string stem = path;
-  if (stem.size() > 3 && stem.compare(stem.size() - 3, 3, ".h5") == 0) stem.resize(stem.size() - 3);
-  return stem + ".rank" + std::to_string(rank) + ".h5";
+  return rank == 0 ? path : without_h5(path) + ".rank" + std::to_string(rank) + ".h5";
 }
 
 /// Mixtures with more species than this record neither `collisions_pair` (S(S+1)/2 columns) nor
