@@ -190,6 +190,33 @@ TEST_F(CliDsmc, PrintDefaults) {
   EXPECT_EQ(t.status, 0) << t.err;
 }
 
+TEST_F(CliDsmc, AggFragRunWritesClusterObservables) {
+  const Result r = dsmc(
+      "&system mass = 1.0, diameter = 1.0, number_density = 0.1, restitution = 0.8 /\n"
+      "&dsmc scheme = 'lowrank', n_particles = 500, t_end = 5.0, replicas = 2 /\n"
+      "&output file = 'out.h5', sample_times = 1.0, 2.0 /\n"
+      "&agg_frag aggregation_energy = 0.5, fragmentation_energy = 1.5, fragment_restitution = 0.5 /\n");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(files(), (std::vector<std::string>{"out.h5", "t.nml"}));
+  expect_no_temporary_file();
+}
+
+TEST_F(CliDsmc, AggFragBadInputLeavesNoFile) {
+  const std::string head =
+      "&system mass = 1.0, diameter = 1.0, number_density = 0.1, restitution = 0.8 /\n"
+      "&dsmc scheme = 'lowrank', n_particles = 500, t_end = 5.0 /\n"
+      "&output file = 'out.h5' /\n";
+  expect_input_error(dsmc(head + "&agg_frag aggregation_energy = -0.5 /\n"), "granular-dsmc",
+                     "t.nml:4: &agg_frag: aggregation_energy: ", {"outside"});
+  expect_input_error(dsmc(head + "&agg_frag fragmentation_energy = 1.0, fragment_restitution = 2.0 /\n"),
+                     "granular-dsmc", "t.nml:4: &agg_frag: fragment_restitution: ", {"outside [0, 1]"});
+  expect_input_error(
+      dsmc("&system mass = 1.0, diameter = 1.0, number_density = 0.1, restitution = 0.8 /\n"
+           "&dsmc scheme = 'majorant', n_particles = 500, t_end = 5.0 /\n&output file = 'out.h5' /\n"
+           "&agg_frag aggregation_energy = 0.5 /\n"),
+      "granular-dsmc", "t.nml:2: &dsmc: scheme: ", {"'lowrank'"});
+}
+
 TEST_F(CliDsmc, Help) {
   const Result r = run("granular-dsmc", "--help");
   EXPECT_EQ(r.status, 0);

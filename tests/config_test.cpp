@@ -350,6 +350,8 @@ TEST(ConfigResolved, ContainsEveryFieldOfEveryGroup) {
   expected.erase("output:checkpoint_every");
   expected.erase("sweep:variable");  // written only by a sweep
   expected.erase("sweep:values");
+  for (const char* v : {"aggregation_energy", "fragmentation_energy", "fragment_restitution"})
+    expected.erase(std::string("agg_frag:") + v);  // written only with &agg_frag
   EXPECT_EQ(names, expected);
   for (const char* n : {"system:n_species", "system:mass", "system:diameter", "system:number_density",
                         "system:restitution", "system:restitution_model", "system:enskog",
@@ -422,6 +424,8 @@ TEST(ConfigReference, MentionsEveryVariable) {
   const auto checkpointed = resolved_names(read_text(with_line(16, "  n_samples = 3, checkpoint_every = 60.0")));
   EXPECT_EQ(checkpointed.count("output:checkpoint_every"), 1u);
   all.insert(checkpointed.begin(), checkpointed.end());
+  for (const char* v : {"aggregation_energy", "fragmentation_energy", "fragment_restitution"})
+    all.insert(std::string("agg_frag:") + v);
   for (const auto& name : all) {
     const std::string variable = name.substr(name.find(':') + 1);
     EXPECT_NE(md.find("`" + variable + "`"), std::string::npos) << variable;
@@ -803,4 +807,94 @@ TEST(ConfigSweep, QuotedValuesSweepAnArray) {
   const auto points = c.sweep_points();
   ASSERT_EQ(points.size(), 2u);
   EXPECT_EQ(points[1].system.number_density, (std::vector<double>{0.03, 0.06}));
+}
+
+// ---------------------------------------------------------------------------------------------
+// &agg_frag (ERRATA §12) and &output sample_times
+// ---------------------------------------------------------------------------------------------
+namespace {
+/// A monomer gas with &agg_frag; line 5 is the &agg_frag line, line 3 the &dsmc line.
+std::string monomers(const std::string& agg_frag = "&agg_frag aggregation_energy = 0.5, fragmentation_energy = 1.5, "
+                                                   "fragment_restitution = 0.5 /",
+                     const std::string& dsmc = "&dsmc scheme = 'lowrank', n_particles = 100, t_end = 5.0 /",
+                     const std::string& system = "&system mass = 1.0, diameter = 1.0, number_density = 0.1, "
+                                                 "restitution = 0.8 /",
+                     const std::string& output = "&output n_samples = 3 /") {
+  return system + "\n&initial temperature = 1.0 /\n" + dsmc + "\n" + output + "\n" + agg_frag + "\n";
+}
+}  // namespace
+
+TEST(ConfigAggFrag, ValidGroupIsReadAndResolved) {
+  const auto c = read_text(monomers());
+  ASSERT_TRUE(c.has_agg_frag);
+  EXPECT_EQ(*c.agg_frag.aggregation_energy, 0.5);
+  EXPECT_EQ(*c.agg_frag.fragmentation_energy, 1.5);
+  EXPECT_EQ(*c.agg_frag.fragment_restitution, 0.5);
+  const auto names = resolved_names(c);
+  EXPECT_TRUE(names.count("agg_frag:aggregation_energy"));
+  EXPECT_FALSE(read_text(with_line(16, "  n_samples = 3")).has_agg_frag);
+}
+
+TEST(ConfigAggFrag, PureStickingNeedsNoFragmentRestitution) {
+  const auto c = read_text(monomers("&agg_frag aggregation_energy = 100.0 /"));
+  EXPECT_FALSE(c.agg_frag.fragmentation_energy.has_value());
+}
+
+TEST(ConfigAggFrag, BadInputNamesTheVariable) {
+  expect_error(error_of(monomers("&agg_frag aggregation_energy = -1.0 /")), 5, "agg_frag", "aggregation_energy",
+               {"outside [0"});
+  expect_error(error_of(monomers("&agg_frag fragmentation_energy = -2.0, fragment_restitution = 0.5 /")), 5,
+               "agg_frag", "fragmentation_energy", {"outside [0"});
+  expect_error(error_of(monomers("&agg_frag fragmentation_energy = 2.0, fragment_restitution = 1.5 /")), 5,
+               "agg_frag", "fragment_restitution", {"outside [0, 1]"});
+  expect_error(error_of(monomers("&agg_frag fragmentation_energy = 2.0 /")), 5, "agg_frag", "fragment_restitution",
+               {"required with fragmentation_energy"});
+  expect_error(error_of(monomers("&agg_frag aggregation_energy = 2.0, fragment_restitution = 0.5 /")), 5, "agg_frag",
+               "fragment_restitution", {"only used with fragmentation_energy"});
+  expect_error(error_of(monomers("&agg_frag /")), 5, "agg_frag", "aggregation_energy",
+               {"aggregation_energy, fragmentation_energy or both"});
+  expect_error(error_of(monomers("&agg_frag aggregation_energy = 1.0, typo = 2 /")), 5, "agg_frag", "typo",
+               {"unknown variable"});
+}
+
+TEST(ConfigAggFrag, CombinationsItCannotRunAreRefused) {
+  const std::string af = "&agg_frag aggregation_energy = 1.0 /";
+  expect_error(error_of(monomers(af, "&dsmc scheme = 'majorant', n_particles = 100, t_end = 5.0 /")), 3, "dsmc",
+               "scheme", {"'lowrank' only"});
+  expect_error(error_of(monomers(af, "&dsmc scheme = 'pairs', n_particles = 100, t_end = 5.0 /")), 3, "dsmc",
+               "scheme", {"'lowrank' only"});
+  expect_error(error_of(monomers(af, "&dsmc n_particles = 100, t_end = 5.0 /")), 3, "dsmc", "scheme",
+               {"set scheme = 'lowrank'"});
+  expect_error(error_of(monomers(af, "&dsmc scheme = 'lowrank', n_particles = 100, t_end = 5.0 /",
+                                 "&system n_species = 2, mass = 1.0, 2.0, diameter = 1.0, 1.0, "
+                                 "number_density = 0.1, 0.1, restitution = 0.8 /")),
+               1, "system", "n_species", {"n_species must be 1"});
+  expect_error(error_of(monomers(af, "&dsmc scheme = 'lowrank', n_particles = 100, t_end = 5.0 /",
+                                 "&system mass = 1.0, diameter = 1.0, number_density = 0.1, restitution = 0.8, "
+                                 "enskog = .true. /")),
+               1, "system", "enskog", {"dilute"});
+  expect_error(error_of(monomers(af, "&dsmc scheme = 'lowrank', n_particles = 100, t_end = 5.0 /",
+                                 "&system mass = 1.0, diameter = 1.0, number_density = 0.1, "
+                                 "restitution_model = 'viscoelastic', visco_a_kappa = 0.1 /")),
+               1, "system", "restitution_model", {"'constant' only"});
+  expect_error(error_of(monomers(af, "&dsmc scheme = 'lowrank', n_particles = 100, t_end = 5.0 /",
+                                 "&system mass = 1.0, diameter = 1.0, number_density = 0.1, restitution = 0.8 /",
+                                 "&output track_displacements = .true. /")),
+               4, "output", "track_displacements", {"not tracked"});
+}
+
+TEST(ConfigSampleTimes, ExplicitListWithZeroAndTheEnd) {
+  const auto c = read_text(with_line(16, "  sample_times = 1.0, 2.5, 4.0"));
+  EXPECT_EQ(c.sample_times(), (std::vector<double>{0.0, 1.0, 2.5, 4.0, 10.0}));
+  const auto d = read_text(with_line(16, "  sample_times = 1.0, 10.0"));
+  EXPECT_EQ(d.sample_times(), (std::vector<double>{0.0, 1.0, 10.0}));
+}
+
+TEST(ConfigSampleTimes, BadListsAreRefused) {
+  expect_error(error_of(with_line(16, "  sample_times = 1.0, 0.5")), 16, "output", "sample_times", {"must increase"});
+  expect_error(error_of(with_line(16, "  sample_times = 1.0, 11.0")), 16, "output", "sample_times",
+               {"beyond the end of the run"});
+  expect_error(error_of(with_line(16, "  sample_times = 0.0, 1.0")), 16, "output", "sample_times", {"outside (0"});
+  expect_error(error_of(with_line(16, "  sample_times = 1.0, n_samples = 4")), 16, "output", "n_samples",
+               {"not used with sample_times"});
 }

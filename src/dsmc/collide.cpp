@@ -359,27 +359,6 @@ int Collider::run_substep(double t_stop, std::uint64_t event_target, TryCandidat
   return static_cast<int>(Stop::reached_time);
 }
 
-// e ~ (g_hat.e) on the hemisphere (ERRATA §2): e = (g_hat + w)/|g_hat + w|, w uniform on the
-// sphere, has exactly that density (the ray from the origin meets the sphere |p - g_hat| = 1 at
-// distance 2 cos(theta), with area element 4 cos(theta) dOmega). Returns false for w = -g_hat
-// exactly (probability zero).
-template <class Gen>
-static bool hemisphere_normal(Gen& gen, double gx, double gy, double gz, double g, double& ex, double& ey,
-                              double& ez) {
-  double wx, wy, wz;
-  rng::unit_vector(gen, wx, wy, wz);
-  const double inv_g = 1.0 / g;
-  ex = gx * inv_g + wx;
-  ey = gy * inv_g + wy;
-  ez = gz * inv_g + wz;
-  const double norm2 = ex * ex + ey * ey + ez * ez;
-  if (norm2 == 0.0) return false;
-  const double inv_norm = 1.0 / std::sqrt(norm2);
-  ex *= inv_norm;
-  ey *= inv_norm;
-  ez *= inv_norm;
-  return true;
-}
 
 void Collider::prefetch(const PendingPair& p) const {
   // A Vec3 may straddle two cache lines: touch its first and last byte.

@@ -91,6 +91,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -123,6 +124,29 @@ inline double apply_collision(particles::System& sys, std::size_t a, std::size_t
   vb.y += db * ey;
   vb.z += db * ez;
   return g_dot_e;
+}
+
+/// e with density proportional to (g_hat.e) on the hemisphere g.e > 0 (ERRATA §2), the direction of
+/// a collision of relative velocity g (|g| = g): e = (g_hat + w)/|g_hat + w|, w uniform on the
+/// sphere, has exactly that density (the ray from the origin meets the sphere |p - g_hat| = 1 at
+/// distance 2 cos(theta), with area element 4 cos(theta) dOmega). Returns false for w = -g_hat
+/// exactly (probability zero). Shared by the schemes here and by agg_frag.
+template <class Gen>
+inline bool hemisphere_normal(Gen& gen, double gx, double gy, double gz, double g, double& ex, double& ey,
+                              double& ez) {
+  double wx, wy, wz;
+  rng::unit_vector(gen, wx, wy, wz);
+  const double inv_g = 1.0 / g;
+  ex = gx * inv_g + wx;
+  ey = gy * inv_g + wy;
+  ez = gz * inv_g + wz;
+  const double norm2 = ex * ex + ey * ey + ez * ez;
+  if (norm2 == 0.0) return false;
+  const double inv_norm = 1.0 / std::sqrt(norm2);
+  ex *= inv_norm;
+  ey *= inv_norm;
+  ez *= inv_norm;
+  return true;
 }
 
 /// Per-species-pair event counts are kept for mixtures of at most this many species.

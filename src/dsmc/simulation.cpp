@@ -15,6 +15,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "dsmc/agg_frag.hpp"
 #include "dsmc/collide.hpp"
 #include "dsmc/parallel.hpp"
 #include "dsmc/particles.hpp"
@@ -315,11 +316,193 @@ void load_snapshot(const Snapshot& snap, particles::System& sys, collide::Collid
 /// Called between collision chunks and after each sample with a way to snapshot the replica.
 using SafePoint = std::function<void(const std::function<Snapshot()>&)>;
 
+// ---------------------------------------------------------------------------------------------
+// Aggregation and fragmentation (&agg_frag): the cluster gas of agg_frag.hpp in a loop of its own
+// ---------------------------------------------------------------------------------------------
+
+/// The monomer of &system and the thresholds of &agg_frag (ERRATA §12).
+agg_frag::Model agg_frag_model(const io::config::Config& c) {
+  agg_frag::Model m;
+  m.monomer_mass = c.system.mass[0];
+  m.monomer_diameter = c.system.diameter[0];
+  m.monomer_density = c.system.number_density[0];
+  m.restitution = c.system.restitution(0, 0);
+  m.aggregation_energy = c.agg_frag.aggregation_energy.value_or(0.0);
+  m.fragmentation_energy = c.agg_frag.fragmentation_energy.value_or(std::numeric_limits<double>::infinity());
+  m.fragment_restitution = c.agg_frag.fragment_restitution.value_or(1.0);
+  return m;
+}
+
+Snapshot make_agg_frag_snapshot(const agg_frag::Gas& gas, std::uint64_t next_sample, const ReplicaResult& partial) {
+  Snapshot snap;
+  store_result(snap, partial);
+  const agg_frag::Gas::State s = gas.state();
+  snap.reals["clusters/velocity"] = s.velocity;
+  snap.integers["clusters/size"] = s.size;
+  snap.integers["clusters/slot"] = s.slot;
+  snap.reals["clusters/max_speed"] = s.max_speed;
+  snap.reals["clusters/clock"] = {s.time, s.credit, s.next_step_time, s.counters.step_sum, s.counters.dissipated,
+                                  s.generator.spare};
+  snap.integers["clusters/counters"] = {s.counters.events, s.counters.aggregations, s.counters.fragmentations,
+                                        s.counters.candidates, s.counters.steps, s.capacity,
+                                        s.largest_reached, s.generator.has_spare, next_sample};
+  snap.integers["clusters/generator"] = {s.generator.s[0], s.generator.s[1], s.generator.s[2], s.generator.s[3]};
+  return snap;
+}
+
+std::uint64_t load_agg_frag_snapshot(const Snapshot& snap, agg_frag::Gas& gas, ReplicaResult& partial) {
+  partial = load_result(snap);
+  agg_frag::Gas::State s;
+  s.velocity = snap.reals.at("clusters/velocity");
+  s.size = snap.integers.at("clusters/size");
+  s.slot = snap.integers.at("clusters/slot");
+  s.max_speed = snap.reals.at("clusters/max_speed");
+  const auto& clock = snap.reals.at("clusters/clock");
+  const auto& counters = snap.integers.at("clusters/counters");
+  const auto& generator = snap.integers.at("clusters/generator");
+  s.time = clock.at(0);
+  s.credit = clock.at(1);
+  s.next_step_time = clock.at(2);
+  s.counters.step_sum = clock.at(3);
+  s.counters.dissipated = clock.at(4);
+  s.generator.spare = clock.at(5);
+  s.counters.events = counters.at(0);
+  s.counters.aggregations = counters.at(1);
+  s.counters.fragmentations = counters.at(2);
+  s.counters.candidates = counters.at(3);
+  s.counters.steps = counters.at(4);
+  s.capacity = counters.at(5);
+  s.largest_reached = counters.at(6);
+  s.generator.has_spare = counters.at(7) != 0;
+  for (int k = 0; k < 4; ++k) s.generator.s[k] = generator.at(k);
+  gas.restore(s);
+  return counters.at(8);
+}
+
+/// The per-size observables of the cluster gas: one row per sample, each as wide as the largest
+/// size present then ("name@sample"), until the replica ends and pads them to one width.
+constexpr const char* kSizeObservables[] = {"number", "size_energy"};
+
+void pad_size_rows(ReplicaResult& result, std::size_t n_samples) {
+  for (const char* name : kSizeObservables) {
+    std::size_t width = 1;
+    for (std::size_t i = 0; i < n_samples; ++i) width = std::max(width, result.rows[name + ("@" + std::to_string(i))].first);
+    std::vector<double> rows(n_samples * width, 0.0);
+    for (std::size_t i = 0; i < n_samples; ++i) {
+      const auto key = name + ("@" + std::to_string(i));
+      const auto& row = result.rows[key].second;
+      std::copy(row.begin(), row.end(), rows.begin() + static_cast<std::ptrdiff_t>(i * width));
+      result.rows.erase(key);
+    }
+    result.rows[name] = {width, std::move(rows)};
+  }
+}
+
+/// Pads the per-size rows of all replicas of a point to the largest size any of them reached.
+void pad_size_columns(std::vector<ReplicaResult>& replicas) {
+  for (const char* name : kSizeObservables) {
+    std::size_t width = 0;
+    for (auto& r : replicas) width = std::max(width, r.rows[name].first);
+    for (auto& r : replicas) {
+      auto& [columns, values] = r.rows[name];
+      if (columns == width) continue;
+      const std::size_t n = values.size() / columns;
+      std::vector<double> wide(n * width, 0.0);
+      for (std::size_t i = 0; i < n; ++i)
+        std::copy(values.begin() + static_cast<std::ptrdiff_t>(i * columns),
+                  values.begin() + static_cast<std::ptrdiff_t>((i + 1) * columns),
+                  wide.begin() + static_cast<std::ptrdiff_t>(i * width));
+      columns = width;
+      values = std::move(wide);
+    }
+  }
+}
+
+/// Replica r of an &agg_frag run: from N_0 monomers, sampled at the Config's sample points (times,
+/// or collisions per initial monomer 2 x events / N_0).
+ReplicaResult run_agg_frag_replica(const io::config::Config& config, const Options& options, Progress& progress,
+                                   std::size_t slot, const std::string& label, std::size_t r, const Snapshot* resume,
+                                   const SafePoint& safe_point) {
+  const auto n0 = static_cast<std::size_t>(config.dsmc.n_particles);
+  const double initial_monomers = static_cast<double>(n0);
+  const auto seed = static_cast<std::uint64_t>(config.dsmc.seed);
+  const bool time_driven = config.dsmc.t_end.has_value();
+  const std::vector<double> targets = time_driven ? config.sample_times() : config.sample_collisions();
+  const std::size_t n_samples = targets.size();
+  agg_frag::Gas gas(agg_frag_model(config), n0, config.initial.temperature[0],
+                    parse_distribution(config.initial.distribution), rng::make_stream(seed, r, rng::Purpose::initial_state),
+                    rng::make_stream(seed, r, rng::Purpose::collisions), config.dsmc.step_fraction);
+  ReplicaResult result;
+  std::uint64_t next_sample = 0;
+  if (resume) next_sample = load_agg_frag_snapshot(*resume, gas, result);
+  const double final_events = time_driven ? 0.0 : std::ceil(targets.back() * initial_monomers / 2.0);
+  auto fraction_done = [&] {
+    const double f = time_driven ? gas.time() / targets.back()
+                                 : static_cast<double>(gas.counters().events) / std::max(1.0, final_events);
+    return std::min(f, 0.999);
+  };
+  std::uint64_t reported_events = gas.counters().events;
+  auto report = [&](double fraction) {
+    const std::uint64_t events = gas.counters().events;
+    progress.update(slot, fraction, label, gas.time(), events - reported_events);
+    reported_events = events;
+  };
+  const std::function<Snapshot()> snapshot = [&] { return make_agg_frag_snapshot(gas, next_sample, result); };
+
+  for (; next_sample < n_samples; ++next_sample, safe_point(snapshot)) {
+    const std::size_t i = next_sample;
+    if (options.interrupt && options.interrupt->load()) throw Interrupted();
+    const auto t0 = Clock::now();
+    const double t_target = time_driven ? targets[i] : std::numeric_limits<double>::infinity();
+    const std::uint64_t event_target =
+        time_driven ? std::numeric_limits<std::uint64_t>::max()
+                    : static_cast<std::uint64_t>(std::ceil(targets[i] * initial_monomers / 2.0));
+    // Chunks of events, as in run_replica: interrupts, progress and checkpoints at fixed events.
+    constexpr std::uint64_t kChunk = 1u << 19;
+    for (;;) {
+      const std::uint64_t done = gas.counters().events;
+      const std::uint64_t chunk_end = event_target - done > kChunk ? done + kChunk : event_target;
+      const bool stopped_by_events = gas.advance(t_target, chunk_end);
+      if (!stopped_by_events || gas.counters().events >= event_target) break;
+      if (options.interrupt && options.interrupt->load()) throw Interrupted();
+      report(fraction_done());
+      safe_point(snapshot);
+    }
+    if (!time_driven && gas.counters().events < event_target)
+      throw std::runtime_error("the gas aggregated into one cluster at t = " + std::to_string(gas.time()) +
+                               " before collisions_per_particle = " + std::to_string(targets[i]) +
+                               " was reached; give t_end instead");
+    result.collide_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+
+    const agg_frag::Measurement m = gas.measure();
+    const auto& counters = gas.counters();
+    const std::string at = "@" + std::to_string(i);
+    result.add("number" + at, m.number.size(), m.number);
+    result.add("size_energy" + at, m.energy.size(), m.energy);
+    result.add("total_temperature", 1, {2.0 / 3.0 * m.kinetic_energy / m.clusters});  // per cluster, ERRATA §12
+    result.add("kinetic_energy", 1, {m.kinetic_energy / initial_monomers});
+    result.add("mean_size", 1, {initial_monomers / m.clusters});
+    result.add("monomer_fraction", 1, {m.number[0] / initial_monomers});
+    result.add("collisions", 1, {static_cast<double>(counters.events)});
+    result.add("aggregations", 1, {static_cast<double>(counters.aggregations)});
+    result.add("fragmentations", 1, {static_cast<double>(counters.fragmentations)});
+    result.add("dissipated_energy", 1, {counters.dissipated / initial_monomers});
+    result.add("collisions_per_particle", 1, {2.0 * static_cast<double>(counters.events) / initial_monomers});
+    result.add("time", 1, {gas.time()});
+    report(i + 1 == n_samples ? 1.0 : fraction_done());
+  }
+  pad_size_rows(result, n_samples);
+  result.events = gas.counters().events;
+  result.mean_step = gas.mean_step();
+  return result;
+}
+
 /// Runs replica r of one Config, from the start or from `resume`. `slot` is its place in this
 /// rank's progress; `label` names it.
 ReplicaResult run_replica(const io::config::Config& config, const Options& options, Progress& progress,
                           std::size_t slot, const std::string& label, std::size_t r, const Snapshot* resume,
                           const SafePoint& safe_point) {
+  if (config.has_agg_frag) return run_agg_frag_replica(config, options, progress, slot, label, r, resume, safe_point);
   const species::Mixture mix = config.mixture();
   const std::size_t s = mix.size();
   const auto counts = particles::species_counts(static_cast<std::size_t>(config.dsmc.n_particles), mix);
@@ -673,6 +856,64 @@ void write_reduced(io::h5md::Writer& writer, const std::string& root, const io::
                                      "seed 003 eq 27, g = G_i of eq 30 (measured c_i, lambda_i, zeta*)"));
 }
 
+/// The observables of an &agg_frag point. T_k of a size that most replicas lack is not the mean of
+/// per-replica temperatures: it is the ratio estimator T_k = (2/3) sum_r E_kr / sum_r N_kr (E_kr the
+/// kinetic energy of size k in replica r), with the delta-method standard error
+/// sqrt(sum_r (E_kr - rho N_kr)^2 / (R (R - 1))) / mean_r N_kr times 2/3, rho = sum E/sum N; 0 where
+/// no replica has a cluster of that size (never NaN).
+void write_agg_frag_point(io::h5md::Writer& writer, const std::string& root, PointResult& result,
+                          const std::vector<long long>& step, const std::vector<double>& time_mean) {
+  auto& acc = result.observables;
+  for (const auto& [name, a] : acc) {
+    if (name == "size_energy") continue;
+    io::h5md::Series series;
+    series.time = time_mean;
+    series.step = step;
+    series.value = a.mean();
+    series.columns = a.columns;
+    series.error = a.standard_error();
+    writer.write_observable(root + "/" + name, series);
+  }
+  const auto& number = acc["number"];
+  const auto& energy = acc["size_energy"];
+  const std::size_t width = number.columns, replicas = number.values.size();
+  io::h5md::Series temperature;
+  temperature.time = time_mean;
+  temperature.step = step;
+  temperature.columns = width;
+  for (std::size_t c = 0; c < time_mean.size() * width; ++c) {
+    double sum_n = 0.0, sum_e = 0.0;
+    for (std::size_t r = 0; r < replicas; ++r) {
+      sum_n += number.values[r][c];
+      sum_e += energy.values[r][c];
+    }
+    const double rho = sum_n > 0.0 ? sum_e / sum_n : 0.0;
+    temperature.value.push_back(2.0 / 3.0 * rho);
+    if (replicas > 1) {
+      double residual2 = 0.0;
+      for (std::size_t r = 0; r < replicas; ++r) {
+        const double d = energy.values[r][c] - rho * number.values[r][c];
+        residual2 += d * d;
+      }
+      const double mean_n = sum_n / static_cast<double>(replicas);
+      const double rr = static_cast<double>(replicas);
+      temperature.error.push_back(mean_n > 0.0 ? 2.0 / 3.0 * std::sqrt(residual2 / (rr * (rr - 1.0))) / mean_n : 0.0);
+    }
+  }
+  writer.write_observable(root + "/temperature", temperature);
+  writer.write_attribute(root + "/number", "description",
+                         std::string("clusters of size k = column + 1 (k monomers), per replica"));
+  writer.write_attribute(root + "/temperature", "description",
+                         std::string("T_k = m_k <|v-u|^2>/3 of clusters of size k = column + 1: ratio of the replica "
+                                     "sums (2/3) sum E_k / sum N_k; 0 where no replica has such a cluster"));
+  writer.write_attribute(root + "/total_temperature", "description",
+                         std::string("per cluster: sum_k N_k T_k / N (ERRATA §12)"));
+  writer.write_attribute(root + "/kinetic_energy", "description",
+                         std::string("kinetic energy relative to the mean flow per initial monomer"));
+  writer.write_attribute(root + "/dissipated_energy", "description",
+                         std::string("energy lost in collisions so far per initial monomer, added event by event"));
+}
+
 /// Writes one point's observables under `root` ("/observables" or "/sweep/point_K/observables").
 void write_point(io::h5md::Writer& writer, const std::string& root, const io::config::Config& config,
                  PointResult& result) {
@@ -684,6 +925,10 @@ void write_point(io::h5md::Writer& writer, const std::string& root, const io::co
   const std::size_t n_samples = time_mean.size();
   std::vector<long long> step(n_samples);
   for (std::size_t i = 0; i < n_samples; ++i) step[i] = static_cast<long long>(i);
+  if (config.has_agg_frag) {
+    write_agg_frag_point(writer, root, result, step, time_mean);
+    return;
+  }
 
   for (const auto& [name, a] : acc) {
     if (name == "velocity_histogram" || name == "msd_start" || name.rfind("reduced_", 0) == 0) continue;
@@ -861,7 +1106,10 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
     }
   }
   std::vector<PointResult> results;
-  for (auto& replicas : by_point) results.push_back(reduce_point(replicas));
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    if (points[p].has_agg_frag) pad_size_columns(by_point[p]);
+    results.push_back(reduce_point(by_point[p]));
+  }
   io::h5md::Writer& writer = *writer_storage;
 
   writer.write_parameters(config.resolved(), config.namelist_text);

@@ -148,6 +148,27 @@ const std::vector<Field<Output>>& output_fields() {
        "... or from the first sample at which the total temperature is at or below this value", kPositive},
       {"histogram_range", &Output::histogram_range, "sqrt(T_k/m_k)",
        "velocity histograms cover [-range, range] in thermal units", kPositive},
+      {"sample_times", &Output::sample_times, "time (or collisions per particle)",
+       "explicit sample points after 0, increasing; overrides n_samples and spacing (t = 0 is always "
+       "sampled, and the end of the run too)",
+       kPositive},
+  };
+  return fields;
+}
+
+const std::vector<Field<AggFrag>>& agg_frag_fields() {
+  static const std::vector<Field<AggFrag>> fields = {
+      {"aggregation_energy", &AggFrag::aggregation_energy, "energy",
+       "E_agg: a colliding pair whose impact energy m_kj g^2/2 is below it sticks (ERRATA §12)",
+       at_least(0)},
+      {"fragmentation_energy", &AggFrag::fragmentation_energy, "energy",
+       "E_frag: a pair (not two monomers) whose normal energy m_kj (g.e)^2/2 is above it shatters into "
+       "monomers (unset: never)",
+       at_least(0)},
+      {"fragment_restitution", &AggFrag::fragment_restitution, "",
+       "eps_f: the fragments carry eps_f^2 of the impact energy in the centre-of-mass frame (required with "
+       "fragmentation_energy)",
+       kUnit},
   };
   return fields;
 }
@@ -308,6 +329,7 @@ std::string owning_group(const std::string& name) {
   if (has(initial_fields())) return "initial";
   if (has(dsmc_fields())) return "dsmc";
   if (has(output_fields())) return "output";
+  if (has(agg_frag_fields())) return "agg_frag";
   if (has(sweep_fields())) return "sweep";
   return "";
 }
@@ -514,6 +536,26 @@ void check_output(Output& out, const Dsmc& d, const Provenance& prov) {
     throw Error(prov.file, prov.line.at("msd_start_time"), "output", "msd_start_time",
                 "msd_start_time must be below t_end");
   const double end = d.t_end ? *d.t_end : *d.collisions_per_particle;
+  if (!out.sample_times.empty()) {
+    const std::string file = prov.file_of("sample_times");
+    const int line = prov.line.at("sample_times");
+    for (const char* v : {"n_samples", "spacing", "first_sample"})
+      if (prov.line.count(v))
+        throw Error(prov.file_of(v), prov.line.at(v), "output", v,
+                    "not used with sample_times (the explicit list sets every sample point)");
+    for (std::size_t k = 0; k < out.sample_times.size(); ++k) {
+      if (std::isnan(out.sample_times[k]))
+        throw Error(file, line, "output", "sample_times", "sample_times(" + std::to_string(k + 1) + ") is not given");
+      if (k > 0 && !(out.sample_times[k] > out.sample_times[k - 1]))
+        throw Error(file, line, "output", "sample_times",
+                    "sample_times must increase: element " + std::to_string(k + 1) + " is not above element " +
+                        std::to_string(k));
+    }
+    if (out.sample_times.back() > end)
+      throw Error(file, line, "output", "sample_times",
+                  "the last sample point is beyond the end of the run (" + std::to_string(end) + ")");
+    return;
+  }
   if (out.spacing == "log") {
     if (!out.first_sample) out.first_sample = end / 1000.0;  // derive
     if (*out.first_sample >= end)
@@ -525,7 +567,50 @@ void check_output(Output& out, const Dsmc& d, const Provenance& prov) {
   }
 }
 
+/// &agg_frag (ERRATA §12): the run starts from monomers of one constant-restitution, dilute
+/// species, and the model runs in dsmc/agg_frag.hpp's own loop; every combination it cannot run is
+/// refused here, naming the variable that asks for it.
+void check_agg_frag(const Config& c, std::map<std::string, Provenance>& prov) {
+  const std::string group = "agg_frag";
+  Provenance& p = prov[group];
+  const AggFrag& a = c.agg_frag;
+  const auto where = [&](const std::string& g, const char* v) {
+    const Provenance& q = prov[g];
+    return std::make_pair(q.file_of(v), q.line.count(v) ? q.line.at(v) : q.group_line);
+  };
+  const auto refuse = [&](const std::string& g, const char* v, const std::string& message) {
+    const auto [file, line] = where(g, v);
+    throw Error(file, line, g, v, message);
+  };
+  if (!a.aggregation_energy && !a.fragmentation_energy)
+    throw Error(p.file, p.group_line, group, "aggregation_energy",
+                "&agg_frag needs aggregation_energy, fragmentation_energy or both");
+  if (a.fragmentation_energy && !a.fragment_restitution)
+    throw Error(p.file_of("fragmentation_energy"), p.line.at("fragmentation_energy"), group, "fragment_restitution",
+                "required with fragmentation_energy");
+  if (!a.fragmentation_energy && a.fragment_restitution)
+    refuse(group, "fragment_restitution", "only used with fragmentation_energy");
+  if (c.system.n_species != 1)
+    refuse("system", "n_species",
+           "&agg_frag starts from monomers: n_species must be 1 (cluster sizes become the species)");
+  if (c.system.restitution_model != "constant")
+    refuse("system", "restitution_model", "&agg_frag runs with restitution_model = 'constant' only");
+  if (c.system.enskog) refuse("system", "enskog", "&agg_frag runs in the dilute gas only (enskog = .false.)");
+  if (c.dsmc.scheme != "lowrank")
+    refuse("dsmc", "scheme",
+           "&agg_frag runs with scheme = 'lowrank' only (cluster sizes as species, seed 001); set scheme = "
+           "'lowrank'");
+  if (c.output.track_displacements)
+    refuse("output", "track_displacements", "displacements are not tracked with &agg_frag");
+}
+
 std::vector<double> spaced(const Output& out, double end) {
+  if (!out.sample_times.empty()) {  // 0, the list, and the end of the run
+    std::vector<double> t{0.0};
+    t.insert(t.end(), out.sample_times.begin(), out.sample_times.end());
+    if (t.back() < end) t.push_back(end);
+    return t;
+  }
   const auto n = static_cast<std::size_t>(out.n_samples);
   std::vector<double> t(n, 0.0);
   if (out.spacing == "linear") {
@@ -644,6 +729,7 @@ bool is_string_variable(const std::string& group, const std::string& name) {
   if (group == "initial") return is_string_field(initial_fields(), name);
   if (group == "dsmc") return is_string_field(dsmc_fields(), name);
   if (group == "output") return is_string_field(output_fields(), name);
+  if (group == "agg_frag") return is_string_field(agg_frag_fields(), name);
   return false;
 }
 
@@ -679,7 +765,7 @@ void check_sweep(const Config& c, const Provenance& prov, const namelist::Docume
   if (colon == std::string::npos || target_group == "sweep" || owning_group(target) != target_group)
     throw Error(prov.file, line_of("variable"), group, "variable",
                 "'" + sweep.variable + "' is not 'group:name' of a variable of &system, &initial, "
-                "&dsmc or &output");
+                "&dsmc, &output or &agg_frag");
   for (std::size_t k = 0; k < sweep.values.size(); ++k) {
     auto o = overrides;
     o.push_back(sweep_override(sweep.variable, sweep.values[k]));
@@ -743,6 +829,7 @@ std::vector<h5md::Parameter> Config::resolved() const {
   append_resolved(out, "initial", initial, initial_fields());
   append_resolved(out, "dsmc", dsmc, dsmc_fields());
   append_resolved(out, "output", output, output_fields());
+  if (has_agg_frag) append_resolved(out, "agg_frag", agg_frag, agg_frag_fields());
   if (is_sweep()) append_resolved(out, "sweep", sweep, sweep_fields());
   return out;
 }
@@ -776,7 +863,7 @@ Config read_point(const namelist::Document& document, const std::vector<std::str
   c.namelist_text = document.text;
   c.overrides = overrides;
 
-  static const std::vector<std::string> known = {"system", "initial", "dsmc", "output", "sweep"};
+  static const std::vector<std::string> known = {"system", "initial", "dsmc", "output", "agg_frag", "sweep"};
   for (const auto& g : document.groups)
     if (std::find(known.begin(), known.end(), g.name) == known.end()) {
       const std::string hint = namelist::closest_name(g.name, known);
@@ -795,6 +882,7 @@ Config read_point(const namelist::Document& document, const std::vector<std::str
   auto read_all = [&](const std::string& name, auto& target, const auto& fields) {
     Provenance& p = prov[name];
     p.file = document.file;
+    if (const auto* g = document.find(name)) p.group_line = g->line;
     if (const auto* g = document.find(name)) read_group(target, fields, *g, document.file, p);
     for (const auto& doc : extra)  // errors and origins of what an override sets name the override
       if (const auto* g = doc.find(name)) {
@@ -810,7 +898,10 @@ Config read_point(const namelist::Document& document, const std::vector<std::str
   read_all("initial", c.initial, initial_fields());
   read_all("dsmc", c.dsmc, dsmc_fields());
   read_all("output", c.output, output_fields());
+  read_all("agg_frag", c.agg_frag, agg_frag_fields());
   read_all("sweep", c.sweep, sweep_fields());
+  c.has_agg_frag = document.find("agg_frag") != nullptr;
+  for (const auto& doc : extra) c.has_agg_frag = c.has_agg_frag || doc.find("agg_frag") != nullptr;
 
   for (const auto& [group, p] : prov)
     for (const auto& [variable, line] : p.line)
@@ -823,6 +914,7 @@ Config read_point(const namelist::Document& document, const std::vector<std::str
   check_initial(c.initial, static_cast<std::size_t>(c.system.n_species), prov["initial"]);
   check_dsmc(c.dsmc, c.mixture(), prov["dsmc"], document.find("dsmc")->line);
   check_output(c.output, c.dsmc, prov["output"]);
+  if (c.has_agg_frag) check_agg_frag(c, prov);
   if (!expand_sweep) {
     c.sweep = Sweep{};
   } else if (!prov["sweep"].line.empty()) {
@@ -856,7 +948,17 @@ std::string defaults_template() {
                  {{"mass", "1.0"}, {"diameter", "1.0"}, {"number_density", "0.01"}, {"restitution", "0.9"}});
   template_group(s, "initial", initial_fields(), {});
   template_group(s, "dsmc", dsmc_fields(), {{"t_end", "100.0"}, {"collisions_per_particle", "50.0"}});
-  template_group(s, "output", output_fields(), {{"first_sample", "0.1"}});
+  template_group(s, "output", output_fields(), {{"first_sample", "0.1"}, {"sample_times", "1.0, 2.0, 5.0"}});
+  s << "! Aggregation and fragmentation: uncomment the group to switch it on (one species = the monomer,\n"
+       "! scheme = 'lowrank').\n";
+  {
+    std::ostringstream g;
+    template_group(g, "agg_frag", agg_frag_fields(),
+                   {{"aggregation_energy", "0.5"}, {"fragmentation_energy", "1.5"}, {"fragment_restitution", "0.5"}});
+    std::istringstream lines(g.str());
+    for (std::string line; std::getline(lines, line);)
+      s << (line.empty() || line.rfind("!", 0) == 0 ? line : "! " + line) << "\n";
+  }
   template_group(s, "sweep", sweep_fields(),
                  {{"variable", "'system:restitution'"}, {"values", "0.5, 0.7, 0.9"}});
   return s.str();
@@ -868,6 +970,7 @@ std::string reference_markdown() {
   reference_group(s, "initial", initial_fields());
   reference_group(s, "dsmc", dsmc_fields());
   reference_group(s, "output", output_fields());
+  reference_group(s, "agg_frag", agg_frag_fields());
   reference_group(s, "sweep", sweep_fields());
   return s.str();
 }

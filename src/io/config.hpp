@@ -13,7 +13,8 @@
  * place a variable is declared: it drives the reader, the checks, `--print-defaults`, the input
  * reference in docs/ and the resolved input written to `/parameters` of every output file.
  *
- * Groups (INTERFACE.md): `&system` (required), `&initial`, `&dsmc` (required), `&output`, and
+ * Groups (INTERFACE.md): `&system` (required), `&initial`, `&dsmc` (required), `&output`,
+ * `&agg_frag` (aggregation and fragmentation, dsmc/agg_frag.hpp), and
  * `&sweep` (one variable over a list of values, each point its own run and output group).
  * Every error is an io::namelist::Error: `FILE:LINE: &group: variable: message`.
  * Checked by tests/config_test.cpp.
@@ -82,6 +83,16 @@ struct Output {
   bool track_displacements = false;            ///< msd observable (seed 001 eq 15)
   std::optional<double> msd_start_time;        ///< displacements count from this time, or
   std::optional<double> msd_start_temperature; ///< from the first sample with T at or below this
+  std::vector<double> sample_times;  ///< explicit sample points after 0 (time, or collisions per
+                                     ///< particle in collision-driven runs); overrides n_samples/spacing
+};
+
+/// &agg_frag: clusters that stick and shatter (seed 000 eqs 8-14, ERRATA §12; dsmc/agg_frag.hpp).
+/// The group's presence switches the model on (Config::has_agg_frag).
+struct AggFrag {
+  std::optional<double> aggregation_energy;    ///< E_agg: a pair with m_kj g^2/2 below it sticks
+  std::optional<double> fragmentation_energy;  ///< E_frag: m_kj (g.e)^2/2 above it shatters (unset: never)
+  std::optional<double> fragment_restitution;  ///< eps_f (required with fragmentation_energy)
 };
 
 /// &sweep: one variable over a list of values; every point is a run of its own (seed 003 figures
@@ -97,7 +108,9 @@ struct Config {
   System system;
   Initial initial;
   Dsmc dsmc;
- Output output;
+  Output output;
+  AggFrag agg_frag;
+  bool has_agg_frag = false;             ///< the namelist has an &agg_frag group
   Sweep sweep;
   std::string source_file;               ///< name of the namelist file
   std::string namelist_text;             ///< its text, verbatim

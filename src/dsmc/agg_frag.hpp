@@ -1,0 +1,208 @@
+/**
+ * \file agg_frag.hpp
+ * \brief Aggregation and fragmentation: a gas of clusters that stick and shatter on collision
+ *        (seed 000 eqs 8-14 and its steps 1-13, as corrected by ERRATA §12; docs/physics.md,
+ *        "Aggregation and fragmentation").
+ *
+ * **Clusters.** A cluster of k monomers has mass m_k = k m_1 and diameter sigma_k = k^(1/3) sigma_1
+ * (contact distance sigma_kj = (sigma_k + sigma_j)/2); the cluster size is its species. The run starts
+ * from N_0 monomers at temperature T_0 (&system gives the monomer: one species), and the number N of
+ * simulated clusters changes: aggregation N - 1, fragmentation N + K - 2, never above N_0.
+ *
+ * **Outcome of a collision** of clusters a (size k) and b (size j), g = v_a - v_b,
+ * m_kj = m_k m_j/(m_k + m_j), V = (m_k v_a + m_j v_b)/(m_k + m_j), classified in this order:
+ * - E_imp = m_kj g^2/2 < E_agg: **aggregation**, one cluster of k + j monomers with velocity V
+ *   (energy lost: exactly E_imp);
+ * - else, with e drawn as in collide.hpp (density ~ g_hat.e on the hemisphere, ERRATA §2),
+ *   E_n = m_kj (g.e)^2/2 > E_frag and k + j >= 3: **fragmentation** into K = k + j monomers,
+ *   v_i = V + u d_i, u = sqrt(k j) eps_f |g|/K, |d_i| = 1, sum_i d_i = 0 (ERRATA §12: K/2 random
+ *   unit vectors and their opposites; for odd K, (K - 3)/2 such pairs and one equilateral triple
+ *   a, -a/2 + (sqrt3/2) b, -a/2 - (sqrt3/2) b with b perpendicular to a). The centre-of-mass
+ *   kinetic energy after is K m_1 u^2/2 = eps_f^2 E_imp, so (1 - eps_f^2) E_imp is lost. Seed 000's
+ *   eq 14 (K - 1 random vectors and one balancing monomer) creates energy on average: not used.
+ *   Two monomers never shatter;
+ * - else: **bounce**, the collision rule of ERRATA §1 with the monomer restitution alpha
+ *   (energy lost (1 - alpha^2) E_n).
+ * The thresholds are energies, so the velocity thresholds depend on the pair (ERRATA §12).
+ *
+ * **Scheme.** The continuous-time low-rank scheme of seed 001 (eqs 9-14; collide.hpp `lowrank`,
+ * segment_tree.hpp) with the cluster sizes as species: the ordered size pair (i, k) of a candidate
+ * is drawn from the rank-3 majorant A_ik = pi sigma_ik^2 w_i N_i N_k / V (w_i the largest speed of
+ * size i, V = (N_0 - 1)/n_1 the fixed volume: F_N and V stay fixed, only N changes, ERRATA §12),
+ * then a cluster of each size uniformly, the same cluster twice rejected, accepted with
+ * |g|/(w_i + w_k). Every unordered cluster pair thus collides at pi sigma_ik^2 |g|/V, the rate of
+ * seed 000 eq 8 with the current N (N(N - 1)/2 pairs). After each event the counts N_k, the bounds
+ * w_k and so the trees change in O(log K) per changed size, and the next candidate comes after
+ * 1/R of the new total R: time advances per candidate with the current population, so there is no
+ * time-step bias (ERRATA §12: a time-stepped scheme with a fixed candidate count per step is biased
+ * by |d ln N/dt| dt). A size that empties has w = 0 and reappears with the speed of its first
+ * member; at every step start (step_fraction majorant mean free times) all w_k are recomputed
+ * exactly. Post-collision speeds above w_k raise it at once (fragments can outrun both parents).
+ *
+ * **Storage** (no allocation per event). Velocities (Vec3) and sizes in parallel arrays reserved for
+ * N_0 clusters; clusters of size k are listed in members[k] (a cluster's place there in `slot`), so
+ * "a random cluster of size k" is one draw. A removed cluster's place is filled by the last one
+ * (swap with last), fragments are appended. The per-size tables grow by doubling as larger clusters
+ * appear (amortised; at most to N_0). Memory: 32 bytes per initial monomer plus the member lists
+ * (4 bytes per cluster) and O(K) per size.
+ *
+ * **Observables** (INTERFACE.md; ERRATA §12): N_k; the kinetic energy of each size relative to
+ * u = total momentum/total mass; T_k = m_k <|v - u|^2>/3 = (2/3) E_k/N_k; the per-cluster total
+ * T = sum_k N_k T_k/N (it can rise while energy is lost: aggregation removes slow pairs); the
+ * kinetic energy per initial monomer; cumulative collisions, aggregations and fragmentations.
+ * The energy dissipated by each event is added up (`dissipated`), so E(t) + dissipated = E(0)
+ * is an exact check of the bookkeeping.
+ *
+ * Namelist group: `&agg_frag` (io/config.hpp). Theory: theory/smoluchowski.hpp. Checked by
+ * tests/agg_frag_test.cpp and validation/aggregation_fragmentation.
+ */
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "dsmc/particles.hpp"
+#include "dsmc/rng.hpp"
+#include "dsmc/segment_tree.hpp"
+
+namespace gdsmc::agg_frag {
+
+/// The monomer and the thresholds, in the user's units.
+struct Model {
+  double monomer_mass = 1.0;
+  double monomer_diameter = 1.0;
+  double monomer_density = 0.1;  ///< n_1(0): the initial monomer density
+  double restitution = 1.0;      ///< alpha of a bounce
+  double aggregation_energy = 0.0;                                       ///< E_agg (0: none)
+  double fragmentation_energy = std::numeric_limits<double>::infinity();  ///< E_frag (inf: none)
+  double fragment_restitution = 1.0;                                     ///< eps_f
+};
+
+enum class Outcome : int { aggregation = 0, fragmentation = 1, bounce = 2 };
+
+/// ERRATA §12's first test: the pair sticks (impact energy m_kj g^2/2 below E_agg).
+inline bool sticks(const Model& m, double impact_energy) { return impact_energy < m.aggregation_energy; }
+/// ERRATA §12's second test: a pair of sizes k, j that did not stick shatters (normal energy
+/// m_kj (g.e)^2/2 above E_frag, and at least three monomers to make).
+inline bool shatters(const Model& m, std::uint32_t k, std::uint32_t j, double normal_energy) {
+  return k + j >= 3 && normal_energy > m.fragmentation_energy;
+}
+
+/// Counts of one replica (the observables collisions, aggregations, fragmentations).
+struct Counters {
+  std::uint64_t events = 0;  ///< accepted collisions, whatever their outcome
+  std::uint64_t aggregations = 0;
+  std::uint64_t fragmentations = 0;
+  std::uint64_t candidates = 0;
+  std::uint64_t steps = 0;
+  double step_sum = 0.0;
+  double dissipated = 0.0;   ///< kinetic energy lost so far, added event by event (ERRATA §12)
+};
+
+/// What one collision did (for the unit tests and the event bookkeeping).
+struct Event {
+  Outcome outcome = Outcome::bounce;
+  double impact_energy = 0.0;  ///< m_kj g^2/2
+  double normal_energy = 0.0;  ///< m_kj (g.e)^2/2 (0 for an aggregation: e is not drawn)
+  double ex = 0.0, ey = 0.0, ez = 0.0;
+};
+
+/// Per-size measurement of one replica at one instant (index k - 1 for size k, up to the largest
+/// size present).
+struct Measurement {
+  std::vector<double> number;  ///< N_k
+  std::vector<double> energy;  ///< E_k = sum over size-k clusters of m_k |v - u|^2/2
+  double clusters = 0.0;       ///< N
+  double kinetic_energy = 0.0; ///< sum_k E_k
+};
+
+/// One replica's cluster gas and its collision loop.
+class Gas {
+ public:
+  /// N_0 = `monomers` monomers with velocities from `distribution` at `temperature` (zero total
+  /// momentum, exact kinetic temperature: particles.hpp), drawn from `initial`.
+  Gas(const Model& model, std::size_t monomers, double temperature, particles::InitialDistribution distribution,
+      rng::Xoshiro256pp initial, rng::Xoshiro256pp collisions, double step_fraction);
+  /// Explicit clusters (unit tests): sizes and velocities; `initial_monomers` = sum of the sizes.
+  Gas(const Model& model, const std::vector<std::uint32_t>& sizes, const std::vector<particles::Vec3>& velocities,
+      rng::Xoshiro256pp collisions, double step_fraction);
+
+  /// Advances to `t_target` or until `event_target` collisions, whichever comes first; returns
+  /// true when the event target stopped it (exactly at that event).
+  bool advance(double t_target, std::uint64_t event_target = UINT64_MAX);
+
+  /// Collides clusters a and b (a != b) as an accepted candidate: classification, outcome and
+  /// bookkeeping. Indices of other clusters may change (swap with last). Public for the unit tests.
+  Event collide(std::size_t a, std::size_t b);
+
+  double time() const { return time_; }
+  const Counters& counters() const { return counters_; }
+  double mean_step() const { return counters_.steps ? counters_.step_sum / static_cast<double>(counters_.steps) : 0.0; }
+  std::size_t clusters() const { return v_.size(); }
+  std::size_t initial_monomers() const { return initial_monomers_; }
+  std::size_t largest_size_reached() const { return largest_reached_; }
+  std::size_t count(std::size_t size) const { return size < members_.size() ? members_[size].size() : 0; }
+  const particles::Vec3& velocity(std::size_t cluster) const { return v_[cluster]; }
+  std::uint32_t size_of(std::size_t cluster) const { return size_[cluster]; }
+  double mass(std::uint32_t size) const { return model_.monomer_mass * size; }
+  /// Total momentum and kinetic energy (lab frame), for the invariant checks.
+  particles::Vec3 momentum() const;
+  double kinetic_energy() const;
+  /// Candidate rate R = sum_ik A_ik now.
+  double candidate_rate() const { return sampler_.total(); }
+  /// Whether w_k >= every speed of size k (the majorant holds): for the tests.
+  bool bounds_hold() const;
+
+  Measurement measure() const;
+
+  /// Everything that evolves, for checkpoints; the trees are rebuilt from counts and bounds
+  /// (segment_tree.hpp recomputes every sum from its leaves, for the same capacity).
+  struct State {
+    std::vector<double> velocity;           ///< 3 N
+    std::vector<std::uint64_t> size, slot;  ///< N each
+    std::vector<double> max_speed;          ///< w_k, k = 1..capacity
+    double time = 0.0, credit = 0.0, next_step_time = 0.0;
+    std::uint64_t capacity = 0, largest_reached = 0;
+    Counters counters;
+    rng::Xoshiro256pp::State generator{};
+  };
+  State state() const;
+  void restore(const State& state);
+
+ private:
+  void grow_to(std::size_t size);        ///< per-size tables for sizes up to `size`
+  void update_size(std::uint32_t size);  ///< row and column of one size in the sampler
+  void rebuild_sampler();                ///< every row and column, from the counts and bounds
+  void raise_bound(std::size_t cluster);
+  void recompute_bounds();
+  void add_member(std::size_t cluster, std::uint32_t size);
+  void remove_member(std::size_t cluster);
+  /// Removes cluster c (already out of its member list); returns the index that now holds the
+  /// cluster that was last (c itself, or none when c was last: returns the old last index).
+  std::size_t remove_cluster(std::size_t c);
+  std::size_t append_cluster(const particles::Vec3& v, std::uint32_t size);
+  void start_step();
+
+  Model model_;
+  std::size_t initial_monomers_;
+  double volume_;  ///< V = (N_0 - 1)/n_1
+  double step_fraction_;
+  particles::ParticleArray<particles::Vec3> v_;
+  std::vector<std::uint32_t> size_, slot_;
+  std::vector<std::vector<std::uint32_t>> members_;  ///< members_[k]: clusters of size k (k >= 1)
+  std::vector<double> max_speed_;                    ///< w_k (index k; 0 unused)
+  std::vector<double> diameter_;                     ///< sigma_k (index k)
+  segment_tree::LowRankSampler<3> sampler_;          ///< A_ik, index k - 1
+  std::size_t capacity_ = 0;                         ///< largest size the tables hold
+  std::size_t largest_reached_ = 1;
+  rng::Xoshiro256pp gen_;
+  double time_ = 0.0, credit_ = 0.0, next_step_time_ = 0.0;
+  Counters counters_;
+  std::vector<std::uint32_t> touched_;  ///< sizes whose count or bound changed in this event
+  std::vector<double> scratch_;         ///< recompute_bounds: max speed^2 per size (-1: not seen)
+  std::vector<std::uint32_t> present_;  ///< recompute_bounds: the sizes present
+};
+
+}  // namespace gdsmc::agg_frag

@@ -1,0 +1,196 @@
+// Unit tests of dsmc/agg_frag: one collision per outcome with numbers computed by hand, the exact
+// invariants over many events (ERRATA §12), bounds, and the checkpoint state.
+#include "dsmc/agg_frag.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace {
+
+using gdsmc::agg_frag::Event;
+using gdsmc::agg_frag::Gas;
+using gdsmc::agg_frag::Model;
+using gdsmc::agg_frag::Outcome;
+using gdsmc::particles::Vec3;
+namespace rng = gdsmc::rng;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+Model model(double e_agg, double e_frag, double eps_f, double alpha) {
+  Model m;
+  m.monomer_mass = 1.0;
+  m.monomer_diameter = 1.0;
+  m.monomer_density = 0.1;
+  m.restitution = alpha;
+  m.aggregation_energy = e_agg;
+  m.fragmentation_energy = e_frag;
+  m.fragment_restitution = eps_f;
+  return m;
+}
+
+Gas two_clusters(const Model& m, std::uint32_t k, Vec3 va, std::uint32_t j, Vec3 vb) {
+  return Gas(m, {k, j}, {va, vb}, rng::make_stream(7, 0, rng::Purpose::collisions), 1.0);
+}
+
+TEST(AggFrag, ThresholdsAreEnergiesAndMonomerPairsNeverShatter) {
+  const Model m = model(0.5, 1.5, 0.5, 0.8);
+  EXPECT_TRUE(gdsmc::agg_frag::sticks(m, 0.49));
+  EXPECT_FALSE(gdsmc::agg_frag::sticks(m, 0.5));
+  EXPECT_TRUE(gdsmc::agg_frag::shatters(m, 1, 2, 1.51));
+  EXPECT_FALSE(gdsmc::agg_frag::shatters(m, 1, 2, 1.5));
+  EXPECT_FALSE(gdsmc::agg_frag::shatters(m, 1, 1, 100.0));  // nothing to split into
+}
+
+TEST(AggFrag, AggregationMakesOneClusterAtTheCentreOfMassVelocity) {
+  // Monomer at (3, 0, 0) meets a dimer at rest: m_kj = 2/3, g^2 = 9, E_imp = 3 < E_agg = 5.
+  // V = (1 * 3 + 2 * 0)/3 = (1, 0, 0); energy before 4.5, after 3 * 1/2 = 1.5, lost exactly E_imp = 3.
+  Gas gas = two_clusters(model(5.0, kInf, 1.0, 0.8), 1, {3.0, 0.0, 0.0}, 2, {0.0, 0.0, 0.0});
+  const Event e = gas.collide(0, 1);
+  EXPECT_EQ(e.outcome, Outcome::aggregation);
+  EXPECT_DOUBLE_EQ(e.impact_energy, 3.0);
+  ASSERT_EQ(gas.clusters(), 1u);
+  EXPECT_EQ(gas.size_of(0), 3u);
+  EXPECT_EQ(gas.count(3), 1u);
+  EXPECT_EQ(gas.count(1), 0u);
+  EXPECT_EQ(gas.count(2), 0u);
+  EXPECT_DOUBLE_EQ(gas.velocity(0).x, 1.0);
+  EXPECT_DOUBLE_EQ(gas.velocity(0).y, 0.0);
+  EXPECT_DOUBLE_EQ(gas.kinetic_energy(), 1.5);
+  EXPECT_DOUBLE_EQ(gas.counters().dissipated, 3.0);
+  EXPECT_EQ(gas.counters().aggregations, 1u);
+  EXPECT_TRUE(gas.bounds_hold());
+}
+
+TEST(AggFrag, FragmentationOfAnOddNumberOfMonomers) {
+  // Dimer at (2, 0, 0) and trimer at (-1, 0, 0): m_kj = 6/5, g = 3, E_imp = 5.4 > E_agg = 0; any
+  // normal energy > E_frag = 0 shatters into K = 5 monomers. V = (4 - 3)/5 = 0.2 along x;
+  // u = sqrt(6) * 0.5 * 3/5 = 0.734846923; energy after 5 * 0.04/2 + 0.25 * 5.4 = 1.45,
+  // before 4 + 1.5 = 5.5, lost (1 - 0.25) * 5.4 = 4.05.
+  Gas gas = two_clusters(model(0.0, 0.0, 0.5, 0.8), 2, {2.0, 0.0, 0.0}, 3, {-1.0, 0.0, 0.0});
+  const Event e = gas.collide(0, 1);
+  EXPECT_EQ(e.outcome, Outcome::fragmentation);
+  ASSERT_EQ(gas.clusters(), 5u);
+  EXPECT_EQ(gas.count(1), 5u);
+  const double u = std::sqrt(6.0) * 0.5 * 3.0 / 5.0;
+  for (std::size_t c = 0; c < 5; ++c) {
+    EXPECT_EQ(gas.size_of(c), 1u);
+    const Vec3& v = gas.velocity(c);
+    EXPECT_NEAR(std::hypot(v.x - 0.2, v.y, v.z), u, 1e-14);
+  }
+  const Vec3 p = gas.momentum();
+  EXPECT_NEAR(p.x, 1.0, 1e-14);
+  EXPECT_NEAR(p.y, 0.0, 1e-14);
+  EXPECT_NEAR(p.z, 0.0, 1e-14);
+  EXPECT_NEAR(gas.kinetic_energy(), 1.45, 1e-13);
+  EXPECT_NEAR(gas.counters().dissipated, 4.05, 1e-14);
+  EXPECT_TRUE(gas.bounds_hold());
+}
+
+TEST(AggFrag, FragmentationOfAnEvenNumberOfMonomers) {
+  // Monomer (0, 0, 4) and trimer at rest: m_kj = 3/4, g = 4, E_imp = 6; K = 4, V = (0, 0, 1),
+  // u = sqrt(3) * 1 * 4/4 = sqrt(3); eps_f = 1: energy after 4 * 1/2 + 6 = 8 = before (4 * 4/2... = 8).
+  Gas gas = two_clusters(model(0.0, 0.0, 1.0, 0.8), 1, {0.0, 0.0, 4.0}, 3, {0.0, 0.0, 0.0});
+  const Event e = gas.collide(0, 1);
+  EXPECT_EQ(e.outcome, Outcome::fragmentation);
+  ASSERT_EQ(gas.count(1), 4u);
+  for (std::size_t c = 0; c < 4; ++c) {
+    const Vec3& v = gas.velocity(c);
+    EXPECT_NEAR(std::hypot(v.x, v.y, v.z - 1.0), std::sqrt(3.0), 1e-14);
+  }
+  EXPECT_NEAR(gas.momentum().z, 4.0, 1e-14);
+  EXPECT_NEAR(gas.kinetic_energy(), 8.0, 1e-13);
+  EXPECT_DOUBLE_EQ(gas.counters().dissipated, 0.0);
+}
+
+TEST(AggFrag, BounceFollowsTheCollisionRule) {
+  // Monomer (1, 2, 0) and dimer (-1, 0, 0.5), alpha = 0.8, no sticking (E_agg = 0) and no
+  // fragmentation: (g'.e) = -alpha (g.e), momentum kept, energy lost (1 - alpha^2) m_kj (g.e)^2/2.
+  const Vec3 va{1.0, 2.0, 0.0}, vb{-1.0, 0.0, 0.5};
+  Gas gas = two_clusters(model(0.0, kInf, 1.0, 0.8), 1, va, 2, vb);
+  const double before = gas.kinetic_energy();
+  const Event e = gas.collide(0, 1);
+  EXPECT_EQ(e.outcome, Outcome::bounce);
+  const double g_dot_e = (va.x - vb.x) * e.ex + (va.y - vb.y) * e.ey + (va.z - vb.z) * e.ez;
+  EXPECT_GT(g_dot_e, 0.0);
+  EXPECT_NEAR(e.normal_energy, 0.5 * (2.0 / 3.0) * g_dot_e * g_dot_e, 1e-14);
+  const Vec3 a = gas.velocity(0), b = gas.velocity(1);
+  const double after_dot_e = (a.x - b.x) * e.ex + (a.y - b.y) * e.ey + (a.z - b.z) * e.ez;
+  EXPECT_NEAR(after_dot_e, -0.8 * g_dot_e, 1e-14);
+  EXPECT_NEAR(a.x + 2.0 * b.x, va.x + 2.0 * vb.x, 1e-14);
+  EXPECT_NEAR(a.y + 2.0 * b.y, va.y + 2.0 * vb.y, 1e-14);
+  EXPECT_NEAR(a.z + 2.0 * b.z, va.z + 2.0 * vb.z, 1e-14);
+  EXPECT_NEAR(before - gas.kinetic_energy(), (1.0 - 0.64) * e.normal_energy, 1e-14);
+  EXPECT_EQ(gas.clusters(), 2u);
+}
+
+TEST(AggFrag, TwoMonomersBounceWhateverTheirEnergy) {
+  Gas gas = two_clusters(model(0.0, 0.0, 0.5, 1.0), 1, {10.0, 0.0, 0.0}, 1, {-10.0, 0.0, 0.0});
+  EXPECT_EQ(gas.collide(0, 1).outcome, Outcome::bounce);
+  EXPECT_EQ(gas.count(1), 2u);
+}
+
+// Exact invariants over > 1e6 events with all three outcomes active (ERRATA §12 bookkeeping):
+// sum_k k N_k = N_0 exactly, momentum zero to round-off, E(t) + dissipated = E(0) to 1e-10 E(0),
+// and the speed bounds hold after every chunk. E_agg = 0.2, E_frag = 1.0 at T_0 = 2 keep all three
+// outcomes frequent; eps_f = 0.9 and alpha = 0.98 slow the cooling (the gas would otherwise stick
+// into a few large clusters well before 1e6 events).
+TEST(AggFrag, ExactInvariantsOverAMillionEvents) {
+  const Model m = model(0.2, 1.0, 0.9, 0.98);
+  const std::size_t n0 = 20000;
+  Gas gas(m, n0, 2.0, gdsmc::particles::InitialDistribution::maxwell, rng::make_stream(3, 0, rng::Purpose::initial_state),
+          rng::make_stream(3, 0, rng::Purpose::collisions), 1.0);
+  const double e0 = gas.kinetic_energy();
+  double momentum_scale = 0.0;  // sum m |v|: the scale of round-off in the total momentum
+  for (std::size_t c = 0; c < gas.clusters(); ++c)
+    momentum_scale += gas.mass(gas.size_of(c)) * std::hypot(gas.velocity(c).x, gas.velocity(c).y, gas.velocity(c).z);
+  for (std::uint64_t target = 100000; target <= 1100000; target += 100000) {
+    ASSERT_TRUE(gas.advance(kInf, target));
+    std::size_t monomers = 0;
+    for (std::size_t k = 1; k <= gas.largest_size_reached(); ++k) monomers += k * gas.count(k);
+    ASSERT_EQ(monomers, n0);
+    const Vec3 p = gas.momentum();
+    EXPECT_LT(std::hypot(p.x, p.y, p.z), 1e-12 * momentum_scale);
+    EXPECT_NEAR(gas.kinetic_energy() + gas.counters().dissipated, e0, 1e-10 * e0);
+    EXPECT_TRUE(gas.bounds_hold());
+  }
+  const auto& c = gas.counters();
+  EXPECT_GE(c.events, 1000000u);
+  EXPECT_GT(c.aggregations, 20000u) << "aggregations";
+  EXPECT_GT(c.fragmentations, 10000u) << "fragmentations";
+  EXPECT_GT(c.events - c.aggregations - c.fragmentations, 500000u) << "bounces";
+}
+
+TEST(AggFrag, OneClusterLeftStopsTheClock) {
+  // Two monomers that must stick: after that one cluster is left and advance() returns at t_target
+  // (its self pair is still in the majorant and must not be drawn forever).
+  Gas gas = two_clusters(model(1e9, kInf, 1.0, 0.8), 1, {1.0, 0.0, 0.0}, 1, {-1.0, 0.0, 0.0});
+  EXPECT_FALSE(gas.advance(1e6));
+  EXPECT_EQ(gas.clusters(), 1u);
+  EXPECT_EQ(gas.time(), 1e6);
+}
+
+TEST(AggFrag, RestoredStateContinuesBitwise) {
+  const Model m = model(0.3, 1.2, 0.6, 0.9);
+  auto make = [&] {
+    return Gas(m, 3000, 1.5, gdsmc::particles::InitialDistribution::maxwell,
+               rng::make_stream(5, 1, rng::Purpose::initial_state), rng::make_stream(5, 1, rng::Purpose::collisions), 1.0);
+  };
+  Gas reference = make();
+  reference.advance(kInf, 20000);
+  const Gas::State saved = reference.state();
+  reference.advance(40.0);
+  Gas resumed = make();
+  resumed.restore(saved);
+  resumed.advance(40.0);
+  ASSERT_EQ(resumed.clusters(), reference.clusters());
+  EXPECT_EQ(resumed.counters().events, reference.counters().events);
+  EXPECT_EQ(resumed.time(), reference.time());
+  for (std::size_t c = 0; c < reference.clusters(); ++c) {
+    EXPECT_EQ(resumed.size_of(c), reference.size_of(c));
+    EXPECT_EQ(resumed.velocity(c), reference.velocity(c));
+  }
+}
+
+}  // namespace
