@@ -9,6 +9,7 @@
 
 namespace {
 
+using Cluster = gdsmc::agg_frag::Gas::Cluster;
 using gdsmc::agg_frag::Event;
 using gdsmc::agg_frag::Gas;
 using gdsmc::agg_frag::Model;
@@ -34,6 +35,19 @@ Gas two_clusters(const Model& m, std::uint32_t k, Vec3 va, std::uint32_t j, Vec3
   return Gas(m, {k, j}, {va, vb}, rng::make_stream(7, 0, rng::Purpose::collisions), 1.0);
 }
 
+/// Collides the two clusters of a two_clusters gas.
+Event collide_both(Gas& gas, std::uint32_t k, std::uint32_t j) {
+  return gas.collide(Cluster{k, 0}, Cluster{j, k == j ? 1u : 0u});
+}
+
+/// Every velocity of the gas (size by size, in list order) with its size.
+std::vector<std::pair<std::uint32_t, Vec3>> all_clusters(const Gas& gas) {
+  std::vector<std::pair<std::uint32_t, Vec3>> out;
+  for (std::uint32_t k = 1; k <= gas.largest_size_reached(); ++k)
+    for (std::uint32_t p = 0; p < gas.count(k); ++p) out.push_back({k, gas.velocity(Cluster{k, p})});
+  return out;
+}
+
 TEST(AggFrag, ThresholdsAreEnergiesAndMonomerPairsNeverShatter) {
   const Model m = model(0.5, 1.5, 0.5, 0.8);
   EXPECT_TRUE(gdsmc::agg_frag::sticks(m, 0.49));
@@ -47,16 +61,15 @@ TEST(AggFrag, AggregationMakesOneClusterAtTheCentreOfMassVelocity) {
   // Monomer at (3, 0, 0) meets a dimer at rest: m_kj = 2/3, g^2 = 9, E_imp = 3 < E_agg = 5.
   // V = (1 * 3 + 2 * 0)/3 = (1, 0, 0); energy before 4.5, after 3 * 1/2 = 1.5, lost exactly E_imp = 3.
   Gas gas = two_clusters(model(5.0, kInf, 1.0, 0.8), 1, {3.0, 0.0, 0.0}, 2, {0.0, 0.0, 0.0});
-  const Event e = gas.collide(0, 1);
+  const Event e = collide_both(gas, 1, 2);
   EXPECT_EQ(e.outcome, Outcome::aggregation);
   EXPECT_DOUBLE_EQ(e.impact_energy, 3.0);
   ASSERT_EQ(gas.clusters(), 1u);
-  EXPECT_EQ(gas.size_of(0), 3u);
   EXPECT_EQ(gas.count(3), 1u);
   EXPECT_EQ(gas.count(1), 0u);
   EXPECT_EQ(gas.count(2), 0u);
-  EXPECT_DOUBLE_EQ(gas.velocity(0).x, 1.0);
-  EXPECT_DOUBLE_EQ(gas.velocity(0).y, 0.0);
+  EXPECT_DOUBLE_EQ(gas.velocity(Cluster{3, 0}).x, 1.0);
+  EXPECT_DOUBLE_EQ(gas.velocity(Cluster{3, 0}).y, 0.0);
   EXPECT_DOUBLE_EQ(gas.kinetic_energy(), 1.5);
   EXPECT_DOUBLE_EQ(gas.counters().dissipated, 3.0);
   EXPECT_EQ(gas.counters().aggregations, 1u);
@@ -69,14 +82,13 @@ TEST(AggFrag, FragmentationOfAnOddNumberOfMonomers) {
   // u = sqrt(6) * 0.5 * 3/5 = 0.734846923; energy after 5 * 0.04/2 + 0.25 * 5.4 = 1.45,
   // before 4 + 1.5 = 5.5, lost (1 - 0.25) * 5.4 = 4.05.
   Gas gas = two_clusters(model(0.0, 0.0, 0.5, 0.8), 2, {2.0, 0.0, 0.0}, 3, {-1.0, 0.0, 0.0});
-  const Event e = gas.collide(0, 1);
+  const Event e = collide_both(gas, 2, 3);
   EXPECT_EQ(e.outcome, Outcome::fragmentation);
   ASSERT_EQ(gas.clusters(), 5u);
   EXPECT_EQ(gas.count(1), 5u);
   const double u = std::sqrt(6.0) * 0.5 * 3.0 / 5.0;
-  for (std::size_t c = 0; c < 5; ++c) {
-    EXPECT_EQ(gas.size_of(c), 1u);
-    const Vec3& v = gas.velocity(c);
+  for (const auto& [size, v] : all_clusters(gas)) {
+    EXPECT_EQ(size, 1u);
     EXPECT_NEAR(std::hypot(v.x - 0.2, v.y, v.z), u, 1e-14);
   }
   const Vec3 p = gas.momentum();
@@ -92,11 +104,11 @@ TEST(AggFrag, FragmentationOfAnEvenNumberOfMonomers) {
   // Monomer (0, 0, 4) and trimer at rest: m_kj = 3/4, g = 4, E_imp = 6; K = 4, V = (0, 0, 1),
   // u = sqrt(3) * 1 * 4/4 = sqrt(3); eps_f = 1: energy after 4 * 1/2 + 6 = 8 = before (4 * 4/2... = 8).
   Gas gas = two_clusters(model(0.0, 0.0, 1.0, 0.8), 1, {0.0, 0.0, 4.0}, 3, {0.0, 0.0, 0.0});
-  const Event e = gas.collide(0, 1);
+  const Event e = collide_both(gas, 1, 3);
   EXPECT_EQ(e.outcome, Outcome::fragmentation);
   ASSERT_EQ(gas.count(1), 4u);
-  for (std::size_t c = 0; c < 4; ++c) {
-    const Vec3& v = gas.velocity(c);
+  for (const auto& [size, v] : all_clusters(gas)) {
+    EXPECT_EQ(size, 1u);
     EXPECT_NEAR(std::hypot(v.x, v.y, v.z - 1.0), std::sqrt(3.0), 1e-14);
   }
   EXPECT_NEAR(gas.momentum().z, 4.0, 1e-14);
@@ -110,12 +122,12 @@ TEST(AggFrag, BounceFollowsTheCollisionRule) {
   const Vec3 va{1.0, 2.0, 0.0}, vb{-1.0, 0.0, 0.5};
   Gas gas = two_clusters(model(0.0, kInf, 1.0, 0.8), 1, va, 2, vb);
   const double before = gas.kinetic_energy();
-  const Event e = gas.collide(0, 1);
+  const Event e = collide_both(gas, 1, 2);
   EXPECT_EQ(e.outcome, Outcome::bounce);
   const double g_dot_e = (va.x - vb.x) * e.ex + (va.y - vb.y) * e.ey + (va.z - vb.z) * e.ez;
   EXPECT_GT(g_dot_e, 0.0);
   EXPECT_NEAR(e.normal_energy, 0.5 * (2.0 / 3.0) * g_dot_e * g_dot_e, 1e-14);
-  const Vec3 a = gas.velocity(0), b = gas.velocity(1);
+  const Vec3 a = gas.velocity(Cluster{1, 0}), b = gas.velocity(Cluster{2, 0});
   const double after_dot_e = (a.x - b.x) * e.ex + (a.y - b.y) * e.ey + (a.z - b.z) * e.ez;
   EXPECT_NEAR(after_dot_e, -0.8 * g_dot_e, 1e-14);
   EXPECT_NEAR(a.x + 2.0 * b.x, va.x + 2.0 * vb.x, 1e-14);
@@ -127,7 +139,7 @@ TEST(AggFrag, BounceFollowsTheCollisionRule) {
 
 TEST(AggFrag, TwoMonomersBounceWhateverTheirEnergy) {
   Gas gas = two_clusters(model(0.0, 0.0, 0.5, 1.0), 1, {10.0, 0.0, 0.0}, 1, {-10.0, 0.0, 0.0});
-  EXPECT_EQ(gas.collide(0, 1).outcome, Outcome::bounce);
+  EXPECT_EQ(collide_both(gas, 1, 1).outcome, Outcome::bounce);
   EXPECT_EQ(gas.count(1), 2u);
 }
 
@@ -143,8 +155,7 @@ TEST(AggFrag, ExactInvariantsOverAMillionEvents) {
           rng::make_stream(3, 0, rng::Purpose::collisions), 1.0);
   const double e0 = gas.kinetic_energy();
   double momentum_scale = 0.0;  // sum m |v|: the scale of round-off in the total momentum
-  for (std::size_t c = 0; c < gas.clusters(); ++c)
-    momentum_scale += gas.mass(gas.size_of(c)) * std::hypot(gas.velocity(c).x, gas.velocity(c).y, gas.velocity(c).z);
+  for (const auto& [size, v] : all_clusters(gas)) momentum_scale += gas.mass(size) * std::hypot(v.x, v.y, v.z);
   for (std::uint64_t target = 100000; target <= 1100000; target += 100000) {
     ASSERT_TRUE(gas.advance(kInf, target));
     std::size_t monomers = 0;
@@ -187,10 +198,7 @@ TEST(AggFrag, RestoredStateContinuesBitwise) {
   ASSERT_EQ(resumed.clusters(), reference.clusters());
   EXPECT_EQ(resumed.counters().events, reference.counters().events);
   EXPECT_EQ(resumed.time(), reference.time());
-  for (std::size_t c = 0; c < reference.clusters(); ++c) {
-    EXPECT_EQ(resumed.size_of(c), reference.size_of(c));
-    EXPECT_EQ(resumed.velocity(c), reference.velocity(c));
-  }
+  EXPECT_EQ(all_clusters(resumed), all_clusters(reference));
 }
 
 }  // namespace

@@ -45,17 +45,9 @@ Gas::Gas(const Model& model, std::size_t monomers, double temperature, particles
       {model.monomer_mass}, {model.monomer_diameter}, {model.monomer_density},
       species::PairMatrix(1, model.restitution), false);
   particles::System sys = particles::make_system(monomer, {monomers}, {temperature}, distribution, initial);
-  v_ = std::move(sys.v);
-  v_.reserve(monomers);
-  size_.reserve(monomers);
-  slot_.reserve(monomers);
   grow_to(1);
-  members_[1].reserve(monomers);
-  for (std::size_t c = 0; c < monomers; ++c) {
-    size_.push_back(1);
-    slot_.push_back(0);
-    add_member(c, 1);
-  }
+  lists_[1] = std::move(sys.v);  // reserved for exactly N_0 monomers
+  clusters_ = monomers;
   recompute_bounds();
   rebuild_sampler();
   start_step();
@@ -63,21 +55,12 @@ Gas::Gas(const Model& model, std::size_t monomers, double temperature, particles
 
 Gas::Gas(const Model& model, const std::vector<std::uint32_t>& sizes, const std::vector<Vec3>& velocities,
          rng::Xoshiro256pp collisions, double step_fraction)
-    : model_(model), initial_monomers_(0), volume_(0.0), step_fraction_(step_fraction), gen_(collisions) {
-  std::size_t largest = 1;
-  for (auto k : sizes) {
-    initial_monomers_ += k;
-    largest = std::max<std::size_t>(largest, k);
-  }
+    : model_(model), volume_(0.0), step_fraction_(step_fraction), gen_(collisions) {
+  for (auto k : sizes) initial_monomers_ += k;
   if (sizes.size() != velocities.size() || initial_monomers_ < 2 || std::count(sizes.begin(), sizes.end(), 0u))
     throw std::invalid_argument("agg_frag::Gas: sizes and velocities must match, sizes >= 1, >= 2 monomers");
   volume_ = static_cast<double>(initial_monomers_ - 1) / model.monomer_density;
-  v_.reserve(initial_monomers_);
-  size_.reserve(initial_monomers_);
-  slot_.reserve(initial_monomers_);
-  grow_to(largest);
-  for (std::size_t c = 0; c < sizes.size(); ++c) append_cluster(velocities[c], sizes[c]);
-  largest_reached_ = largest;
+  for (std::size_t c = 0; c < sizes.size(); ++c) add(sizes[c], velocities[c]);
   recompute_bounds();
   rebuild_sampler();
   start_step();
@@ -88,7 +71,7 @@ void Gas::grow_to(std::size_t size) {
   std::size_t capacity = std::max<std::size_t>(capacity_, 16);
   while (capacity < size) capacity *= 2;
   capacity = std::max(std::min(capacity, std::max<std::size_t>(initial_monomers_, 1)), size);
-  members_.resize(capacity + 1);
+  lists_.resize(capacity + 1);
   max_speed_.resize(capacity + 1, 0.0);
   diameter_.resize(capacity + 1, 0.0);
   for (std::size_t k = capacity_ + 1; k <= capacity; ++k)
@@ -100,7 +83,7 @@ void Gas::grow_to(std::size_t size) {
 void Gas::rebuild_sampler() {
   std::vector<segment_tree::LowRankSampler<3>::Vector> rows(capacity_), columns(capacity_);
   for (std::size_t k = 1; k <= capacity_; ++k) {
-    const auto f = segment_tree::hard_sphere_factors(static_cast<double>(members_[k].size()), diameter_[k],
+    const auto f = segment_tree::hard_sphere_factors(static_cast<double>(lists_[k].size()), diameter_[k],
                                                      max_speed_[k], volume_);
     rows[k - 1] = f.row;
     columns[k - 1] = f.column;
@@ -110,96 +93,70 @@ void Gas::rebuild_sampler() {
 }
 
 void Gas::update_size(std::uint32_t size) {
-  const auto f = segment_tree::hard_sphere_factors(static_cast<double>(members_[size].size()), diameter_[size],
+  const auto f = segment_tree::hard_sphere_factors(static_cast<double>(lists_[size].size()), diameter_[size],
                                                    max_speed_[size], volume_);
   sampler_.set_row(size - 1, f.row);
   sampler_.set_column(size - 1, f.column);
 }
 
-void Gas::add_member(std::size_t cluster, std::uint32_t size) {
+void Gas::add(std::uint32_t size, const Vec3& v) {
   grow_to(size);
-  auto& list = members_[size];
+  auto& list = lists_[size];
   if (list.empty()) max_speed_[size] = 0.0;  // a size that reappears starts a bound of its own
-  size_[cluster] = size;
-  slot_[cluster] = static_cast<std::uint32_t>(list.size());
-  list.push_back(static_cast<std::uint32_t>(cluster));
+  list.push_back(v);
+  ++clusters_;
   largest_reached_ = std::max<std::size_t>(largest_reached_, size);
   touched_.push_back(size);
+  raise_bound(size, v);
 }
 
-void Gas::remove_member(std::size_t cluster) {
-  const std::uint32_t size = size_[cluster];
-  auto& list = members_[size];
-  const std::uint32_t place = slot_[cluster];
-  const std::uint32_t last = list.back();
-  list[place] = last;
-  slot_[last] = place;
+void Gas::remove(Cluster c) {
+  auto& list = lists_[c.size];
+  list[c.place] = list.back();
   list.pop_back();
-  if (list.empty()) max_speed_[size] = 0.0;
-  touched_.push_back(size);
+  --clusters_;
+  if (list.empty()) max_speed_[c.size] = 0.0;
+  touched_.push_back(c.size);
 }
 
-std::size_t Gas::remove_cluster(std::size_t c) {
-  const std::size_t last = v_.size() - 1;
-  if (c != last) {
-    v_[c] = v_[last];
-    size_[c] = size_[last];
-    slot_[c] = slot_[last];
-    members_[size_[c]][slot_[c]] = static_cast<std::uint32_t>(c);
-  }
-  v_.pop_back();
-  size_.pop_back();
-  slot_.pop_back();
-  return last;
+void Gas::remove_pair(Cluster a, Cluster b) {
+  // In one list, the later place first: removing it cannot move the other.
+  if (a.size == b.size && a.place < b.place) std::swap(a, b);
+  remove(a);
+  remove(b);
 }
 
-std::size_t Gas::append_cluster(const Vec3& v, std::uint32_t size) {
-  const std::size_t c = v_.size();
-  v_.push_back(v);
-  size_.push_back(size);
-  slot_.push_back(0);
-  add_member(c, size);
-  return c;
-}
-
-void Gas::raise_bound(std::size_t cluster) {
-  const Vec3& v = v_[cluster];
+void Gas::raise_bound(std::uint32_t size, const Vec3& v) {
   const double speed2 = v.x * v.x + v.y * v.y + v.z * v.z;
-  double& w = max_speed_[size_[cluster]];
+  double& w = max_speed_[size];
   if (speed2 > w * w) {
     w = std::sqrt(speed2);
     // sqrt can round below the true speed: nudge up so that w >= |v| holds exactly
     if (w * w < speed2) w = std::nextafter(w, INFINITY);
-    touched_.push_back(size_[cluster]);
+    touched_.push_back(size);
   }
 }
 
 void Gas::recompute_bounds() {
-  // O(N + sizes present): the largest speed of each size present, in scratch_ (squared), found in
-  // one pass over the clusters; only sizes whose bound changes touch the trees. Empty sizes keep
-  // w = 0 (remove_member), so the capacity K never enters the cost: a gas of a few large
-  // clusters must not pay for every size it once had.
-  if (scratch_.size() < capacity_ + 1) scratch_.assign(capacity_ + 1, -1.0);
+  // O(N + sizes present), list by list; only sizes whose bound changes touch the trees. Empty
+  // sizes keep w = 0 (remove), so the capacity K never enters the cost beyond one pass over the
+  // list headers. A list that has shrunk to under a quarter of its capacity is trimmed here, once
+  // per step, so that the memory follows the population.
   present_.clear();
-  for (std::size_t c = 0; c < v_.size(); ++c) {
-    const Vec3& v = v_[c];
-    const double speed2 = v.x * v.x + v.y * v.y + v.z * v.z;
-    double& w2 = scratch_[size_[c]];
-    if (w2 < 0.0) {
-      w2 = speed2;
-      present_.push_back(size_[c]);
-    } else if (speed2 > w2) {
-      w2 = speed2;
+  for (std::size_t k = 1; k <= capacity_; ++k) {
+    auto& list = lists_[k];
+    if (list.empty()) {
+      if (list.capacity() > 0) particles::ParticleArray<Vec3>().swap(list);
+      continue;
     }
-  }
-  std::sort(present_.begin(), present_.end());  // the trees are updated in one order in every run
-  for (std::uint32_t k : present_) {
-    double w = std::sqrt(scratch_[k]);
-    if (w * w < scratch_[k]) w = std::nextafter(w, INFINITY);  // w >= |v| exactly
-    scratch_[k] = -1.0;
+    if (list.capacity() > 4 * list.size() + 64) particles::ParticleArray<Vec3>(list.begin(), list.end()).swap(list);
+    double w2 = 0.0;
+    for (const Vec3& v : list) w2 = std::max(w2, v.x * v.x + v.y * v.y + v.z * v.z);
+    double w = std::sqrt(w2);
+    if (w * w < w2) w = std::nextafter(w, INFINITY);  // w >= |v| exactly
     if (w != max_speed_[k]) {
       max_speed_[k] = w;
-      update_size(k);
+      update_size(static_cast<std::uint32_t>(k));
     }
   }
   touched_.clear();
@@ -208,18 +165,18 @@ void Gas::recompute_bounds() {
 void Gas::start_step() {
   // A step is step_fraction majorant mean free times: nu_max = 2 R/N candidates per cluster.
   const double rate = sampler_.total();
-  const double dt = rate > 0.0 ? step_fraction_ * static_cast<double>(v_.size()) / (2.0 * rate) : INFINITY;
+  const double dt = rate > 0.0 ? step_fraction_ * static_cast<double>(clusters_) / (2.0 * rate) : INFINITY;
   next_step_time_ = time_ + dt;
   counters_.steps += 1;
   counters_.step_sum += dt;
 }
 
-Event Gas::collide(std::size_t a, std::size_t b) {
+Event Gas::collide(Cluster a, Cluster b) {
   Event event;
-  const std::uint32_t k = size_[a], j = size_[b];
+  const std::uint32_t k = a.size, j = b.size;
   const double m_k = mass(k), m_j = mass(j), total = m_k + m_j;
   const double reduced = m_k * m_j / total;
-  const Vec3 va = v_[a], vb = v_[b];
+  const Vec3 va = lists_[k][a.place], vb = lists_[j][b.place];
   const double gx = va.x - vb.x, gy = va.y - vb.y, gz = va.z - vb.z;
   const double g2 = gx * gx + gy * gy + gz * gz;
   const Vec3 centre{(m_k * va.x + m_j * vb.x) / total, (m_k * va.y + m_j * vb.y) / total,
@@ -228,13 +185,8 @@ Event Gas::collide(std::size_t a, std::size_t b) {
   counters_.events += 1;
   if (sticks(model_, event.impact_energy)) {  // one cluster of k + j monomers moving with V
     event.outcome = Outcome::aggregation;
-    remove_member(b);
-    const std::size_t moved = remove_cluster(b);  // a is still listed, so a move of a is recorded
-    if (moved == a) a = b;                        // a was the last cluster: it now lives where b was
-    remove_member(a);
-    v_[a] = centre;
-    add_member(a, k + j);
-    raise_bound(a);
+    remove_pair(a, b);
+    add(k + j, centre);
     counters_.aggregations += 1;
     counters_.dissipated += event.impact_energy;
   } else {
@@ -253,26 +205,8 @@ Event Gas::collide(std::size_t a, std::size_t b) {
       // u = sqrt(k j) eps_f |g| / K: K m_1 u^2 / 2 = eps_f^2 E_imp (ERRATA §12)
       const double u = std::sqrt(static_cast<double>(k) * static_cast<double>(j)) * model_.fragment_restitution * g /
                        static_cast<double>(fragments);
-      remove_member(a);
-      remove_member(b);
-      std::size_t placed = 0;
-      auto place = [&](const Vec3& d) {
-        const Vec3 w{centre.x + u * d.x, centre.y + u * d.y, centre.z + u * d.z};
-        std::size_t c;
-        if (placed == 0) {
-          c = a;
-          v_[c] = w;
-          add_member(c, 1);
-        } else if (placed == 1) {
-          c = b;
-          v_[c] = w;
-          add_member(c, 1);
-        } else {
-          c = append_cluster(w, 1);
-        }
-        raise_bound(c);
-        ++placed;
-      };
+      remove_pair(a, b);
+      auto place = [&](const Vec3& d) { add(1, {centre.x + u * d.x, centre.y + u * d.y, centre.z + u * d.z}); };
       std::uint32_t left = fragments;
       if (left % 2 == 1) {  // the equilateral triple a, -a/2 + (sqrt3/2) b, -a/2 - (sqrt3/2) b
         Vec3 d1, d2;
@@ -297,10 +231,12 @@ Event Gas::collide(std::size_t a, std::size_t b) {
       const double alpha = model_.restitution;
       const double impulse = (1.0 + alpha) * g_dot_e;
       const double da = (m_j / total) * impulse, db = (m_k / total) * impulse;
-      v_[a] = {va.x - da * ex, va.y - da * ey, va.z - da * ez};
-      v_[b] = {vb.x + db * ex, vb.y + db * ey, vb.z + db * ez};
-      raise_bound(a);
-      raise_bound(b);
+      Vec3& wa = lists_[k][a.place];
+      Vec3& wb = lists_[j][b.place];
+      wa = {va.x - da * ex, va.y - da * ey, va.z - da * ez};
+      wb = {vb.x + db * ex, vb.y + db * ey, vb.z + db * ez};
+      raise_bound(k, wa);
+      raise_bound(j, wb);
       counters_.dissipated += (1.0 - alpha * alpha) * event.normal_energy;
     }
   }
@@ -321,12 +257,12 @@ bool Gas::advance(double t_target, std::uint64_t event_target) {
     }
     const double rate = sampler_.total();
     // One cluster left (R > 0 still: its self pair, always rejected): nothing can collide.
-    if (v_.size() < 2 || !(rate > 0.0)) {
+    if (clusters_ < 2 || !(rate > 0.0)) {
       time_ = std::max(time_, t_target);
       return false;
     }
-    // The next candidate comes 1/R after the last one, R the current rate (ERRATA §12).
-    // (0 when a rise of R made the next candidate overdue: it comes now)
+    // The next candidate comes 1/R after the last one, R the current rate (ERRATA §12)
+    // (0 when a rise of R made the next candidate overdue: it comes now).
     const double wait = std::max(0.0, 1.0 / rate - credit_);
     const double stop = std::min(t_target, next_step_time_);
     if (time_ + wait > stop) {
@@ -339,48 +275,56 @@ bool Gas::advance(double t_target, std::uint64_t event_target) {
     credit_ = 0.0;
     counters_.candidates += 1;
     const auto [row, column] = sampler_.sample(gen_);
-    const std::uint32_t i = static_cast<std::uint32_t>(row + 1), k = static_cast<std::uint32_t>(column + 1);
-    const auto& list_i = members_[i];
-    const auto& list_k = members_[k];
-    const std::size_t a = list_i[gen_.below(list_i.size())];
-    const std::size_t b = list_k[gen_.below(list_k.size())];
-    if (a == b) continue;
-    const Vec3& va = v_[a];
-    const Vec3& vb = v_[b];
+    const Cluster a{static_cast<std::uint32_t>(row + 1), 0}, b0{static_cast<std::uint32_t>(column + 1), 0};
+    const auto& list_a = lists_[a.size];
+    const auto& list_b = lists_[b0.size];
+    const Cluster ca{a.size, static_cast<std::uint32_t>(gen_.below(list_a.size()))};
+    const Cluster cb{b0.size, static_cast<std::uint32_t>(gen_.below(list_b.size()))};
+    if (ca.size == cb.size && ca.place == cb.place) continue;  // the same cluster twice
+    const Vec3& va = list_a[ca.place];
+    const Vec3& vb = list_b[cb.place];
     const double gx = va.x - vb.x, gy = va.y - vb.y, gz = va.z - vb.z;
     const double g2 = gx * gx + gy * gy + gz * gz;
     // accept with |g| / (w_i + w_k), compared squared
-    const double threshold = gen_.uniform() * (max_speed_[i] + max_speed_[k]);
+    const double threshold = gen_.uniform() * (max_speed_[ca.size] + max_speed_[cb.size]);
     if (threshold * threshold >= g2) continue;
-    collide(a, b);
+    collide(ca, cb);
     if (counters_.events >= event_target) return true;
   }
 }
 
 Vec3 Gas::momentum() const {
   Vec3 p{0.0, 0.0, 0.0};
-  for (std::size_t c = 0; c < v_.size(); ++c) {
-    const double m = mass(size_[c]);
-    p.x += m * v_[c].x;
-    p.y += m * v_[c].y;
-    p.z += m * v_[c].z;
+  for (std::size_t k = 1; k <= capacity_; ++k) {
+    const double m = mass(k);
+    for (const Vec3& v : lists_[k]) {
+      p.x += m * v.x;
+      p.y += m * v.y;
+      p.z += m * v.z;
+    }
   }
   return p;
 }
 
 double Gas::kinetic_energy() const {
   double e = 0.0;
-  for (std::size_t c = 0; c < v_.size(); ++c)
-    e += 0.5 * mass(size_[c]) * (v_[c].x * v_[c].x + v_[c].y * v_[c].y + v_[c].z * v_[c].z);
+  for (std::size_t k = 1; k <= capacity_; ++k)
+    for (const Vec3& v : lists_[k]) e += 0.5 * mass(k) * (v.x * v.x + v.y * v.y + v.z * v.z);
   return e;
 }
 
+std::size_t Gas::memory_bytes() const {
+  std::size_t bytes = 0;
+  for (const auto& list : lists_) bytes += list.capacity() * sizeof(Vec3) + sizeof(list);
+  bytes += (max_speed_.capacity() + diameter_.capacity()) * sizeof(double);
+  bytes += 6 * 2 * capacity_ * sizeof(double);  // the sampler's six trees (2P doubles each, P < 2K)
+  return bytes;
+}
+
 bool Gas::bounds_hold() const {
-  for (std::size_t c = 0; c < v_.size(); ++c) {
-    const double speed2 = v_[c].x * v_[c].x + v_[c].y * v_[c].y + v_[c].z * v_[c].z;
-    const double w = max_speed_[size_[c]];
-    if (speed2 > w * w) return false;
-  }
+  for (std::size_t k = 1; k <= capacity_; ++k)
+    for (const Vec3& v : lists_[k])
+      if (v.x * v.x + v.y * v.y + v.z * v.z > max_speed_[k] * max_speed_[k]) return false;
   return true;
 }
 
@@ -391,28 +335,31 @@ Measurement Gas::measure() const {
   const Vec3 u{p.x / total_mass, p.y / total_mass, p.z / total_mass};  // mean flow (zero to round-off)
   std::size_t largest = 1;
   for (std::size_t k = 1; k <= capacity_; ++k)
-    if (!members_[k].empty()) largest = k;
+    if (!lists_[k].empty()) largest = k;
   m.number.assign(largest, 0.0);
   m.energy.assign(largest, 0.0);
-  for (std::size_t c = 0; c < v_.size(); ++c) {
-    const Vec3 d{v_[c].x - u.x, v_[c].y - u.y, v_[c].z - u.z};
-    const std::size_t k = size_[c];
-    m.energy[k - 1] += 0.5 * mass(size_[c]) * (d.x * d.x + d.y * d.y + d.z * d.z);
-  }
   for (std::size_t k = 1; k <= largest; ++k) {
-    m.number[k - 1] = static_cast<double>(members_[k].size());
+    double e = 0.0;
+    for (const Vec3& v : lists_[k]) {
+      const Vec3 d{v.x - u.x, v.y - u.y, v.z - u.z};
+      e += d.x * d.x + d.y * d.y + d.z * d.z;
+    }
+    m.energy[k - 1] = 0.5 * mass(k) * e;
+    m.number[k - 1] = static_cast<double>(lists_[k].size());
     m.kinetic_energy += m.energy[k - 1];
   }
-  m.clusters = static_cast<double>(v_.size());
+  m.clusters = static_cast<double>(clusters_);
   return m;
 }
 
 Gas::State Gas::state() const {
   State s;
-  s.velocity.reserve(3 * v_.size());
-  for (const auto& v : v_) s.velocity.insert(s.velocity.end(), {v.x, v.y, v.z});
-  s.size.assign(size_.begin(), size_.end());
-  s.slot.assign(slot_.begin(), slot_.end());
+  s.velocity.reserve(3 * clusters_);
+  s.count.resize(capacity_);
+  for (std::size_t k = 1; k <= capacity_; ++k) {
+    s.count[k - 1] = lists_[k].size();
+    for (const Vec3& v : lists_[k]) s.velocity.insert(s.velocity.end(), {v.x, v.y, v.z});
+  }
   s.max_speed.assign(max_speed_.begin() + 1, max_speed_.end());
   s.time = time_;
   s.credit = credit_;
@@ -425,37 +372,33 @@ Gas::State Gas::state() const {
 }
 
 void Gas::restore(const State& s) {
-  const std::size_t n = s.size.size();
-  if (s.velocity.size() != 3 * n || s.slot.size() != n || n > initial_monomers_ ||
-      s.max_speed.size() != s.capacity || s.capacity > std::max<std::size_t>(initial_monomers_, 16))
-    throw std::runtime_error("agg_frag checkpoint: inconsistent cluster arrays");
+  std::size_t clusters = 0, monomers = 0;
+  if (s.count.size() != s.capacity || s.max_speed.size() != s.capacity ||
+      s.capacity > std::max<std::size_t>(initial_monomers_, 16))
+    throw std::runtime_error("agg_frag checkpoint: inconsistent cluster tables");
+  for (std::size_t k = 1; k <= s.capacity; ++k) {
+    clusters += s.count[k - 1];
+    monomers += k * s.count[k - 1];
+  }
+  if (monomers != initial_monomers_ || s.velocity.size() != 3 * clusters)
+    throw std::runtime_error("agg_frag checkpoint: the monomer count differs from the input");
   // The tables at the saved capacity: the trees' sums then come out bit for bit as they were.
-  members_.clear();
+  lists_.clear();
   max_speed_.clear();
   diameter_.clear();
   capacity_ = 0;
   grow_to(s.capacity);
-  v_.resize(n);
-  size_.resize(n);
-  slot_.resize(n);
-  std::size_t monomers = 0;
-  for (std::size_t c = 0; c < n; ++c) {
-    v_[c] = {s.velocity[3 * c], s.velocity[3 * c + 1], s.velocity[3 * c + 2]};
-    size_[c] = static_cast<std::uint32_t>(s.size[c]);
-    slot_[c] = static_cast<std::uint32_t>(s.slot[c]);
-    if (size_[c] < 1 || size_[c] > capacity_) throw std::runtime_error("agg_frag checkpoint: cluster size out of range");
-    monomers += size_[c];
+  std::size_t at = 0;
+  for (std::size_t k = 1; k <= capacity_; ++k) {
+    auto& list = lists_[k];
+    list.resize(s.count[k - 1]);
+    for (Vec3& v : list) {
+      v = {s.velocity[at], s.velocity[at + 1], s.velocity[at + 2]};
+      at += 3;
+    }
+    max_speed_[k] = s.max_speed[k - 1];
   }
-  if (monomers != initial_monomers_) throw std::runtime_error("agg_frag checkpoint: monomer count differs from the input");
-  for (std::size_t c = 0; c < n; ++c) {  // the member lists in their saved order
-    auto& list = members_[size_[c]];
-    if (list.size() <= slot_[c]) list.resize(slot_[c] + 1, UINT32_MAX);
-    list[slot_[c]] = static_cast<std::uint32_t>(c);
-  }
-  for (const auto& list : members_)
-    for (auto c : list)
-      if (c == UINT32_MAX) throw std::runtime_error("agg_frag checkpoint: member lists have holes");
-  for (std::size_t k = 1; k <= capacity_; ++k) max_speed_[k] = s.max_speed[k - 1];
+  clusters_ = clusters;
   rebuild_sampler();
   time_ = s.time;
   credit_ = s.credit;

@@ -39,13 +39,15 @@
  * member; at every step start (step_fraction majorant mean free times) all w_k are recomputed
  * exactly. Post-collision speeds above w_k raise it at once (fragments can outrun both parents).
  *
- * **Storage** (no allocation per event). Velocities (Vec3) and sizes in parallel arrays reserved for
- * N_0 clusters; clusters of size k are listed in members[k] (a cluster's place there in `slot`), so
- * "a random cluster of size k" is one draw. A removed cluster's place is filled by the last one
- * (swap with last), fragments are appended. The per-size tables grow by doubling as larger clusters
- * appear (amortised; at most to N_0). Memory: 32 bytes per initial monomer plus the member lists
- * (4 bytes per cluster) and O(K) per size.
- *
+ * **Storage** (no allocation per event). The velocities of the clusters of size k are one array of
+ * their own, lists[k] (Vec3, 24 bytes a cluster): "a random cluster of size k" is one draw and one
+ * memory read, as in a plain gas, and a cluster is (size, place in its list). A removed cluster's
+ * place is taken by the last of its list (swap with last); new clusters are appended. The lists grow
+ * by doubling (amortised: no allocation per event); lists[1] starts reserved for N_0 monomers, and a
+ * list that has shrunk to under a quarter of its capacity is trimmed at the next step start, so the
+ * memory follows the population. Per-size tables (bounds, diameters, trees) grow by doubling up to
+ * the largest size present. 24 bytes per initial monomer at t = 0.
+
  * **Observables** (INTERFACE.md; ERRATA §12): N_k; the kinetic energy of each size relative to
  * u = total momentum/total mass; T_k = m_k <|v - u|^2>/3 = (2/3) E_k/N_k; the per-cluster total
  * T = sum_k N_k T_k/N (it can rise while energy is lost: aggregation removes slow pairs); the
@@ -125,7 +127,8 @@ class Gas {
   /// momentum, exact kinetic temperature: particles.hpp), drawn from `initial`.
   Gas(const Model& model, std::size_t monomers, double temperature, particles::InitialDistribution distribution,
       rng::Xoshiro256pp initial, rng::Xoshiro256pp collisions, double step_fraction);
-  /// Explicit clusters (unit tests): sizes and velocities; `initial_monomers` = sum of the sizes.
+  /// Explicit clusters (unit tests): sizes and velocities, listed in this order within each size;
+  /// the initial monomer count N_0 is the sum of the sizes.
   Gas(const Model& model, const std::vector<std::uint32_t>& sizes, const std::vector<particles::Vec3>& velocities,
       rng::Xoshiro256pp collisions, double step_fraction);
 
@@ -133,25 +136,32 @@ class Gas {
   /// true when the event target stopped it (exactly at that event).
   bool advance(double t_target, std::uint64_t event_target = UINT64_MAX);
 
-  /// Collides clusters a and b (a != b) as an accepted candidate: classification, outcome and
-  /// bookkeeping. Indices of other clusters may change (swap with last). Public for the unit tests.
-  Event collide(std::size_t a, std::size_t b);
+  /// A cluster: its size and its place in the list of that size.
+  struct Cluster {
+    std::uint32_t size;
+    std::uint32_t place;
+  };
+  /// Collides two different clusters as an accepted candidate: classification, outcome and
+  /// bookkeeping. Places of other clusters may change (swap with last). Public for the unit tests.
+  Event collide(Cluster a, Cluster b);
 
   double time() const { return time_; }
   const Counters& counters() const { return counters_; }
   double mean_step() const { return counters_.steps ? counters_.step_sum / static_cast<double>(counters_.steps) : 0.0; }
-  std::size_t clusters() const { return v_.size(); }
+  std::size_t clusters() const { return clusters_; }
   std::size_t initial_monomers() const { return initial_monomers_; }
   std::size_t largest_size_reached() const { return largest_reached_; }
-  std::size_t count(std::size_t size) const { return size < members_.size() ? members_[size].size() : 0; }
-  const particles::Vec3& velocity(std::size_t cluster) const { return v_[cluster]; }
-  std::uint32_t size_of(std::size_t cluster) const { return size_[cluster]; }
-  double mass(std::uint32_t size) const { return model_.monomer_mass * size; }
+  std::size_t count(std::size_t size) const { return size < lists_.size() ? lists_[size].size() : 0; }
+  const particles::Vec3& velocity(Cluster c) const { return lists_[c.size][c.place]; }
+  double mass(std::size_t size) const { return model_.monomer_mass * static_cast<double>(size); }
   /// Total momentum and kinetic energy (lab frame), for the invariant checks.
   particles::Vec3 momentum() const;
   double kinetic_energy() const;
   /// Candidate rate R = sum_ik A_ik now.
   double candidate_rate() const { return sampler_.total(); }
+  /// Bytes held: the cluster arrays (reserved for N_0 at the start, never more), the member lists
+  /// and the per-size tables.
+  std::size_t memory_bytes() const;
   /// Whether w_k >= every speed of size k (the majorant holds): for the tests.
   bool bounds_hold() const;
 
@@ -160,9 +170,9 @@ class Gas {
   /// Everything that evolves, for checkpoints; the trees are rebuilt from counts and bounds
   /// (segment_tree.hpp recomputes every sum from its leaves, for the same capacity).
   struct State {
-    std::vector<double> velocity;           ///< 3 N
-    std::vector<std::uint64_t> size, slot;  ///< N each
-    std::vector<double> max_speed;          ///< w_k, k = 1..capacity
+    std::vector<double> velocity;     ///< 3 N, size by size, each list in order
+    std::vector<std::uint64_t> count; ///< N_k, k = 1..capacity
+    std::vector<double> max_speed;    ///< w_k, k = 1..capacity
     double time = 0.0, credit = 0.0, next_step_time = 0.0;
     std::uint64_t capacity = 0, largest_reached = 0;
     Counters counters;
@@ -175,33 +185,28 @@ class Gas {
   void grow_to(std::size_t size);        ///< per-size tables for sizes up to `size`
   void update_size(std::uint32_t size);  ///< row and column of one size in the sampler
   void rebuild_sampler();                ///< every row and column, from the counts and bounds
-  void raise_bound(std::size_t cluster);
+  void raise_bound(std::uint32_t size, const particles::Vec3& v);
   void recompute_bounds();
-  void add_member(std::size_t cluster, std::uint32_t size);
-  void remove_member(std::size_t cluster);
-  /// Removes cluster c (already out of its member list); returns the index that now holds the
-  /// cluster that was last (c itself, or none when c was last: returns the old last index).
-  std::size_t remove_cluster(std::size_t c);
-  std::size_t append_cluster(const particles::Vec3& v, std::uint32_t size);
+  void add(std::uint32_t size, const particles::Vec3& v);
+  void remove(Cluster c);
+  void remove_pair(Cluster a, Cluster b);  ///< both, whatever their order in one list
   void start_step();
 
   Model model_;
-  std::size_t initial_monomers_;
+  std::size_t initial_monomers_ = 0;
   double volume_;  ///< V = (N_0 - 1)/n_1
   double step_fraction_;
-  particles::ParticleArray<particles::Vec3> v_;
-  std::vector<std::uint32_t> size_, slot_;
-  std::vector<std::vector<std::uint32_t>> members_;  ///< members_[k]: clusters of size k (k >= 1)
-  std::vector<double> max_speed_;                    ///< w_k (index k; 0 unused)
-  std::vector<double> diameter_;                     ///< sigma_k (index k)
-  segment_tree::LowRankSampler<3> sampler_;          ///< A_ik, index k - 1
-  std::size_t capacity_ = 0;                         ///< largest size the tables hold
+  std::vector<particles::ParticleArray<particles::Vec3>> lists_;  ///< lists_[k]: velocities of size k
+  std::size_t clusters_ = 0;                                      ///< N
+  std::vector<double> max_speed_;                                 ///< w_k (index k; 0 unused)
+  std::vector<double> diameter_;                                  ///< sigma_k (index k)
+  segment_tree::LowRankSampler<3> sampler_;                       ///< A_ik, index k - 1
+  std::size_t capacity_ = 0;                                      ///< largest size the tables hold
   std::size_t largest_reached_ = 1;
   rng::Xoshiro256pp gen_;
   double time_ = 0.0, credit_ = 0.0, next_step_time_ = 0.0;
   Counters counters_;
   std::vector<std::uint32_t> touched_;  ///< sizes whose count or bound changed in this event
-  std::vector<double> scratch_;         ///< recompute_bounds: max speed^2 per size (-1: not seen)
   std::vector<std::uint32_t> present_;  ///< recompute_bounds: the sizes present
 };
 

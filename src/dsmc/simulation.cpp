@@ -338,8 +338,7 @@ Snapshot make_agg_frag_snapshot(const agg_frag::Gas& gas, std::uint64_t next_sam
   store_result(snap, partial);
   const agg_frag::Gas::State s = gas.state();
   snap.reals["clusters/velocity"] = s.velocity;
-  snap.integers["clusters/size"] = s.size;
-  snap.integers["clusters/slot"] = s.slot;
+  snap.integers["clusters/count"] = s.count;
   snap.reals["clusters/max_speed"] = s.max_speed;
   snap.reals["clusters/clock"] = {s.time, s.credit, s.next_step_time, s.counters.step_sum, s.counters.dissipated,
                                   s.generator.spare};
@@ -354,8 +353,7 @@ std::uint64_t load_agg_frag_snapshot(const Snapshot& snap, agg_frag::Gas& gas, R
   partial = load_result(snap);
   agg_frag::Gas::State s;
   s.velocity = snap.reals.at("clusters/velocity");
-  s.size = snap.integers.at("clusters/size");
-  s.slot = snap.integers.at("clusters/slot");
+  s.count = snap.integers.at("clusters/count");
   s.max_speed = snap.reals.at("clusters/max_speed");
   const auto& clock = snap.reals.at("clusters/clock");
   const auto& counters = snap.integers.at("clusters/counters");
