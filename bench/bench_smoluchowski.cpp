@@ -1,0 +1,56 @@
+// Wall-clock time of smoluchowski::solve for the two reference problems of smoluchowski.hpp:
+// a sticking gas from monomers to <k> = 10 and the full model (E_agg = 0.5, E_frag = 1.5,
+// eps_f = 0.5, alpha = 0.8) to its steady state. Not run by ctest: run build/bin/bench_smoluchowski.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <vector>
+
+#include "theory/smoluchowski.hpp"
+#include "theory/theory.hpp"
+
+namespace smol = gdsmc::theory::smoluchowski;
+
+namespace {
+
+void run(const char* name, const smol::Parameters& p, double last_time_nu0) {
+  const double nu0 = gdsmc::theory::collision_frequency(p.monomer_density, p.monomer_diameter, 1.0,
+                                                        p.monomer_mass, p.initial_temperature);
+  std::vector<double> times;
+  for (double t = 0.0; t <= last_time_nu0 * (1.0 + 1e-12); t += last_time_nu0 / 20.0)
+    times.push_back(t / nu0);
+  const auto start = std::chrono::steady_clock::now();
+  const smol::Solution s = smol::solve(p, times);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("%s: %.3f s, K = %zu, lost mass fraction %.3g\n", name, seconds, s.max_size,
+              s.lost_mass_fraction);
+  std::printf("  t nu0   sum n_k/n0   <k>   n_1/n0   T/T0   E_kin   aggregations fragmentations\n");
+  const std::size_t K = s.max_size;
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    double clusters = 0.0;
+    for (std::size_t k = 0; k < K; ++k) clusters += s.number_fraction[i * K + k];
+    std::printf("  %7.1f %11.5g %7.3f %9.4g %8.4g %8.4g %10.5g %10.5g\n", times[i] * nu0, clusters,
+                1.0 / clusters, s.number_fraction[i * K], s.total_temperature[i],
+                s.kinetic_energy[i], s.aggregations[i], s.fragmentations[i]);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const double sticking_end = argc > 1 ? std::atof(argv[1]) : 100.0;
+  const double full_end = argc > 2 ? std::atof(argv[2]) : 2000.0;
+  const double infinity = std::numeric_limits<double>::infinity();
+  smol::Parameters full{.monomer_mass = 1.0, .monomer_diameter = 1.0, .monomer_density = 0.1,
+                        .initial_temperature = 1.0, .restitution = 0.8,
+                        .aggregation_energy = 0.5, .fragmentation_energy = 1.5,
+                        .fragment_restitution = 0.5};
+  smol::Parameters sticking = full;
+  sticking.aggregation_energy = infinity;
+  sticking.fragmentation_energy = infinity;
+  if (sticking_end > 0) run("sticking", sticking, sticking_end);
+  if (full_end > 0) run("full model", full, full_end);
+}
