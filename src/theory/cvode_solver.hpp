@@ -4,14 +4,21 @@
  *        per-component tolerances, every SUNDIALS call checked and named in the error).
  *
  * Not part of the public API (namespace gdsmc::theory::detail); used by theory.cpp (constant
- * restitution) and diffusion.cpp (viscoelastic restitution).
+ * restitution), diffusion.cpp (viscoelastic restitution) and smoluchowski.cpp (cluster sizes).
+ *
+ * The default is BDF with a dense difference-quotient Jacobian, right for a few dozen components:
+ * it costs n right-hand sides per Jacobian and n^3 per factorisation. Larger systems choose through
+ * CvodeOptions a matrix-free SPGMR Krylov solver without preconditioner (stiff), or Adams with
+ * fixed-point iteration (non-stiff problems only; no linear algebra at all).
  */
 #pragma once
 
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
 #include <sunlinsol/sunlinsol_dense.h>
+#include <sunlinsol/sunlinsol_spgmr.h>
 #include <sunmatrix/sunmatrix_dense.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
 #include <algorithm>
 #include <cmath>
@@ -38,6 +45,9 @@ struct MatrixDeleter {
 struct LinearSolverDeleter {
   void operator()(SUNLinearSolver solver) const { SUNLinSolFree(solver); }
 };
+struct NonlinearSolverDeleter {
+  void operator()(SUNNonlinearSolver solver) const { SUNNonlinSolFree(solver); }
+};
 struct CvodeDeleter {
   void operator()(void* memory) const { CVodeFree(&memory); }
 };
@@ -46,7 +56,21 @@ using ContextPtr = std::unique_ptr<std::remove_pointer_t<SUNContext>, ContextDel
 using VectorPtr = std::unique_ptr<std::remove_pointer_t<N_Vector>, VectorDeleter>;
 using MatrixPtr = std::unique_ptr<std::remove_pointer_t<SUNMatrix>, MatrixDeleter>;
 using LinearSolverPtr = std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, LinearSolverDeleter>;
+using NonlinearSolverPtr =
+    std::unique_ptr<std::remove_pointer_t<SUNNonlinearSolver>, NonlinearSolverDeleter>;
 using CvodeMemoryPtr = std::unique_ptr<void, CvodeDeleter>;
+
+/// How CVODE solves its implicit stage equations.
+enum class CvodeMethod {
+  bdf_dense,          ///< BDF, Newton, dense LU of a difference-quotient Jacobian
+  bdf_spgmr,          ///< BDF, Newton, matrix-free GMRES without preconditioner
+  adams_fixed_point,  ///< Adams-Moulton, fixed-point iteration (no linear algebra; non-stiff only)
+};
+
+struct CvodeOptions {
+  CvodeMethod method = CvodeMethod::bdf_dense;
+  long max_steps = 200000;
+};
 
 class CvodeSolver {
  public:
@@ -57,6 +81,12 @@ class CvodeSolver {
   /// (CVODE's scalar rtol cannot express "absolute only" for the ln T components).
   CvodeSolver(RightHandSide rhs, const std::vector<double>& y0,
               std::vector<double> relative_tolerance, std::vector<double> absolute_tolerance)
+      : CvodeSolver(std::move(rhs), y0, std::move(relative_tolerance),
+                    std::move(absolute_tolerance), CvodeOptions{}) {}
+
+  CvodeSolver(RightHandSide rhs, const std::vector<double>& y0,
+              std::vector<double> relative_tolerance, std::vector<double> absolute_tolerance,
+              CvodeOptions options)
       : rhs_(std::move(rhs)),
         size_(y0.size()),
         relative_tolerance_(std::move(relative_tolerance)),
@@ -69,20 +99,37 @@ class CvodeSolver {
     state_.reset(check_pointer(N_VNew_Serial(n, context_.get()), "N_VNew_Serial"));
     std::copy(y0.begin(), y0.end(), N_VGetArrayPointer(state_.get()));
 
-    memory_.reset(check_pointer(CVodeCreate(CV_BDF, context_.get()), "CVodeCreate"));
+    const bool adams = options.method == CvodeMethod::adams_fixed_point;
+    memory_.reset(
+        check_pointer(CVodeCreate(adams ? CV_ADAMS : CV_BDF, context_.get()), "CVodeCreate"));
     check(CVodeSetErrHandlerFn(memory_.get(), &CvodeSolver::record_error, this),
           "CVodeSetErrHandlerFn");
     check(CVodeInit(memory_.get(), &CvodeSolver::evaluate_rhs, 0.0, state_.get()), "CVodeInit");
     check(CVodeSetUserData(memory_.get(), this), "CVodeSetUserData");
     check(CVodeWFtolerances(memory_.get(), &CvodeSolver::error_weights), "CVodeWFtolerances");
-    check(CVodeSetMaxNumSteps(memory_.get(), 200000), "CVodeSetMaxNumSteps");
+    check(CVodeSetMaxNumSteps(memory_.get(), options.max_steps), "CVodeSetMaxNumSteps");
 
-    matrix_.reset(check_pointer(SUNDenseMatrix(n, n, context_.get()), "SUNDenseMatrix"));
-    linear_solver_.reset(
-        check_pointer(SUNLinSol_Dense(state_.get(), matrix_.get(), context_.get()),
-                      "SUNLinSol_Dense"));
-    const int flag = CVodeSetLinearSolver(memory_.get(), linear_solver_.get(), matrix_.get());
-    if (flag != CVLS_SUCCESS) fail("CVodeSetLinearSolver", CVodeGetLinReturnFlagName(flag));
+    switch (options.method) {
+      case CvodeMethod::bdf_dense: {
+        matrix_.reset(check_pointer(SUNDenseMatrix(n, n, context_.get()), "SUNDenseMatrix"));
+        linear_solver_.reset(
+            check_pointer(SUNLinSol_Dense(state_.get(), matrix_.get(), context_.get()),
+                          "SUNLinSol_Dense"));
+        attach_linear_solver();
+        break;
+      }
+      case CvodeMethod::bdf_spgmr:
+        linear_solver_.reset(check_pointer(
+            SUNLinSol_SPGMR(state_.get(), SUN_PREC_NONE, 0, context_.get()), "SUNLinSol_SPGMR"));
+        attach_linear_solver();
+        break;
+      case CvodeMethod::adams_fixed_point:
+        nonlinear_solver_.reset(check_pointer(
+            SUNNonlinSol_FixedPoint(state_.get(), 0, context_.get()), "SUNNonlinSol_FixedPoint"));
+        check(CVodeSetNonlinearSolver(memory_.get(), nonlinear_solver_.get()),
+              "CVodeSetNonlinearSolver");
+        break;
+    }
   }
 
   CvodeSolver(const CvodeSolver&) = delete;  // CVODE holds `this` as user data
@@ -98,7 +145,20 @@ class CvodeSolver {
     return {N_VGetArrayPointer(state_.get()), size_};
   }
 
+  /// Right-hand-side evaluations so far (CVODE's own, excluding Jacobian and Krylov ones).
+  long rhs_evaluations() const {
+    long count = 0;
+    CVodeGetNumRhsEvals(memory_.get(), &count);
+    return count;
+  }
+
  private:
+  void attach_linear_solver() {
+    const int flag = CVodeSetLinearSolver(memory_.get(), linear_solver_.get(), matrix_.get());
+    if (flag != CVLS_SUCCESS) fail("CVodeSetLinearSolver", CVodeGetLinReturnFlagName(flag));
+  }
+
+
   static int evaluate_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
     auto* self = static_cast<CvodeSolver*>(user_data);
     const std::span<const double> state{N_VGetArrayPointer(y), self->size_};
@@ -169,6 +229,7 @@ class CvodeSolver {
   VectorPtr state_;
   MatrixPtr matrix_;
   LinearSolverPtr linear_solver_;
+  NonlinearSolverPtr nonlinear_solver_;
   CvodeMemoryPtr memory_;
 };
 
