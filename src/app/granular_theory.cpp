@@ -11,6 +11,7 @@
 
 #include "io/config.hpp"
 #include "io/namelist.hpp"
+#include "theory/smoluchowski.hpp"
 #include "theory/theory.hpp"
 
 namespace {
@@ -28,6 +29,11 @@ const char* kUsage =
     "                       binary mixtures: the HCS in first Sonine approximation (seed 003, ERRATA §6)\n"
     "  diffusion_coefficient_ratio  [D_k/D_1] (seed 001 eq 19, ERRATA §8); msd {time, value[t][k]} (eq 17)\n"
     "                       when &output track_displacements = .true. (not with msd_start_temperature)\n"
+    "With &agg_frag (ERRATA §12), the Smoluchowski rate equations with Maxwellian kernels instead:\n"
+    "  number, temperature  {time, value[t][k]} per cluster size k (number: N_k for the run's n_particles)\n"
+    "  total_temperature, kinetic_energy, mean_size, monomer_fraction, collisions, aggregations,\n"
+    "  fragmentations, collisions_per_particle   {time, value} (event counts of one replica)\n"
+    "  initial_rates        events per unit volume and time at t = 0 (exact: Maxwellian monomers)\n"
     "With &sweep: {\"sweep\": {variable, values}, \"points\": [one object as above per value]}.\n";
 
 std::string number(double x) {
@@ -83,8 +89,101 @@ std::string escape(const std::string& text) {
   return out;
 }
 
+/// The theory of an &agg_frag run: the Smoluchowski equations of theory/smoluchowski.hpp on the run's
+/// sample points, in the units of the DSMC observables (counts for n_particles initial monomers).
+std::string agg_frag_json(const gdsmc::io::config::Config& config, const std::string& indent) {
+  namespace sm = gdsmc::theory::smoluchowski;
+  sm::Parameters p;
+  p.monomer_mass = config.system.mass[0];
+  p.monomer_diameter = config.system.diameter[0];
+  p.monomer_density = config.system.number_density[0];
+  p.initial_temperature = config.initial.temperature[0];
+  p.restitution = config.system.restitution(0, 0);
+  p.aggregation_energy = config.agg_frag.aggregation_energy.value_or(0.0);
+  p.fragmentation_energy = config.agg_frag.fragmentation_energy.value_or(INFINITY);
+  p.fragment_restitution = config.agg_frag.fragment_restitution.value_or(1.0);
+  const double n0 = static_cast<double>(config.dsmc.n_particles);
+  std::vector<double> times = config.sample_times();
+  if (times.empty()) {  // collision-driven: the times at which 2 x collisions per monomer reach the targets
+    const auto targets = config.sample_collisions();
+    double horizon = 1.0;
+    for (int guard = 0; guard < 60 && 2.0 * sm::solve(p, {0.0, horizon}).collisions.back() < targets.back(); ++guard)
+      horizon *= 2.0;
+    const std::size_t grid = 2001;
+    std::vector<double> t(grid);
+    for (std::size_t i = 0; i < grid; ++i) t[i] = horizon * static_cast<double>(i) / (grid - 1);
+    const auto fine = sm::solve(p, t);
+    std::size_t i = 1;
+    for (double c : targets) {
+      if (c <= 0.0) {
+        times.push_back(0.0);
+        continue;
+      }
+      while (i < grid - 1 && 2.0 * fine.collisions[i] < c) ++i;
+      const double c0 = 2.0 * fine.collisions[i - 1], c1 = 2.0 * fine.collisions[i];
+      times.push_back(t[i - 1] + (t[i] - t[i - 1]) * (c - c0) / (c1 - c0));
+    }
+  }
+  const auto sol = sm::solve(p, times);
+  const auto rates = sm::initial_rates(p);
+  const std::size_t nt = sol.time.size(), kt = sol.max_size;
+  // Columns up to the largest size of which the run would hold 1e-6 clusters or more at some time
+  // (the equations integrate sizes far beyond, to keep the lost mass below 1e-8).
+  std::size_t width = 1;
+  for (std::size_t i = 0; i < nt; ++i)
+    for (std::size_t k = 0; k < kt; ++k)
+      if (sol.number_fraction[i * kt + k] * n0 >= 1e-6) width = std::max(width, k + 1);
+  auto table = [&](const std::vector<double>& values, double scale) {
+    std::string out = "{\"time\": " + array(sol.time) + ", \"value\": [";
+    for (std::size_t i = 0; i < nt; ++i) {
+      std::vector<double> row(values.begin() + static_cast<std::ptrdiff_t>(i * kt),
+                              values.begin() + static_cast<std::ptrdiff_t>(i * kt + width));
+      for (double& x : row) x *= scale;
+      out += (i ? ", " : "") + array(row);
+    }
+    return out + "]}";
+  };
+  auto series = [&](const std::vector<double>& values, double scale) {
+    std::vector<double> v(values);
+    for (double& x : v) x *= scale;
+    return "{\"time\": " + array(sol.time) + ", \"value\": " + array(v) + "}";
+  };
+  std::vector<double> mean_size(nt), monomer_fraction(nt), per_particle(nt);
+  for (std::size_t i = 0; i < nt; ++i) {
+    double clusters = 0.0;
+    for (std::size_t k = 0; k < kt; ++k) clusters += sol.number_fraction[i * kt + k];
+    mean_size[i] = 1.0 / clusters;
+    monomer_fraction[i] = sol.number_fraction[i * kt];
+    per_particle[i] = 2.0 * sol.collisions[i];
+  }
+  const std::string in = indent + "  ";
+  std::ostringstream json;
+  json << indent << "{\n" << in << "\"n_species\": 1,\n";
+  json << in << "\"number\": " << table(sol.number_fraction, n0) << ",\n";
+  json << in << "\"temperature\": " << table(sol.temperature, 1.0) << ",\n";
+  json << in << "\"total_temperature\": " << series(sol.total_temperature, 1.0) << ",\n";
+  json << in << "\"kinetic_energy\": " << series(sol.kinetic_energy, 1.0) << ",\n";
+  json << in << "\"mean_size\": " << series(mean_size, 1.0) << ",\n";
+  json << in << "\"monomer_fraction\": " << series(monomer_fraction, 1.0) << ",\n";
+  json << in << "\"collisions\": " << series(sol.collisions, n0) << ",\n";
+  json << in << "\"aggregations\": " << series(sol.aggregations, n0) << ",\n";
+  json << in << "\"fragmentations\": " << series(sol.fragmentations, n0) << ",\n";
+  json << in << "\"collisions_per_particle\": " << series(per_particle, 1.0) << ",\n";
+  json << in << "\"initial_rates\": {\"collisions\": " << number(rates.collisions)
+       << ", \"aggregations\": " << number(rates.aggregations) << ", \"fragmentations\": "
+       << number(rates.fragmentations) << ", \"bounces\": " << number(rates.bounces)
+       << ", \"log_monomer_rate\": " << number(rates.log_monomer_rate) << "},\n";
+  json << in << "\"max_size\": " << kt << ",\n" << in << "\"lost_mass_fraction\": " << number(sol.lost_mass_fraction)
+       << ",\n";
+  json << in << "\"approximations\": {\"initial_rates\": \"exact\", \"number\": \"maxwellian\", "
+          "\"temperature\": \"maxwellian\", \"total_temperature\": \"maxwellian\"}\n";
+  json << indent << "}";
+  return json.str();
+}
+
 /// The theory of one system as a JSON object; `indent` prefixes every line.
 std::string point_json(const gdsmc::io::config::Config& config, const std::string& indent) {
+  if (config.has_agg_frag) return agg_frag_json(config, indent);
   namespace th = gdsmc::theory;
   const auto mix = config.mixture();
   const std::size_t s = mix.size();
