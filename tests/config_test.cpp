@@ -352,6 +352,8 @@ TEST(ConfigResolved, ContainsEveryFieldOfEveryGroup) {
   expected.erase("sweep:values");
   for (const char* v : {"aggregation_energy", "fragmentation_energy", "fragment_restitution"})
     expected.erase(std::string("agg_frag:") + v);  // written only with &agg_frag
+  for (const char* v : {"thermostat:kind", "shear:rate", "shear:average_from"})
+    expected.erase(v);  // written only with a thermostat or a shear rate
   EXPECT_EQ(names, expected);
   for (const char* n : {"system:n_species", "system:mass", "system:diameter", "system:number_density",
                         "system:restitution", "system:restitution_model", "system:enskog",
@@ -426,6 +428,7 @@ TEST(ConfigReference, MentionsEveryVariable) {
   all.insert(checkpointed.begin(), checkpointed.end());
   for (const char* v : {"aggregation_energy", "fragmentation_energy", "fragment_restitution"})
     all.insert(std::string("agg_frag:") + v);
+  for (const char* v : {"thermostat:kind", "shear:rate", "shear:average_from"}) all.insert(v);
   for (const auto& name : all) {
     const std::string variable = name.substr(name.find(':') + 1);
     EXPECT_NE(md.find("`" + variable + "`"), std::string::npos) << variable;
@@ -897,4 +900,53 @@ TEST(ConfigSampleTimes, BadListsAreRefused) {
   expect_error(error_of(with_line(16, "  sample_times = 0.0, 1.0")), 16, "output", "sample_times", {"outside (0"});
   expect_error(error_of(with_line(16, "  sample_times = 1.0, n_samples = 4")), 16, "output", "n_samples",
                {"not used with sample_times"});
+}
+
+// ---------------------------------------------------------------------------------------------
+// &thermostat and &shear (ERRATA §13)
+// ---------------------------------------------------------------------------------------------
+namespace {
+/// One species at n = 0.01, T0 = 1 (nu_0 = 0.0709, eta_0 = 0.0499, a* = a eta_0/(n T0) = 4.99 a);
+/// line 4 is the &thermostat/&shear line, line 1 &system, line 3 &dsmc.
+std::string sheared(const std::string& groups, const std::string& dsmc = "&dsmc n_particles = 100, t_end = 5.0 /",
+                    const std::string& system = "&system mass = 1.0, diameter = 1.0, number_density = 0.01, "
+                                                "restitution = 0.9 /") {
+  return system + "\n&initial temperature = 1.0 /\n" + dsmc + "\n" + groups + "\n";
+}
+}  // namespace
+
+TEST(ConfigShear, ValidGroupsAreRead) {
+  const auto c = read_text(sheared("&thermostat kind = 'gaussian' / &shear rate = 0.01, average_from = 2.0 /"));
+  EXPECT_TRUE(c.staged());
+  EXPECT_EQ(c.thermostat.kind, "gaussian");
+  EXPECT_EQ(*c.shear.rate, 0.01);
+  EXPECT_TRUE(resolved_names(c).count("shear:rate"));
+  EXPECT_TRUE(read_text(sheared("&thermostat kind = 'gaussian' /")).staged());
+  EXPECT_FALSE(read_text(sheared("&thermostat kind = 'none' /")).staged());
+}
+
+TEST(ConfigShear, BadInputNamesTheVariable) {
+  expect_error(error_of(sheared("&shear rate = -0.1 /")), 4, "shear", "rate", {"outside [0"});
+  expect_error(error_of(sheared("&shear rate = 0.0 /")), 4, "shear", "rate", {"leave &shear out"});
+  expect_error(error_of(sheared("&shear rate = 0.5 /")), 4, "shear", "rate", {"a* = ", "> 1"});
+  expect_error(error_of(sheared("&shear rate = 0.01, average_from = 9.0 /")), 4, "shear", "average_from",
+               {"below t_end"});
+  expect_error(error_of(sheared("&shear average_from = 1.0 /")), 4, "shear", "average_from",
+               {"only used with a shear rate"});
+  expect_error(error_of(sheared("&thermostat kind = 'nose' /")), 4, "thermostat", "kind", {"'gaussian'"});
+  expect_error(error_of(sheared("&shear rate = 0.01 /", "&dsmc n_particles = 100, collisions_per_particle = 5.0 /")),
+               3, "dsmc", "collisions_per_particle", {"driven by t_end"});
+  expect_error(error_of(sheared("&shear rate = 0.01 /", "&dsmc n_particles = 100, t_end = 5.0 /",
+                                "&system mass = 1.0, diameter = 1.0, number_density = 0.01, restitution = 0.9, "
+                                "enskog = .true. /")),
+               1, "system", "enskog", {"dilute gas"});
+  expect_error(error_of(sheared("&thermostat kind = 'gaussian' /", "&dsmc n_particles = 100, t_end = 5.0 /",
+                                "&system mass = 1.0, diameter = 1.0, number_density = 0.01, "
+                                "restitution_model = 'viscoelastic', visco_a_kappa = 0.1 /")),
+               1, "system", "restitution_model", {"'constant' only"});
+}
+
+TEST(ConfigShear, ThermostatWithAggFragIsRefused) {
+  const std::string text = monomers("&agg_frag aggregation_energy = 0.5 /\n&thermostat kind = 'gaussian' /");
+  expect_error(error_of(text), 6, "thermostat", "kind", {"cannot run with &agg_frag"});
 }

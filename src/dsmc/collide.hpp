@@ -187,6 +187,14 @@ class Collider {
   /// up to one step's events.
   bool advance(double t_target, std::uint64_t event_target = UINT64_MAX);
 
+  /// The velocities were changed from outside between two advance() calls (the streaming of a
+  /// shear flow, a thermostat's rescaling): the largest speeds and the bounds are recomputed
+  /// exactly, O(N), so the majorant holds again. Not with blocks.
+  void velocities_changed() {
+    recompute_max_speeds();
+    rebuild_bounds();
+  }
+
   double time() const { return time_; }
   const Counters& counters() const { return counters_; }
   /// Mean length of the time steps so far (0 before the first step).

@@ -161,4 +161,27 @@ std::vector<double> Accumulator::standard_error() const {
   return var;
 }
 
+std::array<double, 6> kinetic_pressure_tensor(const species::Mixture& mix, const particles::System& sys,
+                                              const Moments& moments) {
+  std::array<double, 6> p{};
+  const auto& u = moments.mean_flow;
+  for (std::size_t k = 0; k < sys.n_species(); ++k) {
+    if (sys.count[k] == 0) continue;
+    std::array<double, 6> sum{};
+    const std::size_t end = sys.first[k] + sys.count[k];
+    for (std::size_t i = sys.first[k]; i < end; ++i) {
+      const double x = sys.v[i].x - u[0], y = sys.v[i].y - u[1], z = sys.v[i].z - u[2];
+      sum[0] += x * x;
+      sum[1] += y * y;
+      sum[2] += z * z;
+      sum[3] += x * y;
+      sum[4] += x * z;
+      sum[5] += y * z;
+    }
+    const double weight = mix.mass[k] * mix.number_density[k] / static_cast<double>(sys.count[k]);
+    for (std::size_t c = 0; c < 6; ++c) p[c] += weight * sum[c];
+  }
+  return p;
+}
+
 }  // namespace gdsmc::sample

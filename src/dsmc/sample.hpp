@@ -18,6 +18,7 @@
  */
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -44,6 +45,11 @@ Moments measure(const species::Mixture& mix, const particles::System& sys);
 /// over [-range, range]; `moments` gives T_k and u.
 std::vector<double> velocity_histogram(const species::Mixture& mix, const particles::System& sys,
                                        const Moments& moments, std::size_t bins, double range);
+
+/// Kinetic pressure tensor (seed 004, ERRATA §13): P^k = sum_i (m_i n_i / N_i) sum_{k in i} (V - u)(V - u),
+/// components xx, yy, zz, xy, xz, yz, with u = `moments.mean_flow`. Densities are the physical n_i.
+std::array<double, 6> kinetic_pressure_tensor(const species::Mixture& mix, const particles::System& sys,
+                                              const Moments& moments);
 
 /// Mean-squared displacement of each species at time t >= every t_last (seed 001 eq 15, ERRATA §7):
 /// <|R + v (t - t_last)|^2>, the free flight since the last collision added without changing the state.

@@ -21,6 +21,7 @@
 #include "dsmc/particles.hpp"
 #include "dsmc/rng.hpp"
 #include "dsmc/sample.hpp"
+#include "dsmc/thermostat.hpp"
 #include "io/h5md.hpp"
 
 namespace gdsmc::simulation {
@@ -495,12 +496,161 @@ ReplicaResult run_agg_frag_replica(const io::config::Config& config, const Optio
   return result;
 }
 
+// ---------------------------------------------------------------------------------------------
+// Thermostat and uniform shear flow (&thermostat, &shear): stages of streaming, collisions and
+// thermostat (thermostat.hpp, ERRATA §13)
+// ---------------------------------------------------------------------------------------------
+
+/// eta_0 = (5/(16 sigma^2)) sqrt(m T/pi), the elastic one-component viscosity (ERRATA §10, §13).
+double elastic_viscosity(double mass, double diameter, double temperature) {
+  return 5.0 / (16.0 * diameter * diameter) * std::sqrt(mass * temperature / M_PI);
+}
+
+/// Replica r of a run with a thermostat or a shear rate. Each stage of length dt: streaming
+/// V_x -> V_x - a V_y dt; at a sample time the measurement (after the streaming, before the
+/// collisions: ERRATA §13); the collisions of [t, t + dt] in continuous time (collide.hpp, no cache
+/// blocks: the stages are far shorter than a blocked step); the Gaussian thermostat. The stages end
+/// at every sample time.
+ReplicaResult run_staged_replica(const io::config::Config& config, const Options& options, Progress& progress,
+                                 std::size_t slot, const std::string& label, std::size_t r, const Snapshot* resume,
+                                 const SafePoint& safe_point) {
+  const species::Mixture mix = config.mixture();
+  const std::size_t s = mix.size();
+  const auto counts = particles::species_counts(static_cast<std::size_t>(config.dsmc.n_particles), mix);
+  const auto seed = static_cast<std::uint64_t>(config.dsmc.seed);
+  const std::vector<double> targets = config.sample_times();
+  const std::size_t n_samples = targets.size();
+  const double t_end = targets.back();
+  const double shear = config.shear.rate.value_or(0.0);
+  const bool gaussian = config.thermostat.kind == "gaussian";
+  const double average_from = config.shear.average_from.value_or(0.5 * t_end);
+  const double n = mix.total_density();
+
+  auto init_stream = rng::make_stream(seed, r, rng::Purpose::initial_state);
+  particles::System sys = particles::make_system(mix, counts, config.initial.temperature,
+                                                 parse_distribution(config.initial.distribution), init_stream);
+  thermostat::remove_mean_flow(mix, sys);  // the centre-of-mass velocity sum m V / sum m (ERRATA §13)
+  collide::Collider collider(collide::parse_scheme(config.dsmc.scheme), mix, sys,
+                             rng::make_stream(seed, r, rng::Purpose::collisions), config.dsmc.step_fraction);
+  ReplicaResult result;
+  ReplicaProgress p;
+  // Stage accumulators: zeta dt since the last sample, the viscosity's window sum, stage count.
+  double zeta_sum = 0.0, zeta_stages = 0.0, window_sum = 0.0, window_samples = 0.0, stages = 0.0;
+  if (resume) {
+    load_snapshot(*resume, sys, collider, p, result);
+    const auto& v = resume->reals.at("staged/values");
+    zeta_sum = v.at(0), zeta_stages = v.at(1), window_sum = v.at(2), window_samples = v.at(3), stages = v.at(4);
+  } else {
+    collider.velocities_changed();  // the bounds (and the majorant rate that sizes the stages) from the start
+  }
+  const std::function<Snapshot()> snapshot = [&] {
+    Snapshot snap = make_snapshot(sys, collider, p, result);
+    snap.reals["staged/values"] = {zeta_sum, zeta_stages, window_sum, window_samples, stages};
+    return snap;
+  };
+  std::uint64_t reported_events = collider.counters().events;
+
+  // The sample of this instant: after the streaming of the stage that starts now.
+  auto measure = [&] {
+    const sample::Moments m = sample::measure(mix, sys);
+    const auto& counters = collider.counters();
+    result.add("temperature", s, m.temperature);
+    result.add("total_temperature", 1, {m.total_temperature});
+    result.add("sonine_c", s, m.sonine_c);
+    result.add("number", s, m.number);
+    result.add("collisions", 1, {static_cast<double>(counters.events)});
+    result.add("collisions_per_particle", 1,
+               {2.0 * static_cast<double>(counters.events) / static_cast<double>(sys.size())});
+    result.add("time", 1, {collider.time()});
+    const auto kinetic = sample::kinetic_pressure_tensor(mix, sys, m);
+    const std::vector<double> pk(kinetic.begin(), kinetic.end());
+    result.add("pressure_tensor_kinetic", 6, pk);
+    result.add("pressure_tensor_collisional", 6, std::vector<double>(6, 0.0));  // dilute: no transfer
+    result.add("pressure_tensor", 6, pk);
+    const double zeta_dt = zeta_stages > 0.0 ? zeta_sum / zeta_stages : 0.0;
+    result.add("thermostat_zeta_dt", 1, {zeta_dt});
+    zeta_sum = zeta_stages = 0.0;
+    if (shear > 0.0) {
+      const double viscosity = -kinetic[3] / shear;  // eta = -P_xy / a
+      result.add("shear_viscosity_raw", 1, {viscosity});
+      if (s == 1) {
+        // eta/eta_0(T) with the corrections of ERRATA §13: sampling point (1 - <zeta dt>) and finite
+        // shear rate 1 - (a* eta*)^2, a* = a/nu_0(T), nu_0 = n T/eta_0.
+        const double eta0 = elastic_viscosity(mix.mass[0], mix.diameter[0], m.total_temperature);
+        const double reduced_rate = shear * eta0 / (n * m.total_temperature);
+        const double corrected = viscosity / eta0 / (1.0 - zeta_dt);
+        double eta = corrected;
+        for (int it = 0; it < 20; ++it) eta = corrected / (1.0 - reduced_rate * reduced_rate * eta * eta);
+        result.add("reduced_shear_rate", 1, {reduced_rate});
+        result.add("shear_viscosity", 1, {eta});
+        if (collider.time() >= average_from * (1.0 - 1e-12)) {
+          window_sum += eta;
+          window_samples += 1.0;
+        }
+      }
+    }
+  };
+
+  const double stage_cap = shear > 0.0 ? 0.01 / shear : std::numeric_limits<double>::infinity();
+  bool stale_bounds = true;  // velocities changed outside the collider since its last bounds
+  // One stage from the collider's time to `end` (or, for the last sample, only its streaming and
+  // measurement): streaming, the sample, collisions, thermostat.
+  auto stage = [&](double end, bool sample_here, bool last) {
+    const double t = collider.time();
+    if (shear > 0.0) {
+      thermostat::stream(sys, shear, end - t);
+      stale_bounds = true;
+    }
+    if (sample_here) measure();
+    if (last) return;
+    if (stale_bounds) collider.velocities_changed();
+    const double energy_before = thermostat::peculiar_energy(mix, sys).kinetic;
+    collider.advance(end);
+    stale_bounds = shear > 0.0;
+    if (gaussian) {
+      zeta_sum += thermostat::rescale(mix, sys, energy_before);
+      zeta_stages += 1.0;
+      stale_bounds = true;
+    }
+    stages += 1.0;
+    if (options.interrupt && options.interrupt->load()) throw Interrupted();
+    const std::uint64_t events = collider.counters().events;
+    progress.update(slot, std::min(collider.time() / t_end, 0.999), label, collider.time(), events - reported_events);
+    reported_events = events;
+  };
+  // The end of a stage of the default length from now, not beyond `limit` (then exactly `limit`).
+  auto stage_end = [&](double limit) {
+    const double free_time = static_cast<double>(sys.size()) / (2.0 * collider.candidate_rate());
+    const double end = collider.time() + std::min(config.dsmc.stage_step * free_time, stage_cap);
+    return end < limit ? end : limit;
+  };
+  for (; p.next_sample < n_samples; ++p.next_sample, safe_point(snapshot)) {
+    const std::size_t i = p.next_sample;
+    if (options.interrupt && options.interrupt->load()) throw Interrupted();
+    const auto t0 = Clock::now();
+    while (collider.time() < targets[i]) {  // stages up to the sample time, which the last one hits exactly
+      stage(stage_end(targets[i]), false, false);
+      safe_point(snapshot);
+    }
+    const bool last = i + 1 == n_samples;
+    stage(last ? collider.time() : stage_end(targets[i + 1]), true, last);  // the stage that samples
+    result.collide_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+  }
+  progress.update(slot, 1.0, label, collider.time(), 0);
+  result.events = collider.counters().events;
+  result.mean_step = collider.time() > 0.0 && stages > 0.0 ? collider.time() / stages : 0.0;
+  if (shear > 0.0 && s == 1 && window_samples > 0.0)
+    result.add("shear_viscosity_average", 1, {window_sum / window_samples});
+  return result;
+}
+
 /// Runs replica r of one Config, from the start or from `resume`. `slot` is its place in this
 /// rank's progress; `label` names it.
 ReplicaResult run_replica(const io::config::Config& config, const Options& options, Progress& progress,
                           std::size_t slot, const std::string& label, std::size_t r, const Snapshot* resume,
                           const SafePoint& safe_point) {
   if (config.has_agg_frag) return run_agg_frag_replica(config, options, progress, slot, label, r, resume, safe_point);
+  if (config.staged()) return run_staged_replica(config, options, progress, slot, label, r, resume, safe_point);
   const species::Mixture mix = config.mixture();
   const std::size_t s = mix.size();
   const auto counts = particles::species_counts(static_cast<std::size_t>(config.dsmc.n_particles), mix);
@@ -929,7 +1079,9 @@ void write_point(io::h5md::Writer& writer, const std::string& root, const io::co
   }
 
   for (const auto& [name, a] : acc) {
-    if (name == "velocity_histogram" || name == "msd_start" || name.rfind("reduced_", 0) == 0) continue;
+    if (name == "velocity_histogram" || name == "msd_start" ||
+        (name.rfind("reduced_", 0) == 0 && name != "reduced_shear_rate") || name == "shear_viscosity_average")
+      continue;
     io::h5md::Series series;
     series.time = time_mean;
     series.step = step;
@@ -959,6 +1111,24 @@ void write_point(io::h5md::Writer& writer, const std::string& root, const io::co
     writer.write_dataset(root + "/velocity_histogram/bin_edges", edges, {bins + 1});
   }
   if (acc.count("reduced_distribution")) write_reduced(writer, root, config, result);
+  if (acc.count("shear_viscosity_average")) {
+    // One value per replica: the mean of eta/eta_0 over its samples from average_from on.
+    const auto mean = acc["shear_viscosity_average"].mean();
+    const auto error = acc["shear_viscosity_average"].standard_error();
+    const std::string g = root + "/shear_viscosity";
+    writer.write_attribute(g, "time_average", mean.at(0));
+    if (!error.empty()) writer.write_attribute(g, "time_average_error", error.at(0));
+    writer.write_attribute(g, "average_from", config.shear.average_from.value_or(0.5 * *config.dsmc.t_end));
+    writer.write_attribute(g, "replicas_averaged", static_cast<long long>(acc["shear_viscosity_average"].values.size()));
+  }
+  if (acc.count("shear_viscosity"))
+    writer.write_attribute(root + "/shear_viscosity", "description",
+                           std::string("eta/eta_0(T) = -P_xy/(a eta_0), divided by (1 - <zeta dt>) (sampling point) "
+                                       "and by 1 - (a* eta*)^2 (finite shear rate), ERRATA §13"));
+  if (acc.count("pressure_tensor"))
+    writer.write_attribute(root + "/pressure_tensor", "description",
+                           std::string("P = P^k + P^c, columns xx, yy, zz, xy, xz, yz; sampled after the streaming of a "
+                                       "stage, before its collisions (ERRATA §13); dilute gas: P^c = 0"));
   if (acc.count("msd")) {
     // Each replica's start (-1 if it never started); the mean is the time origin of msd.
     const auto starts = acc["msd_start"].values;

@@ -116,6 +116,30 @@ const std::vector<Field<Dsmc>>& dsmc_fields() {
        "particles per cache block (one species, majorant or lowrank, t_end runs with N >= 2 block_size); "
        "0: none",
        Range{0, 2e9}},
+      {"stage_step", &Dsmc::stage_step, "",
+       "with &thermostat or &shear: length of one streaming/collision/thermostat stage in majorant mean free "
+       "times (also at most 0.01/a)",
+       Range{0, 1, true}},
+  };
+  return fields;
+}
+
+const std::vector<Field<Thermostat>>& thermostat_fields() {
+  static const std::vector<Field<Thermostat>> fields = {
+      {"kind", &Thermostat::kind, "",
+       "'none', or 'gaussian': rescale the velocities after each collision stage so that the inelastic loss "
+       "is restored (homogeneous steady state, ERRATA §13)",
+       {}, {"none", "gaussian"}},
+  };
+  return fields;
+}
+
+const std::vector<Field<Shear>>& shear_fields() {
+  static const std::vector<Field<Shear>> fields = {
+      {"rate", &Shear::rate, "1/time",
+       "a of the uniform shear flow u_x = a y (Lagrangian frame; V_x -> V_x - a V_y dt each stage)", at_least(0)},
+      {"average_from", &Shear::average_from, "time",
+       "the shear viscosity is averaged over the samples from this time on (default: t_end/2)", at_least(0)},
   };
   return fields;
 }
@@ -330,6 +354,8 @@ std::string owning_group(const std::string& name) {
   if (has(dsmc_fields())) return "dsmc";
   if (has(output_fields())) return "output";
   if (has(agg_frag_fields())) return "agg_frag";
+  if (has(thermostat_fields())) return "thermostat";
+  if (has(shear_fields())) return "shear";
   if (has(sweep_fields())) return "sweep";
   return "";
 }
@@ -604,6 +630,55 @@ void check_agg_frag(const Config& c, std::map<std::string, Provenance>& prov) {
     refuse("output", "track_displacements", "displacements are not tracked with &agg_frag");
 }
 
+/// &thermostat and &shear (ERRATA §13): what the staged loop of simulation.cpp can run, and a shear
+/// rate that keeps the finite-shear correction small. Refusals name the variable that asks for the
+/// combination.
+void check_staged(const Config& c, std::map<std::string, Provenance>& prov) {
+  const auto refuse = [&](const std::string& g, const char* v, const std::string& message) {
+    const Provenance& q = prov[g];
+    throw Error(q.file_of(v), q.line.count(v) ? q.line.at(v) : q.group_line, g, v, message);
+  };
+  if (!c.staged()) {
+    if (prov["shear"].line.count("average_from"))
+      refuse("shear", "average_from", "only used with a shear rate");
+    return;
+  }
+  const std::string what = c.shear.rate ? "&shear" : "&thermostat";
+  if (c.has_agg_frag)
+    refuse(c.shear.rate ? "shear" : "thermostat", c.shear.rate ? "rate" : "kind",
+           what + " cannot run with &agg_frag (the thermostat would feed the clusters' energy back)");
+  if (c.system.enskog)
+    refuse("system", "enskog", what + " runs in the dilute gas for now (Enskog shear needs the shifted relative "
+                               "velocity of ERRATA §13, not implemented yet)");
+  if (c.system.restitution_model != "constant")
+    refuse("system", "restitution_model", what + " runs with restitution_model = 'constant' only");
+  if (c.dsmc.scheme == "lowrank" && c.system.n_species > 64)
+    refuse("dsmc", "scheme", what + " runs with at most 64 species");
+  if (!c.dsmc.t_end)
+    refuse("dsmc", "collisions_per_particle", what + " runs are driven by t_end (stages end at times)");
+  if (c.output.track_displacements)
+    refuse("output", "track_displacements", "displacements are not tracked with " + what);
+  if (c.shear.rate) {
+    // a* = a / nu_0(T_0) with nu_0 = n T / eta_0, eta_0 = (5/(16 sigma^2)) sqrt(m T/pi) (ERRATA §13),
+    // species 1's size and mass for a mixture. Above a* = 1 at T_0 the start is far from the
+    // Navier-Stokes regime the viscosity protocol measures.
+    const double m = c.system.mass[0], sigma = c.system.diameter[0], t0 = c.initial.temperature[0];
+    double n = 0.0;
+    for (double x : c.system.number_density) n += x;
+    const double eta0 = 5.0 / (16.0 * sigma * sigma) * std::sqrt(m * t0 / std::acos(-1.0));
+    const double reduced = *c.shear.rate * eta0 / (n * t0);
+    if (reduced > 1.0)
+      refuse("shear", "rate",
+             "a* = a/nu_0(T_0) = " + std::to_string(reduced) +
+                 " > 1: far from the Navier-Stokes regime; lower rate or raise T_0 (a* <= 0.1 for the viscosity)");
+    if (*c.shear.rate == 0.0) refuse("shear", "rate", "rate = 0: leave &shear out for no shear");
+    if (c.shear.average_from && *c.shear.average_from >= *c.dsmc.t_end)
+      refuse("shear", "average_from", "average_from must be below t_end");
+  } else if (prov["shear"].line.count("average_from")) {
+    refuse("shear", "average_from", "only used with a shear rate");
+  }
+}
+
 std::vector<double> spaced(const Output& out, double end) {
   if (!out.sample_times.empty()) {  // 0, the list, and the end of the run
     std::vector<double> t{0.0};
@@ -730,6 +805,8 @@ bool is_string_variable(const std::string& group, const std::string& name) {
   if (group == "dsmc") return is_string_field(dsmc_fields(), name);
   if (group == "output") return is_string_field(output_fields(), name);
   if (group == "agg_frag") return is_string_field(agg_frag_fields(), name);
+  if (group == "thermostat") return is_string_field(thermostat_fields(), name);
+  if (group == "shear") return is_string_field(shear_fields(), name);
   return false;
 }
 
@@ -765,7 +842,7 @@ void check_sweep(const Config& c, const Provenance& prov, const namelist::Docume
   if (colon == std::string::npos || target_group == "sweep" || owning_group(target) != target_group)
     throw Error(prov.file, line_of("variable"), group, "variable",
                 "'" + sweep.variable + "' is not 'group:name' of a variable of &system, &initial, "
-                "&dsmc, &output or &agg_frag");
+                "&dsmc, &output, &agg_frag, &thermostat or &shear");
   for (std::size_t k = 0; k < sweep.values.size(); ++k) {
     auto o = overrides;
     o.push_back(sweep_override(sweep.variable, sweep.values[k]));
@@ -830,6 +907,10 @@ std::vector<h5md::Parameter> Config::resolved() const {
   append_resolved(out, "dsmc", dsmc, dsmc_fields());
   append_resolved(out, "output", output, output_fields());
   if (has_agg_frag) append_resolved(out, "agg_frag", agg_frag, agg_frag_fields());
+  if (staged()) {
+    append_resolved(out, "thermostat", thermostat, thermostat_fields());
+    append_resolved(out, "shear", shear, shear_fields());
+  }
   if (is_sweep()) append_resolved(out, "sweep", sweep, sweep_fields());
   return out;
 }
@@ -863,7 +944,7 @@ Config read_point(const namelist::Document& document, const std::vector<std::str
   c.namelist_text = document.text;
   c.overrides = overrides;
 
-  static const std::vector<std::string> known = {"system", "initial", "dsmc", "output", "agg_frag", "sweep"};
+  static const std::vector<std::string> known = {"system", "initial", "dsmc", "output", "agg_frag", "thermostat", "shear", "sweep"};
   for (const auto& g : document.groups)
     if (std::find(known.begin(), known.end(), g.name) == known.end()) {
       const std::string hint = namelist::closest_name(g.name, known);
@@ -899,6 +980,8 @@ Config read_point(const namelist::Document& document, const std::vector<std::str
   read_all("dsmc", c.dsmc, dsmc_fields());
   read_all("output", c.output, output_fields());
   read_all("agg_frag", c.agg_frag, agg_frag_fields());
+  read_all("thermostat", c.thermostat, thermostat_fields());
+  read_all("shear", c.shear, shear_fields());
   read_all("sweep", c.sweep, sweep_fields());
   c.has_agg_frag = document.find("agg_frag") != nullptr;
   for (const auto& doc : extra) c.has_agg_frag = c.has_agg_frag || doc.find("agg_frag") != nullptr;
@@ -915,6 +998,7 @@ Config read_point(const namelist::Document& document, const std::vector<std::str
   check_dsmc(c.dsmc, c.mixture(), prov["dsmc"], document.find("dsmc")->line);
   check_output(c.output, c.dsmc, prov["output"]);
   if (c.has_agg_frag) check_agg_frag(c, prov);
+  check_staged(c, prov);
   if (!expand_sweep) {
     c.sweep = Sweep{};
   } else if (!prov["sweep"].line.empty()) {
@@ -959,6 +1043,8 @@ std::string defaults_template() {
     for (std::string line; std::getline(lines, line);)
       s << (line.empty() || line.rfind("!", 0) == 0 ? line : "! " + line) << "\n";
   }
+  template_group(s, "thermostat", thermostat_fields(), {});
+  template_group(s, "shear", shear_fields(), {{"rate", "0.05"}, {"average_from", "50.0"}});
   template_group(s, "sweep", sweep_fields(),
                  {{"variable", "'system:restitution'"}, {"values", "0.5, 0.7, 0.9"}});
   return s.str();
@@ -971,6 +1057,8 @@ std::string reference_markdown() {
   reference_group(s, "dsmc", dsmc_fields());
   reference_group(s, "output", output_fields());
   reference_group(s, "agg_frag", agg_frag_fields());
+  reference_group(s, "thermostat", thermostat_fields());
+  reference_group(s, "shear", shear_fields());
   reference_group(s, "sweep", sweep_fields());
   return s.str();
 }

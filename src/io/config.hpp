@@ -66,6 +66,7 @@ struct Dsmc {
   long long seed = 12345;
   double step_fraction = 1.0;
   long long block_size = 32768;  ///< cache blocks (collide.hpp "Blocks"); 0: none
+  double stage_step = 0.1;       ///< with &thermostat or &shear: stage length in majorant mean free times
 };
 
 /// &output: where and when.
@@ -104,6 +105,18 @@ struct Sweep {
                                     ///< so arrays sweep too: values = '0.01, 0.02', '0.02, 0.04'
 };
 
+/// &thermostat: a Gaussian thermostat holds the temperature of the homogeneous steady state (HSS)
+/// against the inelastic loss (seed 004, ERRATA §13; dsmc/thermostat.hpp).
+struct Thermostat {
+  std::string kind = "none";  ///< 'none' or 'gaussian'
+};
+
+/// &shear: uniform shear flow u_x = a y in the Lagrangian frame (seed 004, ERRATA §13).
+struct Shear {
+  std::optional<double> rate;          ///< a (unset: no shear)
+  std::optional<double> average_from;  ///< the viscosity's time average starts here (default t_end/2)
+};
+
 struct Config {
   System system;
   Initial initial;
@@ -111,6 +124,10 @@ struct Config {
   Output output;
   AggFrag agg_frag;
   bool has_agg_frag = false;             ///< the namelist has an &agg_frag group
+  Thermostat thermostat;
+  Shear shear;
+  /// A thermostat or a shear rate: the run advances in stages (streaming, collisions, thermostat).
+  bool staged() const { return thermostat.kind != "none" || shear.rate.has_value(); }
   Sweep sweep;
   std::string source_file;               ///< name of the namelist file
   std::string namelist_text;             ///< its text, verbatim

@@ -1,0 +1,83 @@
+// Unit tests of dsmc/thermostat (Gaussian thermostat, USF streaming; ERRATA §13) and of the kinetic
+// pressure tensor of dsmc/sample, with numbers computed by hand.
+#include "dsmc/thermostat.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "dsmc/sample.hpp"
+
+namespace {
+
+using gdsmc::particles::System;
+using gdsmc::particles::Vec3;
+namespace species = gdsmc::species;
+
+/// One species of mass m at density n with the given velocities.
+System gas(const std::vector<Vec3>& v) {
+  System sys;
+  sys.v.assign(v.begin(), v.end());
+  sys.species.assign(v.size(), 0);
+  sys.first = {0};
+  sys.count = {v.size()};
+  return sys;
+}
+
+species::Mixture one_species(double m, double n) {
+  return species::make_mixture({m}, {1.0}, {n}, species::PairMatrix(1, 0.9), false);
+}
+
+TEST(Thermostat, RescaleRestoresTheLossAboutTheMeanFlow) {
+  // u = (1, 0, 0); peculiar velocities +-1 along x: E_after = 2 (1/2)(1)^2 = 1. With E_before = 1.5 the
+  // loss is 0.5, s^2 = 1.5/1 = 1.5: velocities u +- sqrt(1.5), momentum 2 kept, zeta dt = 0.5/1.5 = 1/3.
+  const auto mix = one_species(1.0, 0.1);
+  System sys = gas({{2.0, 0.0, 0.0}, {0.0, 0.0, 0.0}});
+  const double zeta_dt = gdsmc::thermostat::rescale(mix, sys, 1.5);
+  EXPECT_NEAR(zeta_dt, 1.0 / 3.0, 1e-15);
+  EXPECT_NEAR(sys.v[0].x, 1.0 + std::sqrt(1.5), 1e-15);
+  EXPECT_NEAR(sys.v[1].x, 1.0 - std::sqrt(1.5), 1e-15);
+  EXPECT_NEAR(sys.v[0].x + sys.v[1].x, 2.0, 1e-15);
+  EXPECT_NEAR(gdsmc::thermostat::peculiar_energy(mix, sys).kinetic, 1.5, 1e-14);
+}
+
+TEST(Thermostat, PeculiarEnergyAndMeanFlowRemoval) {
+  // masses 2: velocities (3, 0, 0) and (1, 2, 0): u = (2, 1, 0); peculiar (1, -1, 0), (-1, 1, 0): E = 2 * 2/2 * 2 = 4
+  const auto mix = one_species(2.0, 0.1);
+  System sys = gas({{3.0, 0.0, 0.0}, {1.0, 2.0, 0.0}});
+  const auto e = gdsmc::thermostat::peculiar_energy(mix, sys);
+  EXPECT_NEAR(e.kinetic, 4.0, 1e-14);
+  EXPECT_NEAR(e.mean_flow.x, 2.0, 1e-15);
+  EXPECT_NEAR(e.mean_flow.y, 1.0, 1e-15);
+  gdsmc::thermostat::remove_mean_flow(mix, sys);
+  EXPECT_NEAR(sys.v[0].x, 1.0, 1e-15);
+  EXPECT_NEAR(sys.v[1].y, 1.0, 1e-15);
+}
+
+TEST(Thermostat, StreamingShiftsVxByMinusAVyDt) {
+  System sys = gas({{1.0, 2.0, 3.0}, {0.0, -4.0, 1.0}});
+  gdsmc::thermostat::stream(sys, 0.5, 0.1);  // V_x -= 0.05 V_y
+  EXPECT_DOUBLE_EQ(sys.v[0].x, 0.9);
+  EXPECT_DOUBLE_EQ(sys.v[1].x, 0.2);
+  EXPECT_DOUBLE_EQ(sys.v[0].y, 2.0);
+  EXPECT_DOUBLE_EQ(sys.v[0].z, 3.0);
+}
+
+TEST(Sample, KineticPressureTensorByHand) {
+  // m = 2, n = 0.5, N = 2: P = (m n / N) sum V V = 0.5 sum V V. V = (1, 1, 0), (-1, -1, 0), u = 0:
+  // P_xx = P_yy = P_xy = 0.5 * 2 = 1, the rest 0.
+  const auto mix = one_species(2.0, 0.5);
+  System sys = gas({{1.0, 1.0, 0.0}, {-1.0, -1.0, 0.0}});
+  const auto m = gdsmc::sample::measure(mix, sys);
+  const auto p = gdsmc::sample::kinetic_pressure_tensor(mix, sys, m);
+  EXPECT_DOUBLE_EQ(p[0], 1.0);
+  EXPECT_DOUBLE_EQ(p[1], 1.0);
+  EXPECT_DOUBLE_EQ(p[2], 0.0);
+  EXPECT_DOUBLE_EQ(p[3], 1.0);
+  EXPECT_DOUBLE_EQ(p[4], 0.0);
+  EXPECT_DOUBLE_EQ(p[5], 0.0);
+  // Trace/3 = n T: T = m <V^2>/3 = 2 * 2/3 = 4/3, n T = 2/3 = (1 + 1 + 0)/3.
+  EXPECT_NEAR((p[0] + p[1] + p[2]) / 3.0, 0.5 * m.total_temperature, 1e-15);
+}
+
+}  // namespace
