@@ -6,6 +6,8 @@
 
 #include <cmath>
 
+#include "dsmc/collide.hpp"
+#include "dsmc/rng.hpp"
 #include "dsmc/sample.hpp"
 
 namespace {
@@ -78,6 +80,48 @@ TEST(Sample, KineticPressureTensorByHand) {
   EXPECT_DOUBLE_EQ(p[5], 0.0);
   // Trace/3 = n T: T = m <V^2>/3 = 2 * 2/3 = 4/3, n T = 2/3 = (1 + 1 + 0)/3.
   EXPECT_NEAR((p[0] + p[1] + p[2]) / 3.0, 0.5 * m.total_temperature, 1e-15);
+}
+
+TEST(Thermostat, BeginStageRescalesThenStreamsInOnePass) {
+  // m = 1, u = (0, 0, 0), s = 2: (1, 1, 0) -> (2, 2, 0) -> streaming a dt = 0.25: (1.5, 2, 0);
+  // (-1, -1, 0) -> (-2, -2, 0) -> (-1.5, -2, 0). E = 2 * (2.25 + 4)/2 = 6.25, max |V|^2 = 6.25.
+  const auto mix = one_species(1.0, 0.1);
+  System sys = gas({{1.0, 1.0, 0.0}, {-1.0, -1.0, 0.0}});
+  const auto start = gdsmc::thermostat::begin_stage(mix, sys, 2.0, Vec3{0.0, 0.0, 0.0}, 0.5, 0.5);
+  EXPECT_DOUBLE_EQ(sys.v[0].x, 1.5);
+  EXPECT_DOUBLE_EQ(sys.v[0].y, 2.0);
+  EXPECT_DOUBLE_EQ(sys.v[1].x, -1.5);
+  EXPECT_DOUBLE_EQ(start.kinetic, 6.25);
+  EXPECT_DOUBLE_EQ(start.max_speed2[0], 6.25);
+  EXPECT_DOUBLE_EQ(start.mean_flow.x, 0.0);
+}
+
+TEST(Thermostat, RescalingFromTheLossSum) {
+  // E_before = 2, loss 0.5: s = sqrt(2/1.5), zeta dt = 0.25.
+  const auto r = gdsmc::thermostat::gaussian_rescaling(2.0, 0.5, Vec3{0.1, 0.0, 0.0});
+  EXPECT_DOUBLE_EQ(r.scale, std::sqrt(2.0 / 1.5));
+  EXPECT_DOUBLE_EQ(r.zeta_dt, 0.25);
+  EXPECT_DOUBLE_EQ(r.mean_flow.x, 0.1);
+  EXPECT_THROW(gdsmc::thermostat::gaussian_rescaling(1.0, 1.0, Vec3{0.0, 0.0, 0.0}), std::runtime_error);
+}
+
+// The thermostat takes the stage's loss from the collider's sum: it must equal the energy the
+// particles lost, for every scheme and a mixture (ERRATA §1: (1 - alpha^2) m_kj (g.e)^2/2 per collision).
+TEST(Thermostat, ColliderLossSumEqualsTheEnergyLost) {
+  namespace collide = gdsmc::collide;
+  namespace rng = gdsmc::rng;
+  const auto mix = species::make_mixture({1.0, 3.0}, {1.0, 1.4}, {0.02, 0.01}, species::PairMatrix(2, 0.7), false);
+  for (auto scheme : {collide::Scheme::majorant, collide::Scheme::pairs, collide::Scheme::lowrank}) {
+    auto init = rng::make_stream(9, 0, rng::Purpose::initial_state);
+    System sys = gdsmc::particles::make_system(mix, {2000, 1000}, {1.0, 2.0},
+                                               gdsmc::particles::InitialDistribution::maxwell, init);
+    const double before = gdsmc::thermostat::peculiar_energy(mix, sys).kinetic;
+    collide::Collider collider(scheme, mix, sys, rng::make_stream(9, 0, rng::Purpose::collisions), 1.0);
+    collider.advance(1e300, 20000);
+    const double after = gdsmc::thermostat::peculiar_energy(mix, sys).kinetic;
+    EXPECT_NEAR(before - after, collider.counters().dissipated, 1e-10 * before) << static_cast<int>(scheme);
+    EXPECT_GT(collider.counters().dissipated, 0.1 * before);
+  }
 }
 
 }  // namespace

@@ -421,8 +421,7 @@ int Collider::run_majorant(double t_stop, std::uint64_t event_target) {
       particles::flush_free_flight(sys_, a, t_collision);
       particles::flush_free_flight(sys_, b, t_collision);
     }
-    apply_collision(sys_, a, b, ex, ey, ez, restitution_of(ka, kb, a, b, ex, ey, ez), mass_fraction_[pair]);
-    count_event(ka, kb);
+    collide_and_count(a, b, ka, kb, ex, ey, ez, restitution_of(ka, kb, a, b, ex, ey, ez), mass_fraction_[pair]);
     return true;
   });
 }
@@ -454,8 +453,8 @@ int Collider::run_pairs(double t_stop, std::uint64_t event_target) {
       particles::flush_free_flight(sys_, k, t_collision);
       particles::flush_free_flight(sys_, l, t_collision);
     }
-    apply_collision(sys_, k, l, ex, ey, ez, restitution_of(i, j, k, l, ex, ey, ez), mass_fraction_[pair]);
-    count_event(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
+    collide_and_count(k, l, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j), ex, ey, ez,
+                      restitution_of(i, j, k, l, ex, ey, ez), mass_fraction_[pair]);
     return true;
   });
 }
@@ -487,8 +486,8 @@ int Collider::run_lowrank(double t_stop, std::uint64_t event_target) {
       particles::flush_free_flight(sys_, a, t_collision);
       particles::flush_free_flight(sys_, b, t_collision);
     }
-    apply_collision(sys_, a, b, ex, ey, ez, restitution_of(i, k, a, b, ex, ey, ez), mass_fraction_of(i, k));
-    count_event(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(k));
+    collide_and_count(a, b, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(k), ex, ey, ez,
+                      restitution_of(i, k, a, b, ex, ey, ez), mass_fraction_of(i, k));
     return true;
   });
 }

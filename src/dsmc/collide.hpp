@@ -160,6 +160,8 @@ struct Counters {
                                            ///< empty above pair_event_limit species
   std::uint64_t steps = 0;                 ///< time steps (bound recomputations)
   double step_sum = 0.0;                   ///< sum of the step lengths, for the mean dt
+  double dissipated = 0.0;                 ///< kinetic energy lost so far, (1 - alpha^2) m_kj (g.e)^2/2
+                                           ///< per collision (ERRATA §1): the thermostat's loss
 };
 
 /// The collision stage of one replica: particles, pair constants, bounds, clock and generator.
@@ -192,6 +194,15 @@ class Collider {
   /// exactly, O(N), so the majorant holds again. Not with blocks.
   void velocities_changed() {
     recompute_max_speeds();
+    rebuild_bounds();
+  }
+  /// The same when the caller has just computed the largest speed^2 of each species in its own
+  /// pass over the particles (thermostat.hpp's fused stage pass): no second pass here.
+  void set_max_speeds(const std::vector<double>& max_speed2) {
+    for (std::size_t k = 0; k < s_; ++k) {
+      max_speed2_[k] = max_speed2[k];
+      max_speed_[k] = std::sqrt(max_speed2[k]);
+    }
     rebuild_bounds();
   }
 
@@ -246,6 +257,14 @@ class Collider {
   int run_lowrank(double t_stop, std::uint64_t event_target);
   void set_lowrank_row(std::size_t species);
   void count_event(std::uint32_t k, std::uint32_t j);
+  /// The collision rule on particles a (species k) and b (species j), the event counted and its
+  /// energy loss added up (m_kj = m_k mass_fraction_b).
+  void collide_and_count(std::size_t a, std::size_t b, std::uint32_t k, std::uint32_t j, double ex, double ey,
+                         double ez, double alpha, double mass_fraction_b) {
+    const double g_dot_e = apply_collision(sys_, a, b, ex, ey, ez, alpha, mass_fraction_b);
+    counters_.dissipated += 0.5 * (1.0 - alpha * alpha) * mix_.mass[k] * mass_fraction_b * g_dot_e * g_dot_e;
+    count_event(k, j);
+  }
 
   /// A candidate drawn ahead: particles a and b, of species i and k (lowrank; 0 otherwise).
   struct PendingPair {

@@ -237,7 +237,8 @@ Snapshot make_snapshot(const particles::System& sys, const collide::Collider& co
     for (const auto& x : sys.r) r.insert(r.end(), {x.x, x.y, x.z, x.t_last});
   }
   const collide::Collider::State c = collider.state();
-  snap.reals["collider/clock"] = {c.time, c.credit, c.next_step_time, c.counters.step_sum, c.generator.spare};
+  snap.reals["collider/clock"] = {c.time, c.credit, c.next_step_time, c.counters.step_sum, c.generator.spare,
+                                 c.counters.dissipated};
   snap.reals["collider/max_speed"] = c.max_speed;
   snap.reals["collider/max_speed2"] = c.max_speed2;
   snap.integers["collider/counters"] = {c.counters.events, c.counters.candidates, c.counters.steps,
@@ -282,6 +283,7 @@ void load_snapshot(const Snapshot& snap, particles::System& sys, collide::Collid
   c.next_step_time = clock.at(2);
   c.counters.step_sum = clock.at(3);
   c.generator.spare = clock.at(4);
+  c.counters.dissipated = clock.at(5);
   c.max_speed = snap.reals.at("collider/max_speed");
   c.max_speed2 = snap.reals.at("collider/max_speed2");
   c.counters.events = counters.at(0);
@@ -382,13 +384,21 @@ std::uint64_t load_agg_frag_snapshot(const Snapshot& snap, agg_frag::Gas& gas, R
 /// size present then ("name@sample"), until the replica ends and pads them to one width.
 constexpr const char* kSizeObservables[] = {"number", "size_energy"};
 
+/// "name@i": the row of sample i of a per-size observable.
+std::string sample_row(const char* name, std::size_t i) {
+  std::string key(name);
+  key += '@';
+  key += std::to_string(i);
+  return key;
+}
+
 void pad_size_rows(ReplicaResult& result, std::size_t n_samples) {
   for (const char* name : kSizeObservables) {
     std::size_t width = 1;
-    for (std::size_t i = 0; i < n_samples; ++i) width = std::max(width, result.rows[name + ("@" + std::to_string(i))].first);
+    for (std::size_t i = 0; i < n_samples; ++i) width = std::max(width, result.rows[sample_row(name, i)].first);
     std::vector<double> rows(n_samples * width, 0.0);
     for (std::size_t i = 0; i < n_samples; ++i) {
-      const auto key = name + ("@" + std::to_string(i));
+      const auto key = sample_row(name, i);
       const auto& row = result.rows[key].second;
       std::copy(row.begin(), row.end(), rows.begin() + static_cast<std::ptrdiff_t>(i * width));
       result.rows.erase(key);
@@ -475,9 +485,8 @@ ReplicaResult run_agg_frag_replica(const io::config::Config& config, const Optio
 
     const agg_frag::Measurement m = gas.measure();
     const auto& counters = gas.counters();
-    const std::string at = "@" + std::to_string(i);
-    result.add("number" + at, m.number.size(), m.number);
-    result.add("size_energy" + at, m.energy.size(), m.energy);
+    result.add(sample_row("number", i), m.number.size(), m.number);
+    result.add(sample_row("size_energy", i), m.energy.size(), m.energy);
     result.add("total_temperature", 1, {2.0 / 3.0 * m.kinetic_energy / m.clusters});  // per cluster, ERRATA §12
     result.add("kinetic_energy", 1, {m.kinetic_energy / initial_monomers});
     result.add("mean_size", 1, {initial_monomers / m.clusters});
@@ -536,22 +545,26 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
   ReplicaProgress p;
   // Stage accumulators: zeta dt since the last sample, the viscosity's window sum, stage count.
   double zeta_sum = 0.0, zeta_stages = 0.0, window_sum = 0.0, window_samples = 0.0, stages = 0.0;
+  thermostat::Rescaling pending;  // decided at the end of a stage, applied at the start of the next
   if (resume) {
     load_snapshot(*resume, sys, collider, p, result);
     const auto& v = resume->reals.at("staged/values");
     zeta_sum = v.at(0), zeta_stages = v.at(1), window_sum = v.at(2), window_samples = v.at(3), stages = v.at(4);
+    pending.scale = v.at(5);
+    pending.mean_flow = {v.at(6), v.at(7), v.at(8)};
   } else {
     collider.velocities_changed();  // the bounds (and the majorant rate that sizes the stages) from the start
   }
   const std::function<Snapshot()> snapshot = [&] {
     Snapshot snap = make_snapshot(sys, collider, p, result);
-    snap.reals["staged/values"] = {zeta_sum, zeta_stages, window_sum, window_samples, stages};
+    snap.reals["staged/values"] = {zeta_sum,        zeta_stages,         window_sum,          window_samples, stages,
+                                   pending.scale, pending.mean_flow.x, pending.mean_flow.y, pending.mean_flow.z};
     return snap;
   };
   std::uint64_t reported_events = collider.counters().events;
 
   // The sample of this instant: after the streaming of the stage that starts now.
-  auto measure = [&] {
+  auto measure = [&](double dt) {
     const sample::Moments m = sample::measure(mix, sys);
     const auto& counters = collider.counters();
     result.add("temperature", s, m.temperature);
@@ -571,14 +584,18 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
     result.add("thermostat_zeta_dt", 1, {zeta_dt});
     zeta_sum = zeta_stages = 0.0;
     if (shear > 0.0) {
-      const double viscosity = -kinetic[3] / shear;  // eta = -P_xy / a
+      // eta = -P_xy/a at the middle of the streaming jump: the sample is taken after the streaming
+      // V_x -> V_x - a V_y dt, which moved P_xy by exactly -a dt P_yy; in the stationary stage cycle
+      // the values just before and just after the jump are off by -+lambda/2 (lambda = (nu_eta - zeta) dt)
+      // and their mean by lambda^2/12 only (thermostat.hpp, "Sampling point").
+      const double viscosity = -(kinetic[3] + 0.5 * shear * dt * kinetic[1]) / shear;
       result.add("shear_viscosity_raw", 1, {viscosity});
       if (s == 1) {
-        // eta/eta_0(T) with the corrections of ERRATA §13: sampling point (1 - <zeta dt>) and finite
-        // shear rate 1 - (a* eta*)^2, a* = a/nu_0(T), nu_0 = n T/eta_0.
+        // eta/eta_0(T) with the finite-shear-rate correction of ERRATA §13, 1 - (a* eta*)^2,
+        // a* = a/nu_0(T), nu_0 = n T/eta_0.
         const double eta0 = elastic_viscosity(mix.mass[0], mix.diameter[0], m.total_temperature);
         const double reduced_rate = shear * eta0 / (n * m.total_temperature);
-        const double corrected = viscosity / eta0 / (1.0 - zeta_dt);
+        const double corrected = viscosity / eta0;
         double eta = corrected;
         for (int it = 0; it < 20; ++it) eta = corrected / (1.0 - reduced_rate * reduced_rate * eta * eta);
         result.add("reduced_shear_rate", 1, {reduced_rate});
@@ -592,25 +609,27 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
   };
 
   const double stage_cap = shear > 0.0 ? 0.01 / shear : std::numeric_limits<double>::infinity();
-  bool stale_bounds = true;  // velocities changed outside the collider since its last bounds
   // One stage from the collider's time to `end` (or, for the last sample, only its streaming and
   // measurement): streaming, the sample, collisions, thermostat.
   auto stage = [&](double end, bool sample_here, bool last) {
     const double t = collider.time();
-    if (shear > 0.0) {
-      thermostat::stream(sys, shear, end - t);
-      stale_bounds = true;
-    }
-    if (sample_here) measure();
+    // One pass: the previous stage's thermostat rescaling, this stage's streaming, the energy and the
+    // largest speeds after them (the collider's bounds, exact again).
+    const thermostat::StageStart start =
+        thermostat::begin_stage(mix, sys, pending.scale, pending.mean_flow, shear, end - t);
+    pending = thermostat::Rescaling{};
+    collider.set_max_speeds(start.max_speed2);
+    if (sample_here) measure(end - t);
     if (last) return;
-    if (stale_bounds) collider.velocities_changed();
-    const double energy_before = thermostat::peculiar_energy(mix, sys).kinetic;
+    const double dissipated_before = collider.counters().dissipated;
     collider.advance(end);
-    stale_bounds = shear > 0.0;
     if (gaussian) {
-      zeta_sum += thermostat::rescale(mix, sys, energy_before);
+      // The dilute collisions change the energy only by their inelastic loss and keep the mean flow,
+      // so the thermostat needs no pass over the particles here (thermostat.hpp).
+      pending = thermostat::gaussian_rescaling(start.kinetic, collider.counters().dissipated - dissipated_before,
+                                               start.mean_flow);
+      zeta_sum += pending.zeta_dt;
       zeta_stages += 1.0;
-      stale_bounds = true;
     }
     stages += 1.0;
     if (options.interrupt && options.interrupt->load()) throw Interrupted();
@@ -633,7 +652,8 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
       safe_point(snapshot);
     }
     const bool last = i + 1 == n_samples;
-    stage(last ? collider.time() : stage_end(targets[i + 1]), true, last);  // the stage that samples
+    // The stage that samples (the last one: only its streaming, of the length the next would have).
+    stage(last ? stage_end(std::numeric_limits<double>::infinity()) : stage_end(targets[i + 1]), true, last);
     result.collide_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
   }
   progress.update(slot, 1.0, label, collider.time(), 0);
@@ -1123,8 +1143,8 @@ void write_point(io::h5md::Writer& writer, const std::string& root, const io::co
   }
   if (acc.count("shear_viscosity"))
     writer.write_attribute(root + "/shear_viscosity", "description",
-                           std::string("eta/eta_0(T) = -P_xy/(a eta_0), divided by (1 - <zeta dt>) (sampling point) "
-                                       "and by 1 - (a* eta*)^2 (finite shear rate), ERRATA §13"));
+                           std::string("eta/eta_0(T) = -P_xy/(a eta_0) with P_xy at the middle of the streaming jump "
+                                       "(thermostat.hpp), divided by 1 - (a* eta*)^2 (finite shear rate, ERRATA §13)"));
   if (acc.count("pressure_tensor"))
     writer.write_attribute(root + "/pressure_tensor", "description",
                            std::string("P = P^k + P^c, columns xx, yy, zz, xy, xz, yz; sampled after the streaming of a "
