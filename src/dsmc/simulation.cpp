@@ -575,7 +575,17 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
     result.add("collisions_per_particle", 1,
                {2.0 * static_cast<double>(counters.events) / static_cast<double>(sys.size())});
     result.add("time", 1, {collider.time()});
-    const auto kinetic = sample::kinetic_pressure_tensor(mix, sys, m);
+    // P at the middle of this stage's streaming jump (thermostat.hpp, "Sampling point"): the value
+    // before the jump follows exactly from the one after it (V_x before = V_x + a dt V_y), and the
+    // mean of the two is second order in the stage length.
+    auto kinetic = sample::kinetic_pressure_tensor(mix, sys, m);
+    {
+      const double h = shear * dt;  // xx, yy, zz, xy, xz, yz
+      const std::array<double, 6> before{kinetic[0] + 2.0 * h * kinetic[3] + h * h * kinetic[1], kinetic[1],
+                                         kinetic[2], kinetic[3] + h * kinetic[1], kinetic[4] + h * kinetic[5],
+                                         kinetic[5]};
+      for (std::size_t c = 0; c < 6; ++c) kinetic[c] = 0.5 * (kinetic[c] + before[c]);
+    }
     const std::vector<double> pk(kinetic.begin(), kinetic.end());
     result.add("pressure_tensor_kinetic", 6, pk);
     result.add("pressure_tensor_collisional", 6, std::vector<double>(6, 0.0));  // dilute: no transfer
@@ -584,11 +594,7 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
     result.add("thermostat_zeta_dt", 1, {zeta_dt});
     zeta_sum = zeta_stages = 0.0;
     if (shear > 0.0) {
-      // eta = -P_xy/a at the middle of the streaming jump: the sample is taken after the streaming
-      // V_x -> V_x - a V_y dt, which moved P_xy by exactly -a dt P_yy; in the stationary stage cycle
-      // the values just before and just after the jump are off by -+lambda/2 (lambda = (nu_eta - zeta) dt)
-      // and their mean by lambda^2/12 only (thermostat.hpp, "Sampling point").
-      const double viscosity = -(kinetic[3] + 0.5 * shear * dt * kinetic[1]) / shear;
+      const double viscosity = -kinetic[3] / shear;  // eta = -P_xy/a, P_xy at the middle of the jump
       result.add("shear_viscosity_raw", 1, {viscosity});
       if (s == 1) {
         // eta/eta_0(T) with the finite-shear-rate correction of ERRATA §13, 1 - (a* eta*)^2,
@@ -1147,8 +1153,8 @@ void write_point(io::h5md::Writer& writer, const std::string& root, const io::co
                                        "(thermostat.hpp), divided by 1 - (a* eta*)^2 (finite shear rate, ERRATA §13)"));
   if (acc.count("pressure_tensor"))
     writer.write_attribute(root + "/pressure_tensor", "description",
-                           std::string("P = P^k + P^c, columns xx, yy, zz, xy, xz, yz; sampled after the streaming of a "
-                                       "stage, before its collisions (ERRATA §13); dilute gas: P^c = 0"));
+                           std::string("P = P^k + P^c, columns xx, yy, zz, xy, xz, yz; sampled at a stage's start, the mean of "
+                                       "the values before and after its streaming (thermostat.hpp); dilute gas: P^c = 0"));
   if (acc.count("msd")) {
     // Each replica's start (-1 if it never started); the mean is the time origin of msd.
     const auto starts = acc["msd_start"].values;

@@ -66,7 +66,7 @@ struct Dsmc {
   long long seed = 12345;
   double step_fraction = 1.0;
   long long block_size = 32768;  ///< cache blocks (collide.hpp "Blocks"); 0: none
-  double stage_step = 0.1;       ///< with &thermostat or &shear: stage length in majorant mean free times
+  double stage_step = 0.125;     ///< with &thermostat or &shear: stage length in majorant mean free times
 };
 
 /// &output: where and when.
