@@ -1,0 +1,291 @@
+// Shear viscosity of granular gases and mixtures: see viscosity.hpp for the equations and sources.
+#include "theory/viscosity.hpp"
+
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <cstddef>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "theory/input_checks.hpp"
+#include "theory/sonine.hpp"
+#include "theory/theory.hpp"
+
+namespace gdsmc::theory::viscosity {
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+void require_restitution(double alpha, const char* caller) {
+  if (!(alpha >= 0.0 && alpha <= 1.0))
+    throw std::invalid_argument(std::string(caller) + ": restitution " + std::to_string(alpha) +
+                                " is outside [0, 1]");
+}
+
+/// A Navier-Stokes viscosity exists only where the momentum relaxes faster than c zeta: the
+/// denominators nu_eta* - c zeta* and the solution of the tau system must be positive.
+double require_positive_viscosity(double value, const char* caller) {
+  if (!(value > 0.0) || !std::isfinite(value))
+    throw std::invalid_argument(std::string(caller) +
+                                ": no positive Navier-Stokes viscosity (nu_eta <= c zeta)");
+  return value;
+}
+
+/// What the tau system of ERRATA §13 is built for: the state itself, or the dilute elastic
+/// reference at equal temperatures (eta_0 of the mixture).
+enum class Variant { state, elastic_reference };
+
+/// Solution of sum_j (tau_ij - c zeta_0 delta_ij) eta_j = n_i T_i + b_i and the collisional parts
+/// (viscosity.hpp, "Mixture"). `temperature` holds T_i, `mixture_temperature` T.
+MixtureViscosity solve_mixture(const species::Mixture& mix, const std::vector<double>& temperature,
+                               double mixture_temperature, double cooling_coefficient_c,
+                               Variant variant) {
+  const std::size_t species_count = mix.size();
+  const bool dense = mix.enskog && variant == Variant::state;
+  const auto alpha = [&](std::size_t i, std::size_t j) {
+    return variant == Variant::elastic_reference ? 1.0 : mix.restitution(i, j);
+  };
+  const auto chi = [&](std::size_t i, std::size_t j) {
+    return dense ? mix.pair_correlation(i, j) : 1.0;  // ERRATA §5: chi only in the Enskog gas
+  };
+  const auto mu = [&](std::size_t i, std::size_t j) { return mix.mass_fraction(i, j); };
+  const auto sigma = [&](std::size_t i, std::size_t j) { return mix.contact_distance(i, j); };
+
+  // GHD 2007 reduced variables: mbar the plain mean mass, v0 = sqrt(2 T/mbar),
+  // theta_i = m_i T/(mbar T_i).
+  double mass_mean = 0.0;
+  for (double m : mix.mass) mass_mean += m;
+  mass_mean /= static_cast<double>(species_count);
+  const double thermal_speed = std::sqrt(2.0 * mixture_temperature / mass_mean);
+  std::vector<double> theta(species_count);
+  for (std::size_t i = 0; i < species_count; ++i)
+    theta[i] = mix.mass[i] * mixture_temperature / (mass_mean * temperature[i]);
+  const auto beta = [&](std::size_t i, std::size_t j) {
+    return mu(i, j) * theta[j] - mu(j, i) * theta[i];
+  };
+
+  // zeta_0 = (1/T) sum_i x_i T_i zeta_i, zeta_i = sum_j xi_ij (ERRATA §4); the elastic reference
+  // does not cool.
+  double cooling_rate = 0.0;
+  if (variant == Variant::state) {
+    const species::PairMatrix xi = cooling_rate_matrix(mix, temperature);
+    for (std::size_t i = 0; i < species_count; ++i) {
+      double zeta_i = 0.0;
+      for (std::size_t j = 0; j < species_count; ++j) zeta_i += xi(i, j);
+      cooling_rate += mix.mole_fraction(i) * temperature[i] * zeta_i;
+    }
+    cooling_rate /= mixture_temperature;
+  }
+
+  Eigen::MatrixXd system(species_count, species_count);
+  Eigen::VectorXd source(species_count);
+  for (std::size_t i = 0; i < species_count; ++i) {
+    // S_i of ERRATA §13: the unlike-pair part of tau_ii.
+    double unlike_sum = 0.0;
+    for (std::size_t j = 0; j < species_count; ++j) {
+      if (j == i) continue;
+      const double r_ij = std::sqrt(theta[i] + theta[j]);
+      unlike_sum += mix.number_density[j] * chi(i, j) * sigma(i, j) * sigma(i, j) * mu(j, i) *
+                    (1.0 + alpha(i, j)) * std::pow(theta[i], 1.5) / std::sqrt(theta[j]) *
+                    (6.0 * beta(i, j) / (theta[i] * theta[i] * r_ij) +
+                     0.5 * (9.0 - 3.0 * alpha(i, j)) * mu(j, i) * r_ij / (theta[i] * theta[i]) +
+                     5.0 / (theta[i] * r_ij));
+    }
+    for (std::size_t j = 0; j < species_count; ++j) {
+      double tau_ij;
+      if (j == i) {
+        const double sigma_i = mix.diameter[i];
+        tau_ij = 4.0 * std::sqrt(pi) / 15.0 * thermal_speed *
+                 (mix.number_density[i] * chi(i, i) * sigma_i * sigma_i / std::sqrt(2.0 * theta[i]) *
+                      (9.0 - 3.0 * alpha(i, i)) * (1.0 + alpha(i, i)) +
+                  2.0 * unlike_sum);
+        tau_ij -= cooling_coefficient_c * cooling_rate;
+      } else {
+        const double r_ij = std::sqrt(theta[i] + theta[j]);
+        tau_ij = 8.0 * std::sqrt(pi) / 15.0 * thermal_speed * mix.number_density[i] * chi(i, j) *
+                 sigma(i, j) * sigma(i, j) * mu(i, j) * std::pow(theta[j], 1.5) /
+                 std::sqrt(theta[i]) * (1.0 + alpha(i, j)) *
+                 (6.0 * beta(i, j) / (theta[j] * theta[j] * r_ij) +
+                  0.5 * (9.0 - 3.0 * alpha(i, j)) * mu(j, i) * r_ij / (theta[j] * theta[j]) -
+                  5.0 / (theta[j] * r_ij));
+      }
+      system(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = tau_ij;
+    }
+    // Source n_i T_i, plus in the Enskog gas the collisional transfer b_i (GHD 2007 II).
+    double source_i = mix.number_density[i] * temperature[i];
+    if (dense) {
+      for (std::size_t j = 0; j < species_count; ++j) {
+        const double sigma_ij = sigma(i, j);
+        source_i += 2.0 * pi / 15.0 * mix.mass[i] * mix.number_density[i] *
+                    mix.number_density[j] * mu(j, i) * sigma_ij * sigma_ij * sigma_ij * chi(i, j) *
+                    (1.0 + alpha(i, j)) *
+                    (mu(j, i) * (3.0 * alpha(i, j) - 1.0) *
+                         (temperature[i] / mix.mass[i] + temperature[j] / mix.mass[j]) -
+                     4.0 * (temperature[i] - temperature[j]) / (mix.mass[i] + mix.mass[j]));
+      }
+    }
+    source(static_cast<Eigen::Index>(i)) = source_i;
+  }
+
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> solver(system);
+  if (!solver.isInvertible())
+    throw std::runtime_error("viscosity::mixture_viscosity: the tau system is singular");
+  const Eigen::VectorXd partial = solver.solve(source);
+
+  MixtureViscosity result;
+  result.cooling_rate = cooling_rate;
+  result.partial.assign(partial.data(), partial.data() + partial.size());
+  for (double eta_i : result.partial) result.kinetic += eta_i;
+
+  if (dense) {
+    for (std::size_t i = 0; i < species_count; ++i)
+      for (std::size_t j = 0; j < species_count; ++j) {
+        const double sigma_ij = sigma(i, j);
+        // bulk viscosity kappa (GHD 2007 II)
+        result.bulk += 2.0 * std::sqrt(pi) / 9.0 * thermal_speed * mu(i, j) * mix.mass[j] *
+                       mix.number_density[i] * mix.number_density[j] * std::pow(sigma_ij, 4) *
+                       chi(i, j) * (1.0 + alpha(i, j)) *
+                       std::sqrt((theta[i] + theta[j]) / (theta[i] * theta[j]));
+        result.collisional += 4.0 * pi / 15.0 * mix.number_density[j] * sigma_ij * sigma_ij *
+                              sigma_ij * chi(i, j) * mu(j, i) * (1.0 + alpha(i, j)) *
+                              result.partial[i];
+      }
+    result.collisional += 0.6 * result.bulk;
+  }
+  result.total = result.kinetic + result.collisional;
+  return result;
+}
+
+}  // namespace
+
+double cooling_coefficient(State state) {
+  return state == State::homogeneous_cooling ? 0.5 : 1.0;
+}
+
+// ---------------------------------------------------------------------------------------------
+// One component
+// ---------------------------------------------------------------------------------------------
+
+double elastic_viscosity(double mass, double diameter, double temperature) {
+  if (!(mass > 0.0) || !(diameter > 0.0) || !(temperature > 0.0))
+    throw std::invalid_argument("viscosity::elastic_viscosity: mass, diameter and temperature "
+                                "must be positive");
+  return 5.0 / (16.0 * diameter * diameter) * std::sqrt(mass * temperature / pi);  // ERRATA §10
+}
+
+double reduced_momentum_collision_frequency(double alpha, double a2) {
+  require_restitution(alpha, "viscosity::reduced_momentum_collision_frequency");
+  return (1.0 + alpha) * (3.0 - alpha) / 4.0 * (1.0 - a2 / 32.0);  // ERRATA §10
+}
+
+double reduced_cooling_rate(double alpha, double a2) {
+  require_restitution(alpha, "viscosity::reduced_cooling_rate");
+  return 5.0 / 12.0 * (1.0 - alpha * alpha) * (1.0 + 3.0 * a2 / 16.0);  // ERRATA §10, §3
+}
+
+double dilute_reduced_viscosity(double alpha, State state, double a2) {
+  return require_positive_viscosity(
+      1.0 / (reduced_momentum_collision_frequency(alpha, a2) -
+             cooling_coefficient(state) * reduced_cooling_rate(alpha, a2)),  // ERRATA §10
+      "viscosity::dilute_reduced_viscosity");
+}
+
+double dilute_reduced_viscosity(double alpha, State state) {
+  require_restitution(alpha, "viscosity::dilute_reduced_viscosity");
+  return dilute_reduced_viscosity(alpha, state, sonine_a2(alpha));
+}
+
+EnskogReducedViscosity enskog_reduced_viscosity(double alpha, double packing_fraction, double chi,
+                                                State state, double a2) {
+  require_restitution(alpha, "viscosity::enskog_reduced_viscosity");
+  if (!(packing_fraction >= 0.0 && packing_fraction < 1.0))
+    throw std::invalid_argument("viscosity::enskog_reduced_viscosity: packing fraction " +
+                                std::to_string(packing_fraction) + " is outside [0, 1)");
+  if (!(chi > 0.0) || !std::isfinite(chi))
+    throw std::invalid_argument("viscosity::enskog_reduced_viscosity: chi must be positive");
+  const double phi_chi = packing_fraction * chi;
+  // Garzo and Dufty 1999: every collision rate carries chi (ERRATA §5).
+  const double relaxation = chi * (reduced_momentum_collision_frequency(alpha, a2) -
+                                   cooling_coefficient(state) * reduced_cooling_rate(alpha, a2));
+  EnskogReducedViscosity eta;
+  eta.kinetic = require_positive_viscosity(
+      (1.0 - 0.4 * (1.0 + alpha) * (1.0 - 3.0 * alpha) * phi_chi) / relaxation,
+      "viscosity::enskog_reduced_viscosity");
+  eta.bulk = 128.0 / (5.0 * pi) * packing_fraction * phi_chi * (1.0 + alpha) * (1.0 - a2 / 16.0);
+  eta.collisional = 0.8 * phi_chi * (1.0 + alpha) * eta.kinetic + 0.6 * eta.bulk;
+  eta.total = eta.kinetic + eta.collisional;
+  return eta;
+}
+
+EnskogReducedViscosity enskog_reduced_viscosity(double alpha, double packing_fraction,
+                                                State state) {
+  require_restitution(alpha, "viscosity::enskog_reduced_viscosity");
+  const double chi = (1.0 - 0.5 * packing_fraction) /
+                     std::pow(1.0 - packing_fraction, 3);  // Carnahan-Starling (ERRATA §5)
+  return enskog_reduced_viscosity(alpha, packing_fraction, chi, state, sonine_a2(alpha));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Mixtures
+// ---------------------------------------------------------------------------------------------
+
+MixtureViscosity mixture_viscosity(const species::Mixture& mix,
+                                   const std::vector<double>& temperature_ratio, double temperature,
+                                   State state) {
+  constexpr const char* caller = "viscosity::mixture_viscosity";
+  if (mix.size() == 0) throw std::invalid_argument(std::string(caller) + ": no species");
+  detail::require_temperatures(mix, temperature_ratio, caller);
+  if (!(temperature > 0.0) || !std::isfinite(temperature))
+    throw std::invalid_argument(std::string(caller) + ": temperature must be positive and finite");
+  for (std::size_t i = 0; i < mix.size(); ++i)
+    for (std::size_t j = 0; j < mix.size(); ++j) require_restitution(mix.restitution(i, j), caller);
+
+  // T = sum_i x_i T_i fixes the scale of the ratios.
+  double weighted = 0.0;
+  for (std::size_t i = 0; i < mix.size(); ++i) weighted += mix.mole_fraction(i) * temperature_ratio[i];
+  std::vector<double> partial_temperature(mix.size());
+  for (std::size_t i = 0; i < mix.size(); ++i)
+    partial_temperature[i] = temperature * temperature_ratio[i] / weighted;
+
+  MixtureViscosity result = solve_mixture(mix, partial_temperature, temperature,
+                                          cooling_coefficient(state), Variant::state);
+  require_positive_viscosity(result.kinetic, caller);
+  result.elastic = elastic_mixture_viscosity(mix, temperature);
+  result.reduced = result.total / result.elastic;
+  return result;
+}
+
+double elastic_mixture_viscosity(const species::Mixture& mix, double temperature) {
+  if (mix.size() == 0)
+    throw std::invalid_argument("viscosity::elastic_mixture_viscosity: no species");
+  if (!(temperature > 0.0) || !std::isfinite(temperature))
+    throw std::invalid_argument(
+        "viscosity::elastic_mixture_viscosity: temperature must be positive and finite");
+  const std::vector<double> equal(mix.size(), temperature);
+  return solve_mixture(mix, equal, temperature, 0.0, Variant::elastic_reference).kinetic;
+}
+
+std::vector<double> binary_state_temperature_ratios(const species::Mixture& mix) {
+  const double gamma = binary_hcs_first_sonine(mix).temperature_ratio;  // ERRATA §6
+  const double x1 = mix.mole_fraction(0);
+  const double t2 = 1.0 / (1.0 + x1 * (gamma - 1.0));  // seed 003 eqs 13-14
+  return {gamma * t2, t2};
+}
+
+MixtureViscosity binary_viscosity(const species::Mixture& mix, double temperature, State state) {
+  return mixture_viscosity(mix, binary_state_temperature_ratios(mix), temperature, state);
+}
+
+double binary_reduced_viscosity_frequency(const species::Mixture& mix, double temperature) {
+  if (mix.size() != 2)
+    throw std::invalid_argument("viscosity::binary_reduced_viscosity_frequency: needs 2 species");
+  const double sigma_12 = mix.contact_distance(0, 1);
+  const double v0 = std::sqrt(2.0 * temperature * (mix.mass[0] + mix.mass[1]) /
+                              (mix.mass[0] * mix.mass[1]));  // seed 004 Sec. 2
+  return std::sqrt(pi) * mix.total_density() * sigma_12 * sigma_12 * v0;
+}
+
+}  // namespace gdsmc::theory::viscosity
