@@ -13,6 +13,7 @@
 #include "io/namelist.hpp"
 #include "theory/smoluchowski.hpp"
 #include "theory/theory.hpp"
+#include "theory/viscosity.hpp"
 
 namespace {
 
@@ -27,6 +28,8 @@ const char* kUsage =
     "  sonine_a2, cooling_rate_sonine               one species: van Noije-Ernst a2 and (1+3a2/16) zeta\n"
     "  temperature_ratio, sonine_c, cooling_rate_reduced, tail_beta, tail_decay_rate\n"
     "                       binary mixtures: the HCS in first Sonine approximation (seed 003, ERRATA §6)\n"
+    "  shear_viscosity_ratio {hcs, hss} eta/eta_0 in first Sonine (seed 004, ERRATA §10, §13): one species\n"
+    "                       (dilute or Enskog), dilute binary mixtures (over the elastic mixture value)\n"
     "  diffusion_coefficient_ratio  [D_k/D_1] (seed 001 eq 19, ERRATA §8); msd {time, value[t][k]} (eq 17)\n"
     "                       when &output track_displacements = .true. (not with msd_start_temperature)\n"
     "With &agg_frag (ERRATA §12), the Smoluchowski rate equations with Maxwellian kernels instead:\n"
@@ -295,6 +298,24 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
     if (hcs.cooling_rate > 0.0)
       json << ",\n" << in << "\"tail_decay_rate\": "
            << array({th::tail_decay_rate(hcs, 0), th::tail_decay_rate(hcs, 1)});
+  }
+  // Shear viscosity eta/eta_0 in first Sonine (seed 004, ERRATA §10, §13; theory/viscosity.hpp): one
+  // species, dilute or Enskog; dilute binary mixtures over the elastic mixture value.
+  if (!beta && (s == 1 || (s == 2 && hcs_result && !mix.enskog))) {
+    namespace vt = th::viscosity;
+    try {
+      auto reduced = [&](vt::State state) {
+        if (s == 2) return vt::binary_viscosity(mix, 1.0, state).reduced;
+        const double alpha = mix.restitution(0, 0);
+        return mix.enskog ? vt::enskog_reduced_viscosity(alpha, mix.packing_fraction(), state).total
+                          : vt::dilute_reduced_viscosity(alpha, state);
+      };
+      json << ",\n" << in << "\"shear_viscosity_ratio\": {\"hcs\": "
+           << number(reduced(vt::State::homogeneous_cooling)) << ", \"hss\": "
+           << number(reduced(vt::State::gaussian_thermostat)) << "}";
+    } catch (const std::exception& e) {
+      std::cerr << "granular-theory: shear_viscosity_ratio left out: " << e.what() << "\n";
+    }
   }
   json << "\n" << indent << "}";
   return json.str();

@@ -23,6 +23,7 @@
 #include "dsmc/sample.hpp"
 #include "dsmc/thermostat.hpp"
 #include "io/h5md.hpp"
+#include "theory/viscosity.hpp"
 
 namespace gdsmc::simulation {
 
@@ -510,11 +511,6 @@ ReplicaResult run_agg_frag_replica(const io::config::Config& config, const Optio
 // thermostat (thermostat.hpp, ERRATA §13)
 // ---------------------------------------------------------------------------------------------
 
-/// eta_0 = (5/(16 sigma^2)) sqrt(m T/pi), the elastic one-component viscosity (ERRATA §10, §13).
-double elastic_viscosity(double mass, double diameter, double temperature) {
-  return 5.0 / (16.0 * diameter * diameter) * std::sqrt(mass * temperature / M_PI);
-}
-
 /// Replica r of a run with a thermostat or a shear rate. Each stage of length dt: streaming
 /// V_x -> V_x - a V_y dt; at a sample time the measurement (after the streaming, before the
 /// collisions: ERRATA §13); the collisions of [t, t + dt] in continuous time (collide.hpp, no cache
@@ -596,10 +592,13 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
     if (shear > 0.0) {
       const double viscosity = -kinetic[3] / shear;  // eta = -P_xy/a, P_xy at the middle of the jump
       result.add("shear_viscosity_raw", 1, {viscosity});
-      if (s == 1) {
+      {
         // eta/eta_0(T) with the finite-shear-rate correction of ERRATA §13, 1 - (a* eta*)^2,
-        // a* = a/nu_0(T), nu_0 = n T/eta_0.
-        const double eta0 = elastic_viscosity(mix.mass[0], mix.diameter[0], m.total_temperature);
+        // a* = a/nu_0(T), nu_0 = n T/eta_0; eta_0 of one species (ERRATA §10), or of the elastic
+        // mixture at the same T (Chapman and Cowling's first approximation; theory/viscosity.hpp).
+        const double eta0 = s == 1 ? theory::viscosity::elastic_viscosity(mix.mass[0], mix.diameter[0],
+                                                                           m.total_temperature)
+                                   : theory::viscosity::elastic_mixture_viscosity(mix, m.total_temperature);
         const double reduced_rate = shear * eta0 / (n * m.total_temperature);
         const double corrected = viscosity / eta0;
         double eta = corrected;
@@ -665,7 +664,7 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
   progress.update(slot, 1.0, label, collider.time(), 0);
   result.events = collider.counters().events;
   result.mean_step = collider.time() > 0.0 && stages > 0.0 ? collider.time() / stages : 0.0;
-  if (shear > 0.0 && s == 1 && window_samples > 0.0)
+  if (shear > 0.0 && window_samples > 0.0)
     result.add("shear_viscosity_average", 1, {window_sum / window_samples});
   return result;
 }

@@ -73,13 +73,25 @@ int main(int argc, char** argv) {
   std::snprintf(text, sizeof text, "a* = a/nu_0(T) from %.4f to %.4f (the finite-shear correction is (a* eta*)^2 < 1 %%)",
                 rate.value.front(), rate.value.back());
   report.require(text, rate.value.front() <= 0.1);
-  const double hss = theory::viscosity::dilute_reduced_viscosity(alpha, theory::viscosity::State::gaussian_thermostat);
-  const double hcs = theory::viscosity::dilute_reduced_viscosity(alpha, theory::viscosity::State::homogeneous_cooling);
+  namespace vt = theory::viscosity;
+  const auto mix = c.mixture();
+  const bool one = mix.size() == 1;
+  // The reduced mixture viscosity eta/eta_0 does not depend on T (dilute: both scale as sqrt T).
+  const double hss = one ? vt::dilute_reduced_viscosity(alpha, vt::State::gaussian_thermostat)
+                         : vt::binary_viscosity(mix, 1.0, vt::State::gaussian_thermostat).reduced;
+  const double hcs = one ? vt::dilute_reduced_viscosity(alpha, vt::State::homogeneous_cooling)
+                         : vt::binary_viscosity(mix, 1.0, vt::State::homogeneous_cooling).reduced;
   report.note("HCS first Sonine for contrast (another state, not checked): " + std::to_string(hcs));
+  // Mixtures: ERRATA §13 (independent DSMC) finds the binary first-Sonine theory within about 1 % at
+  // alpha = 0.85 (mass ratio 3); that 1 % is the allowance of the mixture cases (alpha >= 0.85 only).
+  const double allowance = one ? first_sonine_allowance(alpha) : 0.01;
+  if (!one && !report.require("mixture cases at alpha >= 0.85 (where ERRATA §13 states the theory's accuracy)",
+                              alpha >= 0.85))
+    return report.exit_code();
   std::snprintf(text, sizeof text, "eta/eta_0 at alpha = %.2f vs HSS first Sonine (allowance %.1f %% + stage %.2f %%)",
-                alpha, 100.0 * first_sonine_allowance(alpha), 100.0 * kStageBias);
-  report.check(text, measured, error, hss, 4.0, hss * (first_sonine_allowance(alpha) + kStageBias));
-  if (alpha == 1.0) {
+                alpha, 100.0 * allowance, 100.0 * kStageBias);
+  report.check(text, measured, error, hss, 4.0, hss * (allowance + kStageBias));
+  if (alpha == 1.0 && one) {
     report.check("eta/eta_0 at alpha = 1 vs converged Chapman-Enskog 1.016 (Chapman and Cowling)", measured, error,
                  1.016, 4.0, 1.016 * kStageBias);
   }
