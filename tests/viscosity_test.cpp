@@ -84,7 +84,8 @@ TEST(ViscosityMixture, IdenticalSpeciesGiveOneSpeciesAtA2Zero) {
     for (State state : {hcs, hss}) {
       const double expected =
           1.0 / (viscosity::reduced_momentum_collision_frequency(alpha, 0.0) -
-                 viscosity::cooling_coefficient(state) * viscosity::reduced_cooling_rate(alpha, 0.0));
+                 viscosity::cooling_coefficient(state) *
+                     viscosity::reduced_cooling_rate(alpha, 0.0));
       const auto eta = viscosity::mixture_viscosity(mix, {1.0, 1.0}, temperature, state);
       EXPECT_NEAR(eta.reduced, expected, 1e-12 * expected) << alpha;
       EXPECT_NEAR(eta.total / viscosity::elastic_viscosity(m, sigma, temperature), expected,
@@ -109,8 +110,9 @@ TEST(ViscosityMixture, ElasticEqualSpeciesIsOneSpeciesEta0) {
 }
 
 // alpha = 1, a binary hard-sphere mixture with unequal masses and sizes, against Chapman and
-// Cowling's first approximation [eta]_1 in the form of Hirschfelder, Curtiss and Bird (eqs
-// 8.2-22 to 8.2-25), evaluated independently (python, double precision):
+// Cowling's first approximation [eta]_1 in the form given by Hirschfelder, Curtiss and Bird
+// (Molecular Theory of Gases and Liquids, ch. 8), evaluated independently (python, double
+// precision):
 //   [eta]_1 = (1 + Z)/(X + Y),
 //   X = x1^2/eta_1 + 2 x1 x2/eta_12 + x2^2/eta_2,
 //   Y = (3/5) A* [x1^2 (m1/m2)/eta_1 + 2 x1 x2 ((m1 + m2)^2/(4 m1 m2)) eta_12/(eta_1 eta_2)
@@ -135,7 +137,8 @@ TEST(ViscosityMixture, ElasticMatchesChapmanCowlingBinary) {
 // int m_i V_x V_y phi_i = 1), and the m_i V_x V_y moment of the linearised collision operator gives
 //   tau_ii = -(A_ii + B_ii) - sum_{j != i} A_ij,  tau_ij = -B_ij  (i != j),
 //   A_ij = int psi_i J_ij[phi_i, f_jM],  B_ij = int psi_i J_ij[f_iM, phi_j],  psi_i = m_i V_x V_y,
-// with int psi J_ij[F, G] = sigma_ij^2 int int F(v1) G(v2) int de Theta(g.e)(g.e)(psi(v1') - psi(v1))
+// with int psi J_ij[F, G]
+//        = sigma_ij^2 int int F(v1) G(v2) int de Theta(g.e)(g.e)(psi(v1') - psi(v1))
 // and v1' = v1 - mu_ji (1 + alpha_ij)(g.e) e (ERRATA §1). These are averages over Maxwellian pairs
 // and uniform e, estimated in 8 independent batches of 2.5e5 samples per species pair; the mean of
 // the eta_i solving sum_j (tau_ij - zeta_0 delta_ij) eta_j = n_i T_i (HSS) must agree within 4
