@@ -99,8 +99,8 @@ MixtureViscosity solve_mixture(const species::Mixture& mix, const std::vector<do
       if (j == i) {
         const double sigma_i = mix.diameter[i];
         tau_ij = 4.0 * std::sqrt(pi) / 15.0 * thermal_speed *
-                 (mix.number_density[i] * chi(i, i) * sigma_i * sigma_i / std::sqrt(2.0 * theta[i]) *
-                      (9.0 - 3.0 * alpha(i, i)) * (1.0 + alpha(i, i)) +
+                 (mix.number_density[i] * chi(i, i) * sigma_i * sigma_i /
+                      std::sqrt(2.0 * theta[i]) * (9.0 - 3.0 * alpha(i, i)) * (1.0 + alpha(i, i)) +
                   2.0 * unlike_sum);
         tau_ij -= cooling_coefficient_c * cooling_rate;
       } else {
@@ -245,7 +245,8 @@ MixtureViscosity mixture_viscosity(const species::Mixture& mix,
 
   // T = sum_i x_i T_i fixes the scale of the ratios.
   double weighted = 0.0;
-  for (std::size_t i = 0; i < mix.size(); ++i) weighted += mix.mole_fraction(i) * temperature_ratio[i];
+  for (std::size_t i = 0; i < mix.size(); ++i)
+    weighted += mix.mole_fraction(i) * temperature_ratio[i];
   std::vector<double> partial_temperature(mix.size());
   for (std::size_t i = 0; i < mix.size(); ++i)
     partial_temperature[i] = temperature * temperature_ratio[i] / weighted;

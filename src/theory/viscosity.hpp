@@ -3,7 +3,8 @@
  * \brief Navier-Stokes shear viscosity of a granular gas and of a granular mixture, dilute
  *        (Boltzmann) and moderately dense (Enskog), in the first Sonine approximation, for the
  *        homogeneous cooling state (HCS) and the Gaussian-thermostatted homogeneous steady state
- *        (HSS). These are the theory curves of seed 004 (Montanero and Garzo's overview), Figs 6-12.
+ *        (HSS). These are the theory curves of seed 004 (Montanero and Garzo's overview),
+ *        Figs 6-12.
  *
  * \section viscosity_intro What this module computes
  *
@@ -28,13 +29,16 @@
  *   PRE 59, 5895, eqs for nu_eta* and zeta* at d = 3):
  *   nu_eta* = (1 + alpha)(3 - alpha)/4 (1 - a2/32),  zeta* = (5/12)(1 - alpha^2)(1 + 3 a2/16),
  *   with the van Noije-Ernst a2(alpha) of theory::sonine_a2 (ERRATA §3).
- *   (Garzo and Dufty write c* = 2 a2: their (1 - c* / 64) and (1 + 3 c* / 32) are the factors above.)
+ *   (Garzo and Dufty write c* = 2 a2: their (1 - c* / 64) and (1 + 3 c* / 32) are the factors
+ *   above.)
  * - eta/eta_0 = 1/(nu_eta* - c zeta*), c = 1/2 in the HCS (Brey et al. 1998), c = 1 in the HSS
  *   with a Gaussian thermostat (Garzo and Montanero 2002, Physica A 313, 336). ERRATA §10:
  *   at alpha = 0.5, HCS 1.2851, HSS 1.6119.
  *
- * \subsection viscosity_enskog_one One component, Enskog (Garzo and Dufty 1999, PRE 59, 5895,
- *   Sec. IV, shear viscosity; Lutsko 2005 gives the same at first Sonine order)
+ * \subsection viscosity_enskog_one One component, Enskog (Garzo and Dufty 1999, PRE 59, 5895)
+ * The shear viscosity of Garzo and Dufty 1999 at d = 3 (its equation numbers were not checked here:
+ * the paper is not among the seeds; the formulas below were checked against their alpha = 1 limit,
+ * their dilute limit, and the independent mixture formulas of GHD 2007 for identical species).
  * In units of eta_0 (the dilute elastic value above), with chi = chi(phi):
  * - kinetic part: eta_k* = [1 - (2/5)(1 + alpha)(1 - 3 alpha) phi chi]/(nu_eta* - c zeta*), where
  *   nu_eta* and zeta* are the dilute values multiplied by chi (every collision rate carries chi,
@@ -50,19 +54,23 @@
  * Garzo and Dufty 2002 (Phys. Fluids 14, 1476) for the dilute mixture; Garzo, Hrenya and Dufty
  * 2007 (PRE 76, 031303 and 031304) for the Enskog mixture, in the form implemented by MFIX
  * (model/GhdTheory/shear_viscosity.f, bulk_viscosity.f, ghd.f; our code is written from the
- * equations, not translated). Leading Sonine order: each species' reference distribution is a
- * Maxwellian at its own T_i (the c_i of ERRATA §6 do not enter; for one species this drops the a2
- * factors of the one-component formulas above, which tests/viscosity_test.cpp uses).
+ * equations, not translated; the papers are not among the seeds, so their equation numbers are not
+ * quoted, and every term was checked instead: see \ref viscosity_checks). Leading Sonine order:
+ * each species' reference distribution is a Maxwellian at its own T_i (the c_i of ERRATA §6 do not
+ * enter; for one species this drops the a2 factors of the one-component formulas above, which
+ * tests/viscosity_test.cpp uses).
  * With mbar = (1/S) sum_i m_i (the plain mean of the masses, as GHD), v0 = sqrt(2 T/mbar),
- * theta_i = m_i T/(mbar T_i), beta_ij = mu_ij theta_j - mu_ji theta_i, r_ij = sqrt(theta_i + theta_j):
+ * theta_i = m_i T/(mbar T_i), beta_ij = mu_ij theta_j - mu_ji theta_i,
+ * r_ij = sqrt(theta_i + theta_j):
  *   S_i = sum_{j != i} n_j chi_ij sigma_ij^2 mu_ji (1 + alpha_ij) theta_i^(3/2) theta_j^(-1/2)
- *         [6 beta_ij/(theta_i^2 r_ij) + (9 - 3 alpha_ij)/2 mu_ji r_ij/theta_i^2 + 5/(theta_i r_ij)],
- *   tau_ii = (4 sqrt(pi)/15) v0 [n_i chi_ii sigma_i^2 (2 theta_i)^(-1/2) (9 - 3 alpha_ii)(1 + alpha_ii)
- *            + 2 S_i],
- *   tau_ij = (8 sqrt(pi)/15) v0 n_i chi_ij sigma_ij^2 mu_ij theta_j^(3/2) theta_i^(-1/2) (1 + alpha_ij)
- *            [6 beta_ij/(theta_j^2 r_ij) + (9 - 3 alpha_ij)/2 mu_ji r_ij/theta_j^2
+ *         [6 beta_ij/(theta_i^2 r_ij) + (9 - 3 alpha_ij)/2 mu_ji r_ij/theta_i^2
+ *          + 5/(theta_i r_ij)],
+ *   tau_ii = (4 sqrt(pi)/15) v0 [n_i chi_ii sigma_i^2 (2 theta_i)^(-1/2) (9 - 3 alpha_ii)
+ *            (1 + alpha_ii) + 2 S_i],
+ *   tau_ij = (8 sqrt(pi)/15) v0 n_i chi_ij sigma_ij^2 mu_ij theta_j^(3/2) theta_i^(-1/2)
+ *            (1 + alpha_ij) [6 beta_ij/(theta_j^2 r_ij) + (9 - 3 alpha_ij)/2 mu_ji r_ij/theta_j^2
  *             - 5/(theta_j r_ij)]   (i != j),
- *   sum_j (tau_ij - c zeta_0 delta_ij) eta_j = n_i T_i + b_i           (ERRATA §13; GHD 2007 II),
+ *   sum_j (tau_ij - c zeta_0 delta_ij) eta_j = n_i T_i + b_i         (ERRATA §13; GHD 2007 II),
  * where zeta_0 = (1/T) sum_i x_i T_i zeta_i is the Maxwellian cooling rate of the mixture at these
  * T_i, zeta_i = sum_j xi_ij the partial cooling rates of ERRATA §4 (theory::cooling_rate_matrix;
  * in the HCS all zeta_i are equal). The dilute gas has chi_ij = 1 and b_i = 0. The Enskog gas adds
@@ -72,9 +80,11 @@
  * and the collisional-transfer part of eta
  *   eta_c = sum_ij (4 pi/15) n_j sigma_ij^3 chi_ij mu_ji (1 + alpha_ij) eta_i + (3/5) kappa,
  *   kappa = (2 sqrt(pi)/9) v0 sum_ij mu_ij m_j n_i n_j sigma_ij^4 chi_ij (1 + alpha_ij)
- *           sqrt((theta_i + theta_j)/(theta_i theta_j))            (bulk viscosity, GHD 2007 II).
- * eta_i (the solution) are the kinetic partial viscosities, eta_k = sum_i eta_i, eta = eta_k + eta_c.
+ *           sqrt((theta_i + theta_j)/(theta_i theta_j))        (bulk viscosity, GHD 2007 II).
+ * eta_i (the solution) are the kinetic partial viscosities, eta_k = sum_i eta_i,
+ * eta = eta_k + eta_c.
  * For one species these reduce to the one-component Enskog formulas at a2 = 0 (checked).
+ * The choice of mbar only sets the scale of v0 and theta_i: eta does not depend on it.
  * The linear system is solved with Eigen's column-pivoting Householder QR.
  *
  * Reference states:
@@ -95,9 +105,12 @@
  * \subsection viscosity_checks How it is checked
  * tests/viscosity_test.cpp: ERRATA §10 reference values, two identical species = one species at
  * a2 = 0, the elastic limit against Chapman-Cowling numbers computed independently (one species and
- * a binary hard-sphere mixture from Chapman and Cowling's [eta]_1 formula), permutation of species,
- * the ERRATA §13 DSMC point, the Enskog mixture against the one-component Enskog formulas and its
- * dilute limit, the one-component Enskog elastic limit against Enskog's hard-sphere formula.
+ * a binary hard-sphere mixture from Chapman and Cowling's [eta]_1 formula), the tau_ij system at
+ * unequal temperatures and restitutions against a Monte Carlo evaluation of the collision integrals
+ * it stands for, permutation of species, the ERRATA §13 DSMC point (theory value 1.2044), the
+ * Enskog mixture against the one-component Enskog formulas and its dilute limit, the one-component
+ * Enskog elastic limit against Enskog's hard-sphere formula, and the thresholds seed 004 states for
+ * its Figs 11-12 (phi_0 ~ 0.22; the theory here crosses between 0.22 and 0.23).
  *
  * Input checks: std::invalid_argument for restitution outside [0, 1], non-positive or non-finite
  * temperatures, packing fractions outside [0, 1), a wrong number of temperature ratios, and a
@@ -125,7 +138,8 @@ double cooling_coefficient(State state);
 // One component
 // ---------------------------------------------------------------------------------------------
 
-/// ERRATA §10: elastic dilute first Chapman-Enskog viscosity eta_0 = (5/(16 sigma^2)) sqrt(m T/pi).
+/// ERRATA §10: elastic dilute first Chapman-Enskog viscosity
+/// eta_0 = (5/(16 sigma^2)) sqrt(m T/pi).
 double elastic_viscosity(double mass, double diameter, double temperature);
 
 /// ERRATA §10: nu_eta* = (1 + alpha)(3 - alpha)/4 (1 - a2/32) (dilute; Enskog multiplies by chi).
