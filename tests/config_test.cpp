@@ -939,7 +939,11 @@ TEST(ConfigShear, BadInputNamesTheVariable) {
   expect_error(error_of(sheared("&shear rate = 0.01 /", "&dsmc n_particles = 100, t_end = 5.0 /",
                                 "&system mass = 1.0, diameter = 1.0, number_density = 0.01, restitution = 0.9, "
                                 "enskog = .true. /")),
-               1, "system", "enskog", {"dilute gas"});
+               3, "dsmc", "scheme", {"scheme = 'pairs'"});
+  EXPECT_TRUE(read_text(sheared("&shear rate = 0.01 /", "&dsmc scheme = 'pairs', n_particles = 100, t_end = 5.0 /",
+                                "&system mass = 1.0, diameter = 1.0, number_density = 0.01, restitution = 0.9, "
+                                "enskog = .true. /"))
+                  .staged());
   expect_error(error_of(sheared("&thermostat kind = 'gaussian' /", "&dsmc n_particles = 100, t_end = 5.0 /",
                                 "&system mass = 1.0, diameter = 1.0, number_density = 0.01, "
                                 "restitution_model = 'viscoelastic', visco_a_kappa = 0.1 /")),

@@ -124,8 +124,10 @@ void Collider::rebuild_bounds() {
         // The simulated density of species j, n N_j / N, so that both schemes see the same gas.
         const double n_j = n * static_cast<double>(sys_.count[j]) / n_sim;
         // R_ij = (1/2) N_i omega_max^(ij), omega_max = 4 pi sigma_ij^2 n_j chi_ij g_max (seed 003 sec. 3)
-        pair_rate_[i * s_ + j] = 2.0 * static_cast<double>(sys_.count[i]) * n_j *
-                                 cross_section_[i * s_ + j] * (max_speed_[i] + max_speed_[j]);
+        // (with shear, the bound of |g.e| grows by a sigma_ij/2: set_shear)
+        const double g_max =
+            max_speed_[i] + max_speed_[j] + (shear_rate_ > 0.0 ? 0.5 * shear_rate_ * contact_[i * s_ + j] : 0.0);
+        pair_rate_[i * s_ + j] = 2.0 * static_cast<double>(sys_.count[i]) * n_j * cross_section_[i * s_ + j] * g_max;
         total += pair_rate_[i * s_ + j];
         pair_cumulative_[i * s_ + j] = total;
       }
@@ -296,6 +298,16 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target) {
   return false;
 }
 
+void Collider::set_shear(double rate) {
+  if (scheme_ != Scheme::pairs || !tables_)
+    throw std::invalid_argument("collide: the shifted relative velocity of shear flow needs the 'pairs' scheme");
+  shear_rate_ = rate;
+  contact_.resize(s_ * s_);
+  for (std::size_t i = 0; i < s_; ++i)
+    for (std::size_t j = 0; j < s_; ++j) contact_[i * s_ + j] = mix_.contact_distance(i, j);
+  if (rate_ > 0.0) rebuild_bounds();
+}
+
 bool Collider::advance(double t_target, std::uint64_t event_target) {
   if (!block_first_.empty()) return advance_blocks(t_target, event_target);
   while (time_ < t_target) {
@@ -447,6 +459,27 @@ int Collider::run_pairs(double t_stop, std::uint64_t event_target) {
     rng::unit_vector(gen_, ex, ey, ez);  // seed 003 step (1): e uniform on the sphere
     const double g_dot_e = (sys_.v[k].x - sys_.v[l].x) * ex + (sys_.v[k].y - sys_.v[l].y) * ey +
                            (sys_.v[k].z - sys_.v[l].z) * ez;
+    if (shear_rate_ > 0.0) {  // Enskog in shear flow: the shifted relative velocity (set_shear, ERRATA §13)
+      const double sigma = contact_[pair];
+      const double shifted = g_dot_e - shear_rate_ * sigma * ey * ex;
+      if (shifted <= 0.0 ||
+          gen_.uniform() * (max_speed_[i] + max_speed_[j] + 0.5 * shear_rate_ * sigma) >= shifted)
+        return false;
+      const double alpha = alpha_[pair], mf = mass_fraction_[pair];
+      const double impulse = (1.0 + alpha) * shifted;
+      particles::Vec3& va = sys_.v[k];
+      particles::Vec3& vb = sys_.v[l];
+      va = {va.x - mf * impulse * ex, va.y - mf * impulse * ey, va.z - mf * impulse * ez};
+      vb = {vb.x + (1.0 - mf) * impulse * ex, vb.y + (1.0 - mf) * impulse * ey, vb.z + (1.0 - mf) * impulse * ez};
+      const double reduced = mix_.mass[i] * mf;  // m_ij
+      counters_.dissipated += 0.5 * (1.0 - alpha * alpha) * reduced * shifted * shifted;
+      const double w = reduced * sigma * impulse;  // m_ij sigma_ij (1 + alpha)(g.e)
+      auto& t = counters_.transfer;
+      t[0] += w * ex * ex, t[1] += w * ey * ey, t[2] += w * ez * ez;
+      t[3] += w * ex * ey, t[4] += w * ex * ez, t[5] += w * ey * ez;
+      count_event(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
+      return true;
+    }
     // Step (2): accept with Theta(g.e) |g.e| / g_max, g_max = vmax_i + vmax_j.
     if (g_dot_e <= 0.0 || gen_.uniform() * (max_speed_[i] + max_speed_[j]) >= g_dot_e) return false;
     if (track) {

@@ -162,6 +162,9 @@ struct Counters {
   double step_sum = 0.0;                   ///< sum of the step lengths, for the mean dt
   double dissipated = 0.0;                 ///< kinetic energy lost so far, (1 - alpha^2) m_kj (g.e)^2/2
                                            ///< per collision (ERRATA §1): the thermostat's loss
+  /// Enskog gas in shear flow (set_shear): sum over accepted collisions of m_kj sigma_kj (1 + alpha)
+  /// (g.e) e e, components xx, yy, zz, xy, xz, yz: the collisional transfer (ERRATA §13).
+  std::array<double, 6> transfer{};
 };
 
 /// The collision stage of one replica: particles, pair constants, bounds, clock and generator.
@@ -196,6 +199,12 @@ class Collider {
     recompute_max_speeds();
     rebuild_bounds();
   }
+  /// Uniform shear flow u_x = a y in the Enskog gas (`pairs` scheme only; ERRATA §13): a partner at
+  /// r_k + sigma_ij e moves with the flow a sigma_ij e_y relative to particle k, so the relative velocity
+  /// of the collision is g = V_k - V_l - a sigma_ij e_y x_hat, in the acceptance Theta(g.e) |g.e| and in
+  /// the update; the bound grows by a sigma_ij/2 >= |a sigma_ij e_y e_x|. Each accepted collision adds
+  /// its collisional transfer to Counters::transfer. Throws std::invalid_argument for another scheme.
+  void set_shear(double rate);
   /// The same when the caller has just computed the largest speed^2 of each species in its own
   /// pass over the particles (thermostat.hpp's fused stage pass): no second pass here.
   void set_max_speeds(const std::vector<double>& max_speed2) {
@@ -302,6 +311,8 @@ class Collider {
   std::vector<std::size_t> raised_;     ///< species whose vmax was raised since the last rebuild
   segment_tree::LowRankSampler<3> lowrank_;  ///< A_ik (lowrank)
   double chi_max_ = 1.0;                ///< max_ik chi_ik (lowrank)
+  double shear_rate_ = 0.0;             ///< a of set_shear (pairs, Enskog)
+  std::vector<double> contact_;         ///< sigma_ij (set_shear)
   double lowrank_volume_ = 0.0;         ///< V = (N - 1)/n (lowrank)
   bool lowrank_columns_set_ = false;    ///< columns v_k set and frozen (they never change in a run)
   // Bounds.

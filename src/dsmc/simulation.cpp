@@ -250,6 +250,7 @@ Snapshot make_snapshot(const particles::System& sys, const collide::Collider& co
   snap.reals["collider/block_max_speed2"] = c.block_max_speed2;
   snap.reals["collider/block_credit"] = c.block_credit;
   snap.reals["collider/block_step_start"] = {c.step_start};
+  snap.reals["collider/transfer"].assign(c.counters.transfer.begin(), c.counters.transfer.end());
   snap.integers["progress/flags"] = {p.next_sample, p.in_sample, p.tracking};
   snap.reals["progress/values"] = {p.msd_start, p.scaling_samples, p.t_first, p.t_last, p.temp_first, p.temp_last};
   snap.reals["progress/speed_counts"] = p.speed_counts;
@@ -300,6 +301,8 @@ void load_snapshot(const Snapshot& snap, particles::System& sys, collide::Collid
   c.block_max_speed2 = snap.reals.at("collider/block_max_speed2");
   c.block_credit = snap.reals.at("collider/block_credit");
   c.step_start = snap.reals.at("collider/block_step_start").at(0);
+  const auto& transfer = snap.reals.at("collider/transfer");
+  for (std::size_t q = 0; q < 6; ++q) c.counters.transfer[q] = transfer.at(q);
   collider.restore(c);
   const auto& flags = snap.integers.at("progress/flags");
   const auto& values = snap.reals.at("progress/values");
@@ -540,7 +543,12 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
   ReplicaResult result;
   ReplicaProgress p;
   // Stage accumulators: zeta dt since the last sample, the viscosity's window sum, stage count.
+  // Enskog in shear flow: the shifted relative velocity and the collisional transfer (collide.hpp).
+  const bool enskog_shear = shear > 0.0 && mix.enskog;
+  if (enskog_shear) collider.set_shear(shear);
   double zeta_sum = 0.0, zeta_stages = 0.0, window_sum = 0.0, window_samples = 0.0, stages = 0.0;
+  double window_kinetic_sum = 0.0, last_sample_time = 0.0;
+  std::array<double, 6> last_transfer{};  // Counters::transfer at the previous sample
   thermostat::Rescaling pending;  // decided at the end of a stage, applied at the start of the next
   if (resume) {
     load_snapshot(*resume, sys, collider, p, result);
@@ -548,19 +556,24 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
     zeta_sum = v.at(0), zeta_stages = v.at(1), window_sum = v.at(2), window_samples = v.at(3), stages = v.at(4);
     pending.scale = v.at(5);
     pending.mean_flow = {v.at(6), v.at(7), v.at(8)};
+    window_kinetic_sum = v.at(9), last_sample_time = v.at(10);
+    for (std::size_t q = 0; q < 6; ++q) last_transfer[q] = v.at(11 + q);
   } else {
     collider.velocities_changed();  // the bounds (and the majorant rate that sizes the stages) from the start
   }
   const std::function<Snapshot()> snapshot = [&] {
     Snapshot snap = make_snapshot(sys, collider, p, result);
     snap.reals["staged/values"] = {zeta_sum,        zeta_stages,         window_sum,          window_samples, stages,
-                                   pending.scale, pending.mean_flow.x, pending.mean_flow.y, pending.mean_flow.z};
+                                   pending.scale, pending.mean_flow.x, pending.mean_flow.y, pending.mean_flow.z,
+                                   window_kinetic_sum, last_sample_time};
+    auto& values = snap.reals["staged/values"];
+    values.insert(values.end(), last_transfer.begin(), last_transfer.end());
     return snap;
   };
   std::uint64_t reported_events = collider.counters().events;
 
   // The sample of this instant: after the streaming of the stage that starts now.
-  auto measure = [&](double dt) {
+  auto measure = [&](std::size_t i, double dt) {
     const sample::Moments m = sample::measure(mix, sys);
     const auto& counters = collider.counters();
     result.add("temperature", s, m.temperature);
@@ -583,14 +596,27 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
       for (std::size_t c = 0; c < 6; ++c) kinetic[c] = 0.5 * (kinetic[c] + before[c]);
     }
     const std::vector<double> pk(kinetic.begin(), kinetic.end());
+    // Collisional transfer since the previous sample (ERRATA §13): P^c = sum m sigma (1 + alpha)(g.e) e e
+    // / (V dt), V = N/n the simulated volume; 0 in the dilute gas.
+    std::vector<double> pc(6, 0.0);
+    const double now = collider.time();
+    if (enskog_shear && now > last_sample_time) {
+      const auto& transfer = collider.counters().transfer;
+      const double volume = static_cast<double>(sys.size()) / n;
+      for (std::size_t q = 0; q < 6; ++q) pc[q] = (transfer[q] - last_transfer[q]) / (volume * (now - last_sample_time));
+      last_transfer = transfer;
+    }
+    last_sample_time = now;
+    std::vector<double> total(6);
+    for (std::size_t q = 0; q < 6; ++q) total[q] = pk[q] + pc[q];
     result.add("pressure_tensor_kinetic", 6, pk);
-    result.add("pressure_tensor_collisional", 6, std::vector<double>(6, 0.0));  // dilute: no transfer
-    result.add("pressure_tensor", 6, pk);
+    result.add("pressure_tensor_collisional", 6, pc);
+    result.add("pressure_tensor", 6, total);
     const double zeta_dt = zeta_stages > 0.0 ? zeta_sum / zeta_stages : 0.0;
     result.add("thermostat_zeta_dt", 1, {zeta_dt});
     zeta_sum = zeta_stages = 0.0;
     if (shear > 0.0) {
-      const double viscosity = -kinetic[3] / shear;  // eta = -P_xy/a, P_xy at the middle of the jump
+      const double viscosity = -total[3] / shear;  // eta = -P_xy/a, P_xy at the middle of the jump
       result.add("shear_viscosity_raw", 1, {viscosity});
       {
         // eta/eta_0(T) with the finite-shear-rate correction of ERRATA §13, 1 - (a* eta*)^2,
@@ -603,10 +629,13 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
         const double corrected = viscosity / eta0;
         double eta = corrected;
         for (int it = 0; it < 20; ++it) eta = corrected / (1.0 - reduced_rate * reduced_rate * eta * eta);
+        const double kinetic_part = eta * kinetic[3] / total[3];  // the same correction for each part
         result.add("reduced_shear_rate", 1, {reduced_rate});
         result.add("shear_viscosity", 1, {eta});
-        if (collider.time() >= average_from * (1.0 - 1e-12)) {
+        if (enskog_shear) result.add("shear_viscosity_kinetic", 1, {kinetic_part});
+        if (collider.time() >= average_from * (1.0 - 1e-12) && i > 0) {
           window_sum += eta;
+          window_kinetic_sum += kinetic_part;
           window_samples += 1.0;
         }
       }
@@ -624,15 +653,22 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
         thermostat::begin_stage(mix, sys, pending.scale, pending.mean_flow, shear, end - t);
     pending = thermostat::Rescaling{};
     collider.set_max_speeds(start.max_speed2);
-    if (sample_here) measure(end - t);
+    if (sample_here) measure(p.next_sample, end - t);
     if (last) return;
     const double dissipated_before = collider.counters().dissipated;
     collider.advance(end);
     if (gaussian) {
       // The dilute collisions change the energy only by their inelastic loss and keep the mean flow,
       // so the thermostat needs no pass over the particles here (thermostat.hpp).
-      pending = thermostat::gaussian_rescaling(start.kinetic, collider.counters().dissipated - dissipated_before,
-                                               start.mean_flow);
+      const double loss = collider.counters().dissipated - dissipated_before;
+      if (enskog_shear) {
+        // The Enskog collisions in shear flow also do viscous work, which the thermostat must not
+        // remove (ERRATA §13): only the inelastic loss is restored, s^2 = (E_after + L)/E_after.
+        const double after = thermostat::peculiar_energy(mix, sys).kinetic;
+        pending = {std::sqrt((after + loss) / after), start.mean_flow, loss / start.kinetic};
+      } else {
+        pending = thermostat::gaussian_rescaling(start.kinetic, loss, start.mean_flow);
+      }
       zeta_sum += pending.zeta_dt;
       zeta_stages += 1.0;
     }
@@ -664,8 +700,10 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
   progress.update(slot, 1.0, label, collider.time(), 0);
   result.events = collider.counters().events;
   result.mean_step = collider.time() > 0.0 && stages > 0.0 ? collider.time() / stages : 0.0;
-  if (shear > 0.0 && window_samples > 0.0)
+  if (shear > 0.0 && window_samples > 0.0) {
     result.add("shear_viscosity_average", 1, {window_sum / window_samples});
+    if (enskog_shear) result.add("shear_viscosity_kinetic_average", 1, {window_kinetic_sum / window_samples});
+  }
   return result;
 }
 
@@ -1105,7 +1143,8 @@ void write_point(io::h5md::Writer& writer, const std::string& root, const io::co
 
   for (const auto& [name, a] : acc) {
     if (name == "velocity_histogram" || name == "msd_start" ||
-        (name.rfind("reduced_", 0) == 0 && name != "reduced_shear_rate") || name == "shear_viscosity_average")
+        (name.rfind("reduced_", 0) == 0 && name != "reduced_shear_rate") || name == "shear_viscosity_average" ||
+        name == "shear_viscosity_kinetic_average")
       continue;
     io::h5md::Series series;
     series.time = time_mean;
@@ -1145,6 +1184,11 @@ void write_point(io::h5md::Writer& writer, const std::string& root, const io::co
     if (!error.empty()) writer.write_attribute(g, "time_average_error", error.at(0));
     writer.write_attribute(g, "average_from", config.shear.average_from.value_or(0.5 * *config.dsmc.t_end));
     writer.write_attribute(g, "replicas_averaged", static_cast<long long>(acc["shear_viscosity_average"].values.size()));
+    if (acc.count("shear_viscosity_kinetic_average")) {
+      writer.write_attribute(g, "time_average_kinetic", acc["shear_viscosity_kinetic_average"].mean().at(0));
+      const auto e = acc["shear_viscosity_kinetic_average"].standard_error();
+      if (!e.empty()) writer.write_attribute(g, "time_average_kinetic_error", e.at(0));
+    }
   }
   if (acc.count("shear_viscosity"))
     writer.write_attribute(root + "/shear_viscosity", "description",

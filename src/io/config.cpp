@@ -647,9 +647,10 @@ void check_staged(const Config& c, std::map<std::string, Provenance>& prov) {
   if (c.has_agg_frag)
     refuse(c.shear.rate ? "shear" : "thermostat", c.shear.rate ? "rate" : "kind",
            what + " cannot run with &agg_frag (the thermostat would feed the clusters' energy back)");
-  if (c.system.enskog)
-    refuse("system", "enskog", what + " runs in the dilute gas for now (Enskog shear needs the shifted relative "
-                               "velocity of ERRATA §13, not implemented yet)");
+  if (c.system.enskog && c.shear.rate && c.dsmc.scheme != "pairs")
+    refuse("dsmc", "scheme",
+           "shear flow in the Enskog gas runs with scheme = 'pairs' (e drawn before the shifted relative velocity "
+           "of ERRATA §13)");
   if (c.system.restitution_model != "constant")
     refuse("system", "restitution_model", what + " runs with restitution_model = 'constant' only");
   if (c.dsmc.scheme == "lowrank" && c.system.n_species > 64)
