@@ -122,9 +122,16 @@ int main(int argc, char** argv) {
   // Mixtures: ERRATA §13 (independent DSMC) finds the binary first-Sonine theory within about 1 % at
   // alpha = 0.85 (mass ratio 3); that 1 % is the allowance of the mixture cases (alpha >= 0.85 only).
   const double allowance = one ? first_sonine_allowance(alpha) : 0.01;
-  if (!one && !report.require("mixture cases at alpha >= 0.85 (where ERRATA §13 states the theory's accuracy)",
-                              alpha >= 0.85))
+  if (!one && alpha < 0.85) {
+    // Below alpha = 0.85 no independent estimate of the mixture theory's error exists here: the
+    // difference is stated per point (seed 004 reports disagreement growing below alpha = 0.8).
+    std::snprintf(text, sizeof text,
+                  "mixture, alpha = %.2f: eta/eta_0 DSMC %.4f +- %.4f, HSS first Sonine %.4f: theory %+.2f %% (%.1f SE)",
+                  alpha, measured, error, hss, 100.0 * (hss - measured) / measured, (hss - measured) / error);
+    report.note(text);
+    report.require("the measured viscosity is finite and positive", measured > 0.0 && std::isfinite(measured));
     return report.exit_code();
+  }
   std::snprintf(text, sizeof text, "eta/eta_0 at alpha = %.2f vs HSS first Sonine (allowance %.1f %% + stage %.2f %%)",
                 alpha, 100.0 * allowance, 100.0 * kStageBias);
   report.check(text, measured, error, hss, 4.0, hss * (allowance + kStageBias));
