@@ -217,6 +217,33 @@ TEST_F(CliDsmc, AggFragBadInputLeavesNoFile) {
       "granular-dsmc", "t.nml:2: &dsmc: scheme: ", {"'lowrank'"});
 }
 
+TEST_F(CliDsmc, ShearBadInputLeavesNoFile) {
+  const std::string head =
+      "&system mass = 1.0, diameter = 1.0, number_density = 0.01, restitution = 0.8 /\n"
+      "&dsmc n_particles = 500, t_end = 5.0 /\n"
+      "&output file = 'out.h5' /\n";
+  expect_input_error(dsmc(head + "&shear rate = -0.1 /\n"), "granular-dsmc", "t.nml:4: &shear: rate: ", {"outside"});
+  expect_input_error(dsmc(head + "&shear rate = 1.0 /\n"), "granular-dsmc", "t.nml:4: &shear: rate: ", {"a* = "});
+  expect_input_error(dsmc("&system mass = 1.0, diameter = 1.0, number_density = 0.01, restitution = 0.8 /\n"
+                          "&dsmc scheme = 'lowrank', n_particles = 500, t_end = 5.0 /\n&output file = 'out.h5' /\n"
+                          "&agg_frag aggregation_energy = 0.5 /\n&thermostat kind = 'gaussian' /\n"),
+                     "granular-dsmc", "t.nml:5: &thermostat: kind: ", {"&agg_frag"});
+  expect_input_error(
+      dsmc("&system mass = 1.0, diameter = 1.0, number_density = 0.1, restitution = 0.8, enskog = .true. /\n"
+           "&dsmc n_particles = 500, t_end = 5.0 /\n&output file = 'out.h5' /\n&shear rate = 0.01 /\n"),
+      "granular-dsmc", "t.nml:2: &dsmc: scheme: ", {"'pairs'"});
+}
+
+TEST_F(CliDsmc, ShearRunWritesViscosity) {
+  const Result r = dsmc(
+      "&system mass = 1.0, diameter = 1.0, number_density = 0.01, restitution = 0.9 /\n"
+      "&dsmc n_particles = 500, t_end = 50.0, replicas = 2 /\n&output file = 'out.h5', n_samples = 5 /\n"
+      "&thermostat kind = 'gaussian' /\n&shear rate = 0.003 /\n");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(files(), (std::vector<std::string>{"out.h5", "t.nml"}));
+  expect_no_temporary_file();
+}
+
 TEST_F(CliDsmc, Help) {
   const Result r = run("granular-dsmc", "--help");
   EXPECT_EQ(r.status, 0);
