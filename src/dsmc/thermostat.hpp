@@ -24,6 +24,13 @@
  * amplified stage after stage (the run would otherwise end up thermostatting a bulk flow). The
  * centre-of-mass velocity is removed at the start (seed 004 subtracts the plain mean).
  *
+ * **Enskog gas in shear flow** (`pairs` scheme; collide.hpp set_shear): a collision uses the shifted
+ * relative velocity g = V_k - V_l - a sigma_ij e_y x_hat, so besides the inelastic loss it does viscous
+ * work on the particles, which the thermostat must leave alone (ERRATA §13): there the energy after the
+ * collisions is measured (one more pass) and s^2 = (E_after + L)/E_after. The collisional transfer
+ * P^c = sum m_ij sigma_ij (1 + alpha)(g.e) e e / (V dt) is summed by the collider and written with the
+ * kinetic part; its trace is the Enskog equation of state 2 (1 + alpha) phi chi n T (validated).
+ *
  * **Sampling point** (the viscosity). The sample of a stage is taken after its streaming, before its
  * collisions (ERRATA §13). Within the stationary stage cycle X = -P_xy jumps by a dt P_yy at the
  * streaming and then relaxes, collisions and thermostat together, as exp(-lambda) over the stage,
