@@ -96,15 +96,7 @@ std::string escape(const std::string& text) {
 /// sample points, in the units of the DSMC observables (counts for n_particles initial monomers).
 std::string agg_frag_json(const gdsmc::io::config::Config& config, const std::string& indent) {
   namespace sm = gdsmc::theory::smoluchowski;
-  sm::Parameters p;
-  p.monomer_mass = config.system.mass[0];
-  p.monomer_diameter = config.system.diameter[0];
-  p.monomer_density = config.system.number_density[0];
-  p.initial_temperature = config.initial.temperature[0];
-  p.restitution = config.system.restitution(0, 0);
-  p.aggregation_energy = config.agg_frag.aggregation_energy.value_or(0.0);
-  p.fragmentation_energy = config.agg_frag.fragmentation_energy.value_or(INFINITY);
-  p.fragment_restitution = config.agg_frag.fragment_restitution.value_or(1.0);
+  const sm::Parameters p = sm::parameters_of(config);
   const double n0 = static_cast<double>(config.dsmc.n_particles);
   std::vector<double> times = config.sample_times();
   if (times.empty()) {  // collision-driven: the times at which 2 x collisions per monomer reach the targets

@@ -38,15 +38,7 @@ int main(int argc, char** argv) {
   const auto& c = run.config;
   validation::Report report("aggregation and fragmentation: " + c.source_file, run.report_file());
 
-  theory::smoluchowski::Parameters p;
-  p.monomer_mass = c.system.mass[0];
-  p.monomer_diameter = c.system.diameter[0];
-  p.monomer_density = c.system.number_density[0];
-  p.initial_temperature = c.initial.temperature[0];
-  p.restitution = c.system.restitution(0, 0);
-  p.aggregation_energy = c.agg_frag.aggregation_energy.value_or(0.0);
-  p.fragmentation_energy = c.agg_frag.fragmentation_energy.value_or(INFINITY);
-  p.fragment_restitution = c.agg_frag.fragment_restitution.value_or(1.0);
+  const theory::smoluchowski::Parameters p = theory::smoluchowski::parameters_of(c);
   const double n0 = static_cast<double>(c.dsmc.n_particles);
   // nu_0 = 4 sqrt(pi) n sigma^2 sqrt(T0/m): collisions per monomer per unit time at t = 0 (ERRATA §2)
   const double nu0 = 4.0 * std::sqrt(M_PI) * p.monomer_density * p.monomer_diameter * p.monomer_diameter *
@@ -132,7 +124,7 @@ int main(int argc, char** argv) {
       if (exact) {
         report.check(text, measured, error, expected, 4.0);
       } else {
-        char drift[300];
+        char drift[512];
         std::snprintf(drift, sizeof drift, "%s: DSMC %.6g +- %.2g, theory %.6g: theory drift %+.2f %% (%.1f SE)", text,
                       measured, error, expected, 100.0 * (expected - measured) / measured,
                       error > 0 ? (expected - measured) / error : 0.0);
