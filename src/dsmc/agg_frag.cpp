@@ -53,7 +53,7 @@ Gas::Gas(const Model& model, std::size_t monomers, double temperature, particles
   start_step();
 }
 
-Gas::Gas(const Model& model, const std::vector<std::uint32_t>& sizes, const std::vector<Vec3>& velocities,
+Gas::Gas(const Model& model, const std::vector<std::uint32_t>& sizes, const std::vector<particles::Vec3>& velocities,
          rng::Xoshiro256pp collisions, double step_fraction)
     : model_(model), volume_(0.0), step_fraction_(step_fraction), gen_(collisions) {
   for (auto k : sizes) initial_monomers_ += k;

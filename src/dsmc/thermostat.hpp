@@ -40,7 +40,7 @@
  * streaming is linear, so the value before the jump follows exactly from the one after it:
  * P_xy(before) = P_xy(after) + a dt P_yy. The viscosity therefore uses the midpoint
  * P_xy + a dt P_yy/2, which is second order in the stage length. This replaces ERRATA §13's
- * sampling-point factor 1/(1 - <zeta dt>) (first order, and it does not remove the streaming jump:
+ * sampling-point factor 1/(1 - mean zeta dt) (first order, and it does not remove the streaming jump:
  * measured at alpha = 0.7, 2e4 particles x 16 replicas, the value after the jump alone rose from
  * 1.302 to 1.366 when the stage grew from 0.1 to 0.5 majorant mean free times, the midpoint stayed at
  * 1.288-1.296, within 1.2 standard errors).

@@ -50,7 +50,7 @@
  * dT/dt = -(4/3) sqrt(pi) (1 - alpha^2) n sigma^2 sqrt(T/m) T (ERRATA §3, theory.hpp).
  * The Maxwellian closure is exact at t = 0; later the removal of slow pairs makes the true
  * distributions non-Maxwellian and DSMC drifts from this theory (ERRATA §12: sticking gas, n_1 about
- * 6 % low by <k> = 8.5).
+ * 6 % low by the time the mean cluster size is 8.5).
  *
  * \subsection smol_numerics Numerical integration
  * Sizes 1..K are integrated; clusters that would grow beyond K are removed and their mass is
@@ -63,7 +63,7 @@
  * and the cost is O(K^2) per right-hand side. Pairs with a partner below 1e-24 n_1(0) are skipped:
  * their terms are far below the absolute tolerance, and each pair conserves mass on its own.
  * BDF with a dense Newton solver, the other theory modules' choice, would cost (2K)^3 per
- * factorisation (bench/bench_smoluchowski.cpp, sticking gas to <k> = 10 at K = 512: BDF + dense
+ * factorisation (bench/bench_smoluchowski.cpp, sticking gas to a mean cluster size of 10 at K = 512: BDF + dense
  * 33 s, BDF + matrix-free GMRES 4.1 s, Adams 1.9 s; 0.8 s with the skip).
  * A doomed K is abandoned as soon as the lost mass passes 1e-8 (checked 16 times per output
  * interval), so the doubling costs less than the final run.
