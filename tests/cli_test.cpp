@@ -244,6 +244,30 @@ TEST_F(CliDsmc, ShearRunWritesViscosity) {
   expect_no_temporary_file();
 }
 
+TEST_F(CliDsmc, NeverOverwritesTheInputOrAForeignFile) {
+  // --output pointing at the input namelist: refused, the namelist intact.
+  write("t.nml", base());
+  Result r = run("granular-dsmc", "t.nml --quiet --output t.nml");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("is the input namelist"), std::string::npos) << r.err;
+  EXPECT_EQ(read_text(dir / "t.nml"), base());
+  // An existing file that granular-dsmc did not write: refused, kept; --force replaces it.
+  write("notes.txt", "my notes\n");
+  r = run("granular-dsmc", "t.nml --quiet --output notes.txt");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("is not an output of granular-dsmc"), std::string::npos) << r.err;
+  EXPECT_EQ(read_text(dir / "notes.txt"), "my notes\n");
+  r = run("granular-dsmc", "t.nml --quiet --output notes.txt --force");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(read_text(dir / "notes.txt").substr(0, 8), std::string("\x89HDF\r\n\x1a\n", 8));
+  // An earlier output of the program is replaced without --force.
+  r = run("granular-dsmc", "t.nml --quiet");
+  EXPECT_EQ(r.status, 0) << r.err;
+  r = run("granular-dsmc", "t.nml --quiet");
+  EXPECT_EQ(r.status, 0) << r.err;
+  expect_no_temporary_file();
+}
+
 TEST_F(CliDsmc, Help) {
   const Result r = run("granular-dsmc", "--help");
   EXPECT_EQ(r.status, 0);

@@ -954,3 +954,27 @@ TEST(ConfigShear, ThermostatWithAggFragIsRefused) {
   const std::string text = monomers("&agg_frag aggregation_energy = 0.5 /\n&thermostat kind = 'gaussian' /");
   expect_error(error_of(text), 6, "thermostat", "kind", {"cannot run with &agg_frag"});
 }
+
+// ---------------------------------------------------------------------------------------------
+// Issue 12: no silent acceptance of a repeated or conflicting assignment
+// ---------------------------------------------------------------------------------------------
+TEST(ConfigRepeated, AVariableAssignedTwiceInOneGroupIsAnError) {
+  expect_error(error_of(with_line(3, "  mass = 1.0, 10.0, mass = 2.0, 10.0")), 3, "system", "mass",
+               {"assigned twice"});
+  expect_error(error_of(with_line(6, "  restitution(1,2) = 0.5, restitution(1,2) = 0.6")), 6, "system", "restitution",
+               {"element is assigned twice"});
+  // A --set override may replace what the file says.
+  EXPECT_EQ(read_text(base(), {"system:mass=2.0,10.0"}).system.mass[0], 2.0);
+}
+
+TEST(ConfigRepeated, ConflictingSymmetricRestitutionIsAnError) {
+  expect_error(error_of(with_line(6, "  restitution = 0.9, restitution(1,2) = 0.5, restitution(2,1) = 0.7")), 6,
+               "system", "restitution", {"conflicts with line 6", "symmetric"});
+  // The same value given for (1,2) and (2,1), and a fill then an element, are fine.
+  const auto c = read_text(with_line(6, "  restitution = 0.9, restitution(1,2) = 0.5, restitution(2,1) = 0.5"));
+  EXPECT_EQ(c.system.restitution(0, 1), 0.5);
+  EXPECT_EQ(c.system.restitution(1, 1), 0.9);
+  // A --set override of one element replaces it, whatever the file said.
+  const auto d = read_text(with_line(6, "  restitution = 0.9, restitution(1,2) = 0.5"), {"system:restitution(2,1)=0.7"});
+  EXPECT_EQ(d.system.restitution(0, 1), 0.7);
+}

@@ -14,9 +14,26 @@
 #include "dsmc/parallel.hpp"
 #include "dsmc/simulation.hpp"
 #include "io/config.hpp"
+#include "io/h5md.hpp"
 #include "io/namelist.hpp"
 
 namespace {
+
+/// Whether `path` holds an earlier output of this program (an HDF5 file whose /h5md creator is
+/// granular-dsmc), which a new run may replace; anything else is the user's and is kept.
+bool is_earlier_output(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) return false;
+  char signature[8] = {};
+  const bool hdf5 = std::fread(signature, 1, 8, f) == 8 && std::memcmp(signature, "\x89HDF\r\n\x1a\n", 8) == 0;
+  std::fclose(f);
+  if (!hdf5) return false;
+  try {
+    return gdsmc::io::h5md::read_string_attribute(path, "/h5md/creator", "name") == "granular-dsmc";
+  } catch (const std::exception&) {
+    return false;
+  }
+}
 
 std::atomic<bool> g_interrupted{false};  // written only by the signal handler
 extern "C" void on_signal(int) { g_interrupted.store(true); }
@@ -30,6 +47,7 @@ const char* kUsage =
     "                    the output is the same as that of an uninterrupted run\n"
     "  --set G:V=X       override variable V of group &G with X (Fortran syntax), e.g.\n"
     "                    --set dsmc:n_particles=2000 --set \"output:file='x.h5'\"\n"
+    "  --force           write the output over an existing file that is not an earlier output of granular-dsmc\n"
     "  --print-defaults  print a commented namelist with every variable and its default\n"
     "Exit status: 0 success, 2 bad input, 1 run-time failure, 130 interrupted.\n";
 
@@ -43,6 +61,7 @@ int main(int argc, char** argv) {
   std::string input;
   std::vector<std::string> overrides;
   bool quiet = false;
+  bool force = false;
   std::string restart;
   std::string output_option;  // the --output argument and the override it became, for messages
   std::string output_override;
@@ -69,6 +88,8 @@ int main(int argc, char** argv) {
       return 0;
     } else if (arg == "--quiet" || arg == "-q") {
       quiet = true;
+    } else if (arg == "--force") {
+      force = true;
     } else if (arg == "--output" || arg == "-o") {
       std::string path = next();
       std::string quoted;
@@ -128,6 +149,17 @@ int main(int argc, char** argv) {
   // A directory would only be found when the finished run is renamed into place.
   if (std::error_code ec; std::filesystem::is_directory(path, ec))
     return output_error("cannot write output file '" + path + "': it is a directory");
+  // Never write over the input, the checkpoint being resumed, or a file this program did not write.
+  {
+    std::error_code ec;
+    if (std::filesystem::equivalent(path, input, ec))
+      return output_error("the output file '" + path + "' is the input namelist: it would be overwritten");
+    if (!restart.empty() && std::filesystem::equivalent(path, restart, ec))
+      return output_error("the output file '" + path + "' is the checkpoint given to --restart");
+    if (!force && std::filesystem::exists(path, ec) && !is_earlier_output(path))
+      return output_error("'" + path + "' exists and is not an output of granular-dsmc: choose another file, or "
+                          "give --force to replace it");
+  }
   try {
     const auto summary = gdsmc::simulation::run(config, path, options);
     if (!quiet && root)

@@ -364,6 +364,20 @@ template <class G>
 void read_group(G& target, const std::vector<Field<G>>& fields, const namelist::Group& group,
                 const std::string& file, Provenance& prov) {
   GroupReader reader{file, group.name};
+  // The same element assigned twice in one group is a mistake to report, not a value to overwrite
+  // silently (a whole variable twice is refused by the namelist reader); --set overrides are
+  // documents of their own and may replace.
+  std::map<std::string, int> assigned;
+  for (const auto& a : group.assignments) {
+    if (a.index.empty()) continue;
+    std::string key = a.name;
+    for (long long i : a.index) key += "," + std::to_string(i);
+    if (const auto it = assigned.find(key); it != assigned.end())
+      throw reader.error(a.line, a.name,
+                         a.name + " element is assigned twice (also on line " +
+                             std::to_string(it->second) + ")");
+    assigned[key] = a.line;
+  }
   for (const auto& a : group.assignments) {
     const auto it = std::find_if(fields.begin(), fields.end(),
                                  [&](const Field<G>& f) { return f.name == a.name; });
@@ -406,6 +420,10 @@ void resolve_restitution(System& sys, const Provenance& prov, const std::string&
   }
   species::PairMatrix m(s, std::numeric_limits<double>::quiet_NaN());
   const auto& list = prov.pair_assignments.at("restitution");
+  // (i <= j) -> value and line of its element assignment in the current source (the namelist, or
+  // one --set): within one source (i,j) and (j,i) must agree; a later --set may replace the value.
+  std::map<std::pair<std::size_t, std::size_t>, std::pair<double, int>> element_values;
+  std::string element_source;
   for (const auto& [a, file] : list) {
     if (a->index.empty()) {
       if (a->values.size() == 1) {
@@ -429,12 +447,24 @@ void resolve_restitution(System& sys, const Provenance& prov, const std::string&
     }
     std::size_t i = static_cast<std::size_t>(a->index[0] - 1);
     std::size_t j = static_cast<std::size_t>(a->index[1] - 1);
+    if (file != element_source) {
+      element_values.clear();
+      element_source = file;
+    }
     for (const auto& v : a->values) {  // consecutive elements in column-major order
       if (i >= s || j >= s)
         throw Error(file, v.line, group, "restitution",
                     "element (" + std::to_string(i + 1) + "," + std::to_string(j + 1) +
                         ") is outside the " + std::to_string(s) + " x " + std::to_string(s) +
                         " matrix");
+      // alpha_ij = alpha_ji is one pair's value: (i,j) and (j,i) given differently is a conflict.
+      const auto key = std::make_pair(std::min(i, j), std::max(i, j));
+      if (const auto it = element_values.find(key); it != element_values.end() && it->second.first != v.real)
+        throw Error(file, v.line, group, "restitution",
+                    "restitution(" + std::to_string(i + 1) + "," + std::to_string(j + 1) + ") = " + v.text +
+                        " conflicts with line " + std::to_string(it->second.second) + ": the matrix is symmetric, "
+                        "alpha_ij = alpha_ji");
+      element_values[key] = {v.real, v.line};
       m(i, j) = v.real;
       m(j, i) = v.real;
       if (++i == s) {
