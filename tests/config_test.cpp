@@ -978,3 +978,8 @@ TEST(ConfigRepeated, ConflictingSymmetricRestitutionIsAnError) {
   const auto d = read_text(with_line(6, "  restitution = 0.9, restitution(1,2) = 0.5"), {"system:restitution(2,1)=0.7"});
   EXPECT_EQ(d.system.restitution(0, 1), 0.7);
 }
+
+TEST(ConfigRepeated, AnAstronomicalCollisionTargetIsRefused) {
+  expect_error(error_of(with_line(13, "  collisions_per_particle = 1e30")), 13, "dsmc", "collisions_per_particle",
+               {"beyond 1e18"});
+}

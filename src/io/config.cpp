@@ -570,6 +570,14 @@ void check_dsmc(const Dsmc& d, const species::Mixture& mix, const Provenance& pr
                 d.t_end ? prov.line.at("collisions_per_particle") : group_line, group,
                 d.t_end ? "collisions_per_particle" : "t_end",
                 "give exactly one of t_end and collisions_per_particle");
+  // The event targets are integers: 2 x events / N = collisions_per_particle must stay far inside
+  // 64 bits (1e30 would wrap round to a run of no collisions and a file of zeros).
+  if (d.collisions_per_particle && *d.collisions_per_particle * static_cast<double>(d.n_particles) / 2.0 > 1e18)
+    throw Error(prov.file_of("collisions_per_particle"), prov.line.at("collisions_per_particle"), group,
+                "collisions_per_particle",
+                "collisions_per_particle x n_particles / 2 = " +
+                    std::to_string(*d.collisions_per_particle * static_cast<double>(d.n_particles) / 2.0) +
+                    " collision events: beyond 1e18, far more than any run can do");
   const auto counts = particles::species_counts(static_cast<std::size_t>(d.n_particles), mix);
   for (std::size_t k = 0; k < counts.size(); ++k)
     if (counts[k] < 2)
