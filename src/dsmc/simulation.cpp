@@ -542,10 +542,10 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
                              rng::make_stream(seed, r, rng::Purpose::collisions), config.dsmc.step_fraction);
   ReplicaResult result;
   ReplicaProgress p;
-  // Stage accumulators: zeta dt since the last sample, the viscosity's window sum, stage count.
   // Enskog in shear flow: the shifted relative velocity and the collisional transfer (collide.hpp).
   const bool enskog_shear = shear > 0.0 && mix.enskog;
   if (enskog_shear) collider.set_shear(shear);
+  // Stage accumulators: zeta dt since the last sample, the viscosity's window sums, stage count.
   double zeta_sum = 0.0, zeta_stages = 0.0, window_sum = 0.0, window_samples = 0.0, stages = 0.0;
   double window_kinetic_sum = 0.0, last_sample_time = 0.0;
   std::array<double, 6> last_transfer{};  // Counters::transfer at the previous sample
