@@ -209,21 +209,27 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
   std::ostringstream json;
   json << indent << "{\n" << in << "\"n_species\": " << s << ",\n";
   json << in << "\"collision_frequency\": " << array(frequency) << ",\n";
-  json << in << "\"cooling_rate\": " << array(cooling) << ",\n";
-  json << in << "\"temperature\": {\"time\": " << array(history.time) << ", \"value\": [";
-  std::vector<double> total, collisions;
-  for (std::size_t i = 0; i < history.time.size(); ++i) {
-    json << (i ? ", " : "") << array(history.temperature[i]);
-    double tt = 0.0;
-    for (std::size_t k = 0; k < s; ++k) tt += mix.number_density[k] * history.temperature[i][k];
-    total.push_back(tt / n);
-    collisions.push_back(2.0 * history.collisions[i] / n);
+  json << in << "\"cooling_rate\": " << array(cooling);
+  if (config.staged()) {
+    // The free-cooling history does not describe a run with a thermostat or a shear flow.
+    std::cerr << "granular-theory: temperature, total_temperature, collisions_per_particle left out: the run has "
+                 "&thermostat or &shear (T is held or heated; see shear_viscosity_ratio, temperature_ratio)\n";
+  } else {
+    json << ",\n" << in << "\"temperature\": {\"time\": " << array(history.time) << ", \"value\": [";
+    std::vector<double> total, collisions;
+    for (std::size_t i = 0; i < history.time.size(); ++i) {
+      json << (i ? ", " : "") << array(history.temperature[i]);
+      double tt = 0.0;
+      for (std::size_t k = 0; k < s; ++k) tt += mix.number_density[k] * history.temperature[i][k];
+      total.push_back(tt / n);
+      collisions.push_back(2.0 * history.collisions[i] / n);
+    }
+    json << "]},\n";
+    json << in << "\"total_temperature\": {\"time\": " << array(history.time) << ", \"value\": "
+         << array(total) << "},\n";
+    json << in << "\"collisions_per_particle\": {\"time\": " << array(history.time)
+         << ", \"value\": " << array(collisions) << "}";
   }
-  json << "]},\n";
-  json << in << "\"total_temperature\": {\"time\": " << array(history.time) << ", \"value\": "
-       << array(total) << "},\n";
-  json << in << "\"collisions_per_particle\": {\"time\": " << array(history.time)
-       << ", \"value\": " << array(collisions) << "}";
   // Diffusion (seed 001 eqs 16-21, ERRATA §8): D_k/D_1 at long times (constant alpha) or at the end
   // of the run (viscoelastic, where the ratios drift), and eq 17's MSD when displacements are tracked.
   {
