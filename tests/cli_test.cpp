@@ -268,6 +268,19 @@ TEST_F(CliDsmc, NeverOverwritesTheInputOrAForeignFile) {
   expect_no_temporary_file();
 }
 
+TEST_F(CliDsmc, StaleTemporariesOfDeadRunsAreRemoved) {
+  // What a SIGKILLed run leaves (its pid gone: 4194300 is above any pid this machine hands out
+  // before wrapping) is removed; the temporary of a live process (this test's) is kept.
+  write("out.h5.tmp.4194300", "stale");
+  const std::string live = "out.h5.tmp." + std::to_string(::getpid());
+  write(live, "live");
+  const Result r = dsmc(base());
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out.h5.tmp.4194300"));
+  EXPECT_TRUE(fs::exists(dir / live));
+  fs::remove(dir / live);
+}
+
 TEST_F(CliDsmc, Help) {
   const Result r = run("granular-dsmc", "--help");
   EXPECT_EQ(r.status, 0);

@@ -4,6 +4,7 @@
 #include <hdf5.h>
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -486,11 +487,34 @@ struct Writer::Impl {
   }
 };
 
+namespace {
+/// Removes `<path>.tmp.<pid>` files whose process no longer exists: what a run killed with SIGKILL
+/// (or a power cut) left behind, which would otherwise pile up over restarts. A temporary of a
+/// process that is still running (another run writing the same file) is left alone.
+void remove_stale_temporaries(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path target(path);
+  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  const std::string prefix = target.filename().string() + ".tmp.";
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string digits = name.substr(prefix.size());
+    if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+    const long pid = std::stol(digits);
+    if (pid <= 0 || pid == static_cast<long>(::getpid())) continue;
+    if (::kill(static_cast<pid_t>(pid), 0) == -1 && errno == ESRCH) fs::remove(it->path(), ec);
+  }
+}
+}  // namespace
+
 Writer::Writer(std::string final_path, std::string author, std::string creator_name,
                std::string creator_version)
     : impl_(std::make_unique<Impl>()) {
   Impl& d = *impl_;
   d.final_path = std::move(final_path);
+  remove_stale_temporaries(d.final_path);
   d.temp_path = d.final_path + ".tmp." + std::to_string(::getpid());
   with_context(d.context(), [&] {
     if (d.final_path.empty()) throw std::runtime_error("the path is empty");
