@@ -983,3 +983,15 @@ TEST(ConfigRepeated, AnAstronomicalCollisionTargetIsRefused) {
   expect_error(error_of(with_line(13, "  collisions_per_particle = 1e30")), 13, "dsmc", "collisions_per_particle",
                {"beyond 1e18"});
 }
+
+TEST(ConfigRepeated, OneSetAssignsOneVariable) {
+  const std::string m1 = error_of(base(), {"dsmc:seed=3 / &foo x=1"});
+  expect_contains(m1, {"--set", "one --set assigns one variable"});
+  const std::string m2 = error_of(base(), {"dsmc:seed=3, replicas=2"});
+  expect_contains(m2, {"one --set assigns one variable"});
+  EXPECT_EQ(read_text(base(), {"dsmc:seed=3"}).dsmc.seed, 3);
+}
+
+TEST(ConfigRepeated, SampleCountIsCapped) {
+  expect_error(error_of(with_line(16, "  n_samples = 10000000")), 16, "output", "n_samples", {"outside [2, 100000]"});
+}

@@ -147,7 +147,9 @@ const std::vector<Field<Shear>>& shear_fields() {
 const std::vector<Field<Output>>& output_fields() {
   static const std::vector<Field<Output>> fields = {
       {"file", &Output::file, "", "HDF5 (H5MD) output file"},
-      {"n_samples", &Output::n_samples, "", "sample times, t = 0 included", Range{2, 1e7}},
+      {"n_samples", &Output::n_samples, "",
+       "sample times, t = 0 included (at most 1e5: every sample keeps every observable of every replica in memory)",
+       Range{2, 1e5}},
       {"spacing", &Output::spacing, "", "'linear' or 'log' spacing of the sample times", {},
        {"linear", "log"}},
       {"first_sample", &Output::first_sample, "time (or collisions per particle)",
@@ -908,6 +910,11 @@ namelist::Document parse_override(const std::string& text) {
   } catch (const Error& e) {
     throw Error(e.file, 0, e.group, e.variable, e.message);
   }
+  // One --set is one value (or one array) of one variable: a '/' that ends the group early and
+  // starts another, or a second assignment, is refused rather than quietly applied or ignored.
+  if (doc.groups.size() != 1 || doc.groups[0].assignments.size() != 1)
+    throw Error("--set " + text, 0, group, "",
+                "one --set assigns one variable: give each variable a --set of its own");
   for (auto& g : doc.groups) {
     g.line = 0;
     for (auto& a : g.assignments) {
