@@ -260,6 +260,15 @@ Snapshot make_snapshot(const particles::System& sys, const collide::Collider& co
 }
 
 /// Restores what make_snapshot saved into a System made for the same point (same counts).
+/// A checkpoint is read, not trusted: every array it restores must be finite and consistent with the
+/// input, or the restart stops with this message (a damaged file must not crash or run on NaN).
+void require_intact(bool condition, const std::string& what) {
+  if (!condition) throw std::runtime_error("the checkpoint is damaged: " + what);
+}
+bool all_finite(const std::vector<double>& values) {
+  return std::all_of(values.begin(), values.end(), [](double x) { return std::isfinite(x); });
+}
+
 void load_snapshot(const Snapshot& snap, particles::System& sys, collide::Collider& collider, ReplicaProgress& p,
                    ReplicaResult& partial) {
   partial = load_result(snap);
@@ -267,6 +276,19 @@ void load_snapshot(const Snapshot& snap, particles::System& sys, collide::Collid
   const auto& species = snap.integers.at("particles/species");
   if (v.size() != 3 * sys.size() || species.size() != sys.size())
     throw std::runtime_error("the checkpoint's particle count does not match the input");
+  require_intact(all_finite(v), "a velocity is not finite");
+  for (std::size_t i = 0; i < sys.size(); ++i)  // the species layout is fixed by the input's counts
+    require_intact(species[i] == sys.species[i], "particle " + std::to_string(i) + " has species " +
+                                                     std::to_string(species[i]) + ", the input gives " +
+                                                     std::to_string(sys.species[i]));
+  for (const auto& [name, values] : snap.reals)
+    require_intact(all_finite(values), "'" + name + "' holds a value that is not finite");
+  {
+    const auto& pending = snap.integers.at("collider/pending");
+    for (std::size_t q = 0; q < pending.size(); ++q)
+      require_intact(pending[q] < (q % 4 < 2 ? sys.size() : sys.n_species()),
+                     "a drawn-ahead candidate names a particle or species that does not exist");
+  }
   for (std::size_t i = 0; i < sys.size(); ++i) {
     sys.v[i] = {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
     sys.species[i] = static_cast<std::uint32_t>(species[i]);
@@ -358,6 +380,8 @@ Snapshot make_agg_frag_snapshot(const agg_frag::Gas& gas, std::uint64_t next_sam
 
 std::uint64_t load_agg_frag_snapshot(const Snapshot& snap, agg_frag::Gas& gas, ReplicaResult& partial) {
   partial = load_result(snap);
+  for (const auto& [name, values] : snap.reals)
+    require_intact(all_finite(values), "'" + name + "' holds a value that is not finite");
   agg_frag::Gas::State s;
   s.velocity = snap.reals.at("clusters/velocity");
   s.count = snap.integers.at("clusters/count");

@@ -73,6 +73,29 @@ if [ "$mpiexec" != "none" ]; then
   rm restart.h5
 fi
 
+# A damaged checkpoint (a velocity made NaN, as a flipped bit could) is refused with a message, no
+# crash and no output file (issue 12).
+if /usr/bin/python3 -c "import h5py" 2>/dev/null; then
+  cp first.checkpoint.h5 damaged.checkpoint.h5
+  /usr/bin/python3 - <<'PY'
+import h5py
+with h5py.File("damaged.checkpoint.h5", "r+") as f:
+    found = []
+    f["checkpoint"].visititems(lambda name, obj: found.append(obj) if name.endswith("velocity") else None)
+    found[0][0] = float("nan")
+PY
+  set +e
+  rm -f restart.h5
+  "$exe" "$nml" --quiet --restart damaged.checkpoint.h5 2> damaged.txt
+  status=$?
+  set -e
+  if [ $status -ne 0 ] && [ $status -lt 128 ] && grep -q "checkpoint is damaged" damaged.txt && [ ! -e restart.h5 ]; then
+    echo "PASS: a damaged checkpoint is refused (status $status): $(cat damaged.txt)"
+  else
+    echo "FAIL: damaged checkpoint: status $status, message: $(cat damaged.txt)"; exit 1
+  fi
+fi
+
 # A checkpoint of another input is refused with exit status 2 and a message.
 sed 's/seed = [0-9]*/seed = 12345/' "$nml" > other.nml
 set +e
