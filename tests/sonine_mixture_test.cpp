@@ -280,3 +280,22 @@ TEST(SonineMixtureHcs, RejectsBadInput) {
                                 std::vector<double>(s, 1.0), PairMatrix::uniform(s, 0.8), false);
   EXPECT_THROW(theory::hcs_first_sonine(big), std::invalid_argument);
 }
+
+// The ternary example quoted in docs/physics.md ("First-Sonine HCS of s species"): m = 1 : 3 : 10,
+// equal diameters and densities, alpha = 0.7, dilute. A regression check of the quoted numbers.
+TEST(SonineMixtureHcs, TernaryExample) {
+  PairMatrix alpha(3, 0.7);
+  const Mixture mix = make_mixture({1.0, 3.0, 10.0}, {1.0, 1.0, 1.0}, {0.01, 0.01, 0.01}, alpha,
+                                   false);
+  const auto h = theory::hcs_first_sonine(mix);
+  const auto maxwellian = theory::maxwellian_temperature_over_mean(mix);
+  const double fs[3] = {0.618447, 0.896304, 1.485249}, mw[3] = {0.614133, 0.896577, 1.489290},
+               c[3] = {-0.018645, 0.033403, 0.079726};
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_NEAR(h.temperature_over_mean[k], fs[k], 5e-7);
+    EXPECT_NEAR(maxwellian[k], mw[k], 5e-7);
+    EXPECT_NEAR(h.sonine_c[k], c[k], 5e-7);
+  }
+  EXPECT_NEAR(h.cooling_rate_reduced, 0.419184, 5e-7);
+  EXPECT_NEAR(theory::hcs_maxwellian_cooling_rate_reduced(mix, maxwellian), 0.417162, 5e-7);
+}

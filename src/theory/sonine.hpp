@@ -54,6 +54,10 @@
  * 2 species with positive finite masses, diameters, number densities and chi_ij, and a symmetric
  * restitution matrix with entries in [0, 1].
  *
+ * The coefficients are computed from their self (i-i) and cross (i-j) parts, sonine_self_terms and
+ * sonine_cross_terms; the HCS of any number of species (theory/sonine_mixture.hpp) sums the same
+ * pair terms over all partners.
+ *
  * \section sonine_checks How it is checked
  * tests/sonine_test.cpp: the ERRATA §6 reference numbers, the one-component limit (gamma = 1,
  * c = 2 a2, zeta* of ERRATA §3), the elastic limit, the 1 <-> 2 symmetry, zeta_i^(0) against the

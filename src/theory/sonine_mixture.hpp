@@ -61,7 +61,8 @@
  * Maxwellian ratios of asymptotic_temperature_ratios are what remains available).
  * Input checks as sonine.hpp, for any s >= 1: std::invalid_argument.
  * Checked by tests/sonine_mixture_test.cpp (binary reference, merging identical species,
- * permutations, elastic and one-species limits, Maxwellian zeta_i^(0) against ERRATA §4).
+ * permutations, elastic and one-species limits, Maxwellian zeta_i^(0) against ERRATA §4, the
+ * equations recomputed from hcs_pair_terms at s = 5 and 100, the ternary example of the docs).
  * Documentation: docs/physics.md "First-Sonine HCS of s species".
  */
 #pragma once
