@@ -17,6 +17,7 @@ namespace gdsmc::theory {
 namespace {
 
 constexpr int newton_max_iterations = 100;
+constexpr std::size_t stagnation_window = 10;  // fail if max|F| has not halved in 10 iterations
 constexpr double residual_tolerance = 1e-13;
 constexpr double step_tolerance = 1e-15;
 constexpr double jacobian_step = 1e-7;
@@ -323,8 +324,16 @@ State newton(const Reduced& r, double nu, const std::vector<double>& start, bool
   iterations = 0;
   if (s == 1) return st;
   VectorXd F = residual(r, st, nu);
+  std::vector<double> history;  // max|F| per iteration
   for (; iterations < newton_max_iterations; ++iterations) {
     const double fnorm = F.cwiseAbs().maxCoeff();
+    history.push_back(fnorm);
+    if (history.size() > stagnation_window &&
+        fnorm > 0.5 * history[history.size() - 1 - stagnation_window])
+      throw std::runtime_error(
+          std::string(what) + ": Newton's method stagnates at max |F| = " + std::to_string(fnorm) +
+          " after " + std::to_string(iterations) +
+          " iterations (the first-Sonine equations may have no solution near the Maxwellian ratios)");
     const bool last = fnorm < residual_tolerance;  // one more full step once the tolerance is met
     const MatrixXd Jz = zeta_jacobian(r, st);
     MatrixXd J(s, s);

@@ -42,7 +42,9 @@
  * factorisation of M reused for all k (O(s^3) per iteration). Backtracking line search on |F|,
  * steps in u limited to 1; converged when max|F| < 1e-13 (then one more step is taken) or when
  * the step is below 1e-15. Throws std::runtime_error if the c system is singular at the start,
- * or after 100 iterations, or when the line search fails.
+ * when max|F| has not halved over 10 iterations (stagnation: seen for extreme mixtures, e.g. mass
+ * ratios near 1000 with alpha near 0.1, maybe without a solution near the Maxwellian ratios), after
+ * 100 iterations, or when the line search fails.
  *
  * \section sonmix_units Reduction convention
  * zeta* = zeta/(n sigma_ref^2 v_ref) with sigma_ref = (1/s) sum_k sigma_k and
