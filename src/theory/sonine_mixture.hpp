@@ -58,9 +58,10 @@
  * \section sonmix_limits Limits and cost
  * Pair terms O(s^2) per evaluation, the c system and the Newton Jacobian O(s^3) per iteration;
  * 4 first-Sonine iterations are typical. Measured (Release, one core): s = 3 in 1 ms, s = 100 in
- * 0.2 s (0.14 s of it the Maxwellian ODE start), s = 1000 in 8 s (Maxwellian start by Newton,
- * see ode_start_limit). Above max_hcs_species = 1500 species std::invalid_argument is thrown (the
- * Maxwellian ratios of asymptotic_temperature_ratios are what remains available).
+ * 0.2 s (0.14 s of it the Maxwellian ODE start), s = 1000 in 8-17 s (Maxwellian start by Newton,
+ * see ode_start_limit; the range is the load of a shared machine). Above max_hcs_species = 1200
+ * species std::invalid_argument is thrown (the Maxwellian ratios of asymptotic_temperature_ratios
+ * are what remains available).
  * Input checks as sonine.hpp, for any s >= 1: std::invalid_argument.
  * Checked by tests/sonine_mixture_test.cpp (binary reference, merging identical species,
  * permutations, elastic and one-species limits, Maxwellian zeta_i^(0) against ERRATA §4, the
@@ -86,7 +87,7 @@ struct HcsFirstSonine {
 };
 
 /// Largest s that hcs_first_sonine accepts (its cost grows like s^3 per Newton iteration).
-inline constexpr std::size_t max_hcs_species = 1500;
+inline constexpr std::size_t max_hcs_species = 1200;
 
 /// Above this s the Maxwellian starting ratios come from Newton's method on the Maxwellian
 /// equal-cooling-rate conditions (c = 0) from equipartition, not from the long-time ODE of
