@@ -468,7 +468,10 @@ TEST_F(CliTheory, PrintsOneJsonObject) {
   ASSERT_FALSE(out.empty());
   EXPECT_EQ(out.front(), '{') << out;
   EXPECT_EQ(out.back(), '}') << out;
-  for (const char* key : {"\"cooling_rate\"", "\"collision_frequency\"", "\"temperature\""})
+  for (const char* key : {"\"cooling_rate\"", "\"collision_frequency\"", "\"temperature\"",
+                          "\"hcs\": {\"first_sonine\": {\"temperature_over_mean\"", "\"sonine_c\"",
+                          "\"maxwellian\": {\"temperature_over_mean\"", "\"approximations\": {",
+                          "\"cooling_rate\": \"maxwellian\"", "\"hcs.first_sonine\": \"first_sonine\""})
     EXPECT_NE(out.find(key), std::string::npos) << key;
   EXPECT_EQ(std::count(out.begin(), out.end(), '{'), std::count(out.begin(), out.end(), '}'));
   EXPECT_EQ(std::count(out.begin(), out.end(), '['), std::count(out.begin(), out.end(), ']'));

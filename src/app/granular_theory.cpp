@@ -7,11 +7,13 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/config.hpp"
 #include "io/namelist.hpp"
 #include "theory/smoluchowski.hpp"
+#include "theory/sonine_mixture.hpp"
 #include "theory/theory.hpp"
 #include "theory/viscosity.hpp"
 
@@ -28,6 +30,10 @@ const char* kUsage =
     "  sonine_a2, cooling_rate_sonine               one species: van Noije-Ernst a2 and (1+3a2/16) zeta\n"
     "  temperature_ratio, sonine_c, cooling_rate_reduced, tail_beta, tail_decay_rate\n"
     "                       binary mixtures: the HCS in first Sonine approximation (seed 003, ERRATA §6)\n"
+    "  hcs                  {first_sonine: {temperature_over_mean, sonine_c, cooling_rate_reduced},\n"
+    "                       maxwellian: {temperature_over_mean, cooling_rate_reduced}} HCS for any number of\n"
+    "                       species, constant restitution (T = sum_k n_k T_k/n; theory/sonine_mixture.hpp)\n"
+    "  approximations       {key: \"maxwellian\" | \"first_sonine\" | ...} behind every key printed\n"
     "  shear_viscosity_ratio {hcs, hss} eta/eta_0 in first Sonine (seed 004, ERRATA §10, §13): one species\n"
     "                       (dilute or Enskog), dilute binary mixtures (over the elastic mixture value)\n"
     "  diffusion_coefficient_ratio  [D_k/D_1] (seed 001 eq 19, ERRATA §8); msd {time, value[t][k]} (eq 17)\n"
@@ -206,6 +212,10 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
                             : th::integrate_partial_temperatures(mix, t0, times);
 
   const std::string in = indent + "  ";
+  std::vector<std::pair<std::string, std::string>> approximations = {
+      {"collision_frequency", "maxwellian"}, {"cooling_rate", "maxwellian"},
+      {"temperature", "maxwellian"},         {"total_temperature", "maxwellian"},
+      {"collisions_per_particle", "maxwellian"}};
   std::ostringstream json;
   json << indent << "{\n" << in << "\"n_species\": " << s << ",\n";
   json << in << "\"collision_frequency\": " << array(frequency) << ",\n";
@@ -236,6 +246,7 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
     const auto ratio = beta ? th::diffusion_coefficient_ratio(mix, history.temperature.back(), &*beta)
                             : th::diffusion_coefficient_ratio(mix);
     json << ",\n" << in << "\"diffusion_coefficient_ratio\": " << array(ratio);
+    approximations.emplace_back("diffusion_coefficient_ratio", "maxwellian");
   }
   if (config.output.track_displacements) {
     // The MSD counts from msd_start_time (or t = 0), starting from the theory's temperatures then.
@@ -257,8 +268,10 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
       json << ",\n" << in << "\"msd\": {\"time\": " << array(shifted_times) << ", \"value\": [";
       for (std::size_t i = 0; i < msd.msd.size(); ++i) json << (i ? ", " : "") << array(msd.msd[i]);
       json << "]}";
+      approximations.emplace_back("msd", "maxwellian");
     }
   }
+  std::optional<std::vector<double>> maxwellian_ratios;  // asymptotic T_k/T_1 (constant alpha)
   if (beta) {
     // Constant-alpha keys (Sonine HCS, asymptotic ratios) do not apply to viscoelastic spheres.
   } else if (s == 1) {
@@ -267,15 +280,61 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
     json << ",\n" << in << "\"sonine_a2\": " << number(a2) << ",\n" << in << "\"sonine_c\": ["
          << number(2.0 * a2) << "],\n" << in << "\"cooling_rate_sonine\": ["
          << number(cooling[0] * (1.0 + 3.0 * a2 / 16.0)) << "]";
+    approximations.emplace_back("sonine_a2", "first_sonine");
+    approximations.emplace_back("sonine_c", "first_sonine");
+    approximations.emplace_back("cooling_rate_sonine", "first_sonine");
   } else {
     const bool inelastic = mix.restitution.max() < 1.0;
     if (inelastic) {
       try {
         const auto ratios = th::asymptotic_temperature_ratios(mix);
         json << ",\n" << in << "\"asymptotic_temperature_ratio\": " << array(ratios);
+        approximations.emplace_back("asymptotic_temperature_ratio", "maxwellian");
+        maxwellian_ratios = ratios;
       } catch (const std::exception& e) {  // a key that cannot be evaluated is left out, with a word why
         std::cerr << "granular-theory: asymptotic_temperature_ratio left out: " << e.what() << "\n";
       }
+    } else {
+      maxwellian_ratios = std::vector<double>(s, 1.0);  // elastic: equipartition
+    }
+  }
+  // HCS of any number of species, constant restitution (theory/sonine_mixture.hpp): first Sonine,
+  // and the Maxwellian ratios in the same normalisation (T_k/T, T = sum_k n_k T_k/n).
+  if (!beta) {
+    if (s == 1) maxwellian_ratios = std::vector<double>{1.0};
+    std::optional<th::HcsFirstSonine> first_sonine;
+    try {
+      first_sonine = th::hcs_first_sonine(mix, maxwellian_ratios.value_or(std::vector<double>{}));
+    } catch (const std::exception& e) {
+      std::cerr << "granular-theory: hcs.first_sonine left out: " << e.what() << "\n";
+    }
+    std::string maxwellian;
+    if (maxwellian_ratios) {
+      try {
+        std::vector<double> t = *maxwellian_ratios;
+        double mean = 0.0;
+        for (std::size_t k = 0; k < s; ++k) mean += mix.mole_fraction(k) * t[k];
+        for (double& v : t) v /= mean;
+        maxwellian = "{\"temperature_over_mean\": " + array(t) + ", \"cooling_rate_reduced\": " +
+                     number(th::hcs_maxwellian_cooling_rate_reduced(mix, t)) + "}";
+      } catch (const std::exception& e) {
+        std::cerr << "granular-theory: hcs.maxwellian left out: " << e.what() << "\n";
+      }
+    }
+    if (first_sonine || !maxwellian.empty()) {
+      json << ",\n" << in << "\"hcs\": {";
+      if (first_sonine) {
+        json << "\"first_sonine\": {\"temperature_over_mean\": "
+             << array(first_sonine->temperature_over_mean) << ", \"sonine_c\": "
+             << array(first_sonine->sonine_c) << ", \"cooling_rate_reduced\": "
+             << number(first_sonine->cooling_rate_reduced) << "}";
+        approximations.emplace_back("hcs.first_sonine", "first_sonine");
+      }
+      if (!maxwellian.empty()) {
+        json << (first_sonine ? ", " : "") << "\"maxwellian\": " << maxwellian;
+        approximations.emplace_back("hcs.maxwellian", "maxwellian");
+      }
+      json << "}";
     }
   }
   std::optional<th::BinaryHcs> hcs_result;
@@ -296,6 +355,12 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
     if (hcs.cooling_rate > 0.0)
       json << ",\n" << in << "\"tail_decay_rate\": "
            << array({th::tail_decay_rate(hcs, 0), th::tail_decay_rate(hcs, 1)});
+    approximations.emplace_back("temperature_ratio", "first_sonine");
+    approximations.emplace_back("sonine_c", "first_sonine");
+    approximations.emplace_back("cooling_rate_reduced", "first_sonine");
+    approximations.emplace_back("tail_beta", "high_velocity_asymptotics");
+    if (hcs.cooling_rate > 0.0)
+      approximations.emplace_back("tail_decay_rate", "high_velocity_asymptotics_first_sonine");
   }
   // Shear viscosity eta/eta_0 in first Sonine (seed 004, ERRATA §10, §13; theory/viscosity.hpp): one
   // species, dilute or Enskog; dilute binary mixtures over the elastic mixture value.
@@ -311,10 +376,17 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
       json << ",\n" << in << "\"shear_viscosity_ratio\": {\"hcs\": "
            << number(reduced(vt::State::homogeneous_cooling)) << ", \"hss\": "
            << number(reduced(vt::State::gaussian_thermostat)) << "}";
+      approximations.emplace_back("shear_viscosity_ratio", "first_sonine");
     } catch (const std::exception& e) {
       std::cerr << "granular-theory: shear_viscosity_ratio left out: " << e.what() << "\n";
     }
   }
+  // The approximation behind every key printed (INTERFACE.md "granular-theory JSON keys").
+  json << ",\n" << in << "\"approximations\": {";
+  for (std::size_t k = 0; k < approximations.size(); ++k)
+    json << (k ? ", " : "") << "\"" << approximations[k].first << "\": \"" << approximations[k].second
+         << "\"";
+  json << "}";
   json << "\n" << indent << "}";
   return json.str();
 }

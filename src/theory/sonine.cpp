@@ -65,7 +65,6 @@ struct SpeciesInput {
   double alpha_ij;
   double lambda_i;
   double lambda_j;
-  double eta;  ///< lambda_i/lambda_j
 };
 
 struct SpeciesCoefficients {
@@ -73,50 +72,19 @@ struct SpeciesCoefficients {
   double omega0, omega_self, omega_cross;  ///< Omega_i^(0), Omega_ii^(1), Omega_ij^(1)
 };
 
-/// ERRATA §6 (seed 003 eqs 39-44, box glyph = Omega).
+/// ERRATA §6 (seed 003 eqs 39-44, box glyph = Omega): the sum of the self (i-i) and cross (i-j)
+/// collision terms of sonine.hpp's sonine_self_terms and sonine_cross_terms.
 SpeciesCoefficients species_coefficients(const SpeciesInput& in) {
-  const double s = in.self_weight;
-  const double c = in.cross_weight;
-  const double mu = in.mu_ji;
-  const double a_ii = in.alpha_ii;
-  const double a_ij = in.alpha_ij;
-  const double e = in.eta;
-  const double p = 1.0 + e;            // 1 + eta
-  const double A = mu * (1.0 + a_ij);  // ERRATA §6: A = mu_21 (1 + alpha_12)
-  const double Ap = A * p, Ap2 = Ap * Ap, Ap3 = Ap2 * Ap;
-  const double inelastic_ii = 1.0 - a_ii * a_ii;
-  const double li_half = std::pow(in.lambda_i, -0.5);   // lambda_i^(-1/2)
-  const double lj_half = std::pow(in.lambda_j, -0.5);   // lambda_j^(-1/2)
-  const double li_5half = std::pow(in.lambda_i, -2.5);  // lambda_i^(-5/2)
-  const double cross = c * mu * (1.0 + a_ij);           // x_j chi_ij mu_ji (1 + alpha_ij)
-  const double sqrt_pi = std::sqrt(pi);
-
+  const SonineTerms self = sonine_self_terms(in.self_weight, in.alpha_ii, in.lambda_i);
+  const SonineTerms cross =
+      sonine_cross_terms(in.cross_weight, in.mu_ji, in.alpha_ij, in.lambda_i, in.lambda_j);
   SpeciesCoefficients out{};
-  // seed 003 eq 39, ERRATA §6 zeta1_0
-  out.zeta0 = (2.0 / 3.0) * std::sqrt(2.0 * pi) * s * li_half * inelastic_ii +
-              (4.0 / 3.0) * sqrt_pi * cross * std::sqrt(p / e) * lj_half * (2.0 - Ap);
-  // seed 003 eq 40, ERRATA §6 zeta11_1
-  out.zeta_self = (1.0 / 8.0) * std::sqrt(pi / 2.0) * s * li_half * inelastic_ii +
-                  (1.0 / 12.0) * sqrt_pi * cross * std::pow(p, -1.5) * std::pow(e, -0.5) * lj_half *
-                      (2.0 * (3.0 + 4.0 * e) - 3.0 * Ap);
-  // seed 003 eq 41, ERRATA §6 zeta12_1
-  out.zeta_cross =
-      -(1.0 / 12.0) * sqrt_pi * cross * std::pow(p / e, -1.5) * lj_half * (2.0 + 3.0 * Ap);
-  // seed 003 eq 42, ERRATA §6 Omega1_0
-  out.omega0 = -std::sqrt(2.0 * pi) * li_5half *
-               (s * (9.0 + 2.0 * a_ii * a_ii) * inelastic_ii / 2.0 -
-                std::sqrt(2.0) * cross * std::pow(p, -0.5) *
-                    (-2.0 * (6.0 + 5.0 * e) + Ap * (14.0 + 5.0 * e) - 8.0 * Ap2 + 2.0 * Ap3));
-  // seed 003 eq 43, ERRATA §6 Omega11_1
-  out.omega_self = -std::sqrt(2.0 * pi) * li_5half *
-                   (s * (1.0 + a_ii + (3.0 / 64.0) * (69.0 + 10.0 * a_ii * a_ii) * inelastic_ii) -
-                    (std::sqrt(2.0) / 16.0) * cross * std::pow(p, -2.5) *
-                        (-2.0 * (90.0 + 231.0 * e + 184.0 * e * e + 40.0 * e * e * e) +
-                         3.0 * Ap * (70.0 + 117.0 * e + 44.0 * e * e) -
-                         24.0 * Ap2 * (5.0 + 4.0 * e) + 30.0 * Ap3));
-  // seed 003 eq 44, ERRATA §6 Omega12_1
-  out.omega_cross = (sqrt_pi / 8.0) * cross * li_5half * e * e * std::pow(p, -2.5) *
-                    (2.0 * (2.0 + 5.0 * e) + 3.0 * Ap * (2.0 + 5.0 * e) - 24.0 * Ap2 + 30.0 * Ap3);
+  out.zeta0 = self.zeta0 + cross.zeta0;
+  out.zeta_self = self.zeta_self + cross.zeta_self;
+  out.zeta_cross = cross.zeta_partner;
+  out.omega0 = self.omega0 + cross.omega0;
+  out.omega_self = self.omega_self + cross.omega_self;
+  out.omega_cross = cross.omega_partner;
   return out;
 }
 
@@ -226,6 +194,63 @@ double refine_root(const species::Mixture& mix, double lo, double hi) {
 
 }  // namespace
 
+SonineTerms sonine_self_terms(double weight, double alpha_ii, double lambda_i) {
+  const double sw = weight;
+  const double inelastic_ii = 1.0 - alpha_ii * alpha_ii;
+  const double li_half = 1.0 / std::sqrt(lambda_i);              // lambda_i^(-1/2)
+  const double li_5half = li_half * li_half * li_half * li_half * li_half;  // lambda_i^(-5/2)
+  SonineTerms out{};
+  // seed 003 eqs 39, 40, 42, 43 (ERRATA §6): the terms proportional to s
+  out.zeta0 = (2.0 / 3.0) * std::sqrt(2.0 * pi) * sw * li_half * inelastic_ii;
+  out.zeta_self = (1.0 / 8.0) * std::sqrt(pi / 2.0) * sw * li_half * inelastic_ii;
+  out.zeta_partner = 0.0;
+  out.omega0 = -std::sqrt(2.0 * pi) * li_5half * sw * (9.0 + 2.0 * alpha_ii * alpha_ii) *
+               inelastic_ii / 2.0;
+  out.omega_self = -std::sqrt(2.0 * pi) * li_5half * sw *
+                   (1.0 + alpha_ii + (3.0 / 64.0) * (69.0 + 10.0 * alpha_ii * alpha_ii) * inelastic_ii);
+  out.omega_partner = 0.0;
+  return out;
+}
+
+SonineTerms sonine_cross_terms(double weight, double mu_ji, double alpha_ij, double lambda_i,
+                               double lambda_j) {
+  const double c = weight;
+  const double mu = mu_ji;
+  const double e = lambda_i / lambda_j;  // eta
+  const double p = 1.0 + e;              // 1 + eta
+  const double A = mu * (1.0 + alpha_ij);  // ERRATA §6: A = mu_21 (1 + alpha_12)
+  const double Ap = A * p, Ap2 = Ap * Ap, Ap3 = Ap2 * Ap;
+  const double lj_half = 1.0 / std::sqrt(lambda_j);  // lambda_j^(-1/2)
+  const double li_half = 1.0 / std::sqrt(lambda_i);
+  const double li_5half = li_half * li_half * li_half * li_half * li_half;  // lambda_i^(-5/2)
+  const double cross = c * mu * (1.0 + alpha_ij);  // x_j chi_ij mu_ji (1 + alpha_ij)
+  const double sqrt_pi = std::sqrt(pi);
+  const double sqrt_p = std::sqrt(p), sqrt_e = std::sqrt(e);
+  const double p_m15 = 1.0 / (p * sqrt_p), p_m25 = p_m15 / p, p_m05 = 1.0 / sqrt_p;
+
+  SonineTerms out{};
+  // seed 003 eq 39, ERRATA §6 zeta1_0 (cross part)
+  out.zeta0 = (4.0 / 3.0) * sqrt_pi * cross * (sqrt_p / sqrt_e) * lj_half * (2.0 - Ap);
+  // seed 003 eq 40, ERRATA §6 zeta11_1 (cross part)
+  out.zeta_self = (1.0 / 12.0) * sqrt_pi * cross * p_m15 / sqrt_e * lj_half *
+                  (2.0 * (3.0 + 4.0 * e) - 3.0 * Ap);
+  // seed 003 eq 41, ERRATA §6 zeta12_1; (p/e)^(-3/2) = e^(3/2) p^(-3/2)
+  out.zeta_partner =
+      -(1.0 / 12.0) * sqrt_pi * cross * (e * sqrt_e * p_m15) * lj_half * (2.0 + 3.0 * Ap);
+  // seed 003 eq 42, ERRATA §6 Omega1_0 (cross part)
+  out.omega0 = std::sqrt(2.0 * pi) * li_5half * std::sqrt(2.0) * cross * p_m05 *
+               (-2.0 * (6.0 + 5.0 * e) + Ap * (14.0 + 5.0 * e) - 8.0 * Ap2 + 2.0 * Ap3);
+  // seed 003 eq 43, ERRATA §6 Omega11_1 (cross part)
+  out.omega_self = std::sqrt(2.0 * pi) * li_5half * (std::sqrt(2.0) / 16.0) * cross * p_m25 *
+                   (-2.0 * (90.0 + 231.0 * e + 184.0 * e * e + 40.0 * e * e * e) +
+                    3.0 * Ap * (70.0 + 117.0 * e + 44.0 * e * e) - 24.0 * Ap2 * (5.0 + 4.0 * e) +
+                    30.0 * Ap3);
+  // seed 003 eq 44, ERRATA §6 Omega12_1
+  out.omega_partner = (sqrt_pi / 8.0) * cross * li_5half * e * e * p_m25 *
+                      (2.0 * (2.0 + 5.0 * e) + 3.0 * Ap * (2.0 + 5.0 * e) - 24.0 * Ap2 + 30.0 * Ap3);
+  return out;
+}
+
 SonineCoefficients binary_sonine_coefficients(const species::Mixture& mix, double gamma) {
   require_binary(mix, "binary_sonine_coefficients");
   require_gamma(gamma, "binary_sonine_coefficients");
@@ -252,8 +277,8 @@ SonineCoefficients binary_sonine_coefficients(const species::Mixture& mix, doubl
     in.alpha_ij = alpha_12;
     in.lambda_i = k.lambda[i];
     in.lambda_j = k.lambda[j];
-    // seed 003 after eq 44: species 2 by interchanging 1 <-> 2 and eta -> 1/eta
-    in.eta = i == 0 ? k.eta : 1.0 / k.eta;
+    // seed 003 after eq 44: species 2 by interchanging 1 <-> 2 and eta -> 1/eta (sonine_cross_terms
+    // takes eta = lambda_i/lambda_j from its arguments)
     const SpeciesCoefficients sc = species_coefficients(in);
     k.zeta0[i] = sc.zeta0;
     k.zeta1[i][i] = sc.zeta_self;

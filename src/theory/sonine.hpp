@@ -54,6 +54,10 @@
  * 2 species with positive finite masses, diameters, number densities and chi_ij, and a symmetric
  * restitution matrix with entries in [0, 1].
  *
+ * The coefficients are computed from their self (i-i) and cross (i-j) parts, sonine_self_terms and
+ * sonine_cross_terms; the HCS of any number of species (theory/sonine_mixture.hpp) sums the same
+ * pair terms over all partners.
+ *
  * \section sonine_checks How it is checked
  * tests/sonine_test.cpp: the ERRATA §6 reference numbers, the one-component limit (gamma = 1,
  * c = 2 a2, zeta* of ERRATA §3), the elastic limit, the 1 <-> 2 symmetry, zeta_i^(0) against the
@@ -98,6 +102,29 @@ struct SonineCoefficients {
   double omega0[2];
   double omega1[2][2];
 };
+
+/// The collision terms of one species pair in seed 003 eqs 39-44 (ERRATA §6), split by partner:
+/// the contribution of collisions of species i with species j (j = i: the self terms) to
+/// zeta_i* = zeta0 + zeta_self c_i + zeta_partner c_j and to
+/// int v*^4 J*_ij = omega0 + omega_self c_i + omega_partner c_j, in the units of a binary mixture
+/// {i, j} (zeta in n sigma_ij^2 v0, v0 = sqrt(2 T (m_i + m_j)/(m_i m_j)); Omega in n sigma_ij^2 v0^5).
+/// Summing the self and cross terms of species i gives the binary coefficients of
+/// binary_sonine_coefficients. The s-species HCS (sonine_mixture.hpp) is built from them.
+struct SonineTerms {
+  double zeta0, zeta_self, zeta_partner;
+  double omega0, omega_self, omega_partner;
+};
+
+/// The i-i terms of seed 003 eqs 39, 40, 42, 43 (ERRATA §6: the terms proportional to
+/// s = weight = x_i chi_ii (sigma_i/sigma_12)^2), at lambda_i. zeta_partner = omega_partner = 0.
+/// No input checks.
+SonineTerms sonine_self_terms(double weight, double alpha_ii, double lambda_i);
+
+/// The i-j terms of seed 003 eqs 39-44 (ERRATA §6: the terms proportional to c = weight =
+/// x_j chi_ij), at mu_ji = m_j/(m_i + m_j), lambda_i = T/(T_i mu_ji), lambda_j = T/(T_j mu_ij);
+/// eta = lambda_i/lambda_j. No input checks.
+SonineTerms sonine_cross_terms(double weight, double mu_ji, double alpha_ij, double lambda_i,
+                               double lambda_j);
 
 /// Coefficients of seed 003 eqs 39-44 (ERRATA §6) at gamma = T1/T2. Throws std::invalid_argument
 /// for a bad mixture (see "Input checks" in the file description) or unless gamma is positive and
