@@ -176,8 +176,11 @@ std::string agg_frag_json(const gdsmc::io::config::Config& config, const std::st
        << ", \"log_monomer_rate\": " << number(rates.log_monomer_rate) << "},\n";
   json << in << "\"max_size\": " << kt << ",\n" << in << "\"lost_mass_fraction\": " << number(sol.lost_mass_fraction)
        << ",\n";
-  json << in << "\"approximations\": {\"initial_rates\": \"exact\", \"number\": \"maxwellian\", "
-          "\"temperature\": \"maxwellian\", \"total_temperature\": \"maxwellian\"}\n";
+  json << in << "\"approximations\": {\"initial_rates\": \"exact\"";
+  for (const char* key : {"number", "temperature", "total_temperature", "kinetic_energy", "mean_size", "monomer_fraction",
+                          "collisions", "aggregations", "fragmentations", "collisions_per_particle"})
+    json << ", \"" << key << "\": \"maxwellian\"";
+  json << "}\n";
   json << indent << "}";
   return json.str();
 }
@@ -212,10 +215,11 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
                             : th::integrate_partial_temperatures(mix, t0, times);
 
   const std::string in = indent + "  ";
-  std::vector<std::pair<std::string, std::string>> approximations = {
-      {"collision_frequency", "maxwellian"}, {"cooling_rate", "maxwellian"},
-      {"temperature", "maxwellian"},         {"total_temperature", "maxwellian"},
-      {"collisions_per_particle", "maxwellian"}};
+  std::vector<std::pair<std::string, std::string>> approximations = {{"collision_frequency", "maxwellian"},
+                                                                     {"cooling_rate", "maxwellian"}};
+  if (!config.staged())
+    for (const char* key : {"temperature", "total_temperature", "collisions_per_particle"})
+      approximations.emplace_back(key, "maxwellian");
   std::ostringstream json;
   json << indent << "{\n" << in << "\"n_species\": " << s << ",\n";
   json << in << "\"collision_frequency\": " << array(frequency) << ",\n";
