@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <tuple>
 
 #include "dsmc/collide.hpp"
 #include "dsmc/rng.hpp"
@@ -125,3 +127,76 @@ TEST(Thermostat, ColliderLossSumEqualsTheEnergyLost) {
 }
 
 }  // namespace
+
+namespace {
+// Two species, masses 1 and 3, velocities that do not sum to zero momentum.
+gdsmc::species::Mixture two_species() {
+  return gdsmc::species::make_mixture({1.0, 3.0}, {1.0, 1.0}, {0.1, 0.1}, gdsmc::species::PairMatrix(2, 0.9),
+                                      false);
+}
+System two_species_gas() {
+  System sys;
+  sys.v = {{1.0, 2.0, -0.5}, {-0.3, 0.4, 1.1}, {0.7, -1.2, 0.2}, {0.25, 0.5, -0.75}};
+  sys.species = {0, 0, 1, 1};
+  sys.first = {0, 2};
+  sys.count = {2, 2};
+  return sys;
+}
+}  // namespace
+
+// advance_frame by hand: from the identity, s = 2 about m = (1, 0, 0), then a dt = 0.1 with b_y = 0:
+// S = 2, c = -0.1, b = (1 + 2 (0 - 1), 0, 0) = (-1, 0, 0). Then V = G u + b applied by materialise
+// equals rescaling about m and streaming each velocity (begin_stage), and frame_energy from the
+// moments and momentum of u equals the energy of the materialised velocities.
+TEST(Thermostat, FrameComposesRescalingAndStreaming) {
+  const auto f = gdsmc::thermostat::advance_frame(gdsmc::thermostat::Frame{}, 2.0, Vec3{1.0, 0.0, 0.0}, 0.5, 0.2);
+  EXPECT_DOUBLE_EQ(f.scale, 2.0);
+  EXPECT_DOUBLE_EQ(f.shear, -0.1);
+  EXPECT_DOUBLE_EQ(f.offset.x, -1.0);
+  EXPECT_DOUBLE_EQ(f.offset.y, 0.0);
+  // A second stage: s = 0.5 about m = (0.2, 0.4, 0), a dt = 0.3: S = 1, c = -0.4,
+  // b = L(m + 0.5 (b - m)) = L((-0.4, 0.2, 0)) = (-0.4 - 0.3 * 0.2, 0.2, 0) = (-0.46, 0.2, 0).
+  const auto g = gdsmc::thermostat::advance_frame(f, 0.5, Vec3{0.2, 0.4, 0.0}, 1.0, 0.3);
+  EXPECT_DOUBLE_EQ(g.scale, 1.0);
+  EXPECT_NEAR(g.shear, -0.4, 1e-15);
+  EXPECT_NEAR(g.offset.x, -0.46, 1e-15);
+  EXPECT_NEAR(g.offset.y, 0.2, 1e-15);
+
+  const auto mix = two_species();
+  System by_frame = two_species_gas(), by_hand = two_species_gas();
+  // moments and momentum of the stored u
+  std::array<double, 4> q{};
+  Vec3 p{0.0, 0.0, 0.0};
+  double mass = 0.0;
+  for (std::size_t i = 0; i < by_frame.size(); ++i) {
+    const double m = mix.mass[by_frame.species[i]];
+    const Vec3& u = by_frame.v[i];
+    q[0] += m * u.x * u.x, q[1] += m * u.y * u.y, q[2] += m * u.z * u.z, q[3] += m * u.x * u.y;
+    p = {p.x + m * u.x, p.y + m * u.y, p.z + m * u.z};
+    mass += m;
+  }
+  const auto energy = gdsmc::thermostat::frame_energy(q, p, mass, g);
+  const auto pass = gdsmc::thermostat::materialise(mix, by_frame, g);
+  for (const auto& [scale, m, rate, dt] :
+       {std::tuple{2.0, Vec3{1.0, 0.0, 0.0}, 0.5, 0.2}, std::tuple{0.5, Vec3{0.2, 0.4, 0.0}, 1.0, 0.3}})
+    for (auto& v : by_hand.v) {
+      v = {m.x + scale * (v.x - m.x), m.y + scale * (v.y - m.y), m.z + scale * (v.z - m.z)};
+      v.x -= rate * dt * v.y;
+    }
+  for (std::size_t i = 0; i < by_hand.size(); ++i) {
+    EXPECT_NEAR(by_frame.v[i].x, by_hand.v[i].x, 1e-14);
+    EXPECT_NEAR(by_frame.v[i].y, by_hand.v[i].y, 1e-14);
+    EXPECT_NEAR(by_frame.v[i].z, by_hand.v[i].z, 1e-14);
+  }
+  const auto exact = gdsmc::thermostat::peculiar_energy(mix, by_hand);
+  EXPECT_NEAR(pass.kinetic, exact.kinetic, 1e-13);
+  EXPECT_NEAR(energy.kinetic, exact.kinetic, 1e-13);
+  EXPECT_NEAR(energy.mean_flow.x, exact.mean_flow.x, 1e-14);
+  EXPECT_NEAR(energy.mean_flow.y, exact.mean_flow.y, 1e-14);
+  EXPECT_NEAR(energy.mean_flow.z, exact.mean_flow.z, 1e-14);
+  EXPECT_NEAR(pass.total_mass, 8.0, 1e-15);
+  // the pass's moments are those of the new velocities
+  double xy = 0.0;
+  for (std::size_t i = 0; i < by_hand.size(); ++i) xy += mix.mass[by_hand.species[i]] * by_hand.v[i].x * by_hand.v[i].y;
+  EXPECT_NEAR(pass.moments[3], xy, 1e-13);
+}

@@ -81,7 +81,7 @@ double Collider::mass_fraction_of(std::size_t i, std::size_t k) const {
 void Collider::set_lowrank_row(std::size_t k) {
   // A_ik = pi sigma_ik^2 chi_max w_i N_i N_k / V in rank-3 form (segment_tree.hpp, ERRATA §7)
   auto f = segment_tree::hard_sphere_factors(static_cast<double>(sys_.count[k]), mix_.diameter[k],
-                                             max_speed_[k], lowrank_volume_);
+                                             max_speed_[k] * speed_factor_, lowrank_volume_);
   for (double& x : f.row) x *= chi_max_;
   lowrank_.set_row(k, f.row);
   // v_k depends on N_k and sigma_k only: set once, then sampled from alias tables (segment_tree.hpp).
@@ -115,7 +115,7 @@ void Collider::rebuild_bounds() {
     bound_ = 0.0;
     for (std::size_t k = 0; k < s_; ++k)
       for (std::size_t j = 0; j < s_; ++j)
-        bound_ = std::max(bound_, cross_section_[k * s_ + j] * (max_speed_[k] + max_speed_[j]));
+        bound_ = std::max(bound_, cross_section_[k * s_ + j] * ((max_speed_[k] + max_speed_[j]) * speed_factor_));
     rate_ = 0.5 * n_sim * n * bound_;  // R = N n B / 2 (seed 000 eq 8 with ERRATA §2)
   } else {
     double total = 0.0;
@@ -125,8 +125,8 @@ void Collider::rebuild_bounds() {
         const double n_j = n * static_cast<double>(sys_.count[j]) / n_sim;
         // R_ij = (1/2) N_i omega_max^(ij), omega_max = 4 pi sigma_ij^2 n_j chi_ij g_max (seed 003 sec. 3)
         // (with shear, the bound of |g.e| grows by a sigma_ij/2: set_shear)
-        const double g_max =
-            max_speed_[i] + max_speed_[j] + (shear_rate_ > 0.0 ? 0.5 * shear_rate_ * contact_[i * s_ + j] : 0.0);
+        const double g_max = (max_speed_[i] + max_speed_[j]) * speed_factor_ +
+                             (shear_rate_ > 0.0 ? 0.5 * shear_rate_ * contact_[i * s_ + j] : 0.0);
         pair_rate_[i * s_ + j] = 2.0 * static_cast<double>(sys_.count[i]) * n_j * cross_section_[i * s_ + j] * g_max;
         total += pair_rate_[i * s_ + j];
         pair_cumulative_[i * s_ + j] = total;
@@ -172,6 +172,10 @@ Collider::State Collider::state() const {
   st.block_max_speed2 = block_max_speed2_;
   st.block_credit = block_credit_;
   st.step_start = step_start_;
+  st.framed = framed_;
+  st.frame_scale = frame_scale_;
+  st.frame_shear = frame_shear_;
+  st.moments = moments_;
   return st;
 }
 
@@ -192,6 +196,11 @@ void Collider::restore(const State& st) {
   block_max_speed2_ = st.block_max_speed2;
   block_credit_ = st.block_credit;
   step_start_ = st.step_start;
+  framed_ = st.framed;
+  frame_scale_ = st.frame_scale;
+  frame_shear_ = st.frame_shear;
+  speed_factor_ = framed_ ? frame_norm(frame_scale_, frame_shear_) : 1.0;
+  moments_ = st.moments;
   // What the last rebuild or raise computed (header of State); with blocks each block sets its own.
   if (counters_.steps > 0 && block_first_.empty()) rebuild_bounds();
   for (std::size_t c = 0; c < lookahead; ++c)
@@ -287,7 +296,7 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target) {
         bound_ = 2.0 * cross_section * std::sqrt(block_max_speed2_[j]);
         rate_ = 0.5 * static_cast<double>(range_count_) * n * bound_;
         if (rate_ <= 0.0) break;
-        if (run_majorant(t_stop, UINT64_MAX) != static_cast<int>(Stop::bound_raised)) break;
+        if (run_majorant<false>(t_stop, UINT64_MAX) != static_cast<int>(Stop::bound_raised)) break;
       }
       block_credit_[j] = rate_ > 0.0 ? credit_ : 0.0;
     }
@@ -308,6 +317,60 @@ void Collider::set_shear(double rate) {
   if (rate_ > 0.0) rebuild_bounds();
 }
 
+void Collider::set_frame(double scale, double shear) {
+  if (viscoelastic_ || sys_.tracks_displacements() || !block_first_.empty())
+    throw std::logic_error("collide: a frame needs constant restitution, no displacements and no blocks");
+  if (!(scale > 0.0) || !std::isfinite(scale) || !std::isfinite(shear))
+    throw std::logic_error("collide: the frame's scale must be positive and finite");
+  if (!framed_) {
+    moments_ = {};
+    for (std::size_t i = 0; i < sys_.size(); ++i) {
+      const particles::Vec3& u = sys_.v[i];
+      const double m = mix_.mass[s_ > 1 ? sys_.species[i] : 0];
+      moments_[0] += m * u.x * u.x, moments_[1] += m * u.y * u.y, moments_[2] += m * u.z * u.z;
+      moments_[3] += m * u.x * u.y;
+    }
+    framed_ = true;
+  }
+  frame_scale_ = scale;
+  frame_shear_ = shear;
+  speed_factor_ = frame_norm(scale, shear);
+  if (rate_ > 0.0) rebuild_bounds();
+}
+
+void Collider::reset_frame(const std::array<double, 4>& moments, const std::vector<double>& max_speed2) {
+  framed_ = true;
+  frame_scale_ = 1.0;
+  frame_shear_ = 0.0;
+  speed_factor_ = 1.0;
+  moments_ = moments;
+  set_max_speeds(max_speed2);
+}
+
+void Collider::collide_in_frame(std::size_t a, std::size_t b, std::uint32_t k, std::uint32_t j, double ex,
+                                double ey, double ez, double g_dot_e, double alpha, double mass_fraction_b) {
+  const double inv_scale = 1.0 / frame_scale_;
+  const double wx = (ex - frame_shear_ * ey) * inv_scale, wy = ey * inv_scale, wz = ez * inv_scale;  // G^-1 e
+  const double impulse = (1.0 + alpha) * g_dot_e;
+  const double da = mass_fraction_b * impulse, db = (1.0 - mass_fraction_b) * impulse;
+  particles::Vec3& ua = sys_.v[a];
+  particles::Vec3& ub = sys_.v[b];
+  const double ma = mix_.mass[k], mb = mix_.mass[j];
+  // The moments change by m (u'u'^T - u u^T) for each partner.
+  auto moments_add = [this](const particles::Vec3& u, double m) {
+    moments_[0] += m * u.x * u.x, moments_[1] += m * u.y * u.y, moments_[2] += m * u.z * u.z;
+    moments_[3] += m * u.x * u.y;
+  };
+  moments_add(ua, -ma);
+  moments_add(ub, -mb);
+  ua = {ua.x - da * wx, ua.y - da * wy, ua.z - da * wz};
+  ub = {ub.x + db * wx, ub.y + db * wy, ub.z + db * wz};
+  moments_add(ua, ma);
+  moments_add(ub, mb);
+  counters_.dissipated += 0.5 * (1.0 - alpha * alpha) * ma * mass_fraction_b * g_dot_e * g_dot_e;
+  count_event(k, j);
+}
+
 bool Collider::advance(double t_target, std::uint64_t event_target) {
   if (!block_first_.empty()) return advance_blocks(t_target, event_target);
   while (time_ < t_target) {
@@ -326,9 +389,12 @@ bool Collider::advance(double t_target, std::uint64_t event_target) {
       counters_.step_sum += step;
     }
     const double t_stop = std::min(t_target, next_step_time_);
-    const int stop = scheme_ == Scheme::majorant ? run_majorant(t_stop, event_target)
-                     : scheme_ == Scheme::pairs  ? run_pairs(t_stop, event_target)
-                                                 : run_lowrank(t_stop, event_target);
+    const int stop = framed_ ? (scheme_ == Scheme::majorant ? run_majorant<true>(t_stop, event_target)
+                                : scheme_ == Scheme::pairs  ? run_pairs<true>(t_stop, event_target)
+                                                            : run_lowrank<true>(t_stop, event_target))
+                             : (scheme_ == Scheme::majorant ? run_majorant<false>(t_stop, event_target)
+                                : scheme_ == Scheme::pairs  ? run_pairs<false>(t_stop, event_target)
+                                                            : run_lowrank<false>(t_stop, event_target));
     if (stop == static_cast<int>(Stop::bound_raised)) {
       if (scheme_ == Scheme::lowrank) {  // O(log M) per raised species, not a rebuild
         for (std::size_t k : raised_) set_lowrank_row(k);
@@ -401,6 +467,7 @@ Collider::PendingPair Collider::next_pair(Draw&& draw) {
   return p;
 }
 
+template <bool Framed>
 int Collider::run_majorant(double t_stop, std::uint64_t event_target) {
   const bool track = sys_.tracks_displacements();  // may start in the middle of a run
   // Candidates among all particles, or among those of the current block (header, "Blocks").
@@ -421,7 +488,8 @@ int Collider::run_majorant(double t_stop, std::uint64_t event_target) {
     b = p.b;
     const std::uint32_t ka = mixture ? sp[a] : 0, kb = mixture ? sp[b] : 0;
     const std::size_t pair = ka * s_ + kb;
-    const double gx = v[a].x - v[b].x, gy = v[a].y - v[b].y, gz = v[a].z - v[b].z;
+    double gx = v[a].x - v[b].x, gy = v[a].y - v[b].y, gz = v[a].z - v[b].z;
+    to_actual<Framed>(gx, gy, gz);
     const double g2 = gx * gx + gy * gy + gz * gz;
     // Accept with pi sigma^2 chi |g| / B (seed 000 eq 7), compared squared: no root for a rejection.
     const double threshold = gen_.uniform() * bound_;
@@ -429,6 +497,10 @@ int Collider::run_majorant(double t_stop, std::uint64_t event_target) {
     if (threshold * threshold >= cross_section * cross_section * g2) return false;
     double ex, ey, ez;
     if (!hemisphere_normal(gen_, gx, gy, gz, std::sqrt(g2), ex, ey, ez)) return false;
+    if constexpr (Framed) {
+      collide_in_frame(a, b, ka, kb, ex, ey, ez, gx * ex + gy * ey + gz * ez, alpha_[pair], mass_fraction_[pair]);
+      return true;
+    }
     if (track) {
       particles::flush_free_flight(sys_, a, t_collision);
       particles::flush_free_flight(sys_, b, t_collision);
@@ -438,6 +510,7 @@ int Collider::run_majorant(double t_stop, std::uint64_t event_target) {
   });
 }
 
+template <bool Framed>
 int Collider::run_pairs(double t_stop, std::uint64_t event_target) {
   const bool track = sys_.tracks_displacements();  // may start in the middle of a run
   return run_substep(t_stop, event_target, [&](std::size_t& k, std::size_t& l, double t_collision) {
@@ -457,31 +530,43 @@ int Collider::run_pairs(double t_stop, std::uint64_t event_target) {
     }
     double ex, ey, ez;
     rng::unit_vector(gen_, ex, ey, ez);  // seed 003 step (1): e uniform on the sphere
-    const double g_dot_e = (sys_.v[k].x - sys_.v[l].x) * ex + (sys_.v[k].y - sys_.v[l].y) * ey +
-                           (sys_.v[k].z - sys_.v[l].z) * ez;
+    double gx = sys_.v[k].x - sys_.v[l].x, gy = sys_.v[k].y - sys_.v[l].y, gz = sys_.v[k].z - sys_.v[l].z;
+    to_actual<Framed>(gx, gy, gz);
+    const double g_dot_e = gx * ex + gy * ey + gz * ez;
     if (shear_rate_ > 0.0) {  // Enskog in shear flow: the shifted relative velocity (set_shear, ERRATA §13)
       const double sigma = contact_[pair];
       const double shifted = g_dot_e - shear_rate_ * sigma * ey * ex;
       if (shifted <= 0.0 ||
-          gen_.uniform() * (max_speed_[i] + max_speed_[j] + 0.5 * shear_rate_ * sigma) >= shifted)
+          gen_.uniform() * ((max_speed_[i] + max_speed_[j]) * speed_factor_ + 0.5 * shear_rate_ * sigma) >= shifted)
         return false;
       const double alpha = alpha_[pair], mf = mass_fraction_[pair];
       const double impulse = (1.0 + alpha) * shifted;
-      particles::Vec3& va = sys_.v[k];
-      particles::Vec3& vb = sys_.v[l];
-      va = {va.x - mf * impulse * ex, va.y - mf * impulse * ey, va.z - mf * impulse * ez};
-      vb = {vb.x + (1.0 - mf) * impulse * ex, vb.y + (1.0 - mf) * impulse * ey, vb.z + (1.0 - mf) * impulse * ez};
       const double reduced = mix_.mass[i] * mf;  // m_ij
-      counters_.dissipated += 0.5 * (1.0 - alpha * alpha) * reduced * shifted * shifted;
+      if constexpr (Framed) {
+        collide_in_frame(k, l, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j), ex, ey, ez, shifted,
+                         alpha, mf);
+      } else {
+        particles::Vec3& va = sys_.v[k];
+        particles::Vec3& vb = sys_.v[l];
+        va = {va.x - mf * impulse * ex, va.y - mf * impulse * ey, va.z - mf * impulse * ez};
+        vb = {vb.x + (1.0 - mf) * impulse * ex, vb.y + (1.0 - mf) * impulse * ey, vb.z + (1.0 - mf) * impulse * ez};
+        counters_.dissipated += 0.5 * (1.0 - alpha * alpha) * reduced * shifted * shifted;
+        count_event(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
+      }
       const double w = reduced * sigma * impulse;  // m_ij sigma_ij (1 + alpha)(g.e)
       auto& t = counters_.transfer;
       t[0] += w * ex * ex, t[1] += w * ey * ey, t[2] += w * ez * ez;
       t[3] += w * ex * ey, t[4] += w * ex * ez, t[5] += w * ey * ez;
-      count_event(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
       return true;
     }
     // Step (2): accept with Theta(g.e) |g.e| / g_max, g_max = vmax_i + vmax_j.
-    if (g_dot_e <= 0.0 || gen_.uniform() * (max_speed_[i] + max_speed_[j]) >= g_dot_e) return false;
+    if (g_dot_e <= 0.0 || gen_.uniform() * ((max_speed_[i] + max_speed_[j]) * speed_factor_) >= g_dot_e)
+      return false;
+    if constexpr (Framed) {
+      collide_in_frame(k, l, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j), ex, ey, ez, g_dot_e,
+                       alpha_[pair], mass_fraction_[pair]);
+      return true;
+    }
     if (track) {
       particles::flush_free_flight(sys_, k, t_collision);
       particles::flush_free_flight(sys_, l, t_collision);
@@ -492,6 +577,7 @@ int Collider::run_pairs(double t_stop, std::uint64_t event_target) {
   });
 }
 
+template <bool Framed>
 int Collider::run_lowrank(double t_stop, std::uint64_t event_target) {
   const bool track = sys_.tracks_displacements();  // may start in the middle of a run
   particles::Vec3* v = sys_.v.data();
@@ -507,14 +593,20 @@ int Collider::run_lowrank(double t_stop, std::uint64_t event_target) {
     b = p.b;
     if (a == b) return false;  // the self pair is part of the majorant's sum, never a collision
     const std::size_t i = p.i, k = p.k;
-    const double gx = v[a].x - v[b].x, gy = v[a].y - v[b].y, gz = v[a].z - v[b].z;
+    double gx = v[a].x - v[b].x, gy = v[a].y - v[b].y, gz = v[a].z - v[b].z;
+    to_actual<Framed>(gx, gy, gz);
     const double g2 = gx * gx + gy * gy + gz * gz;
     // Accept with chi_ik |g| / (chi_max (w_i + w_k)) (seed 001 eq 11 with ERRATA §2), compared squared.
-    const double threshold = gen_.uniform() * chi_max_ * (max_speed_[i] + max_speed_[k]);
+    const double threshold = gen_.uniform() * chi_max_ * ((max_speed_[i] + max_speed_[k]) * speed_factor_);
     const double chi = mix_.pair_correlation(i, k);
     if (threshold * threshold >= chi * chi * g2) return false;
     double ex, ey, ez;  // e ~ (g_hat.e) on the hemisphere, as in run_majorant
     if (!hemisphere_normal(gen_, gx, gy, gz, std::sqrt(g2), ex, ey, ez)) return false;
+    if constexpr (Framed) {
+      collide_in_frame(a, b, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(k), ex, ey, ez,
+                       gx * ex + gy * ey + gz * ez, restitution_of(i, k, a, b, ex, ey, ez), mass_fraction_of(i, k));
+      return true;
+    }
     if (track) {
       particles::flush_free_flight(sys_, a, t_collision);
       particles::flush_free_flight(sys_, b, t_collision);

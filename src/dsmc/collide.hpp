@@ -85,6 +85,25 @@
  * step (a pass in order over the block, which is also what brings it into the cache). Event targets
  * are checked at step ends only, so the simulation uses blocks in time-driven runs only.
  *
+ * **Frame** (`set_frame`; the stage loop of thermostat.hpp). A uniform shear flow's streaming and a
+ * thermostat's rescaling act on every velocity alike, V -> L V with one linear map L per stage.
+ * Instead of a pass over all particles per stage, the System may hold the velocities u in a frame,
+ * the actual peculiar velocity being
+ *   V = G u,   G = S [[1, c, 0], [0, 1, 0], [0, 0, 1]]   (V_x = S (u_x + c u_y), V_y = S u_y, V_z = S u_z),
+ * and a stage then changes only G: a rescaling by s multiplies S by s, the streaming V_x -> V_x - a dt V_y
+ * subtracts a dt from c (both maps are of this form, and so are their products). The u change only at
+ * collisions. A candidate's relative velocity is g = G (u_a - u_b) and the collision is computed from it
+ * exactly as above (acceptance, e, g.e, the energy loss); the partners' u change by the impulse mapped
+ * back, -/+ mu (1 + alpha)(g.e) G^-1 e, G^-1 e = (e_x - c e_y, e_y, e_z)/S. The process is therefore the
+ * same as with the velocities updated in every stage; only the round-off differs. The bounds hold the
+ * largest |u| of each species, and a relative speed is bounded by |G (u_a - u_b)| <= ||G|| (|u_a| + |u_b|),
+ * ||G|| = S (|c|/2 + sqrt(1 + c^2/4)) the largest singular value of G: every bound is multiplied by
+ * ||G||, which the stage loop keeps within 2 % of S by bringing the velocities back to G = 1 (one pass)
+ * whenever |c| exceeds 0.04 and at every sample. The frame's second moments Q = sum m u u^T (xx, yy,
+ * zz, xy) are kept up to date collision by collision, so that the thermostat knows the kinetic energy
+ * S^2 (Q_xx + 2 c Q_xy + c^2 Q_yy + Q_yy + Q_zz)/2 of every stage without a pass. Constant restitution,
+ * no displacement tracking and no blocks (what the stage loop runs).
+ *
  * Units: the user's; time in the user's time unit, e.g. sigma sqrt(m/T0).
  * Checked by tests/collide_test.cpp and validation/ (haff_cooling, collision_rate, schemes_agree).
  */
@@ -215,6 +234,25 @@ class Collider {
     rebuild_bounds();
   }
 
+  /// The frame of the stored velocities (header, "Frame"): V = S (u_x + c u_y, u_y, u_z), with
+  /// S = `scale`, c = `shear`. The first call starts the frame with the moments of the stored u
+  /// computed by a pass; later calls only rebuild the bounds (the u are unchanged). Throws
+  /// std::logic_error with viscoelastic restitution, displacement tracking or blocks.
+  void set_frame(double scale, double shear);
+  /// The stored u were just replaced by the actual velocities (the frame was applied to them in a
+  /// pass that also computed `moments` = sum m V V^T (xx, yy, zz, xy) and the largest speed^2 of
+  /// each species): G = 1 again, and the bounds exact.
+  void reset_frame(const std::array<double, 4>& moments, const std::vector<double>& max_speed2);
+  bool framed() const { return framed_; }
+  double frame_scale() const { return frame_scale_; }
+  double frame_shear() const { return frame_shear_; }
+  /// sum m u u^T of the stored u (xx, yy, zz, xy), kept collision by collision in a frame.
+  const std::array<double, 4>& frame_moments() const { return moments_; }
+  /// ||G||, the factor of every speed bound in a frame (1 without one).
+  static double frame_norm(double scale, double shear) {
+    return scale * (0.5 * std::abs(shear) + std::sqrt(1.0 + 0.25 * shear * shear));
+  }
+
   double time() const { return time_; }
   const Counters& counters() const { return counters_; }
   /// Mean length of the time steps so far (0 before the first step).
@@ -234,6 +272,9 @@ class Collider {
     bool pending_filled = false;
     std::vector<double> block_max_speed2, block_credit;  ///< with blocks (use_blocks)
     double step_start = 0.0;                             ///< with blocks: when this step began
+    bool framed = false;                                 ///< set_frame: the frame and its moments
+    double frame_scale = 1.0, frame_shear = 0.0;
+    std::array<double, 4> moments{};
   };
   State state() const;
   /// Continues from `state`, taken from a Collider of the same scheme, mixture and particle counts
@@ -246,6 +287,7 @@ class Collider {
   bool raise_max_speed(std::size_t particle);
   template <class TryCandidate>
   int run_substep(double t_stop, std::uint64_t event_target, TryCandidate&& try_candidate);
+  template <bool Framed>
   int run_majorant(double t_stop, std::uint64_t event_target);  // returns a Stop (collide.cpp)
   bool advance_blocks(double t_target, std::uint64_t event_target);
   void remix();
@@ -262,7 +304,9 @@ class Collider {
   std::size_t range_first_ = 0, range_count_ = 0;
   particles::ParticleArray<particles::Vec3> spare_v_;  ///< remix() deals into these and swaps
   particles::ParticleArray<particles::Displacement> spare_r_;
+  template <bool Framed>
   int run_pairs(double t_stop, std::uint64_t event_target);
+  template <bool Framed>
   int run_lowrank(double t_stop, std::uint64_t event_target);
   void set_lowrank_row(std::size_t species);
   void count_event(std::uint32_t k, std::uint32_t j);
@@ -273,6 +317,20 @@ class Collider {
     const double g_dot_e = apply_collision(sys_, a, b, ex, ey, ez, alpha, mass_fraction_b);
     counters_.dissipated += 0.5 * (1.0 - alpha * alpha) * mix_.mass[k] * mass_fraction_b * g_dot_e * g_dot_e;
     count_event(k, j);
+  }
+
+  /// The same in a frame (header, "Frame"): `g_dot_e` = g.e of the actual velocities; the stored u
+  /// change by the impulse mapped back with G^-1, and the frame's moments follow them.
+  void collide_in_frame(std::size_t a, std::size_t b, std::uint32_t k, std::uint32_t j, double ex, double ey,
+                        double ez, double g_dot_e, double alpha, double mass_fraction_b);
+  /// The actual relative velocity G g of a stored one (header, "Frame"); the identity without a frame.
+  template <bool Framed>
+  void to_actual(double& gx, double& gy, double& gz) const {
+    if constexpr (Framed) {
+      gx = frame_scale_ * (gx + frame_shear_ * gy);
+      gy *= frame_scale_;
+      gz *= frame_scale_;
+    }
   }
 
   /// A candidate drawn ahead: particles a and b, of species i and k (lowrank; 0 otherwise).
@@ -314,6 +372,10 @@ class Collider {
   double shear_rate_ = 0.0;             ///< a of set_shear (pairs, Enskog)
   std::vector<double> contact_;         ///< sigma_ij (set_shear)
   double lowrank_volume_ = 0.0;         ///< V = (N - 1)/n (lowrank)
+  bool framed_ = false;                 ///< velocities stored in a frame (set_frame)
+  double frame_scale_ = 1.0, frame_shear_ = 0.0;  ///< S and c of the frame
+  double speed_factor_ = 1.0;           ///< ||G|| (frame_norm), 1 without a frame: every bound's factor
+  std::array<double, 4> moments_{};     ///< sum m u u^T: xx, yy, zz, xy (in a frame)
   bool lowrank_columns_set_ = false;    ///< columns v_k set and frozen (they never change in a run)
   // Bounds.
   double bound_ = 0.0;                  ///< B (majorant)

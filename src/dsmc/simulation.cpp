@@ -1,5 +1,6 @@
 #include "dsmc/simulation.hpp"
 
+#include <cstdlib>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -251,6 +252,8 @@ Snapshot make_snapshot(const particles::System& sys, const collide::Collider& co
   snap.reals["collider/block_credit"] = c.block_credit;
   snap.reals["collider/block_step_start"] = {c.step_start};
   snap.reals["collider/transfer"].assign(c.counters.transfer.begin(), c.counters.transfer.end());
+  snap.reals["collider/frame"] = {c.framed ? 1.0 : 0.0, c.frame_scale, c.frame_shear,
+                                  c.moments[0],         c.moments[1],  c.moments[2], c.moments[3]};
   snap.integers["progress/flags"] = {p.next_sample, p.in_sample, p.tracking};
   snap.reals["progress/values"] = {p.msd_start, p.scaling_samples, p.t_first, p.t_last, p.temp_first, p.temp_last};
   snap.reals["progress/speed_counts"] = p.speed_counts;
@@ -325,6 +328,14 @@ void load_snapshot(const Snapshot& snap, particles::System& sys, collide::Collid
   c.step_start = snap.reals.at("collider/block_step_start").at(0);
   const auto& transfer = snap.reals.at("collider/transfer");
   for (std::size_t q = 0; q < 6; ++q) c.counters.transfer[q] = transfer.at(q);
+  if (const auto it = snap.reals.find("collider/frame"); it != snap.reals.end()) {
+    const auto& f = it->second;
+    require_intact(f.size() == 7 && f[1] > 0.0, "the velocity frame is damaged");
+    c.framed = f[0] != 0.0;
+    c.frame_scale = f[1];
+    c.frame_shear = f[2];
+    for (std::size_t q = 0; q < 4; ++q) c.moments[q] = f[3 + q];
+  }
   collider.restore(c);
   const auto& flags = snap.integers.at("progress/flags");
   const auto& values = snap.reals.at("progress/values");
@@ -574,6 +585,12 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
   double window_kinetic_sum = 0.0, last_sample_time = 0.0;
   std::array<double, 6> last_transfer{};  // Counters::transfer at the previous sample
   thermostat::Rescaling pending;  // decided at the end of a stage, applied at the start of the next
+  // The stored velocities are u in a frame, V = G u + b (thermostat.hpp, "Cost: the frame"): the frame
+  // (G in the collider, the offset b here), and the momentum sum m u of the stored u and the total mass.
+  thermostat::Frame frame;
+  particles::Vec3 momentum{0.0, 0.0, 0.0};
+  double total_mass = 0.0;
+  for (std::size_t k = 0; k < s; ++k) total_mass += mix.mass[k] * static_cast<double>(counts[k]);
   if (resume) {
     load_snapshot(*resume, sys, collider, p, result);
     const auto& v = resume->reals.at("staged/values");
@@ -582,6 +599,12 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
     pending.mean_flow = {v.at(6), v.at(7), v.at(8)};
     window_kinetic_sum = v.at(9), last_sample_time = v.at(10);
     for (std::size_t q = 0; q < 6; ++q) last_transfer[q] = v.at(11 + q);
+    if (v.size() >= 23) {
+      frame.offset = {v.at(17), v.at(18), v.at(19)};
+      momentum = {v.at(20), v.at(21), v.at(22)};
+    }
+    frame.scale = collider.frame_scale();
+    frame.shear = collider.frame_shear();
   } else {
     collider.velocities_changed();  // the bounds (and the majorant rate that sizes the stages) from the start
   }
@@ -592,6 +615,7 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
                                    window_kinetic_sum, last_sample_time};
     auto& values = snap.reals["staged/values"];
     values.insert(values.end(), last_transfer.begin(), last_transfer.end());
+    values.insert(values.end(), {frame.offset.x, frame.offset.y, frame.offset.z, momentum.x, momentum.y, momentum.z});
     return snap;
   };
   std::uint64_t reported_events = collider.counters().events;
@@ -670,14 +694,26 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
   // One stage from the collider's time to `end` (or, for the last sample, only its streaming and
   // measurement): streaming, the sample, collisions, thermostat.
   auto stage = [&](double end, bool sample_here, bool last) {
-    const double t = collider.time();
-    // One pass: the previous stage's thermostat rescaling, this stage's streaming, the energy and the
-    // largest speeds after them (the collider's bounds, exact again).
-    const thermostat::StageStart start =
-        thermostat::begin_stage(mix, sys, pending.scale, pending.mean_flow, shear, end - t);
+    const double dt = end - collider.time();
+    // The previous stage's thermostat rescaling and this stage's streaming, applied to the frame
+    // (thermostat.hpp, "Cost: the frame").
+    frame = thermostat::advance_frame(frame, pending.scale, pending.mean_flow, shear, dt);
     pending = thermostat::Rescaling{};
-    collider.set_max_speeds(start.max_speed2);
-    if (sample_here) measure(p.next_sample, end - t);
+    thermostat::Energy start;
+    if (sample_here || !collider.framed() || std::abs(frame.shear) > thermostat::frame_shear_limit ||
+        frame.scale < 0.5 || frame.scale > 2.0) {
+      // One pass: V = G u + b for every particle, the energy, the moments and the largest speeds
+      // (the collider's bounds, exact again); the frame is the identity afterwards.
+      const thermostat::StageStart pass = thermostat::materialise(mix, sys, frame);
+      frame = thermostat::Frame{};
+      momentum = {pass.mean_flow.x * total_mass, pass.mean_flow.y * total_mass, pass.mean_flow.z * total_mass};
+      collider.reset_frame(pass.moments, pass.max_speed2);
+      start = {pass.kinetic, pass.mean_flow};
+    } else {
+      collider.set_frame(frame.scale, frame.shear);
+      start = thermostat::frame_energy(collider.frame_moments(), momentum, total_mass, frame);
+    }
+    if (sample_here) measure(p.next_sample, dt);
     if (last) return;
     const double dissipated_before = collider.counters().dissipated;
     collider.advance(end);
@@ -688,7 +724,7 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
       if (enskog_shear) {
         // The Enskog collisions in shear flow also do viscous work, which the thermostat must not
         // remove (ERRATA §13): only the inelastic loss is restored, s^2 = (E_after + L)/E_after.
-        const double after = thermostat::peculiar_energy(mix, sys).kinetic;
+        const double after = thermostat::frame_energy(collider.frame_moments(), momentum, total_mass, frame).kinetic;
         pending = {std::sqrt((after + loss) / after), start.mean_flow, loss / start.kinetic};
       } else {
         pending = thermostat::gaussian_rescaling(start.kinetic, loss, start.mean_flow);
