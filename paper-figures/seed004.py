@@ -9,7 +9,8 @@ usage: /usr/bin/python3 paper-figures/seed004.py [BUILD_DIR] [OUT_DIR]
 Reads BUILD_DIR/validation-output/viscosity_alpha*.h5 and hss_*.h5 (ctest -L validation; paper tier
 preferred, quick otherwise) and writes OUT_DIR/seed004_fig6_viscosity.png, seed004_fig7_9_mixtures.png
 (eta/eta_0 against mass ratio, size ratio and concentration at alpha = 0.9, 0.8, 0.7, over the mixture
-theory), seed004_fig10_12_enskog.png (Enskog: total and kinetic eta/eta_0 against the solid fraction) and
+theory), seed004_fig10_12_enskog.png (Enskog binary mixture: kinetic and total eta/eta_0 against the solid
+fraction, total against the mass ratio; one-component Enskog points beside them) and
 seed004_fig1_5_hss.png (the HSS gamma and c against the HCS values).
 """
 
@@ -90,32 +91,72 @@ def fig7_9():
 
 
 def fig10_12():
-    cases = (("viscosity_alpha1.0", 0.0, "1.0"), ("viscosity_enskog_phi0.1", 0.1, "1.0"),
-             ("viscosity_enskog_phi0.2", 0.2, "1.0"), ("viscosity_enskog_phi0.2_alpha0.8", 0.2, "0.8"))
-    fig, ax = plt.subplots(figsize=(5.5, 4))
-    for name, phi, alpha in cases:
+    """Seed 004 Figs 10-12 are for a binary Enskog mixture (equal sizes and numbers): Fig 10 the kinetic
+    part and Fig 11 the total viscosity against the solid fraction at mass ratio 4, Fig 12 the total
+    against the mass ratio at phi = 0.2, each at alpha = 0.9, 0.8, 0.7. Drawn as eta/eta_0 over the
+    elastic dilute mixture (seed 004's eta* = nu eta/(n T) is that times nu eta_0/n, which does not
+    depend on phi), with the one-component Enskog points (alpha = 1, 0.8) in the first two panels."""
+    fig, axes = plt.subplots(1, 3, figsize=(13, 4))
+    drawn = False
+    phis = (0.1, 0.2, 0.3)
+    grid = np.linspace(0.02, 0.32, 16)
+    for k, alpha in enumerate(("0.9", "0.8", "0.7")):
+        color = f"C{k}"
+        pts = []
+        for phi in phis:
+            try:
+                path = pick(f"viscosity_fig10_phi{phi}_alpha{alpha}")
+            except Missing:
+                continue
+            pts.append((phi,) + tuple(time_average(path)))
+        if pts:
+            drawn = True
+            phi, eta, err, kin, kin_err = map(np.array, zip(*pts))
+            axes[0].errorbar(phi, kin, yerr=kin_err, fmt="s", color=color, label=f"DSMC, alpha = {alpha}")
+            axes[1].errorbar(phi, eta, yerr=err, fmt="o", color=color, label=f"DSMC, alpha = {alpha}")
+            kinetic, total = [], []
+            for p in grid:
+                n = 3.0 * p / np.pi  # each species: (pi/6) 2 n sigma^3 = phi
+                th = theory(path, [f"system:restitution={alpha}", f"system:number_density={n:.6f},{n:.6f}"])
+                kinetic.append(th["shear_viscosity_kinetic_ratio"]["hss"])
+                total.append(th["shear_viscosity_ratio"]["hss"])
+            axes[0].plot(grid, kinetic, "-", color=color)
+            axes[1].plot(grid, total, "-", color=color, label="Enskog first Sonine, HSS" if k == 0 else None)
+        pts = []
+        for mu in ("2", "4", "8"):
+            try:
+                path = pick(f"viscosity_fig12_mu{mu}_alpha{alpha}" if mu != "4" else f"viscosity_fig10_phi0.2_alpha{alpha}")
+            except Missing:
+                continue
+            eta, err, _, _ = time_average(path)
+            pts.append((float(mu), eta, err))
+        if pts:
+            drawn = True
+            mu, eta, err = map(np.array, zip(*pts))
+            axes[2].errorbar(mu, eta, yerr=err, fmt="o", color=color, label=f"DSMC, alpha = {alpha}")
+            mus = np.linspace(1.0, 9.0, 17)
+            th = [theory(path, [f"system:restitution={alpha}", f"system:mass={m:.4f},1.0"])["shear_viscosity_ratio"]["hss"]
+                  for m in mus]
+            axes[2].plot(mus, th, "-", color=color)
+    for name, alpha, marker in (("viscosity_enskog_phi0.1", "1.0", "^"), ("viscosity_enskog_phi0.2", "1.0", "^"),
+                                ("viscosity_enskog_phi0.2_alpha0.8", "0.8", "v")):
         try:
             path = pick(name)
         except Missing:
             continue
         eta, err, kin, kin_err = time_average(path)
-        color = "C0" if alpha == "1.0" else "C1"
-        ax.errorbar([phi], [eta], yerr=[err], fmt="o", color=color)
-        if kin is not None:
-            ax.errorbar([phi], [kin], yerr=[kin_err], fmt="s", mfc="none", color=color)
-    grid = np.linspace(0.01, 0.25, 13)
-    try:
-        path = pick("viscosity_enskog_phi0.2")
-        for alpha, color in (("1.0", "C0"), ("0.8", "C1")):
-            tot = [theory(path, [f"system:restitution={alpha}", f"system:number_density={6 * p / np.pi:.6f}"])
-                   ["shear_viscosity_ratio"]["hss"] for p in grid]
-            ax.plot(grid, tot, "-", color=color, label=f"Enskog first Sonine, total, alpha = {alpha}")
-    except Missing:
-        pass
-    ax.set(xlabel="solid fraction phi", ylabel="eta / eta_0",
-           title="Seed 004 Figs 10-12: Enskog (circles total, squares kinetic)")
-    ax.legend(fontsize=7)
-    save(fig, "seed004_fig10_12_enskog.png")
+        phi = 0.1 if "phi0.1" in name else 0.2
+        axes[0].errorbar([phi], [kin], yerr=[kin_err], fmt=marker, mfc="none", color="k")
+        axes[1].errorbar([phi], [eta], yerr=[err], fmt=marker, mfc="none", color="k",
+                         label=f"one species, alpha = {alpha}" if phi == 0.2 else None)
+    axes[0].set(xlabel="solid fraction phi", ylabel="kinetic part eta_k / eta_0", title="Fig 10 (m1/m2 = 4)")
+    axes[1].set(xlabel="solid fraction phi", ylabel="eta / eta_0", title="Fig 11 (m1/m2 = 4)")
+    axes[2].set(xlabel="mass ratio m1/m2", ylabel="eta / eta_0", title="Fig 12 (phi = 0.2)")
+    for ax in axes:
+        ax.legend(fontsize=7)
+    if drawn:
+        fig.suptitle("Seed 004 Figs 10-12: shear viscosity of a dense (Enskog) binary mixture")
+        save(fig, "seed004_fig10_12_enskog.png")
 
 
 def fig1_5():

@@ -478,6 +478,22 @@ TEST_F(CliTheory, PrintsOneJsonObject) {
   EXPECT_EQ(files(), std::vector<std::string>{"t.nml"});  // writes no file
 }
 
+// An Enskog binary mixture in shear flow (seed 004 Figs 10-12): the first-Sonine eta/eta_0 and its
+// kinetic part, the values validation/shear_viscosity states against the DSMC (mu = 4, phi = 0.2,
+// alpha = 0.9: 1.9075 and 0.9084, HSS).
+TEST_F(CliTheory, EnskogMixtureShearViscosity) {
+  write("t.nml",
+        "&system n_species = 2, mass = 4.0, 1.0, diameter = 1.0, 1.0, number_density = 0.191, 0.191,\n"
+        "  restitution = 0.9, enskog = .true. /\n&dsmc scheme = 'pairs', n_particles = 8000, t_end = 100.0 /\n"
+        "&thermostat kind = 'gaussian' /\n&shear rate = 0.07 /\n");
+  const Result r = run("granular-theory", "t.nml");
+  EXPECT_EQ(r.status, 0) << r.err;
+  for (const char* key : {"\"shear_viscosity_ratio\": {\"hcs\": 1.834", "\"hss\": 1.907",
+                          "\"shear_viscosity_kinetic_ratio\": {\"hcs\": 0.857", "\"hss\": 0.908",
+                          "\"shear_viscosity_kinetic_ratio\": \"first_sonine\""})
+    EXPECT_NE(r.out.find(key), std::string::npos) << key << " in " << r.out;
+}
+
 TEST_F(CliTheory, BadInput) {
   write("t.nml", with_line(6, "  restitution = 1.3"));
   expect_input_error(run("granular-theory", "t.nml"), "granular-theory",

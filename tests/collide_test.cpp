@@ -620,3 +620,30 @@ TEST(Collide, FrameNormIsTheLargestSingularValue) {
     EXPECT_GT(worst, Collider::frame_norm(1.0, c) * (1.0 - 1e-7));
   }
 }
+
+// The kernel's invariant (Counters::overshoots): with the bounds of the schemes an acceptance
+// probability never exceeds 1, also when the bounds are refreshed rarely (step_fraction 50, so only
+// the raise-when-exceeded keeps them) and in a sheared frame; and a bound set too low on purpose is
+// noticed (the count and the largest probability are reported, not silently capped at 1).
+TEST(Collide, AcceptanceNeverExceedsOneAndAnOvershootIsCounted) {
+  const auto mix = binary(0.8, 0.8, 0.8);
+  for (Scheme scheme : {Scheme::majorant, Scheme::pairs, Scheme::lowrank}) {
+    SCOPED_TRACE(name(scheme));
+    {
+      auto sys = initial(mix, {1500, 1000}, {1.0, 3.0}, 23);
+      Collider collider(scheme, mix, sys, rng::make_stream(23, 0, rng::Purpose::collisions), 50.0);
+      collider.advance(1e12, 100000);
+      EXPECT_EQ(collider.counters().overshoots, 0u);
+      collider.set_frame(1.3, 0.04);
+      collider.advance(1e12, 200000);
+      EXPECT_EQ(collider.counters().overshoots, 0u);
+    }
+    auto sys = initial(mix, {1500, 1000}, {1.0, 3.0}, 24);
+    Collider collider(scheme, mix, sys, rng::make_stream(24, 0, rng::Purpose::collisions), 50.0);
+    collider.advance(1e12, 10);  // the first step: exact bounds, a long step ahead
+    collider.set_max_speeds({0.01, 0.01});  // far below the real speeds
+    collider.advance(1e12, 20);
+    EXPECT_GT(collider.counters().overshoots, 0u);
+    EXPECT_GT(collider.counters().largest_acceptance, 1.0);
+  }
+}

@@ -168,6 +168,11 @@ int main(int argc, char** argv) {
                    "%.3g collisions/s, %.1f s\n",
                    path.c_str(), summary.final_time, summary.final_total_temperature,
                    summary.collisions_per_particle, summary.events_per_second, summary.wall_seconds);
+    if (root && summary.acceptance_overshoots > 0.0)
+      std::fprintf(stderr,
+                   "granular-dsmc: warning: %.0f candidates had an acceptance probability above 1 (the bound was "
+                   "not a majorant; see /observables/acceptance_overshoots): please report this input\n",
+                   summary.acceptance_overshoots);
   } catch (const gdsmc::simulation::Interrupted& e) {
     if (root) std::cerr << "\ngranular-dsmc: " << e.what() << "\n";
     return 130;

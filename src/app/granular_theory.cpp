@@ -1,5 +1,6 @@
 // granular-theory: the kinetic-theory predictions for the system of a namelist, as one JSON object
 // on stdout (INTERFACE.md "granular-theory JSON keys").
+#include <array>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -35,7 +36,8 @@ const char* kUsage =
     "                       species, constant restitution (T = sum_k n_k T_k/n; theory/sonine_mixture.hpp)\n"
     "  approximations       {key: \"maxwellian\" | \"first_sonine\" | ...} behind every key printed\n"
     "  shear_viscosity_ratio {hcs, hss} eta/eta_0 in first Sonine (seed 004, ERRATA §10, §13): one species\n"
-    "                       (dilute or Enskog), dilute binary mixtures (over the elastic mixture value)\n"
+    "                       (dilute or Enskog), binary mixtures (over the elastic mixture value)\n"
+    "  shear_viscosity_kinetic_ratio {hcs, hss} its kinetic part, Enskog gases (seed 004 Fig 10)\n"
     "  diffusion_coefficient_ratio  [D_k/D_1] (seed 001 eq 19, ERRATA §8); msd {time, value[t][k]} (eq 17)\n"
     "                       when &output track_displacements = .true. (not with msd_start_temperature)\n"
     "With &agg_frag (ERRATA §12), the Smoluchowski rate equations with Maxwellian kernels instead:\n"
@@ -367,20 +369,34 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
       approximations.emplace_back("tail_decay_rate", "high_velocity_asymptotics_first_sonine");
   }
   // Shear viscosity eta/eta_0 in first Sonine (seed 004, ERRATA §10, §13; theory/viscosity.hpp): one
-  // species, dilute or Enskog; dilute binary mixtures over the elastic mixture value.
-  if (!beta && (s == 1 || (s == 2 && hcs_result && !mix.enskog))) {
+  // species, dilute or Enskog; binary mixtures, dilute or Enskog, over the elastic mixture value. In
+  // the Enskog gas also the kinetic part alone (seed 004 Fig 10).
+  if (!beta && (s == 1 || (s == 2 && hcs_result))) {
     namespace vt = th::viscosity;
     try {
-      auto reduced = [&](vt::State state) {
-        if (s == 2) return vt::binary_viscosity(mix, 1.0, state).reduced;
+      // {total, kinetic} of eta/eta_0
+      auto reduced = [&](vt::State state) -> std::array<double, 2> {
+        if (s == 2) {
+          const auto v = vt::binary_viscosity(mix, 1.0, state);
+          return {v.reduced, v.kinetic / v.elastic};
+        }
         const double alpha = mix.restitution(0, 0);
-        return mix.enskog ? vt::enskog_reduced_viscosity(alpha, mix.packing_fraction(), state).total
-                          : vt::dilute_reduced_viscosity(alpha, state);
+        if (!mix.enskog) {
+          const double eta = vt::dilute_reduced_viscosity(alpha, state);
+          return {eta, eta};
+        }
+        const auto v = vt::enskog_reduced_viscosity(alpha, mix.packing_fraction(), state);
+        return {v.total, v.kinetic};
       };
-      json << ",\n" << in << "\"shear_viscosity_ratio\": {\"hcs\": "
-           << number(reduced(vt::State::homogeneous_cooling)) << ", \"hss\": "
-           << number(reduced(vt::State::gaussian_thermostat)) << "}";
+      const auto hcs_eta = reduced(vt::State::homogeneous_cooling), hss_eta = reduced(vt::State::gaussian_thermostat);
+      json << ",\n" << in << "\"shear_viscosity_ratio\": {\"hcs\": " << number(hcs_eta[0]) << ", \"hss\": "
+           << number(hss_eta[0]) << "}";
       approximations.emplace_back("shear_viscosity_ratio", "first_sonine");
+      if (mix.enskog) {
+        json << ",\n" << in << "\"shear_viscosity_kinetic_ratio\": {\"hcs\": " << number(hcs_eta[1])
+             << ", \"hss\": " << number(hss_eta[1]) << "}";
+        approximations.emplace_back("shear_viscosity_kinetic_ratio", "first_sonine");
+      }
     } catch (const std::exception& e) {
       std::cerr << "granular-theory: shear_viscosity_ratio left out: " << e.what() << "\n";
     }

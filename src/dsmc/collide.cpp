@@ -492,9 +492,11 @@ int Collider::run_majorant(double t_stop, std::uint64_t event_target) {
     to_actual<Framed>(gx, gy, gz);
     const double g2 = gx * gx + gy * gy + gz * gz;
     // Accept with pi sigma^2 chi |g| / B (seed 000 eq 7), compared squared: no root for a rejection.
-    const double threshold = gen_.uniform() * bound_;
     const double cross_section = cross_section_[pair];
-    if (threshold * threshold >= cross_section * cross_section * g2) return false;
+    const double rate2 = cross_section * cross_section * g2;
+    if (rate2 > bound_ * bound_) [[unlikely]] note_overshoot(std::sqrt(rate2) / bound_);
+    const double threshold = gen_.uniform() * bound_;
+    if (threshold * threshold >= rate2) return false;
     double ex, ey, ez;
     if (!hemisphere_normal(gen_, gx, gy, gz, std::sqrt(g2), ex, ey, ez)) return false;
     if constexpr (Framed) {
@@ -536,9 +538,9 @@ int Collider::run_pairs(double t_stop, std::uint64_t event_target) {
     if (shear_rate_ > 0.0) {  // Enskog in shear flow: the shifted relative velocity (set_shear, ERRATA §13)
       const double sigma = contact_[pair];
       const double shifted = g_dot_e - shear_rate_ * sigma * ey * ex;
-      if (shifted <= 0.0 ||
-          gen_.uniform() * ((max_speed_[i] + max_speed_[j]) * speed_factor_ + 0.5 * shear_rate_ * sigma) >= shifted)
-        return false;
+      const double g_max = (max_speed_[i] + max_speed_[j]) * speed_factor_ + 0.5 * shear_rate_ * sigma;
+      if (shifted > g_max) [[unlikely]] note_overshoot(shifted / g_max);
+      if (shifted <= 0.0 || gen_.uniform() * g_max >= shifted) return false;
       const double alpha = alpha_[pair], mf = mass_fraction_[pair];
       const double impulse = (1.0 + alpha) * shifted;
       const double reduced = mix_.mass[i] * mf;  // m_ij
@@ -560,8 +562,9 @@ int Collider::run_pairs(double t_stop, std::uint64_t event_target) {
       return true;
     }
     // Step (2): accept with Theta(g.e) |g.e| / g_max, g_max = vmax_i + vmax_j.
-    if (g_dot_e <= 0.0 || gen_.uniform() * ((max_speed_[i] + max_speed_[j]) * speed_factor_) >= g_dot_e)
-      return false;
+    const double g_max = (max_speed_[i] + max_speed_[j]) * speed_factor_;
+    if (g_dot_e > g_max) [[unlikely]] note_overshoot(g_dot_e / g_max);
+    if (g_dot_e <= 0.0 || gen_.uniform() * g_max >= g_dot_e) return false;
     if constexpr (Framed) {
       collide_in_frame(k, l, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j), ex, ey, ez, g_dot_e,
                        alpha_[pair], mass_fraction_[pair]);
@@ -597,9 +600,12 @@ int Collider::run_lowrank(double t_stop, std::uint64_t event_target) {
     to_actual<Framed>(gx, gy, gz);
     const double g2 = gx * gx + gy * gy + gz * gz;
     // Accept with chi_ik |g| / (chi_max (w_i + w_k)) (seed 001 eq 11 with ERRATA §2), compared squared.
-    const double threshold = gen_.uniform() * chi_max_ * ((max_speed_[i] + max_speed_[k]) * speed_factor_);
+    const double bound = chi_max_ * ((max_speed_[i] + max_speed_[k]) * speed_factor_);
     const double chi = mix_.pair_correlation(i, k);
-    if (threshold * threshold >= chi * chi * g2) return false;
+    const double rate2 = chi * chi * g2;
+    if (rate2 > bound * bound) [[unlikely]] note_overshoot(std::sqrt(rate2) / bound);
+    const double threshold = gen_.uniform() * bound;
+    if (threshold * threshold >= rate2) return false;
     double ex, ey, ez;  // e ~ (g_hat.e) on the hemisphere, as in run_majorant
     if (!hemisphere_normal(gen_, gx, gy, gz, std::sqrt(g2), ex, ey, ez)) return false;
     if constexpr (Framed) {

@@ -184,6 +184,11 @@ struct Counters {
   /// Enskog gas in shear flow (set_shear): sum over accepted collisions of m_kj sigma_kj (1 + alpha)
   /// (g.e) e e, components xx, yy, zz, xy, xz, yz: the collisional transfer (ERRATA §13).
   std::array<double, 6> transfer{};
+  /// Candidates whose acceptance probability came out above 1 (the bound was not a majorant), and the
+  /// largest such probability: an invariant of every scheme, 0 in a correct run (validation/ fails
+  /// otherwise, and the program warns).
+  std::uint64_t overshoots = 0;
+  double largest_acceptance = 0.0;
 };
 
 /// The collision stage of one replica: particles, pair constants, bounds, clock and generator.
@@ -331,6 +336,13 @@ class Collider {
       gy *= frame_scale_;
       gz *= frame_scale_;
     }
+  }
+
+  /// An acceptance probability `p` > 1 (header of Counters::overshoots); kept out of line, it never
+  /// happens in a correct run.
+  [[gnu::cold]] void note_overshoot(double p) {
+    ++counters_.overshoots;
+    counters_.largest_acceptance = std::max(counters_.largest_acceptance, p);
   }
 
   /// A candidate drawn ahead: particles a and b, of species i and k (lowrank; 0 otherwise).

@@ -244,7 +244,8 @@ Snapshot make_snapshot(const particles::System& sys, const collide::Collider& co
   snap.reals["collider/max_speed"] = c.max_speed;
   snap.reals["collider/max_speed2"] = c.max_speed2;
   snap.integers["collider/counters"] = {c.counters.events, c.counters.candidates, c.counters.steps,
-                                        c.pending_next, c.pending_filled, c.generator.has_spare};
+                                        c.pending_next, c.pending_filled, c.generator.has_spare,
+                                        c.counters.overshoots};
   snap.integers["collider/pair_events"] = c.counters.pair_events;
   snap.integers["collider/generator"] = {c.generator.s[0], c.generator.s[1], c.generator.s[2], c.generator.s[3]};
   snap.integers["collider/pending"].assign(c.pending.begin(), c.pending.end());
@@ -319,6 +320,7 @@ void load_snapshot(const Snapshot& snap, particles::System& sys, collide::Collid
   c.pending_next = counters.at(3);
   c.pending_filled = counters.at(4) != 0;
   c.generator.has_spare = counters.at(5) != 0;
+  if (counters.size() > 6) c.counters.overshoots = counters.at(6);
   c.counters.pair_events = snap.integers.at("collider/pair_events");
   for (int k = 0; k < 4; ++k) c.generator.s[k] = generator.at(k);
   const auto& pending = snap.integers.at("collider/pending");
@@ -629,6 +631,8 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
     result.add("sonine_c", s, m.sonine_c);
     result.add("number", s, m.number);
     result.add("collisions", 1, {static_cast<double>(counters.events)});
+    // The kernel's invariant (collide.hpp Counters::overshoots): 0 in a correct run.
+    result.add("acceptance_overshoots", 1, {static_cast<double>(counters.overshoots)});
     result.add("collisions_per_particle", 1,
                {2.0 * static_cast<double>(counters.events) / static_cast<double>(sys.size())});
     result.add("time", 1, {collider.time()});
@@ -870,6 +874,8 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
     result.add("sonine_c", s, m.sonine_c);
     result.add("number", s, m.number);
     result.add("collisions", 1, {static_cast<double>(counters.events)});
+    // The kernel's invariant (collide.hpp Counters::overshoots): 0 in a correct run.
+    result.add("acceptance_overshoots", 1, {static_cast<double>(counters.overshoots)});
     result.add("collisions_per_particle", 1,
                {2.0 * static_cast<double>(counters.events) / static_cast<double>(n_total)});
     if (s <= kMaxPairSpecies) {  // S(S+1)/2 columns: only for mixtures of a few species
@@ -1434,6 +1440,9 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
     summary.final_time = results[k].observables["time"].mean().back();
     summary.final_total_temperature = results[k].observables["total_temperature"].mean().back();
     summary.collisions_per_particle = results[k].observables["collisions_per_particle"].mean().back();
+    if (results[k].observables.count("acceptance_overshoots"))
+      summary.acceptance_overshoots += results[k].observables["acceptance_overshoots"].mean().back() *
+                                       static_cast<double>(points[k].dsmc.replicas);
   }
   if (config.is_sweep()) {
     writer.write_attribute("/sweep", "variable", config.sweep.variable);

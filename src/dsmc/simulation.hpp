@@ -45,6 +45,9 @@ struct Summary {
   double collisions_per_particle = 0.0;
   double wall_seconds = 0.0;
   double events_per_second = 0.0;
+  /// Candidates of all replicas whose acceptance probability exceeded 1 (collide.hpp
+  /// Counters::overshoots; also the observable `acceptance_overshoots`): 0 in a correct run.
+  double acceptance_overshoots = 0.0;
 };
 
 

@@ -60,9 +60,11 @@
  * particles (`materialise`: V = G u + b, with the energy, the mean flow, the moments and the largest
  * speeds) brings the frame back to the identity at every sample and whenever |c| > frame_shear_limit,
  * which keeps the collider's bounds within 2 % of exact (collide.hpp) and the u well conditioned, or
- * S leaves [1/2, 2]. Measured at 2e4 particles: the stage loop ran at 0.35 of the plain loop's
- * collision rate with a pass per stage (60 % of the time in the pass), see the shear_viscosity README
- * for the rate with the frame.
+ * S leaves [1/2, 2]. Measured (validation/shear_viscosity/usf.nml, 2e4 particles, one replica,
+ * t = 8000; farm-bench, CPU seconds, median of 5 runs alternated with the plain elastic loop of the
+ * same gas): collisions per CPU second of the stage loop over those of the plain loop 0.45 with a
+ * pass per stage (60 % of the time in the pass), 0.96 with the frame; bench/bench_usf.cpp measures
+ * the same ratio in one process.
  *
  * Units: the user's. Namelist groups `&thermostat`, `&shear`. Checked by tests/thermostat_test.cpp and
  * validation/shear_viscosity.

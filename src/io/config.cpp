@@ -373,7 +373,10 @@ void read_group(G& target, const std::vector<Field<G>>& fields, const namelist::
   for (const auto& a : group.assignments) {
     if (a.index.empty()) continue;
     std::string key = a.name;
-    for (long long i : a.index) key += "," + std::to_string(i);
+    for (long long i : a.index) {
+      key += ',';
+      key += std::to_string(i);
+    }
     if (const auto it = assigned.find(key); it != assigned.end())
       throw reader.error(a.line, a.name,
                          a.name + " element is assigned twice (also on line " +
@@ -689,8 +692,9 @@ void check_staged(const Config& c, std::map<std::string, Provenance>& prov) {
            what + " cannot run with &agg_frag (the thermostat would feed the clusters' energy back)");
   if (c.system.enskog && c.shear.rate && c.dsmc.scheme != "pairs")
     refuse("dsmc", "scheme",
-           "shear flow in the Enskog gas runs with scheme = 'pairs' (e drawn before the shifted relative velocity "
-           "of ERRATA §13)");
+           "shear flow in the Enskog gas runs with scheme = 'pairs' only: its relative velocity "
+           "g - a sigma e_y x depends on the direction e, which 'majorant' and 'lowrank' draw from g "
+           "(docs/physics.md, shear flow)");
   if (c.system.restitution_model != "constant")
     refuse("system", "restitution_model", what + " runs with restitution_model = 'constant' only");
   if (c.dsmc.scheme == "lowrank" && c.system.n_species > 64)

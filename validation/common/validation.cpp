@@ -58,6 +58,13 @@ Case run_case(int argc, char** argv, const std::string& default_output) {
     std::printf("ran %lld replica(s) x %lld particles: %.4g collisions per particle, %.3g collisions/s, %.1f s\n",
                 c.config.dsmc.replicas, c.config.dsmc.n_particles, summary.collisions_per_particle,
                 summary.events_per_second, summary.wall_seconds);
+    // The kernel's invariant (collide.hpp Counters::overshoots): a candidate accepted with a probability
+    // above 1 means the bound was not a majorant and the rates are wrong, whatever the checks say.
+    if (summary.acceptance_overshoots > 0.0) {
+      std::printf("FAIL acceptance probability above 1 in %.0f candidates (collide.hpp, Counters::overshoots)\n",
+                  summary.acceptance_overshoots);
+      std::exit(1);
+    }
   }
   return c;
 }
