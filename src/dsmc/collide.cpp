@@ -139,7 +139,7 @@ bool Collider::raise_max_speed(std::size_t particle) {
   const std::uint32_t k = s_ > 1 ? sys_.species[particle] : 0;
   const particles::Vec3& v = sys_.v[particle];
   const double v2 = v.x * v.x + v.y * v.y + v.z * v.z;
-  if (!block_first_.empty()) {  // one species in blocks: the bound of the current block
+  if (!block_first_.empty() && !whole_step_) {  // one species in blocks: the bound of the current block
     if (v2 <= block_max_speed2_[current_block_]) return false;
     block_max_speed2_[current_block_] = v2;
     return true;
@@ -172,6 +172,10 @@ Collider::State Collider::state() const {
   st.block_max_speed2 = block_max_speed2_;
   st.block_credit = block_credit_;
   st.step_start = step_start_;
+  st.whole_step = whole_step_;
+  st.step_acceptance = step_acceptance_;
+  st.step_events_start = step_events_start_;
+  st.step_candidates_start = step_candidates_start_;
   st.framed = framed_;
   st.frame_scale = frame_scale_;
   st.frame_shear = frame_shear_;
@@ -196,6 +200,10 @@ void Collider::restore(const State& st) {
   block_max_speed2_ = st.block_max_speed2;
   block_credit_ = st.block_credit;
   step_start_ = st.step_start;
+  whole_step_ = st.whole_step;
+  step_acceptance_ = st.step_acceptance;
+  step_events_start_ = st.step_events_start;
+  step_candidates_start_ = st.step_candidates_start;
   framed_ = st.framed;
   frame_scale_ = st.frame_scale;
   frame_shear_ = st.frame_shear;
@@ -203,6 +211,7 @@ void Collider::restore(const State& st) {
   moments_ = st.moments;
   // What the last rebuild or raise computed (header of State); with blocks each block sets its own.
   if (counters_.steps > 0 && block_first_.empty()) rebuild_bounds();
+  if (counters_.steps > 0 && !block_first_.empty() && whole_step_) set_whole_gas_bound();
   for (std::size_t c = 0; c < lookahead; ++c)
     pending_[c] = {st.pending[4 * c], st.pending[4 * c + 1], st.pending[4 * c + 2], st.pending[4 * c + 3]};
   pending_next_ = st.pending_next;
@@ -252,7 +261,16 @@ double Collider::block_max_speed2(std::size_t j) const {
   return max2;
 }
 
-bool Collider::advance_blocks(double t_target, std::uint64_t event_target) {
+void Collider::set_whole_gas_bound() {
+  // The whole gas as one block (a step near an exact event target, header "Blocks"): B = 2 pi sigma^2
+  // chi vmax over all particles, R = N n B / 2.
+  range_first_ = 0;
+  range_count_ = sys_.size();
+  bound_ = 2.0 * cross_section_[0] * max_speed_[0];
+  rate_ = 0.5 * static_cast<double>(sys_.size()) * mix_.total_density() * bound_;
+}
+
+bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool exact_events) {
   const std::size_t blocks = block_first_.size() - 1;
   const double n_total = static_cast<double>(sys_.size());
   const double n = mix_.total_density();
@@ -261,7 +279,13 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target) {
     if (time_ >= next_step_time_) {
       // Events are checked between steps only: all blocks are then at the same time.
       if (counters_.events >= event_target) return true;
-      if (counters_.steps > 0) remix();
+      if (counters_.steps > 0) {  // the acceptance of the step that ended, for the next decision
+        const auto candidates = counters_.candidates - step_candidates_start_;
+        if (candidates > 0)
+          step_acceptance_ = static_cast<double>(counters_.events - step_events_start_) / static_cast<double>(candidates);
+      }
+      if (whole_step_)  // the whole gas's bound covers every block until their first visit
+        std::fill(block_max_speed2_.begin(), block_max_speed2_.end(), max_speed2_[0]);
       if (counters_.steps == 0)
         for (std::size_t j = 0; j < blocks; ++j) block_max_speed2_[j] = block_max_speed2(j);
       // The step from the largest block bound so far, an upper bound of the gas's vmax (the blocks'
@@ -274,11 +298,53 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target) {
         time_ = t_target;
         return false;
       }
-      const double step = block_steps * step_fraction_ * n_total / (2.0 * rate);
+      double step = block_steps * step_fraction_ * n_total / (2.0 * rate);
+      // Near an exact event target (header "Blocks"): a blocked step is shortened so that its events
+      // (its candidates R dt times the last step's acceptance, plus 10 % and 8 standard deviations)
+      // stay below those left; when that leaves less than N/8 events for it, the step runs on the
+      // whole gas, which stops at the target itself, and is made about 1.5 times as long as the
+      // events left need.
+      whole_step_ = false;
+      if (exact_events && event_target != UINT64_MAX) {
+        const double remaining = static_cast<double>(event_target - counters_.events);
+        const double expected = step_acceptance_ * rate * step;
+        if (!(step_acceptance_ > 0.0)) {
+          whole_step_ = true;  // nothing measured yet: the first step
+        } else if (1.1 * expected + 8.0 * std::sqrt(expected) + 16.0 > remaining) {
+          // the largest mu with 1.1 mu + 8 sqrt(mu) + 16 <= remaining (a quadratic in sqrt(mu))
+          const double root = (-8.0 + std::sqrt(std::max(0.0, 64.0 - 4.4 * (16.0 - remaining)))) / 2.2;
+          const double fits = root > 0.0 ? root * root : 0.0;
+          if (fits >= n_total / 8.0) {
+            step *= fits / expected;
+          } else {
+            whole_step_ = true;
+            step *= std::min(1.0, 1.5 * remaining / expected);
+          }
+        }
+      }
+      if (whole_step_) {
+        recompute_max_speeds();  // exact, O(N): the bound of the whole gas
+        set_whole_gas_bound();
+        credit_ = 0.0;
+        pending_filled_ = false;
+      } else if (counters_.steps > 0) {
+        remix();
+      }
+      step_events_start_ = counters_.events;
+      step_candidates_start_ = counters_.candidates;
       step_start_ = time_;
       next_step_time_ = time_ + step;
       ++counters_.steps;
       counters_.step_sum += step;
+    }
+    if (whole_step_) {
+      const int stop = run_majorant<false>(std::min(t_target, next_step_time_), event_target);
+      if (stop == static_cast<int>(Stop::bound_raised)) {
+        raised_.clear();
+        set_whole_gas_bound();
+      }
+      if (stop == static_cast<int>(Stop::reached_events)) return true;
+      continue;
     }
     const double t_start = time_, t_stop = std::min(t_target, next_step_time_);
     for (std::size_t j = 0; j < blocks; ++j) {
@@ -371,8 +437,8 @@ void Collider::collide_in_frame(std::size_t a, std::size_t b, std::uint32_t k, s
   count_event(k, j);
 }
 
-bool Collider::advance(double t_target, std::uint64_t event_target) {
-  if (!block_first_.empty()) return advance_blocks(t_target, event_target);
+bool Collider::advance(double t_target, std::uint64_t event_target, bool exact_events) {
+  if (!block_first_.empty()) return advance_blocks(t_target, event_target, exact_events);
   while (time_ < t_target) {
     if (counters_.events >= event_target) return true;
     if (time_ >= next_step_time_) {

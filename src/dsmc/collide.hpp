@@ -83,7 +83,15 @@
  * mean free times long (times step_fraction), about one collision per particle, which repays
  * bringing a block into the cache; the block's bound is recomputed exactly at its first visit in a
  * step (a pass in order over the block, which is also what brings it into the cache). Event targets
- * are checked at step ends only, so the simulation uses blocks in time-driven runs only.
+ * are met exactly all the same (collision-driven runs, `collisions_per_particle`): at the start of a
+ * step, when fewer events are left to the target than the step could bring (its candidates R dt times
+ * the acceptance of the last step, plus 10 % and 8 standard deviations), the step is shortened to fit;
+ * when that would leave it fewer than N/8 events, the step runs instead on the whole gas as one
+ * block, with the exact bound of all particles, and stops at the target; the first step of a run,
+ * with no acceptance measured yet, too. The time step only sets when bounds are refreshed and blocks
+ * remixed, so its length may change from step to step without changing the process. Such a step samples the unblocked process exactly, so the
+ * mixture of blocked and whole-gas steps is as unbiased as either. Soft targets (the progress and
+ * checkpoint chunks of the simulation) are checked at step ends only.
  *
  * **Frame** (`set_frame`; the stage loop of thermostat.hpp). A uniform shear flow's streaming and a
  * thermostat's rescaling act on every velocity alike, V -> L V with one linear map L per stage.
@@ -211,10 +219,11 @@ class Collider {
   }
 
   /// Advances until time `t_target` or until `event_target` events, whichever comes first.
-  /// Returns true when the event target stopped it. With blocks, the event target is checked at
-  /// the end of each time step only (all blocks are then at the same time): it may be passed by
-  /// up to one step's events.
-  bool advance(double t_target, std::uint64_t event_target = UINT64_MAX);
+  /// Returns true when the event target stopped it. With blocks and `exact_events`, the steps near
+  /// the event target run on the whole gas and stop at it exactly (header, "Blocks"); without
+  /// `exact_events` (a soft target: a progress or checkpoint chunk) it is checked at the end of
+  /// each blocked step only and may be passed by up to one step's events.
+  bool advance(double t_target, std::uint64_t event_target = UINT64_MAX, bool exact_events = true);
 
   /// The velocities were changed from outside between two advance() calls (the streaming of a
   /// shear flow, a thermostat's rescaling): the largest speeds and the bounds are recomputed
@@ -277,6 +286,9 @@ class Collider {
     bool pending_filled = false;
     std::vector<double> block_max_speed2, block_credit;  ///< with blocks (use_blocks)
     double step_start = 0.0;                             ///< with blocks: when this step began
+    bool whole_step = false;                             ///< with blocks: the step runs on the whole gas
+    double step_acceptance = 0.0;
+    std::uint64_t step_events_start = 0, step_candidates_start = 0;
     bool framed = false;                                 ///< set_frame: the frame and its moments
     double frame_scale = 1.0, frame_shear = 0.0;
     std::array<double, 4> moments{};
@@ -294,7 +306,11 @@ class Collider {
   int run_substep(double t_stop, std::uint64_t event_target, TryCandidate&& try_candidate);
   template <bool Framed>
   int run_majorant(double t_stop, std::uint64_t event_target);  // returns a Stop (collide.cpp)
-  bool advance_blocks(double t_target, std::uint64_t event_target);
+  bool advance_blocks(double t_target, std::uint64_t event_target, bool exact_events);
+  void set_whole_gas_bound();       ///< bound_, rate_ and range of a whole-gas step (with blocks)
+  bool whole_step_ = false;         ///< with blocks: this step runs on the whole gas (near an event target)
+  double step_acceptance_ = 0.0;    ///< with blocks: events per candidate in the last step
+  std::uint64_t step_events_start_ = 0, step_candidates_start_ = 0;  ///< counters at this step's start
   void remix();
   // Blocks (empty block_first_: none). Candidates are drawn in [range_first_, + range_count_).
   std::vector<std::size_t> block_first_;  ///< K + 1 boundaries

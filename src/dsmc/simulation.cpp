@@ -251,7 +251,8 @@ Snapshot make_snapshot(const particles::System& sys, const collide::Collider& co
   snap.integers["collider/pending"].assign(c.pending.begin(), c.pending.end());
   snap.reals["collider/block_max_speed2"] = c.block_max_speed2;
   snap.reals["collider/block_credit"] = c.block_credit;
-  snap.reals["collider/block_step_start"] = {c.step_start};
+  snap.reals["collider/block_step_start"] = {c.step_start, c.step_acceptance};
+  snap.integers["collider/block_mode"] = {c.whole_step, c.step_events_start, c.step_candidates_start};
   snap.reals["collider/transfer"].assign(c.counters.transfer.begin(), c.counters.transfer.end());
   snap.reals["collider/frame"] = {c.framed ? 1.0 : 0.0, c.frame_scale, c.frame_shear,
                                   c.moments[0],         c.moments[1],  c.moments[2], c.moments[3]};
@@ -327,7 +328,16 @@ void load_snapshot(const Snapshot& snap, particles::System& sys, collide::Collid
   c.pending.assign(pending.begin(), pending.end());
   c.block_max_speed2 = snap.reals.at("collider/block_max_speed2");
   c.block_credit = snap.reals.at("collider/block_credit");
-  c.step_start = snap.reals.at("collider/block_step_start").at(0);
+  {
+    const auto& start = snap.reals.at("collider/block_step_start");
+    c.step_start = start.at(0);
+    if (start.size() > 1) c.step_acceptance = start.at(1);
+    if (const auto it = snap.integers.find("collider/block_mode"); it != snap.integers.end() && it->second.size() == 3) {
+      c.whole_step = it->second[0] != 0;
+      c.step_events_start = it->second[1];
+      c.step_candidates_start = it->second[2];
+    }
+  }
   const auto& transfer = snap.reals.at("collider/transfer");
   for (std::size_t q = 0; q < 6; ++q) c.counters.transfer[q] = transfer.at(q);
   if (const auto it = snap.reals.find("collider/frame"); it != snap.reals.end()) {
@@ -813,9 +823,9 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
   // Displacements (seed 001 eq 15) from t = 0, from msd_start_time, or from the first sample
   // with T <= msd_start_temperature. The HCS part: samples past scaling_start collisions per particle.
   const bool track = config.output.track_displacements;
-  // Cache blocks only in time-driven runs: with blocks an event target is met only at the end of a
-  // step (collide.hpp), and collision-driven runs sample at event targets.
-  if (time_driven) collider.use_blocks(static_cast<std::size_t>(config.dsmc.block_size));
+  // Cache blocks (collide.hpp "Blocks"; one species, majorant or lowrank): in collision-driven runs
+  // the steps near each sample's event target run on the whole gas and stop at it exactly.
+  collider.use_blocks(static_cast<std::size_t>(config.dsmc.block_size));
   ReplicaProgress p;
   p.c_sum.assign(s, 0.0);
   p.share_sum.assign(s, 0.0);
@@ -859,7 +869,8 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
     for (;;) {
       const std::uint64_t done = collider.counters().events;
       const std::uint64_t chunk_end = event_target - done > kChunk ? done + kChunk : event_target;
-      const bool stopped_by_events = collider.advance(t_target, chunk_end);
+      // The sample's own target is exact; a chunk's end is soft (blocks may pass it, collide.hpp).
+      const bool stopped_by_events = collider.advance(t_target, chunk_end, chunk_end == event_target);
       if (!stopped_by_events || collider.counters().events >= event_target) break;
       if (options.interrupt && options.interrupt->load()) throw Interrupted();
       report(std::min(fraction_done(collider), 0.999));

@@ -113,7 +113,7 @@ const std::vector<Field<Dsmc>>& dsmc_fields() {
       {"step_fraction", &Dsmc::step_fraction, "",
        "time step (bound refresh) in units of the majorant mean free time", Range{0, 100, true}},
       {"block_size", &Dsmc::block_size, "",
-       "particles per cache block (one species, majorant or lowrank, t_end runs with N >= 2 block_size); "
+       "particles per cache block (one species, majorant or lowrank, N >= 2 block_size); "
        "0: none",
        Range{0, 2e9}},
       {"stage_step", &Dsmc::stage_step, "",
