@@ -407,11 +407,26 @@ Point compare_point(const config::Config& config, const theory::Predictions& p, 
   return pt;
 }
 
-Comparison compare_file(const config::Config& config, const std::string& file) {
+std::vector<PointTheory> predict_points(const config::Config& config) {
+  std::vector<PointTheory> out;
+  for (const auto& point : config.sweep_points()) {
+    PointTheory t;
+    try {
+      t.predictions = theory::predict(point);
+    } catch (const std::exception& e) {  // the theory failed: the table says so instead of failing
+      t.error = e.what();
+    }
+    out.push_back(std::move(t));
+  }
+  return out;
+}
+
+Comparison compare_file(const config::Config& config, const std::string& file, std::vector<PointTheory> theory) {
   Comparison c;
   c.sweep = config.is_sweep();
   c.sweep_variable = config.sweep.variable;
   const auto points = config.sweep_points();
+  if (theory.size() != points.size()) theory = predict_points(config);
   for (std::size_t k = 0; k < points.size(); ++k) {
     std::string root = "/observables";
     if (c.sweep) {
@@ -420,10 +435,14 @@ Comparison compare_file(const config::Config& config, const std::string& file) {
       root += "/observables";
     }
     Point pt;
-    try {
-      pt = compare_point(points[k], theory::predict(points[k]), read_measured(file, root));
-    } catch (const std::exception& e) {  // the theory failed: the table says so instead of failing
-      pt.notes.push_back(std::string("nothing compared: ") + e.what());
+    if (!theory[k].predictions) {
+      pt.notes.push_back("nothing compared: the theory failed: " + theory[k].error);
+    } else {
+      try {
+        pt = compare_point(points[k], *theory[k].predictions, read_measured(file, root));
+      } catch (const std::exception& e) {
+        pt.notes.push_back(std::string("nothing compared: ") + e.what());
+      }
     }
     if (c.sweep) pt.label = config.sweep.variable + " = " + config.sweep.values[k];
     c.points.push_back(std::move(pt));

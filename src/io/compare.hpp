@@ -68,6 +68,7 @@
 
 #include <cstddef>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -149,8 +150,18 @@ double shear_viscosity_known_error(const species::Mixture& mix);
 /// The comparison of one point from its Config, its theory and its measurements (pure).
 Point compare_point(const config::Config& point, const theory::Predictions& theory, const Measured& measured);
 
-/// Every point of `config` (sweep or not) against the file `file` written for it.
-Comparison compare_file(const config::Config& config, const std::string& file);
+/// The theory of one point, or why it could not be computed.
+struct PointTheory {
+  std::optional<theory::Predictions> predictions;
+  std::string error;
+};
+/// theory::predict for every point of `config` (sweep or not). It depends on the input only, so
+/// granular-dsmc computes it in a thread of its own while the run goes on.
+std::vector<PointTheory> predict_points(const config::Config& config);
+
+/// Every point of `config` (sweep or not) against the file `file` written for it; `theory` from
+/// predict_points (computed here when empty).
+Comparison compare_file(const config::Config& config, const std::string& file, std::vector<PointTheory> theory = {});
 
 /// One table row: a quantity's column at one sample (the last of a trajectory).
 struct Row {
