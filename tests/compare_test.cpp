@@ -73,6 +73,7 @@ TEST(CompareMarks, StatisticsApproximationBeyond) {
   EXPECT_EQ(cmp::classify(0.33, 0.1, 0.02), cmp::Mark::beyond);
   EXPECT_EQ(cmp::classify(0.33, 0.1, kNaN), cmp::Mark::beyond_no_estimate);
   EXPECT_EQ(cmp::classify(0.01, kNaN, 0.02), cmp::Mark::approximation);  // one replica: no SE
+  EXPECT_EQ(cmp::classify(0.05, kNaN, 0.02), cmp::Mark::beyond_no_estimate);  // statistics unknown
   EXPECT_EQ(cmp::classify(1e-15, 0.0, 0.0, 1.0), cmp::Mark::statistics);  // round-off of T(0)
   EXPECT_STREQ(cmp::mark_name(cmp::Mark::approximation), "approx");
 }

@@ -295,7 +295,9 @@ Mark classify(double difference, double standard_error, double known_error, doub
   const double statistics = standard_error > 0.0 ? kStatisticalZ * standard_error : 0.0;
   if (d <= statistics || d <= kRoundOff * std::abs(scale)) return Mark::statistics;
   if (!(known_error >= 0.0)) return Mark::beyond_no_estimate;  // NaN: none stated
-  return d <= statistics + known_error ? Mark::approximation : Mark::beyond;
+  if (d <= statistics + known_error) return Mark::approximation;
+  // Without a standard error (one replica) "beyond statistics" cannot be told.
+  return std::isfinite(standard_error) ? Mark::beyond : Mark::beyond_no_estimate;
 }
 
 const char* mark_name(Mark mark) {
@@ -425,6 +427,7 @@ Comparison compare_file(const config::Config& config, const std::string& file, s
   Comparison c;
   c.sweep = config.is_sweep();
   c.sweep_variable = config.sweep.variable;
+  if (c.sweep) c.sweep_values = config.sweep.values;
   const auto points = config.sweep_points();
   if (theory.size() != points.size()) theory = predict_points(config);
   for (std::size_t k = 0; k < points.size(); ++k) {
@@ -566,7 +569,7 @@ std::string table(const Comparison& comparison) {
   char legend[400];
   std::snprintf(legend, sizeof legend,
                 "mark: stat |D-T| <= %g SE; approx within %g SE + the approximation's known error; off beyond both; "
-                "? beyond statistics, no known error stated (docs/physics.md \"Comparison with theory\"). "
+                "? beyond statistics with no known error stated, or beyond the known error with no SE (one replica) (docs/physics.md \"Comparison with theory\"). "
                 "\"at t\": the last sample of a trajectory (every sample is in /comparison), or what a single value "
                 "averages.\n",
                 kStatisticalZ, kStatisticalZ);
@@ -642,7 +645,10 @@ std::string point_json(const Point& pt, const std::string& indent) {
 
 std::string json(const Comparison& comparison) {
   if (!comparison.sweep) return point_json(comparison.points.at(0), "") + "\n";
-  std::string out = "{\n  \"sweep\": {\"variable\": " + quote(comparison.sweep_variable) + "},\n  \"points\": [\n";
+  std::string out = "{\n  \"sweep\": {\"variable\": " + quote(comparison.sweep_variable) + ", \"values\": [";
+  for (std::size_t k = 0; k < comparison.sweep_values.size(); ++k)
+    out += (k ? ", " : "") + quote(comparison.sweep_values[k]);
+  out += "]},\n  \"points\": [\n";
   for (std::size_t k = 0; k < comparison.points.size(); ++k)
     out += (k ? ",\n" : "") + point_json(comparison.points[k], "    ");
   return out + "\n  ]\n}\n";

@@ -51,14 +51,14 @@
  *
  * \section compare_marks Marks
  * d = DSMC - theory, z = d/SE. `stat`: |d| <= 3 SE (within statistics; also |d| <= 1e-12 |theory|,
- * round-off); `approx`: beyond that but
- * |d| <= 3 SE + known error (within the approximation's known error); `off`: beyond both; `?`: beyond
- * statistics and no known error is stated. A trajectory is shown at its last sample, with the count
+ * round-off); `approx`: beyond that but |d| <= 3 SE + known error (within the approximation's known
+ * error); `off`: beyond both; `?`: beyond statistics and no known error is stated, or beyond the known
+ * error and no standard error (one replica). A trajectory is shown at its last sample, with the count
  * of samples of each mark; the file and the JSON hold every sample.
  *
  * \section compare_layout Output
  * `/comparison/<quantity>` (sweeps: `/comparison/point_K/<quantity>`, K from 1) with float64 datasets
- * `value`, `error` (0 when the run has one replica), `theory`, `known_error` (NaN: none stated), shaped
+ * `value`, `error` (NaN when the run has one replica), `theory`, `known_error` (NaN: none stated), shaped
  * [columns] or [samples][columns] (columns = species, or cluster sizes), attributes `approximation`,
  * `known_error_source`, `label`, and `time` (float64 [samples]) for a trajectory; `/comparison@notes`.
  * The JSON holds the same numbers (NaN as null).
@@ -110,6 +110,7 @@ struct Comparison {
   std::vector<Point> points;
   bool sweep = false;
   std::string sweep_variable;
+  std::vector<std::string> sweep_values{};  ///< as written in &sweep values
 };
 
 /// What a run measured, as read from its file: observables by name (relative to the point's
