@@ -17,7 +17,7 @@
  * - &agg_frag runs: the Smoluchowski equations with Maxwellian kernels (smoluchowski.hpp, ERRATA §12).
  * `approximations` names the approximation behind every key, in the order granular-theory prints
  * them; an entry that cannot be evaluated is left out with a note saying why (never an exception).
- * Documentation: docs/physics.md, README.md "granular-theory".
+ * Documentation: docs/physics.md ("Theory", "Comparison with theory").
  */
 #pragma once
 
