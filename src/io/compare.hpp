@@ -62,7 +62,7 @@
  * [columns] or [samples][columns] (columns = species, or cluster sizes), attributes `approximation`,
  * `known_error_source`, `label`, and `time` (float64 [samples]) for a trajectory; `/comparison@notes`.
  * The JSON holds the same numbers (NaN as null).
- * Checked by tests/compare_test.cpp and tests/cli_test.cpp (CliDsmc.Compare*).
+ * Checked by tests/compare_test.cpp and tests/cli_test.cpp (CliCompare.*, CliDsmc.Compare*).
  */
 #pragma once
 
