@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "base_namelist.hpp"
+#include "io/h5md.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -285,6 +286,7 @@ TEST_F(CliDsmc, Help) {
   const Result r = run("granular-dsmc", "--help");
   EXPECT_EQ(r.status, 0);
   EXPECT_NE(r.out.find("usage:"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--compare=F.json"), std::string::npos) << r.out;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -452,6 +454,98 @@ TEST_F(CliDsmc, UnknownOptionOrNoInput) {
   EXPECT_EQ(run("granular-dsmc", "").status, 2);
   EXPECT_EQ(run("granular-dsmc", "t.nml --output").status, 2);
   EXPECT_EQ(files(), std::vector<std::string>{"t.nml"});
+}
+
+// ---------------------------------------------------------------------------------------------
+// granular-dsmc --compare (io/compare.hpp)
+// ---------------------------------------------------------------------------------------------
+
+class CliCompare : public CliFixture {
+ protected:
+  /// examples/haff.nml, made small: 2000 particles x 3 replicas to t = 1500 (about 30 collisions per particle).
+  Result run_small_haff(const std::string& compare_option) {
+    write("haff.nml", read_text(fs::path(GDSMC_EXAMPLES_DIR) / "haff.nml"));
+    return run("granular-dsmc", "haff.nml --quiet --set dsmc:n_particles=2000 --set dsmc:replicas=3 "
+                                "--set dsmc:t_end=1500.0 --output out.h5 " + compare_option);
+  }
+};
+
+TEST_F(CliCompare, HaffTableFileAndJson) {
+  const Result r = run_small_haff("--compare=cmp.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  EXPECT_EQ(files(), (std::vector<std::string>{"cmp.json", "haff.nml", "out.h5"}));
+  expect_no_temporary_file();
+  // The table: a header, Haff T(t) and the collision count (Maxwellian), c (first Sonine), marks.
+  for (const char* text : {"granular-dsmc --compare", "quantity", "+- SE", "theory", "approximation", "(D-T)/SE",
+                           "\nT  ", "collisions/particle", "c_1", "zeta*", "maxwellian", "first_sonine",
+                           "scaling state", "mark: stat"})
+    EXPECT_NE(r.out.find(text), std::string::npos) << "'" << text << "' missing from:\n" << r.out;
+  // The file: /comparison/total_temperature with value, error, theory on the sample times.
+  const std::string h5 = (dir / "out.h5").string();
+  namespace h5md = gdsmc::io::h5md;
+  const auto value = h5md::read_dataset(h5, "/comparison/total_temperature/value");
+  const auto theory = h5md::read_dataset(h5, "/comparison/total_temperature/theory");
+  const auto error = h5md::read_dataset(h5, "/comparison/total_temperature/error");
+  const auto observed = h5md::read_observable(h5, "total_temperature");
+  ASSERT_EQ(value.data.size(), 60u);  // examples/haff.nml: n_samples = 60
+  EXPECT_EQ(value.data, observed.value);
+  EXPECT_EQ(error.data, observed.error);
+  EXPECT_EQ(theory.data.size(), 60u);
+  EXPECT_DOUBLE_EQ(theory.data[0], 1.0);
+  EXPECT_NEAR(theory.data.back() / value.data.back(), 1.0, 0.05);
+  EXPECT_EQ(h5md::read_string_attribute(h5, "/comparison/total_temperature", "approximation"), "maxwellian");
+  const auto time = std::get<std::vector<double>>(h5md::read_attribute(h5, "/comparison/total_temperature", "time"));
+  EXPECT_EQ(time, observed.time);
+  EXPECT_EQ(h5md::read_dataset(h5, "/comparison/sonine_c/value").shape, (std::vector<std::size_t>{1}));
+  EXPECT_EQ(h5md::read_string_attribute(h5, "/comparison/sonine_c", "approximation"), "first_sonine");
+  // The JSON: the same numbers.
+  const std::string json = read_text(dir / "cmp.json");
+  EXPECT_EQ(json.front(), '{');
+  EXPECT_EQ(std::count(json.begin(), json.end(), '{'), std::count(json.begin(), json.end(), '}'));
+  EXPECT_EQ(std::count(json.begin(), json.end(), '['), std::count(json.begin(), json.end(), ']'));
+  EXPECT_NE(json.find("\"total_temperature\": {\"label\": \"T\", \"approximation\": \"maxwellian\""),
+            std::string::npos);
+  char last[64];
+  std::snprintf(last, sizeof last, "%.17g]", value.data.back());
+  EXPECT_NE(json.find(last), std::string::npos) << "final T " << last << " not in the JSON";
+}
+
+TEST_F(CliCompare, TableOnlyAndNoCompareWithoutTheOption) {
+  const Result with = run_small_haff("--compare");
+  ASSERT_EQ(with.status, 0) << with.err;
+  EXPECT_NE(with.out.find("collisions/particle"), std::string::npos) << with.out;
+  EXPECT_EQ(files(), (std::vector<std::string>{"haff.nml", "out.h5"}));
+  const Result without = run_small_haff("");
+  ASSERT_EQ(without.status, 0) << without.err;
+  EXPECT_EQ(without.out, "");
+  EXPECT_THROW(gdsmc::io::h5md::read_dataset((dir / "out.h5").string(), "/comparison/total_temperature/value"),
+               std::runtime_error);
+}
+
+TEST_F(CliDsmc, CompareJsonPathEmpty) {
+  write("t.nml", base());
+  expect_input_error(run("granular-dsmc", "t.nml --quiet --compare="), "granular-dsmc", "--compare=: ",
+                     {"no JSON file named"});
+}
+
+TEST_F(CliDsmc, CompareJsonIsTheInput) {
+  write("t.nml", base());
+  expect_input_error(run("granular-dsmc", "t.nml --quiet --compare=t.nml"), "granular-dsmc", "--compare=t.nml: ",
+                     {"input namelist"});
+  EXPECT_EQ(read_text(dir / "t.nml"), base());
+}
+
+TEST_F(CliDsmc, CompareJsonIsTheOutput) {
+  write("t.nml", base());
+  expect_input_error(run("granular-dsmc", "t.nml --quiet --compare=./out.h5"), "granular-dsmc",
+                     "--compare=./out.h5: ", {"output file"});
+}
+
+TEST_F(CliDsmc, CompareJsonUnwritable) {
+  write("t.nml", base());
+  expect_input_error(run("granular-dsmc", "t.nml --quiet --compare=missing/c.json"), "granular-dsmc",
+                     "--compare=missing/c.json: ", {"cannot write the JSON file"});
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -2,10 +2,13 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <future>
 #include <iostream>
 #include <string>
 #include <system_error>
@@ -13,6 +16,7 @@
 
 #include "dsmc/parallel.hpp"
 #include "dsmc/simulation.hpp"
+#include "io/compare.hpp"
 #include "io/config.hpp"
 #include "io/h5md.hpp"
 #include "io/namelist.hpp"
@@ -35,14 +39,68 @@ bool is_earlier_output(const std::string& path) {
   }
 }
 
+/// Whether two paths name the same file, also when neither exists yet (lexically, after resolving
+/// what exists of them).
+bool same_file(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  if (std::filesystem::equivalent(a, b, ec)) return true;
+  const auto ca = std::filesystem::weakly_canonical(std::filesystem::absolute(a, ec), ec);
+  if (ec) return false;
+  const auto cb = std::filesystem::weakly_canonical(std::filesystem::absolute(b, ec), ec);
+  return !ec && ca == cb;
+}
+
+/// Checks before the run that the --compare=FILE.json path can be written (a probe file beside it,
+/// removed at once); returns the reason it cannot, or "".
+std::string unwritable_reason(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return "it is a directory";
+  const std::string probe = path + ".tmp." + std::to_string(::getpid());
+  std::ofstream out(probe, std::ios::binary);
+  if (!out) return std::strerror(errno);
+  out.close();
+  std::filesystem::remove(probe, ec);
+  return "";
+}
+
+/// Writes `text` to `path` through a temporary file renamed into place; "" or the reason of failure
+/// (the temporary file is removed then).
+std::string write_atomically(const std::string& path, const std::string& text) {
+  const std::string temporary = path + ".tmp." + std::to_string(::getpid());
+  std::error_code ec;
+  {
+    std::ofstream out(temporary, std::ios::binary);
+    out << text;
+    out.flush();
+    if (!out) {
+      const std::string reason = std::strerror(errno);
+      std::filesystem::remove(temporary, ec);
+      return reason;
+    }
+  }
+  std::filesystem::rename(temporary, path, ec);
+  if (ec) {
+    std::filesystem::remove(temporary, ec);
+    return ec.message();
+  }
+  return "";
+}
+
 std::atomic<bool> g_interrupted{false};  // written only by the signal handler
 extern "C" void on_signal(int) { g_interrupted.store(true); }
 
 const char* kUsage =
-    "usage: granular-dsmc FILE.nml [--output PATH] [--quiet] [--restart CHECKPOINT] [--set group:variable=value]...\n"
+    "usage: granular-dsmc FILE.nml [--output PATH] [--quiet] [--compare[=FILE.json]] [--restart CHECKPOINT]\n"
+    "                     [--set group:variable=value]...\n"
     "       granular-dsmc --print-defaults\n"
     "  --output PATH     write the result to PATH (overrides &output file)\n"
     "  --quiet           no progress line\n"
+    "  --compare         end with a table of DSMC (mean +- SE over replicas) against the theory for the\n"
+    "                    input (the values granular-theory prints), the approximation's name and a mark:\n"
+    "                    within statistics, within the approximation's known error, or beyond; the same\n"
+    "                    numbers go to /comparison of the output file (docs/physics.md \"Comparison\n"
+    "                    with theory\")\n"
+    "  --compare=F.json  the same, and the numbers as JSON in F.json\n"
     "  --restart FILE    continue the run saved in checkpoint FILE (see &output checkpoint_every);\n"
     "                    the output is the same as that of an uninterrupted run\n"
     "  --set G:V=X       override variable V of group &G with X (Fortran syntax), e.g.\n"
@@ -63,6 +121,8 @@ int main(int argc, char** argv) {
   bool quiet = false;
   bool force = false;
   std::string restart;
+  bool compare = false;
+  std::string compare_json;  // --compare=FILE.json
   std::string output_option;  // the --output argument and the override it became, for messages
   std::string output_override;
   for (int i = 1; i < argc; ++i) {
@@ -97,6 +157,15 @@ int main(int argc, char** argv) {
       overrides.push_back("output:file='" + quoted + "'");
       output_option = "--output " + path;
       output_override = "--set " + overrides.back();
+    } else if (arg == "--compare") {
+      compare = true;
+    } else if (arg.rfind("--compare=", 0) == 0) {
+      compare = true;
+      compare_json = arg.substr(std::strlen("--compare="));
+      if (compare_json.empty()) {
+        std::cerr << "granular-dsmc: --compare=: no JSON file named (give --compare alone for the table only)\n";
+        return 2;
+      }
     } else if (arg == "--restart") {
       restart = next();
     } else if (arg == "--set") {
@@ -160,8 +229,43 @@ int main(int argc, char** argv) {
       return output_error("'" + path + "' exists and is not an output of granular-dsmc: choose another file, or "
                           "give --force to replace it");
   }
+  // The JSON of --compare: never the input, the output or the checkpoint; writable before the run.
+  if (!compare_json.empty()) {
+    const auto json_error = [&](const std::string& message) {
+      if (root) std::cerr << "granular-dsmc: --compare=" << compare_json << ": " << message << "\n";
+      return 2;
+    };
+    if (same_file(compare_json, input)) return json_error("it is the input namelist: it would be overwritten");
+    if (same_file(compare_json, path)) return json_error("it is the output file of the run (&output file)");
+    if (!restart.empty() && same_file(compare_json, restart)) return json_error("it is the checkpoint given to --restart");
+    if (root)
+      if (const std::string reason = unwritable_reason(compare_json); !reason.empty())
+        return json_error("cannot write the JSON file: " + reason);
+  }
+  // The theory depends on the input only: computed in a thread of its own while the DSMC runs, so
+  // that --compare adds (almost) nothing to the wall time (the ODEs take milliseconds; the Smoluchowski
+  // equations of an &agg_frag run seconds).
+  gdsmc::io::compare::Comparison comparison;
+  std::future<std::vector<gdsmc::io::compare::PointTheory>> theory;
+  if (compare && root) {
+    theory = std::async(std::launch::async, [&config] { return gdsmc::io::compare::predict_points(config); });
+    options.before_commit = [&](gdsmc::io::h5md::Writer& writer) {
+      comparison = gdsmc::io::compare::compare_file(config, writer.temporary_path(), theory.get());
+      gdsmc::io::compare::write(writer, comparison);
+    };
+  }
   try {
     const auto summary = gdsmc::simulation::run(config, path, options);
+    if (compare && root) {
+      std::cout << gdsmc::io::compare::table(comparison) << std::flush;
+      if (!compare_json.empty())
+        if (const std::string reason = write_atomically(compare_json, gdsmc::io::compare::json(comparison));
+            !reason.empty()) {
+          std::cerr << "granular-dsmc: --compare=" << compare_json << ": cannot write the JSON file: " << reason
+                    << " (the run's output " << path << " is complete)\n";
+          return 1;
+        }
+    }
     if (!quiet && root)
       std::fprintf(stderr,
                    "granular-dsmc: wrote %s: t = %.6g, T = %.6g, %.4g collisions per particle, "

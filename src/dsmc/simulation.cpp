@@ -1459,6 +1459,7 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
     writer.write_attribute("/sweep", "variable", config.sweep.variable);
     writer.write_attribute("/sweep", "values", config.sweep.values);
   }
+  if (options.before_commit) options.before_commit(writer);
   writer.commit();
   checkpoints.remove();  // the run is complete: its checkpoint is stale
 

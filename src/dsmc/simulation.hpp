@@ -26,6 +26,7 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 #include <string>
 
 #include "io/config.hpp"
@@ -36,6 +37,9 @@ struct Options {
   bool progress = false;                         ///< progress line on stderr
   const std::atomic<bool>* interrupt = nullptr;  ///< set by a signal handler: stop, write nothing
   std::string restart_path;                      ///< continue from this checkpoint (empty: from the start)
+  /// Called on rank 0 when the file is complete, just before it is committed: may add groups (the
+  /// /comparison of --compare, io/compare.hpp) and read the file back under writer.temporary_path().
+  std::function<void(io::h5md::Writer&)> before_commit;
 };
 
 /// What the run measured, as written to the file (for the caller's summary).

@@ -334,7 +334,12 @@ std::string parent_directory(const std::string& path) {
 Handle open_for_reading(const std::string& file) {
   std::error_code ec;
   if (!fs::exists(file, ec)) throw std::runtime_error("no such file");
-  return make(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "H5Fopen", file);
+  // The writer's close degree (file_access), so that a file a Writer of this process still has open
+  // (its temporary file, read back by --compare before the commit) can be opened again: HDF5 refuses
+  // a second open with another degree. Objects are closed before the file in every reader.
+  Handle fapl = make(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate(H5P_FILE_ACCESS)", file);
+  check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), "H5Pset_fclose_degree", file);
+  return make(H5Fopen(file.c_str(), H5F_ACC_RDONLY, fapl.get()), H5Fclose, "H5Fopen", file);
 }
 
 std::vector<std::size_t> extent(hid_t space, const std::string& where, hssize_t& count) {
@@ -613,6 +618,11 @@ void Writer::write_attribute(const std::string& object_path, const std::string& 
         make(H5Oopen(file, object_path.c_str(), H5P_DEFAULT), H5Oclose, "H5Oopen", object_path);
     put_value(object.get(), object_path, name, value, true);
   });
+}
+
+void Writer::write_group(const std::string& path) {
+  const hid_t file = impl_->open_file();
+  with_context(impl_->context(), [&] { ensure_group(file, path); });
 }
 
 void Writer::write_dataset(const std::string& path, const std::vector<double>& data,

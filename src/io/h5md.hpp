@@ -106,6 +106,9 @@ class Writer {
     write_attribute(object_path, name, ParameterValue(std::string(value)));
   }
 
+  /// Group at absolute `path` (and its parents), if it does not exist yet.
+  void write_group(const std::string& path);
+
   /// Plain float64 dataset at absolute `path`, creating intermediate groups. An empty shape means
   /// 1-D of data.size(); otherwise the product of shape must equal data.size().
   void write_dataset(const std::string& path, const std::vector<double>& data,

@@ -1,0 +1,691 @@
+// granular-dsmc --compare: DSMC beside theory (compare.hpp). The theory values come from
+// theory::predict, the known errors from the estimates listed in compare.hpp \ref compare_known
+// (docs/physics.md "Comparison with theory").
+#include "io/compare.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "theory/theory.hpp"
+
+namespace gdsmc::io::compare {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// First Sonine's own error: 15 % of a first-Sonine correction or cumulant (ERRATA §6: 9-14 %).
+constexpr double kFirstSonineShare = 0.15;
+/// T_k/T in first Sonine: binary 0.2 % (ERRATA §6: 0.1 % against exact DSMC at mu = 10);
+/// three or more species 0.4 % (issue 17: independent work, ternary, 0.1-0.4 %).
+constexpr double kRatioErrorBinary = 0.002;
+constexpr double kRatioErrorMany = 0.004;
+/// Stage splitting of &shear runs at the default stage_step 0.125: +0.33 % of eta (validation/shear_viscosity).
+constexpr double kStageBias = 0.0033;
+
+const char* kMaxwellianOdeSource =
+    "docs/physics.md Known limits: Maxwellian rates omit first-Sonine corrections (3/16)|a2| (ERRATA §3), "
+    "integrated over ln T, plus 15 % (ERRATA §6)";
+const char* kNone = "none stated";
+
+std::string species_label(const std::string& label, std::size_t k) {  // k: 0-based index
+  const std::string key = "{k}";
+  const auto at = label.find(key);
+  if (at == std::string::npos) return label;
+  std::string out = label.substr(0, at);
+  out += std::to_string(k + 1);
+  out += label.substr(at + key.size());
+  return out;
+}
+
+std::vector<double> errors_or_nan(const h5md::ObservableData& o) {
+  return o.error.empty() ? std::vector<double>(o.value.size(), kNaN) : o.error;
+}
+
+std::size_t columns_of(const h5md::ObservableData& o) { return o.shape.size() > 1 ? o.shape[1] : 1; }
+
+/// The scaling-state quantities (T_k/T, c_k, zeta*) of a free-cooling or thermostatted run.
+void add_scaling_state(Point& pt, const config::Config& config, const theory::Predictions& p, const Measured& m) {
+  const auto mix = config.mixture();
+  const std::size_t s = mix.size();
+  for (const char* name : {"temperature", "total_temperature", "sonine_c", "collisions_per_particle"})
+    if (!m.has(name)) {
+      pt.notes.push_back(std::string("scaling state not compared: the file has no observable ") + name);
+      return;
+    }
+  const auto& temperature = m.observables.at("temperature");
+  const auto& total = m.observables.at("total_temperature");
+  const auto& sonine = m.observables.at("sonine_c");
+  const auto& per_particle = m.observables.at("collisions_per_particle").value;
+  const std::size_t nt = total.value.size();
+  const double start = config.output.scaling_start;
+  const auto& fs = *p.hcs_first_sonine;
+  const auto te = errors_or_nan(temperature), tte = errors_or_nan(total), ce = errors_or_nan(sonine);
+  Quantity ratio{"temperature_over_mean", "T_{k}/T", "first_sonine",
+                 s == 2 ? "ERRATA §6: 0.1 % against exact DSMC at mu = 10; allowance 0.2 %"
+                        : "issue 17: independent work, ternary HCS, 0.1-0.4 %; allowance 0.4 %",
+                 {}, s, {}, {}, {}, {}};
+  Quantity cumulant{"sonine_c", "c_{k}", "first_sonine", "ERRATA §6: first Sonine 9-14 % high; allowance 15 %",
+                    {}, s, {}, {}, {}, {}};
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < s; ++k) {
+    std::vector<double> r(nt), re(nt), c(nt), cerr(nt);
+    for (std::size_t i = 0; i < nt; ++i) {
+      const double tk = temperature.value[i * s + k], t = total.value[i];
+      r[i] = tk / t;  // ratio of the replica means (sample.hpp)
+      re[i] = r[i] * std::hypot(te[i * s + k] / tk, tte[i] / t);
+      c[i] = sonine.value[i * s + k];
+      cerr[i] = ce[i * s + k];
+    }
+    const Average ar = scaling_average(r, re, per_particle, start);
+    const Average ac = scaling_average(c, cerr, per_particle, start);
+    count = ar.count;
+    ratio.value.push_back(ar.value);
+    ratio.error.push_back(ar.error);
+    ratio.theory.push_back(fs.temperature_over_mean[k]);
+    ratio.known_error.push_back((s == 2 ? kRatioErrorBinary : kRatioErrorMany) * fs.temperature_over_mean[k]);
+    cumulant.value.push_back(ac.value);
+    cumulant.error.push_back(ac.error);
+    cumulant.theory.push_back(fs.sonine_c[k]);
+    cumulant.known_error.push_back(kFirstSonineShare * std::abs(fs.sonine_c[k]));
+  }
+  if (count == 0) {
+    char text[240];
+    std::snprintf(text, sizeof text,
+                  "scaling state not compared: no sample past scaling_start = %g collisions per particle (the run "
+                  "reaches %.3g)",
+                  start, per_particle.empty() ? 0.0 : per_particle.back());
+    pt.notes.push_back(text);
+    return;
+  }
+  char text[200];
+  std::snprintf(text, sizeof text, "T_k/T, c_k: averages of the %zu samples past scaling_start = %g collisions per "
+                "particle; SE = mean of the samples' SE (an upper bound)", count, start);
+  pt.notes.push_back(text);
+  ratio.at = cumulant.at = "scaling state";
+  if (s > 1) pt.quantities.push_back(std::move(ratio));
+  pt.quantities.push_back(std::move(cumulant));
+  const auto zeta = m.attributes.find("reduced_distribution@cooling_rate_reduced");
+  if (s <= 2 && zeta != m.attributes.end() && p.hcs_maxwellian_cooling_rate_reduced) {
+    const auto zeta_error = m.attributes.find("reduced_distribution@cooling_rate_reduced_error");
+    Quantity q{"cooling_rate_reduced", "zeta*", "first_sonine",
+               "15 % of the first-Sonine correction zeta*_FS - zeta*_M (ERRATA §6)", {}, 1, {zeta->second},
+               {zeta_error == m.attributes.end() ? kNaN : zeta_error->second}, {fs.cooling_rate_reduced},
+               {kFirstSonineShare * std::abs(fs.cooling_rate_reduced - *p.hcs_maxwellian_cooling_rate_reduced)}};
+    q.at = "scaling state";
+    pt.quantities.push_back(std::move(q));
+  }
+}
+
+/// T(t), T_k(t), and the collision count (or the sample times) of a free-cooling run.
+void add_free_cooling(Point& pt, const config::Config& config, const theory::Predictions& p, const Measured& m) {
+  const auto mix = config.mixture();
+  const std::size_t s = mix.size();
+  const std::size_t nt = p.time.size();
+  const bool viscoelastic = config.viscoelastic_beta().has_value();
+  // The ERRATA §3 a2 needs a constant alpha: no estimate for viscoelastic restitution.
+  const std::vector<double> sonine_c = p.hcs_first_sonine ? p.hcs_first_sonine->sonine_c : std::vector<double>{};
+  const double eps = viscoelastic ? kNaN : sonine_rate_error(mix, sonine_c);
+  const double a2_max = eps * 16.0 / 3.0;
+  std::vector<double> ratio_gap(s, 0.0);  // |tau_k^M / tau_k^FS - 1|
+  if (s > 1 && p.hcs_first_sonine && p.hcs_maxwellian_temperature_over_mean)
+    for (std::size_t k = 0; k < s; ++k)
+      ratio_gap[k] =
+          std::abs((*p.hcs_maxwellian_temperature_over_mean)[k] / p.hcs_first_sonine->temperature_over_mean[k] - 1.0);
+  else if (s > 1)
+    ratio_gap.assign(s, kNaN);
+  auto aligned = [&](const std::string& name) -> const h5md::ObservableData* {
+    if (!m.has(name)) return nullptr;
+    const auto& o = m.observables.at(name);
+    if (o.time.size() != nt) {
+      pt.notes.push_back(name + " not compared: the file has " + std::to_string(o.time.size()) +
+                         " samples, the theory " + std::to_string(nt));
+      return nullptr;
+    }
+    return &o;
+  };
+  const double t0 = p.total_temperature.front();
+  if (const auto* o = aligned("total_temperature")) {
+    Quantity q{"total_temperature", "T", "maxwellian", kMaxwellianOdeSource, o->time, 1, o->value, errors_or_nan(*o),
+               p.total_temperature, {}};
+    for (std::size_t i = 0; i < nt; ++i)
+      q.known_error.push_back((1.0 + kFirstSonineShare) * eps * std::abs(std::log(t0 / p.total_temperature[i])) *
+                              p.total_temperature[i]);
+    pt.quantities.push_back(std::move(q));
+  }
+  if (s > 1)
+    if (const auto* o = aligned("temperature")) {
+      Quantity q{"temperature", "T_{k}", "maxwellian",
+                 std::string(kMaxwellianOdeSource) + "; plus 1.15 |tau_k^M/tau_k^FS - 1| (mixtures)", o->time, s,
+                 o->value, errors_or_nan(*o), {}, {}};
+      for (std::size_t i = 0; i < nt; ++i)
+        for (std::size_t k = 0; k < s; ++k) {
+          const double th = p.temperature[i][k], th0 = p.temperature[0][k];
+          q.theory.push_back(th);
+          q.known_error.push_back((1.0 + kFirstSonineShare) * (eps * std::abs(std::log(th0 / th)) + ratio_gap[k]) * th);
+        }
+      pt.quantities.push_back(std::move(q));
+    }
+  // Collisions: the frequency carries (1 - a2/16) and follows a temperature off by eps |ln(T0/T)|.
+  auto collision_error = [&](std::size_t i) {
+    return (1.0 + kFirstSonineShare) * (a2_max / 16.0 + 0.5 * eps * std::abs(std::log(t0 / p.total_temperature[i])));
+  };
+  const std::string collision_source =
+      "collision frequency (1 - a2/16) along T off by eps |ln(T0/T)| (validation/collision_rate), plus 15 %";
+  if (!config.sample_times().empty()) {
+    if (const auto* o = aligned("collisions_per_particle")) {
+      Quantity q{"collisions_per_particle", "collisions/particle", "maxwellian", collision_source, o->time, 1,
+                 o->value, errors_or_nan(*o), p.collisions_per_particle, {}};
+      for (std::size_t i = 0; i < nt; ++i) q.known_error.push_back(collision_error(i) * p.collisions_per_particle[i]);
+      pt.quantities.push_back(std::move(q));
+    }
+  } else if (const auto* o = aligned("time")) {  // collision-driven: when the counts were reached
+    Quantity q{"time", "t", "maxwellian", collision_source, o->time, 1, o->value, errors_or_nan(*o), p.time, {}};
+    for (std::size_t i = 0; i < nt; ++i) q.known_error.push_back(collision_error(i) * p.time[i]);
+    pt.quantities.push_back(std::move(q));
+  }
+}
+
+/// The MSD (seed 001 eq 17) and D_k/D_1 over the last decade of time (validation/diffusion_ratio).
+void add_diffusion(Point& pt, const config::Config& config, const theory::Predictions& p, const Measured& m) {
+  if (!p.msd) {
+    pt.notes.push_back(config.output.msd_start_temperature
+                           ? "msd not compared: it starts at msd_start_temperature, a time the theory does not fix"
+                           : "msd not compared: no theory MSD for this input");
+    return;
+  }
+  if (!m.has("msd")) {
+    pt.notes.push_back("msd not compared: the file has no msd observable");
+    return;
+  }
+  const auto& o = m.observables.at("msd");
+  const std::size_t s = columns_of(o), nt = p.msd->time.size();
+  if (o.time.size() < nt || nt < 2) {
+    pt.notes.push_back("msd not compared: fewer samples in the file than in the theory");
+    return;
+  }
+  const std::size_t first = o.time.size() - nt;  // the samples from msd_start_time on
+  const auto err = errors_or_nan(o);
+  Quantity q{"msd", "<R_{k}^2>", "maxwellian", std::string(kNone) + " (eq 17 is an approximation, ERRATA §8)",
+             {}, s, {}, {}, {}, {}};
+  for (std::size_t i = 0; i < nt; ++i) {
+    q.time.push_back(o.time[first + i]);
+    for (std::size_t k = 0; k < s; ++k) {
+      q.value.push_back(o.value[(first + i) * s + k]);
+      q.error.push_back(err[(first + i) * s + k]);
+      q.theory.push_back(p.msd->value[i][k]);
+      q.known_error.push_back(kNaN);
+    }
+  }
+  if (s > 1) {
+    // D_k/D_1: MSD increments over the last decade of time (seed 001 eqs 17, 19; validation/diffusion_ratio).
+    const std::size_t e = nt - 1;
+    std::size_t a = e;
+    while (a > 1 && q.time[a] > q.time[e] / 10.0) --a;
+    Quantity d{"diffusion_coefficient_ratio", "D_{k}/D_1", "maxwellian",
+               std::string(kNone) + " (eq 17 increments over the last decade of time)", {}, s, {}, {}, {}, {}};
+    const double d1 = q.value[e * s] - q.value[a * s];
+    const double d1_se = std::hypot(q.error[e * s], q.error[a * s]);
+    const double t1 = q.theory[e * s] - q.theory[a * s];
+    d.columns = s - 1;  // k = 2..s
+    d.label_offset = 1;
+    d.at = "last decade";
+    for (std::size_t k = 1; k < s; ++k) {
+      const double dk = q.value[e * s + k] - q.value[a * s + k];
+      const double dk_se = std::hypot(q.error[e * s + k], q.error[a * s + k]);
+      const double ratio = dk / d1;
+      d.value.push_back(ratio);
+      d.error.push_back(std::abs(ratio) * std::hypot(dk_se / dk, d1_se / d1));
+      d.theory.push_back((q.theory[e * s + k] - q.theory[a * s + k]) / t1);
+      d.known_error.push_back(kNaN);
+    }
+    pt.quantities.push_back(std::move(q));
+    pt.quantities.push_back(std::move(d));
+  } else {
+    pt.quantities.push_back(std::move(q));
+  }
+}
+
+/// Cluster populations, mean size and temperature of an &agg_frag run (Smoluchowski, ERRATA §12).
+void add_agg_frag(Point& pt, const theory::Predictions& p, const Measured& m) {
+  const auto& af = *p.agg_frag;
+  const auto& sol = af.solution;
+  const std::size_t nt = sol.time.size(), kt = sol.max_size;
+  const std::string source = std::string(kNone) + " (the closure is exact only at t = 0, ERRATA §12)";
+  auto aligned = [&](const std::string& name) -> const h5md::ObservableData* {
+    if (!m.has(name)) return nullptr;
+    const auto& o = m.observables.at(name);
+    if (o.time.size() != nt) {
+      pt.notes.push_back(name + " not compared: sample counts of file and theory differ");
+      return nullptr;
+    }
+    return &o;
+  };
+  if (const auto* o = aligned("number")) {
+    const std::size_t kd = columns_of(*o), width = std::min(kd, af.width);
+    const auto err = errors_or_nan(*o);
+    Quantity q{"number", "N_{k}", "maxwellian", source, o->time, width, {}, {}, {}, {}};
+    for (std::size_t i = 0; i < nt; ++i)
+      for (std::size_t k = 0; k < width; ++k) {
+        q.value.push_back(o->value[i * kd + k]);
+        q.error.push_back(err[i * kd + k]);
+        q.theory.push_back(sol.number_fraction[i * kt + k] * af.initial_monomers);
+        q.known_error.push_back(kNaN);
+      }
+    pt.quantities.push_back(std::move(q));
+  }
+  auto series = [&](const std::string& name, const std::string& label, const std::vector<double>& theory) {
+    if (const auto* o = aligned(name))
+      pt.quantities.push_back(Quantity{name, label, "maxwellian", source, o->time, 1, o->value, errors_or_nan(*o),
+                                       theory, std::vector<double>(nt, kNaN)});
+  };
+  series("mean_size", "<k>", af.mean_size);
+  series("total_temperature", "T", sol.total_temperature);
+}
+
+}  // namespace
+
+Mark classify(double difference, double standard_error, double known_error, double scale) {
+  const double d = std::abs(difference);
+  const double statistics = standard_error > 0.0 ? kStatisticalZ * standard_error : 0.0;
+  if (d <= statistics || d <= kRoundOff * std::abs(scale)) return Mark::statistics;
+  if (!(known_error >= 0.0)) return Mark::beyond_no_estimate;  // NaN: none stated
+  if (d <= statistics + known_error) return Mark::approximation;
+  // Without a standard error (one replica) "beyond statistics" cannot be told.
+  return std::isfinite(standard_error) ? Mark::beyond : Mark::beyond_no_estimate;
+}
+
+const char* mark_name(Mark mark) {
+  switch (mark) {
+    case Mark::statistics: return "stat";
+    case Mark::approximation: return "approx";
+    case Mark::beyond: return "off";
+    case Mark::beyond_no_estimate: return "?";
+  }
+  return "?";
+}
+
+Average scaling_average(const std::vector<double>& value, const std::vector<double>& error,
+                        const std::vector<double>& collisions_per_particle, double start) {
+  Average a;
+  for (std::size_t i = 0; i < value.size() && i < collisions_per_particle.size(); ++i) {
+    if (collisions_per_particle[i] < start) continue;
+    a.value += value[i];
+    a.error += i < error.size() ? error[i] : kNaN;
+    ++a.count;
+  }
+  if (a.count > 0) {
+    a.value /= static_cast<double>(a.count);
+    a.error /= static_cast<double>(a.count);
+  }
+  return a;
+}
+
+double sonine_rate_error(const species::Mixture& mix, const std::vector<double>& sonine_c) {
+  // docs/physics.md "Known limits": the Maxwellian rates omit (3/16)|a2| (ERRATA §3); largest over the
+  // pairs and over the species' first-Sonine a2 = c_k/2 (validation/polydisperse).
+  double a2 = 0.0;
+  for (double alpha : mix.restitution.values) a2 = std::max(a2, std::abs(theory::sonine_a2(alpha)));
+  for (double c : sonine_c) a2 = std::max(a2, 0.5 * std::abs(c));
+  return 3.0 / 16.0 * a2;
+}
+
+double shear_viscosity_known_error(const species::Mixture& mix) {
+  if (mix.enskog) return kNaN;  // no independent estimate at finite density (validation/shear_viscosity)
+  double alpha_min = 1.0;
+  for (double a : mix.restitution.values) alpha_min = std::min(alpha_min, a);
+  if (mix.size() == 1) {
+    // ERRATA §13 and Chapman-Cowling: 1.6 % for alpha >= 0.75, linear to 2.8 % at alpha = 0.6.
+    const double first = alpha_min >= 0.75 ? 0.016
+                         : alpha_min <= 0.6 ? 0.028
+                                            : 0.016 + (0.75 - alpha_min) / 0.15 * (0.028 - 0.016);
+    return first + kStageBias;
+  }
+  if (mix.size() == 2 && alpha_min >= 0.85) return 0.01 + kStageBias;  // ERRATA §13, mass ratio 3
+  return kNaN;
+}
+
+Measured read_measured(const std::string& file, const std::string& root) {
+  Measured m;
+  for (const char* name : {"total_temperature", "temperature", "sonine_c", "collisions_per_particle", "time", "msd",
+                           "number", "mean_size"}) {
+    try {
+      m.observables.emplace(name, h5md::read_observable(file, root + "/" + name));
+    } catch (const std::runtime_error&) {
+      // not written for this kind of run
+    }
+  }
+  if (m.observables.empty()) throw std::runtime_error("cannot read the observables of '" + file + "' under " + root);
+  for (const auto& [group, name] : std::vector<std::pair<std::string, std::string>>{
+           {"reduced_distribution", "cooling_rate_reduced"},
+           {"reduced_distribution", "cooling_rate_reduced_error"},
+           {"shear_viscosity", "time_average"},
+           {"shear_viscosity", "time_average_error"}}) {
+    try {
+      m.attributes[group + "@" + name] = h5md::read_double_attribute(file, root + "/" + group, name);
+    } catch (const std::runtime_error&) {
+    }
+  }
+  return m;
+}
+
+Point compare_point(const config::Config& config, const theory::Predictions& p, const Measured& m) {
+  Point pt;
+  for (const auto& note : p.notes) pt.notes.push_back("theory: " + note);
+  if (p.agg_frag) {
+    add_agg_frag(pt, p, m);
+  } else {
+    if (p.has_history) add_free_cooling(pt, config, p, m);
+    const bool hss = config.thermostat.kind == "gaussian" && !config.shear.rate;
+    if ((!config.staged() || hss) && p.hcs_first_sonine) add_scaling_state(pt, config, p, m);
+    if (config.output.track_displacements) add_diffusion(pt, config, p, m);
+    if (config.shear.rate) {
+      const auto eta = m.attributes.find("shear_viscosity@time_average");
+      if (config.thermostat.kind != "gaussian") {
+        pt.notes.push_back("shear_viscosity not compared: the theory is that of the thermostatted state (HSS); "
+                           "this &shear run has no Gaussian thermostat");
+      } else if (!p.shear_viscosity_hss) {
+        pt.notes.push_back("shear_viscosity not compared: no viscosity theory for this mixture");
+      } else if (eta != m.attributes.end()) {
+        const auto eta_error = m.attributes.find("shear_viscosity@time_average_error");
+        const double known = shear_viscosity_known_error(config.mixture());
+        pt.quantities.push_back(Quantity{
+            "shear_viscosity", "eta/eta_0", "first_sonine",
+            "ERRATA §13, Chapman-Cowling (validation/shear_viscosity), plus 0.33 % stage splitting", {}, 1,
+            {eta->second}, {eta_error == m.attributes.end() ? kNaN : eta_error->second}, {*p.shear_viscosity_hss},
+            {known * *p.shear_viscosity_hss}, "time average"});
+      }
+    }
+    if (p.binary_hcs)
+      pt.notes.push_back("tail exponents not compared: the file holds no measured exponent "
+                         "(reduced_distribution/species_k@tail_beta is the theory's beta_k, seed 003 eq 20)");
+  }
+  if (pt.quantities.empty()) pt.notes.push_back("no theory applies to this input: nothing compared");
+  return pt;
+}
+
+std::vector<PointTheory> predict_points(const config::Config& config) {
+  std::vector<PointTheory> out;
+  for (const auto& point : config.sweep_points()) {
+    PointTheory t;
+    try {
+      t.predictions = theory::predict(point);
+    } catch (const std::exception& e) {  // the theory failed: the table says so instead of failing
+      t.error = e.what();
+    }
+    out.push_back(std::move(t));
+  }
+  return out;
+}
+
+Comparison compare_file(const config::Config& config, const std::string& file, std::vector<PointTheory> theory) {
+  Comparison c;
+  c.sweep = config.is_sweep();
+  c.sweep_variable = config.sweep.variable;
+  if (c.sweep) c.sweep_values = config.sweep.values;
+  const auto points = config.sweep_points();
+  if (theory.size() != points.size()) theory = predict_points(config);
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    std::string root = "/observables";
+    if (c.sweep) {
+      root = "/sweep/point_";
+      root += std::to_string(k + 1);
+      root += "/observables";
+    }
+    Point pt;
+    if (!theory[k].predictions) {
+      pt.notes.push_back("nothing compared: the theory failed: " + theory[k].error);
+    } else {
+      try {
+        pt = compare_point(points[k], *theory[k].predictions, read_measured(file, root));
+      } catch (const std::exception& e) {
+        pt.notes.push_back(std::string("nothing compared: ") + e.what());
+      }
+    }
+    if (c.sweep) pt.label = config.sweep.variable + " = " + config.sweep.values[k];
+    c.points.push_back(std::move(pt));
+  }
+  return c;
+}
+
+std::vector<Row> rows(const Comparison& comparison) {
+  std::vector<Row> out;
+  for (const auto& pt : comparison.points)
+    for (const auto& q : pt.quantities) {
+      const std::size_t n = q.samples(), last = n - 1;
+      for (std::size_t k = 0; k < q.columns; ++k) {
+        Row r;
+        r.point = pt.label;
+        r.name = q.name;
+        r.quantity = species_label(q.label, k + q.label_offset);
+        r.at = q.at;
+        r.trajectory = !q.time.empty();
+        r.time = r.trajectory ? q.time[last] : 0.0;
+        const std::size_t at = last * q.columns + k;
+        r.value = q.value[at];
+        r.error = q.error[at];
+        r.theory = q.theory[at];
+        r.known_error = q.known_error[at];
+        r.approximation = q.approximation;
+        const double d = r.value - r.theory;
+        r.z = r.error > 0.0 ? d / r.error : kNaN;
+        r.percent = r.theory != 0.0 ? 100.0 * d / r.theory : kNaN;
+        r.mark = classify(d, r.error, r.known_error, r.theory);
+        if (r.trajectory)
+          for (std::size_t i = 0; i < n; ++i) {
+            const std::size_t j = i * q.columns + k;
+            ++r.counts[static_cast<int>(classify(q.value[j] - q.theory[j], q.error[j], q.known_error[j], q.theory[j]))];
+          }
+        out.push_back(std::move(r));
+      }
+    }
+  return out;
+}
+
+namespace {
+
+std::string format(const char* spec, double x) {
+  if (std::isnan(x)) return "-";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, spec, x);
+  return buf;
+}
+
+/// Pads the columns of `cells` (rows of strings) to a common width, two spaces apart.
+std::string aligned_table(const std::vector<std::vector<std::string>>& cells) {
+  std::vector<std::size_t> width;
+  for (const auto& row : cells)
+    for (std::size_t c = 0; c < row.size(); ++c) {
+      if (width.size() <= c) width.push_back(0);
+      width[c] = std::max(width[c], row[c].size());
+    }
+  std::string out;
+  for (const auto& row : cells) {
+    std::string line;
+    for (std::size_t c = 0; c < row.size(); ++c) {
+      line += row[c];
+      if (c + 1 < row.size()) line += std::string(width[c] - row[c].size() + 2, ' ');
+    }
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    out += line + "\n";
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string table(const Comparison& comparison) {
+  std::string out = "granular-dsmc --compare: DSMC (mean +- SE over replicas) against theory\n";
+  std::vector<std::vector<std::string>> cells;
+  std::vector<std::string> header;
+  if (comparison.sweep) header.push_back("point");
+  for (const char* h : {"quantity", "at t", "DSMC", "+- SE", "theory", "approximation", "(D-T)/SE", "(D-T)/T %",
+                        "mark", "samples (stat/approx/off/?)"})
+    header.push_back(h);
+  cells.push_back(header);
+  std::vector<std::string> cut;  // quantities with more columns than the table shows
+  for (const auto& pt : comparison.points)
+    for (const auto& q : pt.quantities)
+      if (q.columns > kTableColumns)
+        cut.push_back((pt.label.empty() ? "" : pt.label + ": ") + species_label(q.label, kTableColumns + q.label_offset) +
+                      " to " + species_label(q.label, q.columns - 1 + q.label_offset) + " are in /comparison/" + q.name +
+                      " and the JSON, not in this table");
+  std::size_t column = 0;
+  std::string previous;
+  for (const auto& r : rows(comparison)) {
+    const std::string key = r.point + "\n" + r.name;
+    column = key == previous ? column + 1 : 0;
+    previous = key;
+    if (column >= kTableColumns) continue;
+    std::vector<std::string> row;
+    if (comparison.sweep) row.push_back(r.point);
+    row.push_back(r.quantity);
+    row.push_back(r.trajectory ? format("%.6g", r.time) : r.at);
+    row.push_back(format("%.6g", r.value));
+    row.push_back(format("%.2g", r.error));
+    row.push_back(format("%.6g", r.theory));
+    row.push_back(r.approximation);
+    row.push_back(format("%+.1f", r.z));
+    row.push_back(format("%+.3f", r.percent));
+    row.push_back(mark_name(r.mark));
+    if (r.trajectory) {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%zu/%zu/%zu/%zu", r.counts[0], r.counts[1], r.counts[2], r.counts[3]);
+      row.push_back(buf);
+    } else {
+      row.push_back("");
+    }
+    cells.push_back(std::move(row));
+  }
+  if (cells.size() > 1) out += aligned_table(cells);
+  for (const auto& text : cut) out += "note: " + text + "\n";
+  for (const auto& pt : comparison.points)
+    for (const auto& note : pt.notes) out += "note: " + (pt.label.empty() ? "" : pt.label + ": ") + note + "\n";
+  char legend[400];
+  std::snprintf(legend, sizeof legend,
+                "mark: stat |D-T| <= %g SE; approx within %g SE + the approximation's known error; off beyond both; "
+                "? beyond statistics with no known error stated, or beyond the known error with no SE (one replica) (docs/physics.md \"Comparison with theory\"). "
+                "\"at t\": the last sample of a trajectory (every sample is in /comparison), or what a single value "
+                "averages.\n",
+                kStatisticalZ, kStatisticalZ);
+  out += legend;
+  return out;
+}
+
+namespace {
+
+std::string number(double x) {
+  if (!std::isfinite(x)) return "null";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+std::string quote(const std::string& text) {
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (c == '\n') {
+      out += "\\n";
+      continue;
+    }
+    out += c;
+  }
+  return out + "\"";
+}
+
+/// [v, ...] or, for a trajectory with several columns, [[...], ...].
+std::string values(const Quantity& q, const std::vector<double>& v) {
+  std::string out = "[";
+  const bool nested = !q.time.empty() && q.columns > 1;
+  for (std::size_t i = 0; i < q.samples(); ++i) {
+    if (nested) out += (i ? ", [" : "[");
+    for (std::size_t k = 0; k < q.columns; ++k) {
+      const std::size_t at = i * q.columns + k;
+      out += ((nested ? k : at) ? ", " : "") + number(v[at]);
+    }
+    if (nested) out += "]";
+  }
+  return out + "]";
+}
+
+std::string point_json(const Point& pt, const std::string& indent) {
+  std::ostringstream j;
+  const std::string in = indent + "  ";
+  j << indent << "{\n";
+  if (!pt.label.empty()) j << in << "\"point\": " << quote(pt.label) << ",\n";
+  j << in << "\"quantities\": {";
+  for (std::size_t n = 0; n < pt.quantities.size(); ++n) {
+    const auto& q = pt.quantities[n];
+    j << (n ? "," : "") << "\n" << in << "  " << quote(q.name) << ": {\"label\": " << quote(q.label)
+      << ", \"approximation\": " << quote(q.approximation) << ", \"known_error_source\": "
+      << quote(q.known_error_source) << ", \"columns\": " << q.columns;
+    if (q.label_offset) j << ", \"first_column\": " << q.label_offset + 1;
+    if (!q.at.empty()) j << ", \"at\": " << quote(q.at);
+    if (!q.time.empty()) {
+      std::string t = "[";
+      for (std::size_t i = 0; i < q.time.size(); ++i) t += (i ? ", " : "") + number(q.time[i]);
+      j << ", \"time\": " << t << "]";
+    }
+    j << ", \"value\": " << values(q, q.value) << ", \"error\": " << values(q, q.error)
+      << ", \"theory\": " << values(q, q.theory) << ", \"known_error\": " << values(q, q.known_error) << "}";
+  }
+  j << (pt.quantities.empty() ? "" : "\n" + in) << "},\n" << in << "\"notes\": [";
+  for (std::size_t n = 0; n < pt.notes.size(); ++n) j << (n ? ", " : "") << quote(pt.notes[n]);
+  j << "]\n" << indent << "}";
+  return j.str();
+}
+
+}  // namespace
+
+std::string json(const Comparison& comparison) {
+  if (!comparison.sweep) return point_json(comparison.points.at(0), "") + "\n";
+  std::string out = "{\n  \"sweep\": {\"variable\": " + quote(comparison.sweep_variable) + ", \"values\": [";
+  for (std::size_t k = 0; k < comparison.sweep_values.size(); ++k)
+    out += (k ? ", " : "") + quote(comparison.sweep_values[k]);
+  out += "]},\n  \"points\": [\n";
+  for (std::size_t k = 0; k < comparison.points.size(); ++k)
+    out += (k ? ",\n" : "") + point_json(comparison.points[k], "    ");
+  return out + "\n  ]\n}\n";
+}
+
+void write(h5md::Writer& writer, const Comparison& comparison) {
+  writer.write_group("/comparison");
+  writer.write_attribute("/comparison", "description",
+                         "DSMC against theory (granular-dsmc --compare; src/io/compare.hpp, docs/physics.md "
+                         "\"Comparison with theory\")");
+  for (std::size_t p = 0; p < comparison.points.size(); ++p) {
+    const Point& pt = comparison.points[p];
+    std::string base = "/comparison";
+    if (comparison.sweep) {
+      base += "/point_";
+      base += std::to_string(p + 1);
+      writer.write_group(base);
+      writer.write_attribute(base, "point", pt.label);
+    }
+    if (!pt.notes.empty()) writer.write_attribute(base, "notes", pt.notes);
+    for (const auto& q : pt.quantities) {
+      const std::string g = base + "/" + q.name;
+      std::vector<std::size_t> shape;
+      if (!q.time.empty()) shape.push_back(q.time.size());
+      if (q.time.empty() || q.columns > 1) shape.push_back(q.columns);
+      writer.write_dataset(g + "/value", q.value, shape);
+      writer.write_dataset(g + "/error", q.error, shape);
+      writer.write_dataset(g + "/theory", q.theory, shape);
+      writer.write_dataset(g + "/known_error", q.known_error, shape);
+      writer.write_attribute(g, "approximation", q.approximation);
+      writer.write_attribute(g, "known_error_source", q.known_error_source);
+      writer.write_attribute(g, "label", q.label);
+      if (q.label_offset) writer.write_attribute(g, "first_column", static_cast<long long>(q.label_offset + 1));
+      if (!q.at.empty()) writer.write_attribute(g, "at", q.at);
+      if (!q.time.empty()) writer.write_attribute(g, "time", q.time);
+    }
+  }
+}
+
+}  // namespace gdsmc::io::compare

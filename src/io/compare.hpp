@@ -1,0 +1,187 @@
+/**
+ * \file compare.hpp
+ * \brief `granular-dsmc --compare`: the DSMC results of a finished run beside the theory for the same
+ *        input, as a table on stdout, the group /comparison of the output file and (optionally) JSON.
+ *
+ * \section compare_what What is compared
+ * The theory values are those of theory::predict (theory/predictions.hpp), i.e. exactly what
+ * `granular-theory` prints for the namelist; the DSMC values are read back from the H5MD file the run
+ * wrote (mean +- standard error over replicas, sample.hpp). Per run, or per sweep point:
+ * - free cooling (no &thermostat, &shear, &agg_frag): `total_temperature` T(t) and `temperature`
+ *   T_k(t) (Maxwellian ODEs, ERRATA §3-§4: Haff's law for one species), `collisions_per_particle`
+ *   on the sample times (time-driven runs) or the sample `time` at the collision counts
+ *   (collision-driven runs);
+ * - the scaling state (samples past `&output scaling_start` collisions per particle, averaged), free
+ *   cooling or Gaussian thermostat without shear (the HSS has the HCS ratios and c_k, ERRATA §13):
+ *   `temperature_over_mean` T_k/T (mixtures) and `sonine_c` c_k (first Sonine, any number of species,
+ *   sonine_mixture.hpp; seed 003 App. A, ERRATA §6), `cooling_rate_reduced` (one or two species, the
+ *   reduced_distribution attributes of the file);
+ * - with &output track_displacements: `msd` <R_k^2>(t) (seed 001 eq 17, ERRATA §8) and, for mixtures,
+ *   `diffusion_coefficient_ratio` D_k/D_1 as the ratio of the MSD increments over the last decade of
+ *   time (as validation/diffusion_ratio; eq 17 for the theory over the same interval);
+ * - &agg_frag: `number` N_k(t) (cluster populations, the sizes theory tracks), `mean_size`,
+ *   `total_temperature` (Smoluchowski equations, smoluchowski.hpp, ERRATA §12);
+ * - &shear with the Gaussian thermostat: `shear_viscosity` eta/eta_0, its time average from
+ *   average_from, against the HSS first-Sonine value (viscosity.hpp; seed 004, ERRATA §10, §13).
+ * Anything else (e.g. tail exponents: the file holds no measured exponent) is listed in the notes,
+ * and a run with no applicable theory gives a table that says so.
+ *
+ * \section compare_known Known error of each approximation (docs/physics.md "Comparison with theory")
+ * An independent estimate of how far the approximation is from the exact kinetic theory, as an
+ * absolute error of the theory value; NaN where none exists. With eps = (3/16) max(max_ij
+ * |a2(alpha_ij)|, max_k |c_k|/2) (docs/physics.md "Known limits": the Maxwellian ODEs omit first-Sonine
+ * rate corrections of that relative size; a2 of van Noije and Ernst, ERRATA §3; in a mixture the
+ * first-Sonine c_k of sonine_mixture.hpp, c = 2 a2, are larger than any a2(alpha), as in
+ * validation/polydisperse) and 15 % for first Sonine's own error (ERRATA §6:
+ * the first-Sonine cumulant is 9-14 % high):
+ * - T(t), T_k(t): 1.15 eps |ln(T(0)/T(t))| relative (the rate error integrated over ln T, as the
+ *   polydisperse validation); T_k(t) of mixtures adds 1.15 |tau_k^M/tau_k^FS - 1| (the Maxwellian
+ *   against the first-Sonine HCS ratios);
+ * - collisions per particle and the sample times of collision-driven runs: 1.15 (|a2|/16 + eps/2
+ *   |ln(T(0)/T(t))|) relative (collision frequency (1 - a2/16) along a temperature off by the above;
+ *   validation/collision_rate);
+ * - T_k/T, first Sonine: 0.2 % for two species (ERRATA §6: 0.1 % from exact DSMC at mu = 10), 0.4 %
+ *   for more (issue 17: independent work puts the s-species theory within 0.1-0.4 % for a ternary);
+ * - c_k, first Sonine: 15 % (ERRATA §6); cooling_rate_reduced: 0.15 |zeta*_FS - zeta*_M|;
+ * - shear viscosity, HSS first Sonine: one dilute species 1.6 % (alpha >= 0.75) to 2.8 % (alpha <= 0.6)
+ *   (ERRATA §13 and Chapman-Cowling, validation/shear_viscosity), dilute binary 1 % for alpha >= 0.85
+ *   (ERRATA §13); plus 0.33 % stage-splitting bias at the default stage_step;
+ * - MSD, D_k/D_1 (eq 17: ERRATA §8 gives no general bound) and the Smoluchowski closure (exact only
+ *   at t = 0, ERRATA §12): none stated (NaN).
+ *
+ * \section compare_marks Marks
+ * d = DSMC - theory, z = d/SE. `stat`: |d| <= 3 SE (within statistics; also |d| <= 1e-12 |theory|,
+ * round-off); `approx`: beyond that but |d| <= 3 SE + known error (within the approximation's known
+ * error); `off`: beyond both; `?`: beyond statistics and no known error is stated, or beyond the known
+ * error and no standard error (one replica). A trajectory is shown at its last sample, with the count
+ * of samples of each mark; the file and the JSON hold every sample.
+ *
+ * \section compare_layout Output
+ * `/comparison/<quantity>` (sweeps: `/comparison/point_K/<quantity>`, K from 1) with float64 datasets
+ * `value`, `error` (NaN when the run has one replica), `theory`, `known_error` (NaN: none stated), shaped
+ * [columns] or [samples][columns] (columns = species, or cluster sizes), attributes `approximation`,
+ * `known_error_source`, `label`, and `time` (float64 [samples]) for a trajectory; `/comparison@notes`.
+ * The JSON holds the same numbers (NaN as null).
+ * Checked by tests/compare_test.cpp and tests/cli_test.cpp (CliCompare.*, CliDsmc.Compare*).
+ */
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/config.hpp"
+#include "io/h5md.hpp"
+#include "theory/predictions.hpp"
+
+namespace gdsmc::io::compare {
+
+/// |d| <= kStatisticalZ SE counts as within statistics.
+inline constexpr double kStatisticalZ = 3.0;
+/// The table shows at most this many columns of a quantity (all are in the file and the JSON).
+inline constexpr std::size_t kTableColumns = 8;
+/// Relative differences below this are round-off.
+inline constexpr double kRoundOff = 1e-12;
+
+/// One compared quantity of one run or sweep point.
+struct Quantity {
+  std::string name;                ///< key under /comparison, e.g. "total_temperature"
+  std::string label;               ///< symbol for the table, e.g. "T", "T_k/T"
+  std::string approximation;       ///< "maxwellian", "first_sonine", "smoluchowski_maxwellian", ...
+  std::string known_error_source;  ///< where the known error comes from, or "none stated"
+  std::vector<double> time;        ///< sample times of a trajectory; empty: one value per column
+  std::size_t columns = 1;         ///< species or cluster sizes
+  std::vector<double> value, error, theory, known_error;  ///< row-major [sample][column] or [column]
+  std::string at{};                ///< for one value per column: over what it is taken, e.g. "scaling state"
+  std::size_t label_offset = 0;    ///< column c is labelled c + 1 + label_offset
+  std::size_t samples() const { return time.empty() ? 1 : time.size(); }
+};
+
+/// The comparison of one run, or of one sweep point.
+struct Point {
+  std::string label;  ///< "" or the sweep assignment, e.g. "system:restitution = 0.6"
+  std::vector<Quantity> quantities;
+  std::vector<std::string> notes;  ///< what is not compared, and why
+};
+
+struct Comparison {
+  std::vector<Point> points;
+  bool sweep = false;
+  std::string sweep_variable;
+  std::vector<std::string> sweep_values{};  ///< as written in &sweep values
+};
+
+/// What a run measured, as read from its file: observables by name (relative to the point's
+/// observables group) and the scalar attributes the comparison uses ("group@name").
+struct Measured {
+  std::map<std::string, h5md::ObservableData> observables;
+  std::map<std::string, double> attributes;
+  bool has(const std::string& name) const { return observables.count(name) > 0; }
+};
+
+/// Reads the observables (and attributes) under `root` ("/observables" or
+/// "/sweep/point_K/observables") of `file`. Throws std::runtime_error if the file cannot be read.
+Measured read_measured(const std::string& file, const std::string& root);
+
+/// Within statistics, within the approximation's known error, beyond both (\ref compare_marks).
+enum class Mark { statistics, approximation, beyond, beyond_no_estimate };
+/// `scale` (the theory value): a difference below kRoundOff |scale| is round-off (e.g. T(0)), never a
+/// deviation. NaN standard error or known error: none available.
+Mark classify(double difference, double standard_error, double known_error, double scale = 0.0);
+const char* mark_name(Mark mark);
+
+/// Mean and standard error of samples past `start` collisions per particle (the scaling state);
+/// error = mean of the samples' errors (as if fully correlated: an upper bound of the SE over
+/// replicas of the time averages). `count` = 0 when no sample qualifies.
+struct Average {
+  double value = 0.0, error = 0.0;
+  std::size_t count = 0;
+};
+Average scaling_average(const std::vector<double>& value, const std::vector<double>& error,
+                        const std::vector<double>& collisions_per_particle, double start);
+
+/// eps = (3/16) max(max_ij |a2(alpha_ij)|, max_k |c_k|/2) with the first-Sonine c_k when known
+/// (\ref compare_known).
+double sonine_rate_error(const species::Mixture& mix, const std::vector<double>& sonine_c = {});
+/// Known error of the first-Sonine HSS eta/eta_0 relative to the value, NaN where none is stated.
+double shear_viscosity_known_error(const species::Mixture& mix);
+
+/// The comparison of one point from its Config, its theory and its measurements (pure).
+Point compare_point(const config::Config& point, const theory::Predictions& theory, const Measured& measured);
+
+/// The theory of one point, or why it could not be computed.
+struct PointTheory {
+  std::optional<theory::Predictions> predictions;
+  std::string error;
+};
+/// theory::predict for every point of `config` (sweep or not). It depends on the input only, so
+/// granular-dsmc computes it in a thread of its own while the run goes on.
+std::vector<PointTheory> predict_points(const config::Config& config);
+
+/// Every point of `config` (sweep or not) against the file `file` written for it; `theory` from
+/// predict_points (computed here when empty).
+Comparison compare_file(const config::Config& config, const std::string& file, std::vector<PointTheory> theory = {});
+
+/// One table row: a quantity's column at one sample (the last of a trajectory).
+struct Row {
+  std::string point, name, quantity, at;  ///< sweep point, Quantity::name, column label, Quantity::at
+  double time = 0.0;
+  bool trajectory = false;
+  double value = 0.0, error = 0.0, theory = 0.0, known_error = 0.0;
+  std::string approximation;
+  double z = 0.0, percent = 0.0;  ///< (DSMC - theory)/SE (NaN without SE), 100 (DSMC - theory)/theory
+  Mark mark = Mark::statistics;
+  std::size_t counts[4] = {0, 0, 0, 0};  ///< samples of a trajectory per Mark
+};
+std::vector<Row> rows(const Comparison& comparison);
+
+/// The table for stdout (\ref compare_marks), notes included.
+std::string table(const Comparison& comparison);
+/// The same numbers as JSON (NaN as null).
+std::string json(const Comparison& comparison);
+/// Writes /comparison (\ref compare_layout) into an open output file.
+void write(h5md::Writer& writer, const Comparison& comparison);
+
+}  // namespace gdsmc::io::compare

@@ -1,0 +1,284 @@
+// Everything the theory predicts for one Config (predictions.hpp): the computations granular-theory
+// made in place before, moved here unchanged so that granular-dsmc --compare uses the same numbers.
+#include "theory/predictions.hpp"
+
+#include <array>
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <string>
+
+#include "theory/theory.hpp"
+#include "theory/viscosity.hpp"
+
+namespace gdsmc::theory {
+
+std::vector<double> times_for_collisions(const species::Mixture& mix, const std::vector<double>& t0,
+                                         const std::vector<double>& targets) {
+  const double n = mix.total_density();
+  // Bracket the last target on a doubling time scale, then tabulate densely and interpolate.
+  double horizon = 1.0;
+  const double rate0 = total_collision_rate(mix, t0);
+  horizon = std::max(horizon, targets.back() * n / (2.0 * rate0));
+  for (int guard = 0; guard < 200; ++guard) {
+    const auto h = integrate_partial_temperatures(mix, t0, {0.0, horizon});
+    if (2.0 * h.collisions.back() / n >= targets.back()) break;
+    horizon *= 2.0;
+  }
+  const std::size_t grid = 20000;
+  std::vector<double> t(grid);
+  for (std::size_t i = 0; i < grid; ++i) t[i] = horizon * static_cast<double>(i) / (grid - 1);
+  const auto h = integrate_partial_temperatures(mix, t0, t);
+  std::vector<double> out;
+  std::size_t i = 1;
+  for (double c : targets) {
+    if (c <= 0.0) {
+      out.push_back(0.0);
+      continue;
+    }
+    while (i < grid - 1 && 2.0 * h.collisions[i] / n < c) ++i;
+    const double c0 = 2.0 * h.collisions[i - 1] / n, c1 = 2.0 * h.collisions[i] / n;
+    out.push_back(t[i - 1] + (t[i] - t[i - 1]) * (c - c0) / (c1 - c0));
+  }
+  return out;
+}
+
+namespace {
+
+/// The Smoluchowski equations of smoluchowski.hpp on the run's sample points, in the units of the
+/// DSMC observables (counts for n_particles initial monomers).
+AggFragPrediction agg_frag_prediction(const io::config::Config& config) {
+  namespace sm = smoluchowski;
+  const sm::Parameters p = sm::parameters_of(config);
+  AggFragPrediction out;
+  out.initial_monomers = static_cast<double>(config.dsmc.n_particles);
+  std::vector<double> times = config.sample_times();
+  if (times.empty()) {  // collision-driven: the times at which 2 x collisions per monomer reach the targets
+    const auto targets = config.sample_collisions();
+    double horizon = 1.0;
+    for (int guard = 0; guard < 60 && 2.0 * sm::solve(p, {0.0, horizon}).collisions.back() < targets.back(); ++guard)
+      horizon *= 2.0;
+    const std::size_t grid = 2001;
+    std::vector<double> t(grid);
+    for (std::size_t i = 0; i < grid; ++i) t[i] = horizon * static_cast<double>(i) / (grid - 1);
+    const auto fine = sm::solve(p, t);
+    std::size_t i = 1;
+    for (double c : targets) {
+      if (c <= 0.0) {
+        times.push_back(0.0);
+        continue;
+      }
+      while (i < grid - 1 && 2.0 * fine.collisions[i] < c) ++i;
+      const double c0 = 2.0 * fine.collisions[i - 1], c1 = 2.0 * fine.collisions[i];
+      times.push_back(t[i - 1] + (t[i] - t[i - 1]) * (c - c0) / (c1 - c0));
+    }
+  }
+  out.solution = sm::solve(p, times);
+  out.initial_rates = sm::initial_rates(p);
+  const auto& sol = out.solution;
+  const std::size_t nt = sol.time.size(), kt = sol.max_size;
+  // Columns up to the largest size of which the run would hold 1e-6 clusters or more at some time
+  // (the equations integrate sizes far beyond, to keep the lost mass below 1e-8).
+  for (std::size_t i = 0; i < nt; ++i)
+    for (std::size_t k = 0; k < kt; ++k)
+      if (sol.number_fraction[i * kt + k] * out.initial_monomers >= 1e-6) out.width = std::max(out.width, k + 1);
+  out.mean_size.resize(nt);
+  out.monomer_fraction.resize(nt);
+  out.collisions_per_particle.resize(nt);
+  for (std::size_t i = 0; i < nt; ++i) {
+    double clusters = 0.0;
+    for (std::size_t k = 0; k < kt; ++k) clusters += sol.number_fraction[i * kt + k];
+    out.mean_size[i] = 1.0 / clusters;
+    out.monomer_fraction[i] = sol.number_fraction[i * kt];
+    out.collisions_per_particle[i] = 2.0 * sol.collisions[i];
+  }
+  return out;
+}
+
+}  // namespace
+
+Predictions predict(const io::config::Config& config) {
+  Predictions out;
+  if (config.has_agg_frag) {
+    out.agg_frag = agg_frag_prediction(config);
+    out.approximations.emplace_back("initial_rates", "exact");
+    for (const char* key : {"number", "temperature", "total_temperature", "kinetic_energy", "mean_size",
+                            "monomer_fraction", "collisions", "aggregations", "fragmentations", "collisions_per_particle"})
+      out.approximations.emplace_back(key, "maxwellian");
+    return out;
+  }
+  const auto mix = config.mixture();
+  const std::size_t s = mix.size();
+  out.n_species = s;
+  const auto& t0 = config.initial.temperature;
+  const double n = mix.total_density();
+
+  // Collisions suffered by species k per unit volume: 2 P_kk + sum_{j != k} P_kj (ERRATA §2).
+  const auto pair = pair_collision_rate(mix, t0);
+  out.collision_frequency.resize(s);
+  out.cooling_rate.resize(s);
+  const auto beta = config.viscoelastic_beta();  // viscoelastic restitution: A3, A4 (ERRATA §8)
+  const auto xi = beta ? cooling_rate_matrix_viscoelastic(mix, *beta, t0) : cooling_rate_matrix(mix, t0);
+  for (std::size_t k = 0; k < s; ++k) {
+    double suffered = 0.0, z = 0.0;
+    for (std::size_t j = 0; j < s; ++j) {
+      suffered += (j == k ? 2.0 : 1.0) * pair(k, j);
+      z += xi(k, j);
+    }
+    out.collision_frequency[k] = suffered / mix.number_density[k];
+    out.cooling_rate[k] = z;
+  }
+  out.approximations = {{"collision_frequency", "maxwellian"}, {"cooling_rate", "maxwellian"}};
+
+  std::vector<double> times = config.sample_times();
+  if (times.empty()) times = times_for_collisions(mix, t0, config.sample_collisions());
+  const auto history = beta ? integrate_partial_temperatures_viscoelastic(mix, *beta, t0, times)
+                            : integrate_partial_temperatures(mix, t0, times);
+  out.final_temperature = history.temperature.back();
+  if (config.staged()) {
+    // The free-cooling history does not describe a run with a thermostat or a shear flow.
+    out.notes.push_back("temperature, total_temperature, collisions_per_particle left out: the run has &thermostat "
+                        "or &shear (T is held or heated; see shear_viscosity_ratio, temperature_ratio)");
+  } else {
+    out.has_history = true;
+    out.time = history.time;
+    out.temperature = history.temperature;
+    for (std::size_t i = 0; i < history.time.size(); ++i) {
+      double tt = 0.0;
+      for (std::size_t k = 0; k < s; ++k) tt += mix.number_density[k] * history.temperature[i][k];
+      out.total_temperature.push_back(tt / n);
+      out.collisions_per_particle.push_back(2.0 * history.collisions[i] / n);
+    }
+    for (const char* key : {"temperature", "total_temperature", "collisions_per_particle"})
+      out.approximations.emplace_back(key, "maxwellian");
+  }
+  // Diffusion (seed 001 eqs 16-21, ERRATA §8): D_k/D_1 at long times (constant alpha) or at the end
+  // of the run (viscoelastic, where the ratios drift), and eq 17's MSD when displacements are tracked.
+  out.diffusion_coefficient_ratio = beta ? diffusion_coefficient_ratio(mix, history.temperature.back(), &*beta)
+                                         : diffusion_coefficient_ratio(mix);
+  out.approximations.emplace_back("diffusion_coefficient_ratio", "maxwellian");
+  if (config.output.track_displacements) {
+    // The MSD counts from msd_start_time (or t = 0), starting from the theory's temperatures then.
+    const double start = config.output.msd_start_time.value_or(0.0);
+    std::vector<double> start_temperature = t0;
+    if (start > 0.0) {
+      const auto at = beta ? integrate_partial_temperatures_viscoelastic(mix, *beta, t0, {0.0, start})
+                           : integrate_partial_temperatures(mix, t0, {0.0, start});
+      start_temperature = at.temperature.back();
+    }
+    std::vector<double> since, shifted_times;
+    for (double t : history.time)
+      if (t >= start) {
+        since.push_back(t - start);
+        shifted_times.push_back(t);
+      }
+    if (!config.output.msd_start_temperature && !since.empty()) {
+      const auto msd = mean_squared_displacement(mix, start_temperature, since, beta ? &*beta : nullptr);
+      out.msd = Trajectory{shifted_times, msd.msd};
+      out.approximations.emplace_back("msd", "maxwellian");
+    }
+  }
+  std::optional<std::vector<double>> maxwellian_ratios;  // asymptotic T_k/T_1 (constant alpha)
+  if (beta) {
+    // Constant-alpha keys (Sonine HCS, asymptotic ratios) do not apply to viscoelastic spheres.
+  } else if (s == 1) {
+    const double a2 = sonine_a2(mix.restitution(0, 0));
+    out.sonine_a2 = a2;
+    out.cooling_rate_sonine = out.cooling_rate[0] * (1.0 + 3.0 * a2 / 16.0);  // ERRATA §3
+    out.approximations.emplace_back("sonine_a2", "first_sonine");
+    out.approximations.emplace_back("sonine_c", "first_sonine");
+    out.approximations.emplace_back("cooling_rate_sonine", "first_sonine");
+  } else {
+    const bool inelastic = mix.restitution.max() < 1.0;
+    if (inelastic) {
+      try {
+        out.asymptotic_temperature_ratio = asymptotic_temperature_ratios(mix);
+        out.approximations.emplace_back("asymptotic_temperature_ratio", "maxwellian");
+        maxwellian_ratios = out.asymptotic_temperature_ratio;
+      } catch (const std::exception& e) {  // a key that cannot be evaluated is left out, with a word why
+        out.notes.push_back(std::string("asymptotic_temperature_ratio left out: ") + e.what());
+      }
+    } else {
+      maxwellian_ratios = std::vector<double>(s, 1.0);  // elastic: equipartition
+    }
+  }
+  // HCS of any number of species, constant restitution (theory/sonine_mixture.hpp): first Sonine,
+  // and the Maxwellian ratios in the same normalisation (T_k/T, T = sum_k n_k T_k/n).
+  if (!beta) {
+    if (s == 1) maxwellian_ratios = std::vector<double>{1.0};
+    try {
+      out.hcs_first_sonine = hcs_first_sonine(mix, maxwellian_ratios.value_or(std::vector<double>{}));
+    } catch (const std::exception& e) {
+      out.notes.push_back(std::string("hcs.first_sonine left out: ") + e.what());
+    }
+    if (maxwellian_ratios) {
+      try {
+        std::vector<double> t = *maxwellian_ratios;
+        double mean = 0.0;
+        for (std::size_t k = 0; k < s; ++k) mean += mix.mole_fraction(k) * t[k];
+        for (double& v : t) v /= mean;
+        out.hcs_maxwellian_cooling_rate_reduced = hcs_maxwellian_cooling_rate_reduced(mix, t);
+        out.hcs_maxwellian_temperature_over_mean = t;
+      } catch (const std::exception& e) {
+        out.notes.push_back(std::string("hcs.maxwellian left out: ") + e.what());
+      }
+    }
+    if (out.hcs_first_sonine) out.approximations.emplace_back("hcs.first_sonine", "first_sonine");
+    if (out.hcs_maxwellian_temperature_over_mean) out.approximations.emplace_back("hcs.maxwellian", "maxwellian");
+  }
+  if (s == 2 && !beta) {
+    try {
+      out.binary_hcs = binary_hcs_first_sonine(mix);
+    } catch (const std::exception& e) {  // e.g. gamma outside the root finder's range
+      out.notes.push_back(std::string("binary HCS keys (temperature_ratio, sonine_c, ...) left out: ") + e.what());
+    }
+  }
+  if (out.binary_hcs) {  // binary HCS in first Sonine approximation (seed 003 App. A, ERRATA §6)
+    const auto& hcs = *out.binary_hcs;
+    if (hcs.cooling_rate > 0.0)
+      for (int k = 0; k < 2; ++k) out.binary_tail_decay_rate[k] = tail_decay_rate(hcs, k);
+    out.approximations.emplace_back("temperature_ratio", "first_sonine");
+    out.approximations.emplace_back("sonine_c", "first_sonine");
+    out.approximations.emplace_back("cooling_rate_reduced", "first_sonine");
+    out.approximations.emplace_back("tail_beta", "high_velocity_asymptotics");
+    if (hcs.cooling_rate > 0.0)
+      out.approximations.emplace_back("tail_decay_rate", "high_velocity_asymptotics_first_sonine");
+  }
+  // Shear viscosity eta/eta_0 in first Sonine (seed 004, ERRATA §10, §13; theory/viscosity.hpp): one
+  // species, dilute or Enskog; binary mixtures, dilute or Enskog, over the elastic mixture value. In
+  // the Enskog gas also the kinetic part alone (seed 004 Fig 10).
+  if (!beta && (s == 1 || (s == 2 && out.binary_hcs))) {
+    namespace vt = viscosity;
+    try {
+      // {total, kinetic} of eta/eta_0
+      auto reduced = [&](vt::State state) -> std::array<double, 2> {
+        if (s == 2) {
+          const auto v = vt::binary_viscosity(mix, 1.0, state);
+          return {v.reduced, v.kinetic / v.elastic};
+        }
+        const double alpha = mix.restitution(0, 0);
+        if (!mix.enskog) {
+          const double eta = vt::dilute_reduced_viscosity(alpha, state);
+          return {eta, eta};
+        }
+        const auto v = vt::enskog_reduced_viscosity(alpha, mix.packing_fraction(), state);
+        return {v.total, v.kinetic};
+      };
+      const auto hcs = reduced(vt::State::homogeneous_cooling);
+      const auto hss = reduced(vt::State::gaussian_thermostat);
+      out.shear_viscosity_hcs = hcs[0];
+      out.shear_viscosity_hss = hss[0];
+      out.approximations.emplace_back("shear_viscosity_ratio", "first_sonine");
+      if (mix.enskog) {
+        out.shear_viscosity_kinetic_hcs = hcs[1];
+        out.shear_viscosity_kinetic_hss = hss[1];
+        out.approximations.emplace_back("shear_viscosity_kinetic_ratio", "first_sonine");
+      }
+    } catch (const std::exception& e) {
+      out.notes.push_back(std::string("shear_viscosity_ratio left out: ") + e.what());
+    }
+  }
+  return out;
+}
+
+}  // namespace gdsmc::theory

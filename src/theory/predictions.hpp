@@ -1,0 +1,87 @@
+/**
+ * \file predictions.hpp
+ * \brief Everything the theory module predicts for the system of one validated Config, on the run's
+ *        own sample points: what `granular-theory` prints (as JSON) and `granular-dsmc --compare`
+ *        sets beside the DSMC results (io/compare.hpp). One computation, two formats.
+ *
+ * No formula lives here: each entry calls the module that derives it, which names its sources.
+ * - collision_frequency, cooling_rate, temperature, total_temperature, collisions_per_particle:
+ *   the Maxwellian rates and partial-temperature ODEs (theory.hpp; ERRATA §2-§4; viscoelastic
+ *   restitution: diffusion.hpp, ERRATA §11). Collision-driven runs: the ODE times at which the
+ *   collisions per particle reach the run's sample points.
+ * - diffusion_coefficient_ratio, msd: seed 001 eqs 17, 19 (diffusion.hpp, ERRATA §8).
+ * - sonine_a2, cooling_rate_sonine (one species; ERRATA §3), asymptotic_temperature_ratio
+ *   (ERRATA §4), hcs.first_sonine / hcs.maxwellian (sonine_mixture.hpp, any number of species),
+ *   the binary first-Sonine HCS with tails (sonine.hpp; seed 003, ERRATA §6).
+ * - shear_viscosity_ratio (viscosity.hpp; seed 004, ERRATA §10, §13).
+ * - &agg_frag runs: the Smoluchowski equations with Maxwellian kernels (smoluchowski.hpp, ERRATA §12).
+ * `approximations` names the approximation behind every key, in the order granular-theory prints
+ * them; an entry that cannot be evaluated is left out with a note saying why (never an exception).
+ * Documentation: docs/physics.md ("Theory", "Comparison with theory").
+ */
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "io/config.hpp"
+#include "theory/smoluchowski.hpp"
+#include "theory/sonine.hpp"
+#include "theory/sonine_mixture.hpp"
+
+namespace gdsmc::theory {
+
+/// A time series per species (or per cluster size): value[time index][column].
+struct Trajectory {
+  std::vector<double> time;
+  std::vector<std::vector<double>> value;
+};
+
+/// The Smoluchowski solution of an &agg_frag run in the units of the DSMC observables.
+struct AggFragPrediction {
+  smoluchowski::Solution solution;     ///< on the run's sample times
+  smoluchowski::InitialRates initial_rates;
+  double initial_monomers = 0.0;       ///< n_particles: number = number_fraction * this
+  std::size_t width = 1;               ///< sizes of which the run would hold >= 1e-6 clusters at some time
+  std::vector<double> mean_size, monomer_fraction, collisions_per_particle;  ///< per sample time
+};
+
+struct Predictions {
+  std::size_t n_species = 1;
+  std::vector<double> collision_frequency;  ///< nu_k at t = 0
+  std::vector<double> cooling_rate;         ///< zeta_k = sum_j xi_kj at t = 0
+  /// Free cooling on the sample times (absent for &thermostat / &shear runs, where T is held).
+  bool has_history = false;
+  std::vector<double> time;
+  std::vector<std::vector<double>> temperature;  ///< [time][species]
+  std::vector<double> total_temperature, collisions_per_particle;
+  std::vector<double> final_temperature;  ///< T_k at the last sample time (also for staged runs)
+  std::vector<double> diffusion_coefficient_ratio;
+  std::optional<Trajectory> msd;          ///< with &output track_displacements
+  std::optional<double> sonine_a2, cooling_rate_sonine;  ///< one species
+  std::optional<std::vector<double>> asymptotic_temperature_ratio;  ///< T_k/T_1, Maxwellian
+  std::optional<HcsFirstSonine> hcs_first_sonine;
+  std::optional<std::vector<double>> hcs_maxwellian_temperature_over_mean;
+  std::optional<double> hcs_maxwellian_cooling_rate_reduced;
+  std::optional<BinaryHcs> binary_hcs;
+  std::optional<double> binary_tail_decay_rate[2];
+  std::optional<double> shear_viscosity_hcs, shear_viscosity_hss;  ///< eta/eta_0
+  std::optional<double> shear_viscosity_kinetic_hcs, shear_viscosity_kinetic_hss;  ///< its kinetic part (Enskog)
+  std::optional<AggFragPrediction> agg_frag;
+  /// key -> "maxwellian", "first_sonine", "exact", ... for every key present, in print order.
+  std::vector<std::pair<std::string, std::string>> approximations;
+  std::vector<std::string> notes;  ///< what was left out and why, in order
+};
+
+/// The predictions for one point (not a sweep: call it per Config::sweep_points()). Throws
+/// std::runtime_error only when the ODEs themselves fail.
+Predictions predict(const io::config::Config& config);
+
+/// Times at which the Maxwellian ODEs' collisions per particle (2 x events / n) reach `targets`.
+std::vector<double> times_for_collisions(const species::Mixture& mix, const std::vector<double>& initial_temperature,
+                                         const std::vector<double>& targets);
+
+}  // namespace gdsmc::theory

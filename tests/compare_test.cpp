@@ -1,0 +1,241 @@
+// Tests of io/compare (granular-dsmc --compare): the rows of the table against numbers computed by
+// hand here from the formulas compare.hpp cites (Haff's law, ERRATA §3; the scaling-state average;
+// the known errors of docs/physics.md "Comparison with theory"), the marks, and the three outputs.
+#include "io/compare.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "io/config.hpp"
+#include "io/h5md.hpp"
+#include "io/namelist.hpp"
+#include "theory/predictions.hpp"
+#include "theory/sonine_mixture.hpp"
+
+namespace {
+
+namespace cmp = gdsmc::io::compare;
+namespace config = gdsmc::io::config;
+namespace h5md = gdsmc::io::h5md;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+config::Config read_text(const std::string& text) {
+  return config::read(gdsmc::io::namelist::parse(text, "t.nml"));
+}
+
+/// Haff cooling, alpha = 0.9, samples at t = 0, 250, 500, 750, 1000.
+config::Config haff_config() {
+  return read_text(
+      "&system\n n_species = 1\n mass = 1.0\n diameter = 1.0\n number_density = 0.01\n restitution = 0.9\n/\n"
+      "&initial\n temperature = 1.0\n/\n&dsmc\n n_particles = 1000\n t_end = 1000.0\n replicas = 4\n/\n"
+      "&output\n n_samples = 5\n/\n");
+}
+
+/// A binary mixture (masses 1 and 4, equal numbers), alpha = 0.8, five samples.
+config::Config binary_config() {
+  return read_text(
+      "&system\n n_species = 2\n mass = 1.0, 4.0\n diameter = 1.0, 1.0\n number_density = 0.01, 0.01\n"
+      " restitution = 0.8\n/\n&initial\n temperature = 1.0\n/\n&dsmc\n n_particles = 1000\n t_end = 400.0\n"
+      " replicas = 4\n/\n&output\n n_samples = 5\n/\n");
+}
+
+h5md::ObservableData series(const std::vector<double>& time, const std::vector<double>& value,
+                            const std::vector<double>& error, std::size_t columns) {
+  h5md::ObservableData o;
+  o.time = time;
+  o.value = value;
+  o.error = error;
+  o.shape = columns > 1 ? std::vector<std::size_t>{time.size(), columns} : std::vector<std::size_t>{time.size()};
+  return o;
+}
+
+const cmp::Quantity& find(const cmp::Point& pt, const std::string& name) {
+  for (const auto& q : pt.quantities)
+    if (q.name == name) return q;
+  throw std::runtime_error("no quantity " + name);
+}
+
+/// van Noije-Ernst a2 (ERRATA §3), written out again here.
+double a2_by_hand(double alpha) {
+  return 16.0 * (1.0 - alpha) * (1.0 - 2.0 * alpha * alpha) / (81.0 - 17.0 * alpha + 30.0 * alpha * alpha * (1.0 - alpha));
+}
+
+TEST(CompareMarks, StatisticsApproximationBeyond) {
+  EXPECT_EQ(cmp::classify(0.3, 0.1, 0.0), cmp::Mark::statistics);       // 3 SE exactly
+  EXPECT_EQ(cmp::classify(-0.31, 0.1, 0.02), cmp::Mark::approximation);  // 3 SE + 0.01 < 0.32
+  EXPECT_EQ(cmp::classify(0.33, 0.1, 0.02), cmp::Mark::beyond);
+  EXPECT_EQ(cmp::classify(0.33, 0.1, kNaN), cmp::Mark::beyond_no_estimate);
+  EXPECT_EQ(cmp::classify(0.01, kNaN, 0.02), cmp::Mark::approximation);  // one replica: no SE
+  EXPECT_EQ(cmp::classify(0.05, kNaN, 0.02), cmp::Mark::beyond_no_estimate);  // statistics unknown
+  EXPECT_EQ(cmp::classify(1e-15, 0.0, 0.0, 1.0), cmp::Mark::statistics);  // round-off of T(0)
+  EXPECT_STREQ(cmp::mark_name(cmp::Mark::approximation), "approx");
+}
+
+TEST(CompareAverage, SamplesPastScalingStart) {
+  const auto a = cmp::scaling_average({1.0, 2.0, 4.0, 6.0}, {0.1, 0.2, 0.3, 0.5}, {0.0, 9.9, 10.0, 30.0}, 10.0);
+  EXPECT_EQ(a.count, 2u);
+  EXPECT_DOUBLE_EQ(a.value, 5.0);
+  EXPECT_DOUBLE_EQ(a.error, 0.4);
+  EXPECT_EQ(cmp::scaling_average({1.0}, {0.1}, {3.0}, 10.0).count, 0u);
+}
+
+TEST(CompareKnownError, SonineRateAndViscosity) {
+  const auto mix = haff_config().mixture();
+  EXPECT_NEAR(cmp::sonine_rate_error(mix), 3.0 / 16.0 * std::abs(a2_by_hand(0.9)), 1e-15);
+  EXPECT_NEAR(cmp::sonine_rate_error(mix, {0.1}), 3.0 / 16.0 * 0.05, 1e-15);  // |c|/2 dominates
+  EXPECT_NEAR(cmp::shear_viscosity_known_error(mix), 0.016 + 0.0033, 1e-15);
+}
+
+// The Haff row: theory T(t) = T0/(1 + t/t0)^2, t0 = 2/zeta0, zeta0 = (4/3) sqrt(pi) (1 - alpha^2) n sigma^2
+// sqrt(T0/m) (ERRATA §3); collisions per particle nu0 t0 ln(1 + t/t0), nu0 = 4 sqrt(pi) n sigma^2 sqrt(T0/m)
+// (ERRATA §2); DSMC 0.4 % above with SE 0.1 %: z = +4, +0.4 %, known error 1.15 eps ln(T0/T) T.
+TEST(CompareRows, HaffAgainstHandComputedNumbers) {
+  const auto c = haff_config();
+  const auto theory = gdsmc::theory::predict(c);
+  const double pi = std::numbers::pi, n = 0.01, alpha = 0.9;
+  const double zeta0 = 4.0 / 3.0 * std::sqrt(pi) * (1.0 - alpha * alpha) * n;
+  const double t0 = 2.0 / zeta0, nu0 = 4.0 * std::sqrt(pi) * n;
+  const std::vector<double> times{0.0, 250.0, 500.0, 750.0, 1000.0};
+  std::vector<double> haff, value, error, collisions;
+  for (double t : times) {
+    haff.push_back(1.0 / ((1.0 + t / t0) * (1.0 + t / t0)));
+    value.push_back(haff.back() * (t > 0.0 ? 1.004 : 1.0));
+    error.push_back(haff.back() * 0.001);
+    collisions.push_back(nu0 * t0 * std::log(1.0 + t / t0));
+  }
+  cmp::Measured m;
+  m.observables["total_temperature"] = series(times, value, error, 1);
+  m.observables["collisions_per_particle"] = series(times, collisions, std::vector<double>(5, 0.01), 1);
+  const auto pt = cmp::compare_point(c, theory, m);
+  const auto& q = find(pt, "total_temperature");
+  ASSERT_EQ(q.time, times);
+  EXPECT_EQ(q.approximation, "maxwellian");
+  for (std::size_t i = 0; i < times.size(); ++i) EXPECT_NEAR(q.theory[i], haff[i], 1e-8 * haff[i]) << i;
+  const double eps = 3.0 / 16.0 * std::abs(a2_by_hand(alpha));
+  const double known = 1.15 * eps * std::log(1.0 / haff[4]) * haff[4];
+  EXPECT_NEAR(q.known_error[4], known, 1e-8 * known);
+  const auto& col = find(pt, "collisions_per_particle");
+  for (std::size_t i = 1; i < times.size(); ++i) EXPECT_NEAR(col.theory[i], collisions[i], 1e-7 * collisions[i]) << i;
+
+  const auto table_rows = cmp::rows(cmp::Comparison{{pt}, false, ""});
+  ASSERT_GE(table_rows.size(), 2u);
+  const auto& r = table_rows[0];
+  EXPECT_EQ(r.quantity, "T");
+  EXPECT_TRUE(r.trajectory);
+  EXPECT_DOUBLE_EQ(r.time, 1000.0);
+  EXPECT_DOUBLE_EQ(r.value, value[4]);
+  EXPECT_DOUBLE_EQ(r.error, error[4]);
+  EXPECT_NEAR(r.z, 4.0, 1e-6);
+  EXPECT_NEAR(r.percent, 0.4, 1e-5);
+  EXPECT_EQ(r.mark, cmp::Mark::approximation);  // 4 SE > 3 SE, but within 3 SE + known error (0.74 %)
+  EXPECT_EQ(r.counts[0] + r.counts[1] + r.counts[2] + r.counts[3], 5u);
+  EXPECT_EQ(r.counts[0], 1u);  // t = 0: within statistics; the later samples need the known error
+  EXPECT_EQ(r.counts[1], 4u);
+  EXPECT_EQ(table_rows[1].quantity, "collisions/particle");
+  EXPECT_EQ(table_rows[1].mark, cmp::Mark::statistics);
+}
+
+// The scaling state of a binary: T_k/T and c_k averaged over the samples past scaling_start = 10
+// collisions per particle, against the first-Sonine HCS; error = r hypot(e_k/T_k, e/T), averaged.
+TEST(CompareRows, BinaryScalingStateAverages) {
+  const auto c = binary_config();
+  const auto theory = gdsmc::theory::predict(c);
+  const std::vector<double> times{0.0, 100.0, 200.0, 300.0, 400.0};
+  const double t1 = 1.2, t2 = 0.8, total = 0.5 * (t1 + t2);
+  std::vector<double> temperature, temperature_error, sonine, sonine_error, total_value, total_error;
+  for (std::size_t i = 0; i < 5; ++i) {
+    const double f = 1.0 + 0.1 * static_cast<double>(i);  // errors differ from sample to sample
+    temperature.insert(temperature.end(), {t1, t2});
+    temperature_error.insert(temperature_error.end(), {0.01 * f, 0.02 * f});
+    sonine.insert(sonine.end(), {0.05, -0.02});
+    sonine_error.insert(sonine_error.end(), {0.003 * f, 0.004 * f});
+    total_value.push_back(total);
+    total_error.push_back(0.005 * f);
+  }
+  cmp::Measured m;
+  m.observables["temperature"] = series(times, temperature, temperature_error, 2);
+  m.observables["total_temperature"] = series(times, total_value, total_error, 1);
+  m.observables["sonine_c"] = series(times, sonine, sonine_error, 2);
+  m.observables["collisions_per_particle"] = series(times, {0.0, 5.0, 15.0, 20.0, 30.0}, {0, 0, 0, 0, 0}, 1);
+  const auto pt = cmp::compare_point(c, theory, m);
+  const auto fs = gdsmc::theory::hcs_first_sonine(c.mixture());
+  const auto& ratio = find(pt, "temperature_over_mean");
+  ASSERT_EQ(ratio.columns, 2u);
+  EXPECT_TRUE(ratio.time.empty());
+  EXPECT_EQ(ratio.at, "scaling state");
+  double e1 = 0.0;
+  for (double f : {1.2, 1.3, 1.4}) e1 += t1 / total * std::hypot(0.01 * f / t1, 0.005 * f / total) / 3.0;
+  EXPECT_DOUBLE_EQ(ratio.value[0], t1 / total);
+  EXPECT_NEAR(ratio.error[0], e1, 1e-15);
+  EXPECT_NEAR(ratio.theory[0], fs.temperature_over_mean[0], 1e-12);
+  EXPECT_NEAR(ratio.known_error[1], 0.002 * fs.temperature_over_mean[1], 1e-15);  // ERRATA §6, binary
+  const auto& cumulant = find(pt, "sonine_c");
+  EXPECT_DOUBLE_EQ(cumulant.value[1], -0.02);
+  EXPECT_NEAR(cumulant.error[1], 0.004 * 1.3, 1e-15);
+  EXPECT_NEAR(cumulant.known_error[0], 0.15 * std::abs(fs.sonine_c[0]), 1e-15);
+  const auto table_rows = cmp::rows(cmp::Comparison{{pt}, false, ""});
+  bool seen = false;
+  for (const auto& r : table_rows)
+    if (r.quantity == "T_2/T") {
+      seen = true;
+      EXPECT_NEAR(r.z, (t2 / total - fs.temperature_over_mean[1]) / ratio.error[1], 1e-9);
+      EXPECT_NEAR(r.percent, 100.0 * (t2 / total - fs.temperature_over_mean[1]) / fs.temperature_over_mean[1], 1e-9);
+    }
+  EXPECT_TRUE(seen);
+}
+
+TEST(CompareRows, NoTheorySaysSoInsteadOfFailing) {
+  // A sheared run without thermostat: no free cooling, no HSS, no viscosity theory for its state.
+  const auto c = read_text(
+      "&system\n n_species = 1\n mass = 1.0\n diameter = 1.0\n number_density = 0.01\n restitution = 0.9\n/\n"
+      "&dsmc\n n_particles = 1000\n t_end = 100.0\n/\n&shear\n rate = 0.001\n/\n");
+  cmp::Measured m;
+  const auto pt = cmp::compare_point(c, gdsmc::theory::predict(c), m);
+  EXPECT_TRUE(pt.quantities.empty());
+  const std::string text = cmp::table(cmp::Comparison{{pt}, false, ""});
+  EXPECT_NE(text.find("no theory applies to this input"), std::string::npos) << text;
+  EXPECT_NE(text.find("no Gaussian thermostat"), std::string::npos) << text;
+}
+
+TEST(CompareOutput, TableJsonAndFile) {
+  cmp::Point pt;
+  pt.quantities.push_back(cmp::Quantity{"temperature", "T_{k}", "maxwellian", "src", {0.0, 1.0}, 2,
+                                        {1.0, 1.0, 0.9, 0.8}, {0.0, 0.0, 0.01, 0.01}, {1.0, 1.0, 0.91, 0.8},
+                                        {0.0, 0.0, kNaN, 0.001}});
+  pt.notes.push_back("a note");
+  const cmp::Comparison comparison{{pt}, false, ""};
+  const std::string text = cmp::table(comparison);
+  EXPECT_NE(text.find("T_1"), std::string::npos) << text;
+  EXPECT_NE(text.find("T_2"), std::string::npos) << text;
+  EXPECT_NE(text.find("note: a note"), std::string::npos) << text;
+  const std::string json = cmp::json(comparison);
+  EXPECT_NE(json.find("\"temperature\": {\"label\": \"T_{k}\", \"approximation\": \"maxwellian\""),
+            std::string::npos) << json;
+  EXPECT_NE(json.find("\"value\": [[1, 1], [0.90000000000000002, 0.80000000000000004]]"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"known_error\": [[0, 0], [null, 0.001]]"), std::string::npos) << json;
+
+  const auto path = std::filesystem::temp_directory_path() / ("gdsmc-compare-" + std::to_string(::getpid()) + ".h5");
+  {
+    h5md::Writer writer(path.string(), "test", "test", "0");
+    cmp::write(writer, comparison);
+    writer.commit();
+  }
+  const auto value = h5md::read_dataset(path.string(), "/comparison/temperature/value");
+  EXPECT_EQ(value.shape, (std::vector<std::size_t>{2, 2}));
+  EXPECT_DOUBLE_EQ(value.data[2], 0.9);
+  EXPECT_DOUBLE_EQ(h5md::read_dataset(path.string(), "/comparison/temperature/theory").data[2], 0.91);
+  EXPECT_TRUE(std::isnan(h5md::read_dataset(path.string(), "/comparison/temperature/known_error").data[2]));
+  EXPECT_EQ(h5md::read_string_attribute(path.string(), "/comparison/temperature", "approximation"), "maxwellian");
+  const auto time = std::get<std::vector<double>>(h5md::read_attribute(path.string(), "/comparison/temperature", "time"));
+  EXPECT_EQ(time, (std::vector<double>{0.0, 1.0}));
+  std::filesystem::remove(path);
+}
+
+}  // namespace
