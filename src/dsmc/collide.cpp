@@ -139,9 +139,10 @@ bool Collider::raise_max_speed(std::size_t particle) {
   const std::uint32_t k = s_ > 1 ? sys_.species[particle] : 0;
   const particles::Vec3& v = sys_.v[particle];
   const double v2 = v.x * v.x + v.y * v.y + v.z * v.z;
-  if (!block_first_.empty() && !whole_step_) {  // one species in blocks: the bound of the current block
-    if (v2 <= block_max_speed2_[current_block_]) return false;
-    block_max_speed2_[current_block_] = v2;
+  if (!block_first_.empty() && !whole_step_) {  // in blocks: the bound of the current block (and species)
+    double& max2 = block_max_speed2_[current_block_ * s_ + k];
+    if (v2 <= max2) return false;
+    max2 = v2;
     return true;
   }
   if (v2 <= max_speed2_[k]) return false;
@@ -222,13 +223,29 @@ void Collider::restore(const State& st) {
 void Collider::use_blocks(std::size_t block_size) {
   block_first_.clear();
   const std::size_t n = sys_.size();
-  if (block_size == 0 || s_ != 1 || scheme_ == Scheme::pairs || n < 2 * block_size) return;
+  const bool one = s_ == 1 && scheme_ != Scheme::pairs;
+  const bool mixture = s_ > 1 && scheme_ == Scheme::majorant && s_ <= pair_event_limit && tables_;
+  if (block_size == 0 || !(one || mixture) || n < 2 * block_size) return;
   if (counters_.steps > 0) throw std::logic_error("collide: use_blocks() after the run has started");
-  const std::size_t blocks = n / block_size;
-  // Block j holds the particles dealt to it by remix(): ceil((N - j)/blocks) of them.
+  std::size_t blocks = n / block_size;
+  // A mixture's block holds a slice of every species, at least min_slice particles of each (header).
+  for (std::size_t k = 0; k < s_ && mixture; ++k) blocks = std::min(blocks, sys_.count[k] / min_slice);
+  if (blocks < 2) return;
+  // Block j holds the particles dealt to it by remix(): ceil((N_k - j)/blocks) of species k.
   block_first_.assign(blocks + 1, 0);
-  for (std::size_t j = 0; j < blocks; ++j) block_first_[j + 1] = block_first_[j] + (n - j + blocks - 1) / blocks;
-  block_max_speed2_.assign(blocks, 0.0);
+  slice_first_.assign(blocks * s_, 0);
+  slice_cum_.assign(blocks * (s_ + 1), 0);
+  for (std::size_t k = 0; k < s_; ++k) {
+    std::size_t first = sys_.first[k];
+    for (std::size_t j = 0; j < blocks; ++j) {
+      const std::size_t count = (sys_.count[k] - j + blocks - 1) / blocks;
+      slice_first_[j * s_ + k] = first;
+      slice_cum_[j * (s_ + 1) + k + 1] = slice_cum_[j * (s_ + 1) + k] + count;
+      first += count;
+    }
+  }
+  for (std::size_t j = 0; j < blocks; ++j) block_first_[j + 1] = block_first_[j] + slice_cum_[j * (s_ + 1) + s_];
+  block_max_speed2_.assign(blocks * s_, 0.0);
   block_credit_.assign(blocks, 0.0);
   spare_v_.resize(n);
 }
@@ -238,10 +255,30 @@ void Collider::remix() {
   // (offset + i) mod N goes to block i mod K, slot i div K. Each new block takes every K-th particle
   // of every old block, so no two particles stay together unless K divides their distance (header).
   const std::size_t n = sys_.size(), blocks = block_first_.size() - 1;
-  const std::size_t offset = gen_.below(n);
+  if (s_ == 1) {
+    const std::size_t offset = gen_.below(n);
+    auto deal = [&](auto& data, auto& spare) {
+      for (std::size_t i = 0, from = offset; i < n; ++i, from = from + 1 == n ? 0 : from + 1)
+        spare[block_first_[i % blocks] + i / blocks] = data[from];
+      data.swap(spare);
+    };
+    deal(sys_.v, spare_v_);
+    if (sys_.tracks_displacements()) {
+      spare_r_.resize(n);
+      deal(sys_.r, spare_r_);
+    }
+    return;  // one species: the species array is all zeros and does not move
+  }
+  // A mixture: each species is dealt round its own slices, within its own range, so the species
+  // array never changes and every block keeps its share of every species.
+  std::vector<std::size_t> offset(s_);
+  for (std::size_t k = 0; k < s_; ++k) offset[k] = gen_.below(sys_.count[k]);
   auto deal = [&](auto& data, auto& spare) {
-    for (std::size_t i = 0, from = offset; i < n; ++i, from = from + 1 == n ? 0 : from + 1)
-      spare[block_first_[i % blocks] + i / blocks] = data[from];
+    for (std::size_t k = 0; k < s_; ++k) {
+      const std::size_t first = sys_.first[k], count = sys_.count[k];
+      for (std::size_t i = 0, from = offset[k]; i < count; ++i, from = from + 1 == count ? 0 : from + 1)
+        spare[slice_first_[(i % blocks) * s_ + k] + i / blocks] = data[first + from];
+    }
     data.swap(spare);
   };
   deal(sys_.v, spare_v_);
@@ -249,16 +286,28 @@ void Collider::remix() {
     spare_r_.resize(n);
     deal(sys_.r, spare_r_);
   }
-  // One species: the species array is all zeros and does not move.
 }
 
-double Collider::block_max_speed2(std::size_t j) const {
-  double max2 = 0.0;
-  for (std::size_t i = block_first_[j]; i < block_first_[j + 1]; ++i) {
-    const particles::Vec3& v = sys_.v[i];
-    max2 = std::max(max2, v.x * v.x + v.y * v.y + v.z * v.z);
+void Collider::set_block_max_speed2(std::size_t j) {
+  for (std::size_t k = 0; k < s_; ++k) {
+    double max2 = 0.0;
+    const std::size_t first = slice_first_[j * s_ + k];
+    const std::size_t end = first + slice_cum_[j * (s_ + 1) + k + 1] - slice_cum_[j * (s_ + 1) + k];
+    for (std::size_t i = first; i < end; ++i) {
+      const particles::Vec3& v = sys_.v[i];
+      max2 = std::max(max2, v.x * v.x + v.y * v.y + v.z * v.z);
+    }
+    block_max_speed2_[j * s_ + k] = max2;
   }
-  return max2;
+}
+
+double Collider::mixture_bound(const double* max_speed2) const {
+  // B = max_kj pi sigma_kj^2 chi_kj (vmax_k + vmax_j) (as rebuild_bounds, over the given speeds)
+  double bound = 0.0;
+  for (std::size_t k = 0; k < s_; ++k)
+    for (std::size_t j = k; j < s_; ++j)
+      bound = std::max(bound, cross_section_[k * s_ + j] * (std::sqrt(max_speed2[k]) + std::sqrt(max_speed2[j])));
+  return bound;
 }
 
 void Collider::set_whole_gas_bound() {
@@ -266,6 +315,10 @@ void Collider::set_whole_gas_bound() {
   // chi vmax over all particles, R = N n B / 2.
   range_first_ = 0;
   range_count_ = sys_.size();
+  if (s_ > 1) {  // a mixture (majorant): the bound of rebuild_bounds over the species' vmax
+    rebuild_bounds();
+    return;
+  }
   bound_ = 2.0 * cross_section_[0] * max_speed_[0];
   rate_ = 0.5 * static_cast<double>(sys_.size()) * mix_.total_density() * bound_;
 }
@@ -285,15 +338,20 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
           step_acceptance_ = static_cast<double>(counters_.events - step_events_start_) / static_cast<double>(candidates);
       }
       if (whole_step_)  // the whole gas's bound covers every block until their first visit
-        std::fill(block_max_speed2_.begin(), block_max_speed2_.end(), max_speed2_[0]);
+        for (std::size_t j = 0; j < blocks; ++j)
+          for (std::size_t k = 0; k < s_; ++k) block_max_speed2_[j * s_ + k] = max_speed2_[k];
       if (counters_.steps == 0)
-        for (std::size_t j = 0; j < blocks; ++j) block_max_speed2_[j] = block_max_speed2(j);
-      // The step from the largest block bound so far, an upper bound of the gas's vmax (the blocks'
+        for (std::size_t j = 0; j < blocks; ++j) set_block_max_speed2(j);
+      // The step from the largest block bounds so far, an upper bound of the gas's vmax_k (the blocks'
       // bounds are recomputed when visited): dt = block_steps step_fraction / nu_max.
-      const double global = *std::max_element(block_max_speed2_.begin(), block_max_speed2_.end());
-      max_speed2_[0] = global;
-      max_speed_[0] = std::sqrt(global);
-      const double rate = 0.5 * n_total * n * 2.0 * cross_section * max_speed_[0];
+      for (std::size_t k = 0; k < s_; ++k) {
+        double global = 0.0;
+        for (std::size_t j = 0; j < blocks; ++j) global = std::max(global, block_max_speed2_[j * s_ + k]);
+        max_speed2_[k] = global;
+        max_speed_[k] = std::sqrt(global);
+      }
+      const double rate = s_ == 1 ? 0.5 * n_total * n * 2.0 * cross_section * max_speed_[0]
+                                  : 0.5 * n_total * n * mixture_bound(max_speed2_.data());
       if (rate <= 0.0) {
         time_ = t_target;
         return false;
@@ -354,12 +412,14 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
       pending_filled_ = false;  // the drawn-ahead pairs belong to the previous block
       // First visit in this step: the block's exact bound, read in order (which also brings the
       // block into the cache before its random reads).
-      if (t_start == step_start_) block_max_speed2_[j] = block_max_speed2(j);
+      if (t_start == step_start_) set_block_max_speed2(j);
       time_ = t_start;
       credit_ = block_credit_[j];
       for (;;) {
         // A block of N_b particles at the gas's density n: R_b = N_b n B_b / 2 (as R, header).
-        bound_ = 2.0 * cross_section * std::sqrt(block_max_speed2_[j]);
+        // (a mixture: B_b = max_kj pi sigma_kj^2 chi_kj (vmax_bk + vmax_bj) over the block's slices)
+        bound_ = s_ == 1 ? 2.0 * cross_section * std::sqrt(block_max_speed2_[j])
+                         : mixture_bound(block_max_speed2_.data() + j * s_);
         rate_ = 0.5 * static_cast<double>(range_count_) * n * bound_;
         if (rate_ <= 0.0) break;
         if (run_majorant<false>(t_stop, UINT64_MAX) != static_cast<int>(Stop::bound_raised)) break;
@@ -542,10 +602,21 @@ int Collider::run_majorant(double t_stop, std::uint64_t event_target) {
   particles::Vec3* v = sys_.v.data();
   const std::uint32_t* sp = sys_.species.data();
   const bool mixture = s_ > 1;
+  // A mixture's block is a slice of each species (header "Blocks"): candidate i of the block's N_b is
+  // particle i - cum_k of species k's slice, cum_k <= i < cum_k+1.
+  const bool sliced = mixture && !block_first_.empty() && !whole_step_;
+  const std::size_t* cum = sliced ? slice_cum_.data() + current_block_ * (s_ + 1) : nullptr;
+  const std::size_t* slice = sliced ? slice_first_.data() + current_block_ * s_ : nullptr;
+  const auto to_particle = [&](std::uint32_t i) {
+    std::size_t k = 0;
+    while (i >= cum[k + 1]) ++k;
+    return static_cast<std::uint32_t>(slice[k] + (i - cum[k]));
+  };
   const auto draw = [&] {
     const auto a = static_cast<std::uint32_t>(gen_.below(n));
     auto b = static_cast<std::uint32_t>(gen_.below(n - 1));
     if (b >= a) ++b;
+    if (sliced) return PendingPair{to_particle(a), to_particle(b), 0, 0};
     return PendingPair{first + a, first + b, 0, 0};
   };
   return run_substep(t_stop, event_target, [&](std::size_t& a, std::size_t& b, double t_collision) {
