@@ -1,6 +1,7 @@
 // Tests of the executables granular-dsmc and granular-theory as a user calls them (INTERFACE.md):
 // exit status, the one-line message on stderr for bad input, and what is left in the directory.
 // Each test runs the real programs in a fresh temporary directory; every run is tiny.
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -10,6 +11,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -279,6 +282,57 @@ TEST_F(CliDsmc, StaleTemporariesOfDeadRunsAreRemoved) {
   EXPECT_FALSE(fs::exists(dir / "out.h5.tmp.4194300"));
   EXPECT_TRUE(fs::exists(dir / live));
   fs::remove(dir / live);
+}
+
+TEST_F(CliDsmc, AnEndlessRunStopsAtSigintLeavingOnlyTheCheckpoint) {
+  // t_end = 1e30 (asked for with allow_long_run) cools by ~50 decades: its relative speeds drown in
+  // round-off and events become ever rarer among the candidates. SIGINT must still stop it at once.
+  auto lines = gdsmc::test::base_namelist_lines("  file = 'out.h5', n_samples = 3, checkpoint_every = 0.2");
+  lines[1] = "  n_species = 1";
+  lines[2] = "  mass = 1.0";
+  lines[3] = "  diameter = 1.0";
+  lines[4] = "  number_density = 0.01";
+  lines[5] = "  restitution = 0.9";
+  lines[11] = "  n_particles = 2000";
+  lines[12] = "  t_end = 1e30, allow_long_run = .true.";
+  write("t.nml", gdsmc::test::join_lines(lines));
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    if (::chdir(dir.c_str()) != 0) ::_exit(120);
+    if (!std::freopen((capture / "stderr").c_str(), "w", stderr)) ::_exit(121);
+    const std::string tool = (fs::path(GDSMC_BIN_DIR) / "granular-dsmc").string();
+    ::execl(tool.c_str(), tool.c_str(), "t.nml", "--quiet", static_cast<char*>(nullptr));
+    ::_exit(122);
+  }
+  ::usleep(2500000);  // well into the part where events are rare
+  const auto sent = std::chrono::steady_clock::now();
+  ASSERT_EQ(::kill(pid, SIGINT), 0);
+  int status = 0;
+  pid_t done = 0;
+  while ((done = ::waitpid(pid, &status, WNOHANG)) == 0 &&
+         std::chrono::steady_clock::now() - sent < std::chrono::seconds(10))
+    ::usleep(10000);
+  if (done == 0) {
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+    FAIL() << "still running 10 s after SIGINT";
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+  EXPECT_LT(seconds, 3.0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  const std::string err = read_text(capture / "stderr");
+  EXPECT_NE(err.find("granular-dsmc: interrupted"), std::string::npos) << err;
+  EXPECT_EQ(files(), (std::vector<std::string>{"out.checkpoint.h5", "t.nml"}));
+}
+
+TEST_F(CliDsmc, AnEndlessRunIsRefusedWithTheEstimate) {
+  auto lines = base_lines;
+  lines[12] = "  t_end = 1e30";
+  const Result r = dsmc(gdsmc::test::join_lines(lines));
+  expect_input_error(r, "granular-dsmc", "t.nml:13: &dsmc: t_end: ",
+                     {"would cool to", "Haff's law", "allow_long_run = .true."});
 }
 
 TEST_F(CliDsmc, Help) {

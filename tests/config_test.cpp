@@ -984,6 +984,31 @@ TEST(ConfigRepeated, AnAstronomicalCollisionTargetIsRefused) {
                {"beyond 1e18"});
 }
 
+TEST(ConfigRunCost, AnEndlessCoolingIsRefusedWithTheEstimate) {
+  // t_end = 1e30: Haff's law cools the gas by ~50 decades, where the run would never end.
+  const std::string m = error_of(with_line(13, "  t_end = 1e30"));
+  expect_error(m, 13, "dsmc", "t_end", {"would cool to", "e-", "Haff's law", "allow_long_run = .true."});
+  // Asked for: accepted.
+  const auto c = read_text(with_line(13, "  t_end = 1e30, allow_long_run = .true."));
+  EXPECT_TRUE(c.dsmc.allow_long_run);
+  EXPECT_EQ(*c.dsmc.t_end, 1e30);
+  // The same through the collision count.
+  expect_error(error_of(with_line(13, "  collisions_per_particle = 5000")), 13, "dsmc", "collisions_per_particle",
+               {"would cool to", "allow_long_run"});
+}
+
+TEST(ConfigRunCost, TooManyCollisionsAreRefusedWithTheEstimate) {
+  // Elastic (no cooling), 2e9 particles to t = 1e6: far beyond 1e12 collision events per replica.
+  auto lines = base_lines;
+  lines[5] = "  restitution = 1.0";
+  lines[11] = "  n_particles = 2000000000";
+  lines[12] = "  t_end = 1e6";
+  const std::string m = error_of(gdsmc::test::join_lines(lines));
+  expect_error(m, 13, "dsmc", "t_end", {"collision events per replica", "beyond 1e12", "allow_long_run"});
+  // Ordinary runs pass.
+  EXPECT_NO_THROW(read_text(base()));
+}
+
 TEST(ConfigRepeated, OneSetAssignsOneVariable) {
   const std::string m1 = error_of(base(), {"dsmc:seed=3 / &foo x=1"});
   expect_contains(m1, {"--set", "one --set assigns one variable"});

@@ -499,8 +499,12 @@ ReplicaResult run_agg_frag_replica(const io::config::Config& config, const Optio
     for (;;) {
       const std::uint64_t done = gas.counters().events;
       const std::uint64_t chunk_end = event_target - done > kChunk ? done + kChunk : event_target;
-      const bool stopped_by_events = gas.advance(t_target, chunk_end);
-      if (!stopped_by_events || gas.counters().events >= event_target) break;
+      // ... and at most ~1e5 candidates (chunk_end_time); one cluster left or nothing moving: the
+      // gas's advance() goes straight to the target.
+      const bool still = gas.clusters() < 2 || !(gas.candidate_rate() > 0.0);
+      const double t_stop = still ? t_target : chunk_end_time(gas.time(), gas.counters().candidates, t_target);
+      gas.advance(t_stop, chunk_end);
+      if (gas.time() >= t_target || gas.counters().events >= event_target) break;
       if (options.interrupt && options.interrupt->load()) throw Interrupted();
       report(fraction_done());
       safe_point(snapshot);
@@ -731,6 +735,16 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
   return result;
 }
 
+}  // namespace
+
+double chunk_end_time(double time, std::uint64_t candidates, double t_target, double chunk) {
+  if (candidates == 0 || !(time > 0.0)) return t_target;
+  const double end = time + chunk * time / static_cast<double>(candidates);
+  return end < t_target ? end : t_target;
+}
+
+namespace {
+
 /// Runs replica r of one Config, from the start or from `resume`. `slot` is its place in this
 /// rank's progress; `label` names it.
 ReplicaResult run_replica(const io::config::Config& config, const Options& options, Progress& progress,
@@ -792,14 +806,23 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
     reported_events = events;
   };
   const std::function<Snapshot()> snapshot = [&] { return make_snapshot(sys, collider, p, result); };
+  // The end of the next advance() towards `target`: ~1e5 candidates (chunk_end_time). A gas at rest
+  // (no candidates: the collider jumps to its target) goes straight there; with blocks the
+  // collider does that itself.
+  const auto chunk_stop = [&](double target) {
+    const bool still =
+        collider.blocks() == 1 && collider.counters().steps > 0 && !(collider.candidate_rate() > 0.0);
+    return still ? target : chunk_end_time(collider.time(), collider.counters().candidates, target);
+  };
 
   for (; p.next_sample < n_samples; ++p.next_sample, p.in_sample = false, safe_point(snapshot)) {
     const std::size_t i = p.next_sample;
     if (options.interrupt && options.interrupt->load()) throw Interrupted();
     const auto t0 = Clock::now();
-    // Advance in chunks of events so that the progress line, an interrupt and checkpoints are seen
-    // at least every ~1e6 collisions. The chunks end at the same events in every run, wherever and
-    // however often it is stopped and resumed, so the trajectory is the same bit for bit.
+    // Advance in chunks so that the progress line, an interrupt and checkpoints are seen at least
+    // every ~1e6 collisions and every ~1e5 candidates (chunk_end_time). The chunks end at the same
+    // events and times in every run, wherever and however often it is stopped and resumed, so the
+    // trajectory is the same bit for bit.
     const double t_target = time_driven ? targets[i] : std::numeric_limits<double>::infinity();
     // 2 x events / N reaches the target (INTERFACE.md collisions_per_particle)
     const std::uint64_t event_target =
@@ -807,7 +830,11 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
                     : static_cast<std::uint64_t>(std::ceil(targets[i] * static_cast<double>(n_total) / 2.0));
     if (!p.in_sample && track && !p.tracking && config.output.msd_start_time &&
         *config.output.msd_start_time <= t_target) {
-      collider.advance(*config.output.msd_start_time, event_target);  // stop exactly at the start
+      const double start = *config.output.msd_start_time;  // stop exactly at the start
+      while (collider.time() < start && collider.counters().events < event_target) {
+        collider.advance(chunk_stop(start), event_target);
+        if (options.interrupt && options.interrupt->load()) throw Interrupted();
+      }
       if (collider.time() >= *config.output.msd_start_time) {
         particles::start_tracking(sys, collider.time());
         p.tracking = true;
@@ -819,8 +846,8 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
     for (;;) {
       const std::uint64_t done = collider.counters().events;
       const std::uint64_t chunk_end = event_target - done > kChunk ? done + kChunk : event_target;
-      const bool stopped_by_events = collider.advance(t_target, chunk_end);
-      if (!stopped_by_events || collider.counters().events >= event_target) break;
+      collider.advance(chunk_stop(t_target), chunk_end);  // ... and at most ~1e5 candidates
+      if (collider.time() >= t_target || collider.counters().events >= event_target) break;
       if (options.interrupt && options.interrupt->load()) throw Interrupted();
       report(std::min(fraction_done(collider), 0.999));
       safe_point(snapshot);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <limits>
 #include <map>
@@ -11,6 +12,7 @@
 
 #include "dsmc/particles.hpp"
 #include "dsmc/restitution.hpp"
+#include "theory/run_cost.hpp"
 
 namespace gdsmc::io::config {
 
@@ -120,6 +122,9 @@ const std::vector<Field<Dsmc>>& dsmc_fields() {
        "with &thermostat or &shear: length of one streaming/collision/thermostat stage in majorant mean free "
        "times (also at most 0.01/a)",
        Range{0, 1, true}},
+      {"allow_long_run", &Dsmc::allow_long_run, "",
+       ".true.: run even when kinetic theory estimates more than 1e12 collision events per replica, or a "
+       "cooling below 1e-40 of the initial temperature (such runs are refused by default)"},
   };
   return fields;
 }
@@ -720,6 +725,40 @@ void check_staged(const Config& c, std::map<std::string, Provenance>& prov) {
   }
 }
 
+/// The work of the run from kinetic theory (theory/run_cost.hpp), refused beyond the caps below
+/// unless &dsmc allow_long_run: more than 1e12 collision events per replica (a day or more at 1e7
+/// collisions per second), or a cooling below 1e-40 of the initial temperature, where the thermal
+/// speeds (1e-20 of the initial ones) drown in the round-off of the conserved total momentum, almost
+/// every candidate is rejected and the run never ends.
+void check_run_cost(const Config& c, std::map<std::string, Provenance>& prov) {
+  constexpr double kMaxEvents = 1e12, kMinTemperatureRatio = 1e-40;
+  if (c.dsmc.allow_long_run) return;
+  const theory::Cooling cooling = c.staged() ? theory::Cooling::held
+                                  : c.system.restitution_model == "viscoelastic" ? theory::Cooling::viscoelastic
+                                                                                 : theory::Cooling::haff;
+  const theory::RunCost cost = theory::estimate_run_cost(c.mixture(), c.initial.temperature, c.dsmc.t_end,
+                                                         c.dsmc.collisions_per_particle, cooling);
+  const double events = cost.collisions_per_particle * static_cast<double>(c.dsmc.n_particles) / 2.0;
+  const char* variable = c.dsmc.t_end ? "t_end" : "collisions_per_particle";
+  const auto number = [](double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", x);
+    return std::string(text);
+  };
+  std::string reason;
+  if (!(cost.temperature_ratio >= kMinTemperatureRatio))
+    reason = "the gas would cool to " + number(cost.temperature_ratio) +
+             " of its initial temperature (Haff's law, ERRATA §3), below 1e-40, where its thermal speeds drown in the "
+             "round-off of the conserved momentum and almost every candidate is rejected: the run would not end";
+  else if (!(events <= kMaxEvents))
+    reason = "kinetic theory estimates " + number(events) + " collision events per replica (" +
+             number(cost.collisions_per_particle) + " collisions per particle), beyond 1e12 (a day or more)";
+  if (reason.empty()) return;
+  const Provenance& p = prov["dsmc"];
+  throw Error(p.file_of(variable), p.line.count(variable) ? p.line.at(variable) : p.group_line, "dsmc", variable,
+              reason + "; shorten the run, or set &dsmc allow_long_run = .true. to run it anyway");
+}
+
 std::vector<double> spaced(const Output& out, double end) {
   if (!out.sample_times.empty()) {  // 0, the list, and the end of the run
     std::vector<double> t{0.0};
@@ -1045,6 +1084,7 @@ Config read_point(const namelist::Document& document, const std::vector<std::str
   check_output(c.output, c.dsmc, prov["output"]);
   if (c.has_agg_frag) check_agg_frag(c, prov);
   check_staged(c, prov);
+  check_run_cost(c, prov);
   if (!expand_sweep) {
     c.sweep = Sweep{};
   } else if (!prov["sweep"].line.empty()) {

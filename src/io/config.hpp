@@ -67,6 +67,7 @@ struct Dsmc {
   double step_fraction = 1.0;
   long long block_size = 32768;  ///< cache blocks (collide.hpp "Blocks"); 0: none
   double stage_step = 0.125;     ///< with &thermostat or &shear: stage length in majorant mean free times
+  bool allow_long_run = false;   ///< run even when the estimated work is beyond the caps (check_run_cost)
 };
 
 /// &output: where and when.
