@@ -7,6 +7,7 @@
 #include "base_namelist.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -1007,6 +1008,41 @@ TEST(ConfigRunCost, TooManyCollisionsAreRefusedWithTheEstimate) {
   expect_error(m, 13, "dsmc", "t_end", {"collision events per replica", "beyond 1e12", "allow_long_run"});
   // Ordinary runs pass.
   EXPECT_NO_THROW(read_text(base()));
+}
+
+TEST(ConfigSplit, TheParticlesSimulatedAreTheParticlesAskedFor) {
+  // Two equal species: 3 particles are 2 + 1 (not 2 + 2 = 4), and 1 is too few for species 2.
+  auto lines = base_lines;
+  lines[4] = "  number_density = 0.01, 0.01";
+  lines[11] = "  n_particles = 3";
+  expect_error(error_of(gdsmc::test::join_lines(lines)), 12, "dsmc", "n_particles",
+               {"n_particles = 3 gives 1 particle(s) of species 2", "at least 2"});
+  lines[11] = "  n_particles = 5";
+  EXPECT_NO_THROW(read_text(gdsmc::test::join_lines(lines)));
+}
+
+TEST(ConfigSweep, ALongListIsCheckedInLinearTime) {
+  // 30000 values: each point is checked without re-reading the list (it took 11 s).
+  std::string values;
+  for (int k = 1; k <= 30000; ++k) values += (k > 1 ? ", " : "") + std::to_string(k);
+  const std::string text = base() + "&sweep\n  variable = 'dsmc:seed'\n  values = " + values + "\n/\n";
+  const auto start = std::chrono::steady_clock::now();
+  const auto c = read_text(text);
+  const auto points = c.sweep_points();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(points.size(), 30000u);
+  EXPECT_EQ(points.back().dsmc.seed, 30000);
+  EXPECT_FALSE(points.back().is_sweep());
+  EXPECT_LT(seconds, 1.0);
+}
+
+TEST(ConfigSweep, AValueGivenByASetIsBlamedOnTheSet) {
+  const std::string text = base() + "&sweep\n  variable = 'system:restitution'\n  values = 0.5, 0.6\n/\n";
+  const std::string m = error_of(text, {"sweep:values=0.5,1.5"});
+  EXPECT_EQ(m.rfind("--set sweep:values=0.5,1.5: &sweep: values: point 2", 0), 0u) << m;
+  // ... and one the file gave, on the file's line.
+  const std::string f = error_of(base() + "&sweep\n  variable = 'system:restitution'\n  values = 0.5, 1.5\n/\n");
+  EXPECT_EQ(f.rfind("t.nml:20: &sweep: values: point 2", 0), 0u) << f;
 }
 
 TEST(ConfigRepeated, OneSetAssignsOneVariable) {

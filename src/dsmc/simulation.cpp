@@ -166,10 +166,10 @@ class Progress {
   Progress(bool enabled, std::size_t units) : line_(enabled), partial_(units, 0.0) {}
   void update(std::size_t slot, double fraction, const std::string& where, double time, std::uint64_t new_events) {
     std::lock_guard<std::mutex> lock(mutex_);
+    sum_ += fraction - partial_[slot];  // kept up to date: O(1) per update, however many units
     partial_[slot] = fraction;
     events_ += new_events;
-    double sum = 0.0;
-    for (double f : partial_) sum += f;
+    const double sum = sum_;
     const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
     line_.update(std::min(sum / static_cast<double>(partial_.size()), fraction >= 1.0 ? 1.0 : 0.999), where, time,
                  elapsed > 0 ? static_cast<double>(events_) / elapsed : 0.0);
@@ -180,6 +180,7 @@ class Progress {
   std::mutex mutex_;
   ProgressLine line_;
   std::vector<double> partial_;
+  double sum_ = 0.0;  ///< sum of partial_
   std::uint64_t events_ = 0;
   Clock::time_point start_ = Clock::now();
 };

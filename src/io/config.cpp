@@ -912,15 +912,16 @@ void check_sweep(const Config& c, const Provenance& prov, const namelist::Docume
   const std::string group = "sweep";
   const auto line_of = [&](const char* v) { return prov.line.count(v) ? prov.line.at(v) : 0; };
   const Sweep& sweep = c.sweep;
+  // Messages name where each was set: the namelist line, or the --set that gave it.
   if (sweep.variable.empty())
-    throw Error(prov.file, line_of("values"), group, "variable", "required with values");
+    throw Error(prov.file_of("values"), line_of("values"), group, "variable", "required with values");
   if (sweep.values.empty())
-    throw Error(prov.file, line_of("variable"), group, "values", "required with variable");
+    throw Error(prov.file_of("variable"), line_of("variable"), group, "values", "required with variable");
   const auto colon = sweep.variable.find(':');
   const std::string target_group = lower(sweep.variable.substr(0, colon));
   const std::string target = colon == std::string::npos ? "" : lower(sweep.variable.substr(colon + 1));
   if (colon == std::string::npos || target_group == "sweep" || owning_group(target) != target_group)
-    throw Error(prov.file, line_of("variable"), group, "variable",
+    throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
                 "'" + sweep.variable + "' is not 'group:name' of a variable of &system, &initial, "
                 "&dsmc, &output, &agg_frag, &thermostat or &shear");
   for (std::size_t k = 0; k < sweep.values.size(); ++k) {
@@ -929,7 +930,9 @@ void check_sweep(const Config& c, const Provenance& prov, const namelist::Docume
     try {
       read_point(document, o, false);
     } catch (const Error& e) {
-      throw Error(prov.file, line_of("values"), group, "values",
+      // A bad value the namelist gave is blamed on its line; one a --set gave, on that --set (the
+      // point's own override, which e.file names, is this sweep's doing, not the user's command).
+      throw Error(prov.file_of("values"), line_of("values"), group, "values",
                   "point " + std::to_string(k + 1) + " (" + target + " = " + sweep.values[k] +
                       "): " + e.message);
     }
@@ -1026,7 +1029,9 @@ Config read_point(const namelist::Document& document, const std::vector<std::str
                   bool expand_sweep) {
   Config c;
   c.source_file = document.file;
-  c.namelist_text = document.text;
+  // A sweep point does not copy the document's text (nor read its &sweep group, below): with a long
+  // list of values both would make the check of every point, and so of the whole sweep, quadratic.
+  if (expand_sweep) c.namelist_text = document.text;
   c.overrides = overrides;
 
   static const std::vector<std::string> known = {"system", "initial", "dsmc", "output", "agg_frag", "thermostat", "shear", "sweep"};
@@ -1067,7 +1072,7 @@ Config read_point(const namelist::Document& document, const std::vector<std::str
   read_all("agg_frag", c.agg_frag, agg_frag_fields());
   read_all("thermostat", c.thermostat, thermostat_fields());
   read_all("shear", c.shear, shear_fields());
-  read_all("sweep", c.sweep, sweep_fields());
+  if (expand_sweep) read_all("sweep", c.sweep, sweep_fields());
   c.has_agg_frag = document.find("agg_frag") != nullptr;
   for (const auto& doc : extra) c.has_agg_frag = c.has_agg_frag || doc.find("agg_frag") != nullptr;
 
@@ -1085,9 +1090,7 @@ Config read_point(const namelist::Document& document, const std::vector<std::str
   if (c.has_agg_frag) check_agg_frag(c, prov);
   check_staged(c, prov);
   check_run_cost(c, prov);
-  if (!expand_sweep) {
-    c.sweep = Sweep{};
-  } else if (!prov["sweep"].line.empty()) {
+  if (expand_sweep && !prov["sweep"].line.empty()) {
     check_sweep(c, prov["sweep"], document, overrides);
   }
   return c;

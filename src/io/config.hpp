@@ -145,7 +145,8 @@ struct Config {
   /// Sample points in collisions per particle, including 0, when the run is collision-driven.
   std::vector<double> sample_collisions() const;
   /// The Config of every sweep point (this one's overrides plus `variable=value`), or just this
-  /// Config when there is no sweep. Each was checked when the namelist was read.
+  /// Config when there is no sweep. Each was checked when the namelist was read. A point has no
+  /// &sweep and no namelist_text (the text is this Config's): a long list of values stays linear.
   std::vector<Config> sweep_points() const;
   bool is_sweep() const { return !sweep.variable.empty(); }
   /// Every variable of every group, defaults included, for /parameters.
