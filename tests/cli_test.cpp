@@ -335,6 +335,17 @@ TEST_F(CliDsmc, AnEndlessRunIsRefusedWithTheEstimate) {
                      {"would cool to", "Haff's law", "allow_long_run = .true."});
 }
 
+TEST_F(CliDsmc, EmptyFileBomNulAndRestartDirectory) {
+  expect_input_error(dsmc(""), "granular-dsmc", "t.nml: is empty", {"&system"});
+  write("t.nml", "\xEF\xBB\xBF" + base());
+  EXPECT_EQ(run("granular-dsmc", "t.nml --quiet").status, 0);
+  fs::remove(dir / "out.h5");
+  expect_input_error(dsmc(base() + std::string("\0", 1)), "granular-dsmc", "t.nml:18: contains a NUL byte", {});
+  fs::create_directory(dir / "cp");
+  const Result r = dsmc(base(), "--restart cp");
+  expect_input_error(r, "granular-dsmc", "--restart: 'cp' is a directory", {}, {"cp", "t.nml"});
+}
+
 TEST_F(CliDsmc, Help) {
   const Result r = run("granular-dsmc", "--help");
   EXPECT_EQ(r.status, 0);

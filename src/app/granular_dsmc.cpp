@@ -124,6 +124,10 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  if (std::error_code ec; !restart.empty() && std::filesystem::is_directory(restart, ec)) {
+    if (root) std::cerr << "granular-dsmc: --restart: '" << restart << "' is a directory, not a checkpoint file\n";
+    return 2;
+  }
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   gdsmc::simulation::Options options;
