@@ -543,6 +543,26 @@ TEST_F(CliTheory, PrintsOneJsonObject) {
   EXPECT_EQ(files(), std::vector<std::string>{"t.nml"});  // writes no file
 }
 
+TEST_F(CliTheory, AFailedIntegrationNamesTheEndOfTheRun) {
+  // CVODE gives up long before t_end = 1e300: an input error naming t_end and its line.
+  auto lines = base_lines;
+  lines[12] = "  t_end = 1e300, allow_long_run = .true.";
+  write("t.nml", gdsmc::test::join_lines(lines));
+  expect_input_error(run("granular-theory", "t.nml"), "granular-theory", "t.nml:13: &dsmc: t_end: ",
+                     {"the theory cannot integrate to t_end = 1e+300", "CVode"});
+}
+
+TEST_F(CliTheory, RefusesWhatTheSimulationRefusesTheSameWay) {
+  auto lines = base_lines;
+  lines[12] = "  t_end = 1e300";
+  write("t.nml", gdsmc::test::join_lines(lines));
+  const Result theory = run("granular-theory", "t.nml");
+  expect_input_error(theory, "granular-theory", "t.nml:13: &dsmc: t_end: ", {"allow_long_run"});
+  const Result dsmc = run("granular-dsmc", "t.nml --quiet");
+  EXPECT_EQ(dsmc.status, 2);
+  EXPECT_EQ(dsmc.err.substr(std::string("granular-dsmc").size()), theory.err.substr(std::string("granular-theory").size()));
+}
+
 TEST_F(CliTheory, BadInput) {
   write("t.nml", with_line(6, "  restitution = 1.3"));
   expect_input_error(run("granular-theory", "t.nml"), "granular-theory",

@@ -19,6 +19,28 @@
 
 namespace {
 
+/// Runs `integrate` (an ODE integration over the run's sample points) and turns its failure, e.g.
+/// CVODE giving up on t_end = 1e300, into an input error naming the variable that sets the end of
+/// the run (t_end or collisions_per_particle), where it was set, as granular-dsmc names refusals.
+template <class F>
+auto over_the_run(const gdsmc::io::config::Config& config, F&& integrate) {
+  try {
+    return integrate();
+  } catch (const gdsmc::io::namelist::Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    const char* variable = config.dsmc.t_end ? "t_end" : "collisions_per_particle";
+    const auto it = config.origin.find(std::string("dsmc:") + variable);
+    const std::string file = it == config.origin.end() ? config.source_file : it->second.first;
+    const int line = it == config.origin.end() ? 0 : it->second.second;
+    char end[32];
+    std::snprintf(end, sizeof end, "%.6g", config.dsmc.t_end ? *config.dsmc.t_end : *config.dsmc.collisions_per_particle);
+    throw gdsmc::io::namelist::Error(file, line, "dsmc", variable,
+                                     std::string("the theory cannot integrate to ") + variable + " = " + end + ": " +
+                                         e.what());
+  }
+}
+
 const char* kUsage =
     "usage: granular-theory FILE.nml [--set group:variable=value]...\n"
     "Prints the theory for the namelist's system as one JSON object on stdout:\n"
@@ -104,28 +126,30 @@ std::string agg_frag_json(const gdsmc::io::config::Config& config, const std::st
   namespace sm = gdsmc::theory::smoluchowski;
   const sm::Parameters p = sm::parameters_of(config);
   const double n0 = static_cast<double>(config.dsmc.n_particles);
-  std::vector<double> times = config.sample_times();
-  if (times.empty()) {  // collision-driven: the times at which 2 x collisions per monomer reach the targets
-    const auto targets = config.sample_collisions();
-    double horizon = 1.0;
-    for (int guard = 0; guard < 60 && 2.0 * sm::solve(p, {0.0, horizon}).collisions.back() < targets.back(); ++guard)
-      horizon *= 2.0;
-    const std::size_t grid = 2001;
-    std::vector<double> t(grid);
-    for (std::size_t i = 0; i < grid; ++i) t[i] = horizon * static_cast<double>(i) / (grid - 1);
-    const auto fine = sm::solve(p, t);
-    std::size_t i = 1;
-    for (double c : targets) {
-      if (c <= 0.0) {
-        times.push_back(0.0);
-        continue;
+  const auto sol = over_the_run(config, [&] {
+    std::vector<double> times = config.sample_times();
+    if (times.empty()) {  // collision-driven: the times at which 2 x collisions per monomer reach the targets
+      const auto targets = config.sample_collisions();
+      double horizon = 1.0;
+      for (int guard = 0; guard < 60 && 2.0 * sm::solve(p, {0.0, horizon}).collisions.back() < targets.back(); ++guard)
+        horizon *= 2.0;
+      const std::size_t grid = 2001;
+      std::vector<double> t(grid);
+      for (std::size_t i = 0; i < grid; ++i) t[i] = horizon * static_cast<double>(i) / (grid - 1);
+      const auto fine = sm::solve(p, t);
+      std::size_t i = 1;
+      for (double c : targets) {
+        if (c <= 0.0) {
+          times.push_back(0.0);
+          continue;
+        }
+        while (i < grid - 1 && 2.0 * fine.collisions[i] < c) ++i;
+        const double c0 = 2.0 * fine.collisions[i - 1], c1 = 2.0 * fine.collisions[i];
+        times.push_back(t[i - 1] + (t[i] - t[i - 1]) * (c - c0) / (c1 - c0));
       }
-      while (i < grid - 1 && 2.0 * fine.collisions[i] < c) ++i;
-      const double c0 = 2.0 * fine.collisions[i - 1], c1 = 2.0 * fine.collisions[i];
-      times.push_back(t[i - 1] + (t[i] - t[i - 1]) * (c - c0) / (c1 - c0));
     }
-  }
-  const auto sol = sm::solve(p, times);
+    return sm::solve(p, times);
+  });
   const auto rates = sm::initial_rates(p);
   const std::size_t nt = sol.time.size(), kt = sol.max_size;
   // Columns up to the largest size of which the run would hold 1e-6 clusters or more at some time
@@ -210,9 +234,12 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
   }
 
   std::vector<double> times = config.sample_times();
-  if (times.empty()) times = times_for_collisions(mix, t0, config.sample_collisions());
-  const auto history = beta ? th::integrate_partial_temperatures_viscoelastic(mix, *beta, t0, times)
-                            : th::integrate_partial_temperatures(mix, t0, times);
+  if (times.empty())
+    times = over_the_run(config, [&] { return times_for_collisions(mix, t0, config.sample_collisions()); });
+  const auto history = over_the_run(config, [&] {
+    return beta ? th::integrate_partial_temperatures_viscoelastic(mix, *beta, t0, times)
+                : th::integrate_partial_temperatures(mix, t0, times);
+  });
 
   const std::string in = indent + "  ";
   std::vector<std::pair<std::string, std::string>> approximations = {{"collision_frequency", "maxwellian"},
@@ -257,8 +284,10 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
     const double start = config.output.msd_start_time.value_or(0.0);
     std::vector<double> start_temperature = t0;
     if (start > 0.0) {
-      const auto at = beta ? th::integrate_partial_temperatures_viscoelastic(mix, *beta, t0, {0.0, start})
-                           : th::integrate_partial_temperatures(mix, t0, {0.0, start});
+      const auto at = over_the_run(config, [&] {
+        return beta ? th::integrate_partial_temperatures_viscoelastic(mix, *beta, t0, {0.0, start})
+                    : th::integrate_partial_temperatures(mix, t0, {0.0, start});
+      });
       start_temperature = at.temperature.back();
     }
     std::vector<double> since, shifted_times;
@@ -442,6 +471,9 @@ int main(int argc, char** argv) {
       json << "\n  ]\n}\n";
       std::cout << json.str();
     }
+  } catch (const gdsmc::io::namelist::Error& e) {  // e.g. an end of the run the ODEs cannot reach
+    std::cerr << "granular-theory: " << e.what() << "\n";
+    return 2;
   } catch (const std::exception& e) {
     std::cerr << "granular-theory: " << e.what() << "\n";
     return 1;
