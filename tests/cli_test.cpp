@@ -18,6 +18,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -344,6 +345,33 @@ TEST_F(CliDsmc, EmptyFileBomNulAndRestartDirectory) {
   fs::create_directory(dir / "cp");
   const Result r = dsmc(base(), "--restart cp");
   expect_input_error(r, "granular-dsmc", "--restart: 'cp' is a directory", {}, {"cp", "t.nml"});
+}
+
+TEST_F(CliDsmc, AWriteFailureIsOneLineAndLeavesNoFile) {
+  // A file size limit (as a full disk: every write fails) while the output, or a checkpoint, is
+  // written: one line, exit 1 (2 when not even the file can be created), no file left, no crash
+  // at exit (HDF5's shutdown used to segfault after the failed close).
+  auto checkpointed = gdsmc::test::base_namelist_lines("  file = 'out.h5', n_samples = 5, checkpoint_every = 0.001");
+  checkpointed[11] = "  n_particles = 20000";
+  for (const auto& [limit, text, expected] :
+       {std::tuple{"1", base(), "cannot write output file 'out.h5'"},
+        std::tuple{"8", base(), "cannot write output file 'out.h5'"},
+        std::tuple{"100", gdsmc::test::join_lines(checkpointed), "cannot write output file 'out.checkpoint.h5'"}}) {
+    write("t.nml", text);
+    const std::string command = "cd " + quoted(dir.string()) + " && (ulimit -f " + limit + " && exec " +
+                                quoted((fs::path(GDSMC_BIN_DIR) / "granular-dsmc").string()) +
+                                " t.nml --quiet) >" + quoted((capture / "stdout").string()) + " 2>" +
+                                quoted((capture / "stderr").string()) + " </dev/null";
+    const int raw = std::system(command.c_str());
+    ASSERT_TRUE(raw != -1 && WIFEXITED(raw)) << "killed by a signal: " << raw;
+    const int status = WEXITSTATUS(raw);
+    const std::string err = read_text(capture / "stderr");
+    EXPECT_TRUE(status == 1 || status == 2) << status << " " << err;
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+    EXPECT_NE(err.find(expected), std::string::npos) << err;
+    EXPECT_NE(err.find("File too large"), std::string::npos) << err;
+    EXPECT_EQ(files(), (std::vector<std::string>{"t.nml"})) << "limit " << limit;
+  }
 }
 
 TEST_F(CliDsmc, Help) {

@@ -56,6 +56,10 @@ const char* kUsage =
 int main(int argc, char** argv) {
   // Under mpirun every rank runs this main: all read the input (each reports a bad input the same
   // way) and run their share of the work; rank 0 alone writes the file and the summary (parallel.hpp).
+  gdsmc::io::h5md::skip_library_shutdown();  // before any HDF5 call (h5md.hpp)
+  // A file size limit (ulimit -f) makes a write fail with EFBIG, reported like a full disk, instead
+  // of killing the process and leaving its temporary file.
+  std::signal(SIGXFSZ, SIG_IGN);
   gdsmc::parallel::Session mpi(argc, argv);
   const bool root = gdsmc::parallel::rank() == 0;
   std::string input;
