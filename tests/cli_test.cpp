@@ -9,6 +9,10 @@
 
 #include "base_namelist.hpp"
 
+#include <hdf5.h>
+
+#include "io/h5md.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <chrono>
@@ -55,7 +59,7 @@ struct Result {
 /// A fresh directory per test: `run/` is the working directory of the programs (and holds only
 /// what they write besides the input), `capture/` receives their stdout and stderr.
 class CliFixture : public ::testing::Test {
- protected:
+ public:  // for the helpers below the fixtures
   fs::path root, dir, capture;
 
   void SetUp() override {
@@ -285,9 +289,12 @@ TEST_F(CliDsmc, StaleTemporariesOfDeadRunsAreRemoved) {
   fs::remove(dir / live);
 }
 
-TEST_F(CliDsmc, AnEndlessRunStopsAtSigintLeavingOnlyTheCheckpoint) {
-  // t_end = 1e30 (asked for with allow_long_run) cools by ~50 decades: its relative speeds drown in
-  // round-off and events become ever rarer among the candidates. SIGINT must still stop it at once.
+/// Starts an endless run (t_end = 1e30, asked for with allow_long_run, checkpoints every 0.2 s),
+/// sends it SIGINT after `wait_us` and waits up to 10 s: the exit status (-1: killed after the
+/// wait), and the seconds from the signal to the end.
+std::pair<int, double> interrupt_an_endless_run(CliFixture& f, useconds_t wait_us) {
+  // It cools by ~50 decades: its relative speeds drown in round-off and events become ever rarer
+  // among the candidates, so a loop that counted events only would not look at the signal again.
   auto lines = gdsmc::test::base_namelist_lines("  file = 'out.h5', n_samples = 3, checkpoint_every = 0.2");
   lines[1] = "  n_species = 1";
   lines[2] = "  mass = 1.0";
@@ -296,19 +303,19 @@ TEST_F(CliDsmc, AnEndlessRunStopsAtSigintLeavingOnlyTheCheckpoint) {
   lines[5] = "  restitution = 0.9";
   lines[11] = "  n_particles = 2000";
   lines[12] = "  t_end = 1e30, allow_long_run = .true.";
-  write("t.nml", gdsmc::test::join_lines(lines));
+  std::ofstream(f.dir / "t.nml", std::ios::binary) << gdsmc::test::join_lines(lines);
   const pid_t pid = ::fork();
-  ASSERT_GE(pid, 0);
+  if (pid < 0) return {-2, 0.0};
   if (pid == 0) {
-    if (::chdir(dir.c_str()) != 0) ::_exit(120);
-    if (!std::freopen((capture / "stderr").c_str(), "w", stderr)) ::_exit(121);
+    if (::chdir(f.dir.c_str()) != 0) ::_exit(120);
+    if (!std::freopen((f.capture / "stderr").c_str(), "w", stderr)) ::_exit(121);
     const std::string tool = (fs::path(GDSMC_BIN_DIR) / "granular-dsmc").string();
     ::execl(tool.c_str(), tool.c_str(), "t.nml", "--quiet", static_cast<char*>(nullptr));
     ::_exit(122);
   }
-  ::usleep(2500000);  // well into the part where events are rare
+  ::usleep(wait_us);
   const auto sent = std::chrono::steady_clock::now();
-  ASSERT_EQ(::kill(pid, SIGINT), 0);
+  ::kill(pid, SIGINT);
   int status = 0;
   pid_t done = 0;
   while ((done = ::waitpid(pid, &status, WNOHANG)) == 0 &&
@@ -317,15 +324,56 @@ TEST_F(CliDsmc, AnEndlessRunStopsAtSigintLeavingOnlyTheCheckpoint) {
   if (done == 0) {
     ::kill(pid, SIGKILL);
     ::waitpid(pid, &status, 0);
-    FAIL() << "still running 10 s after SIGINT";
+    return {-1, 10.0};
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, seconds};
+}
+
+TEST_F(CliDsmc, AnEndlessRunStopsAtSigintLeavingOnlyTheCheckpoint) {
+  const auto [status, seconds] = interrupt_an_endless_run(*this, 2500000);  // well into the rare events
+  EXPECT_EQ(status, 130);
   EXPECT_LT(seconds, 3.0);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 130);
   const std::string err = read_text(capture / "stderr");
   EXPECT_NE(err.find("granular-dsmc: interrupted"), std::string::npos) << err;
   EXPECT_EQ(files(), (std::vector<std::string>{"out.checkpoint.h5", "t.nml"}));
+}
+
+TEST_F(CliDsmc, ADamagedCheckpointIsRefusedAsDamaged) {
+  ASSERT_EQ(interrupt_an_endless_run(*this, 1000000).first, 130);
+  ASSERT_TRUE(fs::exists(dir / "out.checkpoint.h5"));
+  // One velocity changed in place (HDF5 itself sees nothing wrong): refused as damaged.
+  const std::string file = (dir / "out.checkpoint.h5").string();
+  const std::string group = "/checkpoint/running/unit_0";
+  std::istringstream names(gdsmc::io::h5md::read_string_attribute(file, group, "reals"));
+  bool changed = false;
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  for (std::string name; !changed && std::getline(names, name);) {
+    const hid_t d = H5Dopen2(f, (group + "/" + name).c_str(), H5P_DEFAULT);
+    ASSERT_GE(d, 0);
+    const hid_t space = H5Dget_space(d);
+    std::vector<double> values(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
+    if (!values.empty()) {  // the first non-empty one
+      ASSERT_GE(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), 0);
+      values[0] = values[0] * 0.5 + 1.0;
+      ASSERT_GE(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), 0);
+      changed = true;
+    }
+    H5Sclose(space);
+    H5Dclose(d);
+  }
+  H5Fclose(f);
+  ASSERT_TRUE(changed);
+  const Result r = run("granular-dsmc", "t.nml --quiet --restart out.checkpoint.h5");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("--restart: checkpoint 'out.checkpoint.h5' is damaged"), std::string::npos) << r.err;
+  // Not a checkpoint at all (the namelist): refused as such.
+  const Result n = run("granular-dsmc", "t.nml --quiet --restart t.nml");
+  EXPECT_EQ(n.status, 2) << n.err;
+  EXPECT_NE(n.err.find("is damaged or is not a checkpoint"), std::string::npos) << n.err;
+  EXPECT_EQ(std::count(n.err.begin(), n.err.end(), '\n'), 1) << n.err;
 }
 
 TEST_F(CliDsmc, AnEndlessRunIsRefusedWithTheEstimate) {

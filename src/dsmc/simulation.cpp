@@ -922,6 +922,40 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
   return result;
 }
 
+}  // namespace
+
+std::uint64_t fnv1a(std::uint64_t hash, const void* data, std::size_t bytes) {
+  // FNV-1a, 64 bits (Fowler, Noll and Vo; offset basis 14695981039346656037, prime 1099511628211).
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < bytes; ++i) hash = (hash ^ p[i]) * 1099511628211ull;
+  return hash;
+}
+
+namespace {
+
+/// The checksum of a checkpoint: FNV-1a over every attribute and dataset name and content, in the
+/// order written (written last, checked first on restore, so that any damage is reported as such).
+class ContentHash {
+ public:
+  void add(const std::string& text) {
+    const std::uint64_t size = text.size();
+    hash_ = fnv1a(fnv1a(hash_, &size, sizeof size), text.data(), text.size());
+  }
+  template <class T>
+  void add(const std::vector<T>& values) {
+    const std::uint64_t size = values.size();
+    hash_ = fnv1a(fnv1a(hash_, &size, sizeof size), values.data(), values.size() * sizeof(T));
+  }
+  std::string hex() const {
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash_));
+    return text;
+  }
+
+ private:
+  std::uint64_t hash_ = 14695981039346656037ull;
+};
+
 /// The checkpoint file of this rank (INTERFACE.md): the results of its finished units and the
 /// latest snapshot of each unit in progress, rewritten whole (temporary file + rename, io::h5md).
 /// Each unit in progress refreshes its own snapshot (and rewrites the file) when that snapshot is
@@ -932,29 +966,54 @@ class CheckpointStore {
       : path_(std::move(path)), every_(every), fingerprint_(std::move(fingerprint)), ranks_(ranks),
         last_saved_(units, Clock::now()) {}
 
-  /// Reads a checkpoint written by this store's write(); checks it belongs to this input.
+  /// Reads a checkpoint written by this store's write(); checks that it is intact (its checksum)
+  /// and that it belongs to this input.
   void load(const std::string& file) {
     namespace h5 = io::h5md;
-    if (h5::read_string_attribute(file, "/checkpoint", "fingerprint") != fingerprint_)
+    std::map<std::size_t, Snapshot> done, running;
+    ContentHash hash;
+    std::string fingerprint, stored_checksum;
+    double ranks = 0.0;
+    try {
+      stored_checksum = h5::read_string_attribute(file, "/checkpoint", "checksum");
+      for (const char* kind : {"done", "running"}) {
+        const std::string listed = h5::read_string_attribute(file, "/checkpoint", std::string(kind) + "_units");
+        hash.add(listed);
+        std::istringstream units(listed);
+        for (std::size_t u; units >> u;) {
+          const std::string group = "/checkpoint/" + std::string(kind) + "/unit_" + std::to_string(u);
+          Snapshot snap;
+          const std::string real_names = h5::read_string_attribute(file, group, "reals");
+          const std::string integer_names = h5::read_string_attribute(file, group, "integers");
+          hash.add(real_names);
+          hash.add(integer_names);
+          std::istringstream reals(real_names);
+          for (std::string name; std::getline(reals, name);)
+            if (!name.empty()) hash.add(snap.reals[name] = h5::read_dataset(file, group + "/" + name).data);
+          std::istringstream integers(integer_names);
+          for (std::string name; std::getline(integers, name);)
+            if (!name.empty()) hash.add(snap.integers[name] = h5::read_integers(file, group + "/" + name));
+          (std::string(kind) == "done" ? done : running)[u] = std::move(snap);
+        }
+      }
+      fingerprint = h5::read_string_attribute(file, "/checkpoint", "fingerprint");
+      hash.add(fingerprint);
+      ranks = h5::read_double_attribute(file, "/checkpoint", "ranks");
+      hash.add(std::vector<double>{ranks});
+    } catch (const std::exception& e) {
+      throw std::runtime_error("checkpoint '" + file + "' is damaged or is not a checkpoint of granular-dsmc: " +
+                               e.what());
+    }
+    if (hash.hex() != stored_checksum)
+      throw std::runtime_error("checkpoint '" + file + "' is damaged: its content does not match the checksum "
+                               "written with it (a partial copy, or a disk error)");
+    if (fingerprint != fingerprint_)
       throw std::runtime_error("checkpoint '" + file +
                                "' was written for a different input (namelist text, --set or --output differ)");
-    if (static_cast<int>(h5::read_double_attribute(file, "/checkpoint", "ranks")) != ranks_)
+    if (static_cast<int>(ranks) != ranks_)
       throw std::runtime_error("checkpoint '" + file + "' was written by a run with a different number of MPI ranks");
-    for (const char* kind : {"done", "running"}) {
-      std::istringstream units(h5::read_string_attribute(file, "/checkpoint", std::string(kind) + "_units"));
-      for (std::size_t u; units >> u;) {
-        const std::string group = "/checkpoint/" + std::string(kind) + "/unit_" + std::to_string(u);
-        Snapshot snap;
-        std::istringstream reals(h5::read_string_attribute(file, group, "reals"));
-        for (std::string name; std::getline(reals, name);)
-          if (!name.empty()) snap.reals[name] = h5::read_dataset(file, group + "/" + name).data;
-        std::istringstream integers(h5::read_string_attribute(file, group, "integers"));
-        for (std::string name; std::getline(integers, name);)
-          if (!name.empty()) snap.integers[name] = h5::read_integers(file, group + "/" + name);
-        if (std::string(kind) == "done") done_[u] = load_result(snap);
-        else running_[u] = std::move(snap);
-      }
-    }
+    for (auto& [u, snap] : done) done_[u] = load_result(snap);
+    running_ = std::move(running);
   }
   const ReplicaResult* finished_result(std::size_t unit) const {
     const auto it = done_.find(unit);
@@ -989,29 +1048,38 @@ class CheckpointStore {
   void write() const {
     io::h5md::Writer w(path_, "granular-dsmc", "granular-dsmc checkpoint", GDSMC_VERSION);
     std::string done_units, running_units;
+    for (const auto& [u, result] : done_) done_units += std::to_string(u) + " ";
+    for (const auto& [u, snap] : running_) running_units += std::to_string(u) + " ";
+    // The checksum covers the content in the order load() reads it (ContentHash).
+    ContentHash hash;
     auto put_unit = [&](const std::string& group, const Snapshot& snap) {
       std::string reals, integers;
+      for (const auto& [name, values] : snap.reals) reals += name + "\n";
+      for (const auto& [name, values] : snap.integers) integers += name + "\n";
+      hash.add(reals);
+      hash.add(integers);
       for (const auto& [name, values] : snap.reals) {
         w.write_dataset(group + "/" + name, values, {});
-        reals += name + "\n";
+        hash.add(values);
       }
       for (const auto& [name, values] : snap.integers) {
         w.write_integers(group + "/" + name, values);
-        integers += name + "\n";
+        hash.add(values);
       }
       w.write_attribute(group, "reals", reals);
       w.write_attribute(group, "integers", integers);
     };
+    hash.add(done_units);
     for (const auto& [u, result] : done_) {
       Snapshot snap;
       store_result(snap, result);
       put_unit("/checkpoint/done/unit_" + std::to_string(u), snap);
-      done_units += std::to_string(u) + " ";
     }
-    for (const auto& [u, snap] : running_) {
-      put_unit("/checkpoint/running/unit_" + std::to_string(u), snap);
-      running_units += std::to_string(u) + " ";
-    }
+    hash.add(running_units);
+    for (const auto& [u, snap] : running_) put_unit("/checkpoint/running/unit_" + std::to_string(u), snap);
+    hash.add(fingerprint_);
+    hash.add(std::vector<double>{static_cast<double>(ranks_)});
+    w.write_attribute("/checkpoint", "checksum", hash.hex());
     w.write_dataset("/checkpoint/format", {1.0}, {});
     w.write_attribute("/checkpoint", "fingerprint", fingerprint_);
     w.write_attribute("/checkpoint", "ranks", static_cast<double>(ranks_));

@@ -26,6 +26,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -76,6 +77,9 @@ inline constexpr double chunk_candidates = 131072.0;
 /// so the time ends keep the interrupt flag seen within a second. The end depends only on the state a
 /// checkpoint restores, so a resumed run splits its chunks at the same times.
 double chunk_end_time(double time, std::uint64_t candidates, double t_target, double chunk = chunk_candidates);
+
+/// FNV-1a (64 bits) of `bytes` bytes at `data`, continuing from `hash`: the checksum of checkpoints.
+std::uint64_t fnv1a(std::uint64_t hash, const void* data, std::size_t bytes);
 
 /// Runs the simulation the Config describes and writes `output_path`. Throws OutputPathError when
 /// the file cannot be created (before any work), simulation::Interrupted when interrupted, and
