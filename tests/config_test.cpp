@@ -1045,6 +1045,24 @@ TEST(ConfigSweep, AValueGivenByASetIsBlamedOnTheSet) {
   EXPECT_EQ(f.rfind("t.nml:20: &sweep: values: point 2", 0), 0u) << f;
 }
 
+TEST(ConfigManySpecies, PairSchemesAreRefusedForThousandsOfSpecies) {
+  // 3000 species from the laws: 'majorant' (the default) and 'pairs' would spend the run in their
+  // S^2 bound rebuilds; refused, naming the scheme that handles it. 'lowrank' is accepted.
+  const std::string system =
+      "&system\n  n_species = 3000\n  mass = 1.0\n  mass_law = 'linear'\n  diameter = 1.0\n"
+      "  diameter_law = 'cube_root'\n  number_density = 0.01\n  density_law = 'power'\n  restitution = 0.9\n/\n";
+  for (const char* scheme : {"majorant", "pairs"}) {
+    const std::string text = system + "&dsmc\n  scheme = '" + scheme +
+                             "'\n  n_particles = 12000\n  collisions_per_particle = 1.0\n/\n";
+    expect_error(error_of(text), 12, "dsmc", "scheme", {"n_species^2 = 9000000", "use scheme = 'lowrank'"});
+  }
+  EXPECT_NO_THROW(read_text(system + "&dsmc\n  scheme = 'lowrank'\n  n_particles = 12000\n"
+                                     "  collisions_per_particle = 1.0\n/\n"));
+  // The default scheme: blamed on the group line.
+  expect_error(error_of(system + "&dsmc\n  n_particles = 12000\n  collisions_per_particle = 1.0\n/\n"), 11, "dsmc",
+               "scheme", {"scheme = 'majorant'"});
+}
+
 TEST(ConfigRepeated, OneSetAssignsOneVariable) {
   const std::string m1 = error_of(base(), {"dsmc:seed=3 / &foo x=1"});
   expect_contains(m1, {"--set", "one --set assigns one variable"});

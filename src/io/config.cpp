@@ -585,6 +585,18 @@ void check_dsmc(const Dsmc& d, const species::Mixture& mix, const Provenance& pr
                 "collisions_per_particle x n_particles / 2 = " +
                     std::to_string(*d.collisions_per_particle * static_cast<double>(d.n_particles) / 2.0) +
                     " collision events: beyond 1e18, far more than any run can do");
+  // 'majorant' and 'pairs' recompute their bounds over all S^2 species pairs at every time step
+  // (collide.cpp rebuild_bounds), which has about N/2 candidates: with thousands of species the
+  // rebuilds are the whole run (3000 species: minutes per collision per particle). 'lowrank' updates
+  // its rank-3 majorant in O(S log S) (collide.hpp).
+  constexpr std::size_t kMaxPairSchemeSpecies = 256;
+  if (d.scheme != "lowrank" && mix.size() > kMaxPairSchemeSpecies)
+    throw Error(prov.file_of("scheme"), prov.line.count("scheme") ? prov.line.at("scheme") : group_line, group,
+                "scheme",
+                "scheme = '" + d.scheme + "' recomputes its bounds over all n_species^2 = " +
+                    std::to_string(mix.size() * mix.size()) +
+                    " species pairs at every time step: with more than 256 species use scheme = 'lowrank' "
+                    "(O(S log S), seed 001)");
   const auto counts = particles::species_counts(static_cast<std::size_t>(d.n_particles), mix);
   for (std::size_t k = 0; k < counts.size(); ++k)
     if (counts[k] < 2)
