@@ -26,6 +26,10 @@ template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
 };
+// C++20 deduces this for aggregates, but clang 14 does not implement that (P1816): the guide keeps
+// the code building with both compilers.
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
 
 /// Keeps HDF5 from printing its error stack to stderr while a function of this module runs: the
 /// module reports errors itself, by exception. The previous handler is restored so that the rest
