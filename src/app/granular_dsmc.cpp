@@ -177,7 +177,13 @@ int main(int argc, char** argv) {
                    path.c_str(), summary.final_time, summary.final_total_temperature,
                    summary.collisions_per_particle, summary.events_per_second, summary.wall_seconds);
   } catch (const gdsmc::simulation::Interrupted& e) {
-    if (root) std::cerr << "\ngranular-dsmc: " << e.what() << "\n";
+    if (!root) return 130;
+    std::cerr << (options.progress ? "\n" : "") << "granular-dsmc: " << e.what();
+    // What is left to resume from (the checkpoint of the last safe point, when there is one).
+    const std::string checkpoint = gdsmc::simulation::checkpoint_path(path);
+    if (std::error_code ec; config.output.checkpoint_every && std::filesystem::exists(checkpoint, ec))
+      std::cerr << "; resume with --restart " << checkpoint;
+    std::cerr << "\n";
     return 130;
   } catch (const gdsmc::simulation::RestartError& e) {
     if (root) std::cerr << "granular-dsmc: --restart: " << e.what() << "\n";

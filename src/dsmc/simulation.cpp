@@ -70,11 +70,14 @@ std::string without_h5(std::string path) {
   return path;
 }
 
-/// `<output stem>.checkpoint.h5` (INTERFACE.md), `.rank<k>` before `.h5` for MPI rank k > 0.
+}  // namespace
+
 std::string checkpoint_path(const std::string& output_path, int rank) {
   const std::string stem = without_h5(output_path) + ".checkpoint";
   return rank == 0 ? stem + ".h5" : stem + ".rank" + std::to_string(rank) + ".h5";
 }
+
+namespace {
 
 /// Rank k's file of the checkpoint whose rank-0 file is `path`.
 std::string rank_file(const std::string& path, int rank) {
