@@ -381,7 +381,7 @@ TEST_F(CliDsmc, AnEndlessRunIsRefusedWithTheEstimate) {
   lines[12] = "  t_end = 1e30";
   const Result r = dsmc(gdsmc::test::join_lines(lines));
   expect_input_error(r, "granular-dsmc", "t.nml:13: &dsmc: t_end: ",
-                     {"would cool to", "Haff's law", "allow_long_run = .true."});
+                     {"collision events per replica", "a cooling to", "Haff's law", "allow_long_run = .true."});
 }
 
 TEST_F(CliDsmc, EmptyFileBomNulAndRestartDirectory) {

@@ -757,14 +757,15 @@ void check_run_cost(const Config& c, std::map<std::string, Provenance>& prov) {
     std::snprintf(text, sizeof text, "%.3g", x);
     return std::string(text);
   };
+  const std::string estimate = "kinetic theory estimates " + number(events) + " collision events per replica (" +
+                               number(cost.collisions_per_particle) + " collisions per particle)";
   std::string reason;
   if (!(cost.temperature_ratio >= kMinTemperatureRatio))
-    reason = "the gas would cool to " + number(cost.temperature_ratio) +
-             " of its initial temperature (Haff's law, ERRATA §3), below 1e-40, where its thermal speeds drown in the "
-             "round-off of the conserved momentum and almost every candidate is rejected: the run would not end";
+    reason = estimate + ", and a cooling to " + number(cost.temperature_ratio) +
+             " of the initial temperature (Haff's law, ERRATA §3): below 1e-40 the thermal speeds drown in the "
+             "round-off of the conserved momentum, almost every candidate is rejected and the run would not end";
   else if (!(events <= kMaxEvents))
-    reason = "kinetic theory estimates " + number(events) + " collision events per replica (" +
-             number(cost.collisions_per_particle) + " collisions per particle), beyond 1e12 (a day or more)";
+    reason = estimate + ", beyond 1e12 (a day or more)";
   if (reason.empty()) return;
   const Provenance& p = prov["dsmc"];
   throw Error(p.file_of(variable), p.line.count(variable) ? p.line.at(variable) : p.group_line, "dsmc", variable,
