@@ -1,5 +1,6 @@
 #include "dsmc/simulation.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -810,13 +811,20 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
     reported_events = events;
   };
   const std::function<Snapshot()> snapshot = [&] { return make_snapshot(sys, collider, p, result); };
-  // The end of the next advance() towards `target`: ~1e5 candidates (chunk_end_time). A gas at rest
-  // (no candidates: the collider jumps to its target) goes straight there; with blocks the
-  // collider does that itself.
+  // The end of the next advance() towards `target` (chunk_end_time): ~1e5 candidates, or one time
+  // step's candidates when that is more (N/2 step_fraction), or with cache blocks four steps' (of
+  // block_steps = 5 mean free times each: their speed comes from visiting each block once per step,
+  // collide.hpp "Blocks", and a chunk end within a step costs a second visit), at most 2^24 (about a
+  // second of work).
+  // A gas at rest (no candidates: the collider jumps to its target) goes straight there; with blocks
+  // the collider does that itself.
+  const double step_candidates = 0.5 * static_cast<double>(n_total) * config.dsmc.step_fraction *
+                                 (collider.blocks() > 1 ? 4.0 * 5.0 : 1.0);
+  const double chunk = std::clamp(step_candidates, chunk_candidates, 16777216.0);
   const auto chunk_stop = [&](double target) {
     const bool still =
         collider.blocks() == 1 && collider.counters().steps > 0 && !(collider.candidate_rate() > 0.0);
-    return still ? target : chunk_end_time(collider.time(), collider.counters().candidates, target);
+    return still ? target : chunk_end_time(collider.time(), collider.counters().candidates, target, chunk);
   };
 
   for (; p.next_sample < n_samples; ++p.next_sample, p.in_sample = false, safe_point(snapshot)) {
