@@ -66,7 +66,8 @@ struct Interrupted : std::runtime_error {
 };
 
 /// Candidates between two looks at the interrupt flag (and the progress line and checkpoints) in
-/// the loops that call advance(): about 1e5, a few milliseconds of work.
+/// the loops that call advance(): about 1e5, a few milliseconds of work; more (up to 2^24) when one
+/// time step has more (simulation.cpp, run_replica).
 inline constexpr double chunk_candidates = 131072.0;
 
 /// The end in time of the next advance() chunk of a replica: `chunk` candidates at the run's mean
