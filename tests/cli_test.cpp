@@ -340,7 +340,7 @@ TEST_F(CliDsmc, AnEndlessRunStopsAtSigintLeavingOnlyTheCheckpoint) {
 }
 
 TEST_F(CliDsmc, ADamagedCheckpointIsRefusedAsDamaged) {
-  ASSERT_EQ(interrupt_an_endless_run(*this, 1000000).first, 130);
+  ASSERT_EQ(interrupt_an_endless_run(*this, 2500000).first, 130);
   ASSERT_TRUE(fs::exists(dir / "out.checkpoint.h5"));
   // One velocity changed in place (HDF5 itself sees nothing wrong): refused as damaged.
   const std::string file = (dir / "out.checkpoint.h5").string();
@@ -401,12 +401,15 @@ TEST_F(CliDsmc, AWriteFailureIsOneLineAndLeavesNoFile) {
   // at exit (HDF5's shutdown used to segfault after the failed close).
   auto checkpointed = gdsmc::test::base_namelist_lines("  file = 'out.h5', n_samples = 5, checkpoint_every = 0.001");
   checkpointed[11] = "  n_particles = 20000";
+  // (8 KB and up: LLVM's OpenMP runtime needs a few KB of shared memory to start at all.)
   for (const auto& [limit, text, expected] :
-       {std::tuple{"1", base(), "cannot write output file 'out.h5'"},
-        std::tuple{"8", base(), "cannot write output file 'out.h5'"},
+       {std::tuple{"8", base(), "cannot write output file 'out.h5'"},
         std::tuple{"100", gdsmc::test::join_lines(checkpointed), "cannot write output file 'out.checkpoint.h5'"}}) {
     write("t.nml", text);
-    const std::string command = "cd " + quoted(dir.string()) + " && (ulimit -f " + limit + " && exec " +
+    // HDF5 keeps what it allocated for a file whose close failed: LeakSanitizer (in a sanitizer
+    // build) would turn that into exit status 23.
+    const std::string command = "cd " + quoted(dir.string()) + " && (ulimit -f " + limit +
+                                " && ASAN_OPTIONS=detect_leaks=0 exec " +
                                 quoted((fs::path(GDSMC_BIN_DIR) / "granular-dsmc").string()) +
                                 " t.nml --quiet) >" + quoted((capture / "stdout").string()) + " 2>" +
                                 quoted((capture / "stderr").string()) + " </dev/null";
