@@ -1,6 +1,7 @@
 // Tests of the executables granular-dsmc and granular-theory as a user calls them (INTERFACE.md):
 // exit status, the one-line message on stderr for bad input, and what is left in the directory.
 // Each test runs the real programs in a fresh temporary directory; every run is tiny.
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -9,13 +10,20 @@
 #include "base_namelist.hpp"
 #include "io/h5md.hpp"
 
+#include <hdf5.h>
+
+#include "io/h5md.hpp"
+
 #include <algorithm>
 #include <cctype>
+#include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -52,7 +60,7 @@ struct Result {
 /// A fresh directory per test: `run/` is the working directory of the programs (and holds only
 /// what they write besides the input), `capture/` receives their stdout and stderr.
 class CliFixture : public ::testing::Test {
- protected:
+ public:  // for the helpers below the fixtures
   fs::path root, dir, capture;
 
   void SetUp() override {
@@ -280,6 +288,142 @@ TEST_F(CliDsmc, StaleTemporariesOfDeadRunsAreRemoved) {
   EXPECT_FALSE(fs::exists(dir / "out.h5.tmp.4194300"));
   EXPECT_TRUE(fs::exists(dir / live));
   fs::remove(dir / live);
+}
+
+/// Starts an endless run (t_end = 1e30, asked for with allow_long_run, checkpoints every 0.2 s),
+/// sends it SIGINT after `wait_us` and waits up to 10 s: the exit status (-1: killed after the
+/// wait), and the seconds from the signal to the end.
+std::pair<int, double> interrupt_an_endless_run(CliFixture& f, useconds_t wait_us) {
+  // It cools by ~50 decades: its relative speeds drown in round-off and events become ever rarer
+  // among the candidates, so a loop that counted events only would not look at the signal again.
+  auto lines = gdsmc::test::base_namelist_lines("  file = 'out.h5', n_samples = 3, checkpoint_every = 0.2");
+  lines[1] = "  n_species = 1";
+  lines[2] = "  mass = 1.0";
+  lines[3] = "  diameter = 1.0";
+  lines[4] = "  number_density = 0.01";
+  lines[5] = "  restitution = 0.9";
+  lines[11] = "  n_particles = 2000";
+  lines[12] = "  t_end = 1e30, allow_long_run = .true.";
+  std::ofstream(f.dir / "t.nml", std::ios::binary) << gdsmc::test::join_lines(lines);
+  const pid_t pid = ::fork();
+  if (pid < 0) return {-2, 0.0};
+  if (pid == 0) {
+    if (::chdir(f.dir.c_str()) != 0) ::_exit(120);
+    if (!std::freopen((f.capture / "stderr").c_str(), "w", stderr)) ::_exit(121);
+    const std::string tool = (fs::path(GDSMC_BIN_DIR) / "granular-dsmc").string();
+    ::execl(tool.c_str(), tool.c_str(), "t.nml", "--quiet", static_cast<char*>(nullptr));
+    ::_exit(122);
+  }
+  ::usleep(wait_us);
+  const auto sent = std::chrono::steady_clock::now();
+  ::kill(pid, SIGINT);
+  int status = 0;
+  pid_t done = 0;
+  while ((done = ::waitpid(pid, &status, WNOHANG)) == 0 &&
+         std::chrono::steady_clock::now() - sent < std::chrono::seconds(10))
+    ::usleep(10000);
+  if (done == 0) {
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+    return {-1, 10.0};
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, seconds};
+}
+
+TEST_F(CliDsmc, AnEndlessRunStopsAtSigintLeavingOnlyTheCheckpoint) {
+  const auto [status, seconds] = interrupt_an_endless_run(*this, 2500000);  // well into the rare events
+  EXPECT_EQ(status, 130);
+  EXPECT_LT(seconds, 3.0);
+  const std::string err = read_text(capture / "stderr");
+  EXPECT_EQ(err, "granular-dsmc: interrupted: no output written; resume with --restart out.checkpoint.h5\n");
+  EXPECT_EQ(files(), (std::vector<std::string>{"out.checkpoint.h5", "t.nml"}));
+}
+
+TEST_F(CliDsmc, ADamagedCheckpointIsRefusedAsDamaged) {
+  ASSERT_EQ(interrupt_an_endless_run(*this, 2500000).first, 130);
+  ASSERT_TRUE(fs::exists(dir / "out.checkpoint.h5"));
+  // One velocity changed in place (HDF5 itself sees nothing wrong): refused as damaged.
+  const std::string file = (dir / "out.checkpoint.h5").string();
+  const std::string group = "/checkpoint/running/unit_0";
+  std::istringstream names(gdsmc::io::h5md::read_string_attribute(file, group, "reals"));
+  bool changed = false;
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  for (std::string name; !changed && std::getline(names, name);) {
+    const hid_t d = H5Dopen2(f, (group + "/" + name).c_str(), H5P_DEFAULT);
+    ASSERT_GE(d, 0);
+    const hid_t space = H5Dget_space(d);
+    std::vector<double> values(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
+    if (!values.empty()) {  // the first non-empty one
+      ASSERT_GE(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), 0);
+      values[0] = values[0] * 0.5 + 1.0;
+      ASSERT_GE(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), 0);
+      changed = true;
+    }
+    H5Sclose(space);
+    H5Dclose(d);
+  }
+  H5Fclose(f);
+  ASSERT_TRUE(changed);
+  const Result r = run("granular-dsmc", "t.nml --quiet --restart out.checkpoint.h5");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("--restart: checkpoint 'out.checkpoint.h5' is damaged"), std::string::npos) << r.err;
+  // Not a checkpoint at all (the namelist): refused as such.
+  const Result n = run("granular-dsmc", "t.nml --quiet --restart t.nml");
+  EXPECT_EQ(n.status, 2) << n.err;
+  EXPECT_NE(n.err.find("is damaged or is not a checkpoint"), std::string::npos) << n.err;
+  EXPECT_EQ(std::count(n.err.begin(), n.err.end(), '\n'), 1) << n.err;
+}
+
+TEST_F(CliDsmc, AnEndlessRunIsRefusedWithTheEstimate) {
+  auto lines = base_lines;
+  lines[12] = "  t_end = 1e30";
+  const Result r = dsmc(gdsmc::test::join_lines(lines));
+  expect_input_error(r, "granular-dsmc", "t.nml:13: &dsmc: t_end: ",
+                     {"collision events per replica", "a cooling to", "Haff's law", "allow_long_run = .true."});
+}
+
+TEST_F(CliDsmc, EmptyFileBomNulAndRestartDirectory) {
+  expect_input_error(dsmc(""), "granular-dsmc", "t.nml: is empty", {"&system"});
+  write("t.nml", "\xEF\xBB\xBF" + base());
+  EXPECT_EQ(run("granular-dsmc", "t.nml --quiet").status, 0);
+  fs::remove(dir / "out.h5");
+  expect_input_error(dsmc(base() + std::string("\0", 1)), "granular-dsmc", "t.nml:18: contains a NUL byte", {});
+  fs::create_directory(dir / "cp");
+  const Result r = dsmc(base(), "--restart cp");
+  expect_input_error(r, "granular-dsmc", "--restart: 'cp' is a directory", {}, {"cp", "t.nml"});
+}
+
+TEST_F(CliDsmc, AWriteFailureIsOneLineAndLeavesNoFile) {
+  // A file size limit (as a full disk: every write fails) while the output, or a checkpoint, is
+  // written: one line, exit 1 (2 when not even the file can be created), no file left, no crash
+  // at exit (HDF5's shutdown used to segfault after the failed close).
+  auto checkpointed = gdsmc::test::base_namelist_lines("  file = 'out.h5', n_samples = 5, checkpoint_every = 0.001");
+  checkpointed[11] = "  n_particles = 20000";
+  // (8 KB and up: LLVM's OpenMP runtime needs a few KB of shared memory to start at all.)
+  for (const auto& [limit, text, expected] :
+       {std::tuple{"8", base(), "cannot write output file 'out.h5'"},
+        std::tuple{"100", gdsmc::test::join_lines(checkpointed), "cannot write output file 'out.checkpoint.h5'"}}) {
+    write("t.nml", text);
+    // HDF5 keeps what it allocated for a file whose close failed: LeakSanitizer (in a sanitizer
+    // build) would turn that into exit status 23.
+    const std::string command = "cd " + quoted(dir.string()) + " && (ulimit -f " + limit +
+                                " && ASAN_OPTIONS=detect_leaks=0 exec " +
+                                quoted((fs::path(GDSMC_BIN_DIR) / "granular-dsmc").string()) +
+                                " t.nml --quiet) >" + quoted((capture / "stdout").string()) + " 2>" +
+                                quoted((capture / "stderr").string()) + " </dev/null";
+    const int raw = std::system(command.c_str());
+    ASSERT_TRUE(raw != -1 && WIFEXITED(raw)) << "killed by a signal: " << raw;
+    const int status = WEXITSTATUS(raw);
+    const std::string err = read_text(capture / "stderr");
+    EXPECT_TRUE(status == 1 || status == 2) << status << " " << err;
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+    EXPECT_NE(err.find(expected), std::string::npos) << err;
+    EXPECT_NE(err.find("File too large"), std::string::npos) << err;
+    EXPECT_EQ(files(), (std::vector<std::string>{"t.nml"})) << "limit " << limit;
+  }
 }
 
 TEST_F(CliDsmc, Help) {
@@ -586,6 +730,26 @@ TEST_F(CliTheory, EnskogMixtureShearViscosity) {
                           "\"shear_viscosity_kinetic_ratio\": {\"hcs\": 0.857", "\"hss\": 0.908",
                           "\"shear_viscosity_kinetic_ratio\": \"first_sonine\""})
     EXPECT_NE(r.out.find(key), std::string::npos) << key << " in " << r.out;
+}
+
+TEST_F(CliTheory, AFailedIntegrationNamesTheEndOfTheRun) {
+  // CVODE gives up long before t_end = 1e300: an input error naming t_end and its line.
+  auto lines = base_lines;
+  lines[12] = "  t_end = 1e300, allow_long_run = .true.";
+  write("t.nml", gdsmc::test::join_lines(lines));
+  expect_input_error(run("granular-theory", "t.nml"), "granular-theory", "t.nml:13: &dsmc: t_end: ",
+                     {"the theory cannot integrate to t_end = 1e+300", "CVode"});
+}
+
+TEST_F(CliTheory, RefusesWhatTheSimulationRefusesTheSameWay) {
+  auto lines = base_lines;
+  lines[12] = "  t_end = 1e300";
+  write("t.nml", gdsmc::test::join_lines(lines));
+  const Result theory = run("granular-theory", "t.nml");
+  expect_input_error(theory, "granular-theory", "t.nml:13: &dsmc: t_end: ", {"allow_long_run"});
+  const Result dsmc = run("granular-dsmc", "t.nml --quiet");
+  EXPECT_EQ(dsmc.status, 2);
+  EXPECT_EQ(dsmc.err.substr(std::string("granular-dsmc").size()), theory.err.substr(std::string("granular-theory").size()));
 }
 
 TEST_F(CliTheory, BadInput) {

@@ -7,6 +7,7 @@
 #include "base_namelist.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -982,6 +983,95 @@ TEST(ConfigRepeated, ConflictingSymmetricRestitutionIsAnError) {
 TEST(ConfigRepeated, AnAstronomicalCollisionTargetIsRefused) {
   expect_error(error_of(with_line(13, "  collisions_per_particle = 1e30")), 13, "dsmc", "collisions_per_particle",
                {"beyond 1e18"});
+}
+
+TEST(ConfigRunCost, AnEndlessCoolingIsRefusedWithTheEstimate) {
+  // t_end = 1e30: Haff's law cools the gas by ~50 decades, where the run would never end.
+  const std::string m = error_of(with_line(13, "  t_end = 1e30"));
+  expect_error(m, 13, "dsmc", "t_end", {"collision events per replica", "a cooling to", "e-", "Haff's law", "allow_long_run = .true."});
+  // Asked for: accepted.
+  const auto c = read_text(with_line(13, "  t_end = 1e30, allow_long_run = .true."));
+  EXPECT_TRUE(c.dsmc.allow_long_run);
+  EXPECT_EQ(*c.dsmc.t_end, 1e30);
+  // The same through the collision count.
+  expect_error(error_of(with_line(13, "  collisions_per_particle = 5000")), 13, "dsmc", "collisions_per_particle",
+               {"a cooling to", "allow_long_run"});
+}
+
+TEST(ConfigRunCost, TooManyCollisionsAreRefusedWithTheEstimate) {
+  // Elastic (no cooling), 2e9 particles to t = 1e6: far beyond 1e12 collision events per replica.
+  auto lines = base_lines;
+  lines[5] = "  restitution = 1.0";
+  lines[11] = "  n_particles = 2000000000";
+  lines[12] = "  t_end = 1e6";
+  const std::string m = error_of(gdsmc::test::join_lines(lines));
+  expect_error(m, 13, "dsmc", "t_end", {"collision events per replica", "beyond 1e12", "allow_long_run"});
+  // Ordinary runs pass.
+  EXPECT_NO_THROW(read_text(base()));
+}
+
+TEST(ConfigSplit, TheParticlesSimulatedAreTheParticlesAskedFor) {
+  // Two equal species: 3 particles are 2 + 1 (not 2 + 2 = 4), and 1 is too few for species 2.
+  auto lines = base_lines;
+  lines[4] = "  number_density = 0.01, 0.01";
+  lines[11] = "  n_particles = 3";
+  expect_error(error_of(gdsmc::test::join_lines(lines)), 12, "dsmc", "n_particles",
+               {"n_particles = 3 gives 1 particle(s) of species 2", "at least 2"});
+  lines[11] = "  n_particles = 5";
+  EXPECT_NO_THROW(read_text(gdsmc::test::join_lines(lines)));
+}
+
+TEST(ConfigSweep, ALongListIsCheckedInLinearTime) {
+  // 30000 values: each point is checked without re-reading the list (it took 11 s).
+  std::string values;
+  for (int k = 1; k <= 30000; ++k) values += (k > 1 ? ", " : "") + std::to_string(k);
+  const std::string text = base() + "&sweep\n  variable = 'dsmc:seed'\n  values = " + values + "\n/\n";
+  const auto start = std::chrono::steady_clock::now();
+  const auto c = read_text(text);  // reads and checks every point
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+#if defined(__SANITIZE_ADDRESS__)
+  constexpr double kLimit = 30.0;  // instrumented code is ~30 times slower
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+  constexpr double kLimit = 30.0;
+#else
+  constexpr double kLimit = 1.0;
+#endif
+#else
+  constexpr double kLimit = 1.0;
+#endif
+  EXPECT_LT(seconds, kLimit);
+  const auto points = c.sweep_points();
+  ASSERT_EQ(points.size(), 30000u);
+  EXPECT_EQ(points.back().dsmc.seed, 30000);
+  EXPECT_FALSE(points.back().is_sweep());
+}
+
+TEST(ConfigSweep, AValueGivenByASetIsBlamedOnTheSet) {
+  const std::string text = base() + "&sweep\n  variable = 'system:restitution'\n  values = 0.5, 0.6\n/\n";
+  const std::string m = error_of(text, {"sweep:values=0.5,1.5"});
+  EXPECT_EQ(m.rfind("--set sweep:values=0.5,1.5: &sweep: values: point 2", 0), 0u) << m;
+  // ... and one the file gave, on the file's line.
+  const std::string f = error_of(base() + "&sweep\n  variable = 'system:restitution'\n  values = 0.5, 1.5\n/\n");
+  EXPECT_EQ(f.rfind("t.nml:20: &sweep: values: point 2", 0), 0u) << f;
+}
+
+TEST(ConfigManySpecies, PairSchemesAreRefusedForThousandsOfSpecies) {
+  // 3000 species from the laws: 'majorant' (the default) and 'pairs' would spend the run in their
+  // S^2 bound rebuilds; refused, naming the scheme that handles it. 'lowrank' is accepted.
+  const std::string system =
+      "&system\n  n_species = 3000\n  mass = 1.0\n  mass_law = 'linear'\n  diameter = 1.0\n"
+      "  diameter_law = 'cube_root'\n  number_density = 0.01\n  density_law = 'power'\n  restitution = 0.9\n/\n";
+  for (const char* scheme : {"majorant", "pairs"}) {
+    const std::string text = system + "&dsmc\n  scheme = '" + scheme +
+                             "'\n  n_particles = 12000\n  collisions_per_particle = 1.0\n/\n";
+    expect_error(error_of(text), 12, "dsmc", "scheme", {"n_species^2 = 9000000", "use scheme = 'lowrank'"});
+  }
+  EXPECT_NO_THROW(read_text(system + "&dsmc\n  scheme = 'lowrank'\n  n_particles = 12000\n"
+                                     "  collisions_per_particle = 1.0\n/\n"));
+  // The default scheme: blamed on the group line.
+  expect_error(error_of(system + "&dsmc\n  n_particles = 12000\n  collisions_per_particle = 1.0\n/\n"), 11, "dsmc",
+               "scheme", {"scheme = 'majorant'"});
 }
 
 TEST(ConfigRepeated, OneSetAssignsOneVariable) {

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -697,4 +699,44 @@ TEST(Namelist, ClosestName) {
   // Ties go to the first candidate; candidates are returned as given.
   EXPECT_EQ(closest_name("cat", {"cut", "cot"}), "cut");
   EXPECT_EQ(closest_name("Mass", {"MASS"}), "MASS");
+}
+
+// Issue 12, messages: one readable line whatever the bytes of the file.
+TEST(NamelistMessages, ByteOrderMarkIsAccepted) {
+  const Document doc = parse("\xEF\xBB\xBF&system x = 1 /\n&dsmc y = 2 /\n", "test.nml");
+  ASSERT_EQ(doc.groups.size(), 2u);
+  EXPECT_EQ(doc.groups[0].name, "system");
+  EXPECT_EQ(doc.groups[1].line, 2);
+}
+
+TEST(NamelistMessages, NulByteIsRefusedWithItsLine) {
+  const Error e = error_of(std::string("! comment\n&system\n  x = 1 ! a\0b\n/\n", 30));
+  EXPECT_EQ(e.line, 3);
+  EXPECT_NE(std::string(e.what()).find("test.nml:3: contains a NUL byte"), std::string::npos) << e.what();
+}
+
+TEST(NamelistMessages, LongNamesAndControlCharactersAreCutAndEscaped) {
+  const Error e("f.nml", 3, "system", std::string(100000, 'x'), "value 'a\nb' is bad " + std::string(5000, 'y'));
+  const std::string m = e.what();
+  EXPECT_LT(m.size(), 1200u);
+  EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+  EXPECT_NE(m.find("f.nml:3: &system: " + std::string(64, 'x') + "...: value 'a\\nb' is bad"), std::string::npos);
+  EXPECT_EQ(m.substr(m.size() - 3), "...");
+}
+
+TEST(NamelistMessages, EmptyFileAndDirectory) {
+  const auto dir = std::filesystem::temp_directory_path() / ("gdsmc-nml-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto empty = (dir / "empty.nml").string();
+  std::ofstream(empty).close();
+  for (const auto& [path, words] : {std::pair{empty, std::string(": is empty")},
+                                    std::pair{dir.string(), std::string(": is a directory")}}) {
+    try {
+      parse_file(path);
+      ADD_FAILURE() << "no error for " << path;
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()).find(path + words), 0u) << e.what();
+    }
+  }
+  std::filesystem::remove_all(dir);
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 
 #include "io/config.hpp"
 #include "io/h5md.hpp"
@@ -119,4 +120,15 @@ TEST(Simulation, DisplacementsStartLater) {
   const auto start = io::h5md::read_dataset(path.string(), "/observables/msd/start_time").data;
   ASSERT_EQ(start.size(), 2u);
   EXPECT_DOUBLE_EQ(start[0], 35.0);
+}
+
+TEST(Simulation, ChunksEndAfterAboutAFixedNumberOfCandidates) {
+  // Before any candidate: straight to the target.
+  EXPECT_EQ(simulation::chunk_end_time(0.0, 0, 5.0), 5.0);
+  EXPECT_EQ(simulation::chunk_end_time(2.0, 0, 5.0), 5.0);
+  // 1000 candidates in 2 time units: 1e5 more take 200 time units at that mean rate.
+  EXPECT_DOUBLE_EQ(simulation::chunk_end_time(2.0, 1000, 1e30, 1e5), 202.0);
+  // Never beyond the target, which is then hit exactly.
+  EXPECT_EQ(simulation::chunk_end_time(2.0, 1000, 50.0, 1e5), 50.0);
+  EXPECT_EQ(simulation::chunk_end_time(2.0, 1000, std::numeric_limits<double>::infinity(), 1e5), 202.0);
 }

@@ -114,6 +114,10 @@ const char* kUsage =
 int main(int argc, char** argv) {
   // Under mpirun every rank runs this main: all read the input (each reports a bad input the same
   // way) and run their share of the work; rank 0 alone writes the file and the summary (parallel.hpp).
+  gdsmc::io::h5md::skip_library_shutdown();  // before any HDF5 call (h5md.hpp)
+  // A file size limit (ulimit -f) makes a write fail with EFBIG, reported like a full disk, instead
+  // of killing the process and leaving its temporary file.
+  std::signal(SIGXFSZ, SIG_IGN);
   gdsmc::parallel::Session mpi(argc, argv);
   const bool root = gdsmc::parallel::rank() == 0;
   std::string input;
@@ -193,6 +197,10 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  if (std::error_code ec; !restart.empty() && std::filesystem::is_directory(restart, ec)) {
+    if (root) std::cerr << "granular-dsmc: --restart: '" << restart << "' is a directory, not a checkpoint file\n";
+    return 2;
+  }
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   gdsmc::simulation::Options options;
@@ -278,7 +286,13 @@ int main(int argc, char** argv) {
                    "not a majorant; see /observables/acceptance_overshoots): please report this input\n",
                    summary.acceptance_overshoots);
   } catch (const gdsmc::simulation::Interrupted& e) {
-    if (root) std::cerr << "\ngranular-dsmc: " << e.what() << "\n";
+    if (!root) return 130;
+    std::cerr << (options.progress ? "\n" : "") << "granular-dsmc: " << e.what();
+    // What is left to resume from (the checkpoint of the last safe point, when there is one).
+    const std::string checkpoint = gdsmc::simulation::checkpoint_path(path);
+    if (std::error_code ec; config.output.checkpoint_every && std::filesystem::exists(checkpoint, ec))
+      std::cerr << "; resume with --restart " << checkpoint;
+    std::cerr << "\n";
     return 130;
   } catch (const gdsmc::simulation::RestartError& e) {
     if (root) std::cerr << "granular-dsmc: --restart: " << e.what() << "\n";

@@ -234,6 +234,9 @@ int main(int argc, char** argv) {
       json << "\n  ]\n}\n";
       std::cout << json.str();
     }
+  } catch (const gdsmc::io::namelist::Error& e) {  // e.g. an end of the run the ODEs cannot reach
+    std::cerr << "granular-theory: " << e.what() << "\n";
+    return 2;
   } catch (const std::exception& e) {
     std::cerr << "granular-theory: " << e.what() << "\n";
     return 1;

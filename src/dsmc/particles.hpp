@@ -101,7 +101,7 @@ inline void flush_free_flight(System& sys, std::size_t i, double t) {
   r.t_last = t;
 }
 
-/// N_k = round(N x_k) for each species (the caller checks N_k >= 2).
+/// N_k ~ N x_k for each species, adding up to N exactly (largest remainders; the caller checks N_k >= 2).
 std::vector<std::size_t> species_counts(std::size_t n_particles, const species::Mixture& mix);
 
 /// Particles with the given counts and velocities drawn from `distribution` at temperatures T_k.

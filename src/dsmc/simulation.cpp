@@ -1,6 +1,7 @@
 #include "dsmc/simulation.hpp"
 
 #include <cstdlib>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -71,11 +72,14 @@ std::string without_h5(std::string path) {
   return path;
 }
 
-/// `<output stem>.checkpoint.h5` (INTERFACE.md), `.rank<k>` before `.h5` for MPI rank k > 0.
+}  // namespace
+
 std::string checkpoint_path(const std::string& output_path, int rank) {
   const std::string stem = without_h5(output_path) + ".checkpoint";
   return rank == 0 ? stem + ".h5" : stem + ".rank" + std::to_string(rank) + ".h5";
 }
+
+namespace {
 
 /// Rank k's file of the checkpoint whose rank-0 file is `path`.
 std::string rank_file(const std::string& path, int rank) {
@@ -167,10 +171,10 @@ class Progress {
   Progress(bool enabled, std::size_t units) : line_(enabled), partial_(units, 0.0) {}
   void update(std::size_t slot, double fraction, const std::string& where, double time, std::uint64_t new_events) {
     std::lock_guard<std::mutex> lock(mutex_);
+    sum_ += fraction - partial_[slot];  // kept up to date: O(1) per update, however many units
     partial_[slot] = fraction;
     events_ += new_events;
-    double sum = 0.0;
-    for (double f : partial_) sum += f;
+    const double sum = sum_;
     const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
     line_.update(std::min(sum / static_cast<double>(partial_.size()), fraction >= 1.0 ? 1.0 : 0.999), where, time,
                  elapsed > 0 ? static_cast<double>(events_) / elapsed : 0.0);
@@ -181,6 +185,7 @@ class Progress {
   std::mutex mutex_;
   ProgressLine line_;
   std::vector<double> partial_;
+  double sum_ = 0.0;  ///< sum of partial_
   std::uint64_t events_ = 0;
   Clock::time_point start_ = Clock::now();
 };
@@ -522,8 +527,12 @@ ReplicaResult run_agg_frag_replica(const io::config::Config& config, const Optio
     for (;;) {
       const std::uint64_t done = gas.counters().events;
       const std::uint64_t chunk_end = event_target - done > kChunk ? done + kChunk : event_target;
-      const bool stopped_by_events = gas.advance(t_target, chunk_end);
-      if (!stopped_by_events || gas.counters().events >= event_target) break;
+      // ... and at most ~1e5 candidates (chunk_end_time); one cluster left or nothing moving: the
+      // gas's advance() goes straight to the target.
+      const bool still = gas.clusters() < 2 || !(gas.candidate_rate() > 0.0);
+      const double t_stop = still ? t_target : chunk_end_time(gas.time(), gas.counters().candidates, t_target);
+      gas.advance(t_stop, chunk_end);
+      if (gas.time() >= t_target || gas.counters().events >= event_target) break;
       if (options.interrupt && options.interrupt->load()) throw Interrupted();
       report(fraction_done());
       safe_point(snapshot);
@@ -781,6 +790,16 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
   return result;
 }
 
+}  // namespace
+
+double chunk_end_time(double time, std::uint64_t candidates, double t_target, double chunk) {
+  if (candidates == 0 || !(time > 0.0)) return t_target;
+  const double end = time + chunk * time / static_cast<double>(candidates);
+  return end < t_target ? end : t_target;
+}
+
+namespace {
+
 /// Runs replica r of one Config, from the start or from `resume`. `slot` is its place in this
 /// rank's progress; `label` names it.
 ReplicaResult run_replica(const io::config::Config& config, const Options& options, Progress& progress,
@@ -842,14 +861,30 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
     reported_events = events;
   };
   const std::function<Snapshot()> snapshot = [&] { return make_snapshot(sys, collider, p, result); };
+  // The end of the next advance() towards `target` (chunk_end_time): ~1e5 candidates, or one time
+  // step's candidates when that is more (N/2 step_fraction), or with cache blocks four steps' (of
+  // block_steps = 5 mean free times each: their speed comes from visiting each block once per step,
+  // collide.hpp "Blocks", and a chunk end within a step costs a second visit), at most 2^24 (about a
+  // second of work).
+  // A gas at rest (no candidates: the collider jumps to its target) goes straight there; with blocks
+  // the collider does that itself.
+  const double step_candidates = 0.5 * static_cast<double>(n_total) * config.dsmc.step_fraction *
+                                 (collider.blocks() > 1 ? 4.0 * 5.0 : 1.0);
+  const double chunk = std::clamp(step_candidates, chunk_candidates, 16777216.0);
+  const auto chunk_stop = [&](double target) {
+    const bool still =
+        collider.blocks() == 1 && collider.counters().steps > 0 && !(collider.candidate_rate() > 0.0);
+    return still ? target : chunk_end_time(collider.time(), collider.counters().candidates, target, chunk);
+  };
 
   for (; p.next_sample < n_samples; ++p.next_sample, p.in_sample = false, safe_point(snapshot)) {
     const std::size_t i = p.next_sample;
     if (options.interrupt && options.interrupt->load()) throw Interrupted();
     const auto t0 = Clock::now();
-    // Advance in chunks of events so that the progress line, an interrupt and checkpoints are seen
-    // at least every ~1e6 collisions. The chunks end at the same events in every run, wherever and
-    // however often it is stopped and resumed, so the trajectory is the same bit for bit.
+    // Advance in chunks so that the progress line, an interrupt and checkpoints are seen at least
+    // every ~1e6 collisions and every ~1e5 candidates (chunk_end_time). The chunks end at the same
+    // events and times in every run, wherever and however often it is stopped and resumed, so the
+    // trajectory is the same bit for bit.
     const double t_target = time_driven ? targets[i] : std::numeric_limits<double>::infinity();
     // 2 x events / N reaches the target (INTERFACE.md collisions_per_particle)
     const std::uint64_t event_target =
@@ -857,7 +892,11 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
                     : static_cast<std::uint64_t>(std::ceil(targets[i] * static_cast<double>(n_total) / 2.0));
     if (!p.in_sample && track && !p.tracking && config.output.msd_start_time &&
         *config.output.msd_start_time <= t_target) {
-      collider.advance(*config.output.msd_start_time, event_target);  // stop exactly at the start
+      const double start = *config.output.msd_start_time;  // stop exactly at the start
+      while (collider.time() < start && collider.counters().events < event_target) {
+        collider.advance(chunk_stop(start), event_target);
+        if (options.interrupt && options.interrupt->load()) throw Interrupted();
+      }
       if (collider.time() >= *config.output.msd_start_time) {
         particles::start_tracking(sys, collider.time());
         p.tracking = true;
@@ -870,8 +909,8 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
       const std::uint64_t done = collider.counters().events;
       const std::uint64_t chunk_end = event_target - done > kChunk ? done + kChunk : event_target;
       // The sample's own target is exact; a chunk's end is soft (blocks may pass it, collide.hpp).
-      const bool stopped_by_events = collider.advance(t_target, chunk_end, chunk_end == event_target);
-      if (!stopped_by_events || collider.counters().events >= event_target) break;
+      collider.advance(chunk_stop(t_target), chunk_end, chunk_end == event_target);  // ... and at most ~1e5 candidates
+      if (collider.time() >= t_target || collider.counters().events >= event_target) break;
       if (options.interrupt && options.interrupt->load()) throw Interrupted();
       report(std::min(fraction_done(collider), 0.999));
       safe_point(snapshot);
@@ -947,6 +986,40 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
   return result;
 }
 
+}  // namespace
+
+std::uint64_t fnv1a(std::uint64_t hash, const void* data, std::size_t bytes) {
+  // FNV-1a, 64 bits (Fowler, Noll and Vo; offset basis 14695981039346656037, prime 1099511628211).
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < bytes; ++i) hash = (hash ^ p[i]) * 1099511628211ull;
+  return hash;
+}
+
+namespace {
+
+/// The checksum of a checkpoint: FNV-1a over every attribute and dataset name and content, in the
+/// order written (written last, checked first on restore, so that any damage is reported as such).
+class ContentHash {
+ public:
+  void add(const std::string& text) {
+    const std::uint64_t size = text.size();
+    hash_ = fnv1a(fnv1a(hash_, &size, sizeof size), text.data(), text.size());
+  }
+  template <class T>
+  void add(const std::vector<T>& values) {
+    const std::uint64_t size = values.size();
+    hash_ = fnv1a(fnv1a(hash_, &size, sizeof size), values.data(), values.size() * sizeof(T));
+  }
+  std::string hex() const {
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash_));
+    return text;
+  }
+
+ private:
+  std::uint64_t hash_ = 14695981039346656037ull;
+};
+
 /// The checkpoint file of this rank (INTERFACE.md): the results of its finished units and the
 /// latest snapshot of each unit in progress, rewritten whole (temporary file + rename, io::h5md).
 /// Each unit in progress refreshes its own snapshot (and rewrites the file) when that snapshot is
@@ -957,29 +1030,54 @@ class CheckpointStore {
       : path_(std::move(path)), every_(every), fingerprint_(std::move(fingerprint)), ranks_(ranks),
         last_saved_(units, Clock::now()) {}
 
-  /// Reads a checkpoint written by this store's write(); checks it belongs to this input.
+  /// Reads a checkpoint written by this store's write(); checks that it is intact (its checksum)
+  /// and that it belongs to this input.
   void load(const std::string& file) {
     namespace h5 = io::h5md;
-    if (h5::read_string_attribute(file, "/checkpoint", "fingerprint") != fingerprint_)
+    std::map<std::size_t, Snapshot> done, running;
+    ContentHash hash;
+    std::string fingerprint, stored_checksum;
+    double ranks = 0.0;
+    try {
+      stored_checksum = h5::read_string_attribute(file, "/checkpoint", "checksum");
+      for (const char* kind : {"done", "running"}) {
+        const std::string listed = h5::read_string_attribute(file, "/checkpoint", std::string(kind) + "_units");
+        hash.add(listed);
+        std::istringstream units(listed);
+        for (std::size_t u; units >> u;) {
+          const std::string group = "/checkpoint/" + std::string(kind) + "/unit_" + std::to_string(u);
+          Snapshot snap;
+          const std::string real_names = h5::read_string_attribute(file, group, "reals");
+          const std::string integer_names = h5::read_string_attribute(file, group, "integers");
+          hash.add(real_names);
+          hash.add(integer_names);
+          std::istringstream reals(real_names);
+          for (std::string name; std::getline(reals, name);)
+            if (!name.empty()) hash.add(snap.reals[name] = h5::read_dataset(file, group + "/" + name).data);
+          std::istringstream integers(integer_names);
+          for (std::string name; std::getline(integers, name);)
+            if (!name.empty()) hash.add(snap.integers[name] = h5::read_integers(file, group + "/" + name));
+          (std::string(kind) == "done" ? done : running)[u] = std::move(snap);
+        }
+      }
+      fingerprint = h5::read_string_attribute(file, "/checkpoint", "fingerprint");
+      hash.add(fingerprint);
+      ranks = h5::read_double_attribute(file, "/checkpoint", "ranks");
+      hash.add(std::vector<double>{ranks});
+    } catch (const std::exception& e) {
+      throw std::runtime_error("checkpoint '" + file + "' is damaged or is not a checkpoint of granular-dsmc: " +
+                               e.what());
+    }
+    if (hash.hex() != stored_checksum)
+      throw std::runtime_error("checkpoint '" + file + "' is damaged: its content does not match the checksum "
+                               "written with it (a partial copy, or a disk error)");
+    if (fingerprint != fingerprint_)
       throw std::runtime_error("checkpoint '" + file +
                                "' was written for a different input (namelist text, --set or --output differ)");
-    if (static_cast<int>(h5::read_double_attribute(file, "/checkpoint", "ranks")) != ranks_)
+    if (static_cast<int>(ranks) != ranks_)
       throw std::runtime_error("checkpoint '" + file + "' was written by a run with a different number of MPI ranks");
-    for (const char* kind : {"done", "running"}) {
-      std::istringstream units(h5::read_string_attribute(file, "/checkpoint", std::string(kind) + "_units"));
-      for (std::size_t u; units >> u;) {
-        const std::string group = "/checkpoint/" + std::string(kind) + "/unit_" + std::to_string(u);
-        Snapshot snap;
-        std::istringstream reals(h5::read_string_attribute(file, group, "reals"));
-        for (std::string name; std::getline(reals, name);)
-          if (!name.empty()) snap.reals[name] = h5::read_dataset(file, group + "/" + name).data;
-        std::istringstream integers(h5::read_string_attribute(file, group, "integers"));
-        for (std::string name; std::getline(integers, name);)
-          if (!name.empty()) snap.integers[name] = h5::read_integers(file, group + "/" + name);
-        if (std::string(kind) == "done") done_[u] = load_result(snap);
-        else running_[u] = std::move(snap);
-      }
-    }
+    for (auto& [u, snap] : done) done_[u] = load_result(snap);
+    running_ = std::move(running);
   }
   const ReplicaResult* finished_result(std::size_t unit) const {
     const auto it = done_.find(unit);
@@ -1014,29 +1112,38 @@ class CheckpointStore {
   void write() const {
     io::h5md::Writer w(path_, "granular-dsmc", "granular-dsmc checkpoint", GDSMC_VERSION);
     std::string done_units, running_units;
+    for (const auto& [u, result] : done_) done_units += std::to_string(u) + " ";
+    for (const auto& [u, snap] : running_) running_units += std::to_string(u) + " ";
+    // The checksum covers the content in the order load() reads it (ContentHash).
+    ContentHash hash;
     auto put_unit = [&](const std::string& group, const Snapshot& snap) {
       std::string reals, integers;
+      for (const auto& [name, values] : snap.reals) reals += name + "\n";
+      for (const auto& [name, values] : snap.integers) integers += name + "\n";
+      hash.add(reals);
+      hash.add(integers);
       for (const auto& [name, values] : snap.reals) {
         w.write_dataset(group + "/" + name, values, {});
-        reals += name + "\n";
+        hash.add(values);
       }
       for (const auto& [name, values] : snap.integers) {
         w.write_integers(group + "/" + name, values);
-        integers += name + "\n";
+        hash.add(values);
       }
       w.write_attribute(group, "reals", reals);
       w.write_attribute(group, "integers", integers);
     };
+    hash.add(done_units);
     for (const auto& [u, result] : done_) {
       Snapshot snap;
       store_result(snap, result);
       put_unit("/checkpoint/done/unit_" + std::to_string(u), snap);
-      done_units += std::to_string(u) + " ";
     }
-    for (const auto& [u, snap] : running_) {
-      put_unit("/checkpoint/running/unit_" + std::to_string(u), snap);
-      running_units += std::to_string(u) + " ";
-    }
+    hash.add(running_units);
+    for (const auto& [u, snap] : running_) put_unit("/checkpoint/running/unit_" + std::to_string(u), snap);
+    hash.add(fingerprint_);
+    hash.add(std::vector<double>{static_cast<double>(ranks_)});
+    w.write_attribute("/checkpoint", "checksum", hash.hex());
     w.write_dataset("/checkpoint/format", {1.0}, {});
     w.write_attribute("/checkpoint", "fingerprint", fingerprint_);
     w.write_attribute("/checkpoint", "ranks", static_cast<double>(ranks_));

@@ -27,6 +27,8 @@
 
 #include <atomic>
 #include <functional>
+#include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include "io/config.hpp"
@@ -69,6 +71,26 @@ struct RestartError : std::runtime_error {
 struct Interrupted : std::runtime_error {
   Interrupted() : std::runtime_error("interrupted: no output written") {}
 };
+
+/// Candidates between two looks at the interrupt flag (and the progress line and checkpoints) in
+/// the loops that call advance(): about 1e5, a few milliseconds of work; more (up to 2^24) when one
+/// time step has more (simulation.cpp, run_replica).
+inline constexpr double chunk_candidates = 131072.0;
+
+/// The end in time of the next advance() chunk of a replica: `chunk` candidates at the run's mean
+/// candidate rate so far, candidates / time (time advances 1/R per candidate, collide.hpp), never
+/// beyond `t_target`; `t_target` itself before the first candidate. The chunks end at the events
+/// too (2^20), but an event can take ever more candidates (a gas cooled by many decades: its relative
+/// speeds fall below the round-off of the conserved momentum, and almost every candidate is rejected),
+/// so the time ends keep the interrupt flag seen within a second. The end depends only on the state a
+/// checkpoint restores, so a resumed run splits its chunks at the same times.
+double chunk_end_time(double time, std::uint64_t candidates, double t_target, double chunk = chunk_candidates);
+
+/// `<output stem>.checkpoint.h5` (INTERFACE.md), `.rank<k>` before `.h5` for MPI rank k > 0.
+std::string checkpoint_path(const std::string& output_path, int rank = 0);
+
+/// FNV-1a (64 bits) of `bytes` bytes at `data`, continuing from `hash`: the checksum of checkpoints.
+std::uint64_t fnv1a(std::uint64_t hash, const void* data, std::size_t bytes);
 
 /// Runs the simulation the Config describes and writes `output_path`. Throws OutputPathError when
 /// the file cannot be created (before any work), simulation::Interrupted when interrupted, and

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <limits>
 #include <map>
@@ -11,6 +12,7 @@
 
 #include "dsmc/particles.hpp"
 #include "dsmc/restitution.hpp"
+#include "theory/run_cost.hpp"
 
 namespace gdsmc::io::config {
 
@@ -121,6 +123,9 @@ const std::vector<Field<Dsmc>>& dsmc_fields() {
        "with &thermostat or &shear: length of one streaming/collision/thermostat stage in majorant mean free "
        "times (also at most 0.01/a)",
        Range{0, 1, true}},
+      {"allow_long_run", &Dsmc::allow_long_run, "",
+       ".true.: run even when kinetic theory estimates more than 1e12 collision events per replica, or a "
+       "cooling below 1e-40 of the initial temperature (such runs are refused by default)"},
   };
   return fields;
 }
@@ -584,6 +589,18 @@ void check_dsmc(const Dsmc& d, const species::Mixture& mix, const Provenance& pr
                 "collisions_per_particle x n_particles / 2 = " +
                     std::to_string(*d.collisions_per_particle * static_cast<double>(d.n_particles) / 2.0) +
                     " collision events: beyond 1e18, far more than any run can do");
+  // 'majorant' and 'pairs' recompute their bounds over all S^2 species pairs at every time step
+  // (collide.cpp rebuild_bounds), which has about N/2 candidates: with thousands of species the
+  // rebuilds are the whole run (3000 species: minutes per collision per particle). 'lowrank' updates
+  // its rank-3 majorant in O(S log S) (collide.hpp).
+  constexpr std::size_t kMaxPairSchemeSpecies = 256;
+  if (d.scheme != "lowrank" && mix.size() > kMaxPairSchemeSpecies)
+    throw Error(prov.file_of("scheme"), prov.line.count("scheme") ? prov.line.at("scheme") : group_line, group,
+                "scheme",
+                "scheme = '" + d.scheme + "' recomputes its bounds over all n_species^2 = " +
+                    std::to_string(mix.size() * mix.size()) +
+                    " species pairs at every time step: with more than 256 species use scheme = 'lowrank' "
+                    "(O(S log S), seed 001)");
   const auto counts = particles::species_counts(static_cast<std::size_t>(d.n_particles), mix);
   for (std::size_t k = 0; k < counts.size(); ++k)
     if (counts[k] < 2)
@@ -723,6 +740,41 @@ void check_staged(const Config& c, std::map<std::string, Provenance>& prov) {
   } else if (prov["shear"].line.count("average_from")) {
     refuse("shear", "average_from", "only used with a shear rate");
   }
+}
+
+/// The work of the run from kinetic theory (theory/run_cost.hpp), refused beyond the caps below
+/// unless &dsmc allow_long_run: more than 1e12 collision events per replica (a day or more at 1e7
+/// collisions per second), or a cooling below 1e-40 of the initial temperature, where the thermal
+/// speeds (1e-20 of the initial ones) drown in the round-off of the conserved total momentum, almost
+/// every candidate is rejected and the run never ends.
+void check_run_cost(const Config& c, std::map<std::string, Provenance>& prov) {
+  constexpr double kMaxEvents = 1e12, kMinTemperatureRatio = 1e-40;
+  if (c.dsmc.allow_long_run) return;
+  const theory::Cooling cooling = c.staged() ? theory::Cooling::held
+                                  : c.system.restitution_model == "viscoelastic" ? theory::Cooling::viscoelastic
+                                                                                 : theory::Cooling::haff;
+  const theory::RunCost cost = theory::estimate_run_cost(c.mixture(), c.initial.temperature, c.dsmc.t_end,
+                                                         c.dsmc.collisions_per_particle, cooling);
+  const double events = cost.collisions_per_particle * static_cast<double>(c.dsmc.n_particles) / 2.0;
+  const char* variable = c.dsmc.t_end ? "t_end" : "collisions_per_particle";
+  const auto number = [](double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", x);
+    return std::string(text);
+  };
+  const std::string estimate = "kinetic theory estimates " + number(events) + " collision events per replica (" +
+                               number(cost.collisions_per_particle) + " collisions per particle)";
+  std::string reason;
+  if (!(cost.temperature_ratio >= kMinTemperatureRatio))
+    reason = estimate + ", and a cooling to " + number(cost.temperature_ratio) +
+             " of the initial temperature (Haff's law, ERRATA §3): below 1e-40 the thermal speeds drown in the "
+             "round-off of the conserved momentum, almost every candidate is rejected and the run would not end";
+  else if (!(events <= kMaxEvents))
+    reason = estimate + ", beyond 1e12 (a day or more)";
+  if (reason.empty()) return;
+  const Provenance& p = prov["dsmc"];
+  throw Error(p.file_of(variable), p.line.count(variable) ? p.line.at(variable) : p.group_line, "dsmc", variable,
+              reason + "; shorten the run, or set &dsmc allow_long_run = .true. to run it anyway");
 }
 
 std::vector<double> spaced(const Output& out, double end) {
@@ -878,15 +930,16 @@ void check_sweep(const Config& c, const Provenance& prov, const namelist::Docume
   const std::string group = "sweep";
   const auto line_of = [&](const char* v) { return prov.line.count(v) ? prov.line.at(v) : 0; };
   const Sweep& sweep = c.sweep;
+  // Messages name where each was set: the namelist line, or the --set that gave it.
   if (sweep.variable.empty())
-    throw Error(prov.file, line_of("values"), group, "variable", "required with values");
+    throw Error(prov.file_of("values"), line_of("values"), group, "variable", "required with values");
   if (sweep.values.empty())
-    throw Error(prov.file, line_of("variable"), group, "values", "required with variable");
+    throw Error(prov.file_of("variable"), line_of("variable"), group, "values", "required with variable");
   const auto colon = sweep.variable.find(':');
   const std::string target_group = lower(sweep.variable.substr(0, colon));
   const std::string target = colon == std::string::npos ? "" : lower(sweep.variable.substr(colon + 1));
   if (colon == std::string::npos || target_group == "sweep" || owning_group(target) != target_group)
-    throw Error(prov.file, line_of("variable"), group, "variable",
+    throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
                 "'" + sweep.variable + "' is not 'group:name' of a variable of &system, &initial, "
                 "&dsmc, &output, &agg_frag, &thermostat or &shear");
   for (std::size_t k = 0; k < sweep.values.size(); ++k) {
@@ -895,7 +948,9 @@ void check_sweep(const Config& c, const Provenance& prov, const namelist::Docume
     try {
       read_point(document, o, false);
     } catch (const Error& e) {
-      throw Error(prov.file, line_of("values"), group, "values",
+      // A bad value the namelist gave is blamed on its line; one a --set gave, on that --set (the
+      // point's own override, which e.file names, is this sweep's doing, not the user's command).
+      throw Error(prov.file_of("values"), line_of("values"), group, "values",
                   "point " + std::to_string(k + 1) + " (" + target + " = " + sweep.values[k] +
                       "): " + e.message);
     }
@@ -992,7 +1047,9 @@ Config read_point(const namelist::Document& document, const std::vector<std::str
                   bool expand_sweep) {
   Config c;
   c.source_file = document.file;
-  c.namelist_text = document.text;
+  // A sweep point does not copy the document's text (nor read its &sweep group, below): with a long
+  // list of values both would make the check of every point, and so of the whole sweep, quadratic.
+  if (expand_sweep) c.namelist_text = document.text;
   c.overrides = overrides;
 
   static const std::vector<std::string> known = {"system", "initial", "dsmc", "output", "agg_frag", "thermostat", "shear", "sweep"};
@@ -1033,7 +1090,7 @@ Config read_point(const namelist::Document& document, const std::vector<std::str
   read_all("agg_frag", c.agg_frag, agg_frag_fields());
   read_all("thermostat", c.thermostat, thermostat_fields());
   read_all("shear", c.shear, shear_fields());
-  read_all("sweep", c.sweep, sweep_fields());
+  if (expand_sweep) read_all("sweep", c.sweep, sweep_fields());
   c.has_agg_frag = document.find("agg_frag") != nullptr;
   for (const auto& doc : extra) c.has_agg_frag = c.has_agg_frag || doc.find("agg_frag") != nullptr;
 
@@ -1050,9 +1107,8 @@ Config read_point(const namelist::Document& document, const std::vector<std::str
   check_output(c.output, c.dsmc, prov["output"]);
   if (c.has_agg_frag) check_agg_frag(c, prov);
   check_staged(c, prov);
-  if (!expand_sweep) {
-    c.sweep = Sweep{};
-  } else if (!prov["sweep"].line.empty()) {
+  check_run_cost(c, prov);
+  if (expand_sweep && !prov["sweep"].line.empty()) {
     check_sweep(c, prov["sweep"], document, overrides);
   }
   return c;

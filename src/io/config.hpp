@@ -67,6 +67,7 @@ struct Dsmc {
   double step_fraction = 1.0;
   long long block_size = 32768;  ///< cache blocks (collide.hpp "Blocks"); 0: none
   double stage_step = 0.125;     ///< with &thermostat or &shear: stage length in majorant mean free times
+  bool allow_long_run = false;   ///< run even when the estimated work is beyond the caps (check_run_cost)
 };
 
 /// &output: where and when.
@@ -144,7 +145,8 @@ struct Config {
   /// Sample points in collisions per particle, including 0, when the run is collision-driven.
   std::vector<double> sample_collisions() const;
   /// The Config of every sweep point (this one's overrides plus `variable=value`), or just this
-  /// Config when there is no sweep. Each was checked when the namelist was read.
+  /// Config when there is no sweep. Each was checked when the namelist was read. A point has no
+  /// &sweep and no namelist_text (the text is this Config's): a long list of values stays linear.
   std::vector<Config> sweep_points() const;
   bool is_sweep() const { return !sweep.variable.empty(); }
   /// Every variable of every group, defaults included, for /parameters.

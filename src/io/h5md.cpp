@@ -26,6 +26,10 @@ template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
 };
+// C++20 deduces this for aggregates, but clang 14 does not implement that (P1816): the guide keeps
+// the code building with both compilers.
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
 
 /// Keeps HDF5 from printing its error stack to stderr while a function of this module runs: the
 /// module reports errors itself, by exception. The previous handler is restored so that the rest
@@ -48,8 +52,24 @@ class ErrorSilencer {
   bool restore_ = false;
 };
 
+/// One entry of HDF5's error stack on one line. A failed system call is described over several
+/// lines ("file write failed: time = ..., filename = ..., errno = 28, error message = 'No space left
+/// on device', buf = ..."): only what failed and the system's message are kept.
+std::string one_line(const std::string& description) {
+  const std::size_t details = description.find(": time = ");
+  const std::size_t quote = description.find("error message = '");
+  if (details != std::string::npos && quote != std::string::npos) {
+    const std::size_t begin = quote + 17, end = description.find('\'', begin);
+    return description.substr(0, details) + ": " +
+           description.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+  }
+  std::string out = description;
+  std::replace(out.begin(), out.end(), '\n', ' ');
+  return out;
+}
+
 /// HDF5's own explanation of the last failure: the outermost entry of its error stack (what the API
-/// function could not do) and the innermost one (why, often with errno and its text).
+/// function could not do) and the innermost one (why, often with errno and its text), on one line.
 std::string hdf5_detail() {
   const hid_t stack = H5Eget_current_stack();  // takes the stack, so the next call starts clean
   if (stack < 0) return "no details from HDF5";
@@ -58,7 +78,7 @@ std::string hdf5_detail() {
       stack, H5E_WALK_DOWNWARD,
       [](unsigned, const H5E_error2_t* error, void* out) -> herr_t {
         if (error != nullptr && error->desc != nullptr)
-          static_cast<std::vector<std::string>*>(out)->emplace_back(error->desc);
+          static_cast<std::vector<std::string>*>(out)->emplace_back(one_line(error->desc));
         return 0;
       },
       &descriptions);
@@ -461,6 +481,11 @@ ParameterValue read_attribute_value(hid_t file, const std::string& object_path,
 
 }  // namespace
 
+void skip_library_shutdown() {
+  // Only a flag before the library starts; once it has, the call fails and nothing changes.
+  H5dont_atexit();
+}
+
 // ---- Writer ----
 
 struct Writer::Impl {
@@ -531,6 +556,9 @@ Writer::Writer(std::string final_path, std::string author, std::string creator_n
     const hid_t id = H5Fcreate(d.temp_path.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get());
     if (id < 0) {
       const std::string detail = hdf5_detail();
+      // HDF5 may have created the file before it failed (a full disk): it is ours (our pid), remove it.
+      std::error_code removed;
+      fs::remove(d.temp_path, removed);
       const std::string directory = parent_directory(d.temp_path);
       std::error_code ec;
       if (!fs::exists(directory, ec))

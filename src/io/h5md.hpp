@@ -77,6 +77,12 @@ struct Series {
   std::vector<double> error;  ///< empty = no error dataset; else same size as value
 };
 
+/// Call first in main, before any other function of this module: HDF5 then does not run its own
+/// shutdown at exit. HDF5 1.10 segfaults there after a file failed to close (a write error: a full
+/// disk, a file size limit), and there is nothing for it to do otherwise: every file this module
+/// opens it closes itself (and a temporary file that failed is removed).
+void skip_library_shutdown();
+
 /// Writes one H5MD file through a temporary file; see the file comment for the guarantees.
 class Writer {
  public:

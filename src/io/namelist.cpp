@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -18,15 +19,39 @@ namespace gdsmc::io::namelist {
 
 namespace {
 
+/// `text` for a one-line message: control characters (a newline in a quoted string, a NUL) written
+/// as escapes, and cut after `limit` characters with "..." (an absurdly long name or value).
+std::string printable(std::string_view text, std::size_t limit) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (out.size() >= limit) {
+      out.append("...");
+      break;
+    }
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c == '\n') {
+      out.append("\\n");
+    } else if (c < 0x20 || c == 0x7f) {
+      static const char hex[] = "0123456789abcdef";
+      out.append("\\x").push_back(hex[c >> 4]);
+      out.push_back(hex[c & 15]);
+    } else {
+      out.push_back(static_cast<char>(c));
+    }
+  }
+  return out;
+}
+
 std::string format_error(const std::string& file, int line, const std::string& group,
                          const std::string& variable, const std::string& message) {
   // Appended piece by piece: GCC 12 warns spuriously (-Wrestrict) on `"&" + group + ": "`.
-  std::string s = file;
+  // Names are cut at 64 characters and the message at 1000: one readable line whatever the input.
+  std::string s = printable(file, 4096);
   if (line > 0) s.append(":").append(std::to_string(line));
   s.append(": ");
-  if (!group.empty()) s.append("&").append(group).append(": ");
-  if (!variable.empty()) s.append(variable).append(": ");
-  s.append(message);
+  if (!group.empty()) s.append("&").append(printable(group, 64)).append(": ");
+  if (!variable.empty()) s.append(printable(variable, 64)).append(": ");
+  s.append(printable(message, 1000));
   return s;
 }
 
@@ -439,13 +464,24 @@ Document parse(std::string_view text, std::string file_name) {
   Document doc;
   doc.file = file_name.empty() ? "<input>" : std::move(file_name);
   doc.text = std::string(text);
-  doc.groups = Parser(doc.text, doc.file).run();
+  // A NUL byte is no part of a text file (a binary file given by mistake, or a damaged one).
+  if (const auto nul = doc.text.find('\0'); nul != std::string::npos)
+    throw Error(doc.file, 1 + static_cast<int>(std::count(doc.text.begin(), doc.text.begin() + static_cast<std::ptrdiff_t>(nul), '\n')),
+                "", "", "contains a NUL byte: not a text namelist");
+  // A UTF-8 byte-order mark (some editors write one) is not text: skipped, the lines unchanged.
+  std::string_view body = doc.text;
+  if (body.substr(0, 3) == "\xEF\xBB\xBF") body.remove_prefix(3);
+  doc.groups = Parser(body, doc.file).run();
   return doc;
 }
 
 Document parse_file(const std::string& path) {
+  if (std::error_code ec; std::filesystem::is_directory(path, ec))  // opens, and reads as nothing
+    throw Error(path, 0, "", "", "is a directory, not a namelist file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path, 0, "", "", std::string("cannot open: ") + std::strerror(errno));
+  if (in.peek() == std::ifstream::traits_type::eof() && !in.bad())
+    throw Error(path, 0, "", "", "is empty: a namelist needs at least the groups &system and &dsmc");
   std::ostringstream contents;
   contents << in.rdbuf();
   if (in.bad() || contents.fail()) throw Error(path, 0, "", "", "cannot read the file");

@@ -5,9 +5,11 @@
 #include <array>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <string>
 
+#include "io/namelist.hpp"
 #include "theory/theory.hpp"
 #include "theory/viscosity.hpp"
 
@@ -45,6 +47,27 @@ std::vector<double> times_for_collisions(const species::Mixture& mix, const std:
 
 namespace {
 
+/// Runs `integrate` (an ODE integration over the run's sample points) and turns its failure, e.g.
+/// CVODE giving up on t_end = 1e300, into an input error naming the variable that sets the end of
+/// the run (t_end or collisions_per_particle), where it was set, as granular-dsmc names refusals.
+template <class F>
+auto over_the_run(const io::config::Config& config, F&& integrate) {
+  try {
+    return integrate();
+  } catch (const io::namelist::Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    const char* variable = config.dsmc.t_end ? "t_end" : "collisions_per_particle";
+    const auto it = config.origin.find(std::string("dsmc:") + variable);
+    const std::string file = it == config.origin.end() ? config.source_file : it->second.first;
+    const int line = it == config.origin.end() ? 0 : it->second.second;
+    char end[32];
+    std::snprintf(end, sizeof end, "%.6g", config.dsmc.t_end ? *config.dsmc.t_end : *config.dsmc.collisions_per_particle);
+    throw io::namelist::Error(file, line, "dsmc", variable,
+                              std::string("the theory cannot integrate to ") + variable + " = " + end + ": " + e.what());
+  }
+}
+
 /// The Smoluchowski equations of smoluchowski.hpp on the run's sample points, in the units of the
 /// DSMC observables (counts for n_particles initial monomers).
 AggFragPrediction agg_frag_prediction(const io::config::Config& config) {
@@ -52,28 +75,30 @@ AggFragPrediction agg_frag_prediction(const io::config::Config& config) {
   const sm::Parameters p = sm::parameters_of(config);
   AggFragPrediction out;
   out.initial_monomers = static_cast<double>(config.dsmc.n_particles);
-  std::vector<double> times = config.sample_times();
-  if (times.empty()) {  // collision-driven: the times at which 2 x collisions per monomer reach the targets
-    const auto targets = config.sample_collisions();
-    double horizon = 1.0;
-    for (int guard = 0; guard < 60 && 2.0 * sm::solve(p, {0.0, horizon}).collisions.back() < targets.back(); ++guard)
-      horizon *= 2.0;
-    const std::size_t grid = 2001;
-    std::vector<double> t(grid);
-    for (std::size_t i = 0; i < grid; ++i) t[i] = horizon * static_cast<double>(i) / (grid - 1);
-    const auto fine = sm::solve(p, t);
-    std::size_t i = 1;
-    for (double c : targets) {
-      if (c <= 0.0) {
-        times.push_back(0.0);
-        continue;
+  out.solution = over_the_run(config, [&] {
+    std::vector<double> times = config.sample_times();
+    if (times.empty()) {  // collision-driven: the times at which 2 x collisions per monomer reach the targets
+      const auto targets = config.sample_collisions();
+      double horizon = 1.0;
+      for (int guard = 0; guard < 60 && 2.0 * sm::solve(p, {0.0, horizon}).collisions.back() < targets.back(); ++guard)
+        horizon *= 2.0;
+      const std::size_t grid = 2001;
+      std::vector<double> t(grid);
+      for (std::size_t i = 0; i < grid; ++i) t[i] = horizon * static_cast<double>(i) / (grid - 1);
+      const auto fine = sm::solve(p, t);
+      std::size_t i = 1;
+      for (double c : targets) {
+        if (c <= 0.0) {
+          times.push_back(0.0);
+          continue;
+        }
+        while (i < grid - 1 && 2.0 * fine.collisions[i] < c) ++i;
+        const double c0 = 2.0 * fine.collisions[i - 1], c1 = 2.0 * fine.collisions[i];
+        times.push_back(t[i - 1] + (t[i] - t[i - 1]) * (c - c0) / (c1 - c0));
       }
-      while (i < grid - 1 && 2.0 * fine.collisions[i] < c) ++i;
-      const double c0 = 2.0 * fine.collisions[i - 1], c1 = 2.0 * fine.collisions[i];
-      times.push_back(t[i - 1] + (t[i] - t[i - 1]) * (c - c0) / (c1 - c0));
     }
-  }
-  out.solution = sm::solve(p, times);
+    return sm::solve(p, times);
+  });
   out.initial_rates = sm::initial_rates(p);
   const auto& sol = out.solution;
   const std::size_t nt = sol.time.size(), kt = sol.max_size;
@@ -131,9 +156,12 @@ Predictions predict(const io::config::Config& config) {
   out.approximations = {{"collision_frequency", "maxwellian"}, {"cooling_rate", "maxwellian"}};
 
   std::vector<double> times = config.sample_times();
-  if (times.empty()) times = times_for_collisions(mix, t0, config.sample_collisions());
-  const auto history = beta ? integrate_partial_temperatures_viscoelastic(mix, *beta, t0, times)
-                            : integrate_partial_temperatures(mix, t0, times);
+  if (times.empty())
+    times = over_the_run(config, [&] { return times_for_collisions(mix, t0, config.sample_collisions()); });
+  const auto history = over_the_run(config, [&] {
+    return beta ? integrate_partial_temperatures_viscoelastic(mix, *beta, t0, times)
+                : integrate_partial_temperatures(mix, t0, times);
+  });
   out.final_temperature = history.temperature.back();
   if (config.staged()) {
     // The free-cooling history does not describe a run with a thermostat or a shear flow.
@@ -162,8 +190,10 @@ Predictions predict(const io::config::Config& config) {
     const double start = config.output.msd_start_time.value_or(0.0);
     std::vector<double> start_temperature = t0;
     if (start > 0.0) {
-      const auto at = beta ? integrate_partial_temperatures_viscoelastic(mix, *beta, t0, {0.0, start})
-                           : integrate_partial_temperatures(mix, t0, {0.0, start});
+      const auto at = over_the_run(config, [&] {
+        return beta ? integrate_partial_temperatures_viscoelastic(mix, *beta, t0, {0.0, start})
+                    : integrate_partial_temperatures(mix, t0, {0.0, start});
+      });
       start_temperature = at.temperature.back();
     }
     std::vector<double> since, shifted_times;

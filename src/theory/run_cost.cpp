@@ -1,0 +1,68 @@
+#include "theory/run_cost.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "theory/theory.hpp"
+
+namespace gdsmc::theory {
+
+namespace {
+
+/// nu_0 and r = zeta_0/nu_0 of the header: exact sums for a few species, O(S) bounds for many.
+std::pair<double, double> rates(const species::Mixture& mix, const std::vector<double>& t0, Cooling cooling) {
+  const std::size_t s = mix.size();
+  const double n = mix.total_density();
+  if (s <= exact_species) {
+    const double nu0 = 2.0 * total_collision_rate(mix, t0) / n;  // ERRATA §2
+    if (cooling != Cooling::haff) return {nu0, 0.0};
+    const PairMatrix xi = cooling_rate_matrix(mix, t0);        // ERRATA §4
+    double loss = 0.0, energy = 0.0;
+    for (std::size_t k = 0; k < s; ++k) {
+      double row = 0.0;
+      for (std::size_t j = 0; j < s; ++j) row += xi(k, j);
+      loss += mix.number_density[k] * t0[k] * row;
+      energy += mix.number_density[k] * t0[k];
+    }
+    return {nu0, std::max(0.0, loss / energy) / nu0};
+  }
+  std::size_t largest = 0;
+  double speed2 = 0.0;  // max_k T_k/m_k
+  for (std::size_t k = 0; k < s; ++k) {
+    if (mix.diameter[k] > mix.diameter[largest]) largest = k;
+    speed2 = std::max(speed2, t0[k] / mix.mass[k]);
+  }
+  // chi_kj grows with sigma_k sigma_j/sigma_kj (ERRATA §5): its largest value is at the largest pair.
+  const double sigma = mix.diameter[largest], chi = mix.pair_correlation(largest, largest);
+  const double nu0 = n * std::numbers::pi * sigma * sigma * chi * std::sqrt(16.0 * speed2 / std::numbers::pi);
+  if (cooling != Cooling::haff) return {nu0, 0.0};
+  const auto& a = mix.restitution;
+  const double alpha = a.is_dense() ? *std::max_element(a.values.begin(), a.values.end()) : a(0, 0);
+  return {nu0, (1.0 - alpha * alpha) / 3.0};
+}
+
+}  // namespace
+
+RunCost estimate_run_cost(const species::Mixture& mix, const std::vector<double>& initial_temperature,
+                          std::optional<double> t_end, std::optional<double> collisions_per_particle,
+                          Cooling cooling) {
+  RunCost cost;
+  if (collisions_per_particle) {
+    cost.collisions_per_particle = *collisions_per_particle;
+    if (cooling == Cooling::haff) {
+      const double r = rates(mix, initial_temperature, cooling).second;
+      cost.temperature_ratio = std::exp(-r * cost.collisions_per_particle);  // T(C)/T_0 = exp(-r C)
+    }
+    return cost;
+  }
+  const auto [nu0, r] = rates(mix, initial_temperature, cooling);
+  const double elastic = nu0 * *t_end;  // C = nu_0 t at constant T
+  const double x = 0.5 * r * elastic;   // zeta_0 t/2
+  // C = (2/r) ln(1 + zeta_0 t/2), which tends to nu_0 t as r -> 0.
+  cost.collisions_per_particle = x > 1e-12 ? 2.0 / r * std::log1p(x) : elastic;
+  if (cooling == Cooling::haff) cost.temperature_ratio = 1.0 / ((1.0 + x) * (1.0 + x));  // Haff's law
+  return cost;
+}
+
+}  // namespace gdsmc::theory

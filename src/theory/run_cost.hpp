@@ -1,0 +1,50 @@
+/**
+ * \file run_cost.hpp
+ * \brief The work of a DSMC run estimated from kinetic theory before it starts (issue 12), so that an
+ *        astronomically long run is refused with the estimate instead of running for ever.
+ *
+ * With nu_0 the collisions suffered per particle per unit time at the initial temperatures
+ * (2 x total_collision_rate / n, ERRATA §2) and zeta_0 the cooling rate of the total temperature
+ * (sum_k n_k T_k sum_j xi_kj / sum_k n_k T_k, ERRATA §4; for one species the Haff rate of ERRATA §3),
+ * the Maxwellian cooling dT/dt = -zeta T with zeta/nu = r = zeta_0/nu_0 fixed (both scale with
+ * sqrt(T)) gives Haff's law T(t) = T_0/(1 + zeta_0 t/2)^2 (ERRATA §3) and, integrating nu,
+ *   C(t) = (2/r) ln(1 + r nu_0 t/2)   collisions per particle,   T(C)/T_0 = exp(-r C).
+ * A gas whose temperature is held (thermostat, shear flow) collides at nu_0 throughout: C = nu_0 t.
+ * With a viscoelastic restitution alpha -> 1 as the gas cools, so C <= nu_0 t is the estimate (an
+ * upper bound: nu falls with T). Mixtures of more than `exact_species` species use O(S) bounds
+ * instead of the O(S^2) sums: nu_0 <= n pi sigma_max^2 chi_max sqrt(16 max_k(T_k/m_k)/pi)
+ * (<|g_kj|> = sqrt(8 s_kj/pi), ERRATA §2) and r = (1 - alpha_max^2)/3, the one-species ratio of the
+ * Haff rate to nu (ERRATA §2, §3) at the largest restitution, which cools slowest.
+ * Checked by tests/run_cost_test.cpp.
+ */
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "dsmc/species.hpp"
+
+namespace gdsmc::theory {
+
+/// How the temperature of the run evolves, for the estimate.
+enum class Cooling {
+  haff,          ///< free cooling at constant restitution (Haff's law)
+  held,          ///< a thermostat or shear flow keeps T near T_0
+  viscoelastic,  ///< free cooling with alpha -> 1 (C <= nu_0 t)
+};
+
+struct RunCost {
+  double collisions_per_particle = 0.0;  ///< C at the end of the run (2 x events / N)
+  double temperature_ratio = 1.0;        ///< T(end)/T(0) of the total temperature
+};
+
+/// Mixtures up to this many species get the exact O(S^2) nu_0 and zeta_0; larger ones O(S) bounds.
+inline constexpr std::size_t exact_species = 64;
+
+/// The estimate of the header for a run to `t_end` or to `collisions_per_particle` (exactly one
+/// given) from the temperatures `initial_temperature` (one per species).
+RunCost estimate_run_cost(const species::Mixture& mix, const std::vector<double>& initial_temperature,
+                          std::optional<double> t_end, std::optional<double> collisions_per_particle,
+                          Cooling cooling);
+
+}  // namespace gdsmc::theory

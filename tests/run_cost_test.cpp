@@ -1,0 +1,68 @@
+// Unit tests for gdsmc::theory::estimate_run_cost (theory/run_cost.hpp): Haff's law for one species,
+// a held temperature, the viscoelastic upper bound and the O(S) bounds of many species.
+#include "theory/run_cost.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "theory/theory.hpp"
+
+namespace theory = gdsmc::theory;
+namespace species = gdsmc::species;
+
+namespace {
+
+species::Mixture one_species(double alpha) {
+  return species::make_mixture({1.0}, {1.0}, {0.01}, species::PairMatrix(1, alpha), false);
+}
+
+}  // namespace
+
+TEST(RunCost, OneSpeciesFollowsHaffsLaw) {
+  const auto mix = one_species(0.9);
+  const double nu0 = theory::collision_frequency(0.01, 1.0, 1.0, 1.0, 1.0);
+  const double zeta0 = theory::haff_cooling_rate(0.01, 1.0, 1.0, 1.0, 0.9, 1.0);
+  const double t0 = 2.0 / zeta0;  // ERRATA §3
+  for (double t : {10.0, 5000.0, 1e30}) {
+    const auto cost = theory::estimate_run_cost(mix, {1.0}, t, std::nullopt, theory::Cooling::haff);
+    // C = int nu dt = nu0 t0 ln(1 + t/t0) with nu = nu0 sqrt(T/T0), T = T0/(1 + t/t0)^2
+    EXPECT_NEAR(cost.collisions_per_particle, nu0 * t0 * std::log1p(t / t0), 1e-9 * cost.collisions_per_particle);
+    EXPECT_NEAR(cost.temperature_ratio, theory::haff_temperature(t, 1.0, zeta0), 1e-9 * cost.temperature_ratio);
+    // The same run given by its collision count cools by the same factor.
+    const auto by_count = theory::estimate_run_cost(mix, {1.0}, std::nullopt, cost.collisions_per_particle,
+                                                    theory::Cooling::haff);
+    EXPECT_NEAR(std::log(by_count.temperature_ratio), std::log(cost.temperature_ratio), 1e-9 * 140.0);
+  }
+  // t_end = 1e30 cools by about 55 decades in about 2000 collisions per particle.
+  const auto far = theory::estimate_run_cost(mix, {1.0}, 1e30, std::nullopt, theory::Cooling::haff);
+  EXPECT_LT(far.temperature_ratio, 1e-50);
+  EXPECT_LT(far.collisions_per_particle, 3000.0);
+}
+
+TEST(RunCost, HeldOrElasticGasCollidesAtTheInitialRate) {
+  const double nu0 = theory::collision_frequency(0.01, 1.0, 1.0, 1.0, 1.0);
+  for (auto [alpha, cooling] : {std::pair{0.9, theory::Cooling::held}, std::pair{1.0, theory::Cooling::haff},
+                                std::pair{1.0, theory::Cooling::viscoelastic}}) {
+    const auto cost = theory::estimate_run_cost(one_species(alpha), {1.0}, 1e4, std::nullopt, cooling);
+    EXPECT_NEAR(cost.collisions_per_particle, nu0 * 1e4, 1e-9 * nu0 * 1e4);
+    EXPECT_EQ(cost.temperature_ratio, 1.0);
+  }
+}
+
+TEST(RunCost, ManySpeciesBoundsTheExactEstimate) {
+  // 65 species (beyond exact_species): the O(S) bounds give at least the exact collision count of a
+  // mixture whose species differ little, and an astronomically long run stays finite.
+  const std::size_t s = theory::exact_species + 1;
+  std::vector<double> mass(s), diameter(s), density(s, 0.001);
+  for (std::size_t k = 0; k < s; ++k) mass[k] = 1.0 + 0.01 * static_cast<double>(k), diameter[k] = 1.0;
+  const auto big = species::make_mixture(mass, diameter, density, species::PairMatrix::uniform(s, 0.9), false);
+  const std::vector<double> t0(s, 1.0);
+  const auto bound = theory::estimate_run_cost(big, t0, 100.0, std::nullopt, theory::Cooling::haff);
+  const double exact_nu0 = 2.0 * theory::total_collision_rate(big, t0) / big.total_density();
+  EXPECT_GE(bound.collisions_per_particle, 0.5 * exact_nu0 * 100.0 * 0.9);  // cools little by t = 100
+  EXPECT_LT(bound.collisions_per_particle, 3.0 * exact_nu0 * 100.0);
+  const auto huge = theory::estimate_run_cost(big, t0, 1e300, std::nullopt, theory::Cooling::haff);
+  EXPECT_TRUE(std::isfinite(huge.collisions_per_particle));
+  EXPECT_EQ(huge.temperature_ratio, 0.0);
+}
