@@ -549,7 +549,9 @@ int Collider::run_substep(double t_stop, std::uint64_t event_target, TryCandidat
   for (std::uint64_t c = 0; c < n_candidates; ++c) {
     std::size_t a, b;
     if (!try_candidate(a, b, t0 + static_cast<double>(c + 1) * dt_candidate)) continue;
-    const bool raised = raise_max_speed(a) | raise_max_speed(b);
+    const bool raised_a = raise_max_speed(a);  // both partners, always
+    const bool raised_b = raise_max_speed(b);
+    const bool raised = raised_a || raised_b;
     if (raised || counters_.events >= event_target) {
       counters_.candidates += c + 1;
       time_ = t0 + static_cast<double>(c + 1) * dt_candidate;
