@@ -94,7 +94,8 @@ const char* kUsage =
     "                     [--set group:variable=value]...\n"
     "       granular-dsmc --print-defaults\n"
     "  --output PATH     write the result to PATH (overrides &output file)\n"
-    "  --quiet           no progress line\n"
+    "  --quiet           no progress line (on a terminal one line rewritten in place; otherwise a\n"
+    "                    line every 10 s) and no summary line\n"
     "  --compare         end with a table of DSMC (mean +- SE over replicas) against the theory for the\n"
     "                    input (the values granular-theory prints), the approximation's name and a mark:\n"
     "                    within statistics, within the approximation's known error, or beyond; the same\n"
@@ -196,7 +197,8 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   gdsmc::simulation::Options options;
-  options.progress = !quiet && root && isatty(STDERR_FILENO);
+  options.progress = !quiet && root;
+  options.progress_terminal = isatty(STDERR_FILENO) != 0;
   options.interrupt = &g_interrupted;
   options.restart_path = restart;
   const std::string& path = config.output.file;

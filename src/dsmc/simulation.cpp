@@ -38,30 +38,43 @@ particles::InitialDistribution parse_distribution(const std::string& name) {
   return particles::InitialDistribution::maxwell;
 }
 
-/// One line on stderr, rewritten in place: replica, simulated time, collisions per second, ETA.
+/// The progress line on stderr: on a terminal one line rewritten in place (at most 5 times a second);
+/// otherwise (a log file, a pipe) a full line every 10 s, so that logs are readable, not a stream of
+/// carriage returns.
 class ProgressLine {
  public:
-  explicit ProgressLine(bool enabled) : enabled_(enabled), start_(Clock::now()) {}
-  void update(double fraction_done, const std::string& where, double time, double events_per_second) {
+  ProgressLine(bool enabled, bool terminal) : enabled_(enabled), terminal_(terminal), start_(Clock::now()) {}
+  void update(double fraction_done, const std::string& what, double events_per_second) {
     if (!enabled_) return;
     const auto now = Clock::now();
-    if (now - last_ < std::chrono::milliseconds(200) && fraction_done < 1.0) return;
+    const auto interval = terminal_ ? std::chrono::milliseconds(200) : std::chrono::milliseconds(10000);
+    if (fraction_done < 1.0 && (now - last_ < interval || (!terminal_ && last_ == Clock::time_point{} &&
+                                                            now - start_ < interval)))
+      return;
+    if (!terminal_ && fraction_done >= 1.0) return;  // the summary line follows
     last_ = now;
     const double elapsed = std::chrono::duration<double>(now - start_).count();
     const double eta = fraction_done > 0 ? elapsed * (1.0 - fraction_done) / fraction_done : 0.0;
-    const int width = 30;
-    const int filled = static_cast<int>(fraction_done * width);
-    std::fprintf(stderr, "\r[%.*s%*s] %5.1f%%  %s  t = %-10.4g  %.3g coll/s  ETA %.0f s  ",
-                 filled, "##############################", width - filled, "", 100.0 * fraction_done,
-                 where.c_str(), time, events_per_second, eta);
+    if (terminal_) {
+      const int width = 30;
+      const int filled = static_cast<int>(fraction_done * width);
+      std::fprintf(stderr, "\r[%.*s%*s] %5.1f%%  %s  %.3g coll/s  ETA %.0f s  ", filled,
+                   "##############################", width - filled, "", 100.0 * fraction_done, what.c_str(),
+                   events_per_second, eta);
+    } else {
+      std::fprintf(stderr, "granular-dsmc: %5.1f%% done, %s, %.3g coll/s, %.0f s elapsed, ETA %.0f s\n",
+                   100.0 * fraction_done, what.c_str(), events_per_second, elapsed, eta);
+    }
     std::fflush(stderr);
+    printed_ = true;
   }
   void finish() {
-    if (enabled_) std::fputs("\n", stderr);
+    if (enabled_ && terminal_ && printed_) std::fputs("\n", stderr);
   }
 
  private:
-  bool enabled_;
+  bool enabled_, terminal_;
+  bool printed_ = false;
   Clock::time_point start_, last_{};
 };
 
@@ -161,19 +174,42 @@ ReplicaResult unpack(const std::string& in, std::size_t& pos, std::uint64_t& uni
   return r;
 }
 
-/// Progress over all units of this rank, shared by its threads.
+/// Progress over all units of this rank (replicas of every sweep point), shared by its threads: one
+/// line for the whole run with the fraction of the work done (the mean of the units' fractions), the
+/// units finished, the collision rate since the start and the ETA. A unit's `where` label is not
+/// shown (with several threads the line would jump between units); the simulated time is, when the
+/// run is a single unit.
 class Progress {
  public:
-  Progress(bool enabled, std::size_t units) : line_(enabled), partial_(units, 0.0) {}
-  void update(std::size_t slot, double fraction, const std::string& where, double time, std::uint64_t new_events) {
+  /// `point_of` gives the sweep point of each unit (slot) of this rank; `points` their number.
+  Progress(bool enabled, bool terminal, std::vector<std::size_t> point_of, std::size_t points)
+      : line_(enabled, terminal), partial_(point_of.size(), 0.0), point_of_(std::move(point_of)), points_(points) {}
+  void update(std::size_t slot, double fraction, const std::string& /*where*/, double time, std::uint64_t new_events) {
     std::lock_guard<std::mutex> lock(mutex_);
     partial_[slot] = fraction;
     events_ += new_events;
     double sum = 0.0;
-    for (double f : partial_) sum += f;
+    std::size_t units_done = 0;
+    std::vector<std::size_t> open(points_, 0);  // units of each point not finished
+    for (std::size_t u = 0; u < partial_.size(); ++u) {
+      sum += partial_[u];
+      if (partial_[u] >= 1.0) ++units_done;
+      else ++open[point_of_[u]];
+    }
+    std::string what = std::to_string(units_done) + "/" + std::to_string(partial_.size()) + " replicas";
+    if (points_ > 1) {
+      std::size_t points_done = 0;
+      for (std::size_t p = 0; p < points_; ++p) points_done += open[p] == 0 ? 1 : 0;
+      what += ", " + std::to_string(points_done) + "/" + std::to_string(points_) + " sweep points";
+    }
+    if (partial_.size() == 1) {
+      char t[48];
+      std::snprintf(t, sizeof t, ", t = %.4g", time);
+      what += t;
+    }
     const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
-    line_.update(std::min(sum / static_cast<double>(partial_.size()), fraction >= 1.0 ? 1.0 : 0.999), where, time,
-                 elapsed > 0 ? static_cast<double>(events_) / elapsed : 0.0);
+    line_.update(std::min(sum / static_cast<double>(partial_.size()), units_done == partial_.size() ? 1.0 : 0.999),
+                 what, elapsed > 0 ? static_cast<double>(events_) / elapsed : 0.0);
   }
   void finish() { line_.finish(); }
 
@@ -181,6 +217,8 @@ class Progress {
   std::mutex mutex_;
   ProgressLine line_;
   std::vector<double> partial_;
+  std::vector<std::size_t> point_of_;
+  std::size_t points_;
   std::uint64_t events_ = 0;
   Clock::time_point start_ = Clock::now();
 };
@@ -1353,7 +1391,9 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
     if (!first.empty()) throw RestartError(first);
   }
 
-  Progress progress(options.progress && rank == 0, mine.size());
+  std::vector<std::size_t> point_of;
+  for (std::size_t u : mine) point_of.push_back(units[u].point);
+  Progress progress(options.progress && rank == 0, options.progress_terminal, point_of, points.size());
   std::vector<ReplicaResult> done(mine.size());
   std::string failure;  // first error of a thread (exceptions must not leave an OpenMP region)
   std::atomic<bool> interrupted{false}, failed{false};

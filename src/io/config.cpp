@@ -801,7 +801,9 @@ void template_group(std::ostringstream& s, const std::string& group, const std::
     std::string note;
     if (f.required) {
       value = examples.count(f.name) ? examples.at(f.name) : "...";
-      note = " (required)";
+      // A help that already says when the variable is required (restitution: "required when
+      // constant") is not followed by a second, unconditional "(required)".
+      if (f.help.find("required") == std::string::npos) note = " (required)";
     } else if (value.empty()) {
       prefix = "! ";
       value = examples.count(f.name) ? examples.at(f.name) : "...";
