@@ -24,6 +24,7 @@
 #include "dsmc/sample.hpp"
 #include "dsmc/thermostat.hpp"
 #include "io/h5md.hpp"
+#include "io/sweep_table.hpp"
 #include "theory/viscosity.hpp"
 
 namespace gdsmc::simulation {
@@ -1475,13 +1476,15 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
   Summary summary;
   std::uint64_t events = 0;
   double collide_seconds = 0.0;
+  const auto sweep_rows = config.sweep.table();
   for (std::size_t k = 0; k < points.size(); ++k) {
     // A sweep point lives in /sweep/point_K (K from 1) with the value it applies.
     const std::string group = config.is_sweep() ? "/sweep/point_" + std::to_string(k + 1) : "";
     write_point(writer, group + "/observables", points[k], results[k]);
     if (config.is_sweep()) {
-      writer.write_attribute(group, "variable", config.sweep.variable);
-      writer.write_attribute(group, "value", config.sweep.values[k]);
+      // One variable: its name and the value as written (as before tables); several: joined by ", ".
+      writer.write_attribute(group, "variable", config.sweep.names());
+      writer.write_attribute(group, "value", io::config::Sweep::row_text(sweep_rows[k]));
       writer.write_attribute(group, "mean_time_step", results[k].mean_step);
     } else {
       writer.write_attribute("/parameters", "mean_time_step", results[k].mean_step);
@@ -1496,8 +1499,13 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
                                        static_cast<double>(points[k].dsmc.replicas);
   }
   if (config.is_sweep()) {
-    writer.write_attribute("/sweep", "variable", config.sweep.variable);
-    writer.write_attribute("/sweep", "values", config.sweep.values);
+    writer.write_attribute("/sweep", "variable", config.sweep.names());
+    std::vector<std::string> texts;
+    for (const auto& row : sweep_rows) texts.push_back(io::config::Sweep::row_text(row));
+    writer.write_attribute("/sweep", "values", texts);
+    // The table (io/sweep_table.hpp): the swept values and the headline results, read back from the
+    // points just written.
+    io::sweep_table::write(writer, io::sweep_table::build(config, writer.temporary_path()));
   }
   if (options.before_commit) options.before_commit(writer);
   writer.commit();

@@ -15,7 +15,8 @@
  *
  * Groups (INTERFACE.md): `&system` (required), `&initial`, `&dsmc` (required), `&output`,
  * `&agg_frag` (aggregation and fragmentation, dsmc/agg_frag.hpp), and
- * `&sweep` (one variable over a list of values, each point its own run and output group).
+ * `&sweep` (variables, whole or array elements, over lists of values: jointly point by point or as a
+ * grid; each point its own run and output group).
  * Every error is an io::namelist::Error: `FILE:LINE: &group: variable: message`.
  * Checked by tests/config_test.cpp.
  */
@@ -96,13 +97,33 @@ struct AggFrag {
   std::optional<double> fragment_restitution;  ///< eps_f (required with fragmentation_energy)
 };
 
-/// &sweep: one variable over a list of values; every point is a run of its own (seed 003 figures
-/// are curves against alpha, mu, ...). Absent or empty variable: no sweep.
+/// &sweep values: given point by point (`values = ...`), or one list per variable (`values(1,v) = ...`).
+struct SweepValues {
+  std::vector<std::string> points;              ///< `values = ...`: namelist text, point after point
+  std::vector<std::vector<std::string>> lists;  ///< `values(1,v) = ...`: the list of variable v (index v - 1)
+  bool empty() const { return points.empty() && lists.empty(); }
+};
+
+/// &sweep: one or several variables over lists of values; every point is a run of its own (seed
+/// 003 figures are curves against alpha, mu, ...). Absent or empty variable: no sweep.
+/// (docs/physics.md "Sweeps"; the points are checked when the namelist is read.)
 struct Sweep {
-  std::string variable;             ///< "group:name", e.g. 'system:restitution'
-  std::vector<std::string> values;  ///< the values as namelist text (strings quoted), in order;
-                                    ///< a quoted value of a non-string variable is inserted as text,
-                                    ///< so arrays sweep too: values = '0.01, 0.02', '0.02, 0.04'
+  /// The swept variables as written, "group:name" or "group:name(i)" / "group:name(i,j)" for an
+  /// element, e.g. 'system:restitution(1,2)'.
+  std::vector<std::string> variable;
+  /// Their values as namelist text (strings quoted); a quoted value of a non-string variable is
+  /// inserted as text, so arrays sweep too: values = '0.01, 0.02', '0.02, 0.04'.
+  SweepValues values;
+  bool grid = false;  ///< every combination of the variables' lists (the last variable varies fastest)
+
+  /// The points: row k = the value text of every variable at point k (checked input only).
+  std::vector<std::vector<std::string>> table() const;
+  /// The variables joined by ", " (one variable: its name), for attributes and messages.
+  std::string names() const;
+  /// A row of table() joined by ", " (one variable: the value as written).
+  static std::string row_text(const std::vector<std::string>& row);
+  /// "restitution(1,2) = 0.7, mass(2) = 2.0": a row's assignments, for labels.
+  std::string row_label(const std::vector<std::string>& row) const;
 };
 
 /// &thermostat: a Gaussian thermostat holds the temperature of the homogeneous steady state (HSS)
@@ -146,7 +167,7 @@ struct Config {
   /// The Config of every sweep point (this one's overrides plus `variable=value`), or just this
   /// Config when there is no sweep. Each was checked when the namelist was read.
   std::vector<Config> sweep_points() const;
-  bool is_sweep() const { return !sweep.variable.empty(); }
+  bool is_sweep() const { return !sweep.variable.empty() && !sweep.values.empty(); }
   /// Every variable of every group, defaults included, for /parameters.
   std::vector<h5md::Parameter> resolved() const;
 };
