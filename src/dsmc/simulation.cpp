@@ -1250,8 +1250,12 @@ void write_point(io::h5md::Writer& writer, const std::string& root, const io::co
   const double range = config.output.histogram_range;
   const std::vector<double> time_mean = acc["time"].mean();
   const std::size_t n_samples = time_mean.size();
+  // H5MD `step` (docs/output.md "The H5MD file"): an integer step of the simulation itself, the
+  // cumulative collision events of a replica up to the sample (the observable `collisions`), its mean
+  // over the replicas rounded to the nearest integer; `time` is the simulation time.
+  const std::vector<double> events = acc["collisions"].mean();
   std::vector<long long> step(n_samples);
-  for (std::size_t i = 0; i < n_samples; ++i) step[i] = static_cast<long long>(i);
+  for (std::size_t i = 0; i < n_samples; ++i) step[i] = i < events.size() ? std::llround(events[i]) : 0;
   if (config.has_agg_frag) {
     write_agg_frag_point(writer, root, result, step, time_mean);
     return;
@@ -1347,7 +1351,7 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
   std::string open_error;
   if (rank == 0) {
     try {
-      writer_storage.emplace(output_path, "granular-dsmc user", "granular-dsmc", GDSMC_VERSION);
+      writer_storage.emplace(output_path, io::config::author_name(config.output), "granular-dsmc", GDSMC_VERSION);
     } catch (const std::runtime_error& e) {
       open_error = e.what();
       if (open_error.empty()) open_error = "cannot create the output file";
@@ -1486,6 +1490,9 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
       writer.write_attribute(group, "variable", config.sweep.names());
       writer.write_attribute(group, "value", io::config::Sweep::row_text(sweep_rows[k]));
       writer.write_attribute(group, "mean_time_step", results[k].mean_step);
+      // Each point is an H5MD root of its own (h5md + observables): a reader opened at the group
+      // reads it as a file (docs/output.md "Sweeps").
+      writer.write_hard_link("/h5md", group + "/h5md");
     } else {
       writer.write_attribute("/parameters", "mean_time_step", results[k].mean_step);
     }

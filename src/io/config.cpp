@@ -1,7 +1,11 @@
 #include "io/config.hpp"
 
+#include <pwd.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <limits>
 #include <map>
@@ -147,6 +151,7 @@ const std::vector<Field<Shear>>& shear_fields() {
 const std::vector<Field<Output>>& output_fields() {
   static const std::vector<Field<Output>> fields = {
       {"file", &Output::file, "", "HDF5 (H5MD) output file"},
+      {"author", &Output::author, "", "name in /h5md/author of the output file (default: $USER, else the login name)"},
       {"n_samples", &Output::n_samples, "",
        "sample times, t = 0 included (at most 1e5: every sample keeps every observable of every replica in memory)",
        Range{2, 1e5}},
@@ -973,7 +978,7 @@ struct SweepShapeError {
 };
 
 /// The points of a sweep, row k = the value text of every variable at point k; throws
-/// SweepShapeError when the values do not make points (docs/physics.md "Sweeps").
+/// SweepShapeError when the values do not make points (docs/output.md "Sweeps").
 std::vector<std::vector<std::string>> sweep_rows(const Sweep& sweep) {
   const std::size_t nv = sweep.variable.size();
   const SweepValues& sv = sweep.values;
@@ -1204,6 +1209,15 @@ std::string Sweep::row_text(const std::vector<std::string>& row) {
 }
 
 std::string Sweep::row_label(const std::vector<std::string>& row) const { return config::row_label(*this, row); }
+
+std::string author_name(const Output& output) {
+  if (!output.author.empty()) return output.author;
+  const char* user = std::getenv("USER");
+  if (user && *user) return user;
+  if (const passwd* entry = ::getpwuid(::getuid()); entry && entry->pw_name && *entry->pw_name)
+    return entry->pw_name;  // no $USER (cron, containers): the login name of the user id
+  return "unknown";
+}
 
 std::vector<Config> Config::sweep_points() const {
   if (!is_sweep()) return {*this};

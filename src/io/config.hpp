@@ -73,6 +73,7 @@ struct Dsmc {
 /// &output: where and when.
 struct Output {
   std::string file = "run.h5";
+  std::string author;  ///< /h5md/author name (unset: author_name() finds one)
   long long n_samples = 100;
   std::string spacing = "linear";
   std::optional<double> first_sample;  ///< log spacing: first sample after 0 (default end / 1000)
@@ -106,7 +107,7 @@ struct SweepValues {
 
 /// &sweep: one or several variables over lists of values; every point is a run of its own (seed
 /// 003 figures are curves against alpha, mu, ...). Absent or empty variable: no sweep.
-/// (docs/physics.md "Sweeps"; the points are checked when the namelist is read.)
+/// (docs/output.md "Sweeps"; the points are checked when the namelist is read.)
 struct Sweep {
   /// The swept variables as written, "group:name" or "group:name(i)" / "group:name(i,j)" for an
   /// element, e.g. 'system:restitution(1,2)'.
@@ -137,6 +138,9 @@ struct Shear {
   std::optional<double> rate;          ///< a (unset: no shear)
   std::optional<double> average_from;  ///< the viscosity's time average starts here (default t_end/2)
 };
+
+/// The H5MD author of the output: &output author, else $USER, else the login name of the user id, else "unknown" (docs/output.md "The H5MD file").
+std::string author_name(const Output& output);
 
 struct Config {
   System system;
