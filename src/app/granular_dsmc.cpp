@@ -111,7 +111,7 @@ const char* kUsage =
     "  --force           write the output over an existing file that is not an earlier output of granular-dsmc\n"
     "  --print-defaults  print a commented namelist with every variable and its default\n"
     "  --table FILE.h5   print the table of a sweep's output (/sweep/values, /sweep/results) as CSV:\n"
-    "                    a header line, one row per point (docs/physics.md \"Sweeps\")\n"
+    "                    a header line, one row per point (docs/output.md \"Sweeps\")\n"
     "Exit status: 0 success, 2 bad input, 1 run-time failure, 130 interrupted.\n";
 
 }  // namespace

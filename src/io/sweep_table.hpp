@@ -3,7 +3,7 @@
  * \brief The table of a sweep: the swept values and the headline results of every point, as numbers
  *        in the output file (`/sweep/values`, `/sweep/results`) and as CSV (`granular-dsmc --table`).
  *
- * \section sweep_table_layout Layout (docs/physics.md "Sweeps")
+ * \section sweep_table_layout Layout (docs/output.md "Sweeps")
  * - `/sweep/values`: float64 [points][variables], the value of each swept variable at each point, in
  *   the order of `&sweep variable`; attribute `variables` (strings): their names as written in the
  *   input, e.g. `system:restitution(1,2)`. A value that is not one number (a string, a quoted array)
