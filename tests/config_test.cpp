@@ -1064,3 +1064,22 @@ TEST(ConfigRepeated, OneSetAssignsOneVariable) {
 TEST(ConfigRepeated, SampleCountIsCapped) {
   expect_error(error_of(with_line(16, "  n_samples = 10000000")), 16, "output", "n_samples", {"outside [2, 100000]"});
 }
+
+// /parameters/sweep keeps its types for one variable: `variable` a string, `values` the value texts.
+TEST(ConfigSweep, ResolvedKeepsTheOneVariableTypes) {
+  const auto c = read_text(with_sweep("&sweep variable = 'system:restitution', values = 0.5, 0.7 /"));
+  bool seen_variable = false, seen_values = false;
+  for (const auto& p : c.resolved()) {
+    if (p.group != "sweep") continue;
+    if (p.name == "variable") {
+      seen_variable = true;
+      EXPECT_EQ(p.value, gdsmc::io::h5md::ParameterValue(std::string("system:restitution")));
+    }
+    if (p.name == "values") {
+      seen_values = true;
+      EXPECT_EQ(p.value, gdsmc::io::h5md::ParameterValue(std::vector<std::string>{"0.5", "0.7"}));
+    }
+  }
+  EXPECT_TRUE(seen_variable);
+  EXPECT_TRUE(seen_values);
+}

@@ -791,6 +791,10 @@ void append_resolved(std::vector<h5md::Parameter>& out, const std::string& group
           const auto& v = target.*member;
           if constexpr (std::is_same_v<T, std::optional<double>>) {
             if (v) out.push_back({group, f.name, *v});
+          } else if constexpr (std::is_same_v<T, std::vector<std::string>>) {
+            // &sweep variable: one name is a string attribute, as before several could be swept.
+            if (v.size() == 1) out.push_back({group, f.name, v.front()});
+            else out.push_back({group, f.name, v});
           } else if constexpr (std::is_same_v<T, SweepValues>) {
             // The points run, point after point (also for lists and grids): the value texts.
             if constexpr (std::is_same_v<G, Sweep>) {
