@@ -69,7 +69,10 @@ Table build(const config::Config& config, const std::string& file) {
   const auto points = config.sweep_points();
   t.points = rows.size();
   for (const auto& row : rows)
-    for (const auto& v : row) t.values.push_back(numeric_value(v));
+    for (const auto& v : row) {
+      t.values.push_back(numeric_value(v));
+      t.texts.push_back(v);
+    }
 
   const std::vector<std::pair<std::string, std::string>> names = {
       {"temperature", "last sample (final temperature; steady with a thermostat)"},
@@ -162,6 +165,7 @@ Table build(const config::Config& config, const std::string& file) {
 void write(h5md::Writer& writer, const Table& t) {
   writer.write_dataset("/sweep/values", t.values, {t.points, t.variables.size()});
   writer.write_attribute("/sweep/values", "variables", t.variables);
+  writer.write_attribute("/sweep/values", "texts", t.texts);
   writer.write_group("/sweep/results");
   std::vector<std::string> quantities;
   for (const auto& r : t.results) {
@@ -188,7 +192,15 @@ Table read(const std::string& file) {
     } catch (const std::runtime_error&) {
       throw std::runtime_error(e.what());
     }
-    throw std::runtime_error("'" + file + "' has no sweep table (/sweep/values): it is not the output of a &sweep run");
+    bool old_sweep = false;  // a sweep written before tables existed: /sweep@variable without /sweep/values
+    try {
+      (void)h5md::read_attribute(file, "/sweep", "variable");
+      old_sweep = true;
+    } catch (const std::runtime_error&) {
+    }
+    throw std::runtime_error("'" + file + "' has no sweep table (/sweep/values): " +
+                             (old_sweep ? std::string("a sweep written before sweep tables existed; run it again")
+                                        : std::string("it is not the output of a &sweep run")));
   }
   if (values.shape.size() != 2) throw std::runtime_error("'" + file + "': /sweep/values is not [points][variables]");
   t.points = values.shape[0];
@@ -196,6 +208,12 @@ Table read(const std::string& file) {
   const auto names = h5md::read_attribute(file, "/sweep/values", "variables");
   if (const auto* v = std::get_if<std::vector<std::string>>(&names)) t.variables = *v;
   else if (const auto* one = std::get_if<std::string>(&names)) t.variables = {*one};
+  try {
+    const auto texts = h5md::read_attribute(file, "/sweep/values", "texts");
+    if (const auto* v = std::get_if<std::vector<std::string>>(&texts)) t.texts = *v;
+    else if (const auto* one = std::get_if<std::string>(&texts)) t.texts = {*one};
+  } catch (const std::runtime_error&) {
+  }
   const auto quantities = h5md::read_attribute(file, "/sweep/results", "quantities");
   std::vector<std::string> list;
   if (const auto* v = std::get_if<std::vector<std::string>>(&quantities)) list = *v;
@@ -249,7 +267,14 @@ std::string csv(const Table& t) {
     std::string line;
     for (std::size_t v = 0; v < nv; ++v) {
       if (v) line += ',';
-      line += number(t.values[k * nv + v]);
+      const std::size_t i = k * nv + v;
+      if (std::isnan(t.values[i]) && i < t.texts.size()) {  // a string or an array: its text
+        std::string text = t.texts[i];
+        if (text.size() >= 2 && text.front() == '\'' && text.back() == '\'') text = text.substr(1, text.size() - 2);
+        line += field(text);
+      } else {
+        line += number(t.values[i]);
+      }
     }
     for (const auto& r : t.results)
       for (std::size_t c = 0; c < r.columns; ++c) {

@@ -7,7 +7,8 @@
  * - `/sweep/values`: float64 [points][variables], the value of each swept variable at each point, in
  *   the order of `&sweep variable`; attribute `variables` (strings): their names as written in the
  *   input, e.g. `system:restitution(1,2)`. A value that is not one number (a string, a quoted array)
- *   is NaN there; its text stays in the attributes `/sweep/point_K@value`.
+ *   is NaN there; attribute `texts` (strings, [points * variables], point after point) holds every value
+ *   as written, and `/sweep/point_K@value` the point's values.
  * - `/sweep/results/<quantity>/value` and `/error`: float64 [points][columns], columns = species (or
  *   cluster sizes of &agg_frag, padded with NaN to the widest point; one column for scalars); error =
  *   standard error over replicas (NaN with one replica); NaN where a point has no such result.
@@ -24,7 +25,9 @@
  * \section sweep_table_csv CSV
  * One header line, then one row per point: the swept variables (names as written), then for every
  * quantity and column `<quantity>[_<k>]` and `<quantity>[_<k>]_error` (k = species from 1; no suffix
- * for one column). Fields that contain a comma or a quote are double-quoted (RFC 4180); NaN is `nan`;
+ * for one column). A swept value that is not a number (a string, a quoted array) is written as its
+ * text, without the namelist's single quotes. Fields that contain a comma or a quote are double-quoted
+ * (RFC 4180); NaN is `nan`;
  * numbers have 12 significant digits.
  * Checked by tests/sweep_table_test.cpp and tests/cli_test.cpp (CliTable.*).
  */
@@ -48,6 +51,7 @@ struct Result {
 struct Table {
   std::vector<std::string> variables;  ///< as written in &sweep variable
   std::vector<double> values;          ///< [points][variables]
+  std::vector<std::string> texts;      ///< [points][variables]: the values as written (may be empty when read)
   std::size_t points = 0;
   std::vector<Result> results;
   std::vector<double> scaling_samples;  ///< per point
