@@ -1072,24 +1072,25 @@ void check_sweep(const Config& c, const Provenance& prov, const namelist::Docume
   const auto line_of = [&](const char* v) { return prov.line.count(v) ? prov.line.at(v) : 0; };
   const Sweep& sweep = c.sweep;
   if (sweep.variable.empty() && sweep.values.empty()) return;  // grid alone: no sweep
+  // Messages name where each was set: the namelist line, or the --set that gave it.
   if (sweep.variable.empty())
-    throw Error(prov.file, line_of("values"), group, "variable", "required with values");
+    throw Error(prov.file_of("values"), line_of("values"), group, "variable", "required with values");
   if (sweep.values.empty())
-    throw Error(prov.file, line_of("variable"), group, "values", "required with variable");
+    throw Error(prov.file_of("variable"), line_of("variable"), group, "values", "required with variable");
   for (std::size_t v = 0; v < sweep.variable.size(); ++v) {
     const std::string& written = sweep.variable[v];
     const SweepTarget t = parse_target(written);
     if (!t.ok || t.group == "sweep" || owning_group(t.name) != t.group)
-      throw Error(prov.file, line_of("variable"), group, "variable",
+      throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
                   "'" + written + "' is not 'group:name' (or 'group:name(i)', 'group:name(i,j)') of a variable of "
                   "&system, &initial, &dsmc, &output, &agg_frag, &thermostat or &shear");
     for (std::size_t w = 0; w < v; ++w)
       if (parse_target(sweep.variable[w]).group == t.group && parse_target(sweep.variable[w]).name == t.name &&
           parse_target(sweep.variable[w]).index == t.index)
-        throw Error(prov.file, line_of("variable"), group, "variable", "'" + written + "' is swept twice");
+        throw Error(prov.file_of("variable"), line_of("variable"), group, "variable", "'" + written + "' is swept twice");
     const int rank = variable_rank(t.group, t.name);
     if (!t.index.empty() && static_cast<int>(t.index.size()) != rank)
-      throw Error(prov.file, line_of("variable"), group, "variable",
+      throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
                   "'" + written + "': " + t.name +
                       (rank == 0   ? " is a scalar and takes no index"
                        : rank == 1 ? " is a list: one index, " + t.name + "(k)"
@@ -1097,7 +1098,7 @@ void check_sweep(const Config& c, const Provenance& prov, const namelist::Docume
     if (per_species(t.group, t.name))
       for (long long i : t.index)
         if (i > c.system.n_species)
-          throw Error(prov.file, line_of("variable"), group, "variable",
+          throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
                       "'" + written + "': index " + std::to_string(i) + " is out of range (n_species = " +
                           std::to_string(c.system.n_species) + ")");
   }
@@ -1105,7 +1106,7 @@ void check_sweep(const Config& c, const Provenance& prov, const namelist::Docume
   try {
     rows = sweep_rows(sweep);
   } catch (const SweepShapeError& e) {
-    throw Error(prov.file, line_of(e.variable.c_str()), group, e.variable, e.message);
+    throw Error(prov.file_of(e.variable), line_of(e.variable.c_str()), group, e.variable, e.message);
   }
   for (std::size_t k = 0; k < rows.size(); ++k) {
     auto o = overrides;
@@ -1113,7 +1114,7 @@ void check_sweep(const Config& c, const Provenance& prov, const namelist::Docume
     try {
       read_point(document, o, false);
     } catch (const Error& e) {
-      throw Error(prov.file, line_of("values"), group, "values",
+      throw Error(prov.file_of("values"), line_of("values"), group, "values",
                   "point " + std::to_string(k + 1) + " (" + row_label(sweep, rows[k]) + "): " + e.message);
     }
   }
