@@ -45,14 +45,18 @@ particles::InitialDistribution parse_distribution(const std::string& name) {
 class ProgressLine {
  public:
   ProgressLine(bool enabled, bool terminal) : enabled_(enabled), terminal_(terminal), start_(Clock::now()) {}
-  void update(double fraction_done, const std::string& what, double events_per_second) {
-    if (!enabled_) return;
+  /// Whether a line is due now (so that the caller composes it only then).
+  bool due(double fraction_done) const {
+    if (!enabled_) return false;
+    if (!terminal_ && fraction_done >= 1.0) return false;  // the summary line follows
+    if (fraction_done >= 1.0) return true;
     const auto now = Clock::now();
     const auto interval = terminal_ ? std::chrono::milliseconds(200) : std::chrono::milliseconds(10000);
-    if (fraction_done < 1.0 && (now - last_ < interval || (!terminal_ && last_ == Clock::time_point{} &&
-                                                            now - start_ < interval)))
-      return;
-    if (!terminal_ && fraction_done >= 1.0) return;  // the summary line follows
+    return now - last_ >= interval && (terminal_ || last_ != Clock::time_point{} || now - start_ >= interval);
+  }
+  void update(double fraction_done, const std::string& what, double events_per_second) {
+    if (!due(fraction_done)) return;
+    const auto now = Clock::now();
     last_ = now;
     const double elapsed = std::chrono::duration<double>(now - start_).count();
     const double eta = fraction_done > 0 ? elapsed * (1.0 - fraction_done) / fraction_done : 0.0;
@@ -177,40 +181,39 @@ ReplicaResult unpack(const std::string& in, std::size_t& pos, std::uint64_t& uni
 
 /// Progress over all units of this rank (replicas of every sweep point), shared by its threads: one
 /// line for the whole run with the fraction of the work done (the mean of the units' fractions), the
-/// units finished, the collision rate since the start and the ETA. A unit's `where` label is not
-/// shown (with several threads the line would jump between units); the simulated time is, when the
-/// run is a single unit.
+/// replicas and sweep points finished, the collision rate since the start and the ETA. A unit's
+/// `where` label is not shown (with several threads the line would jump between units); the simulated
+/// time is, when the run is a single unit. Every update is O(1) (sums kept, not recomputed), and the
+/// line's text is composed only when one is due. Under MPI the line (rank 0's) counts rank 0's units.
 class Progress {
  public:
   /// `point_of` gives the sweep point of each unit (slot) of this rank; `points` their number.
   Progress(bool enabled, bool terminal, std::vector<std::size_t> point_of, std::size_t points)
-      : line_(enabled, terminal), partial_(point_of.size(), 0.0), point_of_(std::move(point_of)), points_(points) {}
+      : line_(enabled, terminal), partial_(point_of.size(), 0.0), point_of_(std::move(point_of)), open_(points, 0) {
+    for (std::size_t p : point_of_) ++open_[p];
+    for (std::size_t n : open_) points_ += n > 0 ? 1 : 0;
+  }
   void update(std::size_t slot, double fraction, const std::string& /*where*/, double time, std::uint64_t new_events) {
     std::lock_guard<std::mutex> lock(mutex_);
+    const double before = partial_[slot];
     partial_[slot] = fraction;
+    sum_ += fraction - before;
+    if (before < 1.0 && fraction >= 1.0) {
+      ++units_done_;
+      if (--open_[point_of_[slot]] == 0) ++points_done_;
+    }
     events_ += new_events;
-    double sum = 0.0;
-    std::size_t units_done = 0;
-    std::vector<std::size_t> open(points_, 0);  // units of each point not finished
-    for (std::size_t u = 0; u < partial_.size(); ++u) {
-      sum += partial_[u];
-      if (partial_[u] >= 1.0) ++units_done;
-      else ++open[point_of_[u]];
-    }
-    std::string what = std::to_string(units_done) + "/" + std::to_string(partial_.size()) + " replicas";
-    if (points_ > 1) {
-      std::size_t points_done = 0;
-      for (std::size_t p = 0; p < points_; ++p) points_done += open[p] == 0 ? 1 : 0;
-      what += ", " + std::to_string(points_done) + "/" + std::to_string(points_) + " sweep points";
-    }
+    const double done = std::min(sum_ / static_cast<double>(partial_.size()), units_done_ == partial_.size() ? 1.0 : 0.999);
+    if (!line_.due(done)) return;
+    std::string what = std::to_string(units_done_) + "/" + std::to_string(partial_.size()) + " replicas";
+    if (points_ > 1) what += ", " + std::to_string(points_done_) + "/" + std::to_string(points_) + " sweep points";
     if (partial_.size() == 1) {
       char t[48];
       std::snprintf(t, sizeof t, ", t = %.4g", time);
       what += t;
     }
     const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
-    line_.update(std::min(sum / static_cast<double>(partial_.size()), units_done == partial_.size() ? 1.0 : 0.999),
-                 what, elapsed > 0 ? static_cast<double>(events_) / elapsed : 0.0);
+    line_.update(done, what, elapsed > 0 ? static_cast<double>(events_) / elapsed : 0.0);
   }
   void finish() { line_.finish(); }
 
@@ -219,7 +222,9 @@ class Progress {
   ProgressLine line_;
   std::vector<double> partial_;
   std::vector<std::size_t> point_of_;
-  std::size_t points_;
+  std::vector<std::size_t> open_;  ///< units of each point not finished
+  std::size_t points_ = 0, points_done_ = 0, units_done_ = 0;
+  double sum_ = 0.0;  ///< sum of partial_
   std::uint64_t events_ = 0;
   Clock::time_point start_ = Clock::now();
 };
