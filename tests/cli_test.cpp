@@ -601,6 +601,83 @@ TEST_F(CliDsmc, UnknownOptionOrNoInput) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Sweep tables and --table (issue 17 item 3; io/sweep_table.hpp), --print-defaults' restitution line
+// ---------------------------------------------------------------------------------------------
+
+class CliTable : public CliFixture {};
+
+TEST_F(CliTable, ElementSweepGivesANumericTableAndCsv) {
+  const Result r = dsmc(base() + "&sweep variable = 'system:restitution(1,2)', 'system:mass(2)'\n"
+                                 "  values = 0.6, 2.0,  0.9, 5.0 /\n");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto values = gdsmc::io::h5md::read_dataset((dir / "out.h5").string(), "/sweep/values");
+  EXPECT_EQ(values.shape, (std::vector<std::size_t>{2, 2}));
+  EXPECT_EQ(values.data, (std::vector<double>{0.6, 2.0, 0.9, 5.0}));
+  EXPECT_EQ(gdsmc::io::h5md::read_attribute((dir / "out.h5").string(), "/sweep/values", "variables"),
+            gdsmc::io::h5md::ParameterValue(std::vector<std::string>{"system:restitution(1,2)", "system:mass(2)"}));
+  const auto ratio = gdsmc::io::h5md::read_dataset((dir / "out.h5").string(), "/sweep/results/temperature/value");
+  EXPECT_EQ(ratio.shape, (std::vector<std::size_t>{2, 2}));  // points x species
+  // The old layout stays: /sweep/point_K with its attributes.
+  EXPECT_EQ(gdsmc::io::h5md::read_string_attribute((dir / "out.h5").string(), "/sweep/point_2", "value"),
+            "0.9, 5.0");
+  const Result t = run("granular-dsmc", "--table out.h5");
+  ASSERT_EQ(t.status, 0) << t.err;
+  EXPECT_EQ(t.err, "");
+  std::istringstream lines(t.out);
+  std::string header, row1, row2, extra;
+  std::getline(lines, header);
+  std::getline(lines, row1);
+  std::getline(lines, row2);
+  EXPECT_FALSE(std::getline(lines, extra));
+  EXPECT_EQ(header.rfind("\"system:restitution(1,2)\",system:mass(2),temperature_1,temperature_1_error,", 0), 0u)
+      << header;
+  EXPECT_NE(header.find("total_temperature"), std::string::npos) << header;
+  EXPECT_NE(header.find("sonine_c_2_error"), std::string::npos) << header;
+  EXPECT_EQ(row1.rfind("0.6,2,", 0), 0u) << row1;
+  EXPECT_EQ(row2.rfind("0.9,5,", 0), 0u) << row2;
+  EXPECT_EQ(std::count(header.begin(), header.end(), ','), std::count(row1.begin(), row1.end(), ',') + 1)
+      << "the quoted name holds one comma";
+}
+
+TEST_F(CliTable, TableOfAFileWithoutASweep) {
+  ASSERT_EQ(dsmc(base()).status, 0);
+  const Result r = run("granular-dsmc", "--table out.h5");
+  expect_input_error(r, "granular-dsmc", "--table out.h5: ", {"no sweep table", "not the output of a &sweep run"},
+                     {"out.h5", "t.nml"});
+  const Result missing = run("granular-dsmc", "--table absent.h5");
+  expect_input_error(missing, "granular-dsmc", "--table absent.h5: ", {"absent.h5"}, {"out.h5", "t.nml"});
+}
+
+TEST_F(CliTable, SweepVariableThatDoesNotExist) {
+  expect_input_error(dsmc(base() + "&sweep variable = 'system:restitutio(1,2)', values = 0.5 /\n"), "granular-dsmc",
+                     "t.nml:18: &sweep: variable: ", {"'system:restitutio(1,2)'", "is not 'group:name'"});
+}
+
+TEST_F(CliTable, SweepIndexOutOfRange) {
+  expect_input_error(dsmc(base() + "&sweep variable = 'system:mass(3)', values = 2.0 /\n"), "granular-dsmc",
+                     "t.nml:18: &sweep: variable: ", {"'system:mass(3)'", "index 3 is out of range", "n_species = 2"});
+}
+
+TEST_F(CliTable, JointListsOfDifferentLengths) {
+  expect_input_error(dsmc(base() + "&sweep variable = 'system:restitution(1,2)', 'system:mass(2)'\n"
+                                   "  values(1,1) = 0.6, 0.7, 0.8\n  values(1,2) = 2.0, 3.0 /\n"),
+                     "granular-dsmc", "t.nml:20: &sweep: values: ",
+                     {"'system:mass(2)' has 2 values", "'system:restitution(1,2)' has 3", "grid = .true."});
+}
+
+TEST_F(CliDsmc, PrintDefaultsSaysRequiredOnce) {
+  const Result r = run("granular-dsmc", "--print-defaults");
+  ASSERT_EQ(r.status, 0);
+  std::istringstream lines(r.out);
+  for (std::string line; std::getline(lines, line);) {
+    EXPECT_EQ(line.find("(required) (required)"), std::string::npos) << line;
+    if (line.find("restitution = ") == 2) {
+      EXPECT_NE(line.find("required when constant"), std::string::npos) << line;
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
 // granular-dsmc --compare (io/compare.hpp)
 // ---------------------------------------------------------------------------------------------
 

@@ -351,6 +351,7 @@ TEST(ConfigResolved, ContainsEveryFieldOfEveryGroup) {
   expected.erase("output:checkpoint_every");
   expected.erase("sweep:variable");  // written only by a sweep
   expected.erase("sweep:values");
+  expected.erase("sweep:grid");
   for (const char* v : {"aggregation_energy", "fragmentation_energy", "fragment_restitution"})
     expected.erase(std::string("agg_frag:") + v);  // written only with &agg_frag
   for (const char* v : {"thermostat:kind", "shear:rate", "shear:average_from"})
@@ -813,6 +814,74 @@ TEST(ConfigSweep, QuotedValuesSweepAnArray) {
   EXPECT_EQ(points[1].system.number_density, (std::vector<double>{0.03, 0.06}));
 }
 
+// Issue 17 item 3: array elements, several variables point by point, lists per variable, grids.
+TEST(ConfigSweep, ArrayElementsJointPointByPoint) {
+  const auto c = read_text(with_sweep("&sweep variable = 'system:restitution(1,2)', 'system:mass(2)'\n"
+                                      "  values = 0.6, 2.0,  0.8, 4.0,  0.9, 8.0 /"));
+  const auto points = c.sweep_points();
+  ASSERT_EQ(points.size(), 3u);
+  const double alpha[3] = {0.6, 0.8, 0.9}, mass[3] = {2.0, 4.0, 8.0};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const auto& r = points[k].system.restitution;
+    EXPECT_DOUBLE_EQ(r(0, 1), alpha[k]);
+    EXPECT_DOUBLE_EQ(r(1, 0), alpha[k]);  // symmetric
+    EXPECT_DOUBLE_EQ(r(0, 0), 0.5);       // the other pairs keep the input's value
+    EXPECT_DOUBLE_EQ(r(1, 1), 0.5);
+    EXPECT_DOUBLE_EQ(points[k].system.mass[0], 1.0);
+    EXPECT_DOUBLE_EQ(points[k].system.mass[1], mass[k]);
+  }
+  EXPECT_EQ(c.sweep.names(), "system:restitution(1,2), system:mass(2)");
+  EXPECT_EQ(config::Sweep::row_text(c.sweep.table()[1]), "0.8, 4.0");
+  EXPECT_EQ(c.sweep.row_label(c.sweep.table()[1]), "restitution(1,2) = 0.8, mass(2) = 4.0");
+}
+
+TEST(ConfigSweep, ListsPerVariableJointAndGrid) {
+  const std::string lists = "  values(1,1) = 0.6, 0.8\n  values(1,2) = 2.0, 4.0 /";
+  const auto joint = read_text(with_sweep("&sweep variable = 'system:restitution(1,2)', 'system:mass(2)'\n" + lists));
+  ASSERT_EQ(joint.sweep_points().size(), 2u);
+  EXPECT_DOUBLE_EQ(joint.sweep_points()[1].system.mass[1], 4.0);
+  const auto grid = read_text(with_sweep("&sweep variable = 'system:restitution(1,2)', 'system:mass(2)', grid = .true.\n"
+                                         "  values(1,1) = 0.6, 0.8\n  values(1,2) = 2.0, 4.0, 8.0 /"));
+  const auto points = grid.sweep_points();
+  ASSERT_EQ(points.size(), 6u);  // the last variable fastest
+  EXPECT_DOUBLE_EQ(points[0].system.restitution(0, 1), 0.6);
+  EXPECT_DOUBLE_EQ(points[0].system.mass[1], 2.0);
+  EXPECT_DOUBLE_EQ(points[2].system.mass[1], 8.0);
+  EXPECT_DOUBLE_EQ(points[3].system.restitution(0, 1), 0.8);
+  EXPECT_DOUBLE_EQ(points[3].system.mass[1], 2.0);
+}
+
+TEST(ConfigError, SweepShapeMistakesNameTheVariable) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"&sweep variable = 'system:mass(3)', values = 2.0 /", "t.nml:18: &sweep: variable: 'system:mass(3)': index 3 is "
+                                                             "out of range (n_species = 2)"},
+      {"&sweep variable = 'system:restitution(1,3)', values = 0.5 /", "index 3 is out of range"},
+      {"&sweep variable = 'system:mass(1,2)', values = 0.5 /", "mass is a list: one index"},
+      {"&sweep variable = 'dsmc:seed(2)', values = 5 /", "seed is a scalar and takes no index"},
+      {"&sweep variable = 'system:restitution(1)', values = 0.5 /", "restitution is a matrix: two indices"},
+      {"&sweep variable = 'system:mass(2)', 'system:restitution(1,2)',\n values = 1.0, 0.5, 2.0 /",
+       "t.nml:19: &sweep: values: 3 values for 2 variables given point by point"},
+      {"&sweep variable = 'system:mass(2)', 'system:restitution(1,2)'\n values(1,1) = 1.0, 2.0\n"
+       " values(1,2) = 0.5 /",
+       "t.nml:20: &sweep: values: 'system:restitution(1,2)' has 1 values (values(1,2)) but 'system:mass(2)' has 2: "
+       "joint variables take lists of the same length"},
+      {"&sweep variable = 'system:mass(2)', 'system:restitution(1,2)'\n values(1,1) = 1.0, 2.0 /",
+       "no list for variable 2 ('system:restitution(1,2)')"},
+      {"&sweep variable = 'system:mass(2)', 'system:mass(2)', values = 1.0, 2.0 /", "is swept twice"},
+      {"&sweep variable = 'system:mass(2)', 'dsmc:seed', grid = .true., values = 1.0, 2.0 /",
+       "&sweep: grid: grid = .true. takes one list per variable"},
+      {"&sweep variable = 'system:mass(2)', values(2,1) = 1.0 /", "values(1,v) = ..."},
+  };
+  for (const auto& [group, expected] : cases) {
+    try {
+      read_text(with_sweep(group));
+      ADD_FAILURE() << "no error: " << group;
+    } catch (const namelist::Error& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // &agg_frag (ERRATA §12) and &output sample_times
 // ---------------------------------------------------------------------------------------------
@@ -1084,4 +1153,23 @@ TEST(ConfigRepeated, OneSetAssignsOneVariable) {
 
 TEST(ConfigRepeated, SampleCountIsCapped) {
   expect_error(error_of(with_line(16, "  n_samples = 10000000")), 16, "output", "n_samples", {"outside [2, 100000]"});
+}
+
+// /parameters/sweep keeps its types for one variable: `variable` a string, `values` the value texts.
+TEST(ConfigSweep, ResolvedKeepsTheOneVariableTypes) {
+  const auto c = read_text(with_sweep("&sweep variable = 'system:restitution', values = 0.5, 0.7 /"));
+  bool seen_variable = false, seen_values = false;
+  for (const auto& p : c.resolved()) {
+    if (p.group != "sweep") continue;
+    if (p.name == "variable") {
+      seen_variable = true;
+      EXPECT_EQ(p.value, gdsmc::io::h5md::ParameterValue(std::string("system:restitution")));
+    }
+    if (p.name == "values") {
+      seen_values = true;
+      EXPECT_EQ(p.value, gdsmc::io::h5md::ParameterValue(std::vector<std::string>{"0.5", "0.7"}));
+    }
+  }
+  EXPECT_TRUE(seen_variable);
+  EXPECT_TRUE(seen_values);
 }

@@ -132,3 +132,23 @@ TEST(Simulation, ChunksEndAfterAboutAFixedNumberOfCandidates) {
   EXPECT_EQ(simulation::chunk_end_time(2.0, 1000, 50.0, 1e5), 50.0);
   EXPECT_EQ(simulation::chunk_end_time(2.0, 1000, std::numeric_limits<double>::infinity(), 1e5), 202.0);
 }
+
+// Issue 17 item 4: /h5md/author is &output author, else $USER (or the login name); never the old
+// placeholder. `step` is the cumulative collision events (mean over replicas, rounded), not the
+// sample index.
+TEST(Simulation, AuthorAndStepConvention) {
+  const auto path = scratch("author.h5");
+  std::string text = kBinary;
+  text.replace(text.find("n_samples = 4"), 13, "n_samples = 4, author = 'A. Person'");
+  simulation::run(config_of(text), path.string(), {});
+  EXPECT_EQ(io::h5md::read_string_attribute(path.string(), "/h5md/author", "name"), "A. Person");
+  const auto t = io::h5md::read_observable(path.string(), "total_temperature");
+  const auto events = io::h5md::read_observable(path.string(), "collisions");
+  ASSERT_EQ(t.step.size(), events.value.size());
+  for (std::size_t i = 0; i < t.step.size(); ++i) EXPECT_EQ(t.step[i], std::llround(events.value[i])) << i;
+  EXPECT_GT(t.step.back(), static_cast<long long>(t.step.size()));  // not the sample index
+  simulation::run(config_of(kBinary), path.string(), {});
+  const std::string author = io::h5md::read_string_attribute(path.string(), "/h5md/author", "name");
+  EXPECT_NE(author, "granular-dsmc user");
+  EXPECT_FALSE(author.empty());
+}

@@ -20,6 +20,7 @@
 #include "io/config.hpp"
 #include "io/h5md.hpp"
 #include "io/namelist.hpp"
+#include "io/sweep_table.hpp"
 
 namespace {
 
@@ -93,8 +94,10 @@ const char* kUsage =
     "usage: granular-dsmc FILE.nml [--output PATH] [--quiet] [--compare[=FILE.json]] [--restart CHECKPOINT]\n"
     "                     [--set group:variable=value]...\n"
     "       granular-dsmc --print-defaults\n"
+    "       granular-dsmc --table OUTPUT.h5\n"
     "  --output PATH     write the result to PATH (overrides &output file)\n"
-    "  --quiet           no progress line\n"
+    "  --quiet           no progress line (on a terminal one line rewritten in place; otherwise a\n"
+    "                    line every 10 s) and no summary line\n"
     "  --compare         end with a table of DSMC (mean +- SE over replicas) against the theory for the\n"
     "                    input (the values granular-theory prints), the approximation's name and a mark:\n"
     "                    within statistics, within the approximation's known error, or beyond; the same\n"
@@ -107,6 +110,8 @@ const char* kUsage =
     "                    --set dsmc:n_particles=2000 --set \"output:file='x.h5'\"\n"
     "  --force           write the output over an existing file that is not an earlier output of granular-dsmc\n"
     "  --print-defaults  print a commented namelist with every variable and its default\n"
+    "  --table FILE.h5   print the table of a sweep's output (/sweep/values, /sweep/results) as CSV:\n"
+    "                    a header line, one row per point (docs/output.md \"Sweeps\")\n"
     "Exit status: 0 success, 2 bad input, 1 run-time failure, 130 interrupted.\n";
 
 }  // namespace
@@ -149,6 +154,15 @@ int main(int argc, char** argv) {
       return 0;
     } else if (arg == "--print-reference") {  // Markdown input reference, for docs/
       std::cout << gdsmc::io::config::reference_markdown();
+      return 0;
+    } else if (arg == "--table") {  // the sweep table of an output file as CSV (io/sweep_table.hpp)
+      const std::string file = next();
+      try {
+        std::cout << gdsmc::io::sweep_table::csv(gdsmc::io::sweep_table::read(file)) << std::flush;
+      } catch (const std::exception& e) {
+        std::cerr << "granular-dsmc: --table " << file << ": " << e.what() << "\n";
+        return 2;
+      }
       return 0;
     } else if (arg == "--quiet" || arg == "-q") {
       quiet = true;
@@ -204,7 +218,8 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   gdsmc::simulation::Options options;
-  options.progress = !quiet && root && isatty(STDERR_FILENO);
+  options.progress = !quiet && root;
+  options.progress_terminal = isatty(STDERR_FILENO) != 0;
   options.interrupt = &g_interrupted;
   options.restart_path = restart;
   const std::string& path = config.output.file;

@@ -224,9 +224,15 @@ int main(int argc, char** argv) {
     } else {
       // One object per point, in the order of &sweep values (as /sweep/point_K of granular-dsmc).
       std::ostringstream json;
-      json << "{\n  \"sweep\": {\"variable\": \"" << config.sweep.variable << "\", \"values\": [";
-      for (std::size_t k = 0; k < config.sweep.values.size(); ++k)
-        json << (k ? ", " : "") << "\"" << escape(config.sweep.values[k]) << "\"";
+      // "variable": the names joined by ", " (one variable: its name); "values": each point's values
+      // joined the same way; "variables" and "points": the same as lists.
+      const auto table = config.sweep.table();
+      json << "{\n  \"sweep\": {\"variable\": \"" << escape(config.sweep.names()) << "\", \"values\": [";
+      for (std::size_t k = 0; k < table.size(); ++k)
+        json << (k ? ", " : "") << "\"" << escape(gdsmc::io::config::Sweep::row_text(table[k])) << "\"";
+      json << "], \"variables\": [";
+      for (std::size_t v = 0; v < config.sweep.variable.size(); ++v)
+        json << (v ? ", " : "") << "\"" << escape(config.sweep.variable[v]) << "\"";
       json << "]},\n  \"points\": [\n";
       const auto points = config.sweep_points();
       for (std::size_t k = 0; k < points.size(); ++k)

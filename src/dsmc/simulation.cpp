@@ -25,6 +25,7 @@
 #include "dsmc/sample.hpp"
 #include "dsmc/thermostat.hpp"
 #include "io/h5md.hpp"
+#include "io/sweep_table.hpp"
 #include "theory/viscosity.hpp"
 
 namespace gdsmc::simulation {
@@ -39,30 +40,47 @@ particles::InitialDistribution parse_distribution(const std::string& name) {
   return particles::InitialDistribution::maxwell;
 }
 
-/// One line on stderr, rewritten in place: replica, simulated time, collisions per second, ETA.
+/// The progress line on stderr: on a terminal one line rewritten in place (at most 5 times a second);
+/// otherwise (a log file, a pipe) a full line every 10 s, so that logs are readable, not a stream of
+/// carriage returns.
 class ProgressLine {
  public:
-  explicit ProgressLine(bool enabled) : enabled_(enabled), start_(Clock::now()) {}
-  void update(double fraction_done, const std::string& where, double time, double events_per_second) {
-    if (!enabled_) return;
+  ProgressLine(bool enabled, bool terminal) : enabled_(enabled), terminal_(terminal), start_(Clock::now()) {}
+  /// Whether a line is due now (so that the caller composes it only then).
+  bool due(double fraction_done) const {
+    if (!enabled_) return false;
+    if (!terminal_ && fraction_done >= 1.0) return false;  // the summary line follows
+    if (fraction_done >= 1.0) return true;
     const auto now = Clock::now();
-    if (now - last_ < std::chrono::milliseconds(200) && fraction_done < 1.0) return;
+    const auto interval = terminal_ ? std::chrono::milliseconds(200) : std::chrono::milliseconds(10000);
+    return now - last_ >= interval && (terminal_ || last_ != Clock::time_point{} || now - start_ >= interval);
+  }
+  void update(double fraction_done, const std::string& what, double events_per_second) {
+    if (!due(fraction_done)) return;
+    const auto now = Clock::now();
     last_ = now;
     const double elapsed = std::chrono::duration<double>(now - start_).count();
     const double eta = fraction_done > 0 ? elapsed * (1.0 - fraction_done) / fraction_done : 0.0;
-    const int width = 30;
-    const int filled = static_cast<int>(fraction_done * width);
-    std::fprintf(stderr, "\r[%.*s%*s] %5.1f%%  %s  t = %-10.4g  %.3g coll/s  ETA %.0f s  ",
-                 filled, "##############################", width - filled, "", 100.0 * fraction_done,
-                 where.c_str(), time, events_per_second, eta);
+    if (terminal_) {
+      const int width = 30;
+      const int filled = static_cast<int>(fraction_done * width);
+      std::fprintf(stderr, "\r[%.*s%*s] %5.1f%%  %s  %.3g coll/s  ETA %.0f s  ", filled,
+                   "##############################", width - filled, "", 100.0 * fraction_done, what.c_str(),
+                   events_per_second, eta);
+    } else {
+      std::fprintf(stderr, "granular-dsmc: %5.1f%% done, %s, %.3g coll/s, %.0f s elapsed, ETA %.0f s\n",
+                   100.0 * fraction_done, what.c_str(), events_per_second, elapsed, eta);
+    }
     std::fflush(stderr);
+    printed_ = true;
   }
   void finish() {
-    if (enabled_) std::fputs("\n", stderr);
+    if (enabled_ && terminal_ && printed_) std::fputs("\n", stderr);
   }
 
  private:
-  bool enabled_;
+  bool enabled_, terminal_;
+  bool printed_ = false;
   Clock::time_point start_, last_{};
 };
 
@@ -165,19 +183,41 @@ ReplicaResult unpack(const std::string& in, std::size_t& pos, std::uint64_t& uni
   return r;
 }
 
-/// Progress over all units of this rank, shared by its threads.
+/// Progress over all units of this rank (replicas of every sweep point), shared by its threads: one
+/// line for the whole run with the fraction of the work done (the mean of the units' fractions), the
+/// replicas and sweep points finished, the collision rate since the start and the ETA. A unit's
+/// `where` label is not shown (with several threads the line would jump between units); the simulated
+/// time is, when the run is a single unit. Every update is O(1) (sums kept, not recomputed), and the
+/// line's text is composed only when one is due. Under MPI the line (rank 0's) counts rank 0's units.
 class Progress {
  public:
-  Progress(bool enabled, std::size_t units) : line_(enabled), partial_(units, 0.0) {}
-  void update(std::size_t slot, double fraction, const std::string& where, double time, std::uint64_t new_events) {
+  /// `point_of` gives the sweep point of each unit (slot) of this rank; `points` their number.
+  Progress(bool enabled, bool terminal, std::vector<std::size_t> point_of, std::size_t points)
+      : line_(enabled, terminal), partial_(point_of.size(), 0.0), point_of_(std::move(point_of)), open_(points, 0) {
+    for (std::size_t p : point_of_) ++open_[p];
+    for (std::size_t n : open_) points_ += n > 0 ? 1 : 0;
+  }
+  void update(std::size_t slot, double fraction, const std::string& /*where*/, double time, std::uint64_t new_events) {
     std::lock_guard<std::mutex> lock(mutex_);
-    sum_ += fraction - partial_[slot];  // kept up to date: O(1) per update, however many units
+    const double before = partial_[slot];
     partial_[slot] = fraction;
+    sum_ += fraction - before;
+    if (before < 1.0 && fraction >= 1.0) {
+      ++units_done_;
+      if (--open_[point_of_[slot]] == 0) ++points_done_;
+    }
     events_ += new_events;
-    const double sum = sum_;
+    const double done = std::min(sum_ / static_cast<double>(partial_.size()), units_done_ == partial_.size() ? 1.0 : 0.999);
+    if (!line_.due(done)) return;
+    std::string what = std::to_string(units_done_) + "/" + std::to_string(partial_.size()) + " replicas";
+    if (points_ > 1) what += ", " + std::to_string(points_done_) + "/" + std::to_string(points_) + " sweep points";
+    if (partial_.size() == 1) {
+      char t[48];
+      std::snprintf(t, sizeof t, ", t = %.4g", time);
+      what += t;
+    }
     const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
-    line_.update(std::min(sum / static_cast<double>(partial_.size()), fraction >= 1.0 ? 1.0 : 0.999), where, time,
-                 elapsed > 0 ? static_cast<double>(events_) / elapsed : 0.0);
+    line_.update(done, what, elapsed > 0 ? static_cast<double>(events_) / elapsed : 0.0);
   }
   void finish() { line_.finish(); }
 
@@ -185,6 +225,9 @@ class Progress {
   std::mutex mutex_;
   ProgressLine line_;
   std::vector<double> partial_;
+  std::vector<std::size_t> point_of_;
+  std::vector<std::size_t> open_;  ///< units of each point not finished
+  std::size_t points_ = 0, points_done_ = 0, units_done_ = 0;
   double sum_ = 0.0;  ///< sum of partial_
   std::uint64_t events_ = 0;
   Clock::time_point start_ = Clock::now();
@@ -1318,8 +1361,12 @@ void write_point(io::h5md::Writer& writer, const std::string& root, const io::co
   const double range = config.output.histogram_range;
   const std::vector<double> time_mean = acc["time"].mean();
   const std::size_t n_samples = time_mean.size();
+  // H5MD `step` (docs/output.md "The H5MD file"): an integer step of the simulation itself, the
+  // cumulative collision events of a replica up to the sample (the observable `collisions`), its mean
+  // over the replicas rounded to the nearest integer; `time` is the simulation time.
+  const std::vector<double> events = acc["collisions"].mean();
   std::vector<long long> step(n_samples);
-  for (std::size_t i = 0; i < n_samples; ++i) step[i] = static_cast<long long>(i);
+  for (std::size_t i = 0; i < n_samples; ++i) step[i] = i < events.size() ? std::llround(events[i]) : 0;
   if (config.has_agg_frag) {
     write_agg_frag_point(writer, root, result, step, time_mean);
     return;
@@ -1415,7 +1462,7 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
   std::string open_error;
   if (rank == 0) {
     try {
-      writer_storage.emplace(output_path, "granular-dsmc user", "granular-dsmc", GDSMC_VERSION);
+      writer_storage.emplace(output_path, io::config::author_name(config.output), "granular-dsmc", GDSMC_VERSION);
     } catch (const std::runtime_error& e) {
       open_error = e.what();
       if (open_error.empty()) open_error = "cannot create the output file";
@@ -1460,7 +1507,9 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
     if (!first.empty()) throw RestartError(first);
   }
 
-  Progress progress(options.progress && rank == 0, mine.size());
+  std::vector<std::size_t> point_of;
+  for (std::size_t u : mine) point_of.push_back(units[u].point);
+  Progress progress(options.progress && rank == 0, options.progress_terminal, point_of, points.size());
   std::vector<ReplicaResult> done(mine.size());
   std::string failure;  // first error of a thread (exceptions must not leave an OpenMP region)
   std::atomic<bool> interrupted{false}, failed{false};
@@ -1542,14 +1591,19 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
   Summary summary;
   std::uint64_t events = 0;
   double collide_seconds = 0.0;
+  const auto sweep_rows = config.sweep.table();
   for (std::size_t k = 0; k < points.size(); ++k) {
     // A sweep point lives in /sweep/point_K (K from 1) with the value it applies.
     const std::string group = config.is_sweep() ? "/sweep/point_" + std::to_string(k + 1) : "";
     write_point(writer, group + "/observables", points[k], results[k]);
     if (config.is_sweep()) {
-      writer.write_attribute(group, "variable", config.sweep.variable);
-      writer.write_attribute(group, "value", config.sweep.values[k]);
+      // One variable: its name and the value as written (as before tables); several: joined by ", ".
+      writer.write_attribute(group, "variable", config.sweep.names());
+      writer.write_attribute(group, "value", io::config::Sweep::row_text(sweep_rows[k]));
       writer.write_attribute(group, "mean_time_step", results[k].mean_step);
+      // Each point is an H5MD root of its own (h5md + observables): a reader opened at the group
+      // reads it as a file (docs/output.md "Sweeps").
+      writer.write_hard_link("/h5md", group + "/h5md");
     } else {
       writer.write_attribute("/parameters", "mean_time_step", results[k].mean_step);
     }
@@ -1563,8 +1617,13 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
                                        static_cast<double>(points[k].dsmc.replicas);
   }
   if (config.is_sweep()) {
-    writer.write_attribute("/sweep", "variable", config.sweep.variable);
-    writer.write_attribute("/sweep", "values", config.sweep.values);
+    writer.write_attribute("/sweep", "variable", config.sweep.names());
+    std::vector<std::string> texts;
+    for (const auto& row : sweep_rows) texts.push_back(io::config::Sweep::row_text(row));
+    writer.write_attribute("/sweep", "values", texts);
+    // The table (io/sweep_table.hpp): the swept values and the headline results, read back from the
+    // points just written.
+    io::sweep_table::write(writer, io::sweep_table::build(config, writer.temporary_path()));
   }
   if (options.before_commit) options.before_commit(writer);
   writer.commit();

@@ -37,6 +37,8 @@ namespace gdsmc::simulation {
 
 struct Options {
   bool progress = false;                         ///< progress line on stderr
+  /// stderr is a terminal: the line is rewritten in place; otherwise a full line every 10 s.
+  bool progress_terminal = true;
   const std::atomic<bool>* interrupt = nullptr;  ///< set by a signal handler: stop, write nothing
   std::string restart_path;                      ///< continue from this checkpoint (empty: from the start)
   /// Called on rank 0 when the file is complete, just before it is committed: may add groups (the

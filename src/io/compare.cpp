@@ -426,8 +426,10 @@ std::vector<PointTheory> predict_points(const config::Config& config) {
 Comparison compare_file(const config::Config& config, const std::string& file, std::vector<PointTheory> theory) {
   Comparison c;
   c.sweep = config.is_sweep();
-  c.sweep_variable = config.sweep.variable;
-  if (c.sweep) c.sweep_values = config.sweep.values;
+  c.sweep_variable = config.sweep.names();
+  const auto table = config.sweep.table();
+  if (c.sweep)
+    for (const auto& row : table) c.sweep_values.push_back(config::Sweep::row_text(row));
   const auto points = config.sweep_points();
   if (theory.size() != points.size()) theory = predict_points(config);
   for (std::size_t k = 0; k < points.size(); ++k) {
@@ -447,7 +449,8 @@ Comparison compare_file(const config::Config& config, const std::string& file, s
         pt.notes.push_back(std::string("nothing compared: ") + e.what());
       }
     }
-    if (c.sweep) pt.label = config.sweep.variable + " = " + config.sweep.values[k];
+    if (c.sweep) pt.label = config.sweep.variable.size() == 1 ? config.sweep.variable[0] + " = " + table[k][0]
+                                                              : config.sweep.row_label(table[k]);
     c.points.push_back(std::move(pt));
   }
   return c;

@@ -1,8 +1,12 @@
 #include "io/config.hpp"
 
+#include <pwd.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <limits>
 #include <map>
@@ -43,7 +47,7 @@ template <class G>
 struct Field {
   using Member = std::variant<long long G::*, double G::*, bool G::*, std::string G::*,
                               std::optional<double> G::*, std::vector<double> G::*,
-                              std::vector<std::string> G::*,
+                              std::vector<std::string> G::*, SweepValues G::*,
                               species::PairMatrix G::*>;
   std::string name;
   Member member;
@@ -153,6 +157,7 @@ const std::vector<Field<Shear>>& shear_fields() {
 const std::vector<Field<Output>>& output_fields() {
   static const std::vector<Field<Output>> fields = {
       {"file", &Output::file, "", "HDF5 (H5MD) output file"},
+      {"author", &Output::author, "", "name in /h5md/author of the output file (default: $USER, else the login name)"},
       {"n_samples", &Output::n_samples, "",
        "sample times, t = 0 included (at most 1e5: every sample keeps every observable of every replica in memory)",
        Range{2, 1e5}},
@@ -208,8 +213,13 @@ const std::vector<Field<AggFrag>>& agg_frag_fields() {
 const std::vector<Field<Sweep>>& sweep_fields() {
   static const std::vector<Field<Sweep>> fields = {
       {"variable", &Sweep::variable, "",
-       "the swept variable as 'group:name', e.g. 'system:restitution' (no sweep when unset)"},
-      {"values", &Sweep::values, "", "its values, one run (and one output group) per value"},
+       "the swept variables as 'group:name' or an element 'group:name(i)', 'group:name(i,j)', e.g. "
+       "'system:restitution(1,2)', 'system:mass(2)' (no sweep when unset)"},
+      {"values", &Sweep::values, "",
+       "their values point by point (one run and one output group per point), or one list per variable: "
+       "values(1,v) = ..."},
+      {"grid", &Sweep::grid, "",
+       ".true.: every combination of the variables' lists (values(1,v) = ...), the last variable fastest"},
   };
   return fields;
 }
@@ -325,10 +335,22 @@ void assign(G& target, const Field<G>& field, const namelist::Assignment& a, con
           for (std::size_t i = 0; i < a.values.size(); ++i)
             vec[start + i] = r.number(a.values[i], name, field.range);
         } else if constexpr (std::is_same_v<T, std::vector<std::string>>) {
-          // Kept as namelist text, to be applied later as `group:variable=value`.
+          // A list of quoted strings (the names of &sweep variable), kept without their quotes.
           if (!a.index.empty()) throw r.error(a.line, name, name + " takes no index");
           std::vector<std::string>& list = target.*member;
           list.clear();
+          for (const auto& v : a.values) {
+            if (v.kind != namelist::Value::Kind::String)
+              throw r.error(v.line, name, "expected a quoted string, got " + std::string(kind_name(v.kind)) + " '" +
+                                              v.text + "'");
+            if (v.string.empty()) throw r.error(v.line, name, name + " must not be empty");
+            list.push_back(v.string);
+          }
+        } else if constexpr (std::is_same_v<T, SweepValues>) {
+          // Kept as namelist text, to be applied later as `group:variable=value`: `values = ...`
+          // point by point, or `values(1,v) = ...` the list of variable v.
+          SweepValues& sv = target.*member;
+          std::vector<std::string> list;
           for (const auto& v : a.values) {
             if (v.kind != namelist::Value::Kind::String) {
               list.push_back(v.text);
@@ -337,6 +359,17 @@ void assign(G& target, const Field<G>& field, const namelist::Assignment& a, con
             std::string quoted = "'";
             for (char ch : v.string) quoted += ch == '\'' ? std::string("''") : std::string(1, ch);
             list.push_back(quoted + "'");
+          }
+          if (a.index.empty()) {
+            sv.points = std::move(list);
+          } else {
+            if (a.index.size() != 2 || a.index[0] != 1)
+              throw r.error(a.line, name,
+                            "one list per variable is written values(1,v) = ... (v = 1, 2, ... in the order of "
+                            "variable)");
+            const auto v = static_cast<std::size_t>(a.index[1]);
+            if (sv.lists.size() < v) sv.lists.resize(v);
+            sv.lists[v - 1] = std::move(list);
           }
         } else if constexpr (std::is_same_v<T, species::PairMatrix>) {
           // Resolved once n_species is known (check stage); the values are checked now.
@@ -811,6 +844,17 @@ void append_resolved(std::vector<h5md::Parameter>& out, const std::string& group
           const auto& v = target.*member;
           if constexpr (std::is_same_v<T, std::optional<double>>) {
             if (v) out.push_back({group, f.name, *v});
+          } else if constexpr (std::is_same_v<T, std::vector<std::string>>) {
+            // &sweep variable: one name is a string attribute, as before several could be swept.
+            if (v.size() == 1) out.push_back({group, f.name, v.front()});
+            else out.push_back({group, f.name, v});
+          } else if constexpr (std::is_same_v<T, SweepValues>) {
+            // The points run, point after point (also for lists and grids): the value texts.
+            if constexpr (std::is_same_v<G, Sweep>) {
+              std::vector<std::string> flat;
+              for (const auto& row : target.table()) flat.insert(flat.end(), row.begin(), row.end());
+              out.push_back({group, f.name, flat});
+            }
           } else if constexpr (std::is_same_v<T, species::PairMatrix>) {
             // A uniform matrix of very many species (not stored densely) is written as its value.
             out.push_back({group, f.name, v.is_dense() ? v.values : std::vector<double>{v(0, 0)}});
@@ -854,7 +898,9 @@ void template_group(std::ostringstream& s, const std::string& group, const std::
     std::string note;
     if (f.required) {
       value = examples.count(f.name) ? examples.at(f.name) : "...";
-      note = " (required)";
+      // A help that already says when the variable is required (restitution: "required when
+      // constant") is not followed by a second, unconditional "(required)".
+      if (f.help.find("required") == std::string::npos) note = " (required)";
     } else if (value.empty()) {
       prefix = "! ";
       value = examples.count(f.name) ? examples.at(f.name) : "...";
@@ -908,11 +954,15 @@ bool is_string_variable(const std::string& group, const std::string& name) {
   return false;
 }
 
-/// The override that sets sweep point `value` of `variable` ("group:name").
+/// The override that sets sweep point `value` of `variable` ("group:name", or "group:name(i,j)"
+/// for an element).
 std::string sweep_override(const std::string& variable, const std::string& value) {
   const auto colon = variable.find(':');
+  std::string name = variable.substr(colon + 1);
+  name = name.substr(0, name.find('('));
+  name.erase(std::remove(name.begin(), name.end(), ' '), name.end());
   const bool quoted = value.size() >= 2 && value.front() == '\'' && value.back() == '\'';
-  if (quoted && !is_string_variable(lower(variable.substr(0, colon)), lower(variable.substr(colon + 1)))) {
+  if (quoted && !is_string_variable(lower(variable.substr(0, colon)), lower(name))) {
     std::string text;  // unquote: '' inside stands for one quote
     for (std::size_t i = 1; i + 1 < value.size(); ++i) {
       text += value[i];
@@ -923,36 +973,204 @@ std::string sweep_override(const std::string& variable, const std::string& value
   return variable + "=" + value;
 }
 
-/// &sweep: the variable names a variable of another group, there are values, and every point
-/// reads and checks as a Config of its own (so a bad value stops the run before any work).
+/// A &sweep variable as written, "group:name" or "group:name(i[,j])": its parts (lower-cased,
+/// blanks removed); ok = false when it has not that form.
+struct SweepTarget {
+  std::string group, name;
+  std::vector<long long> index;
+  bool ok = false;
+};
+
+SweepTarget parse_target(const std::string& written) {
+  SweepTarget t;
+  std::string text;
+  for (char ch : written)
+    if (ch != ' ') text += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  const auto colon = text.find(':');
+  if (colon == std::string::npos) return t;
+  t.group = text.substr(0, colon);
+  std::string rest = text.substr(colon + 1);
+  const auto open = rest.find('(');
+  t.name = rest.substr(0, open);
+  if (t.name.empty()) return t;
+  if (open != std::string::npos) {
+    if (rest.back() != ')') return t;
+    std::istringstream list(rest.substr(open + 1, rest.size() - open - 2));
+    for (std::string item; std::getline(list, item, ',');) {
+      if (item.empty() || item.size() > 9 || item.find_first_not_of("0123456789") != std::string::npos) return t;
+      t.index.push_back(std::stoll(item));
+      if (t.index.back() < 1) return t;
+    }
+    if (t.index.empty()) return t;
+  }
+  t.ok = true;
+  return t;
+}
+
+/// Rank of variable `name` of `group`: 0 scalar, 1 list, 2 pair matrix; -1 unknown.
+template <class G>
+int field_rank(const std::vector<Field<G>>& fields, const std::string& name) {
+  for (const auto& f : fields)
+    if (f.name == name)
+      return std::holds_alternative<std::vector<double> G::*>(f.member)   ? 1
+             : std::holds_alternative<species::PairMatrix G::*>(f.member) ? 2
+                                                                          : 0;
+  return -1;
+}
+
+int variable_rank(const std::string& group, const std::string& name) {
+  if (group == "system") return field_rank(system_fields(), name);
+  if (group == "initial") return field_rank(initial_fields(), name);
+  if (group == "dsmc") return field_rank(dsmc_fields(), name);
+  if (group == "output") return field_rank(output_fields(), name);
+  if (group == "agg_frag") return field_rank(agg_frag_fields(), name);
+  if (group == "thermostat") return field_rank(thermostat_fields(), name);
+  if (group == "shear") return field_rank(shear_fields(), name);
+  return -1;
+}
+
+/// A mistake in the shape of &sweep: the variable to name and the message.
+struct SweepShapeError {
+  std::string variable, message;
+};
+
+/// The points of a sweep, row k = the value text of every variable at point k; throws
+/// SweepShapeError when the values do not make points (docs/output.md "Sweeps").
+std::vector<std::vector<std::string>> sweep_rows(const Sweep& sweep) {
+  const std::size_t nv = sweep.variable.size();
+  const SweepValues& sv = sweep.values;
+  std::vector<std::vector<std::string>> rows;
+  if (nv == 0 || sv.empty()) return rows;
+  if (!sv.points.empty() && !sv.lists.empty())
+    throw SweepShapeError{"values", "give the values point by point (values = ...) or one list per variable "
+                                    "(values(1,v) = ...), not both"};
+  if (!sv.points.empty()) {
+    if (sweep.grid && nv > 1)
+      throw SweepShapeError{"grid", "grid = .true. takes one list per variable: values(1,1) = ..., "
+                                    "values(1,2) = ..."};
+    if (sv.points.size() % nv != 0)
+      throw SweepShapeError{"values", std::to_string(sv.points.size()) + " values for " + std::to_string(nv) +
+                                          " variables given point by point: not a whole number of points (" +
+                                          std::to_string(nv) + " values per point)"};
+    for (std::size_t k = 0; k < sv.points.size(); k += nv)
+      rows.emplace_back(sv.points.begin() + static_cast<std::ptrdiff_t>(k),
+                        sv.points.begin() + static_cast<std::ptrdiff_t>(k + nv));
+    return rows;
+  }
+  if (sv.lists.size() > nv)
+    throw SweepShapeError{"values", "values(1," + std::to_string(sv.lists.size()) + ") is given, but there are only " +
+                                        std::to_string(nv) + " variables"};
+  for (std::size_t v = 0; v < nv; ++v)
+    if (v >= sv.lists.size() || sv.lists[v].empty())
+      throw SweepShapeError{"values", "no list for variable " + std::to_string(v + 1) + " ('" + sweep.variable[v] +
+                                          "'): give values(1," + std::to_string(v + 1) + ") = ..."};
+  if (!sweep.grid) {
+    for (std::size_t v = 1; v < nv; ++v)
+      if (sv.lists[v].size() != sv.lists[0].size())
+        throw SweepShapeError{"values", "'" + sweep.variable[v] + "' has " + std::to_string(sv.lists[v].size()) +
+                                            " values (values(1," + std::to_string(v + 1) + ")) but '" +
+                                            sweep.variable[0] + "' has " + std::to_string(sv.lists[0].size()) +
+                                            ": joint variables take lists of the same length (or set grid = "
+                                            ".true. for every combination)"};
+    for (std::size_t k = 0; k < sv.lists[0].size(); ++k) {
+      rows.emplace_back();
+      for (std::size_t v = 0; v < nv; ++v) rows.back().push_back(sv.lists[v][k]);
+    }
+    return rows;
+  }
+  constexpr double kMaxGridPoints = 1e6;
+  double count = 1.0;
+  for (const auto& list : sv.lists) count *= static_cast<double>(list.size());
+  if (count > kMaxGridPoints)
+    throw SweepShapeError{"grid", "the grid has " + std::to_string(static_cast<long long>(count)) +
+                                      " points, more than 1e6"};
+  std::vector<std::size_t> at(nv, 0);  // odometer, the last variable fastest
+  for (std::size_t k = 0; k < static_cast<std::size_t>(count); ++k) {
+    rows.emplace_back();
+    for (std::size_t v = 0; v < nv; ++v) rows.back().push_back(sv.lists[v][at[v]]);
+    for (std::size_t v = nv; v-- > 0;) {
+      if (++at[v] < sv.lists[v].size()) break;
+      at[v] = 0;
+    }
+  }
+  return rows;
+}
+
+/// "restitution(1,2) = 0.7, mass(2) = 2.0": the assignments of one row of the sweep table.
+std::string row_label(const Sweep& sweep, const std::vector<std::string>& row) {
+  std::string joined;
+  for (std::size_t v = 0; v < row.size() && v < sweep.variable.size(); ++v) {
+    const auto colon = sweep.variable[v].find(':');
+    joined += joined.empty() ? "" : ", ";
+    joined += sweep.variable[v].substr(colon == std::string::npos ? 0 : colon + 1);
+    joined += " = ";
+    joined += row[v];
+  }
+  return joined;
+}
+
+/// The species-indexed variables, whose indices run to n_species.
+bool per_species(const std::string& group, const std::string& name) {
+  return (group == "system" && (name == "mass" || name == "diameter" || name == "number_density" ||
+                                name == "restitution")) ||
+         (group == "initial" && name == "temperature");
+}
+
+/// &sweep: every variable names a variable (or an element of one) of another group, the values
+/// make points, and every point reads and checks as a Config of its own (so a bad value stops the
+/// run before any work).
 void check_sweep(const Config& c, const Provenance& prov, const namelist::Document& document,
                  const std::vector<std::string>& overrides) {
   const std::string group = "sweep";
   const auto line_of = [&](const char* v) { return prov.line.count(v) ? prov.line.at(v) : 0; };
   const Sweep& sweep = c.sweep;
+  if (sweep.variable.empty() && sweep.values.empty()) return;  // grid alone: no sweep
   // Messages name where each was set: the namelist line, or the --set that gave it.
   if (sweep.variable.empty())
     throw Error(prov.file_of("values"), line_of("values"), group, "variable", "required with values");
   if (sweep.values.empty())
     throw Error(prov.file_of("variable"), line_of("variable"), group, "values", "required with variable");
-  const auto colon = sweep.variable.find(':');
-  const std::string target_group = lower(sweep.variable.substr(0, colon));
-  const std::string target = colon == std::string::npos ? "" : lower(sweep.variable.substr(colon + 1));
-  if (colon == std::string::npos || target_group == "sweep" || owning_group(target) != target_group)
-    throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
-                "'" + sweep.variable + "' is not 'group:name' of a variable of &system, &initial, "
-                "&dsmc, &output, &agg_frag, &thermostat or &shear");
-  for (std::size_t k = 0; k < sweep.values.size(); ++k) {
+  for (std::size_t v = 0; v < sweep.variable.size(); ++v) {
+    const std::string& written = sweep.variable[v];
+    const SweepTarget t = parse_target(written);
+    if (!t.ok || t.group == "sweep" || owning_group(t.name) != t.group)
+      throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
+                  "'" + written + "' is not 'group:name' (or 'group:name(i)', 'group:name(i,j)') of a variable of "
+                  "&system, &initial, &dsmc, &output, &agg_frag, &thermostat or &shear");
+    for (std::size_t w = 0; w < v; ++w)
+      if (parse_target(sweep.variable[w]).group == t.group && parse_target(sweep.variable[w]).name == t.name &&
+          parse_target(sweep.variable[w]).index == t.index)
+        throw Error(prov.file_of("variable"), line_of("variable"), group, "variable", "'" + written + "' is swept twice");
+    const int rank = variable_rank(t.group, t.name);
+    if (!t.index.empty() && static_cast<int>(t.index.size()) != rank)
+      throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
+                  "'" + written + "': " + t.name +
+                      (rank == 0   ? " is a scalar and takes no index"
+                       : rank == 1 ? " is a list: one index, " + t.name + "(k)"
+                                   : " is a matrix: two indices, " + t.name + "(i,j)"));
+    if (per_species(t.group, t.name))
+      for (long long i : t.index)
+        if (i > c.system.n_species)
+          throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
+                      "'" + written + "': index " + std::to_string(i) + " is out of range (n_species = " +
+                          std::to_string(c.system.n_species) + ")");
+  }
+  std::vector<std::vector<std::string>> rows;
+  try {
+    rows = sweep_rows(sweep);
+  } catch (const SweepShapeError& e) {
+    throw Error(prov.file_of(e.variable), line_of(e.variable.c_str()), group, e.variable, e.message);
+  }
+  for (std::size_t k = 0; k < rows.size(); ++k) {
     auto o = overrides;
-    o.push_back(sweep_override(sweep.variable, sweep.values[k]));
+    for (std::size_t v = 0; v < rows[k].size(); ++v) o.push_back(sweep_override(sweep.variable[v], rows[k][v]));
     try {
       read_point(document, o, false);
     } catch (const Error& e) {
       // A bad value the namelist gave is blamed on its line; one a --set gave, on that --set (the
       // point's own override, which e.file names, is this sweep's doing, not the user's command).
       throw Error(prov.file_of("values"), line_of("values"), group, "values",
-                  "point " + std::to_string(k + 1) + " (" + target + " = " + sweep.values[k] +
-                      "): " + e.message);
+                  "point " + std::to_string(k + 1) + " (" + row_label(sweep, rows[k]) + "): " + e.message);
     }
   }
 }
@@ -1030,13 +1248,44 @@ Config read(const namelist::Document& document, const std::vector<std::string>& 
   return read_point(document, overrides, true);
 }
 
+std::vector<std::vector<std::string>> Sweep::table() const {
+  try {
+    return sweep_rows(*this);
+  } catch (const SweepShapeError&) {
+    return {};  // refused when the namelist was read
+  }
+}
+
+std::string Sweep::names() const {
+  std::string joined;
+  for (const auto& v : variable) joined += (joined.empty() ? "" : ", ") + v;
+  return joined;
+}
+
+std::string Sweep::row_text(const std::vector<std::string>& row) {
+  std::string joined;
+  for (const auto& v : row) joined += (joined.empty() ? "" : ", ") + v;
+  return joined;
+}
+
+std::string Sweep::row_label(const std::vector<std::string>& row) const { return config::row_label(*this, row); }
+
+std::string author_name(const Output& output) {
+  if (!output.author.empty()) return output.author;
+  const char* user = std::getenv("USER");
+  if (user && *user) return user;
+  if (const passwd* entry = ::getpwuid(::getuid()); entry && entry->pw_name && *entry->pw_name)
+    return entry->pw_name;  // no $USER (cron, containers): the login name of the user id
+  return "unknown";
+}
+
 std::vector<Config> Config::sweep_points() const {
   if (!is_sweep()) return {*this};
   const namelist::Document document = namelist::parse(namelist_text, source_file);
   std::vector<Config> points;
-  for (const auto& value : sweep.values) {
+  for (const auto& row : sweep.table()) {
     auto o = overrides;
-    o.push_back(sweep_override(sweep.variable, value));
+    for (std::size_t v = 0; v < row.size(); ++v) o.push_back(sweep_override(sweep.variable[v], row[v]));
     points.push_back(read_point(document, o, false));
   }
   return points;

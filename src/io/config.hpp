@@ -15,7 +15,8 @@
  *
  * Groups (INTERFACE.md): `&system` (required), `&initial`, `&dsmc` (required), `&output`,
  * `&agg_frag` (aggregation and fragmentation, dsmc/agg_frag.hpp), and
- * `&sweep` (one variable over a list of values, each point its own run and output group).
+ * `&sweep` (variables, whole or array elements, over lists of values: jointly point by point or as a
+ * grid; each point its own run and output group).
  * Every error is an io::namelist::Error: `FILE:LINE: &group: variable: message`.
  * Checked by tests/config_test.cpp.
  */
@@ -73,6 +74,7 @@ struct Dsmc {
 /// &output: where and when.
 struct Output {
   std::string file = "run.h5";
+  std::string author;  ///< /h5md/author name (unset: author_name() finds one)
   long long n_samples = 100;
   std::string spacing = "linear";
   std::optional<double> first_sample;  ///< log spacing: first sample after 0 (default end / 1000)
@@ -97,13 +99,33 @@ struct AggFrag {
   std::optional<double> fragment_restitution;  ///< eps_f (required with fragmentation_energy)
 };
 
-/// &sweep: one variable over a list of values; every point is a run of its own (seed 003 figures
-/// are curves against alpha, mu, ...). Absent or empty variable: no sweep.
+/// &sweep values: given point by point (`values = ...`), or one list per variable (`values(1,v) = ...`).
+struct SweepValues {
+  std::vector<std::string> points;              ///< `values = ...`: namelist text, point after point
+  std::vector<std::vector<std::string>> lists;  ///< `values(1,v) = ...`: the list of variable v (index v - 1)
+  bool empty() const { return points.empty() && lists.empty(); }
+};
+
+/// &sweep: one or several variables over lists of values; every point is a run of its own (seed
+/// 003 figures are curves against alpha, mu, ...). Absent or empty variable: no sweep.
+/// (docs/output.md "Sweeps"; the points are checked when the namelist is read.)
 struct Sweep {
-  std::string variable;             ///< "group:name", e.g. 'system:restitution'
-  std::vector<std::string> values;  ///< the values as namelist text (strings quoted), in order;
-                                    ///< a quoted value of a non-string variable is inserted as text,
-                                    ///< so arrays sweep too: values = '0.01, 0.02', '0.02, 0.04'
+  /// The swept variables as written, "group:name" or "group:name(i)" / "group:name(i,j)" for an
+  /// element, e.g. 'system:restitution(1,2)'.
+  std::vector<std::string> variable;
+  /// Their values as namelist text (strings quoted); a quoted value of a non-string variable is
+  /// inserted as text, so arrays sweep too: values = '0.01, 0.02', '0.02, 0.04'.
+  SweepValues values;
+  bool grid = false;  ///< every combination of the variables' lists (the last variable varies fastest)
+
+  /// The points: row k = the value text of every variable at point k (checked input only).
+  std::vector<std::vector<std::string>> table() const;
+  /// The variables joined by ", " (one variable: its name), for attributes and messages.
+  std::string names() const;
+  /// A row of table() joined by ", " (one variable: the value as written).
+  static std::string row_text(const std::vector<std::string>& row);
+  /// "restitution(1,2) = 0.7, mass(2) = 2.0": a row's assignments, for labels.
+  std::string row_label(const std::vector<std::string>& row) const;
 };
 
 /// &thermostat: a Gaussian thermostat holds the temperature of the homogeneous steady state (HSS)
@@ -117,6 +139,9 @@ struct Shear {
   std::optional<double> rate;          ///< a (unset: no shear)
   std::optional<double> average_from;  ///< the viscosity's time average starts here (default t_end/2)
 };
+
+/// The H5MD author of the output: &output author, else $USER, else the login name of the user id, else "unknown" (docs/output.md "The H5MD file").
+std::string author_name(const Output& output);
 
 struct Config {
   System system;
@@ -148,7 +173,7 @@ struct Config {
   /// Config when there is no sweep. Each was checked when the namelist was read. A point has no
   /// &sweep and no namelist_text (the text is this Config's): a long list of values stays linear.
   std::vector<Config> sweep_points() const;
-  bool is_sweep() const { return !sweep.variable.empty(); }
+  bool is_sweep() const { return !sweep.variable.empty() && !sweep.values.empty(); }
   /// Every variable of every group, defaults included, for /parameters.
   std::vector<h5md::Parameter> resolved() const;
 };

@@ -648,6 +648,16 @@ void Writer::write_attribute(const std::string& object_path, const std::string& 
   });
 }
 
+void Writer::write_hard_link(const std::string& target, const std::string& link_path) {
+  const hid_t file = impl_->open_file();
+  with_context(impl_->context(), [&] {
+    const auto slash = link_path.find_last_of('/');
+    if (slash != std::string::npos && slash > 0) ensure_group(file, link_path.substr(0, slash));
+    check(H5Lcreate_hard(file, target.c_str(), file, link_path.c_str(), H5P_DEFAULT, H5P_DEFAULT), "H5Lcreate_hard",
+          link_path);
+  });
+}
+
 void Writer::write_group(const std::string& path) {
   const hid_t file = impl_->open_file();
   with_context(impl_->context(), [&] { ensure_group(file, path); });

@@ -24,7 +24,12 @@
  *     \-- ...
  * \endverbatim
  * The first dimension of step, time and value is extensible (H5S_UNLIMITED), which is what H5MD
- * means by "[variable]"; the datasets are written in one piece all the same.
+ * means by "[variable]"; the datasets are written in one piece all the same. `step` holds an integer
+ * step of the simulation (granular-dsmc: the cumulative collision events of a replica, the mean over
+ * replicas rounded; dsmc/simulation.cpp), `time` the simulation time.
+ * A sweep point /sweep/point_K is an H5MD root of its own (the specification allows the root of the
+ * H5MD structure to be any group): /sweep/point_K/h5md is a hard link to /h5md, beside its
+ * observables. Checked against the specification by tests/h5md_spec_test.cpp.
  *
  * Attribute types: strings are variable-length UTF-8 (h5py returns them as str); logicals are
  * 8-bit signed integers 0/1, because HDF5 has no boolean class and a plain integer reads the same
@@ -112,6 +117,9 @@ class Writer {
     write_attribute(object_path, name, ParameterValue(std::string(value)));
   }
 
+  /// A second name `link_path` (absolute; parents created) for the existing object `target` (an HDF5
+  /// hard link: one object, two paths), e.g. /sweep/point_K/h5md for /h5md.
+  void write_hard_link(const std::string& target, const std::string& link_path);
   /// Group at absolute `path` (and its parents), if it does not exist yet.
   void write_group(const std::string& path);
 

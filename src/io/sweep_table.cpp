@@ -1,0 +1,292 @@
+#include "io/sweep_table.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <stdexcept>
+
+#include "io/compare.hpp"
+
+namespace gdsmc::io::sweep_table {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+/// One point's results, before they are put into columns of equal width.
+struct PointValues {
+  std::vector<double> value, error;
+  bool present = false;
+};
+
+std::vector<double> errors_or_nan(const h5md::ObservableData& o) {
+  return o.error.empty() ? std::vector<double>(o.value.size(), kNaN) : o.error;
+}
+std::size_t columns_of(const h5md::ObservableData& o) { return o.shape.size() > 1 ? o.shape[1] : 1; }
+
+/// The last row of an observable.
+PointValues last(const h5md::ObservableData& o) {
+  PointValues p;
+  const std::size_t c = columns_of(o), nt = o.value.empty() ? 0 : o.value.size() / c;
+  if (nt == 0) return p;
+  const auto e = errors_or_nan(o);
+  p.value.assign(o.value.end() - static_cast<std::ptrdiff_t>(c), o.value.end());
+  p.error.assign(e.end() - static_cast<std::ptrdiff_t>(c), e.end());
+  p.present = true;
+  return p;
+}
+
+}  // namespace
+
+double numeric_value(const std::string& written) {
+  std::string text = written;
+  if (text.size() >= 2 && text.front() == '\'' && text.back() == '\'') text = text.substr(1, text.size() - 2);
+  while (!text.empty() && text.front() == ' ') text.erase(text.begin());
+  while (!text.empty() && text.back() == ' ') text.pop_back();
+  const std::string l = lower(text);
+  if (l == ".true." || l == ".t." || l == "t") return 1.0;
+  if (l == ".false." || l == ".f." || l == "f") return 0.0;
+  std::string number = l;
+  std::replace(number.begin(), number.end(), 'd', 'e');  // Fortran 1.5d-3
+  if (number.empty()) return kNaN;
+  char* end = nullptr;
+  const double x = std::strtod(number.c_str(), &end);
+  return end && *end == '\0' && std::isfinite(x) ? x : kNaN;
+}
+
+Table build(const config::Config& config, const std::string& file) {
+  Table t;
+  t.variables = config.sweep.variable;
+  const auto rows = config.sweep.table();
+  const auto points = config.sweep_points();
+  t.points = rows.size();
+  for (const auto& row : rows)
+    for (const auto& v : row) {
+      t.values.push_back(numeric_value(v));
+      t.texts.push_back(v);
+    }
+
+  const std::vector<std::pair<std::string, std::string>> names = {
+      {"temperature", "last sample (final temperature; steady with a thermostat)"},
+      {"total_temperature", "last sample (final temperature; steady with a thermostat)"},
+      {"temperature_over_mean", "scaling state: samples past &output scaling_start averaged (else the last sample)"},
+      {"sonine_c", "scaling state: samples past &output scaling_start averaged (else the last sample)"},
+      {"cooling_rate_reduced", "scaling state (reduced_distribution@cooling_rate_reduced)"},
+      {"shear_viscosity", "time average from &shear average_from (shear_viscosity@time_average)"},
+      {"collisions_per_particle", "last sample"}};
+  const std::vector<std::string> descriptions = {
+      "partial temperatures T_k = m_k <|v-u|^2>/3, columns = species (&agg_frag: cluster sizes)",
+      "T = sum_k n_k T_k / n",
+      "T_k/T, the ratio of the replica means at each sample (as --compare)",
+      "c_k = 2[(3/5)<v^4>/<v^2>^2 - 1] (seed 003 eq 17)",
+      "zeta* of the scaling state (one or two species)",
+      "eta/eta_0 time average (ERRATA §13)",
+      "2 x events / N"};
+  std::vector<std::vector<PointValues>> per(names.size(), std::vector<PointValues>(t.points));
+  t.scaling_samples.assign(t.points, 0.0);
+  for (std::size_t k = 0; k < t.points; ++k) {
+    const std::string root = "/sweep/point_" + std::to_string(k + 1) + "/observables";
+    const compare::Measured m = compare::read_measured(file, root);
+    const auto get = [&](const char* name) -> const h5md::ObservableData* {
+      const auto it = m.observables.find(name);
+      return it == m.observables.end() ? nullptr : &it->second;
+    };
+    if (const auto* o = get("temperature")) per[0][k] = last(*o);
+    if (const auto* o = get("total_temperature")) per[1][k] = last(*o);
+    if (const auto* o = get("collisions_per_particle")) per[6][k] = last(*o);
+    const auto* temperature = get("temperature");
+    const auto* total = get("total_temperature");
+    const auto* sonine = get("sonine_c");
+    const auto* cpp = get("collisions_per_particle");
+    if (!points[k].has_agg_frag && temperature && total && sonine && cpp) {
+      const std::size_t s = columns_of(*temperature), nt = total->value.size();
+      const auto te = errors_or_nan(*temperature), tte = errors_or_nan(*total), ce = errors_or_nan(*sonine);
+      const double start = points[k].output.scaling_start;
+      bool any = false;
+      for (std::size_t i = 0; i < nt; ++i) any = any || cpp->value[i] >= start;
+      const double from = any ? start : (nt ? cpp->value[nt - 1] : 0.0);  // else: the last sample
+      PointValues ratio, cumulant;
+      for (std::size_t c = 0; c < s; ++c) {
+        std::vector<double> r(nt), re(nt), cv(nt), cerr(nt);
+        for (std::size_t i = 0; i < nt; ++i) {
+          const double tk = temperature->value[i * s + c], tt = total->value[i];
+          r[i] = tk / tt;
+          re[i] = r[i] * std::hypot(te[i * s + c] / tk, tte[i] / tt);
+          cv[i] = sonine->value[i * s + c];
+          cerr[i] = ce[i * s + c];
+        }
+        const auto ar = compare::scaling_average(r, re, cpp->value, from);
+        const auto ac = compare::scaling_average(cv, cerr, cpp->value, from);
+        ratio.value.push_back(ar.value);
+        ratio.error.push_back(ar.error);
+        cumulant.value.push_back(ac.value);
+        cumulant.error.push_back(ac.error);
+        t.scaling_samples[k] = any ? static_cast<double>(ar.count) : 0.0;
+      }
+      ratio.present = cumulant.present = s > 0 && nt > 0;
+      per[2][k] = ratio;
+      per[3][k] = cumulant;
+    }
+    const auto attribute = [&](const char* key) {
+      const auto it = m.attributes.find(key);
+      return it == m.attributes.end() ? kNaN : it->second;
+    };
+    if (m.attributes.count("reduced_distribution@cooling_rate_reduced"))
+      per[4][k] = {{attribute("reduced_distribution@cooling_rate_reduced")},
+                   {attribute("reduced_distribution@cooling_rate_reduced_error")}, true};
+    if (m.attributes.count("shear_viscosity@time_average"))
+      per[5][k] = {{attribute("shear_viscosity@time_average")}, {attribute("shear_viscosity@time_average_error")},
+                   true};
+  }
+  for (std::size_t q = 0; q < names.size(); ++q) {
+    std::size_t width = 0;
+    for (const auto& p : per[q])
+      if (p.present) width = std::max(width, p.value.size());
+    if (width == 0) continue;  // no point has this result
+    Result r{names[q].first, names[q].second, descriptions[q], width, {}, {}};
+    for (const auto& p : per[q])
+      for (std::size_t c = 0; c < width; ++c) {
+        r.value.push_back(p.present && c < p.value.size() ? p.value[c] : kNaN);
+        r.error.push_back(p.present && c < p.error.size() ? p.error[c] : kNaN);
+      }
+    t.results.push_back(std::move(r));
+  }
+  return t;
+}
+
+void write(h5md::Writer& writer, const Table& t) {
+  writer.write_dataset("/sweep/values", t.values, {t.points, t.variables.size()});
+  writer.write_attribute("/sweep/values", "variables", t.variables);
+  writer.write_attribute("/sweep/values", "texts", t.texts);
+  writer.write_group("/sweep/results");
+  std::vector<std::string> quantities;
+  for (const auto& r : t.results) {
+    const std::string g = "/sweep/results/" + r.name;
+    writer.write_dataset(g + "/value", r.value, {t.points, r.columns});
+    writer.write_dataset(g + "/error", r.error, {t.points, r.columns});
+    writer.write_attribute(g, "at", r.at);
+    writer.write_attribute(g, "description", r.description);
+    quantities.push_back(r.name);
+  }
+  writer.write_attribute("/sweep/results", "quantities", quantities);
+  writer.write_attribute("/sweep/results", "scaling_samples", t.scaling_samples);
+}
+
+Table read(const std::string& file) {
+  Table t;
+  h5md::ArrayData values;
+  try {
+    values = h5md::read_dataset(file, "/sweep/values");
+  } catch (const std::runtime_error& e) {
+    // A file that cannot be read at all says why; one without the table says that.
+    try {
+      (void)h5md::read_string_attribute(file, "/h5md/creator", "name");
+    } catch (const std::runtime_error&) {
+      throw std::runtime_error(e.what());
+    }
+    bool old_sweep = false;  // a sweep written before tables existed: /sweep@variable without /sweep/values
+    try {
+      (void)h5md::read_attribute(file, "/sweep", "variable");
+      old_sweep = true;
+    } catch (const std::runtime_error&) {
+    }
+    throw std::runtime_error("'" + file + "' has no sweep table (/sweep/values): " +
+                             (old_sweep ? std::string("a sweep written before sweep tables existed; run it again")
+                                        : std::string("it is not the output of a &sweep run")));
+  }
+  if (values.shape.size() != 2) throw std::runtime_error("'" + file + "': /sweep/values is not [points][variables]");
+  t.points = values.shape[0];
+  t.values = values.data;
+  const auto names = h5md::read_attribute(file, "/sweep/values", "variables");
+  if (const auto* v = std::get_if<std::vector<std::string>>(&names)) t.variables = *v;
+  else if (const auto* one = std::get_if<std::string>(&names)) t.variables = {*one};
+  try {
+    const auto texts = h5md::read_attribute(file, "/sweep/values", "texts");
+    if (const auto* v = std::get_if<std::vector<std::string>>(&texts)) t.texts = *v;
+    else if (const auto* one = std::get_if<std::string>(&texts)) t.texts = {*one};
+  } catch (const std::runtime_error&) {
+  }
+  const auto quantities = h5md::read_attribute(file, "/sweep/results", "quantities");
+  std::vector<std::string> list;
+  if (const auto* v = std::get_if<std::vector<std::string>>(&quantities)) list = *v;
+  else if (const auto* one = std::get_if<std::string>(&quantities)) list = {*one};
+  for (const auto& name : list) {
+    Result r;
+    r.name = name;
+    const auto v = h5md::read_dataset(file, "/sweep/results/" + name + "/value");
+    const auto e = h5md::read_dataset(file, "/sweep/results/" + name + "/error");
+    r.columns = v.shape.size() > 1 ? v.shape[1] : 1;
+    r.value = v.data;
+    r.error = e.data;
+    t.results.push_back(std::move(r));
+  }
+  return t;
+}
+
+std::string csv(const Table& t) {
+  const auto field = [](const std::string& text) {
+    if (text.find_first_of(",\"\n") == std::string::npos) return text;
+    std::string quoted = "\"";
+    for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return quoted + "\"";
+  };
+  const auto number = [](double x) {
+    if (std::isnan(x)) return std::string("nan");
+    char text[40];
+    std::snprintf(text, sizeof text, "%.12g", x);
+    return std::string(text);
+  };
+  std::string out;
+  std::vector<std::string> header;
+  for (const auto& v : t.variables) header.push_back(field(v));
+  for (const auto& r : t.results)
+    for (std::size_t c = 0; c < r.columns; ++c) {
+      std::string name = r.name;
+      if (r.columns > 1) {
+        name += '_';
+        name += std::to_string(c + 1);
+      }
+      header.push_back(name);
+      header.push_back(name + "_error");
+    }
+  for (std::size_t i = 0; i < header.size(); ++i) {
+    if (i) out += ',';
+    out += header[i];
+  }
+  out += '\n';
+  const std::size_t nv = t.variables.size();
+  for (std::size_t k = 0; k < t.points; ++k) {
+    std::string line;
+    for (std::size_t v = 0; v < nv; ++v) {
+      if (v) line += ',';
+      const std::size_t i = k * nv + v;
+      if (std::isnan(t.values[i]) && i < t.texts.size()) {  // a string or an array: its text
+        std::string text = t.texts[i];
+        if (text.size() >= 2 && text.front() == '\'' && text.back() == '\'') text = text.substr(1, text.size() - 2);
+        line += field(text);
+      } else {
+        line += number(t.values[i]);
+      }
+    }
+    for (const auto& r : t.results)
+      for (std::size_t c = 0; c < r.columns; ++c) {
+        line += ',';
+        line += number(r.value[k * r.columns + c]);
+        line += ',';
+        line += number(r.error[k * r.columns + c]);
+      }
+    out += line;
+    out += '\n';
+  }
+  return out;
+}
+
+}  // namespace gdsmc::io::sweep_table
