@@ -21,7 +21,10 @@ void exercise(const std::string& text, const std::vector<std::string>& overrides
   (void)c.sample_times();
   (void)c.sample_collisions();
   (void)c.resolved();
-  if (c.sweep.values.size() <= 64)
+  // Expand at most 64 points (a grid multiplies its lists' lengths).
+  std::size_t points = c.sweep.values.points.size();
+  for (const auto& list : c.sweep.values.lists) points += list.size();
+  if (points <= 64)
     for (const auto& point : c.sweep_points()) {
       (void)point.sample_times();
       (void)point.sample_collisions();
