@@ -3,6 +3,7 @@
 // points. The reader's own error (io::namelist::Error) is the expected outcome of bad input and must
 // be one line; any other exception, a crash, a sanitizer report or a time-out is a finding.
 // Build and run: tests/fuzz/README.md.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -21,10 +22,11 @@ void exercise(const std::string& text, const std::vector<std::string>& overrides
   (void)c.sample_times();
   (void)c.sample_collisions();
   (void)c.resolved();
-  // Expand at most 64 points (a grid multiplies its lists' lengths).
-  std::size_t points = c.sweep.values.points.size();
-  for (const auto& list : c.sweep.values.lists) points += list.size();
-  if (points <= 64)
+  // Expand at most 64 points: the values given point by point, or the product of the lists' lengths
+  // (a grid), saturated.
+  std::size_t points = c.sweep.values.points.size(), grid = 1;
+  for (const auto& list : c.sweep.values.lists) grid = std::min<std::size_t>(grid * std::max<std::size_t>(list.size(), 1), 1u << 20);
+  if (points <= 64 && grid <= 64)
     for (const auto& point : c.sweep_points()) {
       (void)point.sample_times();
       (void)point.sample_collisions();
