@@ -12,6 +12,7 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "theory/theory.hpp"
@@ -298,4 +299,83 @@ TEST(SonineBinaryHcs, NoRootInRangeIsAnError) {
   EXPECT_NO_THROW(theory::binary_hcs_first_sonine(seed_mixture(1e4, 2.0, 1.0, 0.5)));
   EXPECT_THROW(theory::binary_hcs_first_sonine(seed_mixture(1e6, 2.0, 1.0, 0.5)),
                std::runtime_error);
+}
+
+// -------------------------------------------------------------------------------------------------
+// One species beyond first Sonine (sonine.hpp \ref sonine_higher, docs/sonine.md "Beyond first
+// Sonine").
+// -------------------------------------------------------------------------------------------------
+
+// The collisional moment mu_2 against its published closed form to linear order in a2, a3:
+// sqrt(2 pi)(1 - alpha^2)(1 + 3 a2/16 + a3/64) (van Noije and Ernst 1998; Brilliantov and Poeschel,
+// Europhys. Lett. 74, 424 (2006)). The quadrature is exact, so agreement is to round-off.
+TEST(SonineHigher, CoolingMomentMatchesClosedForm) {
+  for (double alpha : {0.0, 0.3, 0.5, 0.9}) {
+    const double mu0 = std::sqrt(2.0 * pi) * (1.0 - alpha * alpha);
+    EXPECT_NEAR(theory::sonine_collision_moment(alpha, 2, {0.0, 0.0}), mu0, 1e-12 * mu0) << alpha;
+    const double h = 1e-3;
+    const double d2 = (theory::sonine_collision_moment(alpha, 2, {h, 0.0}) -
+                       theory::sonine_collision_moment(alpha, 2, {-h, 0.0})) / (2.0 * h);
+    const double d3 = (theory::sonine_collision_moment(alpha, 2, {0.0, h}) -
+                       theory::sonine_collision_moment(alpha, 2, {0.0, -h})) / (2.0 * h);
+    EXPECT_NEAR(d2 / mu0, 3.0 / 16.0, 1e-10) << alpha;
+    EXPECT_NEAR(d3 / mu0, 1.0 / 64.0, 1e-10) << alpha;
+  }
+}
+
+// Hand-computed: elastic collisions conserve energy, so mu_2 = 0 for any distribution at alpha = 1
+// (the moment forms are evaluated at alpha = 1 through sonine_collision_moment).
+TEST(SonineHigher, ElasticCollisionsConserveEnergy) {
+  EXPECT_NEAR(theory::sonine_collision_moment(1.0, 2, {0.1, -0.05}), 0.0, 1e-12);
+  // ... and a Maxwellian is stationary: every moment vanishes.
+  EXPECT_NEAR(theory::sonine_collision_moment(1.0, 4, {0.0, 0.0}), 0.0, 1e-11);
+  EXPECT_NEAR(theory::sonine_collision_moment(1.0, 6, {0.0, 0.0}), 0.0, 1e-10);
+}
+
+// K = 2 with the linear closure is the van Noije-Ernst a2 (docs/sonine.md, ERRATA §3), a published
+// closed form computed independently in theory::sonine_a2.
+TEST(SonineHigher, FirstSonineLinearIsVanNoijeErnst) {
+  for (double alpha : {0.0, 0.2, 0.3, 0.5, 0.7, 0.9, 0.99}) {
+    const auto s = theory::one_species_hcs_sonine(alpha, 2, true);
+    EXPECT_NEAR(s.a[0], theory::sonine_a2(alpha), 1e-12) << alpha;
+    EXPECT_NEAR(s.cooling_factor, 1.0 + 3.0 * s.a[0] / 16.0, 1e-12) << alpha;
+  }
+}
+
+// Second Sonine (K = 3): the values stated in sonine.hpp, and its accuracy against the exact values
+// (DSMC without time step, docs/sonine.md: c = 0.0959 at alpha = 0.5, 0.2078 at alpha = 0.3).
+TEST(SonineHigher, SecondSonineValuesAndAccuracy) {
+  const auto s5 = theory::second_sonine(0.5);
+  ASSERT_EQ(s5.a.size(), 2u);
+  EXPECT_NEAR(s5.a[0], 0.04498, 5e-5);
+  EXPECT_NEAR(s5.a[1], -0.01855, 5e-5);
+  EXPECT_NEAR(s5.cumulant_c / 0.0959 - 1.0, -0.062, 0.002);
+  const auto s3 = theory::second_sonine(0.3);
+  EXPECT_NEAR(s3.cumulant_c, 0.1760, 1e-4);
+  EXPECT_NEAR(s3.a[1], -0.0647, 1e-4);
+  EXPECT_NEAR(s3.cumulant_c / 0.2078 - 1.0, -0.153, 0.002);
+  // Linear closure (Brilliantov and Poeschel 2006): nearly the same at alpha = 0.5.
+  const auto l5 = theory::one_species_hcs_sonine(0.5, 3, true);
+  EXPECT_NEAR(l5.a[0], 0.044994, 5e-6);
+  EXPECT_NEAR(l5.a[1], -0.017684, 5e-6);
+  // Small inelasticity: a2, a3 -> 0 and second and first Sonine agree to O((1 - alpha)^2).
+  const auto near_elastic = theory::second_sonine(0.99);
+  EXPECT_LT(std::abs(near_elastic.a[0] - theory::sonine_a2(0.99)), 2e-4);
+}
+
+// Orders 4 and 5 bracket the exact values (alternation), and the midpoint is within 1 %.
+TEST(SonineHigher, BracketContainsExactValues) {
+  for (auto [alpha, exact] : {std::pair{0.5, 0.0959}, std::pair{0.3, 0.2078}}) {
+    const auto b = theory::sonine_cumulant_bracket(alpha);
+    EXPECT_LT(std::abs(b.value - exact), b.half_width) << alpha;
+    EXPECT_LT(std::abs(b.value / exact - 1.0), 0.01) << alpha;
+  }
+}
+
+TEST(SonineHigher, RejectsBadInput) {
+  EXPECT_THROW(theory::one_species_hcs_sonine(1.0, 3), std::invalid_argument);
+  EXPECT_THROW(theory::one_species_hcs_sonine(-0.1, 3), std::invalid_argument);
+  EXPECT_THROW(theory::one_species_hcs_sonine(0.5, 1), std::invalid_argument);
+  EXPECT_THROW(theory::one_species_hcs_sonine(0.5, 7), std::invalid_argument);
+  EXPECT_THROW(theory::sonine_collision_moment(0.5, 8, {0.0, 0.0}), std::invalid_argument);
 }
