@@ -212,10 +212,13 @@ inline OneSpeciesSonine second_sonine(double alpha) { return one_species_hcs_son
 double sonine_collision_moment(double alpha, int p, const std::vector<double>& a);
 
 /// The cumulant c = 2 a2 of one species as the bracket of the Sonine approximations of order 4 and
-/// 5 (\ref sonine_higher): value = their midpoint, half_width = half their difference.
+/// 5 (\ref sonine_higher): value = their midpoint, half_width = half their difference; likewise the
+/// cooling-rate factor zeta/zeta_Maxwell = mu_2/(sqrt(2 pi)(1 - alpha^2)).
 struct CumulantBracket {
   double value;
   double half_width;
+  double cooling_factor;
+  double cooling_half_width;
 };
 CumulantBracket sonine_cumulant_bracket(double alpha);
 

@@ -212,9 +212,9 @@ OneSpeciesSonine one_species_hcs_sonine(double alpha, int order, bool linear) {
 }
 
 CumulantBracket sonine_cumulant_bracket(double alpha) {
-  const double c4 = one_species_hcs_sonine(alpha, 4).cumulant_c;
-  const double c5 = one_species_hcs_sonine(alpha, 5).cumulant_c;
-  return {0.5 * (c4 + c5), 0.5 * std::abs(c4 - c5)};
+  const auto s4 = one_species_hcs_sonine(alpha, 4), s5 = one_species_hcs_sonine(alpha, 5);
+  return {0.5 * (s4.cumulant_c + s5.cumulant_c), 0.5 * std::abs(s4.cumulant_c - s5.cumulant_c),
+          0.5 * (s4.cooling_factor + s5.cooling_factor), 0.5 * std::abs(s4.cooling_factor - s5.cooling_factor)};
 }
 
 }  // namespace gdsmc::theory
