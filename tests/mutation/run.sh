@@ -42,7 +42,9 @@ tree=$scratch/tree
 build=$scratch/build
 mkdir -p "$tree" "$build"
 echo "== copying $src to $tree"
-rsync -a --delete --exclude '/build' --exclude '/.git' --exclude '*/build/' "$src"/ "$tree"/ || exit 2
+# The files git knows plus untracked ones not ignored (so uncommitted work is tested too).
+rm -rf "$tree" && mkdir -p "$tree"
+(cd "$src" && git ls-files -co --exclude-standard -z | xargs -0 cp --parents -t "$tree") || exit 2
 echo "== configuring and building (baseline)"
 $nice_cmd cmake -S "$tree" -B "$build" -DCMAKE_BUILD_TYPE=Release > "$scratch/configure.log" 2>&1 || {
   tail -30 "$scratch/configure.log"; exit 2; }
