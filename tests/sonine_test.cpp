@@ -339,6 +339,8 @@ TEST(SonineHigher, FirstSonineLinearIsVanNoijeErnst) {
     const auto s = theory::one_species_hcs_sonine(alpha, 2, true);
     EXPECT_NEAR(s.a[0], theory::sonine_a2(alpha), 1e-12) << alpha;
     EXPECT_NEAR(s.cooling_factor, 1.0 + 3.0 * s.a[0] / 16.0, 1e-12) << alpha;
+    // Collision frequency, linear in a2: nu/nu_Maxwell = 1 - a2/16 (van Noije and Ernst 1998).
+    EXPECT_NEAR(s.collision_factor, 1.0 - s.a[0] / 16.0, 1e-12) << alpha;
   }
 }
 

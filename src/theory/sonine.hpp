@@ -196,6 +196,9 @@ struct OneSpeciesSonine {
   std::vector<double> a;     ///< a_2 .. a_K (a[0] = a2, a[1] = a3, ...)
   double cumulant_c;         ///< c = 2 a2 (the sonine_c convention of this file, ERRATA §6)
   double cooling_factor;     ///< mu_2 / (sqrt(2 pi)(1 - alpha^2)): zeta/zeta_Maxwell (1 + 3 a2/16 + ..)
+  /// Collision frequency over its Maxwellian value, <|g|>_F/<|g|>_Maxwell (1 - a2/16 + .., van Noije
+  /// and Ernst 1998), with the same closure (products of the a_k dropped when `linear`).
+  double collision_factor;
 };
 
 /// The HCS of one species in the Sonine approximation of order K = `order` (2 <= K <= 6), see

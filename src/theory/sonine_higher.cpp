@@ -110,6 +110,36 @@ std::vector<double> moment_forms(double alpha, int K) {
   return m;
 }
 
+/// <|g|> over F(c1) F(c2) as a quadratic form f[i * B + j] in the basis S_i(c1^2) S_j(c2^2), normalised
+/// so that f[0] = 1 (the Maxwellian). Exact by the rules of moment_forms (|g| g^2 dg e^(-g^2/2) is the
+/// Laguerre weight u e^-u).
+std::vector<double> frequency_form(int K) {
+  const int B = K + 1, n = 2 * K + 1;
+  const Rule h = fixed_rule(gsl_integration_fixed_hermite, n, 0.0, 1.0, 0.0);
+  const Rule l = fixed_rule(gsl_integration_fixed_laguerre, n, 0.0, 1.0, 1.0);
+  std::vector<double> f(static_cast<std::size_t>(B) * B, 0.0), s1(B), s2(B);
+  const double r2 = std::sqrt(0.5);
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b)
+      for (int c = 0; c < n; ++c)
+        for (int q = 0; q < n; ++q) {
+          const double C[3] = {h.x[a] * r2, h.x[b] * r2, h.x[c] * r2};
+          const double g = std::sqrt(2.0 * l.x[q]);
+          const double x1 = C[0] * C[0] + C[1] * C[1] + (C[2] + 0.5 * g) * (C[2] + 0.5 * g);
+          const double x2 = C[0] * C[0] + C[1] * C[1] + (C[2] - 0.5 * g) * (C[2] - 0.5 * g);
+          const double W = h.w[a] * h.w[b] * h.w[c] * l.w[q];
+          for (int i = 0; i < B; ++i) {
+            s1[i] = sonine_polynomial(i, x1);
+            s2[i] = sonine_polynomial(i, x2);
+          }
+          for (int i = 0; i < B; ++i)
+            for (int j = 0; j < B; ++j) f[i * B + j] += W * s1[i] * s2[j];
+        }
+  const double norm = f[0];
+  for (double& v : f) v /= norm;
+  return f;
+}
+
 /// <x^p S_k(x)> over the Maxwellian, x = c^2 (exact Gauss-Laguerre with weight x^(1/2) e^-x).
 double maxwell_moment(int p, int k) {
   const Rule r = fixed_rule(gsl_integration_fixed_laguerre, p + k + 2, 0.0, 1.0, 0.5);
@@ -208,6 +238,13 @@ OneSpeciesSonine one_species_hcs_sonine(double alpha, int order, bool linear) {
   out.a.assign(A.begin() + 2, A.end());
   out.cumulant_c = 2.0 * A[2];
   out.cooling_factor = quadratic(m, K, 1, A, linear) / m[0];
+  const auto f = frequency_form(K);
+  double nu = 1.0;
+  for (int i = 1; i < B; ++i) nu += A[i] * (f[i * B] + f[i]);
+  if (!linear)
+    for (int i = 1; i < B; ++i)
+      for (int j = 1; j < B; ++j) nu += A[i] * A[j] * f[i * B + j];
+  out.collision_factor = nu;
   return out;
 }
 
