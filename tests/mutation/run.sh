@@ -47,9 +47,13 @@ tree=$scratch/tree
 build=$scratch/build
 mkdir -p "$tree" "$build"
 echo "== copying $src to $tree"
-# The files git knows plus untracked ones not ignored (so uncommitted work is tested too), with their
-# modification times, so that a second run over the same scratch directory rebuilds only what changed.
-(cd "$src" && git ls-files -co --exclude-standard -z | xargs -0 cp -p --parents -t "$tree") || exit 2
+# The files git knows plus untracked ones not ignored (so uncommitted work is tested too). Only files
+# whose content differs are copied (with a new modification time), so a second run over the same
+# scratch directory rebuilds what changed and nothing else.
+(cd "$src" && git ls-files -co --exclude-standard -z | while IFS= read -r -d '' f; do
+   [ -f "$f" ] || continue
+   if ! cmp -s "$f" "$tree/$f"; then mkdir -p "$tree/$(dirname "$f")" && cp "$f" "$tree/$f" || exit 2; fi
+ done) || exit 2
 echo "== configuring and building (baseline)"
 $nice_cmd cmake -S "$tree" -B "$build" -DCMAKE_BUILD_TYPE=Release > "$scratch/configure.log" 2>&1 || {
   tail -30 "$scratch/configure.log"; exit 2; }
