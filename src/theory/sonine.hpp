@@ -70,6 +70,8 @@
  */
 #pragma once
 
+#include <vector>
+
 #include "dsmc/species.hpp"
 
 namespace gdsmc::theory {
@@ -146,5 +148,81 @@ BinaryHcs binary_hcs_first_sonine(const species::Mixture& mix);
 /// `species` is 0 or 1 (else std::invalid_argument). Elastic mixtures (zeta* = 0) give +infinity:
 /// no exponential tail.
 double tail_decay_rate(const BinaryHcs& hcs, int species);
+
+
+// -------------------------------------------------------------------------------------------------
+// One species beyond first Sonine (docs/sonine.md "Beyond first Sonine").
+// -------------------------------------------------------------------------------------------------
+/**
+ * \section sonine_higher One species: second (and higher) Sonine approximation
+ *
+ * The scaled HCS distribution of one species, c = v/sqrt(2T/m), truncated after the Sonine
+ * polynomial of order K (Brilliantov and Poeschel, Europhys. Lett. 74, 424 (2006); Noskowicz,
+ * Bar-Lev, Serero and Goldhirsch, Europhys. Lett. 79, 60001 (2007); Santos and Montanero, Granular
+ * Matter 11, 157 (2009)):
+ *   F(c) = pi^(-3/2) exp(-c^2) [1 + sum_{k=2}^{K} a_k S_k(c^2)],  S_k = L_k^(1/2) (generalised
+ *   Laguerre; S_2(x) = x^2/2 - 5x/2 + 15/8, S_3(x) = -x^3/6 + 7x^2/4 - 35x/8 + 35/16).
+ * Then <c^4> = (15/4)(1 + a2), <c^6> = (105/8)(1 + 3 a2 - a3), and in general
+ * <c^2p> = sum_k a_k <c^2p S_k>_Maxwell. The collisional moments
+ *   mu_p = -int c^p I[F, F] dc = -(1/2) int dc1 dc2 int_{g.e>0} de (g.e) F(c1) F(c2) Delta(c1^p + c2^p)
+ * (collision rule of docs/collision-model.md, ERRATA §1) are quadratic forms in (1, a_2, .., a_K).
+ * The HCS moment equations are mu_p = (p/3) mu_2 <c^p>, p = 4, 6, .., 2K (K - 1 equations for
+ * a_2..a_K). K = 2 is first Sonine, K = 3 second Sonine (a2 and a3).
+ *
+ * The collisional moments are computed, not transcribed: the integrand is a polynomial times
+ * Gaussians, so a product Gauss rule is exact (Gauss-Hermite in the centre-of-mass velocity,
+ * generalised Gauss-Laguerre in g^2/2, Gauss-Legendre in cos(theta) and the trapezoid rule in phi
+ * for e, each with enough nodes for the degree; GSL gsl_integration_fixed). Checks that this
+ * reproduces the published closed forms (tests/sonine_test.cpp):
+ *  - mu_2 = sqrt(2 pi)(1 - alpha^2)(1 + 3 a2/16 + a3/64) to linear order (van Noije and Ernst,
+ *    Granular Matter 1, 57 (1998); Brilliantov and Poeschel 2006), and
+ *  - K = 2, linearised, gives exactly the van Noije-Ernst a2 of sonine_a2.
+ * Closure: `linear` drops the products a_k a_l (the linearised theory of van Noije-Ernst for K = 2
+ * and Brilliantov-Poeschel 2006 for K = 3); otherwise the full quadratic system is solved by Newton
+ * from the linear solution (the "nonlinear" Sonine approximation).
+ *
+ * Values (nonlinear, this code): alpha = 0.5: K = 2 c = 2 a2 = 0.1059, K = 3 a2 = 0.04498,
+ * a3 = -0.01855 (c = 0.0900), K = 4 c = 0.0979, K = 5 c = 0.0934; alpha = 0.3: K = 2 0.2438,
+ * K = 3 0.1760 (a3 = -0.0647), K = 4 0.2308, K = 5 0.1810.
+ * Accuracy against the exact values (DSMC without time step, many replicas; docs/sonine.md:
+ * c = 0.0959 at alpha = 0.5, 0.2078 at alpha = 0.3): second Sonine is 6.2 % low at alpha = 0.5 and
+ * 15.3 % low at alpha = 0.3 (first Sonine, linear: 9.4 % and 13.6 % high). Successive orders
+ * alternate around the exact value (K = 2..5 at both alphas), so orders K and K + 1 bracket it;
+ * sonine_cumulant_bracket uses K = 4 and 5: midpoint 0.3 % (alpha = 0.5) and 0.9 % (alpha = 0.3)
+ * from the exact values, half-widths 2.4 % and 12 %.
+ */
+struct OneSpeciesSonine {
+  int order;                 ///< K: highest Sonine polynomial kept
+  std::vector<double> a;     ///< a_2 .. a_K (a[0] = a2, a[1] = a3, ...)
+  double cumulant_c;         ///< c = 2 a2 (the sonine_c convention of this file, ERRATA §6)
+  double cooling_factor;     ///< mu_2 / (sqrt(2 pi)(1 - alpha^2)): zeta/zeta_Maxwell (1 + 3 a2/16 + ..)
+  /// Collision frequency over its Maxwellian value, <|g|>_F/<|g|>_Maxwell (1 - a2/16 + .., van Noije
+  /// and Ernst 1998), with the same closure (products of the a_k dropped when `linear`).
+  double collision_factor;
+};
+
+/// The HCS of one species in the Sonine approximation of order K = `order` (2 <= K <= 6), see
+/// \ref sonine_higher. Throws std::invalid_argument unless 0 <= alpha < 1 and 2 <= order <= 6,
+/// std::runtime_error if Newton fails. Cost grows as K^5 (K = 3: ~0.1 s, K = 5: ~2 s).
+OneSpeciesSonine one_species_hcs_sonine(double alpha, int order, bool linear = false);
+
+/// Second Sonine (K = 3, nonlinear; Brilliantov and Poeschel 2006): a2 and a3.
+inline OneSpeciesSonine second_sonine(double alpha) { return one_species_hcs_sonine(alpha, 3); }
+
+/// The collisional moment mu_p (p = 2, 4, .., 2K) of the truncated distribution with coefficients
+/// a = {a_2, .., a_K} (K = a.size() + 1), in the units of \ref sonine_higher (mu_2 of a Maxwellian
+/// is sqrt(2 pi)(1 - alpha^2)). For tests.
+double sonine_collision_moment(double alpha, int p, const std::vector<double>& a);
+
+/// The cumulant c = 2 a2 of one species as the bracket of the Sonine approximations of order 4 and
+/// 5 (\ref sonine_higher): value = their midpoint, half_width = half their difference; likewise the
+/// cooling-rate factor zeta/zeta_Maxwell = mu_2/(sqrt(2 pi)(1 - alpha^2)).
+struct CumulantBracket {
+  double value;
+  double half_width;
+  double cooling_factor;
+  double cooling_half_width;
+};
+CumulantBracket sonine_cumulant_bracket(double alpha);
 
 }  // namespace gdsmc::theory

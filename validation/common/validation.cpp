@@ -121,4 +121,34 @@ io::h5md::ObservableData observable(const Case& c, const std::string& name) {
   return io::h5md::read_observable(c.file, name);
 }
 
+namespace {
+bool close(double a, double b) { return std::abs(a - b) <= 1e-9 * std::abs(b); }
+/// Dilute binary, one common alpha, in the parameters mu = m1/m2, delta = n1/n2, w = sigma1/sigma2.
+bool binary_case(const species::Mixture& mix, double mu, double delta, double w, double alpha) {
+  if (mix.size() != 2 || mix.enskog) return false;
+  for (std::size_t i = 0; i < 2; ++i)
+    for (std::size_t j = 0; j < 2; ++j)
+      if (!close(mix.restitution(i, j), alpha)) return false;
+  return close(mix.mass[0] / mix.mass[1], mu) && close(mix.number_density[0] / mix.number_density[1], delta) &&
+         close(mix.diameter[0] / mix.diameter[1], w);
+}
+}  // namespace
+
+ExactValue exact_temperature_ratio(const species::Mixture& mix) {
+  if (binary_case(mix, 10.0, 2.0, 1.0, 0.5)) return {true, 3.7968, 0.0011};
+  if (binary_case(mix, 2.0, 1.0, 1.0, 0.5)) return {true, 1.3616, 0.0001};
+  return {};
+}
+
+ExactValue exact_cumulant_species1(const species::Mixture& mix) {
+  if (binary_case(mix, 2.0, 1.0, 1.0, 0.5)) return {true, 0.1280, 0.0004};
+  return {};
+}
+
+ExactValue exact_cumulant_one_species(double alpha) {
+  if (close(alpha, 0.5)) return {true, 0.0959, 0.0001};
+  if (close(alpha, 0.3)) return {true, 0.2078, 0.0001};
+  return {};
+}
+
 }  // namespace gdsmc::validation

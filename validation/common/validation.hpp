@@ -62,4 +62,20 @@ class Report {
 
 io::h5md::ObservableData observable(const Case& c, const std::string& name);
 
+/// An independent exact value (DSMC without time step, many replicas, by programs other than this
+/// one; docs/sonine.md "How good first Sonine is"), when one is known for the case.
+struct ExactValue {
+  bool known = false;
+  double value = 0.0;
+  double error = 0.0;  ///< its standard error (0 where none is quoted)
+};
+/// gamma = T1/T2 of the dilute binary HCS: 3.7968 +- 0.0011 for mu = 10, delta = 2, w = 1,
+/// alpha = 0.5; 1.3616 for mu = 2, delta = 1, w = 1, alpha = 0.5 (no SE quoted: 0.0001, the last
+/// digit).
+ExactValue exact_temperature_ratio(const species::Mixture& mix);
+/// c_1 of the same HCS: 0.1280 +- 0.0004 for mu = 2, delta = 1, w = 1, alpha = 0.5 (species 0).
+ExactValue exact_cumulant_species1(const species::Mixture& mix);
+/// c = 2 a2 of one species: 0.0959 (alpha = 0.5) and 0.2078 (alpha = 0.3); no SE quoted: 0.0001.
+ExactValue exact_cumulant_one_species(double alpha);
+
 }  // namespace gdsmc::validation

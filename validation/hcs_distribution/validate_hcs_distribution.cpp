@@ -1,6 +1,7 @@
 // The reduced distributions of the binary HCS (seed 003 Figs 3 and 7). See README.md.
 #include <cmath>
 
+#include "theory/sonine.hpp"
 #include "theory/theory.hpp"
 #include "validation.hpp"
 
@@ -30,7 +31,23 @@ int main(int argc, char** argv) {
   const double beta = io::h5md::read_double_attribute(run.file, sp, "tail_beta");
 
   // The reduced cooling rate of the HCS (eq 45 common value) against first Sonine.
-  report.check("zeta* (reduced cooling rate)", zeta, zeta_error, hcs.cooling_rate, 3.0, 0.02 * hcs.cooling_rate);
+  // Allowance (issue 13), an estimate independent of this code's output: the first-Sonine correction
+  // to zeta*, |zeta*(first Sonine) - zeta*(Maxwellian)|, times first Sonine's relative error on that
+  // correction for one species at the same alpha, from the order 4-5 Sonine bracket (docs/sonine.md
+  // "Beyond first Sonine"): (|f_1S - f_45| + half-width)/|f_1S - 1|, f = zeta/zeta_Maxwell
+  // (0.13 at alpha = 0.5, 0.27 at alpha = 0.3). Was 2 % of zeta*.
+  const auto maxwell = theory::asymptotic_temperature_ratios(mix);
+  const double zeta_maxwell = theory::binary_sonine_coefficients(mix, maxwell[0] / maxwell[1]).zeta0[0];
+  const auto bracket = theory::sonine_cumulant_bracket(alpha);
+  const double f_first = 1.0 + 3.0 * theory::sonine_a2(alpha) / 16.0;  // docs/sonine.md, one species
+  const double relative_error =
+      (std::abs(f_first - bracket.cooling_factor) + bracket.cooling_half_width) / std::abs(f_first - 1.0);
+  const double zeta_allowance = std::abs(hcs.cooling_rate - zeta_maxwell) * relative_error;
+  report.note("zeta*: first Sonine " + std::to_string(hcs.cooling_rate) + ", Maxwellian " +
+              std::to_string(zeta_maxwell) + ", first Sonine's relative error on the correction (one species) " +
+              std::to_string(relative_error));
+  report.check("zeta* (reduced cooling rate) vs first Sonine", zeta, zeta_error,
+               hcs.cooling_rate, 3.0, zeta_allowance);
 
   // Fig 3: Delta_1(v*) against the Sonine polynomial (eq 28) over thermal speeds, 0.3 <= lambda v*^2 <= 3.
   // Allowance 0.2: the higher Sonine terms that eq 28 omits, measured with the paper tier (README.md).

@@ -25,10 +25,16 @@ int main(int argc, char** argv) {
     const std::size_t i = t.time.size() - 1;
     const double gamma = t.value[2 * i] / t.value[2 * i + 1];
     const double se = gamma * std::hypot(t.error[2 * i] / t.value[2 * i], t.error[2 * i + 1] / t.value[2 * i + 1]);
-    char name[160];
-    std::snprintf(name, sizeof name, "n* = %.2f: gamma (DSMC - Sonine = %+.2f %%)", n_star,
-                  100.0 * (gamma / theory_gamma - 1.0));
-    report.check(name, gamma, se, theory_gamma, 3.0, 0.02 * theory_gamma);
+    // Allowance (issue 13; was 2 %): first Sonine's own correction |gamma(first Sonine) - gamma(Maxwellian)|
+    // at the same n* (the Maxwellian ODE with chi_ij, ERRATA §4-§5), an estimate of the next correction's
+    // size independent of this code's output (docs/sonine.md: at the two exact dilute cases the next
+    // correction is 1/7 and 1/60 of it).
+    const auto maxwell = theory::asymptotic_temperature_ratios(mix);
+    const double correction = std::abs(theory_gamma - maxwell[0] / maxwell[1]);
+    char name[200];
+    std::snprintf(name, sizeof name, "n* = %.2f: gamma (DSMC - Sonine = %+.2f %%, allowance %.2f %%)", n_star,
+                  100.0 * (gamma / theory_gamma - 1.0), 100.0 * correction / theory_gamma);
+    report.check(name, gamma, se, theory_gamma, 3.0, correction);
     std::snprintf(name, sizeof name, "n* = %.2f: gamma(n*)/gamma(0) = %.4f (DSMC over dilute theory), theory %.4f",
                   n_star, gamma / theory_dilute, theory_gamma / theory_dilute);
     report.note(name);
