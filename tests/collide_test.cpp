@@ -71,6 +71,26 @@ void momentum(const species::Mixture& mix, const particles::System& sys, double 
   if (scale) *scale = s;
 }
 
+/// The frame's moments kept by the collider equal sum m u u^T of the stored velocities (xx, yy, zz, xy).
+void expect_frame_moments(const Collider& collider, const species::Mixture& mix, const particles::System& u) {
+  std::array<double, 4> q{};
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    const double m = mix.mass[u.species[i]];
+    q[0] += m * u.v[i].x * u.v[i].x, q[1] += m * u.v[i].y * u.v[i].y, q[2] += m * u.v[i].z * u.v[i].z;
+    q[3] += m * u.v[i].x * u.v[i].y;
+  }
+  for (int c = 0; c < 4; ++c) EXPECT_NEAR(collider.frame_moments()[c], q[c], 1e-11 * (q[0] + q[1] + q[2]));
+}
+
+/// Mean and standard error of the mean of replica values.
+std::pair<double, double> mean_se(const std::vector<double>& x) {
+  double m = 0.0, v = 0.0;
+  for (double a : x) m += a;
+  m /= static_cast<double>(x.size());
+  for (double a : x) v += (a - m) * (a - m);
+  return {m, std::sqrt(v / static_cast<double>(x.size() - 1) / static_cast<double>(x.size()))};
+}
+
 }  // namespace
 
 TEST(Collide, ParseScheme) {
@@ -556,13 +576,7 @@ TEST(Collide, FrameOfScaleTwoIsTheUnframedGasBitwise) {
     for (std::size_t i = 0; i < u.size(); ++i)
       differ += u.v[i].x * 2.0 != v.v[i].x || u.v[i].y * 2.0 != v.v[i].y || u.v[i].z * 2.0 != v.v[i].z;
     EXPECT_EQ(differ, 0u);
-    std::array<double, 4> q{};
-    for (std::size_t i = 0; i < u.size(); ++i) {
-      const double m = mix.mass[u.species[i]];
-      q[0] += m * u.v[i].x * u.v[i].x, q[1] += m * u.v[i].y * u.v[i].y, q[2] += m * u.v[i].z * u.v[i].z;
-      q[3] += m * u.v[i].x * u.v[i].y;
-    }
-    for (int c = 0; c < 4; ++c) EXPECT_NEAR(framed.frame_moments()[c], q[c], 1e-11 * (q[0] + q[1] + q[2]));
+    expect_frame_moments(framed, mix, u);
   }
 }
 
@@ -601,13 +615,7 @@ TEST(Collide, ShearedFrameCollidesTheActualVelocities) {
       } else {
         EXPECT_GT(collider.counters().dissipated, 0.05 * e0);
       }
-      std::array<double, 4> q{};
-      for (std::size_t i = 0; i < u.size(); ++i) {
-        const double m = mix.mass[u.species[i]];
-        q[0] += m * u.v[i].x * u.v[i].x, q[1] += m * u.v[i].y * u.v[i].y, q[2] += m * u.v[i].z * u.v[i].z;
-        q[3] += m * u.v[i].x * u.v[i].y;
-      }
-      for (int k = 0; k < 4; ++k) EXPECT_NEAR(collider.frame_moments()[k], q[k], 1e-11 * (q[0] + q[1] + q[2]));
+      expect_frame_moments(collider, mix, u);
     }
   }
 }
@@ -681,13 +689,6 @@ TEST(Collide, BlockedCollisionDrivenRunsMatchUnblocked) {
       temperature[blocked].push_back(2.0 * kinetic_energy(mix, sys) / (3.0 * static_cast<double>(n)));
       time[blocked].push_back(c.time());
     }
-  auto mean_se = [](const std::vector<double>& x) {
-    double m = 0.0, v = 0.0;
-    for (double a : x) m += a;
-    m /= static_cast<double>(x.size());
-    for (double a : x) v += (a - m) * (a - m);
-    return std::pair{m, std::sqrt(v / static_cast<double>(x.size() - 1) / static_cast<double>(x.size()))};
-  };
   for (auto* q : {&temperature, &time}) {
     const auto [m0, s0] = mean_se((*q)[0]);
     const auto [m1, s1] = mean_se((*q)[1]);
@@ -729,13 +730,6 @@ TEST(Collide, BlockedMixtureMatchesUnblocked) {
                                static_cast<double>(c.counters().events));
       time[blocked].push_back(c.time());
     }
-  auto mean_se = [](const std::vector<double>& x) {
-    double m = 0.0, v = 0.0;
-    for (double a : x) m += a;
-    m /= static_cast<double>(x.size());
-    for (double a : x) v += (a - m) * (a - m);
-    return std::pair{m, std::sqrt(v / static_cast<double>(x.size() - 1) / static_cast<double>(x.size()))};
-  };
   const char* names[] = {"T1", "T2", "share of 1-2 events", "time at the target"};
   int q = 0;
   for (auto* x : {&t1, &t2, &cross, &time}) {
