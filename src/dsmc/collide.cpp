@@ -633,9 +633,10 @@ int Collider::run_majorant(double t_stop, std::uint64_t event_target) {
     // Accept with pi sigma^2 chi |g| / B (seed 000 eq 7), compared squared: no root for a rejection.
     const double cross_section = cross_section_[pair];
     const double rate2 = cross_section * cross_section * g2;
-    if (rate2 > bound_ * bound_) [[unlikely]] note_overshoot(std::sqrt(rate2) / bound_);
     const double threshold = gen_.uniform() * bound_;
     if (threshold * threshold >= rate2) return false;
+    // A probability above 1 is always accepted (U B < B < rate), so the invariant is checked here only.
+    if (rate2 > bound_ * bound_) [[unlikely]] note_overshoot(std::sqrt(rate2) / bound_);
     double ex, ey, ez;
     if (!hemisphere_normal(gen_, gx, gy, gz, std::sqrt(g2), ex, ey, ez)) return false;
     if constexpr (Framed) {
@@ -678,8 +679,8 @@ int Collider::run_pairs(double t_stop, std::uint64_t event_target) {
       const double sigma = contact_[pair];
       const double shifted = g_dot_e - shear_rate_ * sigma * ey * ex;
       const double g_max = (max_speed_[i] + max_speed_[j]) * speed_factor_ + 0.5 * shear_rate_ * sigma;
-      if (shifted > g_max) [[unlikely]] note_overshoot(shifted / g_max);
       if (shifted <= 0.0 || gen_.uniform() * g_max >= shifted) return false;
+      if (shifted > g_max) [[unlikely]] note_overshoot(shifted / g_max);  // accepted, as every p > 1
       const double alpha = alpha_[pair], mf = mass_fraction_[pair];
       const double impulse = (1.0 + alpha) * shifted;
       const double reduced = mix_.mass[i] * mf;  // m_ij
@@ -702,8 +703,8 @@ int Collider::run_pairs(double t_stop, std::uint64_t event_target) {
     }
     // Step (2): accept with Theta(g.e) |g.e| / g_max, g_max = vmax_i + vmax_j.
     const double g_max = (max_speed_[i] + max_speed_[j]) * speed_factor_;
-    if (g_dot_e > g_max) [[unlikely]] note_overshoot(g_dot_e / g_max);
     if (g_dot_e <= 0.0 || gen_.uniform() * g_max >= g_dot_e) return false;
+    if (g_dot_e > g_max) [[unlikely]] note_overshoot(g_dot_e / g_max);  // accepted, as every p > 1
     if constexpr (Framed) {
       collide_in_frame(k, l, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j), ex, ey, ez, g_dot_e,
                        alpha_[pair], mass_fraction_[pair]);
@@ -742,9 +743,9 @@ int Collider::run_lowrank(double t_stop, std::uint64_t event_target) {
     const double bound = chi_max_ * ((max_speed_[i] + max_speed_[k]) * speed_factor_);
     const double chi = mix_.pair_correlation(i, k);
     const double rate2 = chi * chi * g2;
-    if (rate2 > bound * bound) [[unlikely]] note_overshoot(std::sqrt(rate2) / bound);
     const double threshold = gen_.uniform() * bound;
     if (threshold * threshold >= rate2) return false;
+    if (rate2 > bound * bound) [[unlikely]] note_overshoot(std::sqrt(rate2) / bound);  // accepted, as every p > 1
     double ex, ey, ez;  // e ~ (g_hat.e) on the hemisphere, as in run_majorant
     if (!hemisphere_normal(gen_, gx, gy, gz, std::sqrt(g2), ex, ey, ez)) return false;
     if constexpr (Framed) {
