@@ -5,6 +5,11 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <exception>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 namespace gdsmc::collide {
 
@@ -140,7 +145,7 @@ bool Collider::raise_max_speed(std::size_t particle) {
   const particles::Vec3& v = sys_.v[particle];
   const double v2 = v.x * v.x + v.y * v.y + v.z * v.z;
   if (!block_first_.empty() && !whole_step_) {  // in blocks: the bound of the current block (and species)
-    double& max2 = block_max_speed2_[current_block_ * s_ + k];
+    double& max2 = block_speed2_[k];
     if (v2 <= max2) return false;
     max2 = v2;
     return true;
@@ -257,9 +262,15 @@ void Collider::remix() {
   const std::size_t n = sys_.size(), blocks = block_first_.size() - 1;
   if (s_ == 1) {
     const std::size_t offset = gen_.below(n);
+    // A fixed permutation: split over the threads (header "Threads"), the same for any number.
     auto deal = [&](auto& data, auto& spare) {
-      for (std::size_t i = 0, from = offset; i < n; ++i, from = from + 1 == n ? 0 : from + 1)
+      const auto count = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for num_threads(threads_) schedule(static) if (threads_ > 1)
+      for (std::ptrdiff_t c = 0; c < count; ++c) {
+        const auto i = static_cast<std::size_t>(c);
+        const std::size_t from = offset + i < n ? offset + i : offset + i - n;
         spare[block_first_[i % blocks] + i / blocks] = data[from];
+      }
       data.swap(spare);
     };
     deal(sys_.v, spare_v_);
@@ -275,9 +286,14 @@ void Collider::remix() {
   for (std::size_t k = 0; k < s_; ++k) offset[k] = gen_.below(sys_.count[k]);
   auto deal = [&](auto& data, auto& spare) {
     for (std::size_t k = 0; k < s_; ++k) {
-      const std::size_t first = sys_.first[k], count = sys_.count[k];
-      for (std::size_t i = 0, from = offset[k]; i < count; ++i, from = from + 1 == count ? 0 : from + 1)
+      const std::size_t first = sys_.first[k], count = sys_.count[k], start = offset[k];
+      const auto n_k = static_cast<std::ptrdiff_t>(count);
+#pragma omp parallel for num_threads(threads_) schedule(static) if (threads_ > 1)
+      for (std::ptrdiff_t c = 0; c < n_k; ++c) {
+        const auto i = static_cast<std::size_t>(c);
+        const std::size_t from = start + i < count ? start + i : start + i - count;
         spare[slice_first_[(i % blocks) * s_ + k] + i / blocks] = data[first + from];
+      }
     }
     data.swap(spare);
   };
@@ -288,7 +304,7 @@ void Collider::remix() {
   }
 }
 
-void Collider::set_block_max_speed2(std::size_t j) {
+void Collider::set_block_max_speed2(std::size_t j, double* out) {
   for (std::size_t k = 0; k < s_; ++k) {
     double max2 = 0.0;
     const std::size_t first = slice_first_[j * s_ + k];
@@ -297,7 +313,7 @@ void Collider::set_block_max_speed2(std::size_t j) {
       const particles::Vec3& v = sys_.v[i];
       max2 = std::max(max2, v.x * v.x + v.y * v.y + v.z * v.z);
     }
-    block_max_speed2_[j * s_ + k] = max2;
+    out[k] = max2;
   }
 }
 
@@ -341,7 +357,7 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
         for (std::size_t j = 0; j < blocks; ++j)
           for (std::size_t k = 0; k < s_; ++k) block_max_speed2_[j * s_ + k] = max_speed2_[k];
       if (counters_.steps == 0)
-        for (std::size_t j = 0; j < blocks; ++j) set_block_max_speed2(j);
+        for (std::size_t j = 0; j < blocks; ++j) set_block_max_speed2(j, block_max_speed2_.data() + j * s_);
       // The step from the largest block bounds so far, an upper bound of the gas's vmax_k (the blocks'
       // bounds are recomputed when visited): dt = block_steps step_fraction / nu_max.
       for (std::size_t k = 0; k < s_; ++k) {
@@ -404,33 +420,106 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
       if (stop == static_cast<int>(Stop::reached_events)) return true;
       continue;
     }
-    const double t_start = time_, t_stop = std::min(t_target, next_step_time_);
-    for (std::size_t j = 0; j < blocks; ++j) {
-      current_block_ = j;
-      range_first_ = block_first_[j];
-      range_count_ = block_first_[j + 1] - block_first_[j];
-      pending_filled_ = false;  // the drawn-ahead pairs belong to the previous block
-      // First visit in this step: the block's exact bound, read in order (which also brings the
-      // block into the cache before its random reads).
-      if (t_start == step_start_) set_block_max_speed2(j);
-      time_ = t_start;
-      credit_ = block_credit_[j];
-      for (;;) {
-        // A block of N_b particles at the gas's density n: R_b = N_b n B_b / 2 (as R, header).
-        // (a mixture: B_b = max_kj pi sigma_kj^2 chi_kj (vmax_bk + vmax_bj) over the block's slices)
-        bound_ = s_ == 1 ? 2.0 * cross_section * std::sqrt(block_max_speed2_[j])
-                         : mixture_bound(block_max_speed2_.data() + j * s_);
-        rate_ = 0.5 * static_cast<double>(range_count_) * n * bound_;
-        if (rate_ <= 0.0) break;
-        if (run_majorant<false>(t_stop, UINT64_MAX) != static_cast<int>(Stop::bound_raised)) break;
-      }
-      block_credit_[j] = rate_ > 0.0 ? credit_ : 0.0;
-    }
+    const double t_stop = std::min(t_target, next_step_time_);
+    run_blocks_pass(time_, t_stop);
     time_ = t_stop;
   }
   range_first_ = 0;
   range_count_ = sys_.size();
   return false;
+}
+
+void Collider::use_threads(int threads) {
+  threads_ = std::max(1, threads);
+  workers_.clear();  // made again, as many as threads, at the next pass
+}
+
+void Collider::make_workers() {
+  // A worker is a copy of this collider's tables and blocks, without the remix buffers (which only
+  // the master uses) and without workers of its own (workers_ is empty while the copies are made).
+  workers_.clear();
+  auto spare_v = std::move(spare_v_);
+  auto spare_r = std::move(spare_r_);
+  spare_v_ = {};
+  spare_r_ = {};
+  std::vector<Collider> made;
+  made.reserve(static_cast<std::size_t>(threads_));
+  for (int t = 0; t < threads_; ++t) made.push_back(*this);
+  spare_v_ = std::move(spare_v);
+  spare_r_ = std::move(spare_r);
+  workers_ = std::move(made);
+  block_counters_.assign(block_first_.size() - 1, counters_);
+}
+
+void Collider::run_block(Collider& master, std::size_t j, double t_start, double t_stop, bool first_visit,
+                         std::uint64_t key) {
+  gen_ = rng::Xoshiro256pp::substream(key, j);  // keyed by (seed, replica, pass, block): header "Threads"
+  counters_.events = counters_.candidates = counters_.overshoots = 0;
+  counters_.largest_acceptance = counters_.dissipated = 0.0;
+  std::fill(counters_.pair_events.begin(), counters_.pair_events.end(), 0);
+  whole_step_ = false;
+  current_block_ = j;
+  range_first_ = block_first_[j];
+  range_count_ = block_first_[j + 1] - block_first_[j];
+  pending_filled_ = false;  // the drawn-ahead pairs belong to another block
+  block_speed2_ = master.block_max_speed2_.data() + j * s_;
+  // First visit in this step: the block's exact bound, read in order (which also brings the block
+  // into the cache before its random reads).
+  if (first_visit) set_block_max_speed2(j, block_speed2_);
+  time_ = t_start;
+  credit_ = master.block_credit_[j];
+  const double n = mix_.total_density();
+  for (;;) {
+    // A block of N_b particles at the gas's density n: R_b = N_b n B_b / 2 (as R, header "Blocks").
+    // (a mixture: B_b = max_kj pi sigma_kj^2 chi_kj (vmax_bk + vmax_bj) over the block's slices)
+    bound_ = s_ == 1 ? 2.0 * cross_section_[0] * std::sqrt(block_speed2_[0]) : mixture_bound(block_speed2_);
+    rate_ = 0.5 * static_cast<double>(range_count_) * n * bound_;
+    if (rate_ <= 0.0) break;
+    if (run_majorant<false>(t_stop, UINT64_MAX) != static_cast<int>(Stop::bound_raised)) break;
+  }
+  master.block_credit_[j] = rate_ > 0.0 ? credit_ : 0.0;
+  Counters& out = master.block_counters_[j];
+  out.events = counters_.events;
+  out.candidates = counters_.candidates;
+  out.overshoots = counters_.overshoots;
+  out.largest_acceptance = counters_.largest_acceptance;
+  out.dissipated = counters_.dissipated;
+  std::copy(counters_.pair_events.begin(), counters_.pair_events.end(), out.pair_events.begin());
+}
+
+void Collider::run_blocks_pass(double t_start, double t_stop) {
+  if (workers_.size() != static_cast<std::size_t>(threads_)) make_workers();
+  const std::size_t blocks = block_first_.size() - 1;
+  const std::uint64_t key = gen_();  // this pass's key (header "Threads")
+  const bool first_visit = t_start == step_start_;
+  std::vector<std::exception_ptr> failure(blocks);  // exceptions must not leave an OpenMP region
+  const auto n_blocks = static_cast<std::ptrdiff_t>(blocks);
+#pragma omp parallel for num_threads(threads_) schedule(dynamic, 1) if (threads_ > 1)
+  for (std::ptrdiff_t j = 0; j < n_blocks; ++j) {
+#ifdef _OPENMP
+    const auto t = static_cast<std::size_t>(omp_get_thread_num());
+#else
+    const std::size_t t = 0;
+#endif
+    try {
+      workers_[t].run_block(*this, static_cast<std::size_t>(j), t_start, t_stop, first_visit, key);
+    } catch (...) {
+      failure[static_cast<std::size_t>(j)] = std::current_exception();
+    }
+  }
+  for (const auto& f : failure)
+    if (f) std::rethrow_exception(f);
+  // The blocks' counts in block order: the same sums for any number of threads.
+  for (std::size_t j = 0; j < blocks; ++j) {
+    const Counters& c = block_counters_[j];
+    counters_.events += c.events;
+    counters_.candidates += c.candidates;
+    counters_.overshoots += c.overshoots;
+    counters_.largest_acceptance = std::max(counters_.largest_acceptance, c.largest_acceptance);
+    counters_.dissipated += c.dissipated;
+    for (std::size_t p = 0; p < c.pair_events.size(); ++p) counters_.pair_events[p] += c.pair_events[p];
+  }
+  time_ = t_stop;
 }
 
 void Collider::set_shear(double rate) {

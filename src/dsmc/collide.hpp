@@ -127,6 +127,21 @@
  * blocked at N >= 2 block_size. Measured at N = 1e6 (binary, masses 1 and 4, diameters 1 and 1.5,
  * one replica): 5.5e6 collisions/s blocked against 2.1e6 unblocked; 0.72 of the one-species rate.
  *
+ * **Threads inside one replica** (issue 11; `use_threads`). Within a blocked step the blocks are
+ * independent gases over the same time interval: block j reads and writes only its own particles, its
+ * own bound vmax_jk and its own carried credit. They therefore run on OpenMP threads, each thread on a
+ * copy of this collider's pair tables (a "worker"). For the output not to depend on the thread count,
+ * nothing a block draws comes from a shared stream: at the start of each pass over the blocks (a step,
+ * or the part of one up to a time target) a 64-bit key is drawn from the replica's collision stream,
+ * and block j draws from its own xoshiro256++ stream seeded by a hash of (key, j)
+ * (rng::Xoshiro256pp::substream), i.e. keyed by (seed, replica, pass, block). Each block's counts and
+ * sums (events, candidates, pair events, dissipated energy, overshoots) are kept apart and added to
+ * the replica's in block order after the pass, so that every floating-point sum is the same for one
+ * thread or many. Only the remix between steps and the whole-gas steps near event targets run on one
+ * thread (the remix's dealing loop is split over the threads: it is a fixed permutation). The streams
+ * of distinct (key, j) are distinct seeds of a generator of period 2^256 - 1 drawn about 1e5 times
+ * each per pass: they overlap with a probability below 1e-60 in any run that could be executed.
+ *
  * Units: the user's; time in the user's time unit, e.g. sigma sqrt(m/T0).
  * Checked by tests/collide_test.cpp and validation/ (haff_cooling, collision_rate, schemes_agree).
  */
@@ -228,6 +243,10 @@ class Collider {
   /// block. Call before the first advance().
   void use_blocks(std::size_t block_size);
   std::size_t blocks() const { return block_first_.empty() ? 1 : block_first_.size() - 1; }
+  /// OpenMP threads for the blocks of a step (header, "Threads inside one replica"); 1 by default.
+  /// The results do not depend on it, bit for bit. Without blocks it has no effect.
+  void use_threads(int threads);
+  int threads() const { return threads_; }
   /// Memory the collider holds per particle besides the System (the remix buffers of blocks).
   std::size_t workspace_bytes() const {
     return spare_v_.capacity() * sizeof(particles::Vec3) + spare_r_.capacity() * sizeof(particles::Displacement);
@@ -332,8 +351,21 @@ class Collider {
   std::vector<double> block_max_speed2_;  ///< vmax_k^2 of each block and species, K x S (raised within a step)
   std::vector<double> block_credit_;      ///< each block's carried candidate time
   std::size_t current_block_ = 0;
+  /// A worker running block j (run_block): the block's vmax_k^2, in the master's block_max_speed2_.
+  double* block_speed2_ = nullptr;
+  // Threads inside one replica (header): the workers, and each block's counts of the current pass.
+  int threads_ = 1;
+  std::vector<Collider> workers_;
+  std::vector<Counters> block_counters_;
+  void make_workers();
+  /// On a worker: block j of `master` over [t_start, t_stop), drawing from the stream (key, j); its
+  /// counts go to master.block_counters_[j], its bounds and credit to the master's arrays.
+  void run_block(Collider& master, std::size_t j, double t_start, double t_stop, bool first_visit,
+                 std::uint64_t key);
+  void run_blocks_pass(double t_start, double t_stop);  ///< every block once, on the threads
   double step_start_ = 0.0;
-  void set_block_max_speed2(std::size_t block);  ///< exact vmax_k^2 of a block's slices, read in order
+  /// Exact vmax_k^2 of block j's slices, read in order, into out[k].
+  void set_block_max_speed2(std::size_t block, double* out);
   double mixture_bound(const double* max_speed2) const;  ///< max_kj pi sigma_kj^2 chi_kj (vmax_k + vmax_j)
   /// Slices (header "Blocks"): species k's particles of block j are [slice_first_[j S + k], + count),
   /// count = slice_cum_[j (S+1) + k + 1] - slice_cum_[j (S+1) + k]; cum is the block's running count.

@@ -86,6 +86,21 @@ int threads() {
 #endif
 }
 
+ThreadSplit split_threads(std::size_t units) {
+  const int total = threads();
+  ThreadSplit split;
+  if (units == 0 || units >= static_cast<std::size_t>(total)) {
+    split.units = total;
+    return split;
+  }
+  split.units = static_cast<int>(units);
+  split.per_unit = total / split.units;
+#ifdef _OPENMP
+  if (split.per_unit > 1 && omp_get_max_active_levels() < 2) omp_set_max_active_levels(2);
+#endif
+  return split;
+}
+
 std::vector<std::string> gather_to_root(const std::string& mine) {
   if (size() == 1) return {mine};
 #ifdef GDSMC_HAVE_MPI

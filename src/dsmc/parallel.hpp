@@ -35,6 +35,16 @@ int size();  ///< number of ranks (1 without MPI)
 bool built_with_mpi();
 int threads();  ///< OpenMP threads per rank (1 without OpenMP)
 
+/// How a rank's threads serve its `units` work units: `units` threads take the units in turn, and
+/// each unit's cache blocks may use `per_unit` threads (collide.hpp, "Threads inside one replica"):
+/// with at least as many units as threads, one thread per unit; with fewer, threads / units for each
+/// (nested OpenMP is enabled for it). What a unit computes does not depend on either number.
+struct ThreadSplit {
+  int units = 1;
+  int per_unit = 1;
+};
+ThreadSplit split_threads(std::size_t units);
+
 /// Rank 0 receives every rank's buffer, in rank order (its own first); other ranks get an empty list.
 std::vector<std::string> gather_to_root(const std::string& mine);
 /// Rank 0's value, on every rank.

@@ -22,6 +22,14 @@ Xoshiro256pp::Xoshiro256pp(std::uint64_t seed) {
   if ((s_[0] | s_[1] | s_[2] | s_[3]) == 0) s_[0] = 1;  // the all-zero state is a fixed point
 }
 
+Xoshiro256pp Xoshiro256pp::substream(std::uint64_t key, std::uint64_t index) {
+  // splitmix64's output function is a bijection of its state: for one key, distinct indices give
+  // distinct seeds; the seed then fills the 256-bit state through splitmix64 as for a user's seed.
+  std::uint64_t k = key, i = index ^ 0x6a09e667f3bcc909ULL;
+  const std::uint64_t hashed_key = splitmix64(k);
+  return Xoshiro256pp(hashed_key ^ splitmix64(i));
+}
+
 void Xoshiro256pp::apply_jump(const std::uint64_t (&polynomial)[4]) {
   std::uint64_t t[4] = {0, 0, 0, 0};
   for (std::uint64_t word : polynomial)

@@ -47,6 +47,10 @@ class Xoshiro256pp {
     return result;
   }
 
+  /// An independent stream for item `index` of a pass keyed by `key` (collide.hpp, "Threads inside
+  /// one replica"): the root stream of a 64-bit hash of (key, index), distinct for distinct indices.
+  static Xoshiro256pp substream(std::uint64_t key, std::uint64_t index);
+
   void jump();       ///< advance by 2^128 draws
   void long_jump();  ///< advance by 2^192 draws
 

@@ -844,10 +844,11 @@ double chunk_end_time(double time, std::uint64_t candidates, double t_target, do
 namespace {
 
 /// Runs replica r of one Config, from the start or from `resume`. `slot` is its place in this
-/// rank's progress; `label` names it.
+/// rank's progress; `label` names it. `block_threads`: the threads its cache blocks may use
+/// (collide.hpp, "Threads inside one replica"; the results do not depend on it).
 ReplicaResult run_replica(const io::config::Config& config, const Options& options, Progress& progress,
                           std::size_t slot, const std::string& label, std::size_t r, const Snapshot* resume,
-                          const SafePoint& safe_point) {
+                          const SafePoint& safe_point, int block_threads) {
   if (config.has_agg_frag) return run_agg_frag_replica(config, options, progress, slot, label, r, resume, safe_point);
   if (config.staged()) return run_staged_replica(config, options, progress, slot, label, r, resume, safe_point);
   const species::Mixture mix = config.mixture();
@@ -888,6 +889,7 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
   // Cache blocks (collide.hpp "Blocks"; one species, majorant or lowrank): in collision-driven runs
   // the steps near each sample's event target run on the whole gas and stop at it exactly.
   collider.use_blocks(static_cast<std::size_t>(config.dsmc.block_size));
+  collider.use_threads(block_threads);
   ReplicaProgress p;
   p.c_sum.assign(s, 0.0);
   p.share_sum.assign(s, 0.0);
@@ -1514,7 +1516,10 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
   std::string failure;  // first error of a thread (exceptions must not leave an OpenMP region)
   std::atomic<bool> interrupted{false}, failed{false};
   const auto n_mine = static_cast<std::ptrdiff_t>(mine.size());
-#pragma omp parallel for schedule(dynamic, 1)
+  // Threads serve the units first; when this rank has fewer units than threads, each unit's cache
+  // blocks share the rest (collide.hpp, "Threads inside one replica"), and the output is the same.
+  const parallel::ThreadSplit split = parallel::split_threads(mine.size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(split.units)
   for (std::ptrdiff_t k = 0; k < n_mine; ++k) {
     if (interrupted.load() || failed.load()) continue;
     const Unit& unit = units[mine[static_cast<std::size_t>(k)]];
@@ -1532,7 +1537,8 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
           checkpoints.safe_point(u, snapshot);
         };
         done[static_cast<std::size_t>(k)] = run_replica(point, options, progress, static_cast<std::size_t>(k), label,
-                                                        unit.replica, checkpoints.resume_point(u), safe_point);
+                                                        unit.replica, checkpoints.resume_point(u), safe_point,
+                                                        split.per_unit);
         checkpoints.finished(u, done[static_cast<std::size_t>(k)]);
       }
     } catch (const Interrupted&) {

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Issue 5: the same input gives the same output file, byte for byte, however it runs: one thread,
-# two OpenMP threads, mpirun -np 1, 2 and 3, and (when given) a build without MPI and OpenMP.
+# two and three OpenMP threads, mpirun -np 1, 2 and 3, and (when given) a build without MPI and OpenMP.
 # usage: reproducibility.sh GRANULAR_DSMC INPUT WORKDIR MPIEXEC [SERIAL_GRANULAR_DSMC]
 set -euo pipefail
 exe=$1 input=$2 work=$3 mpiexec=$4 serial=${5:-}
@@ -16,6 +16,7 @@ run() {  # run NAME command...: the output is always written as scale_out.h5, th
 }
 OMP_NUM_THREADS=1 run threads-1 "$exe"
 OMP_NUM_THREADS=2 run threads-2 "$exe"
+OMP_NUM_THREADS=3 run threads-3 "$exe"  # more threads than units: the rest go to cache blocks
 if [ "$mpiexec" != "none" ]; then
   for np in 1 2 3; do OMP_NUM_THREADS=1 run "np-$np" "$mpiexec" "${mpi_flags[@]}" -np "$np" "$exe"; done
   OMP_NUM_THREADS=2 run np-2-threads-2 "$mpiexec" "${mpi_flags[@]}" -np 2 "$exe"

@@ -1,0 +1,115 @@
+// Every path of issue 11, end to end: the collision rate of whole runs (simulation::run, the code
+// granular-dsmc runs) on each path, beside the one-species `t_end` run of the same N, as ratios
+// measured in one process one after another on the same machine.
+//
+// usage: bench_paths [N ...]          (default: 100000 1000000; add 10000000 for the large case)
+//
+// Paths (README "Performance"): one species driven by t_end (the reference) and by
+// collisions_per_particle; a binary mixture (masses 1 and 4, diameters 1 and 1.5, alpha = 0.8) with
+// `majorant`, `lowrank`, Enskog (`majorant`, packing fraction 0.1) and `pairs`; one species with
+// `pairs`; one replica of the reference case on 2 threads (its blocks on threads, collide.hpp
+// "Threads inside one replica") against 1. Each run is about 10 collisions per particle. The rate is
+// events per second of the collision loop (Summary::events_per_second: setup and sampling are not
+// counted), on one replica; the thread row gives the ratio of wall-clock rates.
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "dsmc/simulation.hpp"
+#include "io/config.hpp"
+#include "io/namelist.hpp"
+
+using namespace gdsmc;
+
+namespace {
+
+struct Path {
+  const char* name;
+  std::string system;  // the &system group's body
+  std::string scheme;
+  bool time_driven;
+  int threads;
+};
+
+const std::string kOne = "n_species = 1\n mass = 1.0\n diameter = 1.0\n number_density = 0.01\n restitution = 0.9\n";
+const std::string kBinary =
+    "n_species = 2\n mass = 1.0, 4.0\n diameter = 1.0, 1.5\n number_density = 0.005, 0.005\n restitution = 0.8\n";
+// Packing fraction pi/6 (n_1 + n_2 1.5^3) = 0.1 at n_1 = n_2 = 0.0437.
+const std::string kEnskog = "n_species = 2\n mass = 1.0, 4.0\n diameter = 1.0, 1.5\n"
+                            " number_density = 0.0437, 0.0437\n restitution = 0.8\n enskog = .true.\n";
+
+std::string namelist(const Path& p, std::size_t n, double t_end, double per_particle) {
+  const std::string initial = p.system.find("n_species = 2") != std::string::npos ? "1.0, 1.0" : "1.0";
+  std::string text = "&system\n " + p.system + "/\n&initial\n temperature = " + initial + "\n/\n&dsmc\n scheme = '" +
+                     p.scheme + "'\n n_particles = " + std::to_string(n) + "\n replicas = 1\n seed = 1\n";
+  if (t_end > 0.0)
+    text += " t_end = " + std::to_string(t_end) + "\n";
+  else
+    text += " collisions_per_particle = " + std::to_string(per_particle) + "\n";
+  text += " allow_long_run = .true.\n/\n&output\n n_samples = 2\n/\n";
+  return text;
+}
+
+simulation::Summary run(const std::string& text, int threads) {
+#ifdef _OPENMP
+  omp_set_num_threads(threads);
+#else
+  (void)threads;
+#endif
+  const auto config = io::config::read(io::namelist::parse(text, "bench_paths.nml"));
+  const std::string out = (std::filesystem::temp_directory_path() /
+                           ("bench_paths_" + std::to_string(::getpid()) + ".h5")).string();
+  std::filesystem::remove(out);
+  const simulation::Summary s = simulation::run(config, out, simulation::Options{});
+  std::filesystem::remove(out);
+  return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::size_t> sizes;
+  for (int i = 1; i < argc; ++i) sizes.push_back(std::strtoull(argv[i], nullptr, 10));
+  if (sizes.empty()) sizes = {100000, 1000000};
+  const std::vector<Path> paths = {
+      {"one species, t_end", kOne, "majorant", true, 1},
+      {"one species, collisions_per_particle", kOne, "majorant", false, 1},
+      {"binary mixture, majorant", kBinary, "majorant", true, 1},
+      {"binary mixture, lowrank", kBinary, "lowrank", true, 1},
+      {"binary mixture, Enskog (phi = 0.1)", kEnskog, "majorant", true, 1},
+      {"binary mixture, pairs", kBinary, "pairs", true, 1},
+      {"one species, pairs", kOne, "pairs", true, 1},
+      {"one species, t_end, 2 threads", kOne, "majorant", true, 2},
+  };
+  constexpr double per_particle = 10.0;
+  for (std::size_t n : sizes) {
+    std::printf("N = %zu, one replica, ~%g collisions per particle per run\n", n, per_particle);
+    std::printf("%-40s %14s %12s %10s %10s\n", "path", "collisions/s", "coll/part.", "seconds", "ratio");
+    double reference = 0.0;
+    for (const Path& p : paths) {
+      // The time of ~10 collisions per particle, from a short collision-driven pilot of the same gas.
+      double t_end = 0.0;
+      if (p.time_driven) {
+        Path pilot = p;
+        pilot.scheme = "majorant";
+        t_end = run(namelist(pilot, 20000, 0.0, per_particle), 1).final_time;
+      }
+      const auto start = std::chrono::steady_clock::now();
+      const simulation::Summary s = run(namelist(p, n, t_end, per_particle), p.threads);
+      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (reference == 0.0) reference = s.events_per_second;
+      std::printf("%-40s %14.4g %12.2f %10.2f %10.2f\n", p.name, s.events_per_second, s.collisions_per_particle, wall,
+                  s.events_per_second / reference);
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
