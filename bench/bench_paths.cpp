@@ -6,7 +6,7 @@
 //
 // Paths (README "Performance"): one species driven by t_end (the reference) and by
 // collisions_per_particle; a binary mixture (masses 1 and 4, diameters 1 and 1.5, alpha = 0.8) with
-// `majorant`, `lowrank`, Enskog (`majorant`, packing fraction 0.1) and `pairs`; one species with
+// `majorant`, `lowrank`, Enskog (packing fraction 0.1; `majorant` and `lowrank`) and `pairs`; one species with
 // `pairs`; one replica of the reference case on 2 threads (its blocks on threads, collide.hpp
 // "Threads inside one replica") against 1. Each run is about 10 collisions per particle. The rate is
 // events per second of the collision loop (Summary::events_per_second: setup and sampling are not
@@ -85,6 +85,7 @@ int main(int argc, char** argv) {
       {"binary mixture, majorant", kBinary, "majorant", true, 1},
       {"binary mixture, lowrank", kBinary, "lowrank", true, 1},
       {"binary mixture, Enskog (phi = 0.1)", kEnskog, "majorant", true, 1},
+      {"binary mixture, Enskog, lowrank", kEnskog, "lowrank", true, 1},
       {"binary mixture, pairs", kBinary, "pairs", true, 1},
       {"one species, pairs", kOne, "pairs", true, 1},
       {"one species, t_end, 2 threads", kOne, "majorant", true, 2},

@@ -434,8 +434,8 @@ TEST(Collide, BlocksRestoreAndStopAtStepEnds) {
     auto sys = initial(mix2, {2000, 2000}, {1.0, 1.0}, 3);
     Collider c(scheme, mix2, sys, rng::make_stream(3, 0, rng::Purpose::collisions), 1.0);
     c.use_blocks(1000);
-    // mixtures are blocked with majorant only (species slices, header "Blocks")
-    EXPECT_EQ(c.blocks(), scheme == Scheme::majorant ? 4u : 1u) << name(scheme);
+    // mixtures are blocked with majorant and lowrank, not pairs (species slices, header "Blocks")
+    EXPECT_EQ(c.blocks(), scheme != Scheme::pairs ? 4u : 1u) << name(scheme);
   }
   {
     auto sys = initial(mix2, {3900, 100}, {1.0, 1.0}, 3);  // 100 / 64: one block of the rare species
@@ -492,7 +492,8 @@ TEST(Collide, BlocksRestoreAndStopAtStepEnds) {
 
 // Threads inside one replica (collide.hpp): the blocks of a step on 1, 2 or 3 threads give the same
 // velocities, displacements, counts and dissipated energy, bit for bit, for one species (time-driven,
-// with displacements) and a binary mixture (up to an exact event target, through whole-gas steps); a
+// with displacements) and a binary mixture with `majorant` and `lowrank` (up to an exact event target,
+// through whole-gas steps); a
 // restored collider with another thread count continues bitwise.
 TEST(Collide, BlockThreadsAreBitwiseTheSame) {
   const auto mix1 = one_species(0.9);
@@ -503,10 +504,11 @@ TEST(Collide, BlockThreadsAreBitwiseTheSame) {
     collide::Counters counters;
     double time;
   };
-  auto run = [&](const species::Mixture& mix, std::vector<std::size_t> counts, int threads, bool track) {
+  auto run = [&](const species::Mixture& mix, std::vector<std::size_t> counts, int threads, bool track,
+                 Scheme scheme) {
     auto sys = initial(mix, counts, std::vector<double>(counts.size(), 1.0), 8);
     if (track) particles::start_tracking(sys, 0.0);
-    Collider c(Scheme::majorant, mix, sys, rng::make_stream(8, 0, rng::Purpose::collisions), 1.0);
+    Collider c(scheme, mix, sys, rng::make_stream(8, 0, rng::Purpose::collisions), 1.0);
     c.use_blocks(1000);
     c.use_threads(threads);
     EXPECT_GT(c.blocks(), 2u);
@@ -522,12 +524,16 @@ TEST(Collide, BlockThreadsAreBitwiseTheSame) {
       for (const auto& d : sys.r) out.r.insert(out.r.end(), {d.x, d.y, d.z, d.t_last});
     return out;
   };
-  for (bool one : {true, false}) {
-    SCOPED_TRACE(one ? "one species" : "binary mixture");
-    const Run serial = one ? run(mix1, {6000}, 1, true) : run(mix2, {3000, 3000}, 1, false);
+  for (int path = 0; path < 3; ++path) {
+    SCOPED_TRACE(path == 0 ? "one species" : path == 1 ? "binary mixture, majorant" : "binary mixture, lowrank");
+    const Scheme scheme = path == 2 ? Scheme::lowrank : Scheme::majorant;
+    auto one_run = [&](int threads) {
+      return path == 0 ? run(mix1, {6000}, threads, true, scheme) : run(mix2, {3000, 3000}, threads, false, scheme);
+    };
+    const Run serial = one_run(1);
     EXPECT_GT(serial.counters.events, 10000u);
     for (int threads : {2, 3}) {
-      const Run threaded = one ? run(mix1, {6000}, threads, true) : run(mix2, {3000, 3000}, threads, false);
+      const Run threaded = one_run(threads);
       EXPECT_EQ(threaded.v, serial.v) << threads << " threads";
       EXPECT_EQ(threaded.r, serial.r);
       EXPECT_EQ(threaded.counters.events, serial.counters.events);
@@ -768,19 +774,30 @@ TEST(Collide, BlockedCollisionDrivenRunsMatchUnblocked) {
 // about 8 collisions per particle and then collision-driven to an exact target: T_1, T_2, the pair
 // events 1-2 and the time at the target agree with the unblocked collider within 4 combined standard
 // errors, the target is met exactly and the species layout is unchanged (each particle keeps its
-// species' range).
+// species' range); for `majorant` and for `lowrank` (each block its own A_ik), dilute and, with
+// `lowrank` (whose blocks use chi_ik itself, not chi_max), Enskog at packing fraction 0.2.
 TEST(Collide, BlockedMixtureMatchesUnblocked) {
-  const auto mix = binary(0.9, 0.8, 0.7);
+  const auto dilute = binary(0.9, 0.8, 0.7);
+  species::PairMatrix alpha(2, 0.9);
+  alpha(0, 1) = alpha(1, 0) = 0.8;
+  alpha(1, 1) = 0.7;
+  // pi/6 (0.1 + 0.05 x 8) = 0.26: chi_11, chi_12, chi_22 well apart
+  const auto dense = species::make_mixture({1.0, 4.0}, {1.0, 2.0}, {0.1, 0.05}, alpha, true);
   const std::size_t replicas = 16;
+  for (int path = 0; path < 3; ++path) {
+  const Scheme scheme = path == 0 ? Scheme::majorant : Scheme::lowrank;
+  const auto& mix = path == 2 ? dense : dilute;
+  const double t_mid = path == 2 ? 6.0 : 60.0;
+  SCOPED_TRACE(path == 2 ? "lowrank, Enskog" : name(scheme));
   std::vector<std::vector<double>> t1(2), t2(2), cross(2), time(2);
   for (int blocked = 0; blocked < 2; ++blocked)
     for (std::size_t r = 0; r < replicas; ++r) {
       auto sys = initial(mix, {8000, 4000}, {1.0, 1.0}, 200 + r);
       const auto species_before = sys.species;
-      Collider c(Scheme::majorant, mix, sys, rng::make_stream(200 + r, 0, rng::Purpose::collisions), 1.0);
+      Collider c(scheme, mix, sys, rng::make_stream(200 + r, 0, rng::Purpose::collisions), 1.0);
       if (blocked) c.use_blocks(3000);
       ASSERT_EQ(c.blocks(), blocked ? 4u : 1u);
-      c.advance(60.0);
+      c.advance(t_mid);
       c.advance(1e12, c.counters().events + 20000);
       double e[2] = {0.0, 0.0};
       for (std::size_t i = 0; i < sys.size(); ++i) {
@@ -800,8 +817,9 @@ TEST(Collide, BlockedMixtureMatchesUnblocked) {
   for (auto* x : {&t1, &t2, &cross, &time}) {
     const auto [m0, s0] = mean_se((*x)[0]);
     const auto [m1, s1] = mean_se((*x)[1]);
-    std::printf("[ Blocks.Mixture ] %s: unblocked %.6g +- %.2g, blocked %.6g +- %.2g (%.2f SE)\n", names[q++], m0, s0,
-                m1, s1, (m1 - m0) / std::hypot(s0, s1));
+    std::printf("[ Blocks.Mixture ] %s%s %s: unblocked %.6g +- %.2g, blocked %.6g +- %.2g (%.2f SE)\n", name(scheme),
+                path == 2 ? " Enskog" : "", names[q++], m0, s0, m1, s1, (m1 - m0) / std::hypot(s0, s1));
     EXPECT_LT(std::abs(m1 - m0), 4.0 * std::hypot(s0, s1));
+  }
   }
 }

@@ -229,7 +229,7 @@ void Collider::use_blocks(std::size_t block_size) {
   block_first_.clear();
   const std::size_t n = sys_.size();
   const bool one = s_ == 1 && scheme_ != Scheme::pairs;
-  const bool mixture = s_ > 1 && scheme_ == Scheme::majorant && s_ <= pair_event_limit && tables_;
+  const bool mixture = s_ > 1 && scheme_ != Scheme::pairs && s_ <= pair_event_limit && tables_;
   if (block_size == 0 || !(one || mixture) || n < 2 * block_size) return;
   if (counters_.steps > 0) throw std::logic_error("collide: use_blocks() after the run has started");
   std::size_t blocks = n / block_size;
@@ -366,8 +366,12 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
         max_speed2_[k] = global;
         max_speed_[k] = std::sqrt(global);
       }
-      const double rate = s_ == 1 ? 0.5 * n_total * n * 2.0 * cross_section * max_speed_[0]
-                                  : 0.5 * n_total * n * mixture_bound(max_speed2_.data());
+      double rate = s_ == 1 ? 0.5 * n_total * n * 2.0 * cross_section * max_speed_[0]
+                            : 0.5 * n_total * n * mixture_bound(max_speed2_.data());
+      if (lowrank_blocks()) {  // the low-rank majorant's own total over these vmax_k (rebuild_bounds)
+        rebuild_bounds();
+        rate = rate_;
+      }
       if (rate <= 0.0) {
         time_ = t_target;
         return false;
@@ -412,7 +416,8 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
       counters_.step_sum += step;
     }
     if (whole_step_) {
-      const int stop = run_majorant<false>(std::min(t_target, next_step_time_), event_target);
+      const double t_stop = std::min(t_target, next_step_time_);
+      const int stop = lowrank_blocks() ? run_lowrank<false>(t_stop, event_target) : run_majorant<false>(t_stop, event_target);
       if (stop == static_cast<int>(Stop::bound_raised)) {
         raised_.clear();
         set_whole_gas_bound();
@@ -469,13 +474,19 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
   time_ = t_start;
   credit_ = master.block_credit_[j];
   const double n = mix_.total_density();
+  const bool lowrank = lowrank_blocks();
   for (;;) {
-    // A block of N_b particles at the gas's density n: R_b = N_b n B_b / 2 (as R, header "Blocks").
-    // (a mixture: B_b = max_kj pi sigma_kj^2 chi_kj (vmax_bk + vmax_bj) over the block's slices)
-    bound_ = s_ == 1 ? 2.0 * cross_section_[0] * std::sqrt(block_speed2_[0]) : mixture_bound(block_speed2_);
-    rate_ = 0.5 * static_cast<double>(range_count_) * n * bound_;
+    if (lowrank) {
+      set_block_lowrank(n);
+    } else {
+      // A block of N_b particles at the gas's density n: R_b = N_b n B_b / 2 (as R, header "Blocks").
+      // (a mixture: B_b = max_kj pi sigma_kj^2 chi_kj (vmax_bk + vmax_bj) over the block's slices)
+      bound_ = s_ == 1 ? 2.0 * cross_section_[0] * std::sqrt(block_speed2_[0]) : mixture_bound(block_speed2_);
+      rate_ = 0.5 * static_cast<double>(range_count_) * n * bound_;
+    }
     if (rate_ <= 0.0) break;
-    if (run_majorant<false>(t_stop, UINT64_MAX) != static_cast<int>(Stop::bound_raised)) break;
+    const int stop = lowrank ? run_lowrank<false>(t_stop, UINT64_MAX) : run_majorant<false>(t_stop, UINT64_MAX);
+    if (stop != static_cast<int>(Stop::bound_raised)) break;
   }
   master.block_credit_[j] = rate_ > 0.0 ? credit_ : 0.0;
   Counters& out = master.block_counters_[j];
@@ -485,6 +496,31 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
   out.largest_acceptance = counters_.largest_acceptance;
   out.dissipated = counters_.dissipated;
   std::copy(counters_.pair_events.begin(), counters_.pair_events.end(), out.pair_events.begin());
+}
+
+void Collider::set_block_lowrank(double n) {
+  // The block's own A_ik (header "Mixtures in blocks"): the rank-3 hard-sphere majorant of its slices,
+  // N_k the slice's count and V = (N_b - 1)/n, so that each pair's rate is pi sigma_ik^2 chi_ik |g|
+  // n/(N_b - 1) as in the majorant blocks; vmax_k the block's. Columns as well as rows: the slices'
+  // counts differ between blocks by up to one particle.
+  // With at most 64 species the S^2 entries are few: each is computed exactly, with chi_ik itself
+  // instead of chi_max (the rank-3 form needs one chi for all pairs), A_ik = pi sigma_ik^2 chi_ik w_i
+  // N_i N_k / V (the form of segment_tree.hpp's hard_sphere_factors with chi_ik), a candidate then
+  // accepted with |g| / (w_i + w_k) (run_lowrank); a pair is drawn from their alias table (one
+  // uniform) rather than by the trees' descents.
+  const std::size_t* cum = slice_cum_.data() + current_block_ * (s_ + 1);
+  lowrank_volume_ = static_cast<double>(range_count_ - 1) / n;
+  for (std::size_t k = 0; k < s_; ++k) max_speed_[k] = std::sqrt(block_speed2_[k]);
+  pair_weights_.resize(s_ * s_);
+  rate_ = 0.0;
+  for (std::size_t i = 0; i < s_; ++i)
+    for (std::size_t k = 0; k < s_; ++k) {
+      const auto count_i = static_cast<double>(cum[i + 1] - cum[i]), count_k = static_cast<double>(cum[k + 1] - cum[k]);
+      pair_weights_[i * s_ + k] = cross_section_[i * s_ + k] * max_speed_[i] * count_i * count_k / lowrank_volume_;
+      rate_ += pair_weights_[i * s_ + k];
+    }
+  if (rate_ > 0.0) pair_alias_.build(pair_weights_);
+  pending_filled_ = false;  // drawn from the old A_ik: redraw (header, "Look-ahead")
 }
 
 void Collider::run_blocks_pass(double t_start, double t_stop) {
@@ -813,7 +849,18 @@ template <bool Framed>
 int Collider::run_lowrank(double t_stop, std::uint64_t event_target) {
   const bool track = sys_.tracks_displacements();  // may start in the middle of a run
   particles::Vec3* v = sys_.v.data();
+  // In a block (a worker, header "Mixtures in blocks"): the particles of the block's slice of each species.
+  const bool sliced = !block_first_.empty() && !whole_step_;
+  const std::size_t* cum = sliced ? slice_cum_.data() + current_block_ * (s_ + 1) : nullptr;
+  const std::size_t* slice = sliced ? slice_first_.data() + current_block_ * s_ : nullptr;
   const auto draw = [&] {
+    if (sliced) {  // (i, k) with probability A_ik / R from the block's alias table (set_block_lowrank)
+      const std::size_t pair = pair_alias_.sample(gen_.uniform());
+      const std::size_t i = pair / s_, k = pair % s_;
+      return PendingPair{static_cast<std::uint32_t>(slice[i] + gen_.below(cum[i + 1] - cum[i])),
+                         static_cast<std::uint32_t>(slice[k] + gen_.below(cum[k + 1] - cum[k])),
+                         static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(k)};
+    }
     const auto [i, k] = lowrank_.sample(gen_);  // (i, k) with probability A_ik / R
     return PendingPair{static_cast<std::uint32_t>(sys_.first[i] + gen_.below(sys_.count[i])),
                        static_cast<std::uint32_t>(sys_.first[k] + gen_.below(sys_.count[k])),
@@ -828,9 +875,10 @@ int Collider::run_lowrank(double t_stop, std::uint64_t event_target) {
     double gx = v[a].x - v[b].x, gy = v[a].y - v[b].y, gz = v[a].z - v[b].z;
     to_actual<Framed>(gx, gy, gz);
     const double g2 = gx * gx + gy * gy + gz * gz;
-    // Accept with chi_ik |g| / (chi_max (w_i + w_k)) (seed 001 eq 11 with ERRATA §2), compared squared.
-    const double bound = chi_max_ * ((max_speed_[i] + max_speed_[k]) * speed_factor_);
+    // Accept with chi_ik |g| / (chi_max (w_i + w_k)) (seed 001 eq 11 with ERRATA §2), compared squared;
+    // in a block, whose A_ik hold chi_ik itself (set_block_lowrank), with |g| / (w_i + w_k).
     const double chi = mix_.pair_correlation(i, k);
+    const double bound = (sliced ? chi : chi_max_) * ((max_speed_[i] + max_speed_[k]) * speed_factor_);
     const double rate2 = chi * chi * g2;
     const double threshold = gen_.uniform() * bound;
     if (threshold * threshold >= rate2) return false;

@@ -63,8 +63,8 @@
  * A_ik changes, since they were drawn from the old rates, and discarding independent draws biases
  * nothing. The drawn-ahead pairs are part of the collider's state (State below).
  *
- * **Blocks** (issue 5; one species with `majorant` or `lowrank`, or a mixture of at most 64 species with
- * `majorant`; N >= 2 block_size; `use_blocks`). With
+ * **Blocks** (issue 5; one species, or a mixture of at most 64 species, with `majorant` or `lowrank`;
+ * N >= 2 block_size; `use_blocks`). With
  * 1e6 particles the velocities (24 MB) do not stay in the caches and every candidate waits for
  * memory. The particles are therefore split into K = N / block_size contiguous blocks, and during
  * a time step each block is a gas of its own: its candidates are pairs of its own N_b particles at
@@ -122,8 +122,16 @@
  * uniform pair of the block's particles (an index into the block's slices). Each species-k particle
  * meets species-j partners at n N_jb/(N_b - 1) instead of n N_j/(N - 1): the finite-N effect of the
  * one-species blocks, of relative order 1/N_b on average since the slices differ from N_j/K by less
- * than one particle. Checked by Collide.BlockedMixtureMatchesUnblocked (T_k, the share of unlike-pair
- * events, the time at an event target, over 16 replicas) and by every mixture validation, which runs
+ * than one particle. With `lowrank` each block samples its own majorant A_ik of its slices, in the form
+ * of segment_tree.hpp (A_ik = pi sigma_ik^2 chi_ik w_i N_i N_k / V, accepted with |g| / (w_i + w_k)), but
+ * with each of the at most 64^2 entries computed exactly and chi_ik itself in place of chi_max: N_k the
+ * slice's count, V = (N_b - 1)/n and w_k = vmax_k the block's, so that again each pair's rate is
+ * pi sigma_ik^2 chi_ik |g| n/(N_b - 1) (the two orders (a, b) and (b, a) add w_i + w_k). The species
+ * pair (i, k) of a candidate is drawn with probability A_ik / R_b from an alias table of the S^2
+ * entries (rebuilt when a bound is raised), then a particle of slice i and one of slice k; the
+ * whole-gas steps near event targets run the unblocked `lowrank` loop.
+ * Checked by Collide.BlockedMixtureMatchesUnblocked (T_k, the share of unlike-pair events, the time at
+ * an event target, over 16 replicas, both schemes) and by every mixture validation, which runs
  * blocked at N >= 2 block_size. Measured at N = 1e6 (binary, masses 1 and 4, diameters 1 and 1.5,
  * one replica): 5.5e6 collisions/s blocked against 2.1e6 unblocked; 0.72 of the one-species rate.
  *
@@ -238,9 +246,9 @@ class Collider {
            rng::Xoshiro256pp gen, double step_fraction,
            const species::PairMatrix* viscoelastic_beta = nullptr);
 
-  /// Cache blocks of about `block_size` particles (header, "Blocks"), for one species with the
-  /// `majorant` or `lowrank` scheme and N >= 2 block_size; otherwise (or with 0) the whole gas is one
-  /// block. Call before the first advance().
+  /// Cache blocks of about `block_size` particles (header, "Blocks"), for one species or a mixture of
+  /// at most 64 species with the `majorant` or `lowrank` scheme and N >= 2 block_size; otherwise (or
+  /// with 0) the whole gas is one block. Call before the first advance().
   void use_blocks(std::size_t block_size);
   std::size_t blocks() const { return block_first_.empty() ? 1 : block_first_.size() - 1; }
   /// OpenMP threads for the blocks of a step (header, "Threads inside one replica"); 1 by default.
@@ -363,6 +371,11 @@ class Collider {
   void run_block(Collider& master, std::size_t j, double t_start, double t_stop, bool first_visit,
                  std::uint64_t key);
   void run_blocks_pass(double t_start, double t_stop);  ///< every block once, on the threads
+  /// A mixture with `lowrank` in blocks: each block samples its own low-rank A_ik (header "Mixtures in blocks").
+  bool lowrank_blocks() const { return scheme_ == Scheme::lowrank && s_ > 1 && !block_first_.empty(); }
+  void set_block_lowrank(double n);  ///< on a worker: the current block's A_ik, their alias table and R
+  std::vector<double> pair_weights_;   ///< a block's A_ik, S x S (set_block_lowrank)
+  segment_tree::AliasTable pair_alias_;
   double step_start_ = 0.0;
   /// Exact vmax_k^2 of block j's slices, read in order, into out[k].
   void set_block_max_speed2(std::size_t block, double* out);

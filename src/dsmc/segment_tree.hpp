@@ -137,6 +137,53 @@ class SumTree {
   std::vector<double> tree_;
 };
 
+/// Walker's alias table (Vose's construction): k with probability w_k / sum w from one uniform, in
+/// O(1) with two memory reads; built in O(n). Used for LowRankSampler's frozen columns and for the
+/// species pairs of a mixture's block (collide.hpp, "Mixtures in blocks").
+struct AliasTable {
+  std::vector<double> threshold;
+  std::vector<std::size_t> alias;
+  void build(const std::vector<double>& w) {
+    const std::size_t n = w.size();
+    threshold.assign(n, 0.0);
+    alias.assign(n, 0);
+    double total = 0.0;
+    for (double x : w) total += x;
+    if (!(total > 0.0)) return;
+    std::vector<double> scaled(n);
+    std::vector<std::size_t> small, large;
+    for (std::size_t k = 0; k < n; ++k) {
+      scaled[k] = w[k] * static_cast<double>(n) / total;
+      (scaled[k] < 1.0 ? small : large).push_back(k);
+    }
+    while (!small.empty() && !large.empty()) {
+      const std::size_t s = small.back(), l = large.back();
+      small.pop_back();
+      threshold[s] = scaled[s];
+      alias[s] = l;
+      scaled[l] -= 1.0 - scaled[s];
+      if (scaled[l] < 1.0) {
+        large.pop_back();
+        small.push_back(l);
+      }
+    }
+    // What is left is 1 up to round-off: keep it; a zero weight left over (round-off emptied
+    // `large` first) points to a column of positive weight, so it is never drawn.
+    std::size_t positive = 0;
+    while (!(w[positive] > 0.0)) ++positive;
+    for (std::size_t k : large) threshold[k] = 1.0, alias[k] = k;
+    for (std::size_t k : small) {
+      threshold[k] = w[k] > 0.0 ? 1.0 : 0.0;
+      alias[k] = w[k] > 0.0 ? k : positive;
+    }
+  }
+  std::size_t sample(double u) const {
+    const double x = u * static_cast<double>(threshold.size());
+    const auto k = std::min(static_cast<std::size_t>(x), threshold.size() - 1);
+    return x - static_cast<double>(k) < threshold[k] ? k : alias[k];
+  }
+};
+
 /// The rank-`Rank` majorant matrix C_ik = sum_r u_i^(r) v_k^(r) over M species: its total
 /// R = sum_{i,k} C_ik, the update of one species' row u_i or column v_k in O(Rank log M), and the
 /// draw of a pair (i, k) with probability C_ik / R in O(Rank + log M).
@@ -250,51 +297,6 @@ class LowRankSampler {
   }
 
  private:
-  /// Walker's alias table (Vose's construction): k with probability w_k / sum w from one uniform.
-  struct AliasTable {
-    std::vector<double> threshold;
-    std::vector<std::size_t> alias;
-    void build(const std::vector<double>& w) {
-      const std::size_t n = w.size();
-      threshold.assign(n, 0.0);
-      alias.assign(n, 0);
-      double total = 0.0;
-      for (double x : w) total += x;
-      if (!(total > 0.0)) return;
-      std::vector<double> scaled(n);
-      std::vector<std::size_t> small, large;
-      for (std::size_t k = 0; k < n; ++k) {
-        scaled[k] = w[k] * static_cast<double>(n) / total;
-        (scaled[k] < 1.0 ? small : large).push_back(k);
-      }
-      while (!small.empty() && !large.empty()) {
-        const std::size_t s = small.back(), l = large.back();
-        small.pop_back();
-        threshold[s] = scaled[s];
-        alias[s] = l;
-        scaled[l] -= 1.0 - scaled[s];
-        if (scaled[l] < 1.0) {
-          large.pop_back();
-          small.push_back(l);
-        }
-      }
-      // What is left is 1 up to round-off: keep it; a zero weight left over (round-off emptied
-      // `large` first) points to a column of positive weight, so it is never drawn.
-      std::size_t positive = 0;
-      while (!(w[positive] > 0.0)) ++positive;
-      for (std::size_t k : large) threshold[k] = 1.0, alias[k] = k;
-      for (std::size_t k : small) {
-        threshold[k] = w[k] > 0.0 ? 1.0 : 0.0;
-        alias[k] = w[k] > 0.0 ? k : positive;
-      }
-    }
-    std::size_t sample(double u) const {
-      const double x = u * static_cast<double>(threshold.size());
-      const auto k = std::min(static_cast<std::size_t>(x), threshold.size() - 1);
-      return x - static_cast<double>(k) < threshold[k] ? k : alias[k];
-    }
-  };
-
   std::size_t size_ = 0;
   std::array<SumTree, Rank> u_;  ///< u^(r), one tree per term
   std::array<SumTree, Rank> v_;  ///< v^(r)
