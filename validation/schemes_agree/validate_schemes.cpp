@@ -7,7 +7,6 @@
 #include <filesystem>
 #include <iostream>
 
-#include "io/namelist.hpp"
 #include "validation.hpp"
 
 using namespace gdsmc;
