@@ -9,6 +9,7 @@
 #include <string>
 
 #include "io/compare.hpp"
+#include "theory/theory.hpp"
 #include "theory/sonine_mixture.hpp"
 #include "validation.hpp"
 
@@ -51,10 +52,40 @@ int main(int argc, char** argv) {
                     100.0 * (maxwellian[k] - r) / r);
       report.note(text);
     }
-    // ERRATA §6 (independent DSMC): the first-Sonine cumulants are 9-14 % high; allowance 15 % (the
-    // known error --compare states, io/compare.hpp).
-    std::snprintf(text, sizeof text, "c_%zu vs first Sonine (allowance 15 %%, ERRATA §6)", k + 1);
+    // ERRATA §6 (independent DSMC): the first-Sonine cumulants are 9-14 % high for one species; allowance
+    // 15 % (the known error --compare states, io/compare.hpp). For s > 2 species no independent estimate
+    // of first Sonine's error exists (README.md): a consistency check, labelled as such.
+    std::snprintf(text, sizeof text,
+                  "c_%zu vs first Sonine, %lld replicas: CONSISTENCY CHECK (allowance 15 %%, no independent "
+                  "estimate for mixtures; README.md)",
+                  k + 1, run.config.dsmc.replicas);
     report.check(text, sonine->value[k], sonine->error[k], sonine->theory[k], 4.0, sonine->known_error[k]);
+  }
+  // The one-species estimate of first Sonine's relative error at the same alpha (Sonine bracket K = 4/5,
+  // docs/sonine.md), stated beside the measured gaps: it is what validation/sonine_cumulants uses for the
+  // binary mixture, and here it does not cover the light species (README.md), so it is not used.
+  bool uniform = true;
+  for (double a : mix.restitution.values) uniform = uniform && a == mix.restitution(0, 0);
+  if (uniform && !mix.restitution.values.empty()) {
+    const double alpha = mix.restitution(0, 0), c_first = 2.0 * theory::sonine_a2(alpha);
+    const auto bracket = theory::sonine_cumulant_bracket(alpha);
+    if (std::abs(c_first) >= 0.01) {
+      const double relative = (std::abs(c_first - bracket.value) + bracket.half_width) / std::abs(c_first);
+      std::snprintf(text, sizeof text,
+                    "one species at alpha = %.2f: first Sonine %.5f vs bracket %.5f +- %.5f, relative error %.1f %%; "
+                    "measured gaps here:", alpha, c_first, bracket.value, bracket.half_width, 100.0 * relative);
+    } else {
+      std::snprintf(text, sizeof text,
+                    "one species at alpha = %.2f: first Sonine %.5f vs bracket %.5f +- %.5f, near the sign change: "
+                    "no relative estimate; measured gaps here:", alpha, c_first, bracket.value, bracket.half_width);
+    }
+    std::string line = text;
+    for (std::size_t k = 0; k < s; ++k) {
+      std::snprintf(text, sizeof text, " c_%zu %+.1f %%", k + 1,
+                    100.0 * (sonine->value[k] - sonine->theory[k]) / std::abs(sonine->theory[k]));
+      line += text;
+    }
+    report.note(line);
   }
   return report.exit_code();
 }

@@ -7,19 +7,60 @@
 
 using namespace gdsmc;
 
+namespace {
+
+/// First Sonine's relative error for the cumulant of ONE species at this alpha, from the Sonine
+/// hierarchy beyond it (theory::sonine_cumulant_bracket, orders K = 4 and 5; docs/sonine.md "Beyond first
+/// Sonine"): (|c_first - c_bracket| + half-width)/|c_first|, an estimate independent of any DSMC output.
+/// Applied to a mixture species as the same relative error of its first-Sonine c_k (README.md: tested at the
+/// one mixture point with an exact value, mu = 2, alpha = 0.5: estimate 11.0 %, actual 10.4 %). Undefined
+/// where the one-species c goes through zero (|c_first| < 0.01, 0.62 < alpha < 0.77): there is then no
+/// independent estimate, and the check falls back to the measured allowance (a consistency check).
+struct OneSpeciesEstimate {
+  bool defined;
+  double relative;     ///< the relative error above
+  double c_first;      ///< one-species first Sonine 2 a2(alpha)
+  double c_bracket, half_width;
+};
+OneSpeciesEstimate one_species_estimate(double alpha) {
+  const double c_first = 2.0 * theory::sonine_a2(alpha);
+  const auto bracket = theory::sonine_cumulant_bracket(alpha);
+  const double relative = (std::abs(c_first - bracket.value) + bracket.half_width) / std::abs(c_first);
+  return {std::abs(c_first) >= 0.01, relative, c_first, bracket.value, bracket.half_width};
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   const auto run = validation::run_case(argc, argv, "sonine_cumulants.h5");
   // First Sonine overestimates the cumulants (ERRATA §6: 9-14 % for one species, c1 = 0.1280 +- 0.0004
-  // against 0.1428 at mu = 2, alpha = 0.5). Allowance: a stated fraction of the first-Sonine value,
-  // the gap measured with the paper tier of this check (README.md).
+  // against 0.1428 at mu = 2, alpha = 0.5). Allowance (issue 13): the one-species estimate of first
+  // Sonine's relative error at the same alpha (above), where it is defined; else the gap measured with the
+  // paper tier of this check, 20 % of the first-Sonine value (README.md), a consistency check only.
   const double sonine_gap = 0.20;
   validation::Report report("Sonine cumulants c1, c2 against alpha", run.report_file());
-  report.note("systematic allowance: " + std::to_string(100.0 * sonine_gap).substr(0, 4) +
-              " % of the first-Sonine value (first Sonine's own error, README.md)");
   const auto points = run.config.sweep_points();
   for (std::size_t p = 0; p < points.size(); ++p) {
     const auto mix = points[p].mixture();
     const auto hcs = theory::binary_hcs_first_sonine(mix);
+    const double alpha = mix.restitution(0, 0);
+    const auto estimate = one_species_estimate(alpha);
+    {
+      char text[400];
+      if (estimate.defined)
+        std::snprintf(text, sizeof text,
+                      "alpha = %.2f: allowance %.1f %% of first Sonine: one species at this alpha, first Sonine "
+                      "%.5f against the K = 4/5 Sonine bracket %.5f +- %.5f (independent estimate, README.md)",
+                      alpha, 100.0 * estimate.relative, estimate.c_first, estimate.c_bracket, estimate.half_width);
+      else
+        std::snprintf(text, sizeof text,
+                      "alpha = %.2f: CONSISTENCY CHECK ONLY: the one-species first-Sonine c = %.5f is near its sign "
+                      "change (bracket %.5f +- %.5f), no independent estimate of the mixture's error; allowance "
+                      "%.0f %% of first Sonine, measured by this code (README.md)",
+                      alpha, estimate.c_first, estimate.c_bracket, estimate.half_width, 100.0 * sonine_gap);
+      report.note(text);
+    }
+    const double allowance_share = estimate.defined ? estimate.relative : sonine_gap;
     const std::string root = run.config.is_sweep() ? "/sweep/point_" + std::to_string(p + 1) + "/observables/"
                                                    : std::string();
     const auto c = io::h5md::read_observable(run.file, root + "sonine_c");
@@ -38,7 +79,7 @@ int main(int argc, char** argv) {
         }
       if (!report.require("samples in the scaling regime", count > 0)) return report.exit_code();
       const double mean = sum / count, theory_c = hcs.sonine_c[k];
-      char name[200];
+      char name[300];
       const auto exact = k == 0 ? validation::exact_cumulant_species1(mix) : validation::ExactValue{};
       if (exact.known) {
         // Independent exact value (docs/sonine.md "How good it is"): 3 SE (combined) + 0.001 (the last
@@ -46,11 +87,20 @@ int main(int argc, char** argv) {
         std::snprintf(name, sizeof name, "alpha = %.2f: c1 vs exact %.4f +- %.4f (DSMC/exact - 1 = %+.1f %%)",
                       mix.restitution(0, 0), exact.value, exact.error, 100.0 * (mean / exact.value - 1.0));
         report.check(name, mean, std::hypot(se / count, exact.error), exact.value, 3.0, 0.001);
+        // The test of the one-species estimate (theory only): at this point the mixture's actual first-Sonine
+        // error is known, |c1(first Sonine) - exact|; the estimate must cover it.
+        char text[300];
+        std::snprintf(text, sizeof text,
+                      "alpha = %.2f: the one-species estimate of first Sonine's error, %.1f %% of c1 = %.5f, covers the "
+                      "actual one against the exact value, %.1f %%",
+                      alpha, 100.0 * estimate.relative, theory_c, 100.0 * std::abs(theory_c - exact.value) / theory_c);
+        report.require(text, estimate.defined && estimate.relative * std::abs(theory_c) >= std::abs(theory_c - exact.value));
         continue;
       }
-      std::snprintf(name, sizeof name, "alpha = %.2f: c%zu (DSMC/Sonine - 1 = %+.1f %%)", mix.restitution(0, 0),
-                    k + 1, 100.0 * (mean / theory_c - 1.0));
-      report.check(name, mean, se / count, theory_c, 3.0, sonine_gap * std::abs(theory_c));
+      std::snprintf(name, sizeof name, "alpha = %.2f: c%zu, %zu samples x %lld replicas (DSMC/Sonine - 1 = %+.1f %%; %s)",
+                    alpha, k + 1, count, points[p].dsmc.replicas, 100.0 * (mean / theory_c - 1.0),
+                    estimate.defined ? "allowance: one-species estimate" : "consistency check, measured allowance");
+      report.check(name, mean, se / count, theory_c, 3.0, allowance_share * std::abs(theory_c));
     }
     report.note("one-component first Sonine c = 2 a2 = " + std::to_string(2.0 * theory::sonine_a2(mix.restitution(0, 0))));
     // gamma at the exact point (docs/sonine.md: 1.3616 for mu = 2, delta = 1, alpha = 0.5), the last
