@@ -1,5 +1,5 @@
 // granular-theory: the kinetic-theory predictions for the system of a namelist, as one JSON object
-// on stdout (INTERFACE.md "granular-theory JSON keys").
+// on stdout (\ref output_theory "docs/output.md").
 #include <array>
 #include <algorithm>
 #include <cmath>
@@ -165,7 +165,7 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
            << number(*p.hcs_maxwellian_cooling_rate_reduced) << "}";
     json << "}";
   }
-  if (p.binary_hcs) {  // binary HCS in first Sonine approximation (seed 003 App. A, ERRATA §6)
+  if (p.binary_hcs) {  // binary HCS in first Sonine approximation (Montanero and Garzo 2002, App. A, \ref son_binary "docs/sonine.md")
     const auto& hcs = *p.binary_hcs;
     json << ",\n" << in << "\"temperature_ratio\": " << number(hcs.temperature_ratio);
     json << ",\n" << in << "\"sonine_c\": " << array({hcs.sonine_c[0], hcs.sonine_c[1]});
@@ -181,7 +181,7 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
   if (p.shear_viscosity_kinetic_hcs)
     json << ",\n" << in << "\"shear_viscosity_kinetic_ratio\": {\"hcs\": " << number(*p.shear_viscosity_kinetic_hcs)
          << ", \"hss\": " << number(*p.shear_viscosity_kinetic_hss) << "}";
-  // The approximation behind every key printed (INTERFACE.md "granular-theory JSON keys").
+  // The approximation behind every key printed (\ref output_theory "docs/output.md").
   json << ",\n" << approximations();
   json << "\n" << indent << "}";
   return json.str();

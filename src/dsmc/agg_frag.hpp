@@ -1,7 +1,7 @@
 /**
  * \file agg_frag.hpp
  * \brief Aggregation and fragmentation: a gas of clusters that stick and shatter on collision
- *        (seed 000 eqs 8-14 and its steps 1-13, as corrected by ERRATA §12; docs/physics.md,
+ *        (DSMC notes, eqs. (8)-(14) and its steps 1-13, as corrected by \ref af_outcome "docs/agg-frag.md"; docs/physics.md,
  *        "Aggregation and fragmentation").
  *
  * **Clusters.** A cluster of k monomers has mass m_k = k m_1 and diameter sigma_k = k^(1/3) sigma_1
@@ -13,28 +13,28 @@
  * m_kj = m_k m_j/(m_k + m_j), V = (m_k v_a + m_j v_b)/(m_k + m_j), classified in this order:
  * - E_imp = m_kj g^2/2 < E_agg: **aggregation**, one cluster of k + j monomers with velocity V
  *   (energy lost: exactly E_imp);
- * - else, with e drawn as in collide.hpp (density ~ g_hat.e on the hemisphere, ERRATA §2),
+ * - else, with e drawn as in collide.hpp (density ~ g_hat.e on the hemisphere, \ref cm_hemisphere "docs/collision-model.md"),
  *   E_n = m_kj (g.e)^2/2 > E_frag and k + j >= 3: **fragmentation** into K = k + j monomers,
- *   v_i = V + u d_i, u = sqrt(k j) eps_f |g|/K, |d_i| = 1, sum_i d_i = 0 (ERRATA §12: K/2 random
+ *   v_i = V + u d_i, u = sqrt(k j) eps_f |g|/K, |d_i| = 1, sum_i d_i = 0 (\ref af_corrections "docs/agg-frag.md": K/2 random
  *   unit vectors and their opposites; for odd K, (K - 3)/2 such pairs and one equilateral triple
  *   a, -a/2 + (sqrt3/2) b, -a/2 - (sqrt3/2) b with b perpendicular to a). The centre-of-mass
- *   kinetic energy after is K m_1 u^2/2 = eps_f^2 E_imp, so (1 - eps_f^2) E_imp is lost. Seed 000's
- *   eq 14 (K - 1 random vectors and one balancing monomer) creates energy on average: not used.
+ *   kinetic energy after is K m_1 u^2/2 = eps_f^2 E_imp, so (1 - eps_f^2) E_imp is lost. The DSMC notes'
+ *   eq. (14) (K - 1 random vectors and one balancing monomer) creates energy on average: not used.
  *   Two monomers never shatter;
- * - else: **bounce**, the collision rule of ERRATA §1 with the monomer restitution alpha
+ * - else: **bounce**, the collision rule of \ref cm_rule "docs/collision-model.md" with the monomer restitution alpha
  *   (energy lost (1 - alpha^2) E_n).
- * The thresholds are energies, so the velocity thresholds depend on the pair (ERRATA §12).
+ * The thresholds are energies, so the velocity thresholds depend on the pair (\ref af_outcome "docs/agg-frag.md").
  *
- * **Scheme.** The continuous-time low-rank scheme of seed 001 (eqs 9-14; collide.hpp `lowrank`,
+ * **Scheme.** The continuous-time low-rank scheme of Bodrova and Osinsky 2024, \ref sch_lowrank "docs/schemes.md" (eqs 9-14; collide.hpp `lowrank`,
  * segment_tree.hpp) with the cluster sizes as species: the ordered size pair (i, k) of a candidate
  * is drawn from the rank-3 majorant A_ik = pi sigma_ik^2 w_i N_i N_k / V (w_i the largest speed of
- * size i, V = (N_0 - 1)/n_1 the fixed volume: F_N and V stay fixed, only N changes, ERRATA §12),
+ * size i, V = (N_0 - 1)/n_1 the fixed volume: F_N and V stay fixed, only N changes, \ref af_scheme "docs/agg-frag.md"),
  * then a cluster of each size uniformly, the same cluster twice rejected, accepted with
  * |g|/(w_i + w_k). Every unordered cluster pair thus collides at pi sigma_ik^2 |g|/V, the rate of
- * seed 000 eq 8 with the current N (N(N - 1)/2 pairs). After each event the counts N_k, the bounds
+ * the DSMC notes, eq. (8), \ref af_scheme "docs/agg-frag.md" with the current N (N(N - 1)/2 pairs). After each event the counts N_k, the bounds
  * w_k and so the trees change in O(log K) per changed size, and the next candidate comes after
  * 1/R of the new total R: time advances per candidate with the current population, so there is no
- * time-step bias (ERRATA §12: a time-stepped scheme with a fixed candidate count per step is biased
+ * time-step bias (\ref af_scheme "docs/agg-frag.md": a time-stepped scheme with a fixed candidate count per step is biased
  * by |d ln N/dt| dt). A size that empties has w = 0 and reappears with the speed of its first
  * member; at every step start (step_fraction majorant mean free times) all w_k are recomputed
  * exactly. Post-collision speeds above w_k raise it at once (fragments can outrun both parents).
@@ -48,7 +48,7 @@
  * memory follows the population. Per-size tables (bounds, diameters, trees) grow by doubling up to
  * the largest size present. 24 bytes per initial monomer at t = 0.
 
- * **Observables** (INTERFACE.md; ERRATA §12): N_k; the kinetic energy of each size relative to
+ * **Observables** (\ref af_observables "docs/agg-frag.md"): N_k; the kinetic energy of each size relative to
  * u = total momentum/total mass; T_k = m_k <|v - u|^2>/3 = (2/3) E_k/N_k; the per-cluster total
  * T = sum_k N_k T_k/N (it can rise while energy is lost: aggregation removes slow pairs); the
  * kinetic energy per initial monomer; cumulative collisions, aggregations and fragmentations.
@@ -84,9 +84,9 @@ struct Model {
 
 enum class Outcome : int { aggregation = 0, fragmentation = 1, bounce = 2 };
 
-/// ERRATA §12's first test: the pair sticks (impact energy m_kj g^2/2 below E_agg).
+/// First test of \ref af_outcome "docs/agg-frag.md": the pair sticks (impact energy m_kj g^2/2 below E_agg).
 inline bool sticks(const Model& m, double impact_energy) { return impact_energy < m.aggregation_energy; }
-/// ERRATA §12's second test: a pair of sizes k, j that did not stick shatters (normal energy
+/// Second test of \ref af_outcome "docs/agg-frag.md": a pair of sizes k, j that did not stick shatters (normal energy
 /// m_kj (g.e)^2/2 above E_frag, and at least three monomers to make).
 inline bool shatters(const Model& m, std::uint32_t k, std::uint32_t j, double normal_energy) {
   return k + j >= 3 && normal_energy > m.fragmentation_energy;
@@ -100,7 +100,7 @@ struct Counters {
   std::uint64_t candidates = 0;
   std::uint64_t steps = 0;
   double step_sum = 0.0;
-  double dissipated = 0.0;   ///< kinetic energy lost so far, added event by event (ERRATA §12)
+  double dissipated = 0.0;   ///< kinetic energy lost so far, added event by event (\ref af_observables "docs/agg-frag.md")
 };
 
 /// What one collision did (for the unit tests and the event bookkeeping).

@@ -2,12 +2,12 @@
  * \file particles.hpp
  * \brief The simulated particles of one replica: velocities and species as parallel arrays, grouped by species.
  *
- * A homogeneous gas needs no positions (seed 003 sec. 3: a single cell), so a particle is its
+ * A homogeneous gas needs no positions (Montanero and Garzo 2002, sec. 3, \ref sch_pairs "docs/schemes.md": a single cell), so a particle is its
  * velocity and its species. Particles of species k occupy the contiguous index range
  * [first[k], first[k] + count[k]), which makes "a random particle of species k" one integer draw
  * (pairs scheme) and keeps a species' velocities together for sampling.
  *
- * The number of simulated particles of species k is N_k = round(N n_k / n) (seed 003 eq 22 and the
+ * The number of simulated particles of species k is N_k = round(N n_k / n) (Montanero and Garzo 2002, eq. (22), \ref cm_initial "docs/collision-model.md" and the
  * relation N_i/N_j = n_i/n_j). Each simulated particle stands for n_k V / N_k real ones; the
  * collision schemes use the physical densities n_k directly, so V never appears.
  *
@@ -17,7 +17,7 @@
  * be three, which is what limits the collision loop at N = 1e6 (bench/bench_collide.cpp).
  * Tracked displacements keep R and t_last together (32 bytes) for the same reason.
  *
- * Initial velocities (`&initial distribution`): 'maxwell' (Gaussian, seed 003 eq 25), 'shell' (all
+ * Initial velocities (`&initial distribution`): 'maxwell' (Gaussian, Montanero and Garzo 2002, eq. (25), \ref cm_initial "docs/collision-model.md"), 'shell' (all
  * speeds equal, isotropic directions) or 'cube' (uniform in a cube). Then each species' mean velocity
  * is removed (so the total momentum is zero to round-off) and its velocities are scaled so that its
  * kinetic temperature is exactly T_k(0): the run starts at the requested temperatures, not at a
@@ -77,7 +77,7 @@ struct System {
   std::vector<std::size_t> first;      ///< first index of species k
   std::vector<std::size_t> count;      ///< N_k
 
-  /// Displacement tracking (seed 001 eq 15, ERRATA §7); empty when not tracked. R is the
+  /// Displacement tracking (Bodrova and Osinsky 2024, eq. (15), \ref sch_displacements "docs/schemes.md"); empty when not tracked. R is the
   /// displacement accumulated up to t_last, the time of the particle's last collision (or of the
   /// start of tracking); its displacement at t >= t_last is R + v (t - t_last).
   ParticleArray<Displacement> r;

@@ -19,9 +19,9 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// First Sonine's own error: 15 % of a first-Sonine correction or cumulant (ERRATA §6: 9-14 %).
+/// First Sonine's own error: 15 % of a first-Sonine correction or cumulant (\ref son_one_species "docs/sonine.md": 9-14 %).
 constexpr double kFirstSonineShare = 0.15;
-/// T_k/T in first Sonine: binary 0.2 % (ERRATA §6: 0.1 % against exact DSMC at mu = 10);
+/// T_k/T in first Sonine: binary 0.2 % (\ref son_one_species "docs/sonine.md": 0.1 % against exact DSMC at mu = 10);
 /// three or more species 0.4 % (issue 17: independent work, ternary, 0.1-0.4 %).
 constexpr double kRatioErrorBinary = 0.002;
 constexpr double kRatioErrorMany = 0.004;
@@ -128,7 +128,7 @@ void add_free_cooling(Point& pt, const config::Config& config, const theory::Pre
   const std::size_t s = mix.size();
   const std::size_t nt = p.time.size();
   const bool viscoelastic = config.viscoelastic_beta().has_value();
-  // The ERRATA §3 a2 needs a constant alpha: no estimate for viscoelastic restitution.
+  // The \ref haff_sonine "docs/haff-and-mixtures.md" a2 needs a constant alpha: no estimate for viscoelastic restitution.
   const std::vector<double> sonine_c = p.hcs_first_sonine ? p.hcs_first_sonine->sonine_c : std::vector<double>{};
   const double eps = viscoelastic ? kNaN : sonine_rate_error(mix, sonine_c);
   const double a2_max = eps * 16.0 / 3.0;
@@ -191,7 +191,7 @@ void add_free_cooling(Point& pt, const config::Config& config, const theory::Pre
   }
 }
 
-/// The MSD (seed 001 eq 17) and D_k/D_1 over the last decade of time (validation/diffusion_ratio).
+/// The MSD (Bodrova and Osinsky 2024, eq. (17), \ref dif_msd "docs/diffusion-msd.md") and D_k/D_1 over the last decade of time (validation/diffusion_ratio).
 void add_diffusion(Point& pt, const config::Config& config, const theory::Predictions& p, const Measured& m) {
   if (!p.msd) {
     pt.notes.push_back(config.output.msd_start_temperature
@@ -223,7 +223,7 @@ void add_diffusion(Point& pt, const config::Config& config, const theory::Predic
     }
   }
   if (s > 1) {
-    // D_k/D_1: MSD increments over the last decade of time (seed 001 eqs 17, 19; validation/diffusion_ratio).
+    // D_k/D_1: MSD increments over the last decade of time (Bodrova and Osinsky 2024, eqs. (17), (19), \ref dif_msd "docs/diffusion-msd.md"; validation/diffusion_ratio).
     const std::size_t e = nt - 1;
     std::size_t a = e;
     while (a > 1 && q.time[a] > q.time[e] / 10.0) --a;
@@ -251,7 +251,7 @@ void add_diffusion(Point& pt, const config::Config& config, const theory::Predic
   }
 }
 
-/// Cluster populations, mean size and temperature of an &agg_frag run (Smoluchowski, ERRATA §12).
+/// Cluster populations, mean size and temperature of an &agg_frag run (Smoluchowski, \ref af_smoluchowski "docs/agg-frag.md").
 void add_agg_frag(Point& pt, const theory::Predictions& p, const Measured& m) {
   const auto& af = *p.agg_frag;
   const auto& sol = af.solution;
@@ -327,7 +327,7 @@ Average scaling_average(const std::vector<double>& value, const std::vector<doub
 }
 
 double sonine_rate_error(const species::Mixture& mix, const std::vector<double>& sonine_c) {
-  // docs/physics.md "Known limits": the Maxwellian rates omit (3/16)|a2| (ERRATA §3); largest over the
+  // docs/physics.md "Known limits": the Maxwellian rates omit (3/16)|a2| (\ref haff_sonine "docs/haff-and-mixtures.md"); largest over the
   // pairs and over the species' first-Sonine a2 = c_k/2 (validation/polydisperse).
   double a2 = 0.0;
   for (double alpha : mix.restitution.values) a2 = std::max(a2, std::abs(theory::sonine_a2(alpha)));
@@ -340,13 +340,13 @@ double shear_viscosity_known_error(const species::Mixture& mix) {
   double alpha_min = 1.0;
   for (double a : mix.restitution.values) alpha_min = std::min(alpha_min, a);
   if (mix.size() == 1) {
-    // ERRATA §13 and Chapman-Cowling: 1.6 % for alpha >= 0.75, linear to 2.8 % at alpha = 0.6.
+    // \ref eta_measured "docs/shear-viscosity.md" and Chapman-Cowling: 1.6 % for alpha >= 0.75, linear to 2.8 % at alpha = 0.6.
     const double first = alpha_min >= 0.75 ? 0.016
                          : alpha_min <= 0.6 ? 0.028
                                             : 0.016 + (0.75 - alpha_min) / 0.15 * (0.028 - 0.016);
     return first + kStageBias;
   }
-  if (mix.size() == 2 && alpha_min >= 0.85) return 0.01 + kStageBias;  // ERRATA §13, mass ratio 3
+  if (mix.size() == 2 && alpha_min >= 0.85) return 0.01 + kStageBias;  // \ref eta_mixture "docs/shear-viscosity.md", mass ratio 3
   return kNaN;
 }
 

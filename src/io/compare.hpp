@@ -8,21 +8,21 @@
  * `granular-theory` prints for the namelist; the DSMC values are read back from the H5MD file the run
  * wrote (mean +- standard error over replicas, sample.hpp). Per run, or per sweep point:
  * - free cooling (no &thermostat, &shear, &agg_frag): `total_temperature` T(t) and `temperature`
- *   T_k(t) (Maxwellian ODEs, ERRATA §3-§4: Haff's law for one species), `collisions_per_particle`
+ *   T_k(t) (Maxwellian ODEs, \ref haff_law "docs/haff-and-mixtures.md", \ref haff_mixture_odes "docs/haff-and-mixtures.md": Haff's law for one species), `collisions_per_particle`
  *   on the sample times (time-driven runs) or the sample `time` at the collision counts
  *   (collision-driven runs);
  * - the scaling state (samples past `&output scaling_start` collisions per particle, averaged), free
- *   cooling or Gaussian thermostat without shear (the HSS has the HCS ratios and c_k, ERRATA §13):
+ *   cooling or Gaussian thermostat without shear (the HSS has the HCS ratios and c_k, \ref eta_thermostat "docs/shear-viscosity.md"):
  *   `temperature_over_mean` T_k/T (mixtures) and `sonine_c` c_k (first Sonine, any number of species,
- *   sonine_mixture.hpp; seed 003 App. A, ERRATA §6), `cooling_rate_reduced` (one or two species, the
+ *   sonine_mixture.hpp; Montanero and Garzo 2002, App. A, \ref son_binary "docs/sonine.md"), `cooling_rate_reduced` (one or two species, the
  *   reduced_distribution attributes of the file);
- * - with &output track_displacements: `msd` <R_k^2>(t) (seed 001 eq 17, ERRATA §8) and, for mixtures,
+ * - with &output track_displacements: `msd` <R_k^2>(t) (Bodrova and Osinsky 2024, eq. (17), \ref dif_msd "docs/diffusion-msd.md") and, for mixtures,
  *   `diffusion_coefficient_ratio` D_k/D_1 as the ratio of the MSD increments over the last decade of
  *   time (as validation/diffusion_ratio; eq 17 for the theory over the same interval);
  * - &agg_frag: `number` N_k(t) (cluster populations, the sizes theory tracks), `mean_size`,
- *   `total_temperature` (Smoluchowski equations, smoluchowski.hpp, ERRATA §12);
+ *   `total_temperature` (Smoluchowski equations, smoluchowski.hpp, \ref af_smoluchowski "docs/agg-frag.md");
  * - &shear with the Gaussian thermostat: `shear_viscosity` eta/eta_0, its time average from
- *   average_from, against the HSS first-Sonine value (viscosity.hpp; seed 004, ERRATA §10, §13).
+ *   average_from, against the HSS first-Sonine value (viscosity.hpp; Montanero 2003, \ref eta_one_species "docs/shear-viscosity.md", \ref eta_thermostat "docs/shear-viscosity.md").
  * Anything else (e.g. tail exponents: the file holds no measured exponent) is listed in the notes,
  * and a run with no applicable theory gives a table that says so.
  *
@@ -30,9 +30,9 @@
  * An independent estimate of how far the approximation is from the exact kinetic theory, as an
  * absolute error of the theory value; NaN where none exists. With eps = (3/16) max(max_ij
  * |a2(alpha_ij)|, max_k |c_k|/2) (docs/physics.md "Known limits": the Maxwellian ODEs omit first-Sonine
- * rate corrections of that relative size; a2 of van Noije and Ernst, ERRATA §3; in a mixture the
+ * rate corrections of that relative size; a2 of van Noije and Ernst, \ref haff_sonine "docs/haff-and-mixtures.md"; in a mixture the
  * first-Sonine c_k of sonine_mixture.hpp, c = 2 a2, are larger than any a2(alpha), as in
- * validation/polydisperse) and 15 % for first Sonine's own error (ERRATA §6:
+ * validation/polydisperse) and 15 % for first Sonine's own error (\ref son_one_species "docs/sonine.md":
  * the first-Sonine cumulant is 9-14 % high):
  * - T(t), T_k(t): 1.15 eps |ln(T(0)/T(t))| relative (the rate error integrated over ln T, as the
  *   polydisperse validation); T_k(t) of mixtures adds 1.15 |tau_k^M/tau_k^FS - 1| (the Maxwellian
@@ -40,14 +40,14 @@
  * - collisions per particle and the sample times of collision-driven runs: 1.15 (|a2|/16 + eps/2
  *   |ln(T(0)/T(t))|) relative (collision frequency (1 - a2/16) along a temperature off by the above;
  *   validation/collision_rate);
- * - T_k/T, first Sonine: 0.2 % for two species (ERRATA §6: 0.1 % from exact DSMC at mu = 10), 0.4 %
+ * - T_k/T, first Sonine: 0.2 % for two species (\ref son_one_species "docs/sonine.md": 0.1 % from exact DSMC at mu = 10), 0.4 %
  *   for more (issue 17: independent work puts the s-species theory within 0.1-0.4 % for a ternary);
- * - c_k, first Sonine: 15 % (ERRATA §6); cooling_rate_reduced: 0.15 |zeta*_FS - zeta*_M|;
+ * - c_k, first Sonine: 15 % (\ref son_scaling "docs/sonine.md"); cooling_rate_reduced: 0.15 |zeta*_FS - zeta*_M|;
  * - shear viscosity, HSS first Sonine: one dilute species 1.6 % (alpha >= 0.75) to 2.8 % (alpha <= 0.6)
- *   (ERRATA §13 and Chapman-Cowling, validation/shear_viscosity), dilute binary 1 % for alpha >= 0.85
- *   (ERRATA §13); plus 0.33 % stage-splitting bias at the default stage_step;
- * - MSD, D_k/D_1 (eq 17: ERRATA §8 gives no general bound) and the Smoluchowski closure (exact only
- *   at t = 0, ERRATA §12): none stated (NaN).
+ *   (\ref eta_mixture "docs/shear-viscosity.md" and Chapman-Cowling, validation/shear_viscosity), dilute binary 1 % for alpha >= 0.85
+ *   (\ref eta_stages "docs/shear-viscosity.md"); plus 0.33 % stage-splitting bias at the default stage_step;
+ * - MSD, D_k/D_1 (eq 17: \ref dif_accuracy "docs/diffusion-msd.md" gives no general bound) and the Smoluchowski closure (exact only
+ *   at t = 0, \ref af_outcome "docs/agg-frag.md"): none stated (NaN).
  *
  * \section compare_marks Marks
  * d = DSMC - theory, z = d/SE. `stat`: |d| <= 3 SE (within statistics; also |d| <= 1e-12 |theory|,

@@ -568,7 +568,7 @@ void check_system(System& sys, const Provenance& prov) {
     throw Error(prov.file_of("density_exponent"), prov.line.at("density_exponent"), group,
                 "density_exponent",
                 "only used with density_law = 'power'");
-  // derive: the species laws (seed 001 sec. II: m_k = k m_1, sigma_k = k^(1/3) sigma_1, n_k = n_1 k^-theta)
+  // derive: the species laws (Bodrova and Osinsky 2024, sec. II, \ref sch_lowrank "docs/schemes.md": m_k = k m_1, sigma_k = k^(1/3) sigma_1, n_k = n_1 k^-theta)
   for (std::size_t k = 2; k <= s; ++k) {
     const double kk = static_cast<double>(k);
     if (sys.mass_law == "linear") sys.mass.push_back(kk * sys.mass[0]);
@@ -687,7 +687,7 @@ void check_output(Output& out, const Dsmc& d, const Provenance& prov) {
   }
 }
 
-/// &agg_frag (ERRATA §12): the run starts from monomers of one constant-restitution, dilute
+/// &agg_frag (\ref af_outcome "docs/agg-frag.md"): the run starts from monomers of one constant-restitution, dilute
 /// species, and the model runs in dsmc/agg_frag.hpp's own loop; every combination it cannot run is
 /// refused here, naming the variable that asks for it.
 void check_agg_frag(const Config& c, std::map<std::string, Provenance>& prov) {
@@ -724,7 +724,7 @@ void check_agg_frag(const Config& c, std::map<std::string, Provenance>& prov) {
     refuse("output", "track_displacements", "displacements are not tracked with &agg_frag");
 }
 
-/// &thermostat and &shear (ERRATA §13): what the staged loop of simulation.cpp can run, and a shear
+/// &thermostat and &shear (\ref eta_thermostat "docs/shear-viscosity.md"): what the staged loop of simulation.cpp can run, and a shear
 /// rate that keeps the finite-shear correction small. Refusals name the variable that asks for the
 /// combination.
 void check_staged(const Config& c, std::map<std::string, Provenance>& prov) {
@@ -755,7 +755,7 @@ void check_staged(const Config& c, std::map<std::string, Provenance>& prov) {
   if (c.output.track_displacements)
     refuse("output", "track_displacements", "displacements are not tracked with " + what);
   if (c.shear.rate) {
-    // a* = a / nu_0(T_0) with nu_0 = n T / eta_0, eta_0 = (5/(16 sigma^2)) sqrt(m T/pi) (ERRATA §13),
+    // a* = a / nu_0(T_0) with nu_0 = n T / eta_0, eta_0 = (5/(16 sigma^2)) sqrt(m T/pi) (\ref eta_thermostat "docs/shear-viscosity.md"),
     // species 1's size and mass for a mixture. Above a* = 1 at T_0 the start is far from the
     // Navier-Stokes regime the viscosity protocol measures.
     const double m = c.system.mass[0], sigma = c.system.diameter[0], t0 = c.initial.temperature[0];

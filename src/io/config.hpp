@@ -13,7 +13,7 @@
  * place a variable is declared: it drives the reader, the checks, `--print-defaults`, the input
  * reference in docs/ and the resolved input written to `/parameters` of every output file.
  *
- * Groups (INTERFACE.md): `&system` (required), `&initial`, `&dsmc` (required), `&output`,
+ * Groups (\ref input "input reference"): `&system` (required), `&initial`, `&dsmc` (required), `&output`,
  * `&agg_frag` (aggregation and fragmentation, dsmc/agg_frag.hpp), and
  * `&sweep` (variables, whole or array elements, over lists of values: jointly point by point or as a
  * grid; each point its own run and output group).
@@ -35,7 +35,7 @@
 
 namespace gdsmc::io::config {
 
-/// &system: the mixture (seed 000 "polydisperse system", seed 003 sec. 2).
+/// &system: the mixture (the "polydisperse system" of the DSMC notes, \ref haff_mixture_odes "docs/haff-and-mixtures.md"; Montanero and Garzo 2002, sec. 2, \ref son_binary "docs/sonine.md").
 struct System {
   long long n_species = 1;
   std::vector<double> mass;            ///< m_k (required)
@@ -84,14 +84,14 @@ struct Output {
   double reduced_range = 5.0;     ///< Phi_i(v*) covers 0 <= v* < reduced_range
   double scaling_start = 10.0;    ///< collisions per particle after which the HCS is sampled
   std::optional<double> checkpoint_every;      ///< wall-clock seconds between checkpoints (unset: none)
-  bool track_displacements = false;            ///< msd observable (seed 001 eq 15)
+  bool track_displacements = false;            ///< msd observable (Bodrova and Osinsky 2024, eq. (15), \ref dif_displacements "docs/diffusion-msd.md")
   std::optional<double> msd_start_time;        ///< displacements count from this time, or
   std::optional<double> msd_start_temperature; ///< from the first sample with T at or below this
   std::vector<double> sample_times;  ///< explicit sample points after 0 (time, or collisions per
                                      ///< particle in collision-driven runs); overrides n_samples/spacing
 };
 
-/// &agg_frag: clusters that stick and shatter (seed 000 eqs 8-14, ERRATA §12; dsmc/agg_frag.hpp).
+/// &agg_frag: clusters that stick and shatter (DSMC notes, eqs. (8)-(14), \ref af_outcome "docs/agg-frag.md"; dsmc/agg_frag.hpp).
 /// The group's presence switches the model on (Config::has_agg_frag).
 struct AggFrag {
   std::optional<double> aggregation_energy;    ///< E_agg: a pair with m_kj g^2/2 below it sticks
@@ -129,12 +129,12 @@ struct Sweep {
 };
 
 /// &thermostat: a Gaussian thermostat holds the temperature of the homogeneous steady state (HSS)
-/// against the inelastic loss (seed 004, ERRATA §13; dsmc/thermostat.hpp).
+/// against the inelastic loss (Montanero 2003, \ref eta_measured "docs/shear-viscosity.md"; dsmc/thermostat.hpp).
 struct Thermostat {
   std::string kind = "none";  ///< 'none' or 'gaussian'
 };
 
-/// &shear: uniform shear flow u_x = a y in the Lagrangian frame (seed 004, ERRATA §13).
+/// &shear: uniform shear flow u_x = a y in the Lagrangian frame (Montanero 2003, \ref eta_enskog_shear "docs/shear-viscosity.md").
 struct Shear {
   std::optional<double> rate;          ///< a (unset: no shear)
   std::optional<double> average_from;  ///< the viscosity's time average starts here (default t_end/2)
@@ -163,7 +163,7 @@ struct Config {
 
   /// The mixture of &system with its pair data.
   species::Mixture mixture() const;
-  /// beta_ki of the viscoelastic restitution (ERRATA §11), empty when the model is constant.
+  /// beta_ki of the viscoelastic restitution (\ref visco_one_material "docs/viscoelastic.md"), empty when the model is constant.
   std::optional<species::PairMatrix> viscoelastic_beta() const;
   /// Sample times, including t = 0, when the run is time-driven (empty otherwise).
   std::vector<double> sample_times() const;
@@ -188,7 +188,7 @@ Config read_from_output(const std::string& h5_path);
 
 /// A commented namelist with every variable, its default, units and help (`--print-defaults`).
 std::string defaults_template();
-/// The input reference as Markdown tables (docs/input.md is generated from it).
+/// The input reference as Markdown tables (the page \ref input "input reference" is generated from it).
 std::string reference_markdown();
 
 }  // namespace gdsmc::io::config

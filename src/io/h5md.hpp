@@ -4,7 +4,7 @@
  *        the resolved input and the time series of the observables, plus readers for tests and
  *        validation.
  *
- * Layout (the contract with external scripts, /work/shared/INTERFACE.md "Output file: H5MD 1.1"):
+ * Layout (the contract with external scripts, \ref output_h5md "docs/output.md"):
  * \verbatim
  * /
  * +-- h5md                              +-- version: int32 [2] = {1, 1}

@@ -6,15 +6,15 @@
  *
  * No formula lives here: each entry calls the module that derives it, which names its sources.
  * - collision_frequency, cooling_rate, temperature, total_temperature, collisions_per_particle:
- *   the Maxwellian rates and partial-temperature ODEs (theory.hpp; ERRATA §2-§4; viscoelastic
- *   restitution: diffusion.hpp, ERRATA §11). Collision-driven runs: the ODE times at which the
+ *   the Maxwellian rates and partial-temperature ODEs (theory.hpp; \ref cm_pair_rate "docs/collision-model.md", \ref haff_law "docs/haff-and-mixtures.md", \ref haff_mixture_odes "docs/haff-and-mixtures.md"; viscoelastic
+ *   restitution: diffusion.hpp, \ref visco_series "docs/viscoelastic.md"). Collision-driven runs: the ODE times at which the
  *   collisions per particle reach the run's sample points.
- * - diffusion_coefficient_ratio, msd: seed 001 eqs 17, 19 (diffusion.hpp, ERRATA §8).
- * - sonine_a2, cooling_rate_sonine (one species; ERRATA §3), asymptotic_temperature_ratio
- *   (ERRATA §4), hcs.first_sonine / hcs.maxwellian (sonine_mixture.hpp, any number of species),
- *   the binary first-Sonine HCS with tails (sonine.hpp; seed 003, ERRATA §6).
- * - shear_viscosity_ratio (viscosity.hpp; seed 004, ERRATA §10, §13).
- * - &agg_frag runs: the Smoluchowski equations with Maxwellian kernels (smoluchowski.hpp, ERRATA §12).
+ * - diffusion_coefficient_ratio, msd: Bodrova and Osinsky 2024, eqs. (17), (19) (diffusion.hpp, \ref dif_msd "docs/diffusion-msd.md").
+ * - sonine_a2, cooling_rate_sonine (one species; \ref haff_sonine "docs/haff-and-mixtures.md"), asymptotic_temperature_ratio
+ *   (\ref haff_mixture_odes "docs/haff-and-mixtures.md"), hcs.first_sonine / hcs.maxwellian (sonine_mixture.hpp, any number of species),
+ *   the binary first-Sonine HCS with tails (sonine.hpp; Montanero and Garzo 2002, \ref son_tails "docs/sonine.md").
+ * - shear_viscosity_ratio (viscosity.hpp; Montanero 2003, \ref eta_one_species "docs/shear-viscosity.md", \ref eta_thermostat "docs/shear-viscosity.md").
+ * - &agg_frag runs: the Smoluchowski equations with Maxwellian kernels (smoluchowski.hpp, \ref af_smoluchowski "docs/agg-frag.md").
  * `approximations` names the approximation behind every key, in the order granular-theory prints
  * them; an entry that cannot be evaluated is left out with a note saying why (never an exception).
  * Documentation: docs/physics.md ("Theory", "Comparison with theory").

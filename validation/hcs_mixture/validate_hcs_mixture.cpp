@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
                     100.0 * (maxwellian[k] - r) / r);
       report.note(text);
     }
-    // ERRATA §6 (independent DSMC): the first-Sonine cumulants are 9-14 % high; allowance 15 % (the
+    // \ref son_one_species "docs/sonine.md" (independent DSMC): the first-Sonine cumulants are 9-14 % high; allowance 15 % (the
     // known error --compare states, io/compare.hpp).
     std::snprintf(text, sizeof text, "c_%zu vs first Sonine (allowance 15 %%, ERRATA §6)", k + 1);
     report.check(text, sonine->value[k], sonine->error[k], sonine->theory[k], 4.0, sonine->known_error[k]);

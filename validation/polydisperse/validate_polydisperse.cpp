@@ -1,4 +1,4 @@
-// Polydisperse partial temperatures against the ERRATA §4 ODEs (seed 000 Fig 6). See README.md.
+// Polydisperse partial temperatures against the \ref haff_mixture_odes "docs/haff-and-mixtures.md" ODEs (DSMC notes, Fig. 6). See README.md.
 #include <algorithm>
 #include <cmath>
 
@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
     }
   }
 
-  // Pair events: integrate the ERRATA §2 rates along the ODE solution on a fine grid.
+  // Pair events: integrate the \ref cm_pair_rate "docs/collision-model.md" rates along the ODE solution on a fine grid.
   {
     const double t_end = temperature.time.back();
     const std::size_t grid = 4001;

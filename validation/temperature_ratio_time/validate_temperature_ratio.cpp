@@ -1,4 +1,4 @@
-// gamma(t) = T1/T2 against the first-Sonine HCS value (seed 003 Fig 1). See README.md.
+// gamma(t) = T1/T2 against the first-Sonine HCS value (Montanero and Garzo 2002, Fig. 1, \ref son_binary_gamma "docs/sonine.md"). See README.md.
 #include <cmath>
 
 #include "theory/theory.hpp"
