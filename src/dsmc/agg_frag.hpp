@@ -73,8 +73,8 @@ namespace gdsmc::agg_frag {
 
 /// The monomer and the thresholds, in the user's units.
 struct Model {
-  double monomer_mass = 1.0;
-  double monomer_diameter = 1.0;
+  double monomer_mass = 1.0;      ///< m_1
+  double monomer_diameter = 1.0;  ///< sigma_1 (a cluster of k monomers: sigma_k = k^(1/3) sigma_1)
   double monomer_density = 0.1;  ///< n_1(0): the initial monomer density
   double restitution = 1.0;      ///< alpha of a bounce
   double aggregation_energy = 0.0;                                       ///< E_agg (0: none)
@@ -82,7 +82,12 @@ struct Model {
   double fragment_restitution = 1.0;                                     ///< eps_f
 };
 
-enum class Outcome : int { aggregation = 0, fragmentation = 1, bounce = 2 };
+/// What a collision of two clusters does (\ref af_outcome "docs/agg-frag.md").
+enum class Outcome : int {
+  aggregation = 0,    ///< the pair sticks into one cluster
+  fragmentation = 1,  ///< the pair shatters into monomers
+  bounce = 2          ///< the collision rule with the monomer restitution
+};
 
 /// First test of \ref af_outcome "docs/agg-frag.md": the pair sticks (impact energy m_kj g^2/2 below E_agg).
 inline bool sticks(const Model& m, double impact_energy) { return impact_energy < m.aggregation_energy; }
@@ -95,20 +100,22 @@ inline bool shatters(const Model& m, std::uint32_t k, std::uint32_t j, double no
 /// Counts of one replica (the observables collisions, aggregations, fragmentations).
 struct Counters {
   std::uint64_t events = 0;  ///< accepted collisions, whatever their outcome
-  std::uint64_t aggregations = 0;
-  std::uint64_t fragmentations = 0;
-  std::uint64_t candidates = 0;
-  std::uint64_t steps = 0;
-  double step_sum = 0.0;
+  std::uint64_t aggregations = 0;    ///< events that stuck
+  std::uint64_t fragmentations = 0;  ///< events that shattered
+  std::uint64_t candidates = 0;      ///< candidate pairs drawn (accepted or not)
+  std::uint64_t steps = 0;           ///< bound-refresh steps started
+  double step_sum = 0.0;             ///< sum of the step lengths (mean_step() = step_sum / steps)
   double dissipated = 0.0;   ///< kinetic energy lost so far, added event by event (\ref af_observables "docs/agg-frag.md")
 };
 
 /// What one collision did (for the unit tests and the event bookkeeping).
 struct Event {
-  Outcome outcome = Outcome::bounce;
+  Outcome outcome = Outcome::bounce;  ///< what the collision did
   double impact_energy = 0.0;  ///< m_kj g^2/2
   double normal_energy = 0.0;  ///< m_kj (g.e)^2/2 (0 for an aggregation: e is not drawn)
-  double ex = 0.0, ey = 0.0, ez = 0.0;
+  double ex = 0.0;  ///< unit vector e, x component (0 for an aggregation)
+  double ey = 0.0;  ///< unit vector e, y component
+  double ez = 0.0;  ///< unit vector e, z component
 };
 
 /// Per-size measurement of one replica at one instant (index k - 1 for size k, up to the largest
@@ -138,24 +145,34 @@ class Gas {
 
   /// A cluster: its size and its place in the list of that size.
   struct Cluster {
-    std::uint32_t size;
-    std::uint32_t place;
+    std::uint32_t size;   ///< number of monomers k (>= 1)
+    std::uint32_t place;  ///< index in the list of size-k clusters
   };
   /// Collides two different clusters as an accepted candidate: classification, outcome and
   /// bookkeeping. Places of other clusters may change (swap with last). Public for the unit tests.
   Event collide(Cluster a, Cluster b);
 
+  /// Simulation time reached.
   double time() const { return time_; }
+  /// Event and candidate counts so far.
   const Counters& counters() const { return counters_; }
+  /// Mean length in time of the bound-refresh steps (step_fraction majorant mean free times each).
   double mean_step() const { return counters_.steps ? counters_.step_sum / static_cast<double>(counters_.steps) : 0.0; }
+  /// Number of clusters N now.
   std::size_t clusters() const { return clusters_; }
+  /// N_0, the monomers at the start (the total mass in monomer units, conserved).
   std::size_t initial_monomers() const { return initial_monomers_; }
+  /// Largest cluster size that has existed so far.
   std::size_t largest_size_reached() const { return largest_reached_; }
+  /// N_k: number of clusters of `size` monomers (0 beyond the tables).
   std::size_t count(std::size_t size) const { return size < lists_.size() ? lists_[size].size() : 0; }
+  /// Velocity of cluster `c`.
   const particles::Vec3& velocity(Cluster c) const { return lists_[c.size][c.place]; }
+  /// m_k = k m_1.
   double mass(std::size_t size) const { return model_.monomer_mass * static_cast<double>(size); }
   /// Total momentum and kinetic energy (lab frame), for the invariant checks.
   particles::Vec3 momentum() const;
+  /// Total kinetic energy, sum of m_k |v|^2/2 over the clusters (lab frame).
   double kinetic_energy() const;
   /// Candidate rate R = sum_ik A_ik now.
   double candidate_rate() const { return sampler_.total(); }
@@ -165,6 +182,7 @@ class Gas {
   /// Whether w_k >= every speed of size k (the majorant holds): for the tests.
   bool bounds_hold() const;
 
+  /// N_k, E_k, N and the kinetic energy relative to the mean flow, now.
   Measurement measure() const;
 
   /// Everything that evolves, for checkpoints; the trees are rebuilt from counts and bounds
@@ -173,12 +191,18 @@ class Gas {
     std::vector<double> velocity;     ///< 3 N, size by size, each list in order
     std::vector<std::uint64_t> count; ///< N_k, k = 1..capacity
     std::vector<double> max_speed;    ///< w_k, k = 1..capacity
-    double time = 0.0, credit = 0.0, next_step_time = 0.0;
-    std::uint64_t capacity = 0, largest_reached = 0;
-    Counters counters;
-    rng::Xoshiro256pp::State generator{};
+    double time = 0.0;                ///< simulation time
+    double credit = 0.0;              ///< time already waited towards the next candidate
+    double next_step_time = 0.0;      ///< end of the current bound-refresh step
+    std::uint64_t capacity = 0;       ///< size of the per-size tables K
+    std::uint64_t largest_reached = 0;  ///< largest size so far
+    Counters counters;                ///< event counts
+    rng::Xoshiro256pp::State generator{};  ///< the collision stream
   };
+  /// The evolving state, for a checkpoint.
   State state() const;
+  /// Restores a state() of a Gas of the same input (same N_0); throws std::runtime_error when the
+  /// tables do not add up to N_0.
   void restore(const State& state);
 
  private:

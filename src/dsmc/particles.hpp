@@ -36,7 +36,12 @@
 
 namespace gdsmc::particles {
 
-enum class InitialDistribution { maxwell, shell, cube };
+/// Initial velocity distribution (`&initial distribution`).
+enum class InitialDistribution {
+  maxwell,  ///< Gaussian at the initial temperature
+  shell,    ///< every speed equal, directions uniform
+  cube      ///< components uniform in a cube
+};
 
 /// Allocator for the per-particle arrays: blocks of 2 MiB and more are 2 MiB-aligned and, on Linux,
 /// marked for transparent huge pages (madvise). The collision loop reads particles at random; with
@@ -44,33 +49,45 @@ enum class InitialDistribution { maxwell, shell, cube };
 /// also miss the TLB. Falls back to ordinary pages where huge pages are unavailable.
 void* allocate_bytes(std::size_t bytes);  ///< throws std::bad_alloc; free with std::free
 
+/// std::allocator replacement that takes its blocks from allocate_bytes (huge pages where possible).
 template <class T>
 struct LargePageAllocator {
-  using value_type = T;
+  using value_type = T;  ///< the element type
   LargePageAllocator() = default;
+  /// Rebinding copy (stateless).
   template <class U>
   LargePageAllocator(const LargePageAllocator<U>&) {}
+  /// Storage for `n` elements; throws std::bad_alloc.
   T* allocate(std::size_t n) { return static_cast<T*>(allocate_bytes(n * sizeof(T))); }
+  /// Frees storage of allocate().
   void deallocate(T* p, std::size_t) { std::free(p); }
+  /// Stateless: all instances are equal.
   template <class U>
   bool operator==(const LargePageAllocator<U>&) const { return true; }
 };
 
+/// A per-particle array on LargePageAllocator.
 template <class T>
 using ParticleArray = std::vector<T, LargePageAllocator<T>>;
 
 /// A velocity (or any 3-vector) in the user's units.
 struct Vec3 {
-  double x, y, z;
-  bool operator==(const Vec3&) const = default;
+  double x;  ///< x component
+  double y;  ///< y component
+  double z;  ///< z component
+  bool operator==(const Vec3&) const = default;  ///< componentwise, exact
 };
 
 /// A tracked displacement R, accumulated up to the time t_last (see System::r).
 struct Displacement {
-  double x, y, z, t_last;
-  bool operator==(const Displacement&) const = default;
+  double x;       ///< R_x up to t_last
+  double y;       ///< R_y up to t_last
+  double z;       ///< R_z up to t_last
+  double t_last;  ///< time of the last collision (or of the start of tracking)
+  bool operator==(const Displacement&) const = default;  ///< componentwise, exact
 };
 
+/// The particles of one replica, sorted by species: particle i of species k is at first[k] + i.
 struct System {
   ParticleArray<Vec3> v;               ///< velocities
   ParticleArray<std::uint32_t> species;  ///< species index of each particle
@@ -82,8 +99,11 @@ struct System {
   /// start of tracking); its displacement at t >= t_last is R + v (t - t_last).
   ParticleArray<Displacement> r;
 
+  /// N, the number of particles.
   std::size_t size() const { return v.size(); }
+  /// S, the number of species.
   std::size_t n_species() const { return count.size(); }
+  /// Displacements are tracked (r is not empty).
   bool tracks_displacements() const { return !r.empty(); }
 };
 

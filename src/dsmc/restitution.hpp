@@ -40,7 +40,7 @@ inline constexpr std::array<double, series_terms + 1> h = {
     -0.1784660, 0.0659336,   0.1713586,  0.0252498,  -0.1379235};  // h_1 .. h_20
 // clang-format on
 
-/// The series in u (\ref visco_cutoff "docs/viscoelastic.md"), for 0 <= u <= u_max (not checked here: the hot path).
+/// The series in u (\ref visco_series "docs/viscoelastic.md"), for 0 <= u <= u_max (not checked here: the hot path).
 inline double series(double u) {
   double sum = 0.0;
   for (int j = series_terms; j >= 1; --j) sum = (sum + h[j]) * u;  // Horner

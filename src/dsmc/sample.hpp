@@ -39,6 +39,7 @@ struct Moments {
   double mean_flow[3] = {0.0, 0.0, 0.0};  ///< u = sum m v / sum m
 };
 
+/// The Moments of the particles `sys` of mixture `mix` now (velocities relative to the mean flow).
 Moments measure(const species::Mixture& mix, const particles::System& sys);
 
 /// Velocity-component histograms of (v - u)/sqrt(T_k/m_k), S x bins, each a probability density
@@ -76,10 +77,10 @@ double maxwellian_shell_average(double lambda, double a, double b);
 
 /// One observable's samples from all replicas: values[replica][sample * columns + column].
 struct Accumulator {
-  std::size_t columns = 1;
-  std::vector<std::vector<double>> values;
+  std::size_t columns = 1;                 ///< values per sample (species, bins, ...)
+  std::vector<std::vector<double>> values; ///< values[replica][sample * columns + column]
   void add(std::size_t replica, const std::vector<double>& row);  ///< appends one sample row
-  std::vector<double> mean() const;
+  std::vector<double> mean() const;  ///< mean over the replicas of every entry
   std::vector<double> standard_error() const;  ///< empty when fewer than 2 replicas
 };
 

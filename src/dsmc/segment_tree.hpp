@@ -90,8 +90,11 @@ class SumTree {
     for (n >>= 1; n >= 1; n >>= 1) tree_[n] = tree_[2 * n] + tree_[2 * n + 1];
   }
 
+  /// The weight of leaf `index`.
   double weight(std::size_t index) const { return tree_[leaves_ + index]; }
+  /// Sum of all weights (the root).
   double total() const { return tree_[1]; }
+  /// Number of leaves M.
   std::size_t size() const { return size_; }
 
   /// The index i with prefix(i) <= u < prefix(i + 1), prefix(i) the sum of weights 0..i-1, for u in
@@ -145,7 +148,7 @@ class LowRankSampler {
   static_assert(Rank >= 1, "LowRankSampler needs at least one term");
 
  public:
-  using Vector = std::array<double, Rank>;
+  using Vector = std::array<double, Rank>;  ///< one row u_i or column v_k: its Rank terms
 
   /// M species, all rows and columns zero.
   explicit LowRankSampler(std::size_t size = 0) : size_(size) {
@@ -180,11 +183,13 @@ class LowRankSampler {
     for (std::size_t r = 0; r < Rank; ++r) v_[r].set(k, v_k[r]);
   }
 
+  /// u_i^(r), r = 1..Rank.
   Vector row(std::size_t i) const {
     Vector out{};
     for (std::size_t r = 0; r < Rank; ++r) out[r] = u_[r].weight(i);
     return out;
   }
+  /// v_k^(r), r = 1..Rank.
   Vector column(std::size_t k) const {
     Vector out{};
     for (std::size_t r = 0; r < Rank; ++r) out[r] = v_[r].weight(k);
@@ -204,6 +209,7 @@ class LowRankSampler {
     for (std::size_t r = 0; r < Rank; ++r) sum += term_total(r);
     return sum;
   }
+  /// Number of species M.
   std::size_t size() const { return size_; }
 
   /// Draws (i, k) with probability C_ik / R from two uniforms gen.uniform() in [0, 1): the first
@@ -312,6 +318,8 @@ struct HardSphereFactors {
   std::array<double, 3> row;     ///< u_i
   std::array<double, 3> column;  ///< v_i
 };
+/// The HardSphereFactors of a species with `count` particles, `diameter`, bound `max_speed` = w_i,
+/// in the simulated volume `volume`.
 inline HardSphereFactors hard_sphere_factors(double count, double diameter, double max_speed,
                                              double volume) {
   const double a = std::numbers::pi * max_speed * count / (4.0 * volume);

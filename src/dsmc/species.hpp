@@ -24,18 +24,21 @@ namespace gdsmc::species {
 /// S x S matrix of pair quantities: stored row-major (dense), or computed entry by entry from
 /// per-species data (`rule`), so that mixtures of thousands of species need no S^2 storage.
 struct PairMatrix {
-  std::size_t size = 0;
+  std::size_t size = 0;        ///< S
   std::vector<double> values;  ///< dense storage, row-major; empty when `rule` computes the entries
-  std::function<double(std::size_t, std::size_t)> rule;
+  std::function<double(std::size_t, std::size_t)> rule;  ///< entry (k, j) on access; empty when dense
 
   PairMatrix() = default;
+  /// A dense n x n matrix with every entry `fill`.
   explicit PairMatrix(std::size_t n, double fill = 0.0) : size(n), values(n * n, fill) {}
   /// A matrix whose entry (k, j) is rule(k, j), evaluated on access.
   static PairMatrix computed(std::size_t n, std::function<double(std::size_t, std::size_t)> rule);
   /// Every entry equal to `value`, stored as one number.
   static PairMatrix uniform(std::size_t n, double value);
 
+  /// The entries are stored (no rule).
   bool is_dense() const { return !rule; }
+  /// Entry (k, j).
   double operator()(std::size_t k, std::size_t j) const {
     return rule ? rule(k, j) : values[k * size + j];
   }
@@ -44,6 +47,7 @@ struct PairMatrix {
     if (rule) densify();
     return values[k * size + j];
   }
+  /// Stores every entry of a computed matrix and drops the rule (S^2 doubles).
   void densify();
   double max() const;  ///< largest entry (O(S^2) for a computed matrix)
   double min() const;  ///< smallest entry
@@ -61,8 +65,9 @@ struct Mixture {
   PairMatrix contact_distance;         ///< sigma_kj = (sigma_k + sigma_j)/2
   PairMatrix reduced_mass;             ///< m_kj = m_k m_j/(m_k + m_j)
   PairMatrix pair_correlation;         ///< chi_kj (1 when not Enskog)
-  bool enskog = false;
+  bool enskog = false;                 ///< chi_kj from Carnahan-Starling (else 1)
 
+  /// S, the number of species.
   std::size_t size() const { return mass.size(); }
   double total_density() const;                                  ///< n = sum_k n_k
   double mole_fraction(std::size_t k) const;                     ///< x_k = n_k / n

@@ -81,9 +81,10 @@ namespace gdsmc::thermostat {
 
 /// Kinetic energy relative to the mean flow, and the mean flow u = sum m V / sum m.
 struct Energy {
-  double kinetic = 0.0;
-  particles::Vec3 mean_flow{0.0, 0.0, 0.0};
+  double kinetic = 0.0;                       ///< sum m |V - u|^2 / 2
+  particles::Vec3 mean_flow{0.0, 0.0, 0.0};   ///< u
 };
+/// The Energy of the particles, in one pass.
 Energy peculiar_energy(const species::Mixture& mix, const particles::System& sys);
 
 /// V -> V - u for every particle: zero total momentum.
@@ -104,9 +105,9 @@ struct StageStart {
 /// The map from the stored velocities u to the actual ones (header, "Cost: the frame"):
 /// V = S (u_x + c u_y, u_y, u_z) + b, S = `scale`, c = `shear`, b = `offset`.
 struct Frame {
-  double scale = 1.0;
-  double shear = 0.0;
-  particles::Vec3 offset{0.0, 0.0, 0.0};
+  double scale = 1.0;                      ///< S
+  double shear = 0.0;                      ///< c
+  particles::Vec3 offset{0.0, 0.0, 0.0};   ///< b
 };
 
 /// The frame is brought back to the identity when |c| exceeds this: ||G||/S <= 1.0202 (collide.hpp,
@@ -142,10 +143,11 @@ StageStart begin_stage(const species::Mixture& mix, particles::System& sys, doub
 /// `mean_flow` is that of the stage's start. The rescaling itself is left to the next begin_stage;
 /// `zeta_dt` = L/E_before.
 struct Rescaling {
-  double scale = 1.0;
-  particles::Vec3 mean_flow{0.0, 0.0, 0.0};
-  double zeta_dt = 0.0;
+  double scale = 1.0;                      ///< s
+  particles::Vec3 mean_flow{0.0, 0.0, 0.0};   ///< the mean flow u to rescale about
+  double zeta_dt = 0.0;                    ///< L / E_before
 };
+/// The Rescaling for a stage that began with kinetic energy `energy_before` and lost `loss`.
 Rescaling gaussian_rescaling(double energy_before, double loss, const particles::Vec3& mean_flow);
 
 /// The Gaussian thermostat in one call (two passes), for tests and callers without a loss sum: after

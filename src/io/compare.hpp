@@ -93,31 +93,38 @@ struct Quantity {
   std::string known_error_source;  ///< where the known error comes from, or "none stated"
   std::vector<double> time;        ///< sample times of a trajectory; empty: one value per column
   std::size_t columns = 1;         ///< species or cluster sizes
-  std::vector<double> value, error, theory, known_error;  ///< row-major [sample][column] or [column]
+  // row-major [sample][column] or [column]:
+  std::vector<double> value;        ///< DSMC mean over replicas
+  std::vector<double> error;        ///< its standard error (NaN without replicas)
+  std::vector<double> theory;       ///< the theory value
+  std::vector<double> known_error;  ///< the approximation's known error (NaN: none stated)
   std::string at{};                ///< for one value per column: over what it is taken, e.g. "scaling state"
   std::size_t label_offset = 0;    ///< column c is labelled c + 1 + label_offset
+  /// Rows of value: the sample times of a trajectory, else 1.
   std::size_t samples() const { return time.empty() ? 1 : time.size(); }
 };
 
 /// The comparison of one run, or of one sweep point.
 struct Point {
   std::string label;  ///< "" or the sweep assignment, e.g. "system:restitution = 0.6"
-  std::vector<Quantity> quantities;
+  std::vector<Quantity> quantities;  ///< the compared quantities
   std::vector<std::string> notes;  ///< what is not compared, and why
 };
 
+/// The comparison of a run: one Point, or one per sweep point.
 struct Comparison {
-  std::vector<Point> points;
-  bool sweep = false;
-  std::string sweep_variable;
+  std::vector<Point> points;  ///< the run, or every sweep point in order
+  bool sweep = false;         ///< the run is a sweep
+  std::string sweep_variable; ///< the swept variables, as Sweep::names()
   std::vector<std::string> sweep_values{};  ///< as written in &sweep values
 };
 
 /// What a run measured, as read from its file: observables by name (relative to the point's
 /// observables group) and the scalar attributes the comparison uses ("group@name").
 struct Measured {
-  std::map<std::string, h5md::ObservableData> observables;
-  std::map<std::string, double> attributes;
+  std::map<std::string, h5md::ObservableData> observables;  ///< by name
+  std::map<std::string, double> attributes;                 ///< "group@name" -> value
+  /// The observable `name` was read.
   bool has(const std::string& name) const { return observables.count(name) > 0; }
 };
 
@@ -130,15 +137,18 @@ enum class Mark { statistics, approximation, beyond, beyond_no_estimate };
 /// `scale` (the theory value): a difference below kRoundOff |scale| is round-off (e.g. T(0)), never a
 /// deviation. NaN standard error or known error: none available.
 Mark classify(double difference, double standard_error, double known_error, double scale = 0.0);
+/// The Mark's short name in tables: "stat", "approx", "off" or "?".
 const char* mark_name(Mark mark);
 
 /// Mean and standard error of samples past `start` collisions per particle (the scaling state);
 /// error = mean of the samples' errors (as if fully correlated: an upper bound of the SE over
 /// replicas of the time averages). `count` = 0 when no sample qualifies.
 struct Average {
-  double value = 0.0, error = 0.0;
-  std::size_t count = 0;
+  double value = 0.0;    ///< mean of the samples
+  double error = 0.0;    ///< mean of their standard errors
+  std::size_t count = 0; ///< samples averaged
 };
+/// The Average of the samples `value` (errors `error`) at `collisions_per_particle` >= `start`.
 Average scaling_average(const std::vector<double>& value, const std::vector<double>& error,
                         const std::vector<double>& collisions_per_particle, double start);
 
@@ -153,8 +163,8 @@ Point compare_point(const config::Config& point, const theory::Predictions& theo
 
 /// The theory of one point, or why it could not be computed.
 struct PointTheory {
-  std::optional<theory::Predictions> predictions;
-  std::string error;
+  std::optional<theory::Predictions> predictions;  ///< the theory, when it could be computed
+  std::string error;                               ///< else the reason
 };
 /// theory::predict for every point of `config` (sweep or not). It depends on the input only, so
 /// granular-dsmc computes it in a thread of its own while the run goes on.
@@ -166,15 +176,23 @@ Comparison compare_file(const config::Config& config, const std::string& file, s
 
 /// One table row: a quantity's column at one sample (the last of a trajectory).
 struct Row {
-  std::string point, name, quantity, at;  ///< sweep point, Quantity::name, column label, Quantity::at
-  double time = 0.0;
-  bool trajectory = false;
-  double value = 0.0, error = 0.0, theory = 0.0, known_error = 0.0;
-  std::string approximation;
-  double z = 0.0, percent = 0.0;  ///< (DSMC - theory)/SE (NaN without SE), 100 (DSMC - theory)/theory
-  Mark mark = Mark::statistics;
+  std::string point;     ///< sweep point label ("" without a sweep)
+  std::string name;      ///< Quantity::name
+  std::string quantity;  ///< column label, e.g. "T_2/T"
+  std::string at;        ///< Quantity::at
+  double time = 0.0;     ///< sample time (the last of a trajectory)
+  bool trajectory = false;   ///< the quantity is a trajectory (counts holds its samples per Mark)
+  double value = 0.0;        ///< DSMC mean
+  double error = 0.0;        ///< its standard error
+  double theory = 0.0;       ///< the theory value
+  double known_error = 0.0;  ///< the approximation's known error
+  std::string approximation; ///< Quantity::approximation
+  double z = 0.0;        ///< (DSMC - theory)/SE (NaN without SE)
+  double percent = 0.0;  ///< 100 (DSMC - theory)/theory (NaN for theory 0)
+  Mark mark = Mark::statistics;  ///< the classification of this row
   std::size_t counts[4] = {0, 0, 0, 0};  ///< samples of a trajectory per Mark
 };
+/// The table rows of a comparison: every column of every quantity, at its last sample.
 std::vector<Row> rows(const Comparison& comparison);
 
 /// The table for stdout (\ref compare_marks), notes included.

@@ -22,8 +22,8 @@
  * 1.1e-4 at u = 0.8, 2.2e-3 at u = 0.9 and 2.7e-2 at u = 1 (it diverges beyond u about 1.05).
  * Cut-off: viscoelastic_u_max = 0.8; above it viscoelastic_restitution throws std::domain_error
  * instead of returning an untrusted (possibly negative) alpha.
- * beta_ki = A kappa_ki^(2/5) carries units of (velocity)^(-1/5). One material (\ref visco_one_material "docs/viscoelastic.md"; seed
- * 001 eqs 7-8): beta_ki/beta_11 = [sqrt(sigma_eff,ki/sigma_eff,11) m_11/m_ki]^(2/5) with
+ * beta_ki = A kappa_ki^(2/5) carries units of (velocity)^(-1/5). One material (\ref visco_one_material "docs/viscoelastic.md";
+ * Bodrova and Osinsky 2024, eqs. (7)-(8)): beta_ki/beta_11 = [sqrt(sigma_eff,ki/sigma_eff,11) m_11/m_ki]^(2/5) with
  * sigma_eff,ki = sigma_i sigma_k/(sigma_i + sigma_k) (not the contact distance) and m_ki the
  * reduced mass. Convention: the seed's "A kappa^(2/5) = 0.09" is beta_11 = 0.09 for the pair of
  * species 1 (index 0); callers record that convention in their output.
@@ -112,11 +112,11 @@ namespace gdsmc::theory {
 
 // The series itself lives in dsmc/restitution.hpp (the collision rule uses it); these names keep
 // the theory's vocabulary.
-inline constexpr int restitution_series_terms = restitution::series_terms;
-inline constexpr double restitution_c1 = restitution::series_c1;
-inline constexpr double viscoelastic_u_max = restitution::u_max;
+inline constexpr int restitution_series_terms = restitution::series_terms;  ///< terms h_1..h_20 of the series
+inline constexpr double restitution_c1 = restitution::series_c1;          ///< C_1, h_2 = -C_1
+inline constexpr double viscoelastic_u_max = restitution::u_max;          ///< largest u the series is used for
 
-/// h_j of \ref visco_cutoff "docs/viscoelastic.md", j = 1..20. Throws std::out_of_range for other j.
+/// h_j of \ref visco_series "docs/viscoelastic.md", j = 1..20. Throws std::out_of_range for other j.
 double restitution_series_coefficient(int j);
 
 /// A_n = 4 h_n + sum_{j+l=n} h_j h_l, n = 1..40 (\ref visco_averaged "docs/viscoelastic.md"). Throws std::out_of_range otherwise.
@@ -168,8 +168,8 @@ std::vector<double> diffusion_coefficient_ratio(const Mixture& mix,
                                                 const PairMatrix* beta = nullptr);
 
 /**
- * D_k/D_1 at long times for constant restitution (the JSON key `diffusion_coefficient_ratio`, seed
- * 001 Figs 4, 5, 7): D_k is homogeneous of degree 1/2 in the temperatures, so once T_k/T_1 has
+ * D_k/D_1 at long times for constant restitution (the JSON key `diffusion_coefficient_ratio`,
+ * Bodrova and Osinsky 2024, Figs. 4, 5, 7; \ref dif_coefficients "docs/diffusion-msd.md"): D_k is homogeneous of degree 1/2 in the temperatures, so once T_k/T_1 has
  * settled (asymptotic_temperature_ratios, \ref haff_ratios "docs/haff-and-mixtures.md") the ratio is constant. With viscoelastic
  * restitution there is no such constant: the mixture drifts towards equipartition and the elastic
  * limit as T -> 0 (Bodrova and Osinsky 2024, Sec. III, \ref dif_limits "docs/diffusion-msd.md"); use the overload above at the temperatures of interest.
@@ -196,6 +196,7 @@ TemperatureHistory integrate_partial_temperatures_viscoelastic(
 // Mean squared displacement (Bodrova and Osinsky 2024, eqs. (16)-(18), (21); \ref dif_msd "docs/diffusion-msd.md")
 // ---------------------------------------------------------------------------------------------
 
+/// Partial and total MSDs at the requested times.
 struct MsdResult {
   std::vector<double> time;              ///< the requested times
   std::vector<std::vector<double>> msd;  ///< [time][species] <R_k^2(t)>

@@ -33,6 +33,7 @@ enum class Cooling {
   viscoelastic,  ///< free cooling with alpha -> 1 (C <= nu_0 t)
 };
 
+/// The estimated length of a run.
 struct RunCost {
   double collisions_per_particle = 0.0;  ///< C at the end of the run (2 x events / N)
   double temperature_ratio = 1.0;        ///< T(end)/T(0) of the total temperature

@@ -107,7 +107,9 @@ Parameters parameters_of(const io::config::Config& config);
 
 /// Probabilities of the three outcomes of one collision of a pair (sum 1).
 struct Outcomes {
-  double aggregation, fragmentation, bounce;
+  double aggregation;    ///< the pair sticks
+  double fragmentation;  ///< the pair shatters
+  double bounce;         ///< the pair bounces
 };
 
 /// \ref af_smoluchowski "docs/agg-frag.md": outcome probabilities of a collision of sizes k, j (>= 1) with Maxwellian T_k, T_j.
@@ -119,26 +121,37 @@ Outcomes outcome_probabilities(const Parameters& parameters, std::size_t k, std:
 /// partner before the collision; cm_energy: M V^2/2; impact_energy_frag: E_imp;
 /// bounce_energy_change_*: m v'^2/2 - m v^2/2 over bounces.
 struct PairMoments {
-  Outcomes probability;
-  double energy_k_agg, energy_j_agg, cm_energy_agg;
-  double energy_k_frag, energy_j_frag, cm_energy_frag, impact_energy_frag;
-  double bounce_energy_change_k, bounce_energy_change_j;
+  Outcomes probability;      ///< the outcome probabilities
+  double energy_k_agg;       ///< m_k v_k^2/2, aggregations
+  double energy_j_agg;       ///< m_j v_j^2/2, aggregations
+  double cm_energy_agg;      ///< M V^2/2, aggregations
+  double energy_k_frag;      ///< m_k v_k^2/2, fragmentations
+  double energy_j_frag;      ///< m_j v_j^2/2, fragmentations
+  double cm_energy_frag;     ///< M V^2/2, fragmentations
+  double impact_energy_frag; ///< E_imp, fragmentations
+  double bounce_energy_change_k;  ///< m_k v_k'^2/2 - m_k v_k^2/2, bounces
+  double bounce_energy_change_j;  ///< m_j v_j'^2/2 - m_j v_j^2/2, bounces
 };
 
+/// The PairMoments of sizes k, j (>= 1) at Maxwellian temperatures T_k, T_j.
 PairMoments pair_moments(const Parameters& parameters, std::size_t k, std::size_t j, double T_k,
                          double T_j);
 
 /// Rates per unit volume and time at t = 0 (monomers only, at T0); log_monomer_rate = d ln n_1/dt.
 struct InitialRates {
-  double collisions, aggregations, fragmentations, bounces;
-  double log_monomer_rate;
+  double collisions;        ///< all collisions
+  double aggregations;      ///< those that stick
+  double fragmentations;    ///< those that shatter
+  double bounces;           ///< those that bounce
+  double log_monomer_rate;  ///< d ln n_1/dt
 };
 
+/// The InitialRates of the Parameters' monomer gas.
 InitialRates initial_rates(const Parameters& parameters);
 
 /// Solution at the requested times. Tables are row-major, time index x size index (k - 1).
 struct Solution {
-  std::vector<double> time;
+  std::vector<double> time;                ///< the requested times
   std::size_t max_size = 0;                ///< K, the largest size integrated
   std::vector<double> number_fraction;     ///< n_k(t)/n_1(0)
   std::vector<double> temperature;         ///< T_k(t); 0 where n_k/n_1(0) < 1e-300

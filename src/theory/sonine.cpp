@@ -128,7 +128,7 @@ SonineAtGamma solve_at(const SonineCoefficients& k) {
 /// Temperatures relative to the mixture temperature: T1/T and T2/T (Montanero and Garzo 2002, eqs. (13)-(14), \ref son_binary "docs/sonine.md").
 void partial_temperatures(const species::Mixture& mix, double gamma, double t_over_T[2]) {
   const double x1 = mix.mole_fraction(0);
-  const double T_over_T2 = 1.0 + x1 * (gamma - 1.0);  // \ref son_binary_gamma "docs/sonine.md", Montanero and Garzo 2002, eq. (14)
+  const double T_over_T2 = 1.0 + x1 * (gamma - 1.0);  // \ref son_binary "docs/sonine.md", Montanero and Garzo 2002, eq. (14)
   t_over_T[0] = gamma / T_over_T2;                    // Montanero and Garzo 2002, eq. (13), \ref son_binary "docs/sonine.md"
   t_over_T[1] = 1.0 / T_over_T2;                      // Montanero and Garzo 2002, eq. (14), \ref son_binary "docs/sonine.md"
 }
@@ -264,7 +264,7 @@ SonineCoefficients binary_sonine_coefficients(const species::Mixture& mix, doubl
   // \ref son_binary "docs/sonine.md": lambda_1 = T/(T1 mu_21), lambda_2 = T/(T2 mu_12) (Montanero and Garzo 2002, after eq. (17))
   k.lambda[0] = 1.0 / (t_over_T[0] * mix.mass_fraction(1, 0));
   k.lambda[1] = 1.0 / (t_over_T[1] * mix.mass_fraction(0, 1));
-  k.eta = k.lambda[0] / k.lambda[1];  // \ref son_binary_gamma "docs/sonine.md", = mu_12/(mu_21 gamma) (Montanero and Garzo 2002, after eq. (44))
+  k.eta = k.lambda[0] / k.lambda[1];  // \ref son_binary "docs/sonine.md", = mu_12/(mu_21 gamma) (Montanero and Garzo 2002, after eq. (44))
 
   for (int i = 0; i < 2; ++i) {
     const int j = 1 - i;

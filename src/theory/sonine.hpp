@@ -25,7 +25,7 @@
  * Reduced rates: zeta* = zeta/(n sigma_12^2 v0) (Montanero and Garzo 2002, eq. (15), \ref son_scaling "docs/sonine.md").
  *
  * \section sonine_steps Steps (Montanero and Garzo 2002, App. A; \ref son_binary "docs/sonine.md")
- * 1. For a given gamma, the coefficients of Montanero and Garzo 2002, eqs. (39)-(44) as restated in \ref son_binary_gamma "docs/sonine.md":
+ * 1. For a given gamma, the coefficients of Montanero and Garzo 2002, eqs. (39)-(44) as restated in \ref son_binary_coefficients "docs/sonine.md":
  *    zeta_i^(0), zeta_ii^(1), zeta_ij^(1), Omega_i^(0), Omega_ii^(1), Omega_ij^(1); species 2 from
  *    species 1 by interchanging 1 <-> 2 and eta -> 1/eta (Montanero and Garzo 2002, after eq. (44), \ref son_binary "docs/sonine.md").
  *    The partial cooling rate is zeta_i* = zeta_i^(0) + zeta_ii^(1) c_i + zeta_ij^(1) c_j and the
@@ -88,21 +88,21 @@ struct BinaryHcs {
 /// Reduced partial cooling rates zeta_i* (with their c-terms, Montanero and Garzo 2002, eq. (45), \ref son_binary_gamma "docs/sonine.md") and the c_i of the
 /// linearised fourth-moment equations (Montanero and Garzo 2002, eqs. (31)-(38), \ref son_binary_cumulants "docs/sonine.md") at a given gamma.
 struct SonineAtGamma {
-  double zeta[2];
-  double c[2];
+  double zeta[2];  ///< zeta_1*, zeta_2*
+  double c[2];     ///< c_1, c_2
 };
 
-/// The coefficients of Montanero and Garzo 2002, eqs. (39)-(44) (\ref son_binary_gamma "docs/sonine.md") at a given gamma, indexed by species
+/// The coefficients of Montanero and Garzo 2002, eqs. (39)-(44) (\ref son_binary_coefficients "docs/sonine.md") at a given gamma, indexed by species
 /// (0 = species 1, 1 = species 2). zeta1[i][j] is zeta_ij^(1): zeta_i* = zeta0[i] + sum_j
 /// zeta1[i][j] c_j; likewise omega1[i][j] = Omega_ij^(1). lambda[i] = lambda_i,
 /// eta = lambda_1/lambda_2.
 struct SonineCoefficients {
-  double lambda[2];
-  double eta;
-  double zeta0[2];
-  double zeta1[2][2];
-  double omega0[2];
-  double omega1[2][2];
+  double lambda[2];     ///< lambda_i = T/(T_i mu_ji)
+  double eta;           ///< lambda_1/lambda_2
+  double zeta0[2];      ///< zeta_i^(0)
+  double zeta1[2][2];   ///< zeta_ij^(1)
+  double omega0[2];     ///< Omega_i^(0)
+  double omega1[2][2];  ///< Omega_ij^(1)
 };
 
 /// The collision terms of one species pair in Montanero and Garzo 2002, eqs. (39)-(44) (\ref son_binary_coefficients "docs/sonine.md"), split by partner:
@@ -113,8 +113,12 @@ struct SonineCoefficients {
 /// Summing the self and cross terms of species i gives the binary coefficients of
 /// binary_sonine_coefficients. The s-species HCS (sonine_mixture.hpp) is built from them.
 struct SonineTerms {
-  double zeta0, zeta_self, zeta_partner;
-  double omega0, omega_self, omega_partner;
+  double zeta0;          ///< Maxwellian part of zeta_i*
+  double zeta_self;      ///< coefficient of c_i in zeta_i*
+  double zeta_partner;   ///< coefficient of c_j in zeta_i*
+  double omega0;         ///< Maxwellian part of the fourth moment
+  double omega_self;     ///< coefficient of c_i in it
+  double omega_partner;  ///< coefficient of c_j in it
 };
 
 /// The i-i terms of Montanero and Garzo 2002, eqs. (39), (40), (42), (43) (\ref son_binary_coefficients "docs/sonine.md": the terms proportional to
@@ -128,7 +132,7 @@ SonineTerms sonine_self_terms(double weight, double alpha_ii, double lambda_i);
 SonineTerms sonine_cross_terms(double weight, double mu_ji, double alpha_ij, double lambda_i,
                                double lambda_j);
 
-/// Coefficients of Montanero and Garzo 2002, eqs. (39)-(44) (\ref son_binary_gamma "docs/sonine.md") at gamma = T1/T2. Throws std::invalid_argument
+/// Coefficients of Montanero and Garzo 2002, eqs. (39)-(44) (\ref son_binary_coefficients "docs/sonine.md") at gamma = T1/T2. Throws std::invalid_argument
 /// for a bad mixture (see "Input checks" in the file description) or unless gamma is positive and
 /// finite.
 SonineCoefficients binary_sonine_coefficients(const species::Mixture& mix, double gamma);
@@ -218,11 +222,12 @@ double sonine_collision_moment(double alpha, int p, const std::vector<double>& a
 /// 5 (\ref sonine_higher): value = their midpoint, half_width = half their difference; likewise the
 /// cooling-rate factor zeta/zeta_Maxwell = mu_2/(sqrt(2 pi)(1 - alpha^2)).
 struct CumulantBracket {
-  double value;
-  double half_width;
-  double cooling_factor;
-  double cooling_half_width;
+  double value;               ///< c, midpoint of orders 4 and 5
+  double half_width;          ///< half their difference
+  double cooling_factor;      ///< zeta/zeta_Maxwell, midpoint
+  double cooling_half_width;  ///< half the difference of the cooling factors
 };
+/// The CumulantBracket at restitution `alpha`.
 CumulantBracket sonine_cumulant_bracket(double alpha);
 
 }  // namespace gdsmc::theory

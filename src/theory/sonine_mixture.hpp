@@ -83,7 +83,7 @@ struct HcsFirstSonine {
   std::vector<double> temperature_over_mean;  ///< T_k/T, T = sum_k n_k T_k/n
   std::vector<double> sonine_c;               ///< c_k (Montanero and Garzo 2002, eq. (17), \ref son_scaling "docs/sonine.md"; one species: 2 a2)
   double cooling_rate_reduced = 0.0;          ///< zeta/(n sigma_ref^2 v_ref) (\ref sonmix_units)
-  int newton_iterations = 0;
+  int newton_iterations = 0;                  ///< Newton steps the solution took
 };
 
 /// Largest s that hcs_first_sonine accepts (its cost grows like s^3 per Newton iteration).
