@@ -37,7 +37,7 @@ sub slurp {
 
 # --- anchors -------------------------------------------------------------------------------------
 my %anchor_file;    # anchor -> the page (relative path) that defines it
-my @pages = (glob('docs/*.md'), glob('examples/README.md'), glob('examples/[0-9][0-9]-*/README.md'));
+my @pages = grep { -f } (glob('docs/*.md'), glob('examples/README.md'), glob('examples/[0-9][0-9]-*/README.md'));
 for my $p (@pages) {
   my $t = slurp($p);
   $t =~ s/^\s*(```|~~~).*?^\s*\1//msg;    # fenced code and `code spans` define no anchor
@@ -157,8 +157,13 @@ for my $f (@files) {
   elsif ($f =~ /\.nml$/) { $comments = line_comments($t, '!'); }
   elsif ($f =~ /CMakeLists\.txt$/) { $comments = line_comments($t, '#'); }
   else { $comments = all_lines($t); }    # Markdown pages, mutants
-  for my $c (@$comments) {
-    my ($l, $text) = @$c;
+  for my $n (0 .. $#$comments) {
+    my ($l, $text) = @{$comments->[$n]};
+    # "seed" at the end of a line and its number at the start of the next comment line
+    if ($text =~ /\b[Ss]eeds?\s*$/ && $n < $#$comments && $comments->[$n + 1][0] == $l + 1
+        && $comments->[$n + 1][1] =~ m{^\W*0\d\d\b}) {
+      fail($f, $l, "cites a seed document across two lines: cite the paper (authors, year, equation)");
+    }
     if ($text =~ $forbidden) {
       fail($f, $l, "cites '$1', which is not part of the repository: cite the paper (authors, year, "
         . "equation) and the docs section that states the formula, \\ref ANCHOR \"docs/PAGE.md\"");
