@@ -447,7 +447,7 @@ TEST(DiffusionCoefficients, LongTimeRatio) {
   for (double& t : T) t *= 1e-6;
   const std::vector<double> d = theory::diffusion_coefficients(mix, T);
   EXPECT_NEAR(ratio[1], d[1] / d[0], 1e-12 * ratio[1]);
-  std::printf("[info] seed 001 Fig 5 case, alpha = 0.5: T2/T1 = %.6f, D2/D1 = %.6f\n", T[1] / T[0],
+  std::printf("[info] Bodrova and Osinsky 2024, Fig. 5 case, alpha = 0.5: T2/T1 = %.6f, D2/D1 = %.6f\n", T[1] / T[0],
               ratio[1]);
   // The intruder limit (Fig 4): heavy particles diffuse faster than light ones when rare.
   const Mixture dilute =

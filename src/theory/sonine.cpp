@@ -113,8 +113,8 @@ SonineAtGamma solve_at(const SonineCoefficients& k) {
   const double det = sys.determinant();
   if (det == 0.0 || !std::isfinite(det))
     throw std::runtime_error(
-        "binary_sonine_at_gamma: the linearised fourth-moment system (seed 003 "
-        "eqs 31-38) is singular");
+        "binary_sonine_at_gamma: the linearised fourth-moment system (Montanero and Garzo 2002, "
+        "eqs. (31)-(38)) is singular");
   SonineAtGamma out{};
   out.c[0] = (sys.A * sys.G - sys.E * sys.D) / det;  // Montanero and Garzo 2002, eq. (31), \ref son_binary_cumulants "docs/sonine.md"
   out.c[1] = (sys.B * sys.E - sys.A * sys.F) / det;  // Montanero and Garzo 2002, eq. (32), \ref son_binary_cumulants "docs/sonine.md"
@@ -170,7 +170,7 @@ double refine_root(const species::Mixture& mix, double lo, double hi) {
   const auto check = [&ctx, lo, hi]() {
     if (ctx.failed)
       throw std::runtime_error(
-          "binary_hcs_first_sonine: zeta_1* - zeta_2* (seed 003 eq 45) is not finite between "
+          "binary_hcs_first_sonine: zeta_1* - zeta_2* (Montanero and Garzo 2002, eq. (45), docs/sonine.md) is not finite between "
           "gamma = " + format_gamma(lo) + " and " + format_gamma(hi));
   };
   std::unique_ptr<gsl_root_fsolver, SolverDeleter> solver(
@@ -188,7 +188,7 @@ double refine_root(const species::Mixture& mix, double lo, double hi) {
       return gsl_root_fsolver_root(solver.get());
   }
   throw std::runtime_error(
-      "binary_hcs_first_sonine: Brent iteration for gamma (seed 003 eq 45) did "
+      "binary_hcs_first_sonine: Brent iteration for gamma (Montanero and Garzo 2002, eq. (45), docs/sonine.md) did "
       "not converge");
 }
 
@@ -310,7 +310,7 @@ BinaryHcs binary_hcs_first_sonine(const species::Mixture& mix) {
     f[p] = s.zeta[0] - s.zeta[1];
     if (!std::isfinite(f[p]))
       throw std::runtime_error(
-          "binary_hcs_first_sonine: zeta_1* - zeta_2* (seed 003 eq 45) is not finite at gamma = " +
+          "binary_hcs_first_sonine: zeta_1* - zeta_2* (Montanero and Garzo 2002, eq. (45), docs/sonine.md) is not finite at gamma = " +
           format_gamma(grid[p]));
   }
 
@@ -328,7 +328,7 @@ BinaryHcs binary_hcs_first_sonine(const species::Mixture& mix) {
   }
   if (roots.size() != 1) {
     std::string msg =
-        "binary_hcs_first_sonine: expected exactly one root of zeta_1* = zeta_2* (seed 003 eq 45) "
+        "binary_hcs_first_sonine: expected exactly one root of zeta_1* = zeta_2* (Montanero and Garzo 2002, eq. (45), docs/sonine.md) "
         "for " + format_gamma(std::pow(10.0, gamma_decade_min)) + " <= gamma <= " +
         format_gamma(std::pow(10.0, gamma_decade_max)) + ", found " + std::to_string(roots.size());
     for (double r : roots) msg += (r == roots.front() ? ": gamma = " : ", ") + format_gamma(r);

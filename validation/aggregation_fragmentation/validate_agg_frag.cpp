@@ -144,7 +144,7 @@ int main(int argc, char** argv) {
     const double measured = value_at(monomers, best), expected = theory.number_fraction[best * kt];
     const double low = (measured - expected) / measured;
     std::snprintf(text, sizeof text,
-                  "sticking: at <k> = %.2f the theory's N_1 is %.2f %% low (ERRATA §12: about 6 %% at <k> = 8.5; "
+                  "sticking: at <k> = %.2f the theory's N_1 is %.2f %% low (docs/agg-frag.md: about 6 %% at <k> = 8.5; "
                   "accepted 3-9 %%)",
                   value_at(mean_size, best), 100.0 * low);
     report.require(text, low > 0.03 && low < 0.09);

@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
     }
     // \ref son_one_species "docs/sonine.md" (independent DSMC): the first-Sonine cumulants are 9-14 % high; allowance 15 % (the
     // known error --compare states, io/compare.hpp).
-    std::snprintf(text, sizeof text, "c_%zu vs first Sonine (allowance 15 %%, ERRATA §6)", k + 1);
+    std::snprintf(text, sizeof text, "c_%zu vs first Sonine (allowance 15 %%, docs/sonine.md)", k + 1);
     report.check(text, sonine->value[k], sonine->error[k], sonine->theory[k], 4.0, sonine->known_error[k]);
   }
   return report.exit_code();

@@ -141,7 +141,7 @@ int main(int argc, char** argv) {
       const double eta0 = vt::elastic_mixture_viscosity(mix, 1.0);
       const double to_star = nu * eta0 / mix.total_density();
       std::snprintf(text, sizeof text,
-                    "in seed 004's units: eta* DSMC %.4f +- %.4f, first Sonine %.4f; eta_k* DSMC %.4f +- %.4f, "
+                    "in Montanero 2003's units: eta* DSMC %.4f +- %.4f, first Sonine %.4f; eta_k* DSMC %.4f +- %.4f, "
                     "first Sonine %.4f",
                     to_star * measured, to_star * error, to_star * theory_total, to_star * kinetic,
                     to_star * kinetic_error, to_star * theory_kinetic);
