@@ -1,6 +1,9 @@
 # Writes input.md (from `granular-dsmc --print-reference` and --print-defaults) and
 # validation_results.md (the reports the validation programs wrote in this build tree).
 file(READ ${TABLES} tables)
+# The help texts are plain text: a `<file stem>` is not an HTML tag.
+string(REPLACE "<" "&lt;" tables "${tables}")
+string(REPLACE ">" "&gt;" tables "${tables}")
 execute_process(COMMAND ${TEMPLATE_CMD} --print-defaults OUTPUT_VARIABLE template)
 file(WRITE ${OUT}/input.md "# Input reference {#input}\n\n"
   "Generated from the parameter tables of `src/io/config.cpp` (the same tables the reader uses).\n\n"

@@ -1,5 +1,5 @@
 // Unit tests of dsmc/agg_frag: one collision per outcome with numbers computed by hand, the exact
-// invariants over many events (ERRATA §12), bounds, and the checkpoint state.
+// invariants over many events (\ref af_observables "docs/agg-frag.md"), bounds, and the checkpoint state.
 #include "dsmc/agg_frag.hpp"
 
 #include <gtest/gtest.h>
@@ -143,7 +143,7 @@ TEST(AggFrag, TwoMonomersBounceWhateverTheirEnergy) {
   EXPECT_EQ(gas.count(1), 2u);
 }
 
-// Exact invariants over > 1e6 events with all three outcomes active (ERRATA §12 bookkeeping):
+// Exact invariants over > 1e6 events with all three outcomes active (\ref af_observables "docs/agg-frag.md" bookkeeping):
 // sum_k k N_k = N_0 exactly, momentum zero to round-off, E(t) + dissipated = E(0) to 1e-10 E(0),
 // and the speed bounds hold after every chunk. E_agg = 0.2, E_frag = 1.0 at T_0 = 2 keep all three
 // outcomes frequent; eps_f = 0.9 and alpha = 0.98 slow the cooling (the gas would otherwise stick

@@ -1,4 +1,4 @@
-// Tests of the executables granular-dsmc and granular-theory as a user calls them (INTERFACE.md):
+// Tests of the executables granular-dsmc and granular-theory as a user calls them (README.md, \ref output_page "docs/output.md"):
 // exit status, the one-line message on stderr for bad input, and what is left in the directory.
 // Each test runs the real programs in a fresh temporary directory; every run is tiny.
 #include <signal.h>
@@ -793,7 +793,7 @@ TEST_F(CliTheory, PrintsOneJsonObject) {
   EXPECT_EQ(files(), std::vector<std::string>{"t.nml"});  // writes no file
 }
 
-// An Enskog binary mixture in shear flow (seed 004 Figs 10-12): the first-Sonine eta/eta_0 and its
+// An Enskog binary mixture in shear flow (Montanero 2003, Figs. 10-12, \ref eta_mixture "docs/shear-viscosity.md"): the first-Sonine eta/eta_0 and its
 // kinetic part, the values validation/shear_viscosity states against the DSMC (mu = 4, phi = 0.2,
 // alpha = 0.9: 1.9075 and 0.9084, HSS).
 TEST_F(CliTheory, EnskogMixtureShearViscosity) {

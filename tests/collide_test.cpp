@@ -1,5 +1,5 @@
-// Unit tests for gdsmc::collide: the binary collision rule (ERRATA §1) and the two DSMC schemes
-// (conservation laws, collision rates of ERRATA §2, stopping and reproducibility, Haff cooling §3).
+// Unit tests for gdsmc::collide: the binary collision rule (\ref cm_rule "docs/collision-model.md") and the two DSMC schemes
+// (conservation laws, collision rates of \ref cm_pair_rate "docs/collision-model.md", stopping and reproducibility, Haff cooling, \ref haff_law "docs/haff-and-mixtures.md").
 //
 // Statistical tests use fixed seeds; each tolerance is set as for a random seed (5 Poisson sigma or
 // 5 standard errors, as stated above each test), and the measured numbers are printed.
@@ -100,7 +100,7 @@ TEST(Collide, ParseScheme) {
   EXPECT_THROW(collide::parse_scheme("bird"), std::invalid_argument);
 }
 
-// ERRATA §1 for random velocities, unequal masses (m_b/m_a in {1, 3, 1/7}), random e and several
+// \ref cm_rule "docs/collision-model.md" for random velocities, unequal masses (m_b/m_a in {1, 3, 1/7}), random e and several
 // alpha: momentum conserved to 1e-14 of sum m|v|; (g'.e) = -alpha (g.e); energy loss
 // (1 - alpha^2) m_ab (g.e)^2 / 2 to 1e-13 relative. (The stored post-collision velocities carry
 // round-off eps |v|, so the computed loss has an error ~ eps E; the relative check is therefore made
@@ -173,7 +173,7 @@ TEST(Collide, ApplyCollisionConservesMomentumAndLosesRightEnergy) {
   EXPECT_GT(relative_checks, 1000);
 }
 
-// The sign of e does not matter (ERRATA §1).
+// The sign of e does not matter (\ref cm_rule "docs/collision-model.md").
 TEST(Collide, ApplyCollisionIndependentOfSignOfE) {
   particles::System a;
   a.v = {{1.0, 0.3, -0.7}, {-0.5, 0.2, 0.9}};
@@ -229,7 +229,7 @@ TEST(Collide, ColliderElasticConservesEnergy) {
 }
 
 // (c) Collision rate, elastic one-species Maxwellian gas, T = m = sigma = 1, n = 0.01, N = 20000.
-// Expected events E = N nu t / 2, nu = 4 sqrt(pi) n sigma^2 sqrt(T/m) (ERRATA §2); t is chosen for
+// Expected events E = N nu t / 2, nu = 4 sqrt(pi) n sigma^2 sqrt(T/m) (\ref cm_frequency "docs/collision-model.md"); t is chosen for
 // E = 2e5. Tolerance 5 sqrt(E) (Poisson; the scheme's count is binomial given the deterministic
 // candidate count, so its true variance is smaller). The finite-N factor N/(N-1) of the candidate
 // selection (5e-5) is far below the tolerance (1.1 %).
@@ -257,7 +257,7 @@ TEST(Collide, CollisionRateOneSpecies) {
 // (d) Binary elastic mixture, m = (1, 4), sigma = (1, 2), n = (0.01, 0.005), T = 1 both, N = 30000
 // (N_k = 20000, 10000, exactly N x_k). Expected events per species pair in time t:
 // n_k n_j pi sigma_kj^2 <|g_kj|> V t for k != j, half that for k == j, V = N / n,
-// <|g|> = sqrt(8 s_kj / pi), s_kj = T_k/m_k + T_j/m_j (ERRATA §2). t = 150 gives about 1.06e5 (11),
+// <|g|> = sqrt(8 s_kj / pi), s_kj = T_k/m_k + T_j/m_j (\ref cm_mean_speed "docs/collision-model.md"). t = 150 gives about 1.06e5 (11),
 // 1.89e5 (12) and 5.3e4 (22) events. Tolerance 5 sqrt(expected) per pair (Poisson); both schemes,
 // with step_fraction 0.25 (more bound rebuilds than the other tests).
 TEST(Collide, CollisionRateBinaryMixture) {
@@ -585,7 +585,7 @@ TEST(Collide, SmallIncrementsSampleTheSameProcess) {
 
 // (f) Haff cooling, one species, alpha = 0.5, n = 0.01, sigma = m = T0 = 1, N = 1e5 Maxwellian.
 // Over dt = 0.05 collision times (1/nu) the measured rate r = (T0 - T(dt)) / (T0 dt) is compared
-// with Haff's law T(dt) = T0 / (1 + zeta0 dt / 2)^2 (ERRATA §3), zeta0 = (4/3) sqrt(pi)
+// with Haff's law T(dt) = T0 / (1 + zeta0 dt / 2)^2 (\ref haff_law "docs/haff-and-mixtures.md"), zeta0 = (4/3) sqrt(pi)
 // (1 - alpha^2) n sigma^2 sqrt(T0/m), i.e. r_exp = [1 - (1 + zeta0 dt/2)^-2] / dt = zeta0 (1 - 0.94 %).
 // (The initial state is Maxwellian, so the Sonine correction of the cooling rate is zero at t = 0 and
 // O(1e-4) after 0.05 collisions per particle.) Ensemble: 20 independent seeds per scheme (about

@@ -1,5 +1,5 @@
 // Tests of io/compare (granular-dsmc --compare): the rows of the table against numbers computed by
-// hand here from the formulas compare.hpp cites (Haff's law, ERRATA §3; the scaling-state average;
+// hand here from the formulas compare.hpp cites (Haff's law, \ref haff_law "docs/haff-and-mixtures.md"; the scaling-state average;
 // the known errors of docs/physics.md "Comparison with theory"), the marks, and the three outputs.
 #include "io/compare.hpp"
 
@@ -62,7 +62,7 @@ const cmp::Quantity& find(const cmp::Point& pt, const std::string& name) {
   throw std::runtime_error("no quantity " + name);
 }
 
-/// van Noije-Ernst a2 (ERRATA §3), written out again here.
+/// van Noije-Ernst a2 (\ref haff_sonine "docs/haff-and-mixtures.md"), written out again here.
 double a2_by_hand(double alpha) {
   return 16.0 * (1.0 - alpha) * (1.0 - 2.0 * alpha * alpha) / (81.0 - 17.0 * alpha + 30.0 * alpha * alpha * (1.0 - alpha));
 }
@@ -94,8 +94,8 @@ TEST(CompareKnownError, SonineRateAndViscosity) {
 }
 
 // The Haff row: theory T(t) = T0/(1 + t/t0)^2, t0 = 2/zeta0, zeta0 = (4/3) sqrt(pi) (1 - alpha^2) n sigma^2
-// sqrt(T0/m) (ERRATA §3); collisions per particle nu0 t0 ln(1 + t/t0), nu0 = 4 sqrt(pi) n sigma^2 sqrt(T0/m)
-// (ERRATA §2); DSMC 0.4 % above with SE 0.1 %: z = +4, +0.4 %, known error 1.15 eps ln(T0/T) T.
+// sqrt(T0/m) (\ref haff_law "docs/haff-and-mixtures.md"); collisions per particle nu0 t0 ln(1 + t/t0), nu0 = 4 sqrt(pi) n sigma^2 sqrt(T0/m)
+// (\ref cm_pair_rate "docs/collision-model.md"); DSMC 0.4 % above with SE 0.1 %: z = +4, +0.4 %, known error 1.15 eps ln(T0/T) T.
 TEST(CompareRows, HaffAgainstHandComputedNumbers) {
   const auto c = haff_config();
   const auto theory = gdsmc::theory::predict(c);
@@ -175,7 +175,7 @@ TEST(CompareRows, BinaryScalingStateAverages) {
   EXPECT_DOUBLE_EQ(ratio.value[0], t1 / total);
   EXPECT_NEAR(ratio.error[0], e1, 1e-15);
   EXPECT_NEAR(ratio.theory[0], fs.temperature_over_mean[0], 1e-12);
-  EXPECT_NEAR(ratio.known_error[1], 0.002 * fs.temperature_over_mean[1], 1e-15);  // ERRATA §6, binary
+  EXPECT_NEAR(ratio.known_error[1], 0.002 * fs.temperature_over_mean[1], 1e-15);  // \ref son_binary "docs/sonine.md", binary
   const auto& cumulant = find(pt, "sonine_c");
   EXPECT_DOUBLE_EQ(cumulant.value[1], -0.02);
   EXPECT_NEAR(cumulant.error[1], 0.004 * 1.3, 1e-15);

@@ -123,7 +123,7 @@ TEST(ConfigRead, DefaultTemperatureIsOneForEverySpecies) {
 }
 
 TEST(ConfigRead, InterfaceExampleReads) {
-  // The namelist of INTERFACE.md, verbatim.
+  // The example namelist of the original interface specification, verbatim.
   const auto c = read_text(R"(&system
   n_species      = 2
   mass           = 1.0, 10.0          ! m_k
@@ -140,7 +140,7 @@ TEST(ConfigRead, InterfaceExampleReads) {
   temperature    = 1.0, 1.0           ! T_k(0); Maxwellian velocities, zero total momentum
 /
 &dsmc
-  scheme         = 'majorant'         ! 'majorant' (seed 000), 'pairs' (seed 003), 'lowrank' (seed 001)
+  scheme         = 'majorant'         ! 'majorant' (DSMC notes, \ref sch_majorant "docs/schemes.md"), 'pairs' (Montanero and Garzo 2002), 'lowrank' (Bodrova and Osinsky 2024, \ref sch_lowrank "docs/schemes.md")
   n_particles    = 20000              ! total simulated particles, split in proportion to n_k
   t_end          = 50.0               ! physical time; or collisions_per_particle = ... (collisions
                                       ! each particle suffers on average: 2 x events / N)
@@ -549,7 +549,7 @@ TEST(ConfigRead, ViscoelasticBetaFollowsOneMaterialScaling) {
   const auto beta = c.viscoelastic_beta();
   ASSERT_TRUE(beta.has_value());
   EXPECT_DOUBLE_EQ((*beta)(0, 0), 0.09);
-  // m = 1, 10, sigma = 1, 1: beta_22/beta_11 = [m_11/m_22]^(2/5) = (0.5/5)^(2/5) (ERRATA §11)
+  // m = 1, 10, sigma = 1, 1: beta_22/beta_11 = [m_11/m_22]^(2/5) = (0.5/5)^(2/5) (\ref visco_one_material "docs/viscoelastic.md")
   EXPECT_NEAR((*beta)(1, 1), 0.09 * std::pow(0.1, 0.4), 1e-15);
   EXPECT_FALSE(read_text(base()).viscoelastic_beta().has_value());
 }
@@ -884,7 +884,7 @@ TEST(ConfigError, SweepShapeMistakesNameTheVariable) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// &agg_frag (ERRATA §12) and &output sample_times
+// &agg_frag (\ref af_outcome "docs/agg-frag.md") and &output sample_times
 // ---------------------------------------------------------------------------------------------
 namespace {
 /// A monomer gas with &agg_frag; line 5 is the &agg_frag line, line 3 the &dsmc line.
@@ -974,7 +974,7 @@ TEST(ConfigSampleTimes, BadListsAreRefused) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// &thermostat and &shear (ERRATA §13)
+// &thermostat and &shear (\ref eta_thermostat "docs/shear-viscosity.md")
 // ---------------------------------------------------------------------------------------------
 namespace {
 /// One species at n = 0.01, T0 = 1 (nu_0 = 0.0709, eta_0 = 0.0499, a* = a eta_0/(n T0) = 4.99 a);

@@ -1,10 +1,10 @@
-// Unit tests for gdsmc::theory diffusion (diffusion.hpp): viscoelastic restitution (ERRATA §11),
-// velocity correlation times and cooling rates A1-A4 (ERRATA §8), diffusion coefficients (seed 001
-// eq 19), viscoelastic partial temperatures and the MSD (seed 001 eqs 16-21, ERRATA §8).
+// Unit tests for gdsmc::theory diffusion (diffusion.hpp): viscoelastic restitution (\ref visco_series "docs/viscoelastic.md"),
+// velocity correlation times and cooling rates A1-A4 (\ref visco_averaged "docs/viscoelastic.md"), diffusion coefficients (Bodrova and Osinsky 2024,
+// eq. (19), \ref dif_coefficients "docs/diffusion-msd.md"), viscoelastic partial temperatures and the MSD (Bodrova and Osinsky 2024, eqs. (16)-(21), \ref visco_averaged "docs/viscoelastic.md").
 // References are computed here independently of the code under test: the viscoelastic contact
 // ODE integrated with GSL, closed forms derived in the comments, quadrature of the restitution
-// series over the collision weight, Monte Carlo of the collision rule (ERRATA §1) and the
-// existing ERRATA §3/§4 functions of theory.hpp.
+// series over the collision weight, Monte Carlo of the collision rule (\ref cm_rule "docs/collision-model.md") and the
+// existing \ref haff_law "docs/haff-and-mixtures.md", \ref haff_mixture_odes "docs/haff-and-mixtures.md" functions of theory.hpp.
 #include "theory/diffusion.hpp"
 
 #include <gsl/gsl_errno.h>
@@ -28,14 +28,14 @@ namespace theory = gdsmc::theory;
 namespace {
 
 constexpr double pi = std::numbers::pi;
-constexpr double c1 = 1.1534488580952888;  // ERRATA §11
+constexpr double c1 = 1.1534488580952888;  // \ref visco_series "docs/viscoelastic.md"
 
 Mixture one_species(double alpha, double n = 0.1, double sigma = 1.0, double m = 1.0,
                     bool enskog = false) {
   return make_mixture({m}, {sigma}, {n}, PairMatrix(1, alpha), enskog);
 }
 
-// Seed 001 Fig 2 / Fig 9: m = (1, 100), sigma = (1, 100^(1/3)), n = (0.1, 0.1).
+// Bodrova and Osinsky 2024, Fig. 2, \ref dif_msd "docs/diffusion-msd.md" / Fig 9: m = (1, 100), sigma = (1, 100^(1/3)), n = (0.1, 0.1).
 Mixture seed_binary(double alpha) {
   return make_mixture({1.0, 100.0}, {1.0, std::cbrt(100.0)}, {0.1, 0.1}, PairMatrix(2, alpha),
                       false);
@@ -53,14 +53,14 @@ Mixture ternary() {
 double relative(double a, double b) { return std::abs(a - b) / std::abs(b); }
 
 // ---------------------------------------------------------------------------------------------
-// Viscoelastic contact (reference for ERRATA §11)
+// Viscoelastic contact (reference for \ref visco_series "docs/viscoelastic.md")
 // ---------------------------------------------------------------------------------------------
-// Hertz contact with viscous dissipation (Brilliantov et al. 1996, seed 001 refs 51, 53):
+// Hertz contact with viscous dissipation (Brilliantov et al. 1996, Bodrova and Osinsky 2024, refs 51, 53):
 // m_eff xi'' + rho xi^(3/2) + (3/2) A rho xi^(1/2) xi' = 0, rho = 2 Y sqrt(R_eff)/(3 (1 - nu^2)),
 // R_eff = sigma_eff/2. With xi = x0 x, x0 = (m_eff v^2/rho)^(2/5), time in units x0/v (v = g.e):
 // x'' + x^(3/2) + gamma x^(1/2) x' = 0, x(0) = 0, x'(0) = 1, gamma = (3/2) A (rho/m_eff)^(2/5)
-// v^(1/5). Seed 001 eq 7 gives kappa = (3/2)^(5/2) rho/m_eff, so (3/2)(rho/m_eff)^(2/5) =
-// kappa^(2/5) and gamma = A kappa^(2/5) v^(1/5) = u^2 (u of ERRATA §11). The particles separate
+// v^(1/5). Bodrova and Osinsky 2024, eq. (7), \ref visco_one_material "docs/viscoelastic.md" gives kappa = (3/2)^(5/2) rho/m_eff, so (3/2)(rho/m_eff)^(2/5) =
+// kappa^(2/5) and gamma = A kappa^(2/5) v^(1/5) = u^2 (u of \ref visco_one_material "docs/viscoelastic.md"). The particles separate
 // when the contact force x^(1/2) (x + gamma x') vanishes (before x returns to 0: "delayed
 // recovery"), and alpha = -x' there.
 int contact_rhs(double, const double y[], double dydt[], void* params) {
@@ -135,7 +135,7 @@ double collision_average(F f, double s, double g_max) {
   return value / norm;
 }
 
-// ERRATA §4/§8 X_ki, written out here.
+// \ref haff_mixture_odes "docs/haff-and-mixtures.md", \ref dif_correlation_time "docs/diffusion-msd.md" X_ki, written out here.
 double x_factor(const Mixture& mix, const std::vector<double>& T, std::size_t k, std::size_t i) {
   return (T[k] * mix.mass[i] + T[i] * mix.mass[k]) / (T[k] * (mix.mass[i] + mix.mass[k]));
 }
@@ -143,15 +143,15 @@ double x_factor(const Mixture& mix, const std::vector<double>& T, std::size_t k,
 }  // namespace
 
 // =============================================================================================
-// ERRATA §11: restitution series
+// \ref visco_series "docs/viscoelastic.md": restitution series
 // =============================================================================================
 
 TEST(DiffusionRestitution, SeriesCoefficients) {
-  // ERRATA §11: alpha = 1 - C1 u^2 + C2 u^4 + ..., i.e. h1 = h3 = 0, h2 = -C1, h4 = C2.
+  // \ref visco_series "docs/viscoelastic.md": alpha = 1 - C1 u^2 + C2 u^4 + ..., i.e. h1 = h3 = 0, h2 = -C1, h4 = C2.
   EXPECT_EQ(theory::restitution_series_coefficient(1), 0.0);
   EXPECT_EQ(theory::restitution_series_coefficient(3), 0.0);
   EXPECT_EQ(theory::restitution_series_coefficient(2), -c1);
-  // ERRATA states C2 = 3 C1^2/5 and lists h4 = 0.7982666: 3 C1^2/5 = 0.79826656..., so h4 = C2.
+  // \ref visco_series "docs/viscoelastic.md" states C2 = 3 C1^2/5 and lists h4 = 0.7982666: 3 C1^2/5 = 0.79826656..., so h4 = C2.
   const double c2 = 3.0 * c1 * c1 / 5.0;
   EXPECT_NEAR(c2, 0.7982666, 5e-8);
   EXPECT_NEAR(theory::restitution_series_coefficient(4), c2, 1e-15);
@@ -160,7 +160,7 @@ TEST(DiffusionRestitution, SeriesCoefficients) {
   EXPECT_THROW(theory::restitution_series_coefficient(0), std::out_of_range);
   EXPECT_THROW(theory::restitution_series_coefficient(21), std::out_of_range);
 
-  // ERRATA §8: A_n = 4 h_n + sum_{j+l=n} h_j h_l. (1 + alpha)^2 - 4 = 4 delta + delta^2 with
+  // \ref visco_averaged "docs/viscoelastic.md": A_n = 4 h_n + sum_{j+l=n} h_j h_l. (1 + alpha)^2 - 4 = 4 delta + delta^2 with
   // delta = sum h_j u^j, so A_n is the u^n coefficient of 4 delta + delta^2:
   auto hj = theory::restitution_series_coefficient;
   EXPECT_EQ(theory::restitution_series_square_coefficient(1), 0.0);
@@ -174,7 +174,7 @@ TEST(DiffusionRestitution, SeriesCoefficients) {
 
 TEST(DiffusionRestitution, MatchesViscoelasticContactModel) {
   // Series against the contact ODE above, at g.e chosen so that u = beta^(1/2) |g.e|^(1/10) hits
-  // the target. ERRATA §11: accurate to 1e-6 for u <= 0.65; measured 3.1e-7 at 0.65 and 1.1e-4
+  // the target. \ref visco_cutoff "docs/viscoelastic.md": accurate to 1e-6 for u <= 0.65; measured 3.1e-7 at 0.65 and 1.1e-4
   // at the cut-off 0.8 (2.2e-3 at 0.9, which is why the cut-off is not 0.9).
   const double beta = 0.09;
   for (double u : {0.05, 0.2, 0.4, 0.5, 0.65, 0.75, 0.8}) {
@@ -215,8 +215,8 @@ TEST(DiffusionRestitution, LimitsMonotonicityAndCutoff) {
 }
 
 TEST(DiffusionRestitution, OneMaterialBetaScaling) {
-  // ERRATA §11: beta_ki = beta_11 [sqrt(sigma_eff,ki/sigma_eff,11) m_11/m_ki]^(2/5), written out
-  // for seed 001 Fig 9: sigma = (1, 100^(1/3)), m = (1, 100); m_11 = 1/2, m_12 = 100/101,
+  // \ref visco_one_material "docs/viscoelastic.md": beta_ki = beta_11 [sqrt(sigma_eff,ki/sigma_eff,11) m_11/m_ki]^(2/5), written out
+  // for Bodrova and Osinsky 2024, Fig. 9, \ref visco_averaged "docs/viscoelastic.md": sigma = (1, 100^(1/3)), m = (1, 100); m_11 = 1/2, m_12 = 100/101,
   // m_22 = 50; sigma_eff,11 = 1/2, sigma_eff,12 = s2/(1 + s2), sigma_eff,22 = s2/2.
   const Mixture mix = seed_binary(1.0);
   const PairMatrix beta = theory::viscoelastic_beta(mix, 0.09);
@@ -235,11 +235,11 @@ TEST(DiffusionRestitution, OneMaterialBetaScaling) {
 }
 
 // =============================================================================================
-// ERRATA §8: A1-A4
+// \ref visco_averaged "docs/viscoelastic.md": A1-A4
 // =============================================================================================
 
 TEST(DiffusionRates, BaseRateReproducesErrata4CoolingRates) {
-  // A2 = ERRATA §4: xi_ki = base_ki (1 + alpha_ki)[1 - (1/2)(1 + alpha_ki) X_ki]. This fixes the
+  // A2 = \ref haff_mixture_odes "docs/haff-and-mixtures.md": xi_ki = base_ki (1 + alpha_ki)[1 - (1/2)(1 + alpha_ki) X_ki]. This fixes the
   // index conventions of base_ki (density n_i and mass fraction mu_ik = m_i/(m_i + m_k) of the
   // partner) against the existing cooling_rate_matrix.
   const Mixture mix = ternary();
@@ -260,8 +260,8 @@ TEST(DiffusionRates, A1IsMomentumRelaxationMinusHalfCoolingOneSpecies) {
   // (pi/2) g-hat, and the part linear in U of <|g| g> is (4/3) <|g|> U, so
   // nu = mu (1 + alpha) n sigma^2 chi (pi/2)(4/3) sqrt(8 s/pi) = base (1 + alpha)/2.
   // One species (mu = 1/2, s = 2T/m): base = (8/3) sqrt(pi) n sigma^2 chi sqrt(T/m) = (2/3)
-  // nu_coll, so nu = (1 + alpha) nu_coll/3 with nu_coll = collision_frequency (ERRATA §2), and
-  // ERRATA §8 says A1 = nu - xi/2 with xi = haff_cooling_rate (ERRATA §3).
+  // nu_coll, so nu = (1 + alpha) nu_coll/3 with nu_coll = collision_frequency (\ref cm_frequency "docs/collision-model.md"), and
+  // \ref dif_correlation_time "docs/diffusion-msd.md" says A1 = nu - xi/2 with xi = haff_cooling_rate (\ref haff_law "docs/haff-and-mixtures.md").
   for (double alpha : {1.0, 0.9, 0.5, 0.1}) {
     for (bool enskog : {false, true}) {
       const Mixture mix = one_species(alpha, 0.3, 1.2, 2.0, enskog);
@@ -279,11 +279,11 @@ TEST(DiffusionRates, A1IsMomentumRelaxationMinusHalfCoolingOneSpecies) {
 
 TEST(DiffusionRates, A1IsMomentumRelaxationMinusHalfCoolingMixture) {
   // Mixture: nu_ki = base_ki (1 + alpha_ki)/2 checked by Monte Carlo of the collision rule
-  // (ERRATA §1) for k = heavy, i = light at unequal temperatures: the rate of change of <v_k> per
-  // k particle is n_i 2 pi sigma^2 chi E[|g.e| dv_k] (e uniform on the sphere, ERRATA §2); for
+  // (\ref cm_rule "docs/collision-model.md") for k = heavy, i = light at unequal temperatures: the rate of change of <v_k> per
+  // k particle is n_i 2 pi sigma^2 chi E[|g.e| dv_k] (e uniform on the sphere, \ref cm_pair_rate "docs/collision-model.md"); for
   // g = g0 + U, g0 ~ N(0, s) the part linear in U is E[F(g0) g0.U]/s (Gaussian score), so
   // nu_ki U_x = mu_ik (1 + alpha) n_i 2 pi sigma^2 chi E[|g.e| (g.e) e_x g_x] U_x/s.
-  // Then A1 = nu - xi/2 with xi = cooling_rate_matrix (ERRATA §4).
+  // Then A1 = nu - xi/2 with xi = cooling_rate_matrix (\ref haff_mixture_odes "docs/haff-and-mixtures.md").
   const Mixture mix = ternary();
   const std::vector<double> T = {1.0, 2.7, 0.4};
   const PairMatrix a1 = theory::inverse_velocity_correlation_time(mix, T);
@@ -362,7 +362,7 @@ TEST(DiffusionRates, ViscoelasticElasticLimit) {
 }
 
 TEST(DiffusionRates, ViscoelasticRatesAreAveragesOfTheRestitutionSeries) {
-  // ERRATA §8 with B_n = (1/2) Gamma(2 + n/20) beta^(n/2) (2 s)^(n/20) = (1/2) <u^n> under the
+  // \ref visco_averaged "docs/viscoelastic.md" with B_n = (1/2) Gamma(2 + n/20) beta^(n/2) (2 s)^(n/20) = (1/2) <u^n> under the
   // weight g^3 exp(-g^2/(2 s)) (<g^p> = (2 s)^(p/2) Gamma(2 + p/2)): with alpha = 1 + delta,
   // sum h_n B_n = <delta>/2 and sum A_n B_n = <(1 + alpha)^2 - 4>/2, so
   // A3 = base X <(1 + alpha)^2>/4 and A4 = base [<1 + alpha> - (1/2) X <(1 + alpha)^2>], the
@@ -415,7 +415,7 @@ TEST(DiffusionRates, ViscoelasticCutoffAndInputChecks) {
 }
 
 // =============================================================================================
-// Diffusion coefficients (seed 001 eq 19)
+// Diffusion coefficients (Bodrova and Osinsky 2024, eq. (19), \ref dif_coefficients "docs/diffusion-msd.md")
 // =============================================================================================
 
 TEST(DiffusionCoefficients, OneSpeciesClosedForm) {
@@ -438,7 +438,7 @@ TEST(DiffusionCoefficients, LongTimeRatio) {
   const Mixture same = make_mixture({1.0, 1.0}, {1.0, 1.0}, {0.1, 0.2}, PairMatrix(2, 0.5), false);
   const std::vector<double> r_same = theory::diffusion_coefficient_ratio(same);
   EXPECT_NEAR(r_same[1], 1.0, 1e-10);
-  // Seed 001 Fig 5 setting (m2/m1 = 100, equal sizes and densities, alpha = 0.5): D_k/D_1 from the
+  // Bodrova and Osinsky 2024, Fig. 5, \ref dif_coefficients "docs/diffusion-msd.md" setting (m2/m1 = 100, equal sizes and densities, alpha = 0.5): D_k/D_1 from the
   // asymptotic temperature ratios equals the ratio at any scale of those temperatures (D_k is
   // homogeneous of degree 1/2 in T).
   const Mixture mix = make_mixture({1.0, 100.0}, {1.0, 1.0}, {0.1, 0.1}, PairMatrix(2, 0.5), false);
@@ -447,7 +447,7 @@ TEST(DiffusionCoefficients, LongTimeRatio) {
   for (double& t : T) t *= 1e-6;
   const std::vector<double> d = theory::diffusion_coefficients(mix, T);
   EXPECT_NEAR(ratio[1], d[1] / d[0], 1e-12 * ratio[1]);
-  std::printf("[info] seed 001 Fig 5 case, alpha = 0.5: T2/T1 = %.6f, D2/D1 = %.6f\n", T[1] / T[0],
+  std::printf("[info] Bodrova and Osinsky 2024, Fig. 5 case, alpha = 0.5: T2/T1 = %.6f, D2/D1 = %.6f\n", T[1] / T[0],
               ratio[1]);
   // The intruder limit (Fig 4): heavy particles diffuse faster than light ones when rare.
   const Mixture dilute =
@@ -456,7 +456,7 @@ TEST(DiffusionCoefficients, LongTimeRatio) {
 }
 
 // =============================================================================================
-// MSD (seed 001 eqs 16-21; ERRATA §8)
+// MSD (Bodrova and Osinsky 2024, eqs. (16)-(21); \ref dif_msd "docs/diffusion-msd.md")
 // =============================================================================================
 
 TEST(DiffusionMsd, BallisticShortTimeLimit) {
@@ -503,11 +503,11 @@ TEST(DiffusionMsd, ElasticOrnsteinUhlenbeckForm) {
 }
 
 TEST(DiffusionMsd, OneSpeciesHaffLogarithmicLaw) {
-  // One species, constant alpha: T = T0/X^2, X = 1 + t/t0, t0 = 2/zeta_0 (ERRATA §3);
+  // One species, constant alpha: T = T0/X^2, X = 1 + t/t0, t0 = 2/zeta_0 (\ref haff_law "docs/haff-and-mixtures.md");
   // tau(t) = t0 ln X; tau_v ~ T^(-1/2) so tau_v(t1) = tau_v0 X1, tauhat(t1) = tau_v0 (eq 18),
   // D(t1) = D0/X1. Eq 17 with x = X1: 6 D0 t0 int_1^X dx/x [1 - (x/X)^p], p = t0/tau_v0:
   // <R^2> = 6 D0 t0 ln X - 6 D0 tau_v0 (1 - X^(-p)), and eq 21 gives 6 D0 t0 ln X.
-  // So ERRATA §8's 6 D0 tau0 ln(1 + t/tau0) holds with tau0 = t0 = 2/zeta_0 (the Haff time).
+  // So the 6 D0 tau0 ln(1 + t/tau0) of \ref dif_msd "docs/diffusion-msd.md" holds with tau0 = t0 = 2/zeta_0 (the Haff time).
   const double alpha = 0.5, n = 0.1, sigma = 1.0, m = 1.0, T0 = 1.0;
   const Mixture mix = one_species(alpha, n, sigma, m);
   const double zeta0 = theory::haff_cooling_rate(n, sigma, 1.0, m, alpha, T0);
@@ -539,7 +539,7 @@ TEST(DiffusionMsd, OneSpeciesHaffLogarithmicLaw) {
 }
 
 TEST(DiffusionMsd, MixtureAtAsymptoticRatiosFollowsHaffForm) {
-  // Started at the asymptotic ratios (ERRATA §4), all xi_k are equal, so every T_k = T_k0/X^2 with
+  // Started at the asymptotic ratios (\ref haff_ratios "docs/haff-and-mixtures.md"), all xi_k are equal, so every T_k = T_k0/X^2 with
   // the common t0 = 2/xi_1(0), tau_v,k ~ X, and eq 17 gives the one-species closed form per
   // species: <R_k^2> = 6 D_k0 t0 ln X - 6 D_k0 tau_vk0 (1 - X^(-t0/tau_vk0)); eq 21: 6 D_k0 t0 ln
   // X, so the long-time MSD ratios are exactly diffusion_coefficient_ratio.
@@ -585,7 +585,7 @@ TEST(DiffusionMsd, InputChecks) {
 }
 
 // =============================================================================================
-// Viscoelastic partial temperatures (seed 001 eqs 22-23 with A4)
+// Viscoelastic partial temperatures (Bodrova and Osinsky 2024, eqs. (22)-(23), \ref visco_averaged "docs/viscoelastic.md" with A4)
 // =============================================================================================
 
 TEST(DiffusionViscoelastic, ZeroBetaIsTheElasticMixture) {
@@ -610,7 +610,7 @@ TEST(DiffusionViscoelastic, OneSpeciesCoolsAsTimeToMinusFiveThirds) {
   // At low T the series is dominated by n = 2: xi = base C1 Gamma(2.1) beta (4 T/m)^(1/10)
   // ~ T^(1/2 + 1/10), so dT/dt ~ -T^(8/5) and T ~ t^(-5/3) (Brilliantov and Poeschel). The higher
   // terms correct the exponent by O(beta T^(1/10)): check d ln T/d ln t at late times within 2 %.
-  // D = T tau_v/m ~ T^(1/2) then decays like t^(-5/6) (MSD ~ t^(1/6), seed 001 Fig 9).
+  // D = T tau_v/m ~ T^(1/2) then decays like t^(-5/6) (MSD ~ t^(1/6), Bodrova and Osinsky 2024, Fig. 9, \ref visco_averaged "docs/viscoelastic.md").
   const Mixture mix = one_species(1.0);
   const PairMatrix beta = theory::viscoelastic_beta(mix, 0.09);
   const std::vector<double> times = {0.0, 1e7, 1.1e7, 1e9, 1.1e9};
@@ -631,7 +631,7 @@ TEST(DiffusionViscoelastic, OneSpeciesCoolsAsTimeToMinusFiveThirds) {
 }
 
 TEST(DiffusionViscoelastic, MixtureApproachesEquipartition) {
-  // Seed 001 Sec. II: with viscoelastic restitution the collisions become elastic as T -> 0 and
+  // Bodrova and Osinsky 2024, Sec. II, \ref sch_lowrank "docs/schemes.md": with viscoelastic restitution the collisions become elastic as T -> 0 and
   // T2/T1 drifts towards 1 (slowly, the inelasticity falls like T^(1/10)).
   const Mixture mix = seed_binary(1.0);
   const PairMatrix beta = theory::viscoelastic_beta(mix, 0.09);

@@ -1,4 +1,4 @@
-// Unit tests for gdsmc::io::h5md: the H5MD 1.1 layout of INTERFACE.md, round trips of every
+// Unit tests for gdsmc::io::h5md: the H5MD 1.1 layout of \ref output_h5md "docs/output.md", round trips of every
 // attribute type, and the atomic-write guarantee (no temporary or half-written file left behind).
 #include "io/h5md.hpp"
 

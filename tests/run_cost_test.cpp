@@ -23,7 +23,7 @@ TEST(RunCost, OneSpeciesFollowsHaffsLaw) {
   const auto mix = one_species(0.9);
   const double nu0 = theory::collision_frequency(0.01, 1.0, 1.0, 1.0, 1.0);
   const double zeta0 = theory::haff_cooling_rate(0.01, 1.0, 1.0, 1.0, 0.9, 1.0);
-  const double t0 = 2.0 / zeta0;  // ERRATA §3
+  const double t0 = 2.0 / zeta0;  // \ref haff_law "docs/haff-and-mixtures.md"
   for (double t : {10.0, 5000.0, 1e30}) {
     const auto cost = theory::estimate_run_cost(mix, {1.0}, t, std::nullopt, theory::Cooling::haff);
     // C = int nu dt = nu0 t0 ln(1 + t/t0) with nu = nu0 sqrt(T/T0), T = T0/(1 + t/t0)^2

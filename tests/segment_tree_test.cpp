@@ -1,5 +1,5 @@
 // Unit tests for gdsmc::segment_tree: the SumTree (point update, prefix search, weighted draw) and
-// the rank-R pair sampler of the low-rank scheme (seed 001 eqs 12-14, ERRATA §2 and §7).
+// the rank-R pair sampler of the low-rank scheme (Bodrova and Osinsky 2024, eqs. (12)-(14), \ref sch_lowrank_decomposition "docs/schemes.md").
 //
 // Searches are compared with a linear scan (exactly, with integer weights where boundaries matter).
 // Statistical tests use fixed seeds, but each tolerance is set as if the seed were random: every
@@ -417,7 +417,7 @@ TEST(SegmentTreeLowRank, TotalMatchesBruteForceAfterUpdates) {
   EXPECT_LE(worst, 1e-12);
 }
 
-// The hard-sphere decomposition (seed 001 eqs 12-14, ERRATA §2, §7): for random species,
+// The hard-sphere decomposition (Bodrova and Osinsky 2024, eqs. (12)-(14), \ref sch_lowrank_decomposition "docs/schemes.md"): for random species,
 // sum_r u_i^(r) v_k^(r) = A_ik = pi sigma_ik^2 w_i N_i N_k / V with sigma_ik = (sigma_i + sigma_k)/2,
 // and R = sum A_ik equals the ordered-pair majorant sum_{i,k} N_i N_k pi sigma_ik^2 (w_i + w_k)/(2V).
 TEST(SegmentTreeLowRank, HardSphereFactors) {

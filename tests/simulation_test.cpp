@@ -83,10 +83,10 @@ TEST(Simulation, SweepWritesOneGroupPerPoint) {
   EXPECT_THROW(io::h5md::read_observable(path.string(), "temperature"), std::runtime_error);
 }
 
-// Displacements (seed 001 eq 15): an elastic gas is ballistic, <R^2> = 3 T t^2/m, long before its
+// Displacements (Bodrova and Osinsky 2024, eq. (15), \ref dif_displacements "docs/diffusion-msd.md"): an elastic gas is ballistic, <R^2> = 3 T t^2/m, long before its
 // first collision (nu = 0.0709 here, t = 0.5 is 0.035 collisions), and diffusive later with
 // 6 D per unit time, D = 3/(8 n sigma^2) sqrt(T/(pi m)) (first Chapman-Enskog approximation, which
-// the velocity-correlation theory of seed 001 eq 19 also gives for alpha = 1; the second
+// the velocity-correlation theory of Bodrova and Osinsky 2024, eq. (19), \ref dif_coefficients "docs/diffusion-msd.md" also gives for alpha = 1; the second
 // approximation is 1.9 % higher). Ensemble: 4 replicas x 20000 particles; slope from t = 120 to 200
 // (8.5 to 14 collisions per particle) with its replica SE; tolerance 4 SE + 3 % (the approximation).
 TEST(Simulation, DisplacementsBallisticThenDiffusive) {

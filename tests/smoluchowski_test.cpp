@@ -1,7 +1,7 @@
 // Unit tests for gdsmc::theory::smoluchowski (smoluchowski.hpp): aggregation and fragmentation of
-// inelastic clusters with Maxwellian partial temperatures (ERRATA §12).
+// inelastic clusters with Maxwellian partial temperatures (\ref af_smoluchowski "docs/agg-frag.md").
 // References are independent of the closed forms under test: Monte Carlo of the collision rule
-// itself (ERRATA §1, §12) over Maxwellian pairs, Haff's law from theory.hpp (ERRATA §3), exact
+// itself (\ref cm_rule "docs/collision-model.md", \ref af_smoluchowski "docs/agg-frag.md") over Maxwellian pairs, Haff's law from theory.hpp (\ref haff_law "docs/haff-and-mixtures.md"), exact
 // conservation of mass, the energy bookkeeping of each outcome, and numbers computed by hand.
 #include "theory/smoluchowski.hpp"
 
@@ -43,7 +43,7 @@ smol::Parameters sticking_gas() {
   return p;
 }
 
-// One species collision frequency nu_0 = 4 sqrt(pi) n sigma^2 sqrt(T0/m) (ERRATA §2).
+// One species collision frequency nu_0 = 4 sqrt(pi) n sigma^2 sqrt(T0/m) (\ref cm_frequency "docs/collision-model.md").
 double monomer_collision_frequency(const smol::Parameters& p) {
   return gdsmc::theory::collision_frequency(p.monomer_density, p.monomer_diameter, 1.0,
                                             p.monomer_mass, p.initial_temperature);
@@ -69,8 +69,8 @@ struct WeightedMean {
   }
 };
 
-// Monte Carlo of the collision rule (ERRATA §1, §12) over Maxwellian pairs at T_k, T_j: e uniform
-// on the sphere with weight |g.e| (the rate of ERRATA §2), outcomes classified by the thresholds
+// Monte Carlo of the collision rule (\ref cm_rule "docs/collision-model.md", \ref af_smoluchowski "docs/agg-frag.md") over Maxwellian pairs at T_k, T_j: e uniform
+// on the sphere with weight |g.e| (the rate of \ref cm_pair_rate "docs/collision-model.md"), outcomes classified by the thresholds
 // and the energies read off the actual post-collision velocities.
 enum Quantity {
   p_agg, p_frag, p_bounce, energy_k_agg, energy_j_agg, cm_energy_agg, energy_k_frag,
@@ -166,7 +166,7 @@ void expect_moments_match_monte_carlo(const smol::Parameters& p, std::size_t k, 
 }  // namespace
 
 // --------------------------------------------------------------------------------------------
-// Region moments (ERRATA §12) against Monte Carlo of the collision rule
+// Region moments (\ref af_outcome "docs/agg-frag.md") against Monte Carlo of the collision rule
 // --------------------------------------------------------------------------------------------
 
 TEST(SmoluchowskiMoments, UnequalPairMatchesMonteCarloOfCollisionRule) {
@@ -210,7 +210,7 @@ TEST(SmoluchowskiOutcomes, ProbabilitiesSumToOneAndKnownLimits) {
         EXPECT_GE(o.fragmentation, 0.0);
         EXPECT_GE(o.bounce, 0.0);
       }
-  // Two monomers never shatter (ERRATA §12), a monomer and a dimer do.
+  // Two monomers never shatter (\ref af_outcome "docs/agg-frag.md"), a monomer and a dimer do.
   EXPECT_EQ(smol::outcome_probabilities(p, 1, 1, 5.0, 5.0).fragmentation, 0.0);
   EXPECT_GT(smol::outcome_probabilities(p, 1, 2, 5.0, 5.0).fragmentation, 0.1);
 

@@ -1,7 +1,7 @@
-// Unit tests for the first-Sonine HCS of s species (theory/sonine_mixture.hpp; seed 003 App. A,
-// ERRATA §6, Garzo and Dufty 2002). References: the binary solver of theory/sonine.hpp (a
+// Unit tests for the first-Sonine HCS of s species (theory/sonine_mixture.hpp; Montanero and Garzo 2002, App. A, \ref son_binary "docs/sonine.md",
+// \ref son_binary "docs/sonine.md", Garzo and Dufty 2002). References: the binary solver of theory/sonine.hpp (a
 // different root finder on a different formulation: gamma-grid + Brent, Cramer's rule), the
-// one-component theory of ERRATA §3 (theory::sonine_a2), the Maxwellian cooling rates of ERRATA §4
+// one-component theory of \ref haff_sonine "docs/haff-and-mixtures.md" (theory::sonine_a2), the Maxwellian cooling rates of \ref haff_mixture_odes "docs/haff-and-mixtures.md"
 // (theory::cooling_rate_matrix), exact limits (elastic; mechanically identical species merge) and
 // the permutation symmetry.
 #include "theory/sonine_mixture.hpp"
@@ -26,7 +26,7 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-/// Binary mixture in seed 003's parameters (as tests/sonine_test.cpp): mu = m1/m2, delta = n1/n2,
+/// Binary mixture in Montanero and Garzo 2002's parameters (as tests/sonine_test.cpp): mu = m1/m2, delta = n1/n2,
 /// w = sigma_1/sigma_2; Enskog at reduced density n* = n sigma_12^3.
 Mixture seed_mixture(double mu, double delta, double w, double a11, double a22, double a12,
                      bool enskog = false, double n_star = 0.0) {
@@ -65,7 +65,7 @@ Mixture permuted(const Mixture& mix, const std::vector<std::size_t>& perm) {
 }  // namespace
 
 // 1. s = 2 reproduces binary_hcs_first_sonine (gamma, c1, c2, zeta*) to 1e-10, dilute and Enskog,
-// including the ERRATA §6 reference mu = 10, delta = 2, w = 1, alpha = 0.5 (gamma = 3.8005,
+// including the \ref son_binary_gamma "docs/sonine.md" reference mu = 10, delta = 2, w = 1, alpha = 0.5 (gamma = 3.8005,
 // c1 = 0.1091, c2 = 0.0180).
 TEST(SonineMixtureHcs, TwoSpeciesReproduceTheBinarySolver) {
   const std::vector<Mixture> cases = {
@@ -170,7 +170,7 @@ TEST(SonineMixtureHcs, ElasticMixtureIsInEquipartition) {
 }
 
 // 5. One species: T_1/T = 1, c = 2 a2 (van Noije-Ernst, theory::sonine_a2) and the one-species
-// first-Sonine cooling rate (ERRATA §3) zeta = (4/3) sqrt(pi) (1 - alpha^2) n sigma^2 chi sqrt(T/m)
+// first-Sonine cooling rate (\ref haff_sonine "docs/haff-and-mixtures.md") zeta = (4/3) sqrt(pi) (1 - alpha^2) n sigma^2 chi sqrt(T/m)
 // (1 + 3 a2/16); in the unit n sigma^2 sqrt(4 T/m): zeta* = (2/3) sqrt(pi) (1 - alpha^2) chi
 // (1 + 3 a2/16).
 TEST(SonineMixtureHcs, OneSpeciesIsTheVanNoijeErnstTheory) {
@@ -189,7 +189,7 @@ TEST(SonineMixtureHcs, OneSpeciesIsTheVanNoijeErnstTheory) {
     }
 }
 
-// The pair terms: zeta0 summed over partners is the Maxwellian partial cooling rate of ERRATA §4
+// The pair terms: zeta0 summed over partners is the Maxwellian partial cooling rate of \ref haff_mixture_odes "docs/haff-and-mixtures.md"
 // (theory::cooling_rate_matrix, an independent formula) at arbitrary temperatures; the cross terms
 // of a species with an identical copy of itself equal its self terms.
 TEST(SonineMixtureHcs, PairTermsMatchMaxwellianCoolingRatesAndSelfTerms) {

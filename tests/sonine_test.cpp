@@ -1,8 +1,8 @@
-// Unit tests for the first Sonine HCS of a binary mixture (theory/sonine.hpp; seed 003 App. A,
-// ERRATA §6). Reference values: the numbers quoted in ERRATA §6, the one-component theory of
-// ERRATA §3 (van Noije-Ernst a2, theory::sonine_a2), the Maxwellian partial cooling rates of
-// ERRATA §4 (theory::cooling_rate_matrix, an independent formula), exact limits (elastic,
-// mechanically equivalent species), the 1 <-> 2 symmetry and the qualitative statement of seed 003
+// Unit tests for the first Sonine HCS of a binary mixture (theory/sonine.hpp; Montanero and Garzo 2002, App. A, \ref son_binary "docs/sonine.md",
+// \ref son_binary "docs/sonine.md"). Reference values: the numbers quoted in \ref son_binary_gamma "docs/sonine.md", the one-component theory of
+// \ref haff_sonine "docs/haff-and-mixtures.md" (van Noije-Ernst a2, theory::sonine_a2), the Maxwellian partial cooling rates of
+// \ref haff_mixture_odes "docs/haff-and-mixtures.md" (theory::cooling_rate_matrix, an independent formula), exact limits (elastic,
+// mechanically equivalent species), the 1 <-> 2 symmetry and the qualitative statement of Montanero and Garzo 2002
 // about its Fig. 6 (Enskog).
 #include "theory/sonine.hpp"
 
@@ -26,9 +26,9 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-/// Binary mixture in the parameters of seed 003: mu = m1/m2, delta = n1/n2, w = sigma_1/sigma_2
+/// Binary mixture in the parameters of Montanero and Garzo 2002: mu = m1/m2, delta = n1/n2, w = sigma_1/sigma_2
 /// (sigma_2 = 1, m2 = 1), restitution alpha_11, alpha_22, alpha_12. Dilute unless `enskog`, in
-/// which case n is set from the reduced density n* = n sigma_12^3 (ERRATA §5).
+/// which case n is set from the reduced density n* = n sigma_12^3 (\ref cm_chi "docs/collision-model.md").
 Mixture seed_mixture(double mu, double delta, double w, double alpha_11, double alpha_22,
                      double alpha_12, bool enskog = false, double n_star = 0.0) {
   const double sigma_12 = 0.5 * (w + 1.0);
@@ -58,8 +58,8 @@ Mixture swapped(const Mixture& mix) {
 
 }  // namespace
 
-// ERRATA §6 reference: mu = 10, delta = 2, w = 1, alpha = 0.5, dilute gives gamma = 3.8005,
-// c1 = 0.1091, c2 = 0.0180 (seed 003: "about 3.8"); agreement to half a unit of the last printed
+// \ref son_binary_gamma "docs/sonine.md" reference: mu = 10, delta = 2, w = 1, alpha = 0.5, dilute gives gamma = 3.8005,
+// c1 = 0.1091, c2 = 0.0180 (Montanero and Garzo 2002: "about 3.8"); agreement to half a unit of the last printed
 // digit.
 TEST(SonineBinaryHcs, ErrataReferenceMassRatioTen) {
   const auto hcs = theory::binary_hcs_first_sonine(seed_mixture(10.0, 2.0, 1.0, 0.5));
@@ -68,22 +68,22 @@ TEST(SonineBinaryHcs, ErrataReferenceMassRatioTen) {
   EXPECT_NEAR(hcs.sonine_c[1], 0.0180, 5e-5);
 }
 
-// ERRATA §6: mu = 2, delta = 1, w = 1, alpha = 0.5 gives gamma = 1.3618 and c1 = 0.1428 in first
+// \ref son_binary_gamma "docs/sonine.md": mu = 2, delta = 1, w = 1, alpha = 0.5 gives gamma = 1.3618 and c1 = 0.1428 in first
 // Sonine approximation (its exact-DSMC values 1.3616 and 0.1280 are not what is tested here).
 TEST(SonineBinaryHcs, ErrataReferenceMassRatioTwo) {
   const auto hcs = theory::binary_hcs_first_sonine(seed_mixture(2.0, 1.0, 1.0, 0.5));
   EXPECT_NEAR(hcs.temperature_ratio, 1.3618, 5e-5);
   EXPECT_NEAR(hcs.sonine_c[0], 0.1428, 5e-5);
-  // the heavier species is closer to a Maxwellian (seed 003 Fig. 2: c2 below c1)
+  // the heavier species is closer to a Maxwellian (Montanero and Garzo 2002, Fig. 2, \ref son_binary_cumulants "docs/sonine.md": c2 below c1)
   EXPECT_LT(hcs.sonine_c[1], hcs.sonine_c[0]);
 }
 
 // Mechanically equivalent species (same m, sigma, alpha) form one component: gamma = 1,
-// c1 = c2 = 2 a2 (ERRATA §6, a2 of van Noije-Ernst, ERRATA §3), and the one-component cooling rate.
-// One-component zeta* derived from ERRATA §3: zeta = (4/3) sqrt(pi) (1 - alpha^2) n sigma^2 chi
+// c1 = c2 = 2 a2 (\ref son_scaling "docs/sonine.md", a2 of van Noije-Ernst, \ref haff_sonine "docs/haff-and-mixtures.md"), and the one-component cooling rate.
+// One-component zeta* derived from \ref haff_law "docs/haff-and-mixtures.md": zeta = (4/3) sqrt(pi) (1 - alpha^2) n sigma^2 chi
 // sqrt(T/m) (1 + 3 a2/16); with m1 = m2 = m, sigma_12 = sigma and T1 = T2 = T,
 // v0 = sqrt(2 T (2m)/m^2) = 2 sqrt(T/m), so zeta* = zeta/(n sigma^2 v0)
-// = (2/3) sqrt(pi) (1 - alpha^2) chi (1 + 3 a2/16). Tails: beta = pi chi (seed 003 eq 20).
+// = (2/3) sqrt(pi) (1 - alpha^2) chi (1 + 3 a2/16). Tails: beta = pi chi (Montanero and Garzo 2002, eq. (20), \ref son_tails "docs/sonine.md").
 TEST(SonineBinaryHcs, MechanicallyEquivalentSpeciesAreOneComponent) {
   for (double alpha : {0.3, 0.5, 0.8, 0.95})
     for (double delta : {1.0, 3.0})
@@ -151,8 +151,8 @@ TEST(SonineBinaryHcs, SwapSymmetry) {
   }
 }
 
-// The Maxwellian parts zeta_i^(0) (seed 003 eq 39, ERRATA §6) are the partial cooling rates of
-// ERRATA §4 in reduced units: zeta_i^(0) = sum_j xi_ij/(n sigma_12^2 v0),
+// The Maxwellian parts zeta_i^(0) (Montanero and Garzo 2002, eq. (39), \ref son_binary_coefficients "docs/sonine.md") are the partial cooling rates of
+// \ref haff_mixture_odes "docs/haff-and-mixtures.md" in reduced units: zeta_i^(0) = sum_j xi_ij/(n sigma_12^2 v0),
 // v0 = sqrt(2 T (m1 + m2)/(m1 m2)), T = x1 T1 + x2 T2, T1/T2 = gamma. theory::cooling_rate_matrix
 // is an independent implementation (in dimensional form) of that formula.
 TEST(SonineCoefficients, MaxwellianCoolingRatesMatchErrataSection4) {
@@ -171,14 +171,14 @@ TEST(SonineCoefficients, MaxwellianCoolingRatesMatchErrataSection4) {
       const double expected = (xi(i, 0) + xi(i, 1)) / (n * sigma_12 * sigma_12 * v0);
       EXPECT_NEAR(k.zeta0[i], expected, 1e-12 * std::abs(expected));
     }
-    // lambda_i = T/(T_i mu_ji) and eta = mu_12/(mu_21 gamma) (seed 003 after eqs 17 and 44)
+    // lambda_i = T/(T_i mu_ji) and eta = mu_12/(mu_21 gamma) (Montanero and Garzo 2002, after eqs. (17) and (44), \ref son_binary "docs/sonine.md")
     EXPECT_NEAR(k.lambda[0], T_mix / (T[0] * mix.mass_fraction(1, 0)), 1e-13 * k.lambda[0]);
     EXPECT_NEAR(k.lambda[1], T_mix / (T[1] * mix.mass_fraction(0, 1)), 1e-13 * k.lambda[1]);
     EXPECT_NEAR(k.eta, mix.mass_fraction(0, 1) / (mix.mass_fraction(1, 0) * gamma), 1e-13 * k.eta);
   }
 }
 
-// The c's of eqs 31-32 solve the linearised fourth-moment equations of seed 003 eq 15 written out
+// The c's of eqs 31-32 solve the linearised fourth-moment equations of Montanero and Garzo 2002, eq. (15), \ref son_binary_cumulants "docs/sonine.md" written out
 // directly: -2 zeta_i* <v*^4>_i = Omega_i with <v*^4>_i = 15 (1 + c_i/2)/(4 lambda_i^2), to first
 // order in the c's; and at the root of eq 45 both partial cooling rates equal zeta*.
 TEST(SonineAtGamma, SolvesFourthMomentEquationsAndEqualCoolingRates) {
@@ -206,7 +206,7 @@ TEST(SonineAtGamma, SolvesFourthMomentEquationsAndEqualCoolingRates) {
   EXPECT_DOUBLE_EQ(hcs.sonine_c[1], at_root.c[1]);
 }
 
-// Enskog (Carnahan-Starling chi, ERRATA §5) for the case of seed 003 Fig. 6 (delta = 1/2, w = 2,
+// Enskog (Carnahan-Starling chi, \ref cm_chi "docs/collision-model.md") for the case of Montanero and Garzo 2002, Fig. 6 (delta = 1/2, w = 2,
 // mu = 2): gamma is finite and changes smoothly and monotonically with n* = 0.05 .. 0.5, chi really
 // enters, and, as stated for Fig. 6, gamma(alpha, n*)/gamma(alpha, 0) is lower for alpha = 0.6 than
 // for alpha = 0.8 at every density. With alpha = 1, gamma = 1 at every density.
@@ -256,7 +256,7 @@ TEST(SonineBinaryHcs, EnskogDensityDependence) {
   }
 }
 
-// Tails (seed 003 eq 20, ERRATA §6): beta_i = pi sum_j x_j chi_ij (sigma_ij/sigma_12)^2 and the
+// Tails (Montanero and Garzo 2002, eq. (20), \ref son_tails "docs/sonine.md"): beta_i = pi sum_j x_j chi_ij (sigma_ij/sigma_12)^2 and the
 // decay rate 2 beta_i/zeta*, written out here for w = 2 and Enskog chi.
 TEST(SonineTails, BetaAndDecayRate) {
   const Mixture mix = seed_mixture(4.0, 0.5, 2.0, 0.5, true, 0.3);
@@ -332,7 +332,7 @@ TEST(SonineHigher, ElasticCollisionsConserveEnergy) {
   EXPECT_NEAR(theory::sonine_collision_moment(1.0, 6, {0.0, 0.0}), 0.0, 1e-10);
 }
 
-// K = 2 with the linear closure is the van Noije-Ernst a2 (docs/sonine.md, ERRATA §3), a published
+// K = 2 with the linear closure is the van Noije-Ernst a2 (docs/sonine.md, \ref haff_sonine "docs/haff-and-mixtures.md"), a published
 // closed form computed independently in theory::sonine_a2.
 TEST(SonineHigher, FirstSonineLinearIsVanNoijeErnst) {
   for (double alpha : {0.0, 0.2, 0.3, 0.5, 0.7, 0.9, 0.99}) {
@@ -382,7 +382,7 @@ TEST(SonineHigher, RejectsBadInput) {
   EXPECT_THROW(theory::sonine_collision_moment(0.5, 8, {0.0, 0.0}), std::invalid_argument);
 }
 
-// The twelve first-Sonine coefficients of seed 003 eqs 39-44 at the ERRATA §6 reference case
+// The twelve first-Sonine coefficients of Montanero and Garzo 2002, eqs. (39)-(44) at the \ref son_binary_coefficients "docs/sonine.md" reference case
 // (mu = 10, delta = 2, w = 1, alpha = 0.5, dilute) at gamma = 3.8005, evaluated by hand from the
 // formulas of docs/sonine.md ("Cooling rates and collisional moments"; Montanero and Garzo 2002,
 // App. A) in a separate Python transcription. Consistency of the hand values: with c1 = 0.1091,

@@ -1,4 +1,4 @@
-// Unit tests for gdsmc::species: pair data and the Carnahan-Starling pair correlation (ERRATA §5).
+// Unit tests for gdsmc::species: pair data and the Carnahan-Starling pair correlation (\ref cm_chi "docs/collision-model.md").
 #include "dsmc/species.hpp"
 
 #include <gtest/gtest.h>
@@ -35,7 +35,7 @@ TEST(Species, CarnahanStarlingIdenticalSpecies) {
 }
 
 // Unequal diameters, hand-computed (issue 13: chi_ij enters the DSMC rates and the theory through the
-// same code, so only an independent number catches an error in it). ERRATA §5 / docs/physics.md,
+// same code, so only an independent number catches an error in it). \ref cm_chi "docs/collision-model.md" / docs/physics.md,
 // Carnahan-Starling mixture form: sigma = (1, 2), n = (0.1, 0.05):
 // phi = (pi/6)(0.1 * 1 + 0.05 * 8) = pi/12, xi = (pi/6)(0.1 * 1 + 0.05 * 4) = pi/20,
 // S_11 = 1, S_22 = 2, S_12 = 2/1.5 = 4/3,

@@ -1,8 +1,8 @@
-// Unit tests for gdsmc::theory (theory.hpp): collision rates (ERRATA §2), Haff's law (ERRATA §3),
-// partial temperatures of a mixture (ERRATA §4) and the role of chi (ERRATA §5).
+// Unit tests for gdsmc::theory (theory.hpp): collision rates (\ref cm_pair_rate "docs/collision-model.md"), Haff's law (\ref haff_law "docs/haff-and-mixtures.md"),
+// partial temperatures of a mixture (\ref haff_mixture_odes "docs/haff-and-mixtures.md") and the role of chi (\ref cm_chi "docs/collision-model.md").
 // Reference values are computed here independently of the code under test: closed forms in a
-// different arrangement, the "equivalent form" of ERRATA §4, Monte Carlo integration of the
-// collision rule (ERRATA §1) over Maxwellian pairs, and exact conservation laws.
+// different arrangement, the "equivalent form" of \ref haff_ratios "docs/haff-and-mixtures.md", Monte Carlo integration of the
+// collision rule (\ref cm_rule "docs/collision-model.md") over Maxwellian pairs, and exact conservation laws.
 #include "theory/theory.hpp"
 
 #include <gtest/gtest.h>
@@ -28,7 +28,7 @@ Mixture binary_mixture(double m1, double m2, double sigma1, double sigma2, doubl
   return make_mixture({m1, m2}, {sigma1, sigma2}, {n1, n2}, PairMatrix(2, alpha), enskog);
 }
 
-// ERRATA §4 "equivalent form" (seed 000 eq 76 corrected), written out independently of xi_kj:
+// \ref haff_mixture_odes "docs/haff-and-mixtures.md" "equivalent form" (DSMC notes, eq. (76) corrected), written out independently of xi_kj:
 // dT_k/dt = sum_j sqrt(2 pi) chi_kj n_j sigma_kj^2 [ -(4/3)(1 - alpha^2)(m_kj^2/m_k) s_kj^(3/2)
 //           + (8/3)(1 + alpha) m_kj s_kj^(1/2) (T_j - T_k)/(m_k + m_j) ].
 std::vector<double> equivalent_form_rates(const Mixture& mix, const std::vector<double>& T) {
@@ -66,7 +66,7 @@ struct Accumulator {
 
 // Monte Carlo over Maxwellian pairs (species k with T_k, species j with T_j) and e uniform on the
 // full unit sphere. Rate weight of an unordered pair per unit volume / (n_k n_j):
-// w = 2 pi sigma_kj^2 chi_kj |g.e| (ERRATA §2). Velocity changes from the collision rule ERRATA §1.
+// w = 2 pi sigma_kj^2 chi_kj |g.e| (\ref cm_pair_rate "docs/collision-model.md"). Velocity changes from the collision rule \ref cm_rule "docs/collision-model.md".
 struct PairMonteCarlo {
   Accumulator relative_speed;  // |g|
   Accumulator weight;          // w
@@ -101,7 +101,7 @@ PairMonteCarlo sample_pairs(const Mixture& mix, std::size_t k, std::size_t j, do
       ge += g[d] * e[d];
       g2 += g[d] * g[d];
     }
-    // ERRATA §1: v_k' = v_k - mu_jk (1 + alpha)(g.e) e, v_j' = v_j + mu_kj (1 + alpha)(g.e) e.
+    // \ref cm_rule "docs/collision-model.md": v_k' = v_k - mu_jk (1 + alpha)(g.e) e, v_j' = v_j + mu_kj (1 + alpha)(g.e) e.
     const double mu_jk = mj / (mk + mj), mu_kj = mk / (mk + mj);
     double ek = 0.0, ej = 0.0, ek_after = 0.0, ej_after = 0.0;
     for (int d = 0; d < 3; ++d) {
@@ -133,12 +133,12 @@ double relative_difference(double a, double b) { return std::abs(a - b) / std::a
 TEST(Theory, SonineA2KnownValues) {
   EXPECT_DOUBLE_EQ(theory::sonine_a2(1.0), 0.0);
   EXPECT_NEAR(theory::sonine_a2(1.0 / std::sqrt(2.0)), 0.0, 1e-15);
-  // ERRATA §6 quotes first-Sonine c = 2 a2 = 0.1049 (alpha = 0.5) and 0.2361 (alpha = 0.3).
+  // \ref son_scaling "docs/sonine.md" quotes first-Sonine c = 2 a2 = 0.1049 (alpha = 0.5) and 0.2361 (alpha = 0.3).
   EXPECT_NEAR(2.0 * theory::sonine_a2(0.5), 0.1049, 1e-4);
   EXPECT_NEAR(2.0 * theory::sonine_a2(0.3), 0.2361, 1e-4);
 }
 
-// Seed 000 eq 46 (R = sigma/2): 1/t_c = (8/3)(1 - alpha^2) n R^2 sqrt(pi T0/m), t_c = 2/zeta0.
+// the DSMC notes, eq. (46), \ref haff_law "docs/haff-and-mixtures.md" (R = sigma/2): 1/t_c = (8/3)(1 - alpha^2) n R^2 sqrt(pi T0/m), t_c = 2/zeta0.
 TEST(Theory, HaffCoolingRateMatchesSeedTimeScale) {
   const double n = 0.02, sigma = 1.3, m = 2.0, alpha = 0.8, T0 = 1.7;
   const double radius = sigma / 2.0;
@@ -180,8 +180,8 @@ TEST(Theory, HaffLawAgreesWithOdeSolution) {
 }
 
 // One species, Enskog chi != 1: the ODE right-hand side is -zeta T, and the event rate is n nu/2
-// with nu = n pi sigma^2 chi <|g|>, <|g|> = 4 sqrt(T/(pi m)) (seed 000 eq 34), i.e. seed 000
-// eq 36 per unit volume: 8 n^2 R^2 chi sqrt(pi T/m).
+// with nu = n pi sigma^2 chi <|g|>, <|g|> = 4 sqrt(T/(pi m)) (DSMC notes, eq. (34), \ref cm_mean_speed "docs/collision-model.md"), i.e. the DSMC notes,
+// eq. (36), \ref cm_frequency "docs/collision-model.md", per unit volume: 8 n^2 R^2 chi sqrt(pi T/m).
 TEST(Theory, OneSpeciesRatesReduceToHaff) {
   const double n = 0.3, sigma = 1.0, m = 3.0, alpha = 0.6, T = 0.7;
   const Mixture mix = make_mixture({m}, {sigma}, {n}, PairMatrix(1, alpha), true);
@@ -297,7 +297,7 @@ TEST(Theory, PairCollisionRateAgreesWithMonteCarlo) {
     std::printf("[ MC ] <|g_%zu%zu|>: MC %.6f +- %.6f, theory %.6f\n", k + 1, j + 1,
                 mc.relative_speed.mean(), mc.relative_speed.standard_error(), g_theory);
     EXPECT_NEAR(mc.relative_speed.mean(), g_theory, 4.0 * mc.relative_speed.standard_error());
-    // Rate convention of ERRATA §2: 2 pi sigma^2 chi |g.e|, e uniform on the full sphere.
+    // Rate convention of \ref cm_pair_rate "docs/collision-model.md": 2 pi sigma^2 chi |g.e|, e uniform on the full sphere.
     const double rate_mc = nn * mc.weight.mean(), rate_se = nn * mc.weight.standard_error();
     std::printf("[ MC ] R_%zu%zu: MC %.6e +- %.1e, theory %.6e\n", k + 1, j + 1, rate_mc, rate_se,
                 rate(k, j));
@@ -321,7 +321,7 @@ TEST(Theory, EnergyLossAgreesWithMonteCarlo) {
     const std::size_t k = pairs[p][0], j = pairs[p][1];
     const auto sample = sample_pairs(mix, k, j, T[k], T[j], alpha, samples, 99 + p);
     const double nn =
-        mix.number_density[k] * mix.number_density[j] * (k == j ? 0.5 : 1.0);  // ERRATA §2
+        mix.number_density[k] * mix.number_density[j] * (k == j ? 0.5 : 1.0);  // \ref cm_pair_rate "docs/collision-model.md"
     mc += nn * sample.energy_change.mean();
     variance += std::pow(nn * sample.energy_change.standard_error(), 2);
   }
@@ -370,7 +370,7 @@ TEST(Theory, PartialEnergyChangeAgreesWithMonteCarlo) {
   }
 }
 
-// ERRATA §4 example: alpha = 0.3, m2/m1 = 100, equal diameters and number densities: T2/T1 = 60.6.
+// \ref haff_ratios "docs/haff-and-mixtures.md" example: alpha = 0.3, m2/m1 = 100, equal diameters and number densities: T2/T1 = 60.6.
 TEST(Theory, AsymptoticTemperatureRatio) {
   const Mixture mix = binary_mixture(1.0, 100.0, 1.0, 1.0, 0.01, 0.01, 0.3);
   const auto ratio = theory::asymptotic_temperature_ratios(mix);
@@ -418,10 +418,10 @@ TEST(Theory, AsymptoticRatioIsReachedFromEqualTemperatures) {
   EXPECT_NEAR(T[1] / T[0], ratio[1], 1e-6 * ratio[1]);
 }
 
-// Every entry xi_kj of the ERRATA §4 rate matrix (the energy species k loses to, or exchanges with,
+// Every entry xi_kj of the rate matrix of \ref haff_mixture_odes "docs/haff-and-mixtures.md" (the energy species k loses to, or exchanges with,
 // species j) against a direct Monte Carlo integral over Maxwellian pairs, written independently of
 // sample_pairs above: velocities from the Maxwellians of T_k and T_j, e uniform on the unit sphere, and the
-// collision rule of ERRATA §1 weighted with the rate of ERRATA §2 in its hemisphere form,
+// collision rule (\ref cm_rule "docs/collision-model.md") weighted with the pair rate in its hemisphere form (\ref cm_hemisphere "docs/collision-model.md"),
 // 4 pi sigma_kj^2 chi_kj (g.e) theta(g.e) (its mean over e is pi sigma_kj^2 chi_kj |g|). With dE_k the
 // energy change of the species-k partner,
 //   k != j:  -(3/2) n_k T_k xi_kj = n_k n_j <w dE_k>        (n_k n_j unordered unlike pairs per volume^2)
@@ -463,7 +463,7 @@ TEST(Theory, CoolingRateEntriesAgreeWithMaxwellianPairMonteCarlo) {
             continue;
           }
           const double w = 4.0 * pi * sigma * sigma * chi * ge;
-          // ERRATA §1: v_k' = v_k - (m_j/(m_k + m_j))(1 + alpha)(g.e) e, v_j' = v_j + (m_k/(m_k + m_j))(...) e
+          // \ref cm_rule "docs/collision-model.md": v_k' = v_k - (m_j/(m_k + m_j))(1 + alpha)(g.e) e, v_j' = v_j + (m_k/(m_k + m_j))(...) e
           double dek = 0.0, dej = 0.0;
           for (int d = 0; d < 3; ++d) {
             const double ed = e[d] / std::sqrt(norm);
@@ -487,7 +487,7 @@ TEST(Theory, CoolingRateEntriesAgreeWithMaxwellianPairMonteCarlo) {
   }
 }
 
-// chi only multiplies rates (ERRATA §5): chi = 2 doubles every rate; Carnahan-Starling chi_kj
+// chi only multiplies rates (\ref cm_chi "docs/collision-model.md"): chi = 2 doubles every rate; Carnahan-Starling chi_kj
 // multiplies pair k-j.
 TEST(Theory, PairCorrelationIsARateMultiplier) {
   const Mixture dilute = binary_mixture(1.0, 4.0, 1.0, 2.0, 0.02, 0.01, 0.7);

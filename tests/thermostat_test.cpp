@@ -1,4 +1,4 @@
-// Unit tests of dsmc/thermostat (Gaussian thermostat, USF streaming; ERRATA §13) and of the kinetic
+// Unit tests of dsmc/thermostat (Gaussian thermostat, USF streaming; \ref eta_measured "docs/shear-viscosity.md") and of the kinetic
 // pressure tensor of dsmc/sample, with numbers computed by hand.
 #include "dsmc/thermostat.hpp"
 
@@ -108,7 +108,7 @@ TEST(Thermostat, RescalingFromTheLossSum) {
 }
 
 // The thermostat takes the stage's loss from the collider's sum: it must equal the energy the
-// particles lost, for every scheme and a mixture (ERRATA §1: (1 - alpha^2) m_kj (g.e)^2/2 per collision).
+// particles lost, for every scheme and a mixture (\ref cm_energy "docs/collision-model.md": (1 - alpha^2) m_kj (g.e)^2/2 per collision).
 TEST(Thermostat, ColliderLossSumEqualsTheEnergyLost) {
   namespace collide = gdsmc::collide;
   namespace rng = gdsmc::rng;

@@ -1,5 +1,5 @@
-// Unit tests for the shear viscosity theory (theory/viscosity.hpp; ERRATA §10, §13; seed 004
-// Figs 6-12). Reference values: the numbers quoted in ERRATA §10, exact limits (elastic gas,
+// Unit tests for the shear viscosity theory (theory/viscosity.hpp; \ref eta_one_species "docs/shear-viscosity.md", \ref eta_thermostat "docs/shear-viscosity.md"; Montanero 2003
+// Figs 6-12). Reference values: the numbers quoted in \ref eta_one_species "docs/shear-viscosity.md", exact limits (elastic gas,
 // mechanically identical species, vanishing density), Chapman and Cowling's first approximation for
 // a binary hard-sphere mixture written out independently below, Enskog's hard-sphere viscosity, and
 // the symmetry under a relabelling of the species.
@@ -47,12 +47,12 @@ Mixture binary(double m1, double m2, double sigma1, double sigma2, double n1, do
   return make_mixture({m1, m2}, {sigma1, sigma2}, {n1, n2}, PairMatrix(2, alpha), enskog);
 }
 
-/// Carnahan-Starling chi of one component (ERRATA §5 with one species).
+/// Carnahan-Starling chi of one component (\ref cm_chi "docs/collision-model.md" with one species).
 double carnahan_starling(double phi) { return (1.0 - 0.5 * phi) / std::pow(1.0 - phi, 3); }
 
 }  // namespace
 
-// ERRATA §10 reference: one component, alpha = 0.5, with the van Noije-Ernst a2:
+// \ref eta_one_species "docs/shear-viscosity.md" reference: one component, alpha = 0.5, with the van Noije-Ernst a2:
 // HCS eta/eta_0 = 1.2851, HSS 1.6119 (to half a unit of the last printed digit).
 TEST(ViscosityOneComponent, ErrataReferenceValues) {
   EXPECT_NEAR(viscosity::dilute_reduced_viscosity(0.5, hcs), 1.2851, 5e-5);
@@ -70,7 +70,7 @@ TEST(ViscosityOneComponent, ElasticLimitAndOrdering) {
     const double eta_hcs = viscosity::dilute_reduced_viscosity(alpha, hcs);
     const double eta_hss = viscosity::dilute_reduced_viscosity(alpha, hss);
     EXPECT_GT(eta_hcs, 1.0) << alpha;
-    EXPECT_GT(eta_hss, eta_hcs) << alpha;  // seed 004 Fig 6: the HSS curve lies above
+    EXPECT_GT(eta_hss, eta_hcs) << alpha;  // Montanero 2003, Fig. 6, \ref eta_one_species "docs/shear-viscosity.md": the HSS curve lies above
   }
 }
 
@@ -129,7 +129,7 @@ TEST(ViscosityMixture, ElasticMatchesChapmanCowlingBinary) {
   EXPECT_NEAR(viscosity::mixture_viscosity(mix, {1.0, 1.0}, 1.3, hcs).total, expected, 1e-12);
 }
 
-// The tau_ij system of ERRATA §13 against a Monte Carlo evaluation of the collision integrals it
+// The tau_ij system of \ref eta_mixture "docs/shear-viscosity.md" against a Monte Carlo evaluation of the collision integrals it
 // stands for, with unequal temperatures and three different restitution coefficients (so every
 // term of tau_ij is exercised, which the elastic Chapman-Cowling check does not do). In the leading
 // Sonine approximation the first-order distribution of species i is
@@ -139,7 +139,7 @@ TEST(ViscosityMixture, ElasticMatchesChapmanCowlingBinary) {
 //   A_ij = int psi_i J_ij[phi_i, f_jM],  B_ij = int psi_i J_ij[f_iM, phi_j],  psi_i = m_i V_x V_y,
 // with int psi J_ij[F, G]
 //        = sigma_ij^2 int int F(v1) G(v2) int de Theta(g.e)(g.e)(psi(v1') - psi(v1))
-// and v1' = v1 - mu_ji (1 + alpha_ij)(g.e) e (ERRATA §1). These are averages over Maxwellian pairs
+// and v1' = v1 - mu_ji (1 + alpha_ij)(g.e) e (\ref cm_rule "docs/collision-model.md"). These are averages over Maxwellian pairs
 // and uniform e, estimated in 8 independent batches of 2.5e5 samples per species pair; the mean of
 // the eta_i solving sum_j (tau_ij - zeta_0 delta_ij) eta_j = n_i T_i (HSS) must agree within 4
 // standard errors of the batch mean, and that error must be below 1 % (once, outside the suite,
@@ -248,11 +248,11 @@ TEST(ViscosityMixture, PermutingSpeciesPermutesPartialViscosities) {
   }
 }
 
-// ERRATA §13: mass ratio 3, alpha = 0.85, equal sizes and concentrations, dilute, HSS, with the
-// first-Sonine temperature ratio; ERRATA reports agreement with DSMC within 0.2 % but does not
+// \ref eta_mixture "docs/shear-viscosity.md": mass ratio 3, alpha = 0.85, equal sizes and concentrations, dilute, HSS, with the
+// first-Sonine temperature ratio; \ref eta_mixture "docs/shear-viscosity.md" reports agreement with DSMC within 0.2 % but does not
 // state the DSMC number, so this pins the theory value (1.2044) to its printed digits and checks
 // its place among its neighbours: it must lie between alpha = 0.9 and alpha = 0.8 and above the
-// mechanically equal mixture (seed 004 Fig 7: eta/eta_0 grows with mass disparity).
+// mechanically equal mixture (Montanero 2003, Fig. 7, \ref eta_mixture "docs/shear-viscosity.md": eta/eta_0 grows with mass disparity).
 TEST(ViscosityMixture, ErrataDsmcPointMassRatioThree) {
   const auto reduced = [](double mu, double alpha) {
     return viscosity::binary_viscosity(binary(mu, 1.0, 1.0, 1.0, 0.01, 0.01, alpha), 1.0, hss)
@@ -340,7 +340,7 @@ TEST(Viscosity, RejectsBadInput) {
                std::invalid_argument);
 }
 
-// Seed 004, Figs 11 and 12 (Enskog binary, HSS, eta* = nu eta/(n T), nu = sqrt(pi) n sigma_12^2
+// Montanero 2003, Figs. 11 and 12, \ref eta_mixture "docs/shear-viscosity.md" (Enskog binary, HSS, eta* = nu eta/(n T), nu = sqrt(pi) n sigma_12^2
 // v0): for mu = 4, omega = delta = 1 the viscosity grows with inelasticity below a threshold
 // packing fraction phi_0 and falls above it, "phi_0(alpha) ~ 0.22", practically independent of
 // alpha; at phi = 0.2 it falls with inelasticity for mu = 1 and grows for mu = 10. (Our theory:

@@ -1,4 +1,4 @@
-// granular-dsmc: runs the simulation a namelist describes and writes one H5MD file (INTERFACE.md).
+// granular-dsmc: runs the simulation a namelist describes and writes one H5MD file (\ref output_h5md "docs/output.md").
 #include <unistd.h>
 
 #include <atomic>

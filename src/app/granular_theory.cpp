@@ -1,5 +1,5 @@
 // granular-theory: the kinetic-theory predictions for the system of a namelist, as one JSON object
-// on stdout (INTERFACE.md "granular-theory JSON keys").
+// on stdout (\ref output_theory "docs/output.md").
 #include <array>
 #include <algorithm>
 #include <cmath>
@@ -25,23 +25,23 @@ const char* kUsage =
     "usage: granular-theory FILE.nml [--set group:variable=value]...\n"
     "Prints the theory for the namelist's system as one JSON object on stdout:\n"
     "  collision_frequency  [nu_k] collisions suffered per particle of species k per unit time at t=0\n"
-    "  cooling_rate         [zeta_k] = sum_j xi_kj at t = 0 (ERRATA §4; one species: ERRATA §3)\n"
+    "  cooling_rate         [zeta_k] = sum_j xi_kj at t = 0 (docs/haff-and-mixtures.md; one species: Haff's law)\n"
     "  temperature          {time, value[t][k]} the partial-temperature ODEs (CVODE) on the sample times\n"
     "  total_temperature, collisions_per_particle   {time, value} on the same times\n"
     "  asymptotic_temperature_ratio  [T_k/T_1] at long times (mixtures, constant restitution)\n"
     "  sonine_a2, cooling_rate_sonine               one species: van Noije-Ernst a2 and (1+3a2/16) zeta\n"
     "  temperature_ratio, sonine_c, cooling_rate_reduced, tail_beta, tail_decay_rate\n"
-    "                       binary mixtures: the HCS in first Sonine approximation (seed 003, ERRATA §6)\n"
+    "                       binary mixtures: the HCS in first Sonine approximation (Montanero and Garzo 2002, docs/sonine.md)\n"
     "  hcs                  {first_sonine: {temperature_over_mean, sonine_c, cooling_rate_reduced},\n"
     "                       maxwellian: {temperature_over_mean, cooling_rate_reduced}} HCS for any number of\n"
     "                       species, constant restitution (T = sum_k n_k T_k/n; theory/sonine_mixture.hpp)\n"
     "  approximations       {key: \"maxwellian\" | \"first_sonine\" | ...} behind every key printed\n"
-    "  shear_viscosity_ratio {hcs, hss} eta/eta_0 in first Sonine (seed 004, ERRATA §10, §13): one species\n"
+    "  shear_viscosity_ratio {hcs, hss} eta/eta_0 in first Sonine (Montanero 2003, docs/shear-viscosity.md): one species\n"
     "                       (dilute or Enskog), binary mixtures (over the elastic mixture value)\n"
-    "  shear_viscosity_kinetic_ratio {hcs, hss} its kinetic part, Enskog gases (seed 004 Fig 10)\n"
-    "  diffusion_coefficient_ratio  [D_k/D_1] (seed 001 eq 19, ERRATA §8); msd {time, value[t][k]} (eq 17)\n"
+    "  shear_viscosity_kinetic_ratio {hcs, hss} its kinetic part, Enskog gases (Montanero 2003, Fig. 10, docs/shear-viscosity.md)\n"
+    "  diffusion_coefficient_ratio  [D_k/D_1] (Bodrova and Osinsky 2024, eq. (19), docs/diffusion-msd.md); msd {time, value[t][k]} (eq 17)\n"
     "                       when &output track_displacements = .true. (not with msd_start_temperature)\n"
-    "With &agg_frag (ERRATA §12), the Smoluchowski rate equations with Maxwellian kernels instead:\n"
+    "With &agg_frag (docs/agg-frag.md), the Smoluchowski rate equations with Maxwellian kernels instead:\n"
     "  number, temperature  {time, value[t][k]} per cluster size k (number: N_k for the run's n_particles)\n"
     "  total_temperature, kinetic_energy, mean_size, monomer_fraction, collisions, aggregations,\n"
     "  fragmentations, collisions_per_particle   {time, value} (event counts of one replica)\n"
@@ -165,7 +165,7 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
            << number(*p.hcs_maxwellian_cooling_rate_reduced) << "}";
     json << "}";
   }
-  if (p.binary_hcs) {  // binary HCS in first Sonine approximation (seed 003 App. A, ERRATA §6)
+  if (p.binary_hcs) {  // binary HCS in first Sonine approximation (Montanero and Garzo 2002, App. A, \ref son_binary "docs/sonine.md")
     const auto& hcs = *p.binary_hcs;
     json << ",\n" << in << "\"temperature_ratio\": " << number(hcs.temperature_ratio);
     json << ",\n" << in << "\"sonine_c\": " << array({hcs.sonine_c[0], hcs.sonine_c[1]});
@@ -181,7 +181,7 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
   if (p.shear_viscosity_kinetic_hcs)
     json << ",\n" << in << "\"shear_viscosity_kinetic_ratio\": {\"hcs\": " << number(*p.shear_viscosity_kinetic_hcs)
          << ", \"hss\": " << number(*p.shear_viscosity_kinetic_hss) << "}";
-  // The approximation behind every key printed (INTERFACE.md "granular-theory JSON keys").
+  // The approximation behind every key printed (\ref output_theory "docs/output.md").
   json << ",\n" << approximations();
   json << "\n" << indent << "}";
   return json.str();

@@ -202,7 +202,7 @@ Event Gas::collide(Cluster a, Cluster b) {
     if (shatters(model_, k, j, event.normal_energy)) {
       event.outcome = Outcome::fragmentation;
       const std::uint32_t fragments = k + j;
-      // u = sqrt(k j) eps_f |g| / K: K m_1 u^2 / 2 = eps_f^2 E_imp (ERRATA §12)
+      // u = sqrt(k j) eps_f |g| / K: K m_1 u^2 / 2 = eps_f^2 E_imp (\ref af_corrections "docs/agg-frag.md")
       const double u = std::sqrt(static_cast<double>(k) * static_cast<double>(j)) * model_.fragment_restitution * g /
                        static_cast<double>(fragments);
       remove_pair(a, b);
@@ -226,7 +226,7 @@ Event Gas::collide(Cluster a, Cluster b) {
       counters_.fragmentations += 1;
       const double eps = model_.fragment_restitution;
       counters_.dissipated += (1.0 - eps * eps) * event.impact_energy;
-    } else {  // bounce: ERRATA §1 with the monomer restitution
+    } else {  // bounce: \ref cm_rule "docs/collision-model.md" with the monomer restitution
       event.outcome = Outcome::bounce;
       const double alpha = model_.restitution;
       const double impulse = (1.0 + alpha) * g_dot_e;
@@ -261,7 +261,7 @@ bool Gas::advance(double t_target, std::uint64_t event_target) {
       time_ = std::max(time_, t_target);
       return false;
     }
-    // The next candidate comes 1/R after the last one, R the current rate (ERRATA §12)
+    // The next candidate comes 1/R after the last one, R the current rate (\ref af_scheme "docs/agg-frag.md")
     // (0 when a rise of R made the next candidate overdue: it comes now).
     const double wait = std::max(0.0, 1.0 / rate - credit_);
     const double stop = std::min(t_target, next_step_time_);

@@ -1,7 +1,7 @@
 /**
  * \file agg_frag.hpp
  * \brief Aggregation and fragmentation: a gas of clusters that stick and shatter on collision
- *        (seed 000 eqs 8-14 and its steps 1-13, as corrected by ERRATA §12; docs/physics.md,
+ *        (DSMC notes, eqs. (8)-(14) and its steps 1-13, as corrected by \ref af_outcome "docs/agg-frag.md"; docs/physics.md,
  *        "Aggregation and fragmentation").
  *
  * **Clusters.** A cluster of k monomers has mass m_k = k m_1 and diameter sigma_k = k^(1/3) sigma_1
@@ -13,28 +13,28 @@
  * m_kj = m_k m_j/(m_k + m_j), V = (m_k v_a + m_j v_b)/(m_k + m_j), classified in this order:
  * - E_imp = m_kj g^2/2 < E_agg: **aggregation**, one cluster of k + j monomers with velocity V
  *   (energy lost: exactly E_imp);
- * - else, with e drawn as in collide.hpp (density ~ g_hat.e on the hemisphere, ERRATA §2),
+ * - else, with e drawn as in collide.hpp (density ~ g_hat.e on the hemisphere, \ref cm_hemisphere "docs/collision-model.md"),
  *   E_n = m_kj (g.e)^2/2 > E_frag and k + j >= 3: **fragmentation** into K = k + j monomers,
- *   v_i = V + u d_i, u = sqrt(k j) eps_f |g|/K, |d_i| = 1, sum_i d_i = 0 (ERRATA §12: K/2 random
+ *   v_i = V + u d_i, u = sqrt(k j) eps_f |g|/K, |d_i| = 1, sum_i d_i = 0 (\ref af_corrections "docs/agg-frag.md": K/2 random
  *   unit vectors and their opposites; for odd K, (K - 3)/2 such pairs and one equilateral triple
  *   a, -a/2 + (sqrt3/2) b, -a/2 - (sqrt3/2) b with b perpendicular to a). The centre-of-mass
- *   kinetic energy after is K m_1 u^2/2 = eps_f^2 E_imp, so (1 - eps_f^2) E_imp is lost. Seed 000's
- *   eq 14 (K - 1 random vectors and one balancing monomer) creates energy on average: not used.
+ *   kinetic energy after is K m_1 u^2/2 = eps_f^2 E_imp, so (1 - eps_f^2) E_imp is lost. The DSMC notes'
+ *   eq. (14) (K - 1 random vectors and one balancing monomer) creates energy on average: not used.
  *   Two monomers never shatter;
- * - else: **bounce**, the collision rule of ERRATA §1 with the monomer restitution alpha
+ * - else: **bounce**, the collision rule of \ref cm_rule "docs/collision-model.md" with the monomer restitution alpha
  *   (energy lost (1 - alpha^2) E_n).
- * The thresholds are energies, so the velocity thresholds depend on the pair (ERRATA §12).
+ * The thresholds are energies, so the velocity thresholds depend on the pair (\ref af_outcome "docs/agg-frag.md").
  *
- * **Scheme.** The continuous-time low-rank scheme of seed 001 (eqs 9-14; collide.hpp `lowrank`,
+ * **Scheme.** The continuous-time low-rank scheme of Bodrova and Osinsky 2024, \ref sch_lowrank "docs/schemes.md" (eqs 9-14; collide.hpp `lowrank`,
  * segment_tree.hpp) with the cluster sizes as species: the ordered size pair (i, k) of a candidate
  * is drawn from the rank-3 majorant A_ik = pi sigma_ik^2 w_i N_i N_k / V (w_i the largest speed of
- * size i, V = (N_0 - 1)/n_1 the fixed volume: F_N and V stay fixed, only N changes, ERRATA §12),
+ * size i, V = (N_0 - 1)/n_1 the fixed volume: F_N and V stay fixed, only N changes, \ref af_scheme "docs/agg-frag.md"),
  * then a cluster of each size uniformly, the same cluster twice rejected, accepted with
  * |g|/(w_i + w_k). Every unordered cluster pair thus collides at pi sigma_ik^2 |g|/V, the rate of
- * seed 000 eq 8 with the current N (N(N - 1)/2 pairs). After each event the counts N_k, the bounds
+ * the DSMC notes, eq. (8), \ref af_scheme "docs/agg-frag.md" with the current N (N(N - 1)/2 pairs). After each event the counts N_k, the bounds
  * w_k and so the trees change in O(log K) per changed size, and the next candidate comes after
  * 1/R of the new total R: time advances per candidate with the current population, so there is no
- * time-step bias (ERRATA §12: a time-stepped scheme with a fixed candidate count per step is biased
+ * time-step bias (\ref af_scheme "docs/agg-frag.md": a time-stepped scheme with a fixed candidate count per step is biased
  * by |d ln N/dt| dt). A size that empties has w = 0 and reappears with the speed of its first
  * member; at every step start (step_fraction majorant mean free times) all w_k are recomputed
  * exactly. Post-collision speeds above w_k raise it at once (fragments can outrun both parents).
@@ -48,7 +48,7 @@
  * memory follows the population. Per-size tables (bounds, diameters, trees) grow by doubling up to
  * the largest size present. 24 bytes per initial monomer at t = 0.
 
- * **Observables** (INTERFACE.md; ERRATA §12): N_k; the kinetic energy of each size relative to
+ * **Observables** (\ref af_observables "docs/agg-frag.md"): N_k; the kinetic energy of each size relative to
  * u = total momentum/total mass; T_k = m_k <|v - u|^2>/3 = (2/3) E_k/N_k; the per-cluster total
  * T = sum_k N_k T_k/N (it can rise while energy is lost: aggregation removes slow pairs); the
  * kinetic energy per initial monomer; cumulative collisions, aggregations and fragmentations.
@@ -73,8 +73,8 @@ namespace gdsmc::agg_frag {
 
 /// The monomer and the thresholds, in the user's units.
 struct Model {
-  double monomer_mass = 1.0;
-  double monomer_diameter = 1.0;
+  double monomer_mass = 1.0;      ///< m_1
+  double monomer_diameter = 1.0;  ///< sigma_1 (a cluster of k monomers: sigma_k = k^(1/3) sigma_1)
   double monomer_density = 0.1;  ///< n_1(0): the initial monomer density
   double restitution = 1.0;      ///< alpha of a bounce
   double aggregation_energy = 0.0;                                       ///< E_agg (0: none)
@@ -82,11 +82,16 @@ struct Model {
   double fragment_restitution = 1.0;                                     ///< eps_f
 };
 
-enum class Outcome : int { aggregation = 0, fragmentation = 1, bounce = 2 };
+/// What a collision of two clusters does (\ref af_outcome "docs/agg-frag.md").
+enum class Outcome : int {
+  aggregation = 0,    ///< the pair sticks into one cluster
+  fragmentation = 1,  ///< the pair shatters into monomers
+  bounce = 2          ///< the collision rule with the monomer restitution
+};
 
-/// ERRATA §12's first test: the pair sticks (impact energy m_kj g^2/2 below E_agg).
+/// First test of \ref af_outcome "docs/agg-frag.md": the pair sticks (impact energy m_kj g^2/2 below E_agg).
 inline bool sticks(const Model& m, double impact_energy) { return impact_energy < m.aggregation_energy; }
-/// ERRATA §12's second test: a pair of sizes k, j that did not stick shatters (normal energy
+/// Second test of \ref af_outcome "docs/agg-frag.md": a pair of sizes k, j that did not stick shatters (normal energy
 /// m_kj (g.e)^2/2 above E_frag, and at least three monomers to make).
 inline bool shatters(const Model& m, std::uint32_t k, std::uint32_t j, double normal_energy) {
   return k + j >= 3 && normal_energy > m.fragmentation_energy;
@@ -95,20 +100,22 @@ inline bool shatters(const Model& m, std::uint32_t k, std::uint32_t j, double no
 /// Counts of one replica (the observables collisions, aggregations, fragmentations).
 struct Counters {
   std::uint64_t events = 0;  ///< accepted collisions, whatever their outcome
-  std::uint64_t aggregations = 0;
-  std::uint64_t fragmentations = 0;
-  std::uint64_t candidates = 0;
-  std::uint64_t steps = 0;
-  double step_sum = 0.0;
-  double dissipated = 0.0;   ///< kinetic energy lost so far, added event by event (ERRATA §12)
+  std::uint64_t aggregations = 0;    ///< events that stuck
+  std::uint64_t fragmentations = 0;  ///< events that shattered
+  std::uint64_t candidates = 0;      ///< candidate pairs drawn (accepted or not)
+  std::uint64_t steps = 0;           ///< bound-refresh steps started
+  double step_sum = 0.0;             ///< sum of the step lengths (mean_step() = step_sum / steps)
+  double dissipated = 0.0;   ///< kinetic energy lost so far, added event by event (\ref af_observables "docs/agg-frag.md")
 };
 
 /// What one collision did (for the unit tests and the event bookkeeping).
 struct Event {
-  Outcome outcome = Outcome::bounce;
+  Outcome outcome = Outcome::bounce;  ///< what the collision did
   double impact_energy = 0.0;  ///< m_kj g^2/2
   double normal_energy = 0.0;  ///< m_kj (g.e)^2/2 (0 for an aggregation: e is not drawn)
-  double ex = 0.0, ey = 0.0, ez = 0.0;
+  double ex = 0.0;  ///< unit vector e, x component (0 for an aggregation)
+  double ey = 0.0;  ///< unit vector e, y component
+  double ez = 0.0;  ///< unit vector e, z component
 };
 
 /// Per-size measurement of one replica at one instant (index k - 1 for size k, up to the largest
@@ -138,24 +145,34 @@ class Gas {
 
   /// A cluster: its size and its place in the list of that size.
   struct Cluster {
-    std::uint32_t size;
-    std::uint32_t place;
+    std::uint32_t size;   ///< number of monomers k (>= 1)
+    std::uint32_t place;  ///< index in the list of size-k clusters
   };
   /// Collides two different clusters as an accepted candidate: classification, outcome and
   /// bookkeeping. Places of other clusters may change (swap with last). Public for the unit tests.
   Event collide(Cluster a, Cluster b);
 
+  /// Simulation time reached.
   double time() const { return time_; }
+  /// Event and candidate counts so far.
   const Counters& counters() const { return counters_; }
+  /// Mean length in time of the bound-refresh steps (step_fraction majorant mean free times each).
   double mean_step() const { return counters_.steps ? counters_.step_sum / static_cast<double>(counters_.steps) : 0.0; }
+  /// Number of clusters N now.
   std::size_t clusters() const { return clusters_; }
+  /// N_0, the monomers at the start (the total mass in monomer units, conserved).
   std::size_t initial_monomers() const { return initial_monomers_; }
+  /// Largest cluster size that has existed so far.
   std::size_t largest_size_reached() const { return largest_reached_; }
+  /// N_k: number of clusters of `size` monomers (0 beyond the tables).
   std::size_t count(std::size_t size) const { return size < lists_.size() ? lists_[size].size() : 0; }
+  /// Velocity of cluster `c`.
   const particles::Vec3& velocity(Cluster c) const { return lists_[c.size][c.place]; }
+  /// m_k = k m_1.
   double mass(std::size_t size) const { return model_.monomer_mass * static_cast<double>(size); }
   /// Total momentum and kinetic energy (lab frame), for the invariant checks.
   particles::Vec3 momentum() const;
+  /// Total kinetic energy, sum of m_k |v|^2/2 over the clusters (lab frame).
   double kinetic_energy() const;
   /// Candidate rate R = sum_ik A_ik now.
   double candidate_rate() const { return sampler_.total(); }
@@ -165,6 +182,7 @@ class Gas {
   /// Whether w_k >= every speed of size k (the majorant holds): for the tests.
   bool bounds_hold() const;
 
+  /// N_k, E_k, N and the kinetic energy relative to the mean flow, now.
   Measurement measure() const;
 
   /// Everything that evolves, for checkpoints; the trees are rebuilt from counts and bounds
@@ -173,12 +191,18 @@ class Gas {
     std::vector<double> velocity;     ///< 3 N, size by size, each list in order
     std::vector<std::uint64_t> count; ///< N_k, k = 1..capacity
     std::vector<double> max_speed;    ///< w_k, k = 1..capacity
-    double time = 0.0, credit = 0.0, next_step_time = 0.0;
-    std::uint64_t capacity = 0, largest_reached = 0;
-    Counters counters;
-    rng::Xoshiro256pp::State generator{};
+    double time = 0.0;                ///< simulation time
+    double credit = 0.0;              ///< time already waited towards the next candidate
+    double next_step_time = 0.0;      ///< end of the current bound-refresh step
+    std::uint64_t capacity = 0;       ///< size of the per-size tables K
+    std::uint64_t largest_reached = 0;  ///< largest size so far
+    Counters counters;                ///< event counts
+    rng::Xoshiro256pp::State generator{};  ///< the collision stream
   };
+  /// The evolving state, for a checkpoint.
   State state() const;
+  /// Restores a state() of a Gas of the same input (same N_0); throws std::runtime_error when the
+  /// tables do not add up to N_0.
   void restore(const State& state);
 
  private:

@@ -74,7 +74,7 @@ double Collider::restitution_of(std::size_t i, std::size_t k, std::size_t a, std
   const double g_dot_e = (sys_.v[a].x - sys_.v[b].x) * ex + (sys_.v[a].y - sys_.v[b].y) * ey +
                          (sys_.v[a].z - sys_.v[b].z) * ez;
   const double sqrt_beta = tables_ ? sqrt_beta_[i * s_ + k] : std::sqrt(beta_(i, k));
-  const double u = sqrt_beta * std::pow(std::abs(g_dot_e), 0.1);  // ERRATA §11
+  const double u = sqrt_beta * std::pow(std::abs(g_dot_e), 0.1);  // \ref visco_series "docs/viscoelastic.md"
   if (u > restitution::u_max) return restitution::viscoelastic(sqrt_beta * sqrt_beta, g_dot_e);  // throws
   return restitution::series(u);
 }
@@ -84,7 +84,7 @@ double Collider::mass_fraction_of(std::size_t i, std::size_t k) const {
 }
 
 void Collider::set_lowrank_row(std::size_t k) {
-  // A_ik = pi sigma_ik^2 chi_max w_i N_i N_k / V in rank-3 form (segment_tree.hpp, ERRATA §7)
+  // A_ik = pi sigma_ik^2 chi_max w_i N_i N_k / V in rank-3 form (segment_tree.hpp, \ref sch_lowrank_decomposition "docs/schemes.md")
   auto f = segment_tree::hard_sphere_factors(static_cast<double>(sys_.count[k]), mix_.diameter[k],
                                              max_speed_[k] * speed_factor_, lowrank_volume_);
   for (double& x : f.row) x *= chi_max_;
@@ -121,14 +121,14 @@ void Collider::rebuild_bounds() {
     for (std::size_t k = 0; k < s_; ++k)
       for (std::size_t j = 0; j < s_; ++j)
         bound_ = std::max(bound_, cross_section_[k * s_ + j] * ((max_speed_[k] + max_speed_[j]) * speed_factor_));
-    rate_ = 0.5 * n_sim * n * bound_;  // R = N n B / 2 (seed 000 eq 8 with ERRATA §2)
+    rate_ = 0.5 * n_sim * n * bound_;  // R = N n B / 2 (DSMC notes, eq. (8) with \ref sch_majorant "docs/schemes.md")
   } else {
     double total = 0.0;
     for (std::size_t i = 0; i < s_; ++i)
       for (std::size_t j = 0; j < s_; ++j) {
         // The simulated density of species j, n N_j / N, so that both schemes see the same gas.
         const double n_j = n * static_cast<double>(sys_.count[j]) / n_sim;
-        // R_ij = (1/2) N_i omega_max^(ij), omega_max = 4 pi sigma_ij^2 n_j chi_ij g_max (seed 003 sec. 3)
+        // R_ij = (1/2) N_i omega_max^(ij), omega_max = 4 pi sigma_ij^2 n_j chi_ij g_max (Montanero and Garzo 2002, sec. 3, \ref sch_pairs "docs/schemes.md")
         // (with shear, the bound of |g.e| grows by a sigma_ij/2: set_shear)
         const double g_max = (max_speed_[i] + max_speed_[j]) * speed_factor_ +
                              (shear_rate_ > 0.0 ? 0.5 * shear_rate_ * contact_[i * s_ + j] : 0.0);
@@ -755,7 +755,7 @@ int Collider::run_majorant(double t_stop, std::uint64_t event_target) {
     double gx = v[a].x - v[b].x, gy = v[a].y - v[b].y, gz = v[a].z - v[b].z;
     to_actual<Framed>(gx, gy, gz);
     const double g2 = gx * gx + gy * gy + gz * gz;
-    // Accept with pi sigma^2 chi |g| / B (seed 000 eq 7), compared squared: no root for a rejection.
+    // Accept with pi sigma^2 chi |g| / B (DSMC notes, eq. (7), \ref sch_majorant "docs/schemes.md"), compared squared: no root for a rejection.
     const double cross_section = cross_section_[pair];
     const double rate2 = cross_section * cross_section * g2;
     const double threshold = gen_.uniform() * bound_;
@@ -796,11 +796,11 @@ int Collider::run_pairs(double t_stop, std::uint64_t event_target) {
       l = sys_.first[j] + gen_.below(sys_.count[j]);
     }
     double ex, ey, ez;
-    rng::unit_vector(gen_, ex, ey, ez);  // seed 003 step (1): e uniform on the sphere
+    rng::unit_vector(gen_, ex, ey, ez);  // Montanero and Garzo 2002, step (1), \ref sch_pairs "docs/schemes.md": e uniform on the sphere
     double gx = sys_.v[k].x - sys_.v[l].x, gy = sys_.v[k].y - sys_.v[l].y, gz = sys_.v[k].z - sys_.v[l].z;
     to_actual<Framed>(gx, gy, gz);
     const double g_dot_e = gx * ex + gy * ey + gz * ez;
-    if (shear_rate_ > 0.0) {  // Enskog in shear flow: the shifted relative velocity (set_shear, ERRATA §13)
+    if (shear_rate_ > 0.0) {  // Enskog in shear flow: the shifted relative velocity (set_shear, \ref eta_enskog_shear "docs/shear-viscosity.md")
       const double sigma = contact_[pair];
       const double shifted = g_dot_e - shear_rate_ * sigma * ey * ex;
       const double g_max = (max_speed_[i] + max_speed_[j]) * speed_factor_ + 0.5 * shear_rate_ * sigma;
@@ -875,7 +875,7 @@ int Collider::run_lowrank(double t_stop, std::uint64_t event_target) {
     double gx = v[a].x - v[b].x, gy = v[a].y - v[b].y, gz = v[a].z - v[b].z;
     to_actual<Framed>(gx, gy, gz);
     const double g2 = gx * gx + gy * gy + gz * gz;
-    // Accept with chi_ik |g| / (chi_max (w_i + w_k)) (seed 001 eq 11 with ERRATA §2), compared squared;
+    // Accept with chi_ik |g| / (chi_max (w_i + w_k)) (Bodrova and Osinsky 2024, eq. (11) with \ref cm_pair_rate "docs/collision-model.md"), compared squared;
     // in a block, whose A_ik hold chi_ik itself (set_block_lowrank), with |g| / (w_i + w_k).
     const double chi = mix_.pair_correlation(i, k);
     const double bound = (sliced ? chi : chi_max_) * ((max_speed_[i] + max_speed_[k]) * speed_factor_);

@@ -2,36 +2,36 @@
  * \file collide.hpp
  * \brief Binary inelastic collisions of smooth hard spheres and the two homogeneous DSMC schemes.
  *
- * **Collision rule** (seed 001 eq 3, seed 003 eqs 23-24; ERRATA §1). For particles a (species k)
+ * **Collision rule** (Bodrova and Osinsky 2024, eq. (3), Montanero and Garzo 2002, eqs. (23)-(24); \ref cm_rule "docs/collision-model.md"). For particles a (species k)
  * and b (species j), g = v_a - v_b and e a unit vector along the line of centres:
  *   v_a' = v_a - mu_jk (1 + alpha_kj) (g.e) e,   v_b' = v_b + mu_kj (1 + alpha_kj) (g.e) e,
  * with mu_kj = m_k/(m_k + m_j). Momentum is conserved, (g'.e) = -alpha (g.e), and the energy
  * lost is (1 - alpha^2) m_kj (g.e)^2 / 2.
  *
- * **Rates** (ERRATA §2). A species-k particle meets species-j partners at the rate
+ * **Rates** (\ref cm_pair_rate "docs/collision-model.md"). A species-k particle meets species-j partners at the rate
  * n_j pi sigma_kj^2 chi_kj <|g|>: one unordered pair collides at pi sigma_kj^2 chi_kj |g| / V, or
  * equivalently at 2 pi sigma_kj^2 chi_kj |g.e| / V with e uniform on the full sphere.
  *
- * **Scheme `majorant`** (seed 000, the algorithm of its steps 1-13 with the rate of ERRATA §2).
+ * **Scheme `majorant`** (DSMC notes, the algorithm of its steps 1-13 with the rate of \ref cm_pair_rate "docs/collision-model.md").
  * Candidate pairs (a, b), a != b uniform among all particles, arrive at the total rate
- *   R = N n B / 2,   B = max_kj pi sigma_kj^2 chi_kj (vmax_k + vmax_j)    (seed 000 eq 8, N^2 F_N/V_c = N n)
+ *   R = N n B / 2,   B = max_kj pi sigma_kj^2 chi_kj (vmax_k + vmax_j)    (DSMC notes, eq. (8), \ref sch_majorant "docs/schemes.md", N^2 F_N/V_c = N n)
  * where vmax_k is the largest speed of species k, so that B >= (sigma g)_kj for every pair: the
  * majorant is exact, not an estimate. A candidate is accepted with probability
- * pi sigma_kj^2 chi_kj |g| / B (seed 000 eq 7), and e is then drawn with density proportional to
- * (g_hat . e) on the hemisphere (ERRATA §2), which samples the same process as seed 000's step 9
+ * pi sigma_kj^2 chi_kj |g| / B (DSMC notes, eq. (7), \ref sch_majorant "docs/schemes.md"), and e is then drawn with density proportional to
+ * (g_hat . e) on the hemisphere (\ref cm_hemisphere "docs/collision-model.md"), which samples the same process as the DSMC notes' step 9
  * with the correct rate, at twice its acceptance. A post-collision speed above vmax_k raises the
  * bound at once ("(sigma g)_max raised when exceeded"); the bound is recomputed exactly (lowered as
  * the gas cools) at the start of each time step.
  *
- * **Scheme `pairs`** (seed 003 sec. 3). For each ordered species pair (i, j), candidates arrive at
+ * **Scheme `pairs`** (Montanero and Garzo 2002, sec. 3, \ref sch_pairs "docs/schemes.md"). For each ordered species pair (i, j), candidates arrive at
  * R_ij = (1/2) N_i omega_max^(ij), omega_max^(ij) = 4 pi sigma_ij^2 n_j chi_ij (vmax_i + vmax_j); a
  * candidate is a random particle of species i, a random other particle of species j and a direction
  * e uniform on the sphere, accepted with probability Theta(g.e) omega_kl / omega_max^(ij),
- * omega_kl = 4 pi sigma_ij^2 n_j chi_ij |g.e|. Seed 003 sweeps the four pairs one after another in a
+ * omega_kl = 4 pi sigma_ij^2 n_j chi_ij |g.e|. Montanero and Garzo 2002 sweeps the four pairs one after another in a
  * step; here the pair of each candidate is drawn with probability R_ij / sum R, which samples the
- * same rates without the operator-splitting error of a sweep (ERRATA §9).
+ * same rates without the operator-splitting error of a sweep (\ref sch_thinning "docs/schemes.md").
  *
- * **Scheme `lowrank`** (seed 001 sec. II B, eqs 9-14 with ERRATA §2 and §7). The ordered species pair
+ * **Scheme `lowrank`** (Bodrova and Osinsky 2024, sec. II B, eqs. (9)-(14) with \ref sch_lowrank_decomposition "docs/schemes.md", \ref sch_lowrank "docs/schemes.md"). The ordered species pair
  * (i, k) of a candidate is drawn with probability A_ik / R from the rank-3 majorant
  * A_ik = pi sigma_ik^2 chi_max w_i N_i N_k / V, w_i = vmax_i, through segment trees in O(log M)
  * (segment_tree.hpp, which derives the decomposition); then a particle of each species, uniformly
@@ -40,17 +40,17 @@
  * two schemes sample exactly the same process. A raised vmax_i updates species i's row in O(log M).
  * (For very many species the S x S pair tables below are the next limit: issue 4.)
  *
- * **Restitution.** Constant alpha_kj, or viscoelastic (seed 001 eqs 5-8, ERRATA §11): alpha from the
+ * **Restitution.** Constant alpha_kj, or viscoelastic (Bodrova and Osinsky 2024, eqs. (5)-(8), \ref visco_series "docs/viscoelastic.md"): alpha from the
  * normal impact speed |g.e| of each collision (restitution.hpp). The bounds and the acceptance do not
- * change: only the collision rule does (seed 001 sec. II).
+ * change: only the collision rule does (Bodrova and Osinsky 2024, sec. II, \ref sch_lowrank "docs/schemes.md").
  *
- * **Displacements** (seed 001 eq 15, ERRATA §7), when the System tracks them: at a collision at
+ * **Displacements** (Bodrova and Osinsky 2024, eq. (15), \ref sch_displacements "docs/schemes.md"), when the System tracks them: at a collision at
  * time t both partners add their free flight v (t - t_last) to R before their velocities change.
  *
  * **Time.** All schemes are uniformised continuous-time processes: each candidate advances time by
- * 1 / R (the mean waiting time; the N_p = R dt candidates of seed 000 eq 8 per step, with the
+ * 1 / R (the mean waiting time; the N_p = R dt candidates of the DSMC notes, eq. (8), \ref sch_majorant "docs/schemes.md" per step, with the
  * fraction carried over). Collisions are processed one after another with current velocities, so
- * there is none of the batch time-step bias of ERRATA §9. The time step dt only sets how often the
+ * there is none of the batch time-step bias of \ref sch_thinning "docs/schemes.md". The time step dt only sets how often the
  * bounds are recomputed: dt = step_fraction / nu_max, nu_max = 2 R / N the majorant collision
  * frequency of one particle (the majorant mean free time). It is written to the output.
  *
@@ -172,7 +172,7 @@ namespace gdsmc::collide {
 
 enum class Scheme { majorant, pairs, lowrank };
 
-/// Applies the collision rule of ERRATA §1 to particles a and b along the unit vector (ex, ey, ez).
+/// Applies the collision rule of \ref cm_rule "docs/collision-model.md" to particles a and b along the unit vector (ex, ey, ez).
 /// `mass_fraction_b` = m_b/(m_a + m_b). Returns (g.e) before the collision.
 inline double apply_collision(particles::System& sys, std::size_t a, std::size_t b, double ex,
                               double ey, double ez, double alpha, double mass_fraction_b) {
@@ -191,7 +191,7 @@ inline double apply_collision(particles::System& sys, std::size_t a, std::size_t
   return g_dot_e;
 }
 
-/// e with density proportional to (g_hat.e) on the hemisphere g.e > 0 (ERRATA §2), the direction of
+/// e with density proportional to (g_hat.e) on the hemisphere g.e > 0 (\ref cm_hemisphere "docs/collision-model.md"), the direction of
 /// a collision of relative velocity g (|g| = g): e = (g_hat + w)/|g_hat + w|, w uniform on the
 /// sphere, has exactly that density (the ray from the origin meets the sphere |p - g_hat| = 1 at
 /// distance 2 cos(theta), with area element 4 cos(theta) dOmega). Returns false for w = -g_hat
@@ -226,9 +226,9 @@ struct Counters {
   std::uint64_t steps = 0;                 ///< time steps (bound recomputations)
   double step_sum = 0.0;                   ///< sum of the step lengths, for the mean dt
   double dissipated = 0.0;                 ///< kinetic energy lost so far, (1 - alpha^2) m_kj (g.e)^2/2
-                                           ///< per collision (ERRATA §1): the thermostat's loss
+                                           ///< per collision (\ref cm_energy "docs/collision-model.md"): the thermostat's loss
   /// Enskog gas in shear flow (set_shear): sum over accepted collisions of m_kj sigma_kj (1 + alpha)
-  /// (g.e) e e, components xx, yy, zz, xy, xz, yz: the collisional transfer (ERRATA §13).
+  /// (g.e) e e, components xx, yy, zz, xy, xz, yz: the collisional transfer (\ref eta_pressure "docs/shear-viscosity.md").
   std::array<double, 6> transfer{};
   /// Candidates whose acceptance probability came out above 1 (the bound was not a majorant), and the
   /// largest such probability: an invariant of every scheme, 0 in a correct run (validation/ fails
@@ -274,7 +274,7 @@ class Collider {
     recompute_max_speeds();
     rebuild_bounds();
   }
-  /// Uniform shear flow u_x = a y in the Enskog gas (`pairs` scheme only; ERRATA §13): a partner at
+  /// Uniform shear flow u_x = a y in the Enskog gas (`pairs` scheme only; \ref eta_enskog_shear "docs/shear-viscosity.md"): a partner at
   /// r_k + sigma_ij e moves with the flow a sigma_ij e_y relative to particle k, so the relative velocity
   /// of the collision is g = V_k - V_l - a sigma_ij e_y x_hat, in the acceptance Theta(g.e) |g.e| and in
   /// the update; the bound grows by a sigma_ij/2 >= |a sigma_ij e_y e_x|. Each accepted collision adds
@@ -453,7 +453,7 @@ class Collider {
   std::vector<double> sqrt_beta_;       ///< beta_kj^(1/2) (viscoelastic with tables)
   species::PairMatrix beta_;            ///< beta_kj (viscoelastic without tables)
   bool viscoelastic_ = false;
-  /// alpha of species pair (i, k) for the collision of a and b along e (ERRATA §1, §11).
+  /// alpha of species pair (i, k) for the collision of a and b along e (\ref cm_rule "docs/collision-model.md", \ref visco_series "docs/viscoelastic.md").
   double restitution_of(std::size_t i, std::size_t k, std::size_t a, std::size_t b, double ex, double ey,
                         double ez) const;
   double mass_fraction_of(std::size_t i, std::size_t k) const;  ///< m_k/(m_i + m_k)

@@ -104,7 +104,7 @@ System make_system(const species::Mixture& mix, const std::vector<std::size_t>& 
       sys.v[i].z -= mean[2];
       sum_sq += sys.v[i].x * sys.v[i].x + sys.v[i].y * sys.v[i].y + sys.v[i].z * sys.v[i].z;
     }
-    // T_k = m_k <|v|^2> / 3 (INTERFACE.md `temperature`)
+    // T_k = m_k <|v|^2> / 3 (`temperature`, \ref output_observables "docs/output.md")
     const double current = mix.mass[k] * sum_sq / (3.0 * static_cast<double>(counts[k]));
     const double scale = std::sqrt(temperature[k] / current);
     for (std::size_t i = begin; i < end; ++i) {

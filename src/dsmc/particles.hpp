@@ -2,12 +2,12 @@
  * \file particles.hpp
  * \brief The simulated particles of one replica: velocities and species as parallel arrays, grouped by species.
  *
- * A homogeneous gas needs no positions (seed 003 sec. 3: a single cell), so a particle is its
+ * A homogeneous gas needs no positions (Montanero and Garzo 2002, sec. 3, \ref sch_pairs "docs/schemes.md": a single cell), so a particle is its
  * velocity and its species. Particles of species k occupy the contiguous index range
  * [first[k], first[k] + count[k]), which makes "a random particle of species k" one integer draw
  * (pairs scheme) and keeps a species' velocities together for sampling.
  *
- * The number of simulated particles of species k is N_k = round(N n_k / n) (seed 003 eq 22 and the
+ * The number of simulated particles of species k is N_k = round(N n_k / n) (Montanero and Garzo 2002, eq. (22), \ref cm_initial "docs/collision-model.md" and the
  * relation N_i/N_j = n_i/n_j). Each simulated particle stands for n_k V / N_k real ones; the
  * collision schemes use the physical densities n_k directly, so V never appears.
  *
@@ -17,7 +17,7 @@
  * be three, which is what limits the collision loop at N = 1e6 (bench/bench_collide.cpp).
  * Tracked displacements keep R and t_last together (32 bytes) for the same reason.
  *
- * Initial velocities (`&initial distribution`): 'maxwell' (Gaussian, seed 003 eq 25), 'shell' (all
+ * Initial velocities (`&initial distribution`): 'maxwell' (Gaussian, Montanero and Garzo 2002, eq. (25), \ref cm_initial "docs/collision-model.md"), 'shell' (all
  * speeds equal, isotropic directions) or 'cube' (uniform in a cube). Then each species' mean velocity
  * is removed (so the total momentum is zero to round-off) and its velocities are scaled so that its
  * kinetic temperature is exactly T_k(0): the run starts at the requested temperatures, not at a
@@ -36,7 +36,12 @@
 
 namespace gdsmc::particles {
 
-enum class InitialDistribution { maxwell, shell, cube };
+/// Initial velocity distribution (`&initial distribution`).
+enum class InitialDistribution {
+  maxwell,  ///< Gaussian at the initial temperature
+  shell,    ///< every speed equal, directions uniform
+  cube      ///< components uniform in a cube
+};
 
 /// Allocator for the per-particle arrays: blocks of 2 MiB and more are 2 MiB-aligned and, on Linux,
 /// marked for transparent huge pages (madvise). The collision loop reads particles at random; with
@@ -44,46 +49,61 @@ enum class InitialDistribution { maxwell, shell, cube };
 /// also miss the TLB. Falls back to ordinary pages where huge pages are unavailable.
 void* allocate_bytes(std::size_t bytes);  ///< throws std::bad_alloc; free with std::free
 
+/// std::allocator replacement that takes its blocks from allocate_bytes (huge pages where possible).
 template <class T>
 struct LargePageAllocator {
-  using value_type = T;
+  using value_type = T;  ///< the element type
   LargePageAllocator() = default;
+  /// Rebinding copy (stateless).
   template <class U>
   LargePageAllocator(const LargePageAllocator<U>&) {}
+  /// Storage for `n` elements; throws std::bad_alloc.
   T* allocate(std::size_t n) { return static_cast<T*>(allocate_bytes(n * sizeof(T))); }
+  /// Frees storage of allocate().
   void deallocate(T* p, std::size_t) { std::free(p); }
+  /// Stateless: all instances are equal.
   template <class U>
   bool operator==(const LargePageAllocator<U>&) const { return true; }
 };
 
+/// A per-particle array on LargePageAllocator.
 template <class T>
 using ParticleArray = std::vector<T, LargePageAllocator<T>>;
 
 /// A velocity (or any 3-vector) in the user's units.
 struct Vec3 {
-  double x, y, z;
-  bool operator==(const Vec3&) const = default;
+  double x;  ///< x component
+  double y;  ///< y component
+  double z;  ///< z component
+  bool operator==(const Vec3&) const = default;  ///< componentwise, exact
 };
 
 /// A tracked displacement R, accumulated up to the time t_last (see System::r).
 struct Displacement {
-  double x, y, z, t_last;
-  bool operator==(const Displacement&) const = default;
+  double x;       ///< R_x up to t_last
+  double y;       ///< R_y up to t_last
+  double z;       ///< R_z up to t_last
+  double t_last;  ///< time of the last collision (or of the start of tracking)
+  bool operator==(const Displacement&) const = default;  ///< componentwise, exact
 };
 
+/// The particles of one replica, sorted by species: particle i of species k is at first[k] + i.
 struct System {
   ParticleArray<Vec3> v;               ///< velocities
   ParticleArray<std::uint32_t> species;  ///< species index of each particle
   std::vector<std::size_t> first;      ///< first index of species k
   std::vector<std::size_t> count;      ///< N_k
 
-  /// Displacement tracking (seed 001 eq 15, ERRATA §7); empty when not tracked. R is the
+  /// Displacement tracking (Bodrova and Osinsky 2024, eq. (15), \ref sch_displacements "docs/schemes.md"); empty when not tracked. R is the
   /// displacement accumulated up to t_last, the time of the particle's last collision (or of the
   /// start of tracking); its displacement at t >= t_last is R + v (t - t_last).
   ParticleArray<Displacement> r;
 
+  /// N, the number of particles.
   std::size_t size() const { return v.size(); }
+  /// S, the number of species.
   std::size_t n_species() const { return count.size(); }
+  /// Displacements are tracked (r is not empty).
   bool tracks_displacements() const { return !r.empty(); }
 };
 

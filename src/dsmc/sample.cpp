@@ -37,8 +37,8 @@ Moments measure(const species::Mixture& mix, const particles::System& sys) {
     const double n_k = static_cast<double>(sys.count[k]);
     const double v2 = v2_sum / n_k, v4 = v4_sum / n_k;
     m.number[k] = n_k;
-    m.temperature[k] = mix.mass[k] * v2 / 3.0;               // INTERFACE.md
-    m.sonine_c[k] = 2.0 * (0.6 * v4 / (v2 * v2) - 1.0);      // seed 003 eq 17, ERRATA §6
+    m.temperature[k] = mix.mass[k] * v2 / 3.0;               // \ref output_observables "docs/output.md"
+    m.sonine_c[k] = 2.0 * (0.6 * v4 / (v2 * v2) - 1.0);      // Montanero and Garzo 2002, eq. (17), \ref son_scaling "docs/sonine.md"
     weighted += n_k * m.temperature[k];
     n_total += n_k;
   }
@@ -92,7 +92,7 @@ std::vector<double> mean_squared_displacement(const particles::System& sys, doub
 double reduced_velocity_scale(const species::Mixture& mix, double total_temperature) {
   if (mix.size() > 2) return 0.0;
   const double m1 = mix.mass[0], m2 = mix.size() == 2 ? mix.mass[1] : mix.mass[0];
-  return std::sqrt(2.0 * total_temperature * (m1 + m2) / (m1 * m2));  // ERRATA §6
+  return std::sqrt(2.0 * total_temperature * (m1 + m2) / (m1 * m2));  // \ref son_scaling "docs/sonine.md"
 }
 
 void add_reduced_speeds(const species::Mixture& /*mix*/, const particles::System& sys,

@@ -4,8 +4,8 @@
  *
  * For each species k, with velocities relative to the mean flow u = sum m v / sum m (zero to
  * round-off, since collisions conserve momentum and the initial state has none):
- * - partial temperature T_k = m_k <|v - u|^2> / 3 (INTERFACE.md),
- * - Sonine coefficient c_k = 2 [(3/5) <|v - u|^4> / <|v - u|^2>^2 - 1] (seed 003 eq 17, ERRATA §6:
+ * - partial temperature T_k = m_k <|v - u|^2> / 3 (\ref output_observables "docs/output.md"),
+ * - Sonine coefficient c_k = 2 [(3/5) <|v - u|^4> / <|v - u|^2>^2 - 1] (Montanero and Garzo 2002, eq. (17), \ref son_scaling "docs/sonine.md":
  *   twice the usual a2; zero for a Maxwellian),
  * - the velocity-component histogram of c = (v_alpha - u_alpha) / sqrt(T_k/m_k), all three
  *   components pooled, as a probability density (a standard normal for a Maxwellian),
@@ -39,6 +39,7 @@ struct Moments {
   double mean_flow[3] = {0.0, 0.0, 0.0};  ///< u = sum m v / sum m
 };
 
+/// The Moments of the particles `sys` of mixture `mix` now (velocities relative to the mean flow).
 Moments measure(const species::Mixture& mix, const particles::System& sys);
 
 /// Velocity-component histograms of (v - u)/sqrt(T_k/m_k), S x bins, each a probability density
@@ -46,17 +47,17 @@ Moments measure(const species::Mixture& mix, const particles::System& sys);
 std::vector<double> velocity_histogram(const species::Mixture& mix, const particles::System& sys,
                                        const Moments& moments, std::size_t bins, double range);
 
-/// Kinetic pressure tensor (seed 004, ERRATA §13): P^k = sum_i (m_i n_i / N_i) sum_{k in i} (V - u)(V - u),
+/// Kinetic pressure tensor (Montanero 2003, \ref eta_pressure "docs/shear-viscosity.md"): P^k = sum_i (m_i n_i / N_i) sum_{k in i} (V - u)(V - u),
 /// components xx, yy, zz, xy, xz, yz, with u = `moments.mean_flow`. Densities are the physical n_i.
 std::array<double, 6> kinetic_pressure_tensor(const species::Mixture& mix, const particles::System& sys,
                                               const Moments& moments);
 
-/// Mean-squared displacement of each species at time t >= every t_last (seed 001 eq 15, ERRATA §7):
+/// Mean-squared displacement of each species at time t >= every t_last (Bodrova and Osinsky 2024, eq. (15), \ref sch_displacements "docs/schemes.md"):
 /// <|R + v (t - t_last)|^2>, the free flight since the last collision added without changing the state.
 std::vector<double> mean_squared_displacement(const particles::System& sys, double t);
 
 /// v0 = sqrt(2 T (m1 + m2)/(m1 m2)), the velocity unit of the reduced distributions of a binary
-/// mixture (seed 003 sec. 2, ERRATA §6); for one species m1 = m2 = m. 0 for more than two species.
+/// mixture (Montanero and Garzo 2002, sec. 2, \ref son_scaling "docs/sonine.md"); for one species m1 = m2 = m. 0 for more than two species.
 double reduced_velocity_scale(const species::Mixture& mix, double total_temperature);
 
 /// Adds the reduced speeds v* = |v - u|/v0 of each species to `counts` (S x bins over [0, range)).
@@ -65,7 +66,7 @@ void add_reduced_speeds(const species::Mixture& mix, const particles::System& sy
                         std::vector<double>& counts);
 
 /// Phi_i(v*) from speed counts gathered over `samples` sample points: the number density in
-/// reduced velocity space, normalised to 1 (f_i(v) = n_i v0^-3 Phi_i(v/v0), seed 003 sec. 2),
+/// reduced velocity space, normalised to 1 (f_i(v) = n_i v0^-3 Phi_i(v/v0), Montanero and Garzo 2002, sec. 2, \ref son_scaling "docs/sonine.md"),
 /// averaged over each spherical shell: counts / (samples N_i (4 pi/3)(e_{b+1}^3 - e_b^3)).
 std::vector<double> reduced_distribution(const std::vector<double>& counts,
                                          const std::vector<double>& number, double samples,
@@ -76,10 +77,10 @@ double maxwellian_shell_average(double lambda, double a, double b);
 
 /// One observable's samples from all replicas: values[replica][sample * columns + column].
 struct Accumulator {
-  std::size_t columns = 1;
-  std::vector<std::vector<double>> values;
+  std::size_t columns = 1;                 ///< values per sample (species, bins, ...)
+  std::vector<std::vector<double>> values; ///< values[replica][sample * columns + column]
   void add(std::size_t replica, const std::vector<double>& row);  ///< appends one sample row
-  std::vector<double> mean() const;
+  std::vector<double> mean() const;  ///< mean over the replicas of every entry
   std::vector<double> standard_error() const;  ///< empty when fewer than 2 replicas
 };
 

@@ -1,34 +1,34 @@
 /**
  * \file segment_tree.hpp
  * \brief Segment trees for choosing the species pair of a candidate collision in O(log M) when there
- *        are M (up to thousands of) species: the data structure of the low-rank scheme of seed 001.
+ *        are M (up to thousands of) species: the data structure of the low-rank scheme of Bodrova and Osinsky 2024, \ref sch_lowrank "docs/schemes.md".
  *
- * **What it is for** (seed 001 sec. II B, eqs 12-14; ERRATA §2 and §7). In the continuous-time
+ * **What it is for** (Bodrova and Osinsky 2024, sec. II B, eqs 12-14; \ref cm_pair_rate "docs/collision-model.md", \ref sch_lowrank_decomposition "docs/schemes.md"). In the continuous-time
  * scheme a candidate is an ordered species pair (i, k) drawn with probability C_ik / R, then a
  * particle of each species, accepted with the ratio of the true rate to the majorant. Drawing (i, k)
  * from an M x M table costs O(M^2) per update; but the majorant is a sum of a few separable terms,
  *   C_ik = sum_{r=1..Rank} u_i^(r) v_k^(r),   R = sum_{i,k} C_ik = sum_r (sum_i u_i^(r)) (sum_k v_k^(r)),
  * and a pair is drawn exactly by picking the term r with probability
  * (sum_i u_i^(r))(sum_k v_k^(r)) / R, then i with probability u_i^(r) / sum_i u_i^(r) and,
- * independently, k with probability v_k^(r) / sum_k v_k^(r) (seed 001 text after eq 14). One
+ * independently, k with probability v_k^(r) / sum_k v_k^(r) (Bodrova and Osinsky 2024, text after eq. (14), \ref sch_segment_trees "docs/schemes.md"). One
  * SumTree per vector u^(r) and v^(r) keeps those sums and samples from them in O(log M); when the
  * count N_i or the largest speed of species i changes, its row and column are reset in
  * O(Rank log M).
  *
- * **The hard-sphere decomposition** (hard_sphere_factors). Convention of ERRATA §2 as used by
+ * **The hard-sphere decomposition** (hard_sphere_factors). Convention of \ref cm_pair_rate "docs/collision-model.md" as used by
  * collide.hpp: one unordered pair collides at pi sigma_ik^2 |g| / V (chi = 1; see below). With
  * w_i = max_j |v_i^j| the largest speed in species i, |g| <= w_i + w_k, so the unordered particle
  * pair {a in i, b in k} gets candidates at pi sigma_ik^2 (w_i + w_k) / V. Split it evenly over the
  * two ordered pairs (a, b), (b, a) and sum over ordered particle pairs (the self pairs a = b of
  * i = k included, and rejected when drawn): by the symmetry of that sum,
  *   R = sum_{i,k} N_i N_k pi sigma_ik^2 (w_i + w_k) / (2V) = sum_{i,k} A_ik,
- *   A_ik = pi sigma_ik^2 w_i N_i N_k / V                                      (ERRATA §2, seed 001 eq 12)
+ *   A_ik = pi sigma_ik^2 w_i N_i N_k / V                                      (\ref sch_lowrank_decomposition "docs/schemes.md", Bodrova and Osinsky 2024, eq. (12))
  * so the (asymmetric) A is the C to sample: the unordered species pair {i, k} is drawn with
  * probability (A_ik + A_ki) / R, the candidate rate of the pair {a, b} is pi sigma_ik^2 (w_i + w_k) / V,
  * and accepting with |g| / (w_i + w_k) leaves the collision rate pi sigma_ik^2 |g| / V. With
- * sigma_ik^2 = (sigma_i^2 + 2 sigma_i sigma_k + sigma_k^2) / 4 (seed 001 eq 13), A has rank 3:
- *   u_i = (pi w_i N_i / (4V)) (sigma_i^2, 2 sigma_i, 1),   v_k = N_k (1, sigma_k, sigma_k^2)  (eq 14, ERRATA §7).
- * With the other convention of ERRATA §2 (e uniform on the sphere, accept |g.e| / (w_i + w_k)) the
+ * sigma_ik^2 = (sigma_i^2 + 2 sigma_i sigma_k + sigma_k^2) / 4 (Bodrova and Osinsky 2024, eq. (13), \ref sch_lowrank_decomposition "docs/schemes.md"), A has rank 3:
+ *   u_i = (pi w_i N_i / (4V)) (sigma_i^2, 2 sigma_i, 1),   v_k = N_k (1, sigma_k, sigma_k^2)  (eq 14, \ref sch_lowrank_decomposition "docs/schemes.md").
+ * With the other convention of \ref cm_pair_rate "docs/collision-model.md" (e uniform on the sphere, accept |g.e| / (w_i + w_k)) the
  * candidate rate doubles: R = 2 sum A_ik, same sampling. For the Enskog gas chi_ik is not separable:
  * multiply R by a bound chi_max >= chi_ik and accept with an extra factor chi_ik / chi_max.
  *
@@ -90,8 +90,11 @@ class SumTree {
     for (n >>= 1; n >= 1; n >>= 1) tree_[n] = tree_[2 * n] + tree_[2 * n + 1];
   }
 
+  /// The weight of leaf `index`.
   double weight(std::size_t index) const { return tree_[leaves_ + index]; }
+  /// Sum of all weights (the root).
   double total() const { return tree_[1]; }
+  /// Number of leaves M.
   std::size_t size() const { return size_; }
 
   /// The index i with prefix(i) <= u < prefix(i + 1), prefix(i) the sum of weights 0..i-1, for u in
@@ -192,7 +195,7 @@ class LowRankSampler {
   static_assert(Rank >= 1, "LowRankSampler needs at least one term");
 
  public:
-  using Vector = std::array<double, Rank>;
+  using Vector = std::array<double, Rank>;  ///< one row u_i or column v_k: its Rank terms
 
   /// M species, all rows and columns zero.
   explicit LowRankSampler(std::size_t size = 0) : size_(size) {
@@ -227,11 +230,13 @@ class LowRankSampler {
     for (std::size_t r = 0; r < Rank; ++r) v_[r].set(k, v_k[r]);
   }
 
+  /// u_i^(r), r = 1..Rank.
   Vector row(std::size_t i) const {
     Vector out{};
     for (std::size_t r = 0; r < Rank; ++r) out[r] = u_[r].weight(i);
     return out;
   }
+  /// v_k^(r), r = 1..Rank.
   Vector column(std::size_t k) const {
     Vector out{};
     for (std::size_t r = 0; r < Rank; ++r) out[r] = v_[r].weight(k);
@@ -251,6 +256,7 @@ class LowRankSampler {
     for (std::size_t r = 0; r < Rank; ++r) sum += term_total(r);
     return sum;
   }
+  /// Number of species M.
   std::size_t size() const { return size_; }
 
   /// Draws (i, k) with probability C_ik / R from two uniforms gen.uniform() in [0, 1): the first
@@ -304,8 +310,8 @@ class LowRankSampler {
   bool columns_frozen_ = false;
 };
 
-/// Row u_i and column v_k of species i of the rank-3 hard-sphere majorant A_ik of seed 001 eqs 12-14
-/// (ERRATA §2, §7; derivation in the file comment):
+/// Row u_i and column v_k of species i of the rank-3 hard-sphere majorant A_ik of Bodrova and Osinsky 2024, eqs. (12)-(14), \ref sch_lowrank_decomposition "docs/schemes.md"
+/// (\ref cm_pair_rate "docs/collision-model.md", \ref sch_lowrank "docs/schemes.md"; derivation in the file comment):
 ///   A_ik = pi sigma_ik^2 w_i N_i N_k / V = sum_r u_i^(r) v_k^(r),
 ///   u_i = (pi w_i N_i / (4V)) (sigma_i^2, 2 sigma_i, 1),   v_i = N_i (1, sigma_i, sigma_i^2),
 /// with N_i the count, sigma_i the diameter, w_i = max_j |v_i^j| and V the volume. With the
@@ -314,6 +320,8 @@ struct HardSphereFactors {
   std::array<double, 3> row;     ///< u_i
   std::array<double, 3> column;  ///< v_i
 };
+/// The HardSphereFactors of a species with `count` particles, `diameter`, bound `max_speed` = w_i,
+/// in the simulated volume `volume`.
 inline HardSphereFactors hard_sphere_factors(double count, double diameter, double max_speed,
                                              double volume) {
   const double a = std::numbers::pi * max_speed * count / (4.0 * volume);

@@ -420,7 +420,7 @@ using SafePoint = std::function<void(const std::function<Snapshot()>&)>;
 // Aggregation and fragmentation (&agg_frag): the cluster gas of agg_frag.hpp in a loop of its own
 // ---------------------------------------------------------------------------------------------
 
-/// The monomer of &system and the thresholds of &agg_frag (ERRATA §12).
+/// The monomer of &system and the thresholds of &agg_frag (\ref af_outcome "docs/agg-frag.md").
 agg_frag::Model agg_frag_model(const io::config::Config& c) {
   agg_frag::Model m;
   m.monomer_mass = c.system.mass[0];
@@ -590,7 +590,7 @@ ReplicaResult run_agg_frag_replica(const io::config::Config& config, const Optio
     const auto& counters = gas.counters();
     result.add(sample_row("number", i), m.number.size(), m.number);
     result.add(sample_row("size_energy", i), m.energy.size(), m.energy);
-    result.add("total_temperature", 1, {2.0 / 3.0 * m.kinetic_energy / m.clusters});  // per cluster, ERRATA §12
+    result.add("total_temperature", 1, {2.0 / 3.0 * m.kinetic_energy / m.clusters});  // per cluster, \ref af_observables "docs/agg-frag.md"
     result.add("kinetic_energy", 1, {m.kinetic_energy / initial_monomers});
     result.add("mean_size", 1, {initial_monomers / m.clusters});
     result.add("monomer_fraction", 1, {m.number[0] / initial_monomers});
@@ -610,12 +610,12 @@ ReplicaResult run_agg_frag_replica(const io::config::Config& config, const Optio
 
 // ---------------------------------------------------------------------------------------------
 // Thermostat and uniform shear flow (&thermostat, &shear): stages of streaming, collisions and
-// thermostat (thermostat.hpp, ERRATA §13)
+// thermostat (thermostat.hpp, \ref eta_thermostat "docs/shear-viscosity.md")
 // ---------------------------------------------------------------------------------------------
 
 /// Replica r of a run with a thermostat or a shear rate. Each stage of length dt: streaming
 /// V_x -> V_x - a V_y dt; at a sample time the measurement (after the streaming, before the
-/// collisions: ERRATA §13); the collisions of [t, t + dt] in continuous time (collide.hpp, no cache
+/// collisions: \ref eta_thermostat "docs/shear-viscosity.md"); the collisions of [t, t + dt] in continuous time (collide.hpp, no cache
 /// blocks: the stages are far shorter than a blocked step); the Gaussian thermostat. The stages end
 /// at every sample time.
 ReplicaResult run_staged_replica(const io::config::Config& config, const Options& options, Progress& progress,
@@ -636,7 +636,7 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
   auto init_stream = rng::make_stream(seed, r, rng::Purpose::initial_state);
   particles::System sys = particles::make_system(mix, counts, config.initial.temperature,
                                                  parse_distribution(config.initial.distribution), init_stream);
-  thermostat::remove_mean_flow(mix, sys);  // the centre-of-mass velocity sum m V / sum m (ERRATA §13)
+  thermostat::remove_mean_flow(mix, sys);  // the centre-of-mass velocity sum m V / sum m (\ref eta_thermostat "docs/shear-viscosity.md")
   collide::Collider collider(collide::parse_scheme(config.dsmc.scheme), mix, sys,
                              rng::make_stream(seed, r, rng::Purpose::collisions), config.dsmc.step_fraction);
   ReplicaResult result;
@@ -710,7 +710,7 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
       for (std::size_t c = 0; c < 6; ++c) kinetic[c] = 0.5 * (kinetic[c] + before[c]);
     }
     const std::vector<double> pk(kinetic.begin(), kinetic.end());
-    // Collisional transfer since the previous sample (ERRATA §13): P^c = sum m sigma (1 + alpha)(g.e) e e
+    // Collisional transfer since the previous sample (\ref eta_pressure "docs/shear-viscosity.md"): P^c = sum m sigma (1 + alpha)(g.e) e e
     // / (V dt), V = N/n the simulated volume; 0 in the dilute gas.
     std::vector<double> pc(6, 0.0);
     const double now = collider.time();
@@ -733,8 +733,8 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
       const double viscosity = -total[3] / shear;  // eta = -P_xy/a, P_xy at the middle of the jump
       result.add("shear_viscosity_raw", 1, {viscosity});
       {
-        // eta/eta_0(T) with the finite-shear-rate correction of ERRATA §13, 1 - (a* eta*)^2,
-        // a* = a/nu_0(T), nu_0 = n T/eta_0; eta_0 of one species (ERRATA §10), or of the elastic
+        // eta/eta_0(T) with the finite-shear-rate correction of \ref eta_measured "docs/shear-viscosity.md", 1 - (a* eta*)^2,
+        // a* = a/nu_0(T), nu_0 = n T/eta_0; eta_0 of one species (\ref eta_one_species "docs/shear-viscosity.md"), or of the elastic
         // mixture at the same T (Chapman and Cowling's first approximation; theory/viscosity.hpp).
         const double eta0 = s == 1 ? theory::viscosity::elastic_viscosity(mix.mass[0], mix.diameter[0],
                                                                            m.total_temperature)
@@ -789,7 +789,7 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
       const double loss = collider.counters().dissipated - dissipated_before;
       if (enskog_shear) {
         // The Enskog collisions in shear flow also do viscous work, which the thermostat must not
-        // remove (ERRATA §13): only the inelastic loss is restored, s^2 = (E_after + L)/E_after.
+        // remove (\ref eta_thermostat "docs/shear-viscosity.md"): only the inelastic loss is restored, s^2 = (E_after + L)/E_after.
         const double after = thermostat::frame_energy(collider.frame_moments(), momentum, total_mass, frame).kinetic;
         pending = {std::sqrt((after + loss) / after), start.mean_flow, loss / start.kinetic};
       } else {
@@ -865,7 +865,7 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
   const std::size_t n_samples = targets.size();
   const std::size_t n_pairs = s * (s + 1) / 2;
   const auto viscoelastic_beta = config.viscoelastic_beta();
-  const bool reduced = s <= 2;  // v0 and Phi_i(v*) are defined for one or two species (seed 003)
+  const bool reduced = s <= 2;  // v0 and Phi_i(v*) are defined for one or two species (Montanero and Garzo 2002, \ref son_reduced_distributions "docs/sonine.md")
   const auto reduced_bins = static_cast<std::size_t>(config.output.reduced_bins);
   const double reduced_range = config.output.reduced_range;
 
@@ -883,7 +883,7 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
                                                  parse_distribution(config.initial.distribution), init_stream);
   collide::Collider collider(scheme, mix, sys, rng::make_stream(seed, r, rng::Purpose::collisions),
                              config.dsmc.step_fraction, viscoelastic_beta ? &*viscoelastic_beta : nullptr);
-  // Displacements (seed 001 eq 15) from t = 0, from msd_start_time, or from the first sample
+  // Displacements (Bodrova and Osinsky 2024, eq. (15), \ref dif_displacements "docs/diffusion-msd.md") from t = 0, from msd_start_time, or from the first sample
   // with T <= msd_start_temperature. The HCS part: samples past scaling_start collisions per particle.
   const bool track = config.output.track_displacements;
   // Cache blocks (collide.hpp "Blocks"; one species, majorant or lowrank): in collision-driven runs
@@ -931,7 +931,7 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
     // events and times in every run, wherever and however often it is stopped and resumed, so the
     // trajectory is the same bit for bit.
     const double t_target = time_driven ? targets[i] : std::numeric_limits<double>::infinity();
-    // 2 x events / N reaches the target (INTERFACE.md collisions_per_particle)
+    // 2 x events / N reaches the target (\ref output_observables "docs/output.md": collisions_per_particle)
     const std::uint64_t event_target =
         time_driven ? std::numeric_limits<std::uint64_t>::max()
                     : static_cast<std::uint64_t>(std::ceil(targets[i] * static_cast<double>(n_total) / 2.0));
@@ -1022,7 +1022,7 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
     result.add("reduced_sonine_c", s, p.c_sum);
     result.add("reduced_temperature_share", s, p.share_sum);
     // zeta* = zeta/(n sigma_12^2 v0) with zeta = 2 sqrt(T) d(T^-1/2)/dt, constant in the HCS
-    // (ERRATA §3, §6): zeta* = 2 slope / (n sigma_12^2 sqrt(2 (m1 + m2)/(m1 m2))).
+    // (\ref haff_law "docs/haff-and-mixtures.md", \ref son_scaling "docs/sonine.md"): zeta* = 2 slope / (n sigma_12^2 sqrt(2 (m1 + m2)/(m1 m2))).
     const double slope = (1.0 / std::sqrt(p.temp_last) - 1.0 / std::sqrt(p.temp_first)) / (p.t_last - p.t_first);
     const double sigma12 = mix.contact_distance(0, s - 1);
     const double v0_unit = sample::reduced_velocity_scale(mix, 1.0);
@@ -1065,7 +1065,7 @@ class ContentHash {
   std::uint64_t hash_ = 14695981039346656037ull;
 };
 
-/// The checkpoint file of this rank (INTERFACE.md): the results of its finished units and the
+/// The checkpoint file of this rank (\ref output_checkpoint "docs/output.md"): the results of its finished units and the
 /// latest snapshot of each unit in progress, rewritten whole (temporary file + rename, io::h5md).
 /// Each unit in progress refreshes its own snapshot (and rewrites the file) when that snapshot is
 /// `every` seconds old, so every thread's unit is saved, not only the first to reach a safe point.
@@ -1231,7 +1231,7 @@ PointResult reduce_point(std::vector<ReplicaResult>& replicas) {
   return point;
 }
 
-/// The HCS distributions of one point (seed 003 sec. 4): Phi_i(v*), the deviation Delta_i(v*) of
+/// The HCS distributions of one point (Montanero and Garzo 2002, sec. 4, \ref son_reduced_distributions "docs/sonine.md"): Phi_i(v*), the deviation Delta_i(v*) of
 /// eq 27 with the measured c_i and lambda_i = T/(T_i mu_ji), and G_i(v*) = exp(2 beta_i v*/zeta*) Phi_i
 /// of eq 30 with beta_i of eq 20 and the measured reduced cooling rate zeta*.
 void write_reduced(io::h5md::Writer& writer, const std::string& root, const io::config::Config& config,
@@ -1255,8 +1255,8 @@ void write_reduced(io::h5md::Writer& writer, const std::string& root, const io::
   for (std::size_t k = 0; k < s; ++k) {
     const std::size_t j = s - 1 - k;  // the other species (itself for one species)
     const double mu_jk = mix.mass[j] / (mix.mass[k] + mix.mass[j]);
-    const double lambda = 1.0 / (share[k] * mu_jk);  // lambda_i = T/(T_i mu_ji), ERRATA §6
-    double beta = 0.0;  // seed 003 eq 20, ERRATA §6
+    const double lambda = 1.0 / (share[k] * mu_jk);  // lambda_i = T/(T_i mu_ji), \ref son_binary "docs/sonine.md"
+    double beta = 0.0;  // Montanero and Garzo 2002, eq. (20), \ref son_tails "docs/sonine.md"
     for (std::size_t l = 0; l < s; ++l) {
       const double ratio = mix.contact_distance(k, l) / sigma12;
       beta += M_PI * mix.mole_fraction(l) * mix.pair_correlation(k, l) * ratio * ratio;
@@ -1484,7 +1484,7 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
   for (std::size_t u = 0; u < units.size(); ++u)
     if (u % static_cast<std::size_t>(ranks) == static_cast<std::size_t>(rank)) mine.push_back(u);
 
-  // Checkpoints: one file per rank (rank 0's is the one INTERFACE.md names).
+  // Checkpoints: one file per rank (rank 0's is the one \ref output_checkpoint "docs/output.md" names).
   const std::string fingerprint = config.namelist_text + "\n--overrides--\n" + [&] {
     std::string joined;
     for (const auto& o : config.overrides) joined += o + "\n";

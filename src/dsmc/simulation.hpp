@@ -88,7 +88,7 @@ inline constexpr double chunk_candidates = 131072.0;
 /// checkpoint restores, so a resumed run splits its chunks at the same times.
 double chunk_end_time(double time, std::uint64_t candidates, double t_target, double chunk = chunk_candidates);
 
-/// `<output stem>.checkpoint.h5` (INTERFACE.md), `.rank<k>` before `.h5` for MPI rank k > 0.
+/// `<output stem>.checkpoint.h5` (\ref output_checkpoint "docs/output.md"), `.rank<k>` before `.h5` for MPI rank k > 0.
 std::string checkpoint_path(const std::string& output_path, int rank = 0);
 
 /// FNV-1a (64 bits) of `bytes` bytes at `data`, continuing from `hash`: the checksum of checkpoints.

@@ -59,7 +59,7 @@ double Mixture::packing_fraction() const {
 PairMatrix carnahan_starling(const std::vector<double>& diameter,
                              const std::vector<double>& number_density) {
   const std::size_t s = diameter.size();
-  // ERRATA §5: phi = (pi n/6) sum_i x_i sigma_i^3 = (pi/6) sum_i n_i sigma_i^3, likewise xi.
+  // \ref cm_chi "docs/collision-model.md": phi = (pi n/6) sum_i x_i sigma_i^3 = (pi/6) sum_i n_i sigma_i^3, likewise xi.
   double phi = 0.0, xi = 0.0;
   for (std::size_t i = 0; i < s; ++i) {
     phi += number_density[i] * std::pow(diameter[i], 3);
@@ -69,7 +69,7 @@ PairMatrix carnahan_starling(const std::vector<double>& diameter,
   xi *= std::numbers::pi / 6.0;
   auto chi = [phi, xi, d = diameter](std::size_t i, std::size_t j) {
     const double sigma_ij = 0.5 * (d[i] + d[j]);
-    const double s_ij = d[i] * d[j] / sigma_ij;  // S_ij of ERRATA §5
+    const double s_ij = d[i] * d[j] / sigma_ij;  // S_ij of \ref cm_chi "docs/collision-model.md"
     const double one_minus = 1.0 - phi;
     return 1.0 / one_minus + 1.5 * xi * s_ij / (one_minus * one_minus) +
            0.5 * xi * xi * s_ij * s_ij / (one_minus * one_minus * one_minus);

@@ -3,12 +3,12 @@
  * \brief Mechanical properties of the species of a granular mixture and of each species pair.
  *
  * For S species with masses m_k, diameters sigma_k and number densities n_k the module derives the
- * pair quantities used by every collision scheme and by the theory module (notation of ERRATA):
+ * pair quantities used by every collision scheme and by the theory module (notation of \ref cm_notation "docs/collision-model.md"):
  * - contact distance sigma_kj = (sigma_k + sigma_j)/2,
  * - reduced mass m_kj = m_k m_j / (m_k + m_j) and mass fraction mu_kj = m_k / (m_k + m_j),
- * - normal restitution alpha_kj (symmetric matrix, ERRATA §1),
+ * - normal restitution alpha_kj (symmetric matrix, \ref cm_rule "docs/collision-model.md"),
  * - pair correlation at contact chi_kj: 1 for a dilute (Boltzmann) gas, Carnahan-Starling for the
- *   Enskog gas (seed 003 eq 26, corrected form ERRATA §5).
+ *   Enskog gas (Montanero and Garzo 2002, eq. (26), corrected form \ref cm_chi "docs/collision-model.md").
  *
  * Units: whatever the user's numbers are in (consistent units), k_B = 1, temperature is an energy.
  * Reads the namelist group `&system` through io::config. Checked by tests/species_test.cpp.
@@ -24,18 +24,21 @@ namespace gdsmc::species {
 /// S x S matrix of pair quantities: stored row-major (dense), or computed entry by entry from
 /// per-species data (`rule`), so that mixtures of thousands of species need no S^2 storage.
 struct PairMatrix {
-  std::size_t size = 0;
+  std::size_t size = 0;        ///< S
   std::vector<double> values;  ///< dense storage, row-major; empty when `rule` computes the entries
-  std::function<double(std::size_t, std::size_t)> rule;
+  std::function<double(std::size_t, std::size_t)> rule;  ///< entry (k, j) on access; empty when dense
 
   PairMatrix() = default;
+  /// A dense n x n matrix with every entry `fill`.
   explicit PairMatrix(std::size_t n, double fill = 0.0) : size(n), values(n * n, fill) {}
   /// A matrix whose entry (k, j) is rule(k, j), evaluated on access.
   static PairMatrix computed(std::size_t n, std::function<double(std::size_t, std::size_t)> rule);
   /// Every entry equal to `value`, stored as one number.
   static PairMatrix uniform(std::size_t n, double value);
 
+  /// The entries are stored (no rule).
   bool is_dense() const { return !rule; }
+  /// Entry (k, j).
   double operator()(std::size_t k, std::size_t j) const {
     return rule ? rule(k, j) : values[k * size + j];
   }
@@ -44,6 +47,7 @@ struct PairMatrix {
     if (rule) densify();
     return values[k * size + j];
   }
+  /// Stores every entry of a computed matrix and drops the rule (S^2 doubles).
   void densify();
   double max() const;  ///< largest entry (O(S^2) for a computed matrix)
   double min() const;  ///< smallest entry
@@ -61,17 +65,18 @@ struct Mixture {
   PairMatrix contact_distance;         ///< sigma_kj = (sigma_k + sigma_j)/2
   PairMatrix reduced_mass;             ///< m_kj = m_k m_j/(m_k + m_j)
   PairMatrix pair_correlation;         ///< chi_kj (1 when not Enskog)
-  bool enskog = false;
+  bool enskog = false;                 ///< chi_kj from Carnahan-Starling (else 1)
 
+  /// S, the number of species.
   std::size_t size() const { return mass.size(); }
   double total_density() const;                                  ///< n = sum_k n_k
   double mole_fraction(std::size_t k) const;                     ///< x_k = n_k / n
-  /// mu_kj = m_k / (m_k + m_j) (ERRATA notation; mu_kj + mu_jk = 1)
+  /// mu_kj = m_k / (m_k + m_j) (\ref cm_notation "docs/collision-model.md"; mu_kj + mu_jk = 1)
   double mass_fraction(std::size_t k, std::size_t j) const { return mass[k] / (mass[k] + mass[j]); }
   double packing_fraction() const;                               ///< phi = (pi/6) sum_k n_k sigma_k^3
 };
 
-/// Carnahan-Starling chi_kj for all pairs (seed 003 eq 26; ERRATA §5).
+/// Carnahan-Starling chi_kj for all pairs (Montanero and Garzo 2002, eq. (26); \ref cm_chi "docs/collision-model.md").
 PairMatrix carnahan_starling(const std::vector<double>& diameter,
                              const std::vector<double>& number_density);
 

@@ -1,45 +1,45 @@
 /**
  * \file thermostat.hpp
  * \brief The Gaussian thermostat of the homogeneous steady state and the streaming of uniform shear
- *        flow (seed 004 sec. 2, eqs 1-18 as corrected by ERRATA §13; docs/physics.md, "Thermostat
+ *        flow (Montanero 2003, sec. 2, eqs 1-18 as corrected by \ref eta_thermostat "docs/shear-viscosity.md"; docs/physics.md, "Thermostat
  *        and uniform shear flow").
  *
  * **Stages.** A run with `&thermostat kind = 'gaussian'` or `&shear rate = a` advances in stages of
  * length dt (`&dsmc stage_step` majorant mean free times, at most 0.01/a): streaming, collisions
  * (collide.hpp, continuous time within the stage), thermostat. The operator splitting is first order
- * in dt (ERRATA §9's reasoning); the validation measures the bias at two stage lengths.
+ * in dt (the reasoning of \ref stat_timestep_bias "docs/statistics.md"); the validation measures the bias at two stage lengths.
  *
  * **Streaming** (homogeneous USF in the Lagrangian frame, peculiar velocities only):
  * V_x -> V_x - a V_y dt for every particle. The total momentum is unchanged when sum m V_y = 0; the
  * energy changes by -a P_xy V dt + O(dt^2): viscous heating.
  *
- * **Gaussian thermostat** (ERRATA §13). After the collision stage every velocity is rescaled about
+ * **Gaussian thermostat** (\ref eta_thermostat "docs/shear-viscosity.md"). After the collision stage every velocity is rescaled about
  * the current mean velocity u = sum m V / sum m,
  *   V -> u + s (V - u),   s^2 = (E_after + L)/E_after,
  * with E the kinetic energy relative to u and L the inelastic loss of the stage, so that exactly the
  * inelastic loss is restored: zeta dt = L/E_before, the same zeta for all species. This is the exact
- * integral of dV/dt = zeta V/2 over the stage (seed 004 eq 16 is its Euler form). In the dilute gas
+ * integral of dV/dt = zeta V/2 over the stage (Montanero 2003, eq. (16), \ref eta_thermostat "docs/shear-viscosity.md" is its Euler form). In the dilute gas
  * the collisions change the energy only by the inelastic loss, so L = E_before - E_after and
  * s^2 = T_before/T_after. Rescaling about u rather than about zero keeps round-off momentum from being
  * amplified stage after stage (the run would otherwise end up thermostatting a bulk flow). The
- * centre-of-mass velocity is removed at the start (seed 004 subtracts the plain mean).
+ * centre-of-mass velocity is removed at the start (Montanero 2003 subtracts the plain mean).
  *
  * **Enskog gas in shear flow** (`pairs` scheme; collide.hpp set_shear): a collision uses the shifted
  * relative velocity g = V_k - V_l - a sigma_ij e_y x_hat, so besides the inelastic loss it does viscous
- * work on the particles, which the thermostat must leave alone (ERRATA §13): there the energy after the
+ * work on the particles, which the thermostat must leave alone (\ref eta_thermostat "docs/shear-viscosity.md"): there the energy after the
  * collisions is measured (one more pass) and s^2 = (E_after + L)/E_after. The collisional transfer
  * P^c = sum m_ij sigma_ij (1 + alpha)(g.e) e e / (V dt) is summed by the collider and written with the
  * kinetic part; its trace is the Enskog equation of state 2 (1 + alpha) phi chi n T (validated).
  *
  * **Sampling point** (the viscosity). The sample of a stage is taken after its streaming, before its
- * collisions (ERRATA §13). Within the stationary stage cycle X = -P_xy jumps by a dt P_yy at the
+ * collisions (\ref eta_measured "docs/shear-viscosity.md"). Within the stationary stage cycle X = -P_xy jumps by a dt P_yy at the
  * streaming and then relaxes, collisions and thermostat together, as exp(-lambda) over the stage,
  * lambda = (nu_eta - zeta) dt. With X* = a P_yy/(nu_eta - zeta) the continuous-time value, the value
  * just before the jump is X* lambda/(e^lambda - 1) = X* (1 - lambda/2 + ...), just after it
  * X* lambda/(1 - e^-lambda) = X* (1 + lambda/2 + ...), and their mean X* (1 + lambda^2/12 + ...). The
  * streaming is linear, so the value before the jump follows exactly from the one after it:
  * P_xy(before) = P_xy(after) + a dt P_yy. The viscosity therefore uses the midpoint
- * P_xy + a dt P_yy/2, which is second order in the stage length. This replaces ERRATA §13's
+ * P_xy + a dt P_yy/2, which is second order in the stage length. This replaces the
  * sampling-point factor 1/(1 - mean zeta dt) (first order, and it does not remove the streaming jump:
  * measured at alpha = 0.7, 2e4 particles x 16 replicas, the value after the jump alone rose from
  * 1.302 to 1.366 when the stage grew from 0.1 to 0.5 majorant mean free times, the midpoint stayed at
@@ -81,9 +81,10 @@ namespace gdsmc::thermostat {
 
 /// Kinetic energy relative to the mean flow, and the mean flow u = sum m V / sum m.
 struct Energy {
-  double kinetic = 0.0;
-  particles::Vec3 mean_flow{0.0, 0.0, 0.0};
+  double kinetic = 0.0;                       ///< sum m |V - u|^2 / 2
+  particles::Vec3 mean_flow{0.0, 0.0, 0.0};   ///< u
 };
+/// The Energy of the particles, in one pass.
 Energy peculiar_energy(const species::Mixture& mix, const particles::System& sys);
 
 /// V -> V - u for every particle: zero total momentum.
@@ -104,9 +105,9 @@ struct StageStart {
 /// The map from the stored velocities u to the actual ones (header, "Cost: the frame"):
 /// V = S (u_x + c u_y, u_y, u_z) + b, S = `scale`, c = `shear`, b = `offset`.
 struct Frame {
-  double scale = 1.0;
-  double shear = 0.0;
-  particles::Vec3 offset{0.0, 0.0, 0.0};
+  double scale = 1.0;                      ///< S
+  double shear = 0.0;                      ///< c
+  particles::Vec3 offset{0.0, 0.0, 0.0};   ///< b
 };
 
 /// The frame is brought back to the identity when |c| exceeds this: ||G||/S <= 1.0202 (collide.hpp,
@@ -142,10 +143,11 @@ StageStart begin_stage(const species::Mixture& mix, particles::System& sys, doub
 /// `mean_flow` is that of the stage's start. The rescaling itself is left to the next begin_stage;
 /// `zeta_dt` = L/E_before.
 struct Rescaling {
-  double scale = 1.0;
-  particles::Vec3 mean_flow{0.0, 0.0, 0.0};
-  double zeta_dt = 0.0;
+  double scale = 1.0;                      ///< s
+  particles::Vec3 mean_flow{0.0, 0.0, 0.0};   ///< the mean flow u to rescale about
+  double zeta_dt = 0.0;                    ///< L / E_before
 };
+/// The Rescaling for a stage that began with kinetic energy `energy_before` and lost `loss`.
 Rescaling gaussian_rescaling(double energy_before, double loss, const particles::Vec3& mean_flow);
 
 /// The Gaussian thermostat in one call (two passes), for tests and callers without a loss sum: after

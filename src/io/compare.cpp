@@ -19,9 +19,9 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// First Sonine's own error: 15 % of a first-Sonine correction or cumulant (ERRATA §6: 9-14 %).
+/// First Sonine's own error: 15 % of a first-Sonine correction or cumulant (\ref son_one_species "docs/sonine.md": 9-14 %).
 constexpr double kFirstSonineShare = 0.15;
-/// T_k/T in first Sonine: binary 0.2 % (ERRATA §6: 0.1 % against exact DSMC at mu = 10);
+/// T_k/T in first Sonine: binary 0.2 % (\ref son_one_species "docs/sonine.md": 0.1 % against exact DSMC at mu = 10);
 /// three or more species 0.4 % (issue 17: independent work, ternary, 0.1-0.4 %).
 constexpr double kRatioErrorBinary = 0.002;
 constexpr double kRatioErrorMany = 0.004;
@@ -29,8 +29,8 @@ constexpr double kRatioErrorMany = 0.004;
 constexpr double kStageBias = 0.0033;
 
 const char* kMaxwellianOdeSource =
-    "docs/physics.md Known limits: Maxwellian rates omit first-Sonine corrections (3/16)|a2| (ERRATA §3), "
-    "integrated over ln T, plus 15 % (ERRATA §6)";
+    "docs/physics.md Known limits: Maxwellian rates omit first-Sonine corrections (3/16)|a2| (docs/haff-and-mixtures.md), "
+    "integrated over ln T, plus 15 % (docs/sonine.md)";
 const char* kNone = "none stated";
 
 std::string species_label(const std::string& label, std::size_t k) {  // k: 0-based index
@@ -67,10 +67,10 @@ void add_scaling_state(Point& pt, const config::Config& config, const theory::Pr
   const auto& fs = *p.hcs_first_sonine;
   const auto te = errors_or_nan(temperature), tte = errors_or_nan(total), ce = errors_or_nan(sonine);
   Quantity ratio{"temperature_over_mean", "T_{k}/T", "first_sonine",
-                 s == 2 ? "ERRATA §6: 0.1 % against exact DSMC at mu = 10; allowance 0.2 %"
+                 s == 2 ? "docs/sonine.md: 0.1 % against exact DSMC at mu = 10; allowance 0.2 %"
                         : "issue 17: independent work, ternary HCS, 0.1-0.4 %; allowance 0.4 %",
                  {}, s, {}, {}, {}, {}};
-  Quantity cumulant{"sonine_c", "c_{k}", "first_sonine", "ERRATA §6: first Sonine 9-14 % high; allowance 15 %",
+  Quantity cumulant{"sonine_c", "c_{k}", "first_sonine", "docs/sonine.md: first Sonine 9-14 % high; allowance 15 %",
                     {}, s, {}, {}, {}, {}};
   std::size_t count = 0;
   for (std::size_t k = 0; k < s; ++k) {
@@ -114,7 +114,7 @@ void add_scaling_state(Point& pt, const config::Config& config, const theory::Pr
   if (s <= 2 && zeta != m.attributes.end() && p.hcs_maxwellian_cooling_rate_reduced) {
     const auto zeta_error = m.attributes.find("reduced_distribution@cooling_rate_reduced_error");
     Quantity q{"cooling_rate_reduced", "zeta*", "first_sonine",
-               "15 % of the first-Sonine correction zeta*_FS - zeta*_M (ERRATA §6)", {}, 1, {zeta->second},
+               "15 % of the first-Sonine correction zeta*_FS - zeta*_M (docs/sonine.md)", {}, 1, {zeta->second},
                {zeta_error == m.attributes.end() ? kNaN : zeta_error->second}, {fs.cooling_rate_reduced},
                {kFirstSonineShare * std::abs(fs.cooling_rate_reduced - *p.hcs_maxwellian_cooling_rate_reduced)}};
     q.at = "scaling state";
@@ -128,7 +128,7 @@ void add_free_cooling(Point& pt, const config::Config& config, const theory::Pre
   const std::size_t s = mix.size();
   const std::size_t nt = p.time.size();
   const bool viscoelastic = config.viscoelastic_beta().has_value();
-  // The ERRATA §3 a2 needs a constant alpha: no estimate for viscoelastic restitution.
+  // The \ref haff_sonine "docs/haff-and-mixtures.md" a2 needs a constant alpha: no estimate for viscoelastic restitution.
   const std::vector<double> sonine_c = p.hcs_first_sonine ? p.hcs_first_sonine->sonine_c : std::vector<double>{};
   const double eps = viscoelastic ? kNaN : sonine_rate_error(mix, sonine_c);
   const double a2_max = eps * 16.0 / 3.0;
@@ -191,7 +191,7 @@ void add_free_cooling(Point& pt, const config::Config& config, const theory::Pre
   }
 }
 
-/// The MSD (seed 001 eq 17) and D_k/D_1 over the last decade of time (validation/diffusion_ratio).
+/// The MSD (Bodrova and Osinsky 2024, eq. (17), \ref dif_msd "docs/diffusion-msd.md") and D_k/D_1 over the last decade of time (validation/diffusion_ratio).
 void add_diffusion(Point& pt, const config::Config& config, const theory::Predictions& p, const Measured& m) {
   if (!p.msd) {
     pt.notes.push_back(config.output.msd_start_temperature
@@ -211,7 +211,7 @@ void add_diffusion(Point& pt, const config::Config& config, const theory::Predic
   }
   const std::size_t first = o.time.size() - nt;  // the samples from msd_start_time on
   const auto err = errors_or_nan(o);
-  Quantity q{"msd", "<R_{k}^2>", "maxwellian", std::string(kNone) + " (eq 17 is an approximation, ERRATA §8)",
+  Quantity q{"msd", "<R_{k}^2>", "maxwellian", std::string(kNone) + " (eq 17 is an approximation, docs/diffusion-msd.md)",
              {}, s, {}, {}, {}, {}};
   for (std::size_t i = 0; i < nt; ++i) {
     q.time.push_back(o.time[first + i]);
@@ -223,7 +223,7 @@ void add_diffusion(Point& pt, const config::Config& config, const theory::Predic
     }
   }
   if (s > 1) {
-    // D_k/D_1: MSD increments over the last decade of time (seed 001 eqs 17, 19; validation/diffusion_ratio).
+    // D_k/D_1: MSD increments over the last decade of time (Bodrova and Osinsky 2024, eqs. (17), (19), \ref dif_msd "docs/diffusion-msd.md"; validation/diffusion_ratio).
     const std::size_t e = nt - 1;
     std::size_t a = e;
     while (a > 1 && q.time[a] > q.time[e] / 10.0) --a;
@@ -251,12 +251,12 @@ void add_diffusion(Point& pt, const config::Config& config, const theory::Predic
   }
 }
 
-/// Cluster populations, mean size and temperature of an &agg_frag run (Smoluchowski, ERRATA §12).
+/// Cluster populations, mean size and temperature of an &agg_frag run (Smoluchowski, \ref af_smoluchowski "docs/agg-frag.md").
 void add_agg_frag(Point& pt, const theory::Predictions& p, const Measured& m) {
   const auto& af = *p.agg_frag;
   const auto& sol = af.solution;
   const std::size_t nt = sol.time.size(), kt = sol.max_size;
-  const std::string source = std::string(kNone) + " (the closure is exact only at t = 0, ERRATA §12)";
+  const std::string source = std::string(kNone) + " (the closure is exact only at t = 0, docs/agg-frag.md)";
   auto aligned = [&](const std::string& name) -> const h5md::ObservableData* {
     if (!m.has(name)) return nullptr;
     const auto& o = m.observables.at(name);
@@ -327,7 +327,7 @@ Average scaling_average(const std::vector<double>& value, const std::vector<doub
 }
 
 double sonine_rate_error(const species::Mixture& mix, const std::vector<double>& sonine_c) {
-  // docs/physics.md "Known limits": the Maxwellian rates omit (3/16)|a2| (ERRATA §3); largest over the
+  // docs/physics.md "Known limits": the Maxwellian rates omit (3/16)|a2| (\ref haff_sonine "docs/haff-and-mixtures.md"); largest over the
   // pairs and over the species' first-Sonine a2 = c_k/2 (validation/polydisperse).
   double a2 = 0.0;
   for (double alpha : mix.restitution.values) a2 = std::max(a2, std::abs(theory::sonine_a2(alpha)));
@@ -340,13 +340,13 @@ double shear_viscosity_known_error(const species::Mixture& mix) {
   double alpha_min = 1.0;
   for (double a : mix.restitution.values) alpha_min = std::min(alpha_min, a);
   if (mix.size() == 1) {
-    // ERRATA §13 and Chapman-Cowling: 1.6 % for alpha >= 0.75, linear to 2.8 % at alpha = 0.6.
+    // \ref eta_measured "docs/shear-viscosity.md" and Chapman-Cowling: 1.6 % for alpha >= 0.75, linear to 2.8 % at alpha = 0.6.
     const double first = alpha_min >= 0.75 ? 0.016
                          : alpha_min <= 0.6 ? 0.028
                                             : 0.016 + (0.75 - alpha_min) / 0.15 * (0.028 - 0.016);
     return first + kStageBias;
   }
-  if (mix.size() == 2 && alpha_min >= 0.85) return 0.01 + kStageBias;  // ERRATA §13, mass ratio 3
+  if (mix.size() == 2 && alpha_min >= 0.85) return 0.01 + kStageBias;  // \ref eta_mixture "docs/shear-viscosity.md", mass ratio 3
   return kNaN;
 }
 
@@ -396,14 +396,14 @@ Point compare_point(const config::Config& config, const theory::Predictions& p, 
         const double known = shear_viscosity_known_error(config.mixture());
         pt.quantities.push_back(Quantity{
             "shear_viscosity", "eta/eta_0", "first_sonine",
-            "ERRATA §13, Chapman-Cowling (validation/shear_viscosity), plus 0.33 % stage splitting", {}, 1,
+            "docs/shear-viscosity.md, Chapman-Cowling (validation/shear_viscosity), plus 0.33 % stage splitting", {}, 1,
             {eta->second}, {eta_error == m.attributes.end() ? kNaN : eta_error->second}, {*p.shear_viscosity_hss},
             {known * *p.shear_viscosity_hss}, "time average"});
       }
     }
     if (p.binary_hcs)
       pt.notes.push_back("tail exponents not compared: the file holds no measured exponent "
-                         "(reduced_distribution/species_k@tail_beta is the theory's beta_k, seed 003 eq 20)");
+                         "(reduced_distribution/species_k@tail_beta is the theory's beta_k, Montanero and Garzo 2002, eq. (20), docs/sonine.md)");
   }
   if (pt.quantities.empty()) pt.notes.push_back("no theory applies to this input: nothing compared");
   return pt;

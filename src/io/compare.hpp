@@ -8,21 +8,21 @@
  * `granular-theory` prints for the namelist; the DSMC values are read back from the H5MD file the run
  * wrote (mean +- standard error over replicas, sample.hpp). Per run, or per sweep point:
  * - free cooling (no &thermostat, &shear, &agg_frag): `total_temperature` T(t) and `temperature`
- *   T_k(t) (Maxwellian ODEs, ERRATA §3-§4: Haff's law for one species), `collisions_per_particle`
+ *   T_k(t) (Maxwellian ODEs, \ref haff_law "docs/haff-and-mixtures.md", \ref haff_mixture_odes "docs/haff-and-mixtures.md": Haff's law for one species), `collisions_per_particle`
  *   on the sample times (time-driven runs) or the sample `time` at the collision counts
  *   (collision-driven runs);
  * - the scaling state (samples past `&output scaling_start` collisions per particle, averaged), free
- *   cooling or Gaussian thermostat without shear (the HSS has the HCS ratios and c_k, ERRATA §13):
+ *   cooling or Gaussian thermostat without shear (the HSS has the HCS ratios and c_k, \ref eta_thermostat "docs/shear-viscosity.md"):
  *   `temperature_over_mean` T_k/T (mixtures) and `sonine_c` c_k (first Sonine, any number of species,
- *   sonine_mixture.hpp; seed 003 App. A, ERRATA §6), `cooling_rate_reduced` (one or two species, the
+ *   sonine_mixture.hpp; Montanero and Garzo 2002, App. A, \ref son_binary "docs/sonine.md"), `cooling_rate_reduced` (one or two species, the
  *   reduced_distribution attributes of the file);
- * - with &output track_displacements: `msd` <R_k^2>(t) (seed 001 eq 17, ERRATA §8) and, for mixtures,
+ * - with &output track_displacements: `msd` <R_k^2>(t) (Bodrova and Osinsky 2024, eq. (17), \ref dif_msd "docs/diffusion-msd.md") and, for mixtures,
  *   `diffusion_coefficient_ratio` D_k/D_1 as the ratio of the MSD increments over the last decade of
  *   time (as validation/diffusion_ratio; eq 17 for the theory over the same interval);
  * - &agg_frag: `number` N_k(t) (cluster populations, the sizes theory tracks), `mean_size`,
- *   `total_temperature` (Smoluchowski equations, smoluchowski.hpp, ERRATA §12);
+ *   `total_temperature` (Smoluchowski equations, smoluchowski.hpp, \ref af_smoluchowski "docs/agg-frag.md");
  * - &shear with the Gaussian thermostat: `shear_viscosity` eta/eta_0, its time average from
- *   average_from, against the HSS first-Sonine value (viscosity.hpp; seed 004, ERRATA §10, §13).
+ *   average_from, against the HSS first-Sonine value (viscosity.hpp; Montanero 2003, \ref eta_one_species "docs/shear-viscosity.md", \ref eta_thermostat "docs/shear-viscosity.md").
  * Anything else (e.g. tail exponents: the file holds no measured exponent) is listed in the notes,
  * and a run with no applicable theory gives a table that says so.
  *
@@ -30,9 +30,9 @@
  * An independent estimate of how far the approximation is from the exact kinetic theory, as an
  * absolute error of the theory value; NaN where none exists. With eps = (3/16) max(max_ij
  * |a2(alpha_ij)|, max_k |c_k|/2) (docs/physics.md "Known limits": the Maxwellian ODEs omit first-Sonine
- * rate corrections of that relative size; a2 of van Noije and Ernst, ERRATA §3; in a mixture the
+ * rate corrections of that relative size; a2 of van Noije and Ernst, \ref haff_sonine "docs/haff-and-mixtures.md"; in a mixture the
  * first-Sonine c_k of sonine_mixture.hpp, c = 2 a2, are larger than any a2(alpha), as in
- * validation/polydisperse) and 15 % for first Sonine's own error (ERRATA §6:
+ * validation/polydisperse) and 15 % for first Sonine's own error (\ref son_one_species "docs/sonine.md":
  * the first-Sonine cumulant is 9-14 % high):
  * - T(t), T_k(t): 1.15 eps |ln(T(0)/T(t))| relative (the rate error integrated over ln T, as the
  *   polydisperse validation); T_k(t) of mixtures adds 1.15 |tau_k^M/tau_k^FS - 1| (the Maxwellian
@@ -40,14 +40,14 @@
  * - collisions per particle and the sample times of collision-driven runs: 1.15 (|a2|/16 + eps/2
  *   |ln(T(0)/T(t))|) relative (collision frequency (1 - a2/16) along a temperature off by the above;
  *   validation/collision_rate);
- * - T_k/T, first Sonine: 0.2 % for two species (ERRATA §6: 0.1 % from exact DSMC at mu = 10), 0.4 %
+ * - T_k/T, first Sonine: 0.2 % for two species (\ref son_one_species "docs/sonine.md": 0.1 % from exact DSMC at mu = 10), 0.4 %
  *   for more (issue 17: independent work puts the s-species theory within 0.1-0.4 % for a ternary);
- * - c_k, first Sonine: 15 % (ERRATA §6); cooling_rate_reduced: 0.15 |zeta*_FS - zeta*_M|;
+ * - c_k, first Sonine: 15 % (\ref son_scaling "docs/sonine.md"); cooling_rate_reduced: 0.15 |zeta*_FS - zeta*_M|;
  * - shear viscosity, HSS first Sonine: one dilute species 1.6 % (alpha >= 0.75) to 2.8 % (alpha <= 0.6)
- *   (ERRATA §13 and Chapman-Cowling, validation/shear_viscosity), dilute binary 1 % for alpha >= 0.85
- *   (ERRATA §13); plus 0.33 % stage-splitting bias at the default stage_step;
- * - MSD, D_k/D_1 (eq 17: ERRATA §8 gives no general bound) and the Smoluchowski closure (exact only
- *   at t = 0, ERRATA §12): none stated (NaN).
+ *   (\ref eta_mixture "docs/shear-viscosity.md" and Chapman-Cowling, validation/shear_viscosity), dilute binary 1 % for alpha >= 0.85
+ *   (\ref eta_stages "docs/shear-viscosity.md"); plus 0.33 % stage-splitting bias at the default stage_step;
+ * - MSD, D_k/D_1 (eq 17: \ref dif_accuracy "docs/diffusion-msd.md" gives no general bound) and the Smoluchowski closure (exact only
+ *   at t = 0, \ref af_outcome "docs/agg-frag.md"): none stated (NaN).
  *
  * \section compare_marks Marks
  * d = DSMC - theory, z = d/SE. `stat`: |d| <= 3 SE (within statistics; also |d| <= 1e-12 |theory|,
@@ -93,31 +93,38 @@ struct Quantity {
   std::string known_error_source;  ///< where the known error comes from, or "none stated"
   std::vector<double> time;        ///< sample times of a trajectory; empty: one value per column
   std::size_t columns = 1;         ///< species or cluster sizes
-  std::vector<double> value, error, theory, known_error;  ///< row-major [sample][column] or [column]
+  // row-major [sample][column] or [column]:
+  std::vector<double> value;        ///< DSMC mean over replicas
+  std::vector<double> error;        ///< its standard error (NaN without replicas)
+  std::vector<double> theory;       ///< the theory value
+  std::vector<double> known_error;  ///< the approximation's known error (NaN: none stated)
   std::string at{};                ///< for one value per column: over what it is taken, e.g. "scaling state"
   std::size_t label_offset = 0;    ///< column c is labelled c + 1 + label_offset
+  /// Rows of value: the sample times of a trajectory, else 1.
   std::size_t samples() const { return time.empty() ? 1 : time.size(); }
 };
 
 /// The comparison of one run, or of one sweep point.
 struct Point {
   std::string label;  ///< "" or the sweep assignment, e.g. "system:restitution = 0.6"
-  std::vector<Quantity> quantities;
+  std::vector<Quantity> quantities;  ///< the compared quantities
   std::vector<std::string> notes;  ///< what is not compared, and why
 };
 
+/// The comparison of a run: one Point, or one per sweep point.
 struct Comparison {
-  std::vector<Point> points;
-  bool sweep = false;
-  std::string sweep_variable;
+  std::vector<Point> points;  ///< the run, or every sweep point in order
+  bool sweep = false;         ///< the run is a sweep
+  std::string sweep_variable; ///< the swept variables, as Sweep::names()
   std::vector<std::string> sweep_values{};  ///< as written in &sweep values
 };
 
 /// What a run measured, as read from its file: observables by name (relative to the point's
 /// observables group) and the scalar attributes the comparison uses ("group@name").
 struct Measured {
-  std::map<std::string, h5md::ObservableData> observables;
-  std::map<std::string, double> attributes;
+  std::map<std::string, h5md::ObservableData> observables;  ///< by name
+  std::map<std::string, double> attributes;                 ///< "group@name" -> value
+  /// The observable `name` was read.
   bool has(const std::string& name) const { return observables.count(name) > 0; }
 };
 
@@ -130,15 +137,18 @@ enum class Mark { statistics, approximation, beyond, beyond_no_estimate };
 /// `scale` (the theory value): a difference below kRoundOff |scale| is round-off (e.g. T(0)), never a
 /// deviation. NaN standard error or known error: none available.
 Mark classify(double difference, double standard_error, double known_error, double scale = 0.0);
+/// The Mark's short name in tables: "stat", "approx", "off" or "?".
 const char* mark_name(Mark mark);
 
 /// Mean and standard error of samples past `start` collisions per particle (the scaling state);
 /// error = mean of the samples' errors (as if fully correlated: an upper bound of the SE over
 /// replicas of the time averages). `count` = 0 when no sample qualifies.
 struct Average {
-  double value = 0.0, error = 0.0;
-  std::size_t count = 0;
+  double value = 0.0;    ///< mean of the samples
+  double error = 0.0;    ///< mean of their standard errors
+  std::size_t count = 0; ///< samples averaged
 };
+/// The Average of the samples `value` (errors `error`) at `collisions_per_particle` >= `start`.
 Average scaling_average(const std::vector<double>& value, const std::vector<double>& error,
                         const std::vector<double>& collisions_per_particle, double start);
 
@@ -153,8 +163,8 @@ Point compare_point(const config::Config& point, const theory::Predictions& theo
 
 /// The theory of one point, or why it could not be computed.
 struct PointTheory {
-  std::optional<theory::Predictions> predictions;
-  std::string error;
+  std::optional<theory::Predictions> predictions;  ///< the theory, when it could be computed
+  std::string error;                               ///< else the reason
 };
 /// theory::predict for every point of `config` (sweep or not). It depends on the input only, so
 /// granular-dsmc computes it in a thread of its own while the run goes on.
@@ -166,15 +176,23 @@ Comparison compare_file(const config::Config& config, const std::string& file, s
 
 /// One table row: a quantity's column at one sample (the last of a trajectory).
 struct Row {
-  std::string point, name, quantity, at;  ///< sweep point, Quantity::name, column label, Quantity::at
-  double time = 0.0;
-  bool trajectory = false;
-  double value = 0.0, error = 0.0, theory = 0.0, known_error = 0.0;
-  std::string approximation;
-  double z = 0.0, percent = 0.0;  ///< (DSMC - theory)/SE (NaN without SE), 100 (DSMC - theory)/theory
-  Mark mark = Mark::statistics;
+  std::string point;     ///< sweep point label ("" without a sweep)
+  std::string name;      ///< Quantity::name
+  std::string quantity;  ///< column label, e.g. "T_2/T"
+  std::string at;        ///< Quantity::at
+  double time = 0.0;     ///< sample time (the last of a trajectory)
+  bool trajectory = false;   ///< the quantity is a trajectory (counts holds its samples per Mark)
+  double value = 0.0;        ///< DSMC mean
+  double error = 0.0;        ///< its standard error
+  double theory = 0.0;       ///< the theory value
+  double known_error = 0.0;  ///< the approximation's known error
+  std::string approximation; ///< Quantity::approximation
+  double z = 0.0;        ///< (DSMC - theory)/SE (NaN without SE)
+  double percent = 0.0;  ///< 100 (DSMC - theory)/theory (NaN for theory 0)
+  Mark mark = Mark::statistics;  ///< the classification of this row
   std::size_t counts[4] = {0, 0, 0, 0};  ///< samples of a trajectory per Mark
 };
+/// The table rows of a comparison: every column of every quantity, at its last sample.
 std::vector<Row> rows(const Comparison& comparison);
 
 /// The table for stdout (\ref compare_marks), notes included.

@@ -74,13 +74,13 @@ const std::vector<Field<System>>& system_fields() {
        "alpha_kj: one value for all pairs, or restitution(i,j) = ... (symmetric; required when constant)",
        kUnit, {}, true},
       {"restitution_model", &System::restitution_model, "",
-       "'constant' (alpha_kj), or 'viscoelastic' (alpha from the impact speed, seed 001 eqs 5-8)", {},
+       "'constant' (alpha_kj), or 'viscoelastic' (alpha from the impact speed, Bodrova and Osinsky 2024, eqs. (5)-(8), docs/viscoelastic.md)", {},
        {"constant", "viscoelastic"}},
       {"visco_a_kappa", &System::visco_a_kappa, "velocity^(-1/5)",
        "beta_11 = A kappa_11^(2/5) of the viscoelastic model; other pairs by the one-material scaling "
-       "of ERRATA §11", at_least(0)},
+       "of docs/viscoelastic.md", at_least(0)},
       {"enskog", &System::enskog, "",
-       ".true.: Carnahan-Starling chi_ij multiplies the collision rates (seed 003 eq 26)"},
+       ".true.: Carnahan-Starling chi_ij multiplies the collision rates (Montanero and Garzo 2002, eq. (26), docs/collision-model.md)"},
       {"mass_law", &System::mass_law, "", "'list', or 'linear': m_k = k m_1", {},
        {"list", "linear"}},
       {"diameter_law", &System::diameter_law, "", "'list', or 'cube_root': sigma_k = k^(1/3) sigma_1",
@@ -106,7 +106,7 @@ const std::vector<Field<Initial>>& initial_fields() {
 const std::vector<Field<Dsmc>>& dsmc_fields() {
   static const std::vector<Field<Dsmc>> fields = {
       {"scheme", &Dsmc::scheme, "",
-       "'majorant' (seed 000), 'pairs' (seed 003) or 'lowrank' (seed 001)", {},
+       "'majorant' (DSMC notes, docs/schemes.md), 'pairs' (Montanero and Garzo 2002) or 'lowrank' (Bodrova and Osinsky 2024, docs/schemes.md)", {},
        {"majorant", "pairs", "lowrank"}},
       {"n_particles", &Dsmc::n_particles, "", "simulated particles, split in proportion to n_k",
        Range{2, 2e9}},
@@ -138,7 +138,7 @@ const std::vector<Field<Thermostat>>& thermostat_fields() {
   static const std::vector<Field<Thermostat>> fields = {
       {"kind", &Thermostat::kind, "",
        "'none', or 'gaussian': rescale the velocities after each collision stage so that the inelastic loss "
-       "is restored (homogeneous steady state, ERRATA §13)",
+       "is restored (homogeneous steady state, docs/shear-viscosity.md)",
        {}, {"none", "gaussian"}},
   };
   return fields;
@@ -168,7 +168,7 @@ const std::vector<Field<Output>>& output_fields() {
       {"histogram_bins", &Output::histogram_bins, "", "bins of the velocity histograms",
        Range{1, 1e5}},
       {"reduced_bins", &Output::reduced_bins, "",
-       "bins of the reduced speed distributions Phi_i(v*) (seed 003 eq 22; one or two species)",
+       "bins of the reduced speed distributions Phi_i(v*) (Montanero and Garzo 2002, eq. (22), docs/sonine.md; one or two species)",
        Range{1, 1e5}},
       {"reduced_range", &Output::reduced_range, "v0", "Phi_i(v*) covers 0 <= v* < range", kPositive},
       {"scaling_start", &Output::scaling_start, "collisions per particle",
@@ -178,7 +178,7 @@ const std::vector<Field<Output>>& output_fields() {
        "write the full state to <file stem>.checkpoint.h5 this often; resume with --restart (unset: never)",
        kPositive},
       {"track_displacements", &Output::track_displacements, "",
-       ".true.: track every particle's displacement and write the observable msd (seed 001 eq 15)"},
+       ".true.: track every particle's displacement and write the observable msd (Bodrova and Osinsky 2024, eq. (15), docs/diffusion-msd.md)"},
       {"msd_start_time", &Output::msd_start_time, "time",
        "displacements are measured from this time (default: from t = 0)", at_least(0)},
       {"msd_start_temperature", &Output::msd_start_temperature, "energy",
@@ -196,7 +196,7 @@ const std::vector<Field<Output>>& output_fields() {
 const std::vector<Field<AggFrag>>& agg_frag_fields() {
   static const std::vector<Field<AggFrag>> fields = {
       {"aggregation_energy", &AggFrag::aggregation_energy, "energy",
-       "E_agg: a colliding pair whose impact energy m_kj g^2/2 is below it sticks (ERRATA §12)",
+       "E_agg: a colliding pair whose impact energy m_kj g^2/2 is below it sticks (docs/agg-frag.md)",
        at_least(0)},
       {"fragmentation_energy", &AggFrag::fragmentation_energy, "energy",
        "E_frag: a pair (not two monomers) whose normal energy m_kj (g.e)^2/2 is above it shatters into "
@@ -568,7 +568,7 @@ void check_system(System& sys, const Provenance& prov) {
     throw Error(prov.file_of("density_exponent"), prov.line.at("density_exponent"), group,
                 "density_exponent",
                 "only used with density_law = 'power'");
-  // derive: the species laws (seed 001 sec. II: m_k = k m_1, sigma_k = k^(1/3) sigma_1, n_k = n_1 k^-theta)
+  // derive: the species laws (Bodrova and Osinsky 2024, sec. II, \ref sch_lowrank "docs/schemes.md": m_k = k m_1, sigma_k = k^(1/3) sigma_1, n_k = n_1 k^-theta)
   for (std::size_t k = 2; k <= s; ++k) {
     const double kk = static_cast<double>(k);
     if (sys.mass_law == "linear") sys.mass.push_back(kk * sys.mass[0]);
@@ -633,7 +633,7 @@ void check_dsmc(const Dsmc& d, const species::Mixture& mix, const Provenance& pr
                 "scheme = '" + d.scheme + "' recomputes its bounds over all n_species^2 = " +
                     std::to_string(mix.size() * mix.size()) +
                     " species pairs at every time step: with more than 256 species use scheme = 'lowrank' "
-                    "(O(S log S), seed 001)");
+                    "(O(S log S), Bodrova and Osinsky 2024, docs/schemes.md)");
   const auto counts = particles::species_counts(static_cast<std::size_t>(d.n_particles), mix);
   for (std::size_t k = 0; k < counts.size(); ++k)
     if (counts[k] < 2)
@@ -687,7 +687,7 @@ void check_output(Output& out, const Dsmc& d, const Provenance& prov) {
   }
 }
 
-/// &agg_frag (ERRATA §12): the run starts from monomers of one constant-restitution, dilute
+/// &agg_frag (\ref af_outcome "docs/agg-frag.md"): the run starts from monomers of one constant-restitution, dilute
 /// species, and the model runs in dsmc/agg_frag.hpp's own loop; every combination it cannot run is
 /// refused here, naming the variable that asks for it.
 void check_agg_frag(const Config& c, std::map<std::string, Provenance>& prov) {
@@ -718,13 +718,13 @@ void check_agg_frag(const Config& c, std::map<std::string, Provenance>& prov) {
   if (c.system.enskog) refuse("system", "enskog", "&agg_frag runs in the dilute gas only (enskog = .false.)");
   if (c.dsmc.scheme != "lowrank")
     refuse("dsmc", "scheme",
-           "&agg_frag runs with scheme = 'lowrank' only (cluster sizes as species, seed 001); set scheme = "
+           "&agg_frag runs with scheme = 'lowrank' only (cluster sizes as species, Bodrova and Osinsky 2024, docs/schemes.md); set scheme = "
            "'lowrank'");
   if (c.output.track_displacements)
     refuse("output", "track_displacements", "displacements are not tracked with &agg_frag");
 }
 
-/// &thermostat and &shear (ERRATA §13): what the staged loop of simulation.cpp can run, and a shear
+/// &thermostat and &shear (\ref eta_thermostat "docs/shear-viscosity.md"): what the staged loop of simulation.cpp can run, and a shear
 /// rate that keeps the finite-shear correction small. Refusals name the variable that asks for the
 /// combination.
 void check_staged(const Config& c, std::map<std::string, Provenance>& prov) {
@@ -755,7 +755,7 @@ void check_staged(const Config& c, std::map<std::string, Provenance>& prov) {
   if (c.output.track_displacements)
     refuse("output", "track_displacements", "displacements are not tracked with " + what);
   if (c.shear.rate) {
-    // a* = a / nu_0(T_0) with nu_0 = n T / eta_0, eta_0 = (5/(16 sigma^2)) sqrt(m T/pi) (ERRATA §13),
+    // a* = a / nu_0(T_0) with nu_0 = n T / eta_0, eta_0 = (5/(16 sigma^2)) sqrt(m T/pi) (\ref eta_thermostat "docs/shear-viscosity.md"),
     // species 1's size and mass for a mixture. Above a* = 1 at T_0 the start is far from the
     // Navier-Stokes regime the viscosity protocol measures.
     const double m = c.system.mass[0], sigma = c.system.diameter[0], t0 = c.initial.temperature[0];
@@ -800,7 +800,7 @@ void check_run_cost(const Config& c, std::map<std::string, Provenance>& prov) {
   std::string reason;
   if (!(cost.temperature_ratio >= kMinTemperatureRatio))
     reason = estimate + ", and a cooling to " + number(cost.temperature_ratio) +
-             " of the initial temperature (Haff's law, ERRATA §3): below 1e-40 the thermal speeds drown in the "
+             " of the initial temperature (Haff's law, docs/haff-and-mixtures.md): below 1e-40 the thermal speeds drown in the "
              "round-off of the conserved momentum, almost every candidate is rejected and the run would not end";
   else if (!(events <= kMaxEvents))
     reason = estimate + ", beyond 1e12 (a day or more)";

@@ -13,7 +13,7 @@
  * place a variable is declared: it drives the reader, the checks, `--print-defaults`, the input
  * reference in docs/ and the resolved input written to `/parameters` of every output file.
  *
- * Groups (INTERFACE.md): `&system` (required), `&initial`, `&dsmc` (required), `&output`,
+ * Groups (\ref input "input reference"): `&system` (required), `&initial`, `&dsmc` (required), `&output`,
  * `&agg_frag` (aggregation and fragmentation, dsmc/agg_frag.hpp), and
  * `&sweep` (variables, whole or array elements, over lists of values: jointly point by point or as a
  * grid; each point its own run and output group).
@@ -35,37 +35,37 @@
 
 namespace gdsmc::io::config {
 
-/// &system: the mixture (seed 000 "polydisperse system", seed 003 sec. 2).
+/// &system: the mixture (the "polydisperse system" of the DSMC notes, \ref haff_mixture_odes "docs/haff-and-mixtures.md"; Montanero and Garzo 2002, sec. 2, \ref son_binary "docs/sonine.md").
 struct System {
-  long long n_species = 1;
+  long long n_species = 1;            ///< S, the number of species
   std::vector<double> mass;            ///< m_k (required)
   std::vector<double> diameter;        ///< sigma_k (required)
   std::vector<double> number_density;  ///< n_k (required)
   species::PairMatrix restitution;     ///< alpha_kj (required with the constant model; one value fills all pairs)
-  std::string restitution_model = "constant";
+  std::string restitution_model = "constant";  ///< 'constant' (alpha_kj) or 'viscoelastic' (\ref visco_series "docs/viscoelastic.md")
   std::optional<double> visco_a_kappa;  ///< beta_11 = A kappa_11^(2/5) of the viscoelastic model
-  bool enskog = false;
-  std::string mass_law = "list";
-  std::string diameter_law = "list";
-  std::string density_law = "list";
-  double density_exponent = 0.0;
+  bool enskog = false;                  ///< Carnahan-Starling chi_kj multiplies the rates (\ref cm_chi "docs/collision-model.md")
+  std::string mass_law = "list";        ///< 'list' or 'linear': m_k = k m_1
+  std::string diameter_law = "list";    ///< 'list' or 'cube_root': sigma_k = k^(1/3) sigma_1
+  std::string density_law = "list";     ///< 'list' or 'power': n_k = n_1 k^-theta
+  double density_exponent = 0.0;        ///< theta of density_law = 'power'
 };
 
 /// &initial: the state at t = 0.
 struct Initial {
   std::vector<double> temperature{1.0};  ///< T_k(0); one value applies to every species
-  std::string distribution = "maxwell";
+  std::string distribution = "maxwell";  ///< initial velocities: 'maxwell', 'shell' (equal speeds) or 'cube'
 };
 
 /// &dsmc: the scheme and the size and length of the run.
 struct Dsmc {
-  std::string scheme = "majorant";
-  long long n_particles = 20000;
+  std::string scheme = "majorant";  ///< 'majorant', 'pairs' or 'lowrank' (\ref schemes "docs/schemes.md")
+  long long n_particles = 20000;    ///< N, simulated particles, split in proportion to n_k
   std::optional<double> t_end;                   ///< exactly one of t_end and
   std::optional<double> collisions_per_particle; ///< collisions_per_particle (2 x events / N)
-  long long replicas = 1;
-  long long seed = 12345;
-  double step_fraction = 1.0;
+  long long replicas = 1;         ///< independent realisations, averaged
+  long long seed = 12345;         ///< seed of all random streams
+  double step_fraction = 1.0;     ///< time step (bound refresh) in majorant mean free times
   long long block_size = 32768;  ///< cache blocks (collide.hpp "Blocks"); 0: none
   double stage_step = 0.125;     ///< with &thermostat or &shear: stage length in majorant mean free times
   bool allow_long_run = false;   ///< run even when the estimated work is beyond the caps (check_run_cost)
@@ -73,25 +73,25 @@ struct Dsmc {
 
 /// &output: where and when.
 struct Output {
-  std::string file = "run.h5";
+  std::string file = "run.h5";  ///< the H5MD output file
   std::string author;  ///< /h5md/author name (unset: author_name() finds one)
-  long long n_samples = 100;
-  std::string spacing = "linear";
+  long long n_samples = 100;        ///< sample times, t = 0 included
+  std::string spacing = "linear";   ///< 'linear' or 'log' spacing of the sample times
   std::optional<double> first_sample;  ///< log spacing: first sample after 0 (default end / 1000)
-  long long histogram_bins = 50;
-  double histogram_range = 5.0;
+  long long histogram_bins = 50;   ///< bins of the velocity histograms
+  double histogram_range = 5.0;    ///< the histograms cover [-range, range] in units of sqrt(T_k/m_k)
   long long reduced_bins = 100;   ///< bins of Phi_i(v*) (one or two species)
   double reduced_range = 5.0;     ///< Phi_i(v*) covers 0 <= v* < reduced_range
   double scaling_start = 10.0;    ///< collisions per particle after which the HCS is sampled
   std::optional<double> checkpoint_every;      ///< wall-clock seconds between checkpoints (unset: none)
-  bool track_displacements = false;            ///< msd observable (seed 001 eq 15)
+  bool track_displacements = false;            ///< msd observable (Bodrova and Osinsky 2024, eq. (15), \ref dif_displacements "docs/diffusion-msd.md")
   std::optional<double> msd_start_time;        ///< displacements count from this time, or
   std::optional<double> msd_start_temperature; ///< from the first sample with T at or below this
   std::vector<double> sample_times;  ///< explicit sample points after 0 (time, or collisions per
                                      ///< particle in collision-driven runs); overrides n_samples/spacing
 };
 
-/// &agg_frag: clusters that stick and shatter (seed 000 eqs 8-14, ERRATA §12; dsmc/agg_frag.hpp).
+/// &agg_frag: clusters that stick and shatter (DSMC notes, eqs. (8)-(14), \ref af_outcome "docs/agg-frag.md"; dsmc/agg_frag.hpp).
 /// The group's presence switches the model on (Config::has_agg_frag).
 struct AggFrag {
   std::optional<double> aggregation_energy;    ///< E_agg: a pair with m_kj g^2/2 below it sticks
@@ -103,12 +103,13 @@ struct AggFrag {
 struct SweepValues {
   std::vector<std::string> points;              ///< `values = ...`: namelist text, point after point
   std::vector<std::vector<std::string>> lists;  ///< `values(1,v) = ...`: the list of variable v (index v - 1)
+  /// No values given.
   bool empty() const { return points.empty() && lists.empty(); }
 };
 
-/// &sweep: one or several variables over lists of values; every point is a run of its own (seed
-/// 003 figures are curves against alpha, mu, ...). Absent or empty variable: no sweep.
-/// (docs/output.md "Sweeps"; the points are checked when the namelist is read.)
+/// &sweep: one or several variables over lists of values; every point is a run of its own (the
+/// figures of Montanero and Garzo 2002 are curves against alpha, mu, ...). Absent or empty variable: no
+/// sweep. (\ref output_sweeps "docs/output.md"; the points are checked when the namelist is read.)
 struct Sweep {
   /// The swept variables as written, "group:name" or "group:name(i)" / "group:name(i,j)" for an
   /// element, e.g. 'system:restitution(1,2)'.
@@ -129,12 +130,12 @@ struct Sweep {
 };
 
 /// &thermostat: a Gaussian thermostat holds the temperature of the homogeneous steady state (HSS)
-/// against the inelastic loss (seed 004, ERRATA §13; dsmc/thermostat.hpp).
+/// against the inelastic loss (Montanero 2003, \ref eta_measured "docs/shear-viscosity.md"; dsmc/thermostat.hpp).
 struct Thermostat {
   std::string kind = "none";  ///< 'none' or 'gaussian'
 };
 
-/// &shear: uniform shear flow u_x = a y in the Lagrangian frame (seed 004, ERRATA §13).
+/// &shear: uniform shear flow u_x = a y in the Lagrangian frame (Montanero 2003, \ref eta_enskog_shear "docs/shear-viscosity.md").
 struct Shear {
   std::optional<double> rate;          ///< a (unset: no shear)
   std::optional<double> average_from;  ///< the viscosity's time average starts here (default t_end/2)
@@ -143,18 +144,19 @@ struct Shear {
 /// The H5MD author of the output: &output author, else $USER, else the login name of the user id, else "unknown" (docs/output.md "The H5MD file").
 std::string author_name(const Output& output);
 
+/// A checked input: the namelist groups, where each value came from, and what follows from them.
 struct Config {
-  System system;
-  Initial initial;
-  Dsmc dsmc;
-  Output output;
-  AggFrag agg_frag;
+  System system;        ///< &system
+  Initial initial;      ///< &initial
+  Dsmc dsmc;            ///< &dsmc
+  Output output;        ///< &output
+  AggFrag agg_frag;     ///< &agg_frag (used when has_agg_frag)
   bool has_agg_frag = false;             ///< the namelist has an &agg_frag group
-  Thermostat thermostat;
-  Shear shear;
+  Thermostat thermostat;  ///< &thermostat
+  Shear shear;            ///< &shear
   /// A thermostat or a shear rate: the run advances in stages (streaming, collisions, thermostat).
   bool staged() const { return thermostat.kind != "none" || shear.rate.has_value(); }
-  Sweep sweep;
+  Sweep sweep;                           ///< &sweep
   std::string source_file;               ///< name of the namelist file
   std::string namelist_text;             ///< its text, verbatim
   std::vector<std::string> overrides;    ///< `--set group:variable=value`, in order
@@ -163,7 +165,7 @@ struct Config {
 
   /// The mixture of &system with its pair data.
   species::Mixture mixture() const;
-  /// beta_ki of the viscoelastic restitution (ERRATA §11), empty when the model is constant.
+  /// beta_ki of the viscoelastic restitution (\ref visco_one_material "docs/viscoelastic.md"), empty when the model is constant.
   std::optional<species::PairMatrix> viscoelastic_beta() const;
   /// Sample times, including t = 0, when the run is time-driven (empty otherwise).
   std::vector<double> sample_times() const;
@@ -173,6 +175,7 @@ struct Config {
   /// Config when there is no sweep. Each was checked when the namelist was read. A point has no
   /// &sweep and no namelist_text (the text is this Config's): a long list of values stays linear.
   std::vector<Config> sweep_points() const;
+  /// The namelist sweeps at least one variable over at least one value.
   bool is_sweep() const { return !sweep.variable.empty() && !sweep.values.empty(); }
   /// Every variable of every group, defaults included, for /parameters.
   std::vector<h5md::Parameter> resolved() const;
@@ -188,7 +191,7 @@ Config read_from_output(const std::string& h5_path);
 
 /// A commented namelist with every variable, its default, units and help (`--print-defaults`).
 std::string defaults_template();
-/// The input reference as Markdown tables (docs/input.md is generated from it).
+/// The input reference as Markdown tables (the page \ref input "input reference" is generated from it).
 std::string reference_markdown();
 
 }  // namespace gdsmc::io::config

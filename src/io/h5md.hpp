@@ -4,7 +4,7 @@
  *        the resolved input and the time series of the observables, plus readers for tests and
  *        validation.
  *
- * Layout (the contract with external scripts, /work/shared/INTERFACE.md "Output file: H5MD 1.1"):
+ * Layout (the contract with external scripts, \ref output_h5md "docs/output.md"):
  * \verbatim
  * /
  * +-- h5md                              +-- version: int32 [2] = {1, 1}
@@ -67,18 +67,18 @@ using ParameterValue = std::variant<bool, long long, double, std::string, std::v
 
 /// One resolved namelist variable; group = namelist group name, e.g. "system".
 struct Parameter {
-  std::string group;
-  std::string name;
-  ParameterValue value;
+  std::string group;     ///< namelist group, e.g. "system"
+  std::string name;      ///< variable name
+  ParameterValue value;  ///< its resolved value
 };
 
 /// One time series: value is row-major [time][column]; columns = 1 writes a 1-D dataset of shape
 /// (Nt), else (Nt, columns). time and step have Nt entries, value Nt * columns.
 struct Series {
-  std::vector<double> time;
-  std::vector<long long> step;
-  std::vector<double> value;
-  std::size_t columns = 1;
+  std::vector<double> time;      ///< sample times (Nt)
+  std::vector<long long> step;   ///< H5MD step of each sample (Nt)
+  std::vector<double> value;     ///< row-major [time][column]
+  std::size_t columns = 1;       ///< 1: a 1-D dataset
   std::vector<double> error;  ///< empty = no error dataset; else same size as value
 };
 
@@ -136,7 +136,9 @@ class Writer {
   /// holds a finished run.
   void commit();
 
+  /// The file written until commit(): `<final path>.tmp.<pid>`.
   const std::string& temporary_path() const;
+  /// The output file as requested.
   const std::string& final_path() const;
 
  private:
@@ -147,21 +149,23 @@ class Writer {
 // ---- Reading back (tests, validation programs). All throw std::runtime_error("cannot read output
 // ---- file '<file>': ...") on failure, including a type that does not fit the request.
 
+/// One observable as read back.
 struct ObservableData {
-  std::vector<double> time;
+  std::vector<double> time;               ///< sample times
   std::vector<double> value;              ///< row-major, shape as below
   std::vector<double> error;              ///< empty if the file has no error dataset
   std::vector<std::size_t> shape;         ///< shape of value: {Nt} or {Nt, S}
-  std::vector<long long> step;
+  std::vector<long long> step;            ///< H5MD step of each sample
 };
 /// `name` as for Writer::write_observable: relative to /observables, or an absolute path.
 ObservableData read_observable(const std::string& file, const std::string& name);
 
 /// A float64 (or any numeric) dataset, flattened row-major, with its shape.
 struct ArrayData {
-  std::vector<double> data;
-  std::vector<std::size_t> shape;
+  std::vector<double> data;        ///< the values, row-major
+  std::vector<std::size_t> shape;  ///< the dataset's dimensions
 };
+/// The dataset at `path` of `file`.
 ArrayData read_dataset(const std::string& file, const std::string& path);
 /// A uint64 dataset written by Writer::write_integers, flattened.
 std::vector<std::uint64_t> read_integers(const std::string& file, const std::string& path);
@@ -171,6 +175,7 @@ std::vector<std::uint64_t> read_integers(const std::string& file, const std::str
 /// std::string; a 1-D dataspace gives the vector alternative.
 ParameterValue read_attribute(const std::string& file, const std::string& object_path,
                               const std::string& name);
+/// A string attribute (read_attribute holding a std::string; anything else throws).
 std::string read_string_attribute(const std::string& file, const std::string& object_path,
                                   const std::string& name);
 /// Any scalar (or one-element) numeric attribute, converted to double.

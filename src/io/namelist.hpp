@@ -47,18 +47,25 @@ namespace gdsmc::io::namelist {
 /// A syntax error; what() is `FILE:LINE: &group: variable: message`, the `&group: ` and
 /// `variable: ` parts left out when empty and `:LINE` left out when line <= 0 (file-level errors).
 struct Error : std::runtime_error {
+  /// The error at `file`:`line` in `group`, `variable` (either may be empty).
   Error(std::string file, int line, std::string group, std::string variable, std::string message);
-  std::string file;
-  int line;
+  std::string file;      ///< the namelist file
+  int line;              ///< 1-based line; <= 0 for a file-level error
   std::string group;     ///< without the '&'
   std::string variable;  ///< lower-cased
-  std::string message;
+  std::string message;   ///< what is wrong
 };
 
 /// One value of an assignment, after repeat expansion.
 struct Value {
-  enum class Kind { Integer, Real, Logical, String };
-  Kind kind = Kind::Integer;
+  /// The type of the token.
+  enum class Kind {
+    Integer,  ///< 12, -3
+    Real,     ///< 1.5, 2e-3, 1.0d0
+    Logical,  ///< .true., .false. (also .t., t, .f., f)
+    String    ///< 'text'
+  };
+  Kind kind = Kind::Integer;  ///< the token's type
   std::string text;       ///< the token as written, without any `r*` prefix; for strings the string
   long long integer = 0;  ///< Kind::Integer
   double real = 0.0;      ///< Kind::Real, and also set for Integer (converted)

@@ -86,9 +86,9 @@ Table build(const config::Config& config, const std::string& file) {
       "partial temperatures T_k = m_k <|v-u|^2>/3, columns = species (&agg_frag: cluster sizes)",
       "T = sum_k n_k T_k / n",
       "T_k/T, the ratio of the replica means at each sample (as --compare)",
-      "c_k = 2[(3/5)<v^4>/<v^2>^2 - 1] (seed 003 eq 17)",
+      "c_k = 2[(3/5)<v^4>/<v^2>^2 - 1] (Montanero and Garzo 2002, eq. (17), docs/sonine.md)",
       "zeta* of the scaling state (one or two species)",
-      "eta/eta_0 time average (ERRATA §13)",
+      "eta/eta_0 time average (docs/shear-viscosity.md)",
       "2 x events / N"};
   std::vector<std::vector<PointValues>> per(names.size(), std::vector<PointValues>(t.points));
   t.scaling_samples.assign(t.points, 0.0);

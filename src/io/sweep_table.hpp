@@ -3,7 +3,7 @@
  * \brief The table of a sweep: the swept values and the headline results of every point, as numbers
  *        in the output file (`/sweep/values`, `/sweep/results`) and as CSV (`granular-dsmc --table`).
  *
- * \section sweep_table_layout Layout (docs/output.md "Sweeps")
+ * \section sweep_table_layout Layout (\ref output_sweep_layout "docs/output.md")
  * - `/sweep/values`: float64 [points][variables], the value of each swept variable at each point, in
  *   the order of `&sweep variable`; attribute `variables` (strings): their names as written in the
  *   input, e.g. `system:restitution(1,2)`. A value that is not one number (a string, a quoted array)
@@ -43,17 +43,21 @@ namespace gdsmc::io::sweep_table {
 
 /// One result quantity of every point: value and error row-major [points][columns].
 struct Result {
-  std::string name, at, description;
-  std::size_t columns = 1;
-  std::vector<double> value, error;
+  std::string name;         ///< the quantity, e.g. "temperature"
+  std::string at;           ///< where the value is taken (the attribute `at`)
+  std::string description;  ///< what it is (the attribute `description`)
+  std::size_t columns = 1;  ///< species or cluster sizes (1 for a scalar)
+  std::vector<double> value;  ///< [points][columns]
+  std::vector<double> error;  ///< [points][columns], standard error over replicas
 };
 
+/// The table of a sweep: the swept values and the results of every point.
 struct Table {
   std::vector<std::string> variables;  ///< as written in &sweep variable
   std::vector<double> values;          ///< [points][variables]
   std::vector<std::string> texts;      ///< [points][variables]: the values as written (may be empty when read)
-  std::size_t points = 0;
-  std::vector<Result> results;
+  std::size_t points = 0;              ///< number of sweep points
+  std::vector<Result> results;         ///< the quantities, in table order
   std::vector<double> scaling_samples;  ///< per point
 };
 

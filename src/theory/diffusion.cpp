@@ -30,14 +30,14 @@ namespace {
 constexpr double pi = std::numbers::pi;
 
 // ---------------------------------------------------------------------------------------------
-// Series coefficients (ERRATA §11, §8)
+// Series coefficients (\ref visco_series "docs/viscoelastic.md", \ref visco_averaged "docs/viscoelastic.md")
 // ---------------------------------------------------------------------------------------------
 
-constexpr int square_terms = 2 * restitution_series_terms;  // A_n runs to n = 40 (ERRATA §8)
+constexpr int square_terms = 2 * restitution_series_terms;  // A_n runs to n = 40 (\ref visco_averaged "docs/viscoelastic.md")
 
-const auto& h_coeff = restitution::h;  // ERRATA §11
+const auto& h_coeff = restitution::h;  // \ref visco_series "docs/viscoelastic.md"
 
-/// ERRATA §8: A_n = 4 h_n + sum_{j+l=n, 1<=j,l<=20} h_j h_l (h_n = 0 for n > 20), index n.
+/// \ref visco_averaged "docs/viscoelastic.md": A_n = 4 h_n + sum_{j+l=n, 1<=j,l<=20} h_j h_l (h_n = 0 for n > 20), index n.
 constexpr std::array<double, square_terms + 1> square_coefficients() {
   std::array<double, square_terms + 1> a{};
   for (int n = 1; n <= square_terms; ++n) {
@@ -51,7 +51,7 @@ constexpr std::array<double, square_terms + 1> square_coefficients() {
 }
 constexpr std::array<double, square_terms + 1> a_coeff = square_coefficients();
 
-/// (1/2) Gamma(2 + n/20), so that B_n = half_gamma[n] u_ki^n (ERRATA §8).
+/// (1/2) Gamma(2 + n/20), so that B_n = half_gamma[n] u_ki^n (\ref visco_averaged "docs/viscoelastic.md").
 const std::array<double, square_terms + 1>& half_gamma() {
   static const std::array<double, square_terms + 1> table = [] {
     std::array<double, square_terms + 1> t{};
@@ -97,12 +97,12 @@ double thermal_speed_sum(const Mixture& mix, std::span<const double> T, std::siz
   return T[k] / mix.mass[k] + T[i] / mix.mass[i];
 }
 
-/// ERRATA §4/§8: X_ki = (T_k m_i + T_i m_k)/(T_k (m_i + m_k)).
+/// \ref haff_mixture_odes "docs/haff-and-mixtures.md", \ref dif_correlation_time "docs/diffusion-msd.md": X_ki = (T_k m_i + T_i m_k)/(T_k (m_i + m_k)).
 double x_factor(const Mixture& mix, std::span<const double> T, std::size_t k, std::size_t i) {
   return (T[k] * mix.mass[i] + T[i] * mix.mass[k]) / (T[k] * (mix.mass[i] + mix.mass[k]));
 }
 
-/// ERRATA §8: base_ki = (8 sqrt(2 pi)/3) n_i sigma_ki^2 chi_ki mu_ik sqrt(s_ki),
+/// \ref dif_correlation_time "docs/diffusion-msd.md": base_ki = (8 sqrt(2 pi)/3) n_i sigma_ki^2 chi_ki mu_ik sqrt(s_ki),
 /// mu_ik = m_i/(m_i + m_k).
 double base_rate(const Mixture& mix, std::span<const double> T, std::size_t k, std::size_t i) {
   const double sigma_ki = mix.contact_distance(k, i);
@@ -111,7 +111,7 @@ double base_rate(const Mixture& mix, std::span<const double> T, std::size_t k, s
          std::sqrt(thermal_speed_sum(mix, T, k, i));
 }
 
-/// A1 (ERRATA §8): tau_v,ki^-1 = base_ki X_ki (1 + alpha_ki)^2/4.
+/// A1 (\ref dif_correlation_time "docs/diffusion-msd.md"): tau_v,ki^-1 = base_ki X_ki (1 + alpha_ki)^2/4.
 double inverse_tau_constant(const Mixture& mix, std::span<const double> T, std::size_t k,
                             std::size_t i) {
   const double one_plus_alpha = 1.0 + mix.restitution(k, i);
@@ -128,7 +128,7 @@ struct SeriesSums {
   double hb = 0.0;  ///< sum_{n=1}^{20} h_n B_n
 };
 
-/// ERRATA §8 sums over the series index n with B_n = (1/2) Gamma(2 + n/20) beta^(n/2) (2 s)^(n/20).
+/// \ref visco_averaged "docs/viscoelastic.md" sums over the series index n with B_n = (1/2) Gamma(2 + n/20) beta^(n/2) (2 s)^(n/20).
 SeriesSums series_sums(double u) {
   const auto& g = half_gamma();
   SeriesSums sums;
@@ -142,14 +142,14 @@ SeriesSums series_sums(double u) {
   return sums;
 }
 
-/// A3 (ERRATA §8): tau_v,ki^-1 = base_ki X_ki (1 + (1/2) sum_n A_n B_n).
+/// A3 (\ref visco_averaged "docs/viscoelastic.md"): tau_v,ki^-1 = base_ki X_ki (1 + (1/2) sum_n A_n B_n).
 double inverse_tau_viscoelastic(const Mixture& mix, const PairMatrix& beta,
                                 std::span<const double> T, std::size_t k, std::size_t i) {
   const SeriesSums sums = series_sums(typical_u(beta(k, i), thermal_speed_sum(mix, T, k, i)));
   return base_rate(mix, T, k, i) * x_factor(mix, T, k, i) * (1.0 + 0.5 * sums.ab);
 }
 
-/// A4 (ERRATA §8): xi_ki = 2 base_ki [1 - X_ki + sum_n B_n (h_n - (1/2) X_ki A_n)].
+/// A4 (\ref visco_averaged "docs/viscoelastic.md"): xi_ki = 2 base_ki [1 - X_ki + sum_n B_n (h_n - (1/2) X_ki A_n)].
 double cooling_rate_viscoelastic(const Mixture& mix, const PairMatrix& beta,
                                  std::span<const double> T, std::size_t k, std::size_t i) {
   const SeriesSums sums = series_sums(typical_u(beta(k, i), thermal_speed_sum(mix, T, k, i)));
@@ -171,7 +171,7 @@ void require_within_cutoff(const Mixture& mix, const PairMatrix& beta, std::span
     }
 }
 
-/// tau_v,k^-1 = sum_i tau_v,ki^-1 (seed 001 eq 20), A1 or (beta) A3.
+/// tau_v,k^-1 = sum_i tau_v,ki^-1 (Bodrova and Osinsky 2024, eq. (20), \ref dif_coefficients "docs/diffusion-msd.md"), A1 or (beta) A3.
 double inverse_tau_row(const Mixture& mix, const PairMatrix* beta, std::span<const double> T,
                        std::size_t k) {
   double sum = 0.0;
@@ -278,7 +278,7 @@ class DenseSolution {
     slope_.resize(time_.size() * species_);
     for (std::size_t i = 0; i < time_.size(); ++i) {
       const std::vector<double>& T = history.temperature[i];
-      // d ln T_k/dt = -sum_i xi_ki: ERRATA §4 (partial_temperature_rates) or A4.
+      // d ln T_k/dt = -sum_i xi_ki: \ref haff_mixture_odes "docs/haff-and-mixtures.md" (partial_temperature_rates) or A4.
       std::vector<double> rate;
       if (beta) {
         const PairMatrix xi = cooling_rate_matrix_viscoelastic(mix, *beta, T);
@@ -398,7 +398,7 @@ MsdResult displacement(const Mixture& mix, const std::vector<double>& T0,
 }  // namespace
 
 // -------------------------------------------------------------------------------------------------
-// Viscoelastic restitution (ERRATA §11)
+// Viscoelastic restitution (\ref visco_series "docs/viscoelastic.md")
 // -------------------------------------------------------------------------------------------------
 
 double restitution_series_coefficient(int j) {
@@ -414,7 +414,7 @@ double restitution_series_square_coefficient(int n) {
 }
 
 // -------------------------------------------------------------------------------------------------
-// Velocity correlation times and cooling rates (ERRATA §8)
+// Velocity correlation times and cooling rates (\ref dif_correlation_time "docs/diffusion-msd.md")
 // -------------------------------------------------------------------------------------------------
 
 PairMatrix velocity_correlation_base_rate(const Mixture& mix,
@@ -472,7 +472,7 @@ std::vector<double> diffusion_coefficients(const Mixture& mix,
     require_within_cutoff(mix, *beta, temperature, "diffusion_coefficients");
   }
   std::vector<double> d(mix.size());
-  for (std::size_t k = 0; k < mix.size(); ++k)  // seed 001 eqs 19-20
+  for (std::size_t k = 0; k < mix.size(); ++k)  // Bodrova and Osinsky 2024, eqs. (19)-(20), \ref dif_coefficients "docs/diffusion-msd.md"
     d[k] = temperature[k] / (mix.mass[k] * inverse_tau_row(mix, beta, temperature, k));
   return d;
 }
@@ -488,7 +488,7 @@ std::vector<double> diffusion_coefficient_ratio(const Mixture& mix,
 }
 
 std::vector<double> diffusion_coefficient_ratio(const Mixture& mix) {
-  std::vector<double> temperature = asymptotic_temperature_ratios(mix);  // ERRATA §4, T_1 = 1 unit
+  std::vector<double> temperature = asymptotic_temperature_ratios(mix);  // \ref haff_ratios "docs/haff-and-mixtures.md", T_1 = 1 unit
   for (double& t : temperature) t *= mix.mass[0];  // any scale: D_k is homogeneous in T
   return diffusion_coefficient_ratio(mix, temperature);
 }
@@ -526,9 +526,9 @@ TemperatureHistory integrate_partial_temperatures_viscoelastic(
       double sum = 0.0;
       for (std::size_t i = 0; i < species; ++i)
         sum += cooling_rate_viscoelastic(mix, beta, T, k, i);
-      dydt[k] = -sum;  // seed 001 eqs 22-23 with A4: d ln T_k/dt = -sum_i xi_ki
+      dydt[k] = -sum;  // Bodrova and Osinsky 2024, eqs. (22)-(23), \ref visco_averaged "docs/viscoelastic.md" with A4: d ln T_k/dt = -sum_i xi_ki
     }
-    dydt[species] = total_collision_rate(mix, T);  // ERRATA §2
+    dydt[species] = total_collision_rate(mix, T);  // \ref cm_mixture_rate "docs/collision-model.md"
   };
   detail::CvodeSolver solver([&rhs](double, std::span<const double> y, std::span<double> dy) { rhs(y, dy); },
                              y0, rtol, atol);

@@ -6,15 +6,15 @@
  *
  * \section diffusion_intro What this module computes
  *
- * The theory of Bodrova and Osinsky (seed 001 eqs 5-8, 16-24 and Appendix A1-A4) in the corrected
- * form of ERRATA §8 and §11. Notation as in theory.hpp and ERRATA: s_ki = T_k/m_k + T_i/m_i,
+ * The theory of Bodrova and Osinsky 2024 (eqs. (5)-(8), (16)-(24) and Appendix A1-A4) in the corrected
+ * form of \ref dif_correlation_time "docs/diffusion-msd.md", \ref visco_series "docs/viscoelastic.md". Notation as in theory.hpp and \ref cm_notation "docs/collision-model.md": s_ki = T_k/m_k + T_i/m_i,
  * sigma_ki = (sigma_k + sigma_i)/2, mu_ik = m_i/(m_i + m_k), chi_ki the pair correlation at contact
- * (seed 001's g_2(sigma_ki)), X_ki = (T_k m_i + T_i m_k)/(T_k (m_i + m_k)) (not symmetric).
+ * (Bodrova and Osinsky 2024's g_2(sigma_ki)), X_ki = (T_k m_i + T_i m_k)/(T_k (m_i + m_k)) (not symmetric).
  * Every species is Maxwellian with its own partial temperature T_k (as in theory.hpp).
  *
- * \subsection diffusion_visco Viscoelastic restitution (ERRATA §11; seed 001 eqs 5-8)
+ * \subsection diffusion_visco Viscoelastic restitution (\ref visco_series "docs/viscoelastic.md"; Bodrova and Osinsky 2024, eqs. (5)-(8))
  * alpha_ki(g.e) = 1 + sum_{j=1}^{20} h_j u^j, u = beta_ki^(1/2) |g.e|^(1/10), with the h_j of
- * ERRATA §11 (h_2 = -C_1, C_1 = 1.1534488580952888, h_4 = C_2 = 3 C_1^2/5 and h_5 = 4/15 are used
+ * \ref visco_series "docs/viscoelastic.md" (h_2 = -C_1, C_1 = 1.1534488580952888, h_4 = C_2 = 3 C_1^2/5 and h_5 = 4/15 are used
  * at full precision, the others as listed). The series is that of the viscoelastic (Hertz plus
  * dissipative) contact x'' + x^(3/2) + u^2 x^(1/2) x' = 0, x(0) = 0, x'(0) = 1, which ends when
  * the contact force vanishes (x + u^2 x' = 0) with alpha = -x'(end). Integrating that contact
@@ -22,26 +22,26 @@
  * 1.1e-4 at u = 0.8, 2.2e-3 at u = 0.9 and 2.7e-2 at u = 1 (it diverges beyond u about 1.05).
  * Cut-off: viscoelastic_u_max = 0.8; above it viscoelastic_restitution throws std::domain_error
  * instead of returning an untrusted (possibly negative) alpha.
- * beta_ki = A kappa_ki^(2/5) carries units of (velocity)^(-1/5). One material (ERRATA §11; seed
- * 001 eqs 7-8): beta_ki/beta_11 = [sqrt(sigma_eff,ki/sigma_eff,11) m_11/m_ki]^(2/5) with
+ * beta_ki = A kappa_ki^(2/5) carries units of (velocity)^(-1/5). One material (\ref visco_one_material "docs/viscoelastic.md";
+ * Bodrova and Osinsky 2024, eqs. (7)-(8)): beta_ki/beta_11 = [sqrt(sigma_eff,ki/sigma_eff,11) m_11/m_ki]^(2/5) with
  * sigma_eff,ki = sigma_i sigma_k/(sigma_i + sigma_k) (not the contact distance) and m_ki the
  * reduced mass. Convention: the seed's "A kappa^(2/5) = 0.09" is beta_11 = 0.09 for the pair of
  * species 1 (index 0); callers record that convention in their output.
  *
- * \subsection diffusion_rates Correlation times and cooling rates (ERRATA §8; seed 001 A1-A4)
+ * \subsection diffusion_rates Correlation times and cooling rates (\ref visco_averaged "docs/viscoelastic.md"; Bodrova and Osinsky 2024 A1-A4)
  * base_ki = (8 sqrt(2 pi)/3) n_i sigma_ki^2 chi_ki mu_ik sqrt(s_ki), with n_i the density of the
  * partner species i and mu_ik = m_i/(m_i + m_k) the partner's mass fraction.
  * - A1, constant alpha: tau_v,ki^-1 = base_ki X_ki (1 + alpha_ki)^2/4. This is nu_ki - xi_ki/2,
  *   with nu_ki = base_ki (1 + alpha_ki)/2 the momentum relaxation rate of a k particle drifting
- *   through Maxwellian i particles and xi_ki the cooling rate (A2); ERRATA §8: keep
+ *   through Maxwellian i particles and xi_ki the cooling rate (A2); \ref dif_correlation_time "docs/diffusion-msd.md": keep
  *   (1 + alpha)^2/4.
- * - A2 = ERRATA §4: xi_ki = base_ki (1 + alpha_ki) [1 - (1/2)(1 + alpha_ki) X_ki], which is
+ * - A2 = \ref haff_mixture_odes "docs/haff-and-mixtures.md": xi_ki = base_ki (1 + alpha_ki) [1 - (1/2)(1 + alpha_ki) X_ki], which is
  *   theory::cooling_rate_matrix.
  * - A3, viscoelastic: tau_v,ki^-1 = base_ki X_ki (1 + (1/2) sum_{n=1}^{40} A_n B_n).
  * - A4, viscoelastic: xi_ki = 2 base_ki [1 - X_ki + sum_n B_n (h_n - (1/2) X_ki A_n)]
  *   (n runs to 40, with h_n = 0 for n > 20).
  * - A_n = 4 h_n + sum_{j+l=n; 1<=j,l<=20} h_j h_l, B_n = (1/2) Gamma(2 + n/20) beta_ki^(n/2)
- *   (2 s_ki)^(n/20) (ERRATA §8; equal to the printed (20 + n) n Gamma(n/20)/800 form).
+ *   (2 s_ki)^(n/20) (\ref dif_correlation_time "docs/diffusion-msd.md"; equal to the printed (20 + n) n Gamma(n/20)/800 form).
  * A3 and A4 are A1 and A2 averaged term by term over the restitution series with the weight
  * g_n^3 exp(-g_n^2/(2 s_ki)) of the normal relative speed g_n (then B_n = <u^n>/2):
  * tau_v,ki^-1 = base_ki X_ki <(1 + alpha)^2>/4 and
@@ -54,23 +54,23 @@
  * their share is negligible for u_ki well below the cut-off (0.32 for beta = 0.09, T = m = 1).
  * With viscoelastic restitution Mixture::restitution is ignored.
  *
- * \subsection diffusion_coefficients Diffusion coefficients (seed 001 eqs 19-20; ERRATA §8)
+ * \subsection diffusion_coefficients Diffusion coefficients (Bodrova and Osinsky 2024, eqs. (19)-(20); \ref dif_coefficients "docs/diffusion-msd.md")
  * D_k = T_k tau_v,k/m_k with tau_v,k^-1 = sum_i tau_v,ki^-1. One species, constant alpha:
  * D = 3/(2 (1 + alpha)^2 n sigma^2 chi) sqrt(T/(pi m)) (Brilliantov and Poeschel; alpha = 1 gives
  * the Chapman-Enskog 3/(8 n sigma^2) sqrt(T/(pi m))).
  *
- * \subsection diffusion_msd Mean squared displacement (seed 001 eqs 16-18, 21; ERRATA §8)
+ * \subsection diffusion_msd Mean squared displacement (Bodrova and Osinsky 2024, eqs. (16)-(18), (21); \ref dif_msd "docs/diffusion-msd.md")
  * <R_k^2(t)> = 6 int_0^t dt1 D_k(t1) [1 - exp(-(tau_k(t) - tau_k(t1))/tauhat_v,k(t1))]  (eq 17)
- * with tauhat_v,k(t) = tau_v,k(t) sqrt(T_k(t)/T_k(0)) (eq 18) and, as ERRATA §8 defines it,
+ * with tauhat_v,k(t) = tau_v,k(t) sqrt(T_k(t)/T_k(0)) (eq 18) and, as \ref dif_correlation_time "docs/diffusion-msd.md" defines it,
  * tau_k(t) = int_0^t sqrt(T_k(t')/T_k(0)) dt'. <R^2> = (1/n) sum_k n_k <R_k^2> (eq 16).
  * Long-time form (eq 21): <R_k^2> = 6 int_0^t D_k(t1) dt1.
  * Properties (checked in tests/diffusion_test.cpp):
  * - t << tau_v,k: <R_k^2> = 3 T_k(0) t^2/m_k (ballistic).
  * - Constant temperatures (elastic, one species):
  *   <R_k^2> = 6 D_k t - 6 D_k tau_v,k (1 - exp(-t/tau_v,k)) (Ornstein-Uhlenbeck).
- * - One species, constant alpha (Haff, T = T0/(1 + t/t0)^2, t0 = 2/zeta_0, ERRATA §3), exactly:
+ * - One species, constant alpha (Haff, T = T0/(1 + t/t0)^2, t0 = 2/zeta_0, \ref haff_law "docs/haff-and-mixtures.md"), exactly:
  *   <R^2> = 6 D0 t0 ln(1 + t/t0) - 6 D0 tau_v0 [1 - (1 + t/t0)^(-t0/tau_v0)], so the logarithmic
- *   law 6 D0 tau0 ln(1 + t/tau0) of ERRATA §8 holds with tau0 = t0 = 2/zeta_0 (the Haff time), up
+ *   law 6 D0 tau0 ln(1 + t/tau0) of \ref dif_msd "docs/diffusion-msd.md" holds with tau0 = t0 = 2/zeta_0 (the Haff time), up
  *   to the constant -6 D0 tau_v0; eq 21 gives 6 D0 t0 ln(1 + t/t0) exactly. A mixture started at
  *   the asymptotic temperature ratios follows the same form species by species (common t0).
  * Eq 17 is the adiabatic form of the velocity autocorrelation integral (the correlation decays
@@ -107,56 +107,56 @@
 namespace gdsmc::theory {
 
 // ---------------------------------------------------------------------------------------------
-// Viscoelastic restitution (ERRATA §11; seed 001 eqs 5-8)
+// Viscoelastic restitution (\ref visco_series "docs/viscoelastic.md"; Bodrova and Osinsky 2024, eqs. (5)-(8))
 // ---------------------------------------------------------------------------------------------
 
 // The series itself lives in dsmc/restitution.hpp (the collision rule uses it); these names keep
 // the theory's vocabulary.
-inline constexpr int restitution_series_terms = restitution::series_terms;
-inline constexpr double restitution_c1 = restitution::series_c1;
-inline constexpr double viscoelastic_u_max = restitution::u_max;
+inline constexpr int restitution_series_terms = restitution::series_terms;  ///< terms h_1..h_20 of the series
+inline constexpr double restitution_c1 = restitution::series_c1;          ///< C_1, h_2 = -C_1
+inline constexpr double viscoelastic_u_max = restitution::u_max;          ///< largest u the series is used for
 
-/// h_j of ERRATA §11, j = 1..20. Throws std::out_of_range for other j.
+/// h_j of \ref visco_series "docs/viscoelastic.md", j = 1..20. Throws std::out_of_range for other j.
 double restitution_series_coefficient(int j);
 
-/// A_n = 4 h_n + sum_{j+l=n} h_j h_l, n = 1..40 (ERRATA §8). Throws std::out_of_range otherwise.
+/// A_n = 4 h_n + sum_{j+l=n} h_j h_l, n = 1..40 (\ref visco_averaged "docs/viscoelastic.md"). Throws std::out_of_range otherwise.
 double restitution_series_square_coefficient(int n);
 
-/// ERRATA §11 / seed 001 eq 5 (restitution::viscoelastic).
+/// \ref visco_series "docs/viscoelastic.md" / Bodrova and Osinsky 2024, eq. (5) (restitution::viscoelastic).
 inline double viscoelastic_restitution(double beta_ki, double normal_speed) {
   return restitution::viscoelastic(beta_ki, normal_speed);
 }
 
-/// One-material beta_ki (ERRATA §11; restitution::one_material_beta).
+/// One-material beta_ki (\ref visco_one_material "docs/viscoelastic.md"; restitution::one_material_beta).
 inline PairMatrix viscoelastic_beta(const Mixture& mix, double beta_11) {
   return restitution::one_material_beta(mix, beta_11);
 }
 
 // ---------------------------------------------------------------------------------------------
-// Velocity correlation times and cooling rates (ERRATA §8; seed 001 App. A)
+// Velocity correlation times and cooling rates (\ref dif_correlation_time "docs/diffusion-msd.md"; Bodrova and Osinsky 2024, App. A)
 // temperature[k] = T_k; beta is an S x S matrix of beta_ki >= 0 (viscoelastic_beta)
 // ---------------------------------------------------------------------------------------------
 
-/// ERRATA §8: base_ki = (8 sqrt(2 pi)/3) n_i sigma_ki^2 chi_ki mu_ik sqrt(s_ki), row k, column i.
+/// \ref dif_correlation_time "docs/diffusion-msd.md": base_ki = (8 sqrt(2 pi)/3) n_i sigma_ki^2 chi_ki mu_ik sqrt(s_ki), row k, column i.
 PairMatrix velocity_correlation_base_rate(const Mixture& mix,
                                           const std::vector<double>& temperature);
 
-/// A1 (ERRATA §8): tau_v,ki^-1 = base_ki X_ki (1 + alpha_ki)^2/4, constant restitution.
+/// A1 (\ref dif_correlation_time "docs/diffusion-msd.md"): tau_v,ki^-1 = base_ki X_ki (1 + alpha_ki)^2/4, constant restitution.
 PairMatrix inverse_velocity_correlation_time(const Mixture& mix,
                                              const std::vector<double>& temperature);
 
-/// A3 (ERRATA §8): tau_v,ki^-1 = base_ki X_ki (1 + (1/2) sum_n A_n B_n). Throws std::domain_error
+/// A3 (\ref visco_averaged "docs/viscoelastic.md"): tau_v,ki^-1 = base_ki X_ki (1 + (1/2) sum_n A_n B_n). Throws std::domain_error
 /// if a pair's typical u exceeds viscoelastic_u_max (\ref diffusion_rates).
 PairMatrix inverse_velocity_correlation_time_viscoelastic(const Mixture& mix,
                                                           const PairMatrix& beta,
                                                           const std::vector<double>& temperature);
 
-/// A4 (ERRATA §8): xi_ki = 2 base_ki [1 - X_ki + sum_n B_n (h_n - (1/2) X_ki A_n)], such that
+/// A4 (\ref visco_averaged "docs/viscoelastic.md"): xi_ki = 2 base_ki [1 - X_ki + sum_n B_n (h_n - (1/2) X_ki A_n)], such that
 /// dT_k/dt = -T_k sum_i xi_ki. Throws std::domain_error like A3.
 PairMatrix cooling_rate_matrix_viscoelastic(const Mixture& mix, const PairMatrix& beta,
                                             const std::vector<double>& temperature);
 
-/// Seed 001 eqs 19-20: D_k = T_k tau_v,k/m_k, tau_v,k^-1 = sum_i tau_v,ki^-1, from A1 or, when
+/// Bodrova and Osinsky 2024, eqs. (19)-(20), \ref dif_coefficients "docs/diffusion-msd.md": D_k = T_k tau_v,k/m_k, tau_v,k^-1 = sum_i tau_v,ki^-1, from A1 or, when
 /// `beta` is given, from A3.
 std::vector<double> diffusion_coefficients(const Mixture& mix,
                                            const std::vector<double>& temperature,
@@ -168,16 +168,16 @@ std::vector<double> diffusion_coefficient_ratio(const Mixture& mix,
                                                 const PairMatrix* beta = nullptr);
 
 /**
- * D_k/D_1 at long times for constant restitution (the JSON key `diffusion_coefficient_ratio`, seed
- * 001 Figs 4, 5, 7): D_k is homogeneous of degree 1/2 in the temperatures, so once T_k/T_1 has
- * settled (asymptotic_temperature_ratios, ERRATA §4) the ratio is constant. With viscoelastic
+ * D_k/D_1 at long times for constant restitution (the JSON key `diffusion_coefficient_ratio`,
+ * Bodrova and Osinsky 2024, Figs. 4, 5, 7; \ref dif_coefficients "docs/diffusion-msd.md"): D_k is homogeneous of degree 1/2 in the temperatures, so once T_k/T_1 has
+ * settled (asymptotic_temperature_ratios, \ref haff_ratios "docs/haff-and-mixtures.md") the ratio is constant. With viscoelastic
  * restitution there is no such constant: the mixture drifts towards equipartition and the elastic
- * limit as T -> 0 (seed 001 Sec. III); use the overload above at the temperatures of interest.
+ * limit as T -> 0 (Bodrova and Osinsky 2024, Sec. III, \ref dif_limits "docs/diffusion-msd.md"); use the overload above at the temperatures of interest.
  */
 std::vector<double> diffusion_coefficient_ratio(const Mixture& mix);
 
 // ---------------------------------------------------------------------------------------------
-// Partial temperatures with viscoelastic restitution (seed 001 eqs 22-23 with A4)
+// Partial temperatures with viscoelastic restitution (Bodrova and Osinsky 2024, eqs. (22)-(23), \ref visco_averaged "docs/viscoelastic.md" with A4)
 // ---------------------------------------------------------------------------------------------
 
 /**
@@ -193,9 +193,10 @@ TemperatureHistory integrate_partial_temperatures_viscoelastic(
     const std::vector<double>& times);
 
 // ---------------------------------------------------------------------------------------------
-// Mean squared displacement (seed 001 eqs 16-18, 21; ERRATA §8)
+// Mean squared displacement (Bodrova and Osinsky 2024, eqs. (16)-(18), (21); \ref dif_msd "docs/diffusion-msd.md")
 // ---------------------------------------------------------------------------------------------
 
+/// Partial and total MSDs at the requested times.
 struct MsdResult {
   std::vector<double> time;              ///< the requested times
   std::vector<std::vector<double>> msd;  ///< [time][species] <R_k^2(t)>

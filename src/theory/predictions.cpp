@@ -138,11 +138,11 @@ Predictions predict(const io::config::Config& config) {
   const auto& t0 = config.initial.temperature;
   const double n = mix.total_density();
 
-  // Collisions suffered by species k per unit volume: 2 P_kk + sum_{j != k} P_kj (ERRATA §2).
+  // Collisions suffered by species k per unit volume: 2 P_kk + sum_{j != k} P_kj (\ref cm_mixture_rate "docs/collision-model.md").
   const auto pair = pair_collision_rate(mix, t0);
   out.collision_frequency.resize(s);
   out.cooling_rate.resize(s);
-  const auto beta = config.viscoelastic_beta();  // viscoelastic restitution: A3, A4 (ERRATA §8)
+  const auto beta = config.viscoelastic_beta();  // viscoelastic restitution: A3, A4 (\ref visco_averaged "docs/viscoelastic.md")
   const auto xi = beta ? cooling_rate_matrix_viscoelastic(mix, *beta, t0) : cooling_rate_matrix(mix, t0);
   for (std::size_t k = 0; k < s; ++k) {
     double suffered = 0.0, z = 0.0;
@@ -180,7 +180,7 @@ Predictions predict(const io::config::Config& config) {
     for (const char* key : {"temperature", "total_temperature", "collisions_per_particle"})
       out.approximations.emplace_back(key, "maxwellian");
   }
-  // Diffusion (seed 001 eqs 16-21, ERRATA §8): D_k/D_1 at long times (constant alpha) or at the end
+  // Diffusion (Bodrova and Osinsky 2024, eqs. (16)-(21), \ref dif_coefficients "docs/diffusion-msd.md"): D_k/D_1 at long times (constant alpha) or at the end
   // of the run (viscoelastic, where the ratios drift), and eq 17's MSD when displacements are tracked.
   out.diffusion_coefficient_ratio = beta ? diffusion_coefficient_ratio(mix, history.temperature.back(), &*beta)
                                          : diffusion_coefficient_ratio(mix);
@@ -214,7 +214,7 @@ Predictions predict(const io::config::Config& config) {
   } else if (s == 1) {
     const double a2 = sonine_a2(mix.restitution(0, 0));
     out.sonine_a2 = a2;
-    out.cooling_rate_sonine = out.cooling_rate[0] * (1.0 + 3.0 * a2 / 16.0);  // ERRATA §3
+    out.cooling_rate_sonine = out.cooling_rate[0] * (1.0 + 3.0 * a2 / 16.0);  // \ref haff_sonine "docs/haff-and-mixtures.md"
     out.approximations.emplace_back("sonine_a2", "first_sonine");
     out.approximations.emplace_back("sonine_c", "first_sonine");
     out.approximations.emplace_back("cooling_rate_sonine", "first_sonine");
@@ -263,7 +263,7 @@ Predictions predict(const io::config::Config& config) {
       out.notes.push_back(std::string("binary HCS keys (temperature_ratio, sonine_c, ...) left out: ") + e.what());
     }
   }
-  if (out.binary_hcs) {  // binary HCS in first Sonine approximation (seed 003 App. A, ERRATA §6)
+  if (out.binary_hcs) {  // binary HCS in first Sonine approximation (Montanero and Garzo 2002, App. A, \ref son_binary "docs/sonine.md")
     const auto& hcs = *out.binary_hcs;
     if (hcs.cooling_rate > 0.0)
       for (int k = 0; k < 2; ++k) out.binary_tail_decay_rate[k] = tail_decay_rate(hcs, k);
@@ -274,9 +274,9 @@ Predictions predict(const io::config::Config& config) {
     if (hcs.cooling_rate > 0.0)
       out.approximations.emplace_back("tail_decay_rate", "high_velocity_asymptotics_first_sonine");
   }
-  // Shear viscosity eta/eta_0 in first Sonine (seed 004, ERRATA §10, §13; theory/viscosity.hpp): one
+  // Shear viscosity eta/eta_0 in first Sonine (Montanero 2003, \ref eta_one_species "docs/shear-viscosity.md", \ref eta_measured "docs/shear-viscosity.md"; theory/viscosity.hpp): one
   // species, dilute or Enskog; binary mixtures, dilute or Enskog, over the elastic mixture value. In
-  // the Enskog gas also the kinetic part alone (seed 004 Fig 10).
+  // the Enskog gas also the kinetic part alone (Montanero 2003, Fig. 10, \ref eta_mixture "docs/shear-viscosity.md").
   if (!beta && (s == 1 || (s == 2 && out.binary_hcs))) {
     namespace vt = viscosity;
     try {

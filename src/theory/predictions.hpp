@@ -6,15 +6,15 @@
  *
  * No formula lives here: each entry calls the module that derives it, which names its sources.
  * - collision_frequency, cooling_rate, temperature, total_temperature, collisions_per_particle:
- *   the Maxwellian rates and partial-temperature ODEs (theory.hpp; ERRATA §2-§4; viscoelastic
- *   restitution: diffusion.hpp, ERRATA §11). Collision-driven runs: the ODE times at which the
+ *   the Maxwellian rates and partial-temperature ODEs (theory.hpp; \ref cm_pair_rate "docs/collision-model.md", \ref haff_law "docs/haff-and-mixtures.md", \ref haff_mixture_odes "docs/haff-and-mixtures.md"; viscoelastic
+ *   restitution: diffusion.hpp, \ref visco_series "docs/viscoelastic.md"). Collision-driven runs: the ODE times at which the
  *   collisions per particle reach the run's sample points.
- * - diffusion_coefficient_ratio, msd: seed 001 eqs 17, 19 (diffusion.hpp, ERRATA §8).
- * - sonine_a2, cooling_rate_sonine (one species; ERRATA §3), asymptotic_temperature_ratio
- *   (ERRATA §4), hcs.first_sonine / hcs.maxwellian (sonine_mixture.hpp, any number of species),
- *   the binary first-Sonine HCS with tails (sonine.hpp; seed 003, ERRATA §6).
- * - shear_viscosity_ratio (viscosity.hpp; seed 004, ERRATA §10, §13).
- * - &agg_frag runs: the Smoluchowski equations with Maxwellian kernels (smoluchowski.hpp, ERRATA §12).
+ * - diffusion_coefficient_ratio, msd: Bodrova and Osinsky 2024, eqs. (17), (19) (diffusion.hpp, \ref dif_msd "docs/diffusion-msd.md").
+ * - sonine_a2, cooling_rate_sonine (one species; \ref haff_sonine "docs/haff-and-mixtures.md"), asymptotic_temperature_ratio
+ *   (\ref haff_mixture_odes "docs/haff-and-mixtures.md"), hcs.first_sonine / hcs.maxwellian (sonine_mixture.hpp, any number of species),
+ *   the binary first-Sonine HCS with tails (sonine.hpp; Montanero and Garzo 2002, \ref son_tails "docs/sonine.md").
+ * - shear_viscosity_ratio (viscosity.hpp; Montanero 2003, \ref eta_one_species "docs/shear-viscosity.md", \ref eta_thermostat "docs/shear-viscosity.md").
+ * - &agg_frag runs: the Smoluchowski equations with Maxwellian kernels (smoluchowski.hpp, \ref af_smoluchowski "docs/agg-frag.md").
  * `approximations` names the approximation behind every key, in the order granular-theory prints
  * them; an entry that cannot be evaluated is left out with a note saying why (never an exception).
  * Documentation: docs/physics.md ("Theory", "Comparison with theory").
@@ -36,41 +36,48 @@ namespace gdsmc::theory {
 
 /// A time series per species (or per cluster size): value[time index][column].
 struct Trajectory {
-  std::vector<double> time;
-  std::vector<std::vector<double>> value;
+  std::vector<double> time;                ///< sample times
+  std::vector<std::vector<double>> value;  ///< [time][column]
 };
 
 /// The Smoluchowski solution of an &agg_frag run in the units of the DSMC observables.
 struct AggFragPrediction {
   smoluchowski::Solution solution;     ///< on the run's sample times
-  smoluchowski::InitialRates initial_rates;
+  smoluchowski::InitialRates initial_rates;  ///< event rates at t = 0 (exact: Maxwellian monomers)
   double initial_monomers = 0.0;       ///< n_particles: number = number_fraction * this
   std::size_t width = 1;               ///< sizes of which the run would hold >= 1e-6 clusters at some time
-  std::vector<double> mean_size, monomer_fraction, collisions_per_particle;  ///< per sample time
+  std::vector<double> mean_size;                ///< N_0/N per sample time
+  std::vector<double> monomer_fraction;         ///< N_1/N_0 = n_1(t)/n_1(0) per sample time
+  std::vector<double> collisions_per_particle;  ///< 2 x collisions / N_0 per sample time
 };
 
+/// Everything granular-theory prints for one point (\ref output_theory "docs/output.md").
 struct Predictions {
-  std::size_t n_species = 1;
+  std::size_t n_species = 1;                ///< S
   std::vector<double> collision_frequency;  ///< nu_k at t = 0
   std::vector<double> cooling_rate;         ///< zeta_k = sum_j xi_kj at t = 0
   /// Free cooling on the sample times (absent for &thermostat / &shear runs, where T is held).
   bool has_history = false;
-  std::vector<double> time;
+  std::vector<double> time;                      ///< the sample times
   std::vector<std::vector<double>> temperature;  ///< [time][species]
-  std::vector<double> total_temperature, collisions_per_particle;
+  std::vector<double> total_temperature;         ///< T on the sample times
+  std::vector<double> collisions_per_particle;   ///< 2 x events / N on the sample times
   std::vector<double> final_temperature;  ///< T_k at the last sample time (also for staged runs)
-  std::vector<double> diffusion_coefficient_ratio;
+  std::vector<double> diffusion_coefficient_ratio;  ///< D_k/D_1 (\ref dif_coefficients "docs/diffusion-msd.md")
   std::optional<Trajectory> msd;          ///< with &output track_displacements
-  std::optional<double> sonine_a2, cooling_rate_sonine;  ///< one species
+  std::optional<double> sonine_a2;            ///< one species: van Noije-Ernst a2
+  std::optional<double> cooling_rate_sonine;  ///< one species: zeta_0 (1 + 3 a2/16)
   std::optional<std::vector<double>> asymptotic_temperature_ratio;  ///< T_k/T_1, Maxwellian
-  std::optional<HcsFirstSonine> hcs_first_sonine;
-  std::optional<std::vector<double>> hcs_maxwellian_temperature_over_mean;
-  std::optional<double> hcs_maxwellian_cooling_rate_reduced;
-  std::optional<BinaryHcs> binary_hcs;
-  std::optional<double> binary_tail_decay_rate[2];
-  std::optional<double> shear_viscosity_hcs, shear_viscosity_hss;  ///< eta/eta_0
-  std::optional<double> shear_viscosity_kinetic_hcs, shear_viscosity_kinetic_hss;  ///< its kinetic part (Enskog)
-  std::optional<AggFragPrediction> agg_frag;
+  std::optional<HcsFirstSonine> hcs_first_sonine;  ///< HCS of any number of species, first Sonine
+  std::optional<std::vector<double>> hcs_maxwellian_temperature_over_mean;  ///< HCS T_k/T, Maxwellian
+  std::optional<double> hcs_maxwellian_cooling_rate_reduced;  ///< HCS zeta*, Maxwellian
+  std::optional<BinaryHcs> binary_hcs;             ///< binary HCS in first Sonine, with tails
+  std::optional<double> binary_tail_decay_rate[2]; ///< k_i = 2 beta_i/zeta* of each species
+  std::optional<double> shear_viscosity_hcs;          ///< eta/eta_0 in the HCS
+  std::optional<double> shear_viscosity_hss;          ///< eta/eta_0 in the HSS
+  std::optional<double> shear_viscosity_kinetic_hcs;  ///< its kinetic part (Enskog), HCS
+  std::optional<double> shear_viscosity_kinetic_hss;  ///< its kinetic part (Enskog), HSS
+  std::optional<AggFragPrediction> agg_frag;          ///< &agg_frag runs: the Smoluchowski solution
   /// key -> "maxwellian", "first_sonine", "exact", ... for every key present, in print order.
   std::vector<std::pair<std::string, std::string>> approximations;
   std::vector<std::string> notes;  ///< what was left out and why, in order

@@ -15,9 +15,9 @@ std::pair<double, double> rates(const species::Mixture& mix, const std::vector<d
   const std::size_t s = mix.size();
   const double n = mix.total_density();
   if (s <= exact_species) {
-    const double nu0 = 2.0 * total_collision_rate(mix, t0) / n;  // ERRATA §2
+    const double nu0 = 2.0 * total_collision_rate(mix, t0) / n;  // \ref cm_mixture_rate "docs/collision-model.md"
     if (cooling != Cooling::haff) return {nu0, 0.0};
-    const PairMatrix xi = cooling_rate_matrix(mix, t0);        // ERRATA §4
+    const PairMatrix xi = cooling_rate_matrix(mix, t0);        // \ref haff_mixture_odes "docs/haff-and-mixtures.md"
     double loss = 0.0, energy = 0.0;
     for (std::size_t k = 0; k < s; ++k) {
       double row = 0.0;
@@ -33,7 +33,7 @@ std::pair<double, double> rates(const species::Mixture& mix, const std::vector<d
     if (mix.diameter[k] > mix.diameter[largest]) largest = k;
     speed2 = std::max(speed2, t0[k] / mix.mass[k]);
   }
-  // chi_kj grows with sigma_k sigma_j/sigma_kj (ERRATA §5): its largest value is at the largest pair.
+  // chi_kj grows with sigma_k sigma_j/sigma_kj (\ref cm_chi "docs/collision-model.md"): its largest value is at the largest pair.
   const double sigma = mix.diameter[largest], chi = mix.pair_correlation(largest, largest);
   const double nu0 = n * std::numbers::pi * sigma * sigma * chi * std::sqrt(16.0 * speed2 / std::numbers::pi);
   if (cooling != Cooling::haff) return {nu0, 0.0};

@@ -4,17 +4,17 @@
  *        astronomically long run is refused with the estimate instead of running for ever.
  *
  * With nu_0 the collisions suffered per particle per unit time at the initial temperatures
- * (2 x total_collision_rate / n, ERRATA §2) and zeta_0 the cooling rate of the total temperature
- * (sum_k n_k T_k sum_j xi_kj / sum_k n_k T_k, ERRATA §4; for one species the Haff rate of ERRATA §3),
+ * (2 x total_collision_rate / n, \ref cm_mixture_rate "docs/collision-model.md") and zeta_0 the cooling rate of the total temperature
+ * (sum_k n_k T_k sum_j xi_kj / sum_k n_k T_k, \ref haff_mixture_odes "docs/haff-and-mixtures.md"; for one species the Haff rate of \ref haff_law "docs/haff-and-mixtures.md"),
  * the Maxwellian cooling dT/dt = -zeta T with zeta/nu = r = zeta_0/nu_0 fixed (both scale with
- * sqrt(T)) gives Haff's law T(t) = T_0/(1 + zeta_0 t/2)^2 (ERRATA §3) and, integrating nu,
+ * sqrt(T)) gives Haff's law T(t) = T_0/(1 + zeta_0 t/2)^2 (\ref haff_law "docs/haff-and-mixtures.md") and, integrating nu,
  *   C(t) = (2/r) ln(1 + r nu_0 t/2)   collisions per particle,   T(C)/T_0 = exp(-r C).
  * A gas whose temperature is held (thermostat, shear flow) collides at nu_0 throughout: C = nu_0 t.
  * With a viscoelastic restitution alpha -> 1 as the gas cools, so C <= nu_0 t is the estimate (an
  * upper bound: nu falls with T). Mixtures of more than `exact_species` species use O(S) bounds
  * instead of the O(S^2) sums: nu_0 <= n pi sigma_max^2 chi_max sqrt(16 max_k(T_k/m_k)/pi)
- * (<|g_kj|> = sqrt(8 s_kj/pi), ERRATA §2) and r = (1 - alpha_max^2)/3, the one-species ratio of the
- * Haff rate to nu (ERRATA §2, §3) at the largest restitution, which cools slowest.
+ * (<|g_kj|> = sqrt(8 s_kj/pi), \ref cm_mean_speed "docs/collision-model.md") and r = (1 - alpha_max^2)/3, the one-species ratio of the
+ * Haff rate to nu (\ref cm_pair_rate "docs/collision-model.md", \ref haff_law "docs/haff-and-mixtures.md") at the largest restitution, which cools slowest.
  * Checked by tests/run_cost_test.cpp.
  */
 #pragma once
@@ -33,6 +33,7 @@ enum class Cooling {
   viscoelastic,  ///< free cooling with alpha -> 1 (C <= nu_0 t)
 };
 
+/// The estimated length of a run.
 struct RunCost {
   double collisions_per_particle = 0.0;  ///< C at the end of the run (2 x events / N)
   double temperature_ratio = 1.0;        ///< T(end)/T(0) of the total temperature

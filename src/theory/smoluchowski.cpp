@@ -1,5 +1,5 @@
 // Smoluchowski rate equations with Maxwellian partial temperatures (smoluchowski.hpp;
-// seed 000 eqs 8-14, ERRATA §12).
+// the DSMC notes, eqs. (8)-(14), \ref af_outcome "docs/agg-frag.md").
 #include "theory/smoluchowski.hpp"
 
 #include <algorithm>
@@ -128,7 +128,7 @@ RegionIntegrals region_integrals(double x_a, double x_f) {
 struct PairConstants {
   double mass_k, mass_j, total_mass, reduced_mass;
   double cross_section;  // pi sigma_kj^2
-  bool can_fragment;     // k + j >= 3 (ERRATA §12: two monomers never shatter)
+  bool can_fragment;     // k + j >= 3 (\ref af_outcome "docs/agg-frag.md": two monomers never shatter)
 };
 
 PairConstants pair_constants(const Parameters& p, std::size_t k, std::size_t j) {
@@ -160,7 +160,7 @@ PairMoments region_moments(const Parameters& p, const PairConstants& c, double T
   const double drift = theta_k / s - mu_jk;  // E[V | g] = drift g
   const double slope_cm = c.total_mass * s * drift * drift;
   const double offset_cm = 1.5 * c.total_mass * theta_k * theta_j / s;
-  // Bounce (ERRATA §1): E[Delta e_k | x, U] = 2 m_k mu_jk (1 + alpha) [mu_jk (1 + alpha) s/2 -
+  // Bounce (\ref cm_rule "docs/collision-model.md"): E[Delta e_k | x, U] = 2 m_k mu_jk (1 + alpha) [mu_jk (1 + alpha) s/2 -
   // theta_k] x U.
   const double one_plus_alpha = 1.0 + p.restitution;
   const double bounce_k =
@@ -246,7 +246,7 @@ class RateEquations {
     const PairConstants& c = pairs_[index(k, j)];
     const double theta_k = T_k / c.mass_k, theta_j = T_j / c.mass_j;
     const double s = theta_k + theta_j;
-    // Events per unit volume and time / n_1(0): w_kj for k != j, w_kk/2 (ERRATA §2).
+    // Events per unit volume and time / n_1(0): w_kj for k != j, w_kk/2 (\ref cm_mixture_rate "docs/collision-model.md").
     const double lambda = c.cross_section * std::sqrt(8.0 * s / pi);
     const double events = scale * p_.monomer_density * c_k * c_j * lambda * (k == j ? 0.5 : 1.0);
     const PairMoments m = region_moments(p_, c, T_k, T_j, theta_k, theta_j, s);
@@ -268,7 +268,7 @@ class RateEquations {
       out[lost_index()] += events * static_cast<double>(merged) * p_agg;
     }
 
-    // Complete fragmentation into k + j monomers sharing M V^2/2 + eps_f^2 E_imp (ERRATA §12).
+    // Complete fragmentation into k + j monomers sharing M V^2/2 + eps_f^2 E_imp (\ref af_energy_equation "docs/agg-frag.md").
     const double eps_f = p_.fragment_restitution;
     out[density_index(1)] += events * static_cast<double>(merged) * p_frag;
     out[energy_index(1)] += energy_events * (m.cm_energy_frag + eps_f * eps_f * m.impact_energy_frag);
@@ -377,7 +377,7 @@ InitialRates initial_rates(const Parameters& parameters) {
   const double T0 = parameters.initial_temperature;
   const PairConstants c = pair_constants(parameters, 1, 1);
   const double s = 2.0 * T0 / parameters.monomer_mass;
-  // ERRATA §2: w_11/2 events per unit volume and time between monomers.
+  // \ref cm_mixture_rate "docs/collision-model.md": w_11/2 events per unit volume and time between monomers.
   const double collisions = 0.5 * n * n * c.cross_section * std::sqrt(8.0 * s / pi);
   const Outcomes p = outcome_probabilities(parameters, 1, 1, T0, T0);
   InitialRates rates;

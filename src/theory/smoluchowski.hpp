@@ -1,7 +1,7 @@
 /**
  * \file smoluchowski.hpp
  * \brief Smoluchowski rate equations for aggregating and fragmenting inelastic hard-sphere
- *        clusters, with Maxwellian partial temperatures (seed 000 eqs 8-14, ERRATA §12).
+ *        clusters, with Maxwellian partial temperatures (DSMC notes, eqs. (8)-(14), \ref af_smoluchowski "docs/agg-frag.md").
  *
  * \section smol_intro What this module computes
  *
@@ -11,18 +11,18 @@
  * monomers and their partial temperatures T_k(t) predicted here. The physics is stated for users
  * in docs/physics.md; this header states what the code does.
  *
- * \subsection smol_model Clusters and pairs (ERRATA §12)
+ * \subsection smol_model Clusters and pairs (\ref af_outcome "docs/agg-frag.md")
  * m_k = k m_1, sigma_k = k^(1/3) sigma_1, sigma_kj = (sigma_k + sigma_j)/2, theta_k = T_k/m_k,
  * s = theta_k + theta_j, m_kj = m_k m_j/M, M = m_k + m_j, mu_jk = m_j/M. Collision measure
- * w_kj = n_k n_j Lambda_kj with Lambda_kj = pi sigma_kj^2 sqrt(8 s/pi) (ERRATA §2): events per unit
+ * w_kj = n_k n_j Lambda_kj with Lambda_kj = pi sigma_kj^2 sqrt(8 s/pi) (\ref cm_mean_speed "docs/collision-model.md"): events per unit
  * volume and time are w_kj between k != j and w_kk/2 between two k-clusters.
  *
- * \subsection smol_outcomes Outcome of a collision (ERRATA §12, seed 000 eqs 9-13 corrected)
+ * \subsection smol_outcomes Outcome of a collision (\ref af_outcome "docs/agg-frag.md", the DSMC notes, eqs. (9)-(13) corrected)
  * With the collision-weighted Maxwellian pair distribution, x = E_imp/(m_kj s) = g^2/(2 s) has
  * density x e^-x and U = (g.e)^2/g^2 is uniform on (0, 1), independent of x; E_n = m_kj s x U.
  * Thresholds x_a = E_agg/(m_kj s), x_f = E_frag/(m_kj s), x_m = max(x_a, x_f). In this order:
  * aggregation if x < x_a; fragmentation into k + j monomers if x U > x_f and k + j >= 3; else a
- * bounce with restitution alpha (ERRATA §1). Hence
+ * bounce with restitution alpha (\ref cm_rule "docs/collision-model.md"). Hence
  * - P_agg = gamma(2, x_a) = 1 - (1 + x_a) e^-x_a,
  * - P_frag = Gamma(2, x_m) - x_f Gamma(1, x_m) = (1 + x_m - x_f) e^-x_m (0 for two monomers),
  * - P_bounce = 1 - P_agg - P_frag.
@@ -38,18 +38,18 @@
  * Integrating these over a region against x e^-x dx dU gives the "region moments" (conditional
  * mean times region probability) that pair_moments returns.
  *
- * \subsection smol_equations Rate equations (ERRATA §12)
+ * \subsection smol_equations Rate equations (\ref af_smoluchowski "docs/agg-frag.md")
  * Sums over j run over ordered pairs, j = 1..K including j = k.
  * dn_k/dt = (1/2) sum_{i+j=k} w_ij P_agg,ij - sum_j w_kj (P_agg + P_frag)_kj
  *           + delta_k1 (1/2) sum_{i,j} (i + j) w_ij P_frag,ij,
  * dE_k/dt = sum_j w_kj [-(agg moment of e_k) - (frag moment of e_k) + (bounce moment of Delta e_k)]
  *           + (1/2) sum_{i+j=k} w_ij (agg moment of M V^2/2)_ij
  *           + delta_k1 (1/2) sum_{i,j} w_ij (frag moment of M V^2/2 + eps_f^2 E_imp)_ij,
- * E_k = (3/2) n_k T_k: fragments share the centre-of-mass energy plus eps_f^2 E_imp (ERRATA §12).
+ * E_k = (3/2) n_k T_k: fragments share the centre-of-mass energy plus eps_f^2 E_imp (\ref af_energy_equation "docs/agg-frag.md").
  * With E_agg = 0 and E_frag = infinity only bounces remain and the monomer equation is Haff's law
- * dT/dt = -(4/3) sqrt(pi) (1 - alpha^2) n sigma^2 sqrt(T/m) T (ERRATA §3, theory.hpp).
+ * dT/dt = -(4/3) sqrt(pi) (1 - alpha^2) n sigma^2 sqrt(T/m) T (\ref haff_law "docs/haff-and-mixtures.md", theory.hpp).
  * The Maxwellian closure is exact at t = 0; later the removal of slow pairs makes the true
- * distributions non-Maxwellian and DSMC drifts from this theory (ERRATA §12: sticking gas, n_1 about
+ * distributions non-Maxwellian and DSMC drifts from this theory (\ref af_accuracy "docs/agg-frag.md": sticking gas, n_1 about
  * 6 % low by the time the mean cluster size is 8.5).
  *
  * \subsection smol_numerics Numerical integration
@@ -107,10 +107,12 @@ Parameters parameters_of(const io::config::Config& config);
 
 /// Probabilities of the three outcomes of one collision of a pair (sum 1).
 struct Outcomes {
-  double aggregation, fragmentation, bounce;
+  double aggregation;    ///< the pair sticks
+  double fragmentation;  ///< the pair shatters
+  double bounce;         ///< the pair bounces
 };
 
-/// ERRATA §12: outcome probabilities of a collision of sizes k, j (>= 1) with Maxwellian T_k, T_j.
+/// \ref af_smoluchowski "docs/agg-frag.md": outcome probabilities of a collision of sizes k, j (>= 1) with Maxwellian T_k, T_j.
 Outcomes outcome_probabilities(const Parameters& parameters, std::size_t k, std::size_t j,
                                double T_k, double T_j);
 
@@ -119,26 +121,37 @@ Outcomes outcome_probabilities(const Parameters& parameters, std::size_t k, std:
 /// partner before the collision; cm_energy: M V^2/2; impact_energy_frag: E_imp;
 /// bounce_energy_change_*: m v'^2/2 - m v^2/2 over bounces.
 struct PairMoments {
-  Outcomes probability;
-  double energy_k_agg, energy_j_agg, cm_energy_agg;
-  double energy_k_frag, energy_j_frag, cm_energy_frag, impact_energy_frag;
-  double bounce_energy_change_k, bounce_energy_change_j;
+  Outcomes probability;      ///< the outcome probabilities
+  double energy_k_agg;       ///< m_k v_k^2/2, aggregations
+  double energy_j_agg;       ///< m_j v_j^2/2, aggregations
+  double cm_energy_agg;      ///< M V^2/2, aggregations
+  double energy_k_frag;      ///< m_k v_k^2/2, fragmentations
+  double energy_j_frag;      ///< m_j v_j^2/2, fragmentations
+  double cm_energy_frag;     ///< M V^2/2, fragmentations
+  double impact_energy_frag; ///< E_imp, fragmentations
+  double bounce_energy_change_k;  ///< m_k v_k'^2/2 - m_k v_k^2/2, bounces
+  double bounce_energy_change_j;  ///< m_j v_j'^2/2 - m_j v_j^2/2, bounces
 };
 
+/// The PairMoments of sizes k, j (>= 1) at Maxwellian temperatures T_k, T_j.
 PairMoments pair_moments(const Parameters& parameters, std::size_t k, std::size_t j, double T_k,
                          double T_j);
 
 /// Rates per unit volume and time at t = 0 (monomers only, at T0); log_monomer_rate = d ln n_1/dt.
 struct InitialRates {
-  double collisions, aggregations, fragmentations, bounces;
-  double log_monomer_rate;
+  double collisions;        ///< all collisions
+  double aggregations;      ///< those that stick
+  double fragmentations;    ///< those that shatter
+  double bounces;           ///< those that bounce
+  double log_monomer_rate;  ///< d ln n_1/dt
 };
 
+/// The InitialRates of the Parameters' monomer gas.
 InitialRates initial_rates(const Parameters& parameters);
 
 /// Solution at the requested times. Tables are row-major, time index x size index (k - 1).
 struct Solution {
-  std::vector<double> time;
+  std::vector<double> time;                ///< the requested times
   std::size_t max_size = 0;                ///< K, the largest size integrated
   std::vector<double> number_fraction;     ///< n_k(t)/n_1(0)
   std::vector<double> temperature;         ///< T_k(t); 0 where n_k/n_1(0) < 1e-300

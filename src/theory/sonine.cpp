@@ -20,7 +20,7 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-/// Search range and resolution of the root of seed 003 eq 45 (sonine.hpp, step 3).
+/// Search range and resolution of the root of Montanero and Garzo 2002, eq. (45), \ref son_binary_gamma "docs/sonine.md" (sonine.hpp, step 3).
 constexpr int gamma_decade_min = -4;  // gamma >= 1e-4
 constexpr int gamma_decade_max = 4;   // gamma <= 1e4
 constexpr int grid_points_per_decade = 40;
@@ -55,11 +55,11 @@ void require_gamma(double gamma, const char* caller) {
                                 ": gamma = T1/T2 must be positive and finite");
 }
 
-/// Inputs of seed 003 eqs 39-44 written for species i with partner j (i = 1, j = 2 as printed;
-/// species 2 by interchanging 1 <-> 2 and eta -> 1/eta, seed 003 after eq 44).
+/// Inputs of Montanero and Garzo 2002, eqs. (39)-(44), \ref son_binary_coefficients "docs/sonine.md" written for species i with partner j (i = 1, j = 2 as printed;
+/// species 2 by interchanging 1 <-> 2 and eta -> 1/eta, Montanero and Garzo 2002, after eq. (44), \ref son_binary "docs/sonine.md").
 struct SpeciesInput {
-  double self_weight;   ///< ERRATA §6 s = x_i chi_ii (sigma_i/sigma_12)^2
-  double cross_weight;  ///< ERRATA §6 c = x_j chi_ij
+  double self_weight;   ///< \ref son_binary_coefficients "docs/sonine.md" s = x_i chi_ii (sigma_i/sigma_12)^2
+  double cross_weight;  ///< \ref son_binary_coefficients "docs/sonine.md" c = x_j chi_ij
   double mu_ji;         ///< mu_ji = m_j/(m_i + m_j) (mu_21 for species 1)
   double alpha_ii;
   double alpha_ij;
@@ -72,7 +72,7 @@ struct SpeciesCoefficients {
   double omega0, omega_self, omega_cross;  ///< Omega_i^(0), Omega_ii^(1), Omega_ij^(1)
 };
 
-/// ERRATA §6 (seed 003 eqs 39-44, box glyph = Omega): the sum of the self (i-i) and cross (i-j)
+/// \ref son_binary_coefficients "docs/sonine.md" (Montanero and Garzo 2002, eqs. (39)-(44), box glyph = Omega): the sum of the self (i-i) and cross (i-j)
 /// collision terms of sonine.hpp's sonine_self_terms and sonine_cross_terms.
 SpeciesCoefficients species_coefficients(const SpeciesInput& in) {
   const SonineTerms self = sonine_self_terms(in.self_weight, in.alpha_ii, in.lambda_i);
@@ -88,7 +88,7 @@ SpeciesCoefficients species_coefficients(const SpeciesInput& in) {
   return out;
 }
 
-/// The coefficients A, B, D, E, F, G of seed 003 eqs 33-38 and the determinant of the system
+/// The coefficients A, B, D, E, F, G of Montanero and Garzo 2002, eqs. (33)-(38), \ref son_binary_cumulants "docs/sonine.md" and the determinant of the system
 /// B c1 + D c2 = A, F c1 + G c2 = E (whose Cramer solution is eqs 31-32).
 struct LinearSystem {
   double A, B, D, E, F, G;
@@ -99,12 +99,12 @@ LinearSystem linear_system(const SonineCoefficients& k) {
   const double w1 = 15.0 / (2.0 * k.lambda[0] * k.lambda[0]);  // 15/(2 lambda_1^2)
   const double w2 = 15.0 / (2.0 * k.lambda[1] * k.lambda[1]);  // 15/(2 lambda_2^2)
   LinearSystem sys{};
-  sys.A = -w1 * k.zeta0[0] - k.omega0[0];                            // seed 003 eq 33
-  sys.B = w1 * (k.zeta1[0][0] + 0.5 * k.zeta0[0]) + k.omega1[0][0];  // seed 003 eq 34
-  sys.D = w1 * k.zeta1[0][1] + k.omega1[0][1];                       // seed 003 eq 35
-  sys.E = -w2 * k.zeta0[1] - k.omega0[1];                            // seed 003 eq 36
-  sys.F = w2 * k.zeta1[1][0] + k.omega1[1][0];                       // seed 003 eq 37
-  sys.G = w2 * (k.zeta1[1][1] + 0.5 * k.zeta0[1]) + k.omega1[1][1];  // seed 003 eq 38
+  sys.A = -w1 * k.zeta0[0] - k.omega0[0];                            // Montanero and Garzo 2002, eq. (33), \ref son_binary_cumulants "docs/sonine.md"
+  sys.B = w1 * (k.zeta1[0][0] + 0.5 * k.zeta0[0]) + k.omega1[0][0];  // Montanero and Garzo 2002, eq. (34), \ref son_binary_cumulants "docs/sonine.md"
+  sys.D = w1 * k.zeta1[0][1] + k.omega1[0][1];                       // Montanero and Garzo 2002, eq. (35), \ref son_binary_cumulants "docs/sonine.md"
+  sys.E = -w2 * k.zeta0[1] - k.omega0[1];                            // Montanero and Garzo 2002, eq. (36), \ref son_binary_cumulants "docs/sonine.md"
+  sys.F = w2 * k.zeta1[1][0] + k.omega1[1][0];                       // Montanero and Garzo 2002, eq. (37), \ref son_binary_cumulants "docs/sonine.md"
+  sys.G = w2 * (k.zeta1[1][1] + 0.5 * k.zeta0[1]) + k.omega1[1][1];  // Montanero and Garzo 2002, eq. (38), \ref son_binary_cumulants "docs/sonine.md"
   return sys;
 }
 
@@ -113,27 +113,27 @@ SonineAtGamma solve_at(const SonineCoefficients& k) {
   const double det = sys.determinant();
   if (det == 0.0 || !std::isfinite(det))
     throw std::runtime_error(
-        "binary_sonine_at_gamma: the linearised fourth-moment system (seed 003 "
-        "eqs 31-38) is singular");
+        "binary_sonine_at_gamma: the linearised fourth-moment system (Montanero and Garzo 2002, "
+        "eqs. (31)-(38)) is singular");
   SonineAtGamma out{};
-  out.c[0] = (sys.A * sys.G - sys.E * sys.D) / det;  // seed 003 eq 31
-  out.c[1] = (sys.B * sys.E - sys.A * sys.F) / det;  // seed 003 eq 32
-  // seed 003 eq 45: zeta_1* = zeta1^(0) + zeta11^(1) c1 + zeta12^(1) c2 (left side), zeta_2* =
+  out.c[0] = (sys.A * sys.G - sys.E * sys.D) / det;  // Montanero and Garzo 2002, eq. (31), \ref son_binary_cumulants "docs/sonine.md"
+  out.c[1] = (sys.B * sys.E - sys.A * sys.F) / det;  // Montanero and Garzo 2002, eq. (32), \ref son_binary_cumulants "docs/sonine.md"
+  // Montanero and Garzo 2002, eq. (45), \ref son_binary_gamma "docs/sonine.md": zeta_1* = zeta1^(0) + zeta11^(1) c1 + zeta12^(1) c2 (left side), zeta_2* =
   // zeta2^(0) + zeta22^(1) c2 + zeta21^(1) c1 (right side)
   for (int i = 0; i < 2; ++i)
     out.zeta[i] = k.zeta0[i] + k.zeta1[i][0] * out.c[0] + k.zeta1[i][1] * out.c[1];
   return out;
 }
 
-/// Temperatures relative to the mixture temperature: T1/T and T2/T (seed 003 eqs 13-14).
+/// Temperatures relative to the mixture temperature: T1/T and T2/T (Montanero and Garzo 2002, eqs. (13)-(14), \ref son_binary "docs/sonine.md").
 void partial_temperatures(const species::Mixture& mix, double gamma, double t_over_T[2]) {
   const double x1 = mix.mole_fraction(0);
-  const double T_over_T2 = 1.0 + x1 * (gamma - 1.0);  // ERRATA §6, seed 003 eq 14
-  t_over_T[0] = gamma / T_over_T2;                    // seed 003 eq 13
-  t_over_T[1] = 1.0 / T_over_T2;                      // seed 003 eq 14
+  const double T_over_T2 = 1.0 + x1 * (gamma - 1.0);  // \ref son_binary "docs/sonine.md", Montanero and Garzo 2002, eq. (14)
+  t_over_T[0] = gamma / T_over_T2;                    // Montanero and Garzo 2002, eq. (13), \ref son_binary "docs/sonine.md"
+  t_over_T[1] = 1.0 / T_over_T2;                      // Montanero and Garzo 2002, eq. (14), \ref son_binary "docs/sonine.md"
 }
 
-/// zeta_1* - zeta_2* (seed 003 eq 45) for GSL. No exception may cross the C code of GSL, and a
+/// zeta_1* - zeta_2* (Montanero and Garzo 2002, eq. (45), \ref son_binary_gamma "docs/sonine.md") for GSL. No exception may cross the C code of GSL, and a
 /// non-finite value would make GSL's default error handler abort: a failure is recorded in the
 /// context and reported as 0 (which ends the Brent iteration); the caller then throws.
 struct RootContext {
@@ -170,7 +170,7 @@ double refine_root(const species::Mixture& mix, double lo, double hi) {
   const auto check = [&ctx, lo, hi]() {
     if (ctx.failed)
       throw std::runtime_error(
-          "binary_hcs_first_sonine: zeta_1* - zeta_2* (seed 003 eq 45) is not finite between "
+          "binary_hcs_first_sonine: zeta_1* - zeta_2* (Montanero and Garzo 2002, eq. (45), docs/sonine.md) is not finite between "
           "gamma = " + format_gamma(lo) + " and " + format_gamma(hi));
   };
   std::unique_ptr<gsl_root_fsolver, SolverDeleter> solver(
@@ -188,7 +188,7 @@ double refine_root(const species::Mixture& mix, double lo, double hi) {
       return gsl_root_fsolver_root(solver.get());
   }
   throw std::runtime_error(
-      "binary_hcs_first_sonine: Brent iteration for gamma (seed 003 eq 45) did "
+      "binary_hcs_first_sonine: Brent iteration for gamma (Montanero and Garzo 2002, eq. (45), docs/sonine.md) did "
       "not converge");
 }
 
@@ -200,7 +200,7 @@ SonineTerms sonine_self_terms(double weight, double alpha_ii, double lambda_i) {
   const double li_half = 1.0 / std::sqrt(lambda_i);              // lambda_i^(-1/2)
   const double li_5half = li_half * li_half * li_half * li_half * li_half;  // lambda_i^(-5/2)
   SonineTerms out{};
-  // seed 003 eqs 39, 40, 42, 43 (ERRATA §6): the terms proportional to s
+  // Montanero and Garzo 2002, eqs. (39), (40), (42), (43) (\ref son_binary_coefficients "docs/sonine.md"): the terms proportional to s
   out.zeta0 = (2.0 / 3.0) * std::sqrt(2.0 * pi) * sw * li_half * inelastic_ii;
   out.zeta_self = (1.0 / 8.0) * std::sqrt(pi / 2.0) * sw * li_half * inelastic_ii;
   out.zeta_partner = 0.0;
@@ -218,7 +218,7 @@ SonineTerms sonine_cross_terms(double weight, double mu_ji, double alpha_ij, dou
   const double mu = mu_ji;
   const double e = lambda_i / lambda_j;  // eta
   const double p = 1.0 + e;              // 1 + eta
-  const double A = mu * (1.0 + alpha_ij);  // ERRATA §6: A = mu_21 (1 + alpha_12)
+  const double A = mu * (1.0 + alpha_ij);  // \ref son_binary_coefficients "docs/sonine.md": A = mu_21 (1 + alpha_12)
   const double Ap = A * p, Ap2 = Ap * Ap, Ap3 = Ap2 * Ap;
   const double lj_half = 1.0 / std::sqrt(lambda_j);  // lambda_j^(-1/2)
   const double li_half = 1.0 / std::sqrt(lambda_i);
@@ -229,23 +229,23 @@ SonineTerms sonine_cross_terms(double weight, double mu_ji, double alpha_ij, dou
   const double p_m15 = 1.0 / (p * sqrt_p), p_m25 = p_m15 / p, p_m05 = 1.0 / sqrt_p;
 
   SonineTerms out{};
-  // seed 003 eq 39, ERRATA §6 zeta1_0 (cross part)
+  // Montanero and Garzo 2002, eq. (39), \ref son_binary_coefficients "docs/sonine.md" zeta1_0 (cross part)
   out.zeta0 = (4.0 / 3.0) * sqrt_pi * cross * (sqrt_p / sqrt_e) * lj_half * (2.0 - Ap);
-  // seed 003 eq 40, ERRATA §6 zeta11_1 (cross part)
+  // Montanero and Garzo 2002, eq. (40), \ref son_binary_coefficients "docs/sonine.md" zeta11_1 (cross part)
   out.zeta_self = (1.0 / 12.0) * sqrt_pi * cross * p_m15 / sqrt_e * lj_half *
                   (2.0 * (3.0 + 4.0 * e) - 3.0 * Ap);
-  // seed 003 eq 41, ERRATA §6 zeta12_1; (p/e)^(-3/2) = e^(3/2) p^(-3/2)
+  // Montanero and Garzo 2002, eq. (41), \ref son_binary_coefficients "docs/sonine.md" zeta12_1; (p/e)^(-3/2) = e^(3/2) p^(-3/2)
   out.zeta_partner =
       -(1.0 / 12.0) * sqrt_pi * cross * (e * sqrt_e * p_m15) * lj_half * (2.0 + 3.0 * Ap);
-  // seed 003 eq 42, ERRATA §6 Omega1_0 (cross part)
+  // Montanero and Garzo 2002, eq. (42), \ref son_binary_coefficients "docs/sonine.md" Omega1_0 (cross part)
   out.omega0 = std::sqrt(2.0 * pi) * li_5half * std::sqrt(2.0) * cross * p_m05 *
                (-2.0 * (6.0 + 5.0 * e) + Ap * (14.0 + 5.0 * e) - 8.0 * Ap2 + 2.0 * Ap3);
-  // seed 003 eq 43, ERRATA §6 Omega11_1 (cross part)
+  // Montanero and Garzo 2002, eq. (43), \ref son_binary_coefficients "docs/sonine.md" Omega11_1 (cross part)
   out.omega_self = std::sqrt(2.0 * pi) * li_5half * (std::sqrt(2.0) / 16.0) * cross * p_m25 *
                    (-2.0 * (90.0 + 231.0 * e + 184.0 * e * e + 40.0 * e * e * e) +
                     3.0 * Ap * (70.0 + 117.0 * e + 44.0 * e * e) - 24.0 * Ap2 * (5.0 + 4.0 * e) +
                     30.0 * Ap3);
-  // seed 003 eq 44, ERRATA §6 Omega12_1
+  // Montanero and Garzo 2002, eq. (44), \ref son_binary_coefficients "docs/sonine.md" Omega12_1
   out.omega_partner = (sqrt_pi / 8.0) * cross * li_5half * e * e * p_m25 *
                       (2.0 * (2.0 + 5.0 * e) + 3.0 * Ap * (2.0 + 5.0 * e) - 24.0 * Ap2 + 30.0 * Ap3);
   return out;
@@ -261,23 +261,23 @@ SonineCoefficients binary_sonine_coefficients(const species::Mixture& mix, doubl
   const double alpha_12 = mix.restitution(0, 1);
 
   SonineCoefficients k{};
-  // ERRATA §6: lambda_1 = T/(T1 mu_21), lambda_2 = T/(T2 mu_12) (seed 003 after eq 17)
+  // \ref son_binary "docs/sonine.md": lambda_1 = T/(T1 mu_21), lambda_2 = T/(T2 mu_12) (Montanero and Garzo 2002, after eq. (17))
   k.lambda[0] = 1.0 / (t_over_T[0] * mix.mass_fraction(1, 0));
   k.lambda[1] = 1.0 / (t_over_T[1] * mix.mass_fraction(0, 1));
-  k.eta = k.lambda[0] / k.lambda[1];  // ERRATA §6, = mu_12/(mu_21 gamma) (seed 003 after eq 44)
+  k.eta = k.lambda[0] / k.lambda[1];  // \ref son_binary "docs/sonine.md", = mu_12/(mu_21 gamma) (Montanero and Garzo 2002, after eq. (44))
 
   for (int i = 0; i < 2; ++i) {
     const int j = 1 - i;
     const double ratio = mix.diameter[i] / sigma_12;  // sigma_ii/sigma_12 (sigma_ii = sigma_i)
     SpeciesInput in{};
-    in.self_weight = x[i] * mix.pair_correlation(i, i) * ratio * ratio;  // ERRATA §6 s
-    in.cross_weight = x[j] * mix.pair_correlation(i, j);                 // ERRATA §6 c
+    in.self_weight = x[i] * mix.pair_correlation(i, i) * ratio * ratio;  // \ref son_binary_coefficients "docs/sonine.md" s
+    in.cross_weight = x[j] * mix.pair_correlation(i, j);                 // \ref son_binary_coefficients "docs/sonine.md" c
     in.mu_ji = mix.mass_fraction(j, i);
     in.alpha_ii = mix.restitution(i, i);
     in.alpha_ij = alpha_12;
     in.lambda_i = k.lambda[i];
     in.lambda_j = k.lambda[j];
-    // seed 003 after eq 44: species 2 by interchanging 1 <-> 2 and eta -> 1/eta (sonine_cross_terms
+    // Montanero and Garzo 2002, after eq. (44), \ref son_binary "docs/sonine.md": species 2 by interchanging 1 <-> 2 and eta -> 1/eta (sonine_cross_terms
     // takes eta = lambda_i/lambda_j from its arguments)
     const SpeciesCoefficients sc = species_coefficients(in);
     k.zeta0[i] = sc.zeta0;
@@ -310,7 +310,7 @@ BinaryHcs binary_hcs_first_sonine(const species::Mixture& mix) {
     f[p] = s.zeta[0] - s.zeta[1];
     if (!std::isfinite(f[p]))
       throw std::runtime_error(
-          "binary_hcs_first_sonine: zeta_1* - zeta_2* (seed 003 eq 45) is not finite at gamma = " +
+          "binary_hcs_first_sonine: zeta_1* - zeta_2* (Montanero and Garzo 2002, eq. (45), docs/sonine.md) is not finite at gamma = " +
           format_gamma(grid[p]));
   }
 
@@ -328,7 +328,7 @@ BinaryHcs binary_hcs_first_sonine(const species::Mixture& mix) {
   }
   if (roots.size() != 1) {
     std::string msg =
-        "binary_hcs_first_sonine: expected exactly one root of zeta_1* = zeta_2* (seed 003 eq 45) "
+        "binary_hcs_first_sonine: expected exactly one root of zeta_1* = zeta_2* (Montanero and Garzo 2002, eq. (45), docs/sonine.md) "
         "for " + format_gamma(std::pow(10.0, gamma_decade_min)) + " <= gamma <= " +
         format_gamma(std::pow(10.0, gamma_decade_max)) + ", found " + std::to_string(roots.size());
     for (double r : roots) msg += (r == roots.front() ? ": gamma = " : ", ") + format_gamma(r);
@@ -346,7 +346,7 @@ BinaryHcs binary_hcs_first_sonine(const species::Mixture& mix) {
   hcs.temperature_ratio = gamma;
   hcs.sonine_c[0] = s.c[0];
   hcs.sonine_c[1] = s.c[1];
-  // seed 003 eq 11: zeta = sum_i x_i (T_i/T) zeta_i (= zeta_1* = zeta_2* at the root of eq 45)
+  // Montanero and Garzo 2002, eq. (11), \ref son_binary_gamma "docs/sonine.md": zeta = sum_i x_i (T_i/T) zeta_i (= zeta_1* = zeta_2* at the root of eq 45)
   hcs.cooling_rate = x[0] * t_over_T[0] * s.zeta[0] + x[1] * t_over_T[1] * s.zeta[1];
   for (int i = 0; i < 2; ++i) {
     double beta = 0.0;
@@ -354,7 +354,7 @@ BinaryHcs binary_hcs_first_sonine(const species::Mixture& mix) {
       const double ratio = mix.contact_distance(i, j) / sigma_12;
       beta += x[j] * mix.pair_correlation(i, j) * ratio * ratio;
     }
-    hcs.tail_beta[i] = pi * beta;  // seed 003 eq 20, ERRATA §6 "Tails"
+    hcs.tail_beta[i] = pi * beta;  // Montanero and Garzo 2002, eq. (20), \ref son_tails "docs/sonine.md"
   }
   return hcs;
 }
@@ -364,7 +364,7 @@ double tail_decay_rate(const BinaryHcs& hcs, int species) {
     throw std::invalid_argument("tail_decay_rate: species must be 0 or 1, got " +
                                 std::to_string(species));
   if (hcs.cooling_rate == 0.0) return std::numeric_limits<double>::infinity();  // elastic: no tail
-  return 2.0 * hcs.tail_beta[species] / hcs.cooling_rate;  // seed 003 eqs 21, 30; ERRATA §6
+  return 2.0 * hcs.tail_beta[species] / hcs.cooling_rate;  // Montanero and Garzo 2002, eqs. (21), (30); \ref son_tails "docs/sonine.md"
 }
 
 }  // namespace gdsmc::theory

@@ -6,44 +6,44 @@
  *
  * \section sonine_intro What this module computes
  *
- * In the HCS each species' distribution scales with the mixture temperature T (seed 003 eq 12),
+ * In the HCS each species' distribution scales with the mixture temperature T (Montanero and Garzo 2002, eq. (12), \ref son_scaling "docs/sonine.md"),
  * f_i(v; t) = n_i v0^-3 Phi_i(v/v0), v0 = sqrt(2 T (m1 + m2)/(m1 m2)), and both partial
- * temperatures cool at the same rate, zeta_1 = zeta_2 (seed 003 eq 10), which fixes
- * gamma = T1/T2. The first Sonine approximation (seed 003 eq 17) is
+ * temperatures cool at the same rate, zeta_1 = zeta_2 (Montanero and Garzo 2002, eq. (10), \ref son_scaling "docs/sonine.md"), which fixes
+ * gamma = T1/T2. The first Sonine approximation (Montanero and Garzo 2002, eq. (17), \ref son_scaling "docs/sonine.md") is
  * Phi_i(v*) = (lambda_i/pi)^(3/2) exp(-lambda_i v*^2)
  *            [1 + (c_i/4)(lambda_i^2 v*^4 - 5 lambda_i v*^2 + 15/4)],
  * lambda_i = T/(T_i mu_ji). Its c_i are twice the usual a2:
- * c_i = 2 [(3/5) <v^4>_i/<v^2>_i^2 - 1] (ERRATA §6), so one species gives c = 2 a2 with the
+ * c_i = 2 [(3/5) <v^4>_i/<v^2>_i^2 - 1] (\ref son_scaling "docs/sonine.md"), so one species gives c = 2 a2 with the
  * van Noije-Ernst a2 of theory::sonine_a2.
  *
- * Notation (ERRATA §6, seed 003 Sec. 3): species 1 and 2 are entries 0 and 1 of the Mixture;
+ * Notation (\ref son_binary "docs/sonine.md", Montanero and Garzo 2002, Sec. 3): species 1 and 2 are entries 0 and 1 of the Mixture;
  * mu = m1/m2, delta = n1/n2, w = sigma_1/sigma_2, x_i = n_i/n, mu_ij = m_i/(m_i + m_j),
  * sigma_12 = (sigma_1 + sigma_2)/2, chi_ij the pair correlation at contact of the Mixture
- * (1 dilute, Carnahan-Starling for Enskog, ERRATA §5), alpha_11, alpha_22, alpha_12 independent.
- * T/T2 = 1 + x1 (gamma - 1), T/T1 = (T/T2)/gamma (seed 003 eqs 13-14),
+ * (1 dilute, Carnahan-Starling for Enskog, \ref cm_chi "docs/collision-model.md"), alpha_11, alpha_22, alpha_12 independent.
+ * T/T2 = 1 + x1 (gamma - 1), T/T1 = (T/T2)/gamma (Montanero and Garzo 2002, eqs. (13)-(14), \ref son_binary "docs/sonine.md"),
  * lambda_1 = T/(T1 mu_21), lambda_2 = T/(T2 mu_12), eta = lambda_1/lambda_2 = mu_12/(mu_21 gamma).
- * Reduced rates: zeta* = zeta/(n sigma_12^2 v0) (seed 003 eq 15, ERRATA §6).
+ * Reduced rates: zeta* = zeta/(n sigma_12^2 v0) (Montanero and Garzo 2002, eq. (15), \ref son_scaling "docs/sonine.md").
  *
- * \section sonine_steps Steps (seed 003 App. A; ERRATA §6)
- * 1. For a given gamma, the coefficients of seed 003 eqs 39-44 as restated in ERRATA §6:
+ * \section sonine_steps Steps (Montanero and Garzo 2002, App. A; \ref son_binary "docs/sonine.md")
+ * 1. For a given gamma, the coefficients of Montanero and Garzo 2002, eqs. (39)-(44) as restated in \ref son_binary_coefficients "docs/sonine.md":
  *    zeta_i^(0), zeta_ii^(1), zeta_ij^(1), Omega_i^(0), Omega_ii^(1), Omega_ij^(1); species 2 from
- *    species 1 by interchanging 1 <-> 2 and eta -> 1/eta (seed 003 after eq 44).
+ *    species 1 by interchanging 1 <-> 2 and eta -> 1/eta (Montanero and Garzo 2002, after eq. (44), \ref son_binary "docs/sonine.md").
  *    The partial cooling rate is zeta_i* = zeta_i^(0) + zeta_ii^(1) c_i + zeta_ij^(1) c_j and the
  *    collisional fourth moment
  *    sum_j int v*^4 J*_ij = Omega_i^(0) + Omega_ii^(1) c_i + Omega_ij^(1) c_j.
- * 2. The fourth-moment equations of seed 003 eq 15 (multiply by v*^4 and integrate:
+ * 2. The fourth-moment equations of Montanero and Garzo 2002, eq. (15), \ref son_binary_cumulants "docs/sonine.md" (multiply by v*^4 and integrate:
  *    -2 zeta_i* <v*^4>_i = Omega_i, <v*^4>_i = 15 (1 + c_i/2)/(4 lambda_i^2)), linearised in the
- *    c's, are the 2 x 2 system B c1 + D c2 = A, F c1 + G c2 = E with A..G of seed 003 eqs 33-38,
+ *    c's, are the 2 x 2 system B c1 + D c2 = A, F c1 + G c2 = E with A..G of Montanero and Garzo 2002, eqs. (33)-(38), \ref son_binary_cumulants "docs/sonine.md",
  *    solved by Cramer's rule as in eqs 31-32.
- * 3. gamma solves zeta_1* = zeta_2* (seed 003 eq 45), where each zeta_i* includes its c-terms.
+ * 3. gamma solves zeta_1* = zeta_2* (Montanero and Garzo 2002, eq. (45), \ref son_binary_gamma "docs/sonine.md"), where each zeta_i* includes its c-terms.
  *    f(gamma) = zeta_1* - zeta_2* is tabulated on a logarithmic grid of gamma (1e-4 .. 1e4,
  *    40 points per decade); each sign change is refined with GSL's Brent solver
  *    (gsl_root_fsolver_brent) to a relative width of 1e-14. A sign change across which the
  *    determinant BG - DF of the linear system changes sign is a pole of the c's, not a root, and
- *    is skipped. Exactly one root must remain, else std::runtime_error (ERRATA §6: one root exists
+ *    is skipped. Exactly one root must remain, else std::runtime_error (\ref son_binary_gamma "docs/sonine.md": one root exists
  *    for the cases of the papers).
- * 4. zeta* = sum_i x_i (T_i/T) zeta_i* (seed 003 eq 11), equal to zeta_1* = zeta_2* at the root.
- * 5. Tails (seed 003 eqs 18-21, 29-30; ERRATA §6):
+ * 4. zeta* = sum_i x_i (T_i/T) zeta_i* (Montanero and Garzo 2002, eq. (11), \ref son_binary_gamma "docs/sonine.md"), equal to zeta_1* = zeta_2* at the root.
+ * 5. Tails (Montanero and Garzo 2002, eqs. (18)-(21), (29)-(30); \ref son_tails "docs/sonine.md"):
  *    beta_i = pi sum_j x_j chi_ij (sigma_ij/sigma_12)^2,
  *    Phi_i ~ A_i exp(-(2 beta_i/zeta_i*) v*).
  *
@@ -59,11 +59,11 @@
  * pair terms over all partners.
  *
  * \section sonine_checks How it is checked
- * tests/sonine_test.cpp: the ERRATA §6 reference numbers, the one-component limit (gamma = 1,
- * c = 2 a2, zeta* of ERRATA §3), the elastic limit, the 1 <-> 2 symmetry, zeta_i^(0) against the
- * Maxwellian partial cooling rates of ERRATA §4, the linearised fourth-moment equations, Enskog
- * densities. Eqs 39-44 as given in ERRATA §6 were also compared (once, outside the test suite)
- * with a Monte Carlo integration of the collision integrals of seed 003 eq 16 over the Sonine
+ * tests/sonine_test.cpp: the \ref son_binary_gamma "docs/sonine.md" reference numbers, the one-component limit (gamma = 1,
+ * c = 2 a2, zeta* of \ref haff_sonine "docs/haff-and-mixtures.md"), the elastic limit, the 1 <-> 2 symmetry, zeta_i^(0) against the
+ * Maxwellian partial cooling rates of \ref haff_mixture_odes "docs/haff-and-mixtures.md", the linearised fourth-moment equations, Enskog
+ * densities. Eqs 39-44 as given in \ref son_binary_coefficients "docs/sonine.md" were also compared (once, outside the test suite)
+ * with a Monte Carlo integration of the collision integrals of Montanero and Garzo 2002, eq. (16), \ref son_binary_cumulants "docs/sonine.md" over the Sonine
  * distributions (eq 17): all twelve coefficients agreed within 2 standard errors (relative
  * errors 1e-3 .. 2e-2) for mu = 10, delta = 2, w = 1, alpha = 0.5, gamma = 3.8 and for mu = 1/4,
  * delta = 1/2, w = 2, alpha_11 = 0.6, alpha_22 = 0.9, alpha_12 = 0.75, n* = 0.3, gamma = 0.7.
@@ -76,36 +76,36 @@
 
 namespace gdsmc::theory {
 
-/// HCS of a binary mixture in the first Sonine approximation (seed 003 App. A, ERRATA §6).
+/// HCS of a binary mixture in the first Sonine approximation (Montanero and Garzo 2002, App. A, \ref son_binary "docs/sonine.md").
 struct BinaryHcs {
-  double temperature_ratio;  ///< gamma = T1/T2 (root of seed 003 eq 45)
-  double sonine_c[2];        ///< c1, c2 of seed 003 eq 17 (= 2 a2 for one species, ERRATA §6)
-  double cooling_rate;       ///< zeta* = zeta/(n sigma_12^2 v0), common to both species (ERRATA §6)
-  /// beta_i = pi sum_j x_j chi_ij (sigma_ij/sigma_12)^2 (seed 003 eq 20, ERRATA §6 "Tails")
+  double temperature_ratio;  ///< gamma = T1/T2 (root of Montanero and Garzo 2002, eq. (45), \ref son_binary_gamma "docs/sonine.md")
+  double sonine_c[2];        ///< c1, c2 of Montanero and Garzo 2002, eq. (17) (= 2 a2 for one species, \ref son_scaling "docs/sonine.md")
+  double cooling_rate;       ///< zeta* = zeta/(n sigma_12^2 v0), common to both species (\ref son_scaling "docs/sonine.md")
+  /// beta_i = pi sum_j x_j chi_ij (sigma_ij/sigma_12)^2 (Montanero and Garzo 2002, eq. (20), \ref son_tails "docs/sonine.md")
   double tail_beta[2];
 };
 
-/// Reduced partial cooling rates zeta_i* (with their c-terms, seed 003 eq 45) and the c_i of the
-/// linearised fourth-moment equations (seed 003 eqs 31-38) at a given gamma.
+/// Reduced partial cooling rates zeta_i* (with their c-terms, Montanero and Garzo 2002, eq. (45), \ref son_binary_gamma "docs/sonine.md") and the c_i of the
+/// linearised fourth-moment equations (Montanero and Garzo 2002, eqs. (31)-(38), \ref son_binary_cumulants "docs/sonine.md") at a given gamma.
 struct SonineAtGamma {
-  double zeta[2];
-  double c[2];
+  double zeta[2];  ///< zeta_1*, zeta_2*
+  double c[2];     ///< c_1, c_2
 };
 
-/// The coefficients of seed 003 eqs 39-44 (ERRATA §6) at a given gamma, indexed by species
+/// The coefficients of Montanero and Garzo 2002, eqs. (39)-(44) (\ref son_binary_coefficients "docs/sonine.md") at a given gamma, indexed by species
 /// (0 = species 1, 1 = species 2). zeta1[i][j] is zeta_ij^(1): zeta_i* = zeta0[i] + sum_j
 /// zeta1[i][j] c_j; likewise omega1[i][j] = Omega_ij^(1). lambda[i] = lambda_i,
 /// eta = lambda_1/lambda_2.
 struct SonineCoefficients {
-  double lambda[2];
-  double eta;
-  double zeta0[2];
-  double zeta1[2][2];
-  double omega0[2];
-  double omega1[2][2];
+  double lambda[2];     ///< lambda_i = T/(T_i mu_ji)
+  double eta;           ///< lambda_1/lambda_2
+  double zeta0[2];      ///< zeta_i^(0)
+  double zeta1[2][2];   ///< zeta_ij^(1)
+  double omega0[2];     ///< Omega_i^(0)
+  double omega1[2][2];  ///< Omega_ij^(1)
 };
 
-/// The collision terms of one species pair in seed 003 eqs 39-44 (ERRATA §6), split by partner:
+/// The collision terms of one species pair in Montanero and Garzo 2002, eqs. (39)-(44) (\ref son_binary_coefficients "docs/sonine.md"), split by partner:
 /// the contribution of collisions of species i with species j (j = i: the self terms) to
 /// zeta_i* = zeta0 + zeta_self c_i + zeta_partner c_j and to
 /// int v*^4 J*_ij = omega0 + omega_self c_i + omega_partner c_j, in the units of a binary mixture
@@ -113,38 +113,42 @@ struct SonineCoefficients {
 /// Summing the self and cross terms of species i gives the binary coefficients of
 /// binary_sonine_coefficients. The s-species HCS (sonine_mixture.hpp) is built from them.
 struct SonineTerms {
-  double zeta0, zeta_self, zeta_partner;
-  double omega0, omega_self, omega_partner;
+  double zeta0;          ///< Maxwellian part of zeta_i*
+  double zeta_self;      ///< coefficient of c_i in zeta_i*
+  double zeta_partner;   ///< coefficient of c_j in zeta_i*
+  double omega0;         ///< Maxwellian part of the fourth moment
+  double omega_self;     ///< coefficient of c_i in it
+  double omega_partner;  ///< coefficient of c_j in it
 };
 
-/// The i-i terms of seed 003 eqs 39, 40, 42, 43 (ERRATA §6: the terms proportional to
+/// The i-i terms of Montanero and Garzo 2002, eqs. (39), (40), (42), (43) (\ref son_binary_coefficients "docs/sonine.md": the terms proportional to
 /// s = weight = x_i chi_ii (sigma_i/sigma_12)^2), at lambda_i. zeta_partner = omega_partner = 0.
 /// No input checks.
 SonineTerms sonine_self_terms(double weight, double alpha_ii, double lambda_i);
 
-/// The i-j terms of seed 003 eqs 39-44 (ERRATA §6: the terms proportional to c = weight =
+/// The i-j terms of Montanero and Garzo 2002, eqs. (39)-(44) (\ref son_binary_coefficients "docs/sonine.md": the terms proportional to c = weight =
 /// x_j chi_ij), at mu_ji = m_j/(m_i + m_j), lambda_i = T/(T_i mu_ji), lambda_j = T/(T_j mu_ij);
 /// eta = lambda_i/lambda_j. No input checks.
 SonineTerms sonine_cross_terms(double weight, double mu_ji, double alpha_ij, double lambda_i,
                                double lambda_j);
 
-/// Coefficients of seed 003 eqs 39-44 (ERRATA §6) at gamma = T1/T2. Throws std::invalid_argument
+/// Coefficients of Montanero and Garzo 2002, eqs. (39)-(44) (\ref son_binary_coefficients "docs/sonine.md") at gamma = T1/T2. Throws std::invalid_argument
 /// for a bad mixture (see "Input checks" in the file description) or unless gamma is positive and
 /// finite.
 SonineCoefficients binary_sonine_coefficients(const species::Mixture& mix, double gamma);
 
-/// zeta_i* and c_i at gamma = T1/T2 (seed 003 eqs 31-38 and the two sides of eq 45). Throws
+/// zeta_i* and c_i at gamma = T1/T2 (Montanero and Garzo 2002, eqs. (31)-(38), \ref son_binary_cumulants "docs/sonine.md" and the two sides of eq 45). Throws
 /// std::invalid_argument for a bad mixture or gamma (as binary_sonine_coefficients),
 /// std::runtime_error if the linear system is singular.
 SonineAtGamma binary_sonine_at_gamma(const species::Mixture& mix, double gamma);
 
-/// Solves seed 003 eq 45 for gamma (see \ref sonine_steps). Throws std::invalid_argument for a bad
+/// Solves Montanero and Garzo 2002, eq. (45), \ref son_binary_gamma "docs/sonine.md" for gamma (see \ref sonine_steps). Throws std::invalid_argument for a bad
 /// mixture (see "Input checks" in the file description), std::runtime_error if zeta_1* - zeta_2*
 /// has no root or several roots in 1e-4 <= gamma <= 1e4.
 BinaryHcs binary_hcs_first_sonine(const species::Mixture& mix);
 
-/// Predicted high-velocity decay of Phi_i(v*) ~ A_i exp(-k v*): k = 2 beta_i/zeta*_i (seed 003
-/// eqs 21, 29-30; ERRATA §6), zeta*_i = hcs.cooling_rate (equal for both species in the HCS).
+/// Predicted high-velocity decay of Phi_i(v*) ~ A_i exp(-k v*): k = 2 beta_i/zeta*_i (Montanero and Garzo 2002,
+/// eqs. (21), (29)-(30); \ref son_tails "docs/sonine.md"), zeta*_i = hcs.cooling_rate (equal for both species in the HCS).
 /// `species` is 0 or 1 (else std::invalid_argument). Elastic mixtures (zeta* = 0) give +infinity:
 /// no exponential tail.
 double tail_decay_rate(const BinaryHcs& hcs, int species);
@@ -165,7 +169,7 @@ double tail_decay_rate(const BinaryHcs& hcs, int species);
  * Then <c^4> = (15/4)(1 + a2), <c^6> = (105/8)(1 + 3 a2 - a3), and in general
  * <c^2p> = sum_k a_k <c^2p S_k>_Maxwell. The collisional moments
  *   mu_p = -int c^p I[F, F] dc = -(1/2) int dc1 dc2 int_{g.e>0} de (g.e) F(c1) F(c2) Delta(c1^p + c2^p)
- * (collision rule of docs/collision-model.md, ERRATA §1) are quadratic forms in (1, a_2, .., a_K).
+ * (collision rule of docs/collision-model.md, \ref cm_rule "docs/collision-model.md") are quadratic forms in (1, a_2, .., a_K).
  * The HCS moment equations are mu_p = (p/3) mu_2 <c^p>, p = 4, 6, .., 2K (K - 1 equations for
  * a_2..a_K). K = 2 is first Sonine, K = 3 second Sonine (a2 and a3).
  *
@@ -194,7 +198,7 @@ double tail_decay_rate(const BinaryHcs& hcs, int species);
 struct OneSpeciesSonine {
   int order;                 ///< K: highest Sonine polynomial kept
   std::vector<double> a;     ///< a_2 .. a_K (a[0] = a2, a[1] = a3, ...)
-  double cumulant_c;         ///< c = 2 a2 (the sonine_c convention of this file, ERRATA §6)
+  double cumulant_c;         ///< c = 2 a2 (the sonine_c convention of this file, \ref son_scaling "docs/sonine.md")
   double cooling_factor;     ///< mu_2 / (sqrt(2 pi)(1 - alpha^2)): zeta/zeta_Maxwell (1 + 3 a2/16 + ..)
   /// Collision frequency over its Maxwellian value, <|g|>_F/<|g|>_Maxwell (1 - a2/16 + .., van Noije
   /// and Ernst 1998), with the same closure (products of the a_k dropped when `linear`).
@@ -218,11 +222,12 @@ double sonine_collision_moment(double alpha, int p, const std::vector<double>& a
 /// 5 (\ref sonine_higher): value = their midpoint, half_width = half their difference; likewise the
 /// cooling-rate factor zeta/zeta_Maxwell = mu_2/(sqrt(2 pi)(1 - alpha^2)).
 struct CumulantBracket {
-  double value;
-  double half_width;
-  double cooling_factor;
-  double cooling_half_width;
+  double value;               ///< c, midpoint of orders 4 and 5
+  double half_width;          ///< half their difference
+  double cooling_factor;      ///< zeta/zeta_Maxwell, midpoint
+  double cooling_half_width;  ///< half the difference of the cooling factors
 };
+/// The CumulantBracket at restitution `alpha`.
 CumulantBracket sonine_cumulant_bracket(double alpha);
 
 }  // namespace gdsmc::theory

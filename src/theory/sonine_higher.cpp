@@ -60,7 +60,7 @@ std::vector<double> moment_forms(double alpha, int K) {
   // -(1/2) x pi^-3 (Maxwellians) x 2^(-3/2) (dC = 2^(-3/2) dy) x 4 pi (direction of g)
   // x 2 (g^3 dg = 2 u du) x 2 pi/nphi (trapezoid in phi).
   const double prefactor = -0.5 * std::pow(pi, -3.0) * std::pow(2.0, -1.5) * 4.0 * pi * 2.0 * (2.0 * pi / nphi);
-  const double k = 0.5 * (1.0 + alpha);  // ERRATA §1, equal masses: v1' = v1 - (1 + alpha)/2 (g.e) e
+  const double k = 0.5 * (1.0 + alpha);  // \ref cm_rule "docs/collision-model.md", equal masses: v1' = v1 - (1 + alpha)/2 (g.e) e
   std::vector<double> m(static_cast<std::size_t>(K) * B * B, 0.0), E(K + 1), s1(B), s2(B);
   const double r2 = std::sqrt(0.5);
   for (int a = 0; a < n; ++a)

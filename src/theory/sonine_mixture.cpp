@@ -151,7 +151,7 @@ double weight_W(const Reduced& r, std::size_t i, double tau_i) {
 }
 
 /// With `maxwellian` the c's are held at 0 (zeta_i = zeta_i^(0)): the equal-cooling-rate
-/// conditions are then those of the Maxwellian theory (ERRATA §4), whose solution starts the
+/// conditions are then those of the Maxwellian theory (\ref haff_mixture_odes "docs/haff-and-mixtures.md"), whose solution starts the
 /// first-Sonine Newton iteration for large s.
 State evaluate(const Reduced& r, const std::vector<double>& tau, bool maxwellian) {
   const std::size_t s = r.s;
@@ -433,7 +433,7 @@ HcsFirstSonine hcs_first_sonine(const species::Mixture& mix,
   out.temperature_over_mean = st.tau;
   out.sonine_c.assign(st.c.data(), st.c.data() + s);
   double z = 0.0;
-  for (std::size_t k = 0; k < s; ++k) z += r.x[k] * st.tau[k] * st.zeta(k);  // seed 003 eq 11
+  for (std::size_t k = 0; k < s; ++k) z += r.x[k] * st.tau[k] * st.zeta(k);  // Montanero and Garzo 2002, eq. (11), \ref son_binary_gamma "docs/sonine.md"
   out.cooling_rate_reduced = z / zeta_unit;
   return out;
 }

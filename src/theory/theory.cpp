@@ -47,20 +47,20 @@ using detail::require_temperatures;  // theory/input_checks.hpp
 // Kernels on raw temperature arrays (no checks; the CVODE right-hand sides call these)
 // ---------------------------------------------------------------------------------------------
 
-/// s_kj = T_k/m_k + T_j/m_j (ERRATA notation).
+/// s_kj = T_k/m_k + T_j/m_j (\ref cm_notation "docs/collision-model.md").
 double thermal_speed_sum(const Mixture& mix, std::span<const double> temperature, std::size_t k,
                          std::size_t j) {
   return temperature[k] / mix.mass[k] + temperature[j] / mix.mass[j];
 }
 
-/// ERRATA §2: events per unit volume and time between species k and j (half for k == j).
+/// \ref cm_mixture_rate "docs/collision-model.md": events per unit volume and time between species k and j (half for k == j).
 double pair_rate(const Mixture& mix, std::span<const double> temperature, std::size_t k,
                  std::size_t j) {
   const double sigma_kj = mix.contact_distance(k, j);
   const double rate = mix.number_density[k] * mix.number_density[j] * pi * sigma_kj * sigma_kj *
                       mix.pair_correlation(k, j) *
-                      mean_relative_speed(thermal_speed_sum(mix, temperature, k, j));  // ERRATA §2
-  return k == j ? 0.5 * rate : rate;  // ERRATA §2: like pairs counted once
+                      mean_relative_speed(thermal_speed_sum(mix, temperature, k, j));  // \ref cm_pair_rate "docs/collision-model.md"
+  return k == j ? 0.5 * rate : rate;  // \ref cm_mixture_rate "docs/collision-model.md": like pairs counted once
 }
 
 double total_rate(const Mixture& mix, std::span<const double> temperature) {
@@ -70,7 +70,7 @@ double total_rate(const Mixture& mix, std::span<const double> temperature) {
   return total;
 }
 
-/// ERRATA §4: xi_kj = (8/3) sqrt(2 pi) n_j sigma_kj^2 chi_kj sqrt(s_kj) mu_jk (1 + alpha_kj)
+/// \ref haff_mixture_odes "docs/haff-and-mixtures.md": xi_kj = (8/3) sqrt(2 pi) n_j sigma_kj^2 chi_kj sqrt(s_kj) mu_jk (1 + alpha_kj)
 ///                    [1 - (1/2)(1 + alpha_kj) X_kj],  X_kj = (T_k m_j + T_j m_k)/(T_k (m_j + m_k)).
 double cooling_rate_entry(const Mixture& mix, std::span<const double> temperature, std::size_t k,
                           std::size_t j) {
@@ -78,13 +78,13 @@ double cooling_rate_entry(const Mixture& mix, std::span<const double> temperatur
   const double one_plus_alpha = 1.0 + mix.restitution(k, j);
   const double mu_jk = mix.mass_fraction(j, k);  // m_j/(m_k + m_j)
   const double x_kj = (temperature[k] * mix.mass[j] + temperature[j] * mix.mass[k]) /
-                      (temperature[k] * (mix.mass[j] + mix.mass[k]));  // ERRATA §4 X_kj
+                      (temperature[k] * (mix.mass[j] + mix.mass[k]));  // \ref haff_mixture_odes "docs/haff-and-mixtures.md" X_kj
   return (8.0 / 3.0) * std::sqrt(2.0 * pi) * mix.number_density[j] * sigma_kj * sigma_kj *
          mix.pair_correlation(k, j) * std::sqrt(thermal_speed_sum(mix, temperature, k, j)) *
-         mu_jk * one_plus_alpha * (1.0 - 0.5 * one_plus_alpha * x_kj);  // ERRATA §4
+         mu_jk * one_plus_alpha * (1.0 - 0.5 * one_plus_alpha * x_kj);  // \ref haff_mixture_odes "docs/haff-and-mixtures.md"
 }
 
-/// sum_j xi_kj for every k, so that d ln T_k/dt = -sum_j xi_kj (ERRATA §4).
+/// sum_j xi_kj for every k, so that d ln T_k/dt = -sum_j xi_kj (\ref haff_mixture_odes "docs/haff-and-mixtures.md").
 void cooling_rate_row_sums(const Mixture& mix, std::span<const double> temperature,
                            std::span<double> row_sum) {
   for (std::size_t k = 0; k < mix.size(); ++k) {
@@ -96,7 +96,7 @@ void cooling_rate_row_sums(const Mixture& mix, std::span<const double> temperatu
 }
 
 /// Largest collision frequency per particle, max_k sum_j n_j pi sigma_kj^2 chi_kj <|g_kj|>
-/// (ERRATA §2): the fastest kinetic time scale, used to size output intervals.
+/// (\ref cm_pair_rate "docs/collision-model.md"): the fastest kinetic time scale, used to size output intervals.
 double largest_collision_frequency(const Mixture& mix, std::span<const double> temperature) {
   double largest = 0.0;
   for (std::size_t k = 0; k < mix.size(); ++k) {
@@ -104,7 +104,7 @@ double largest_collision_frequency(const Mixture& mix, std::span<const double> t
     for (std::size_t j = 0; j < mix.size(); ++j) {
       const double sigma_kj = mix.contact_distance(k, j);
       nu_k += mix.number_density[j] * pi * sigma_kj * sigma_kj * mix.pair_correlation(k, j) *
-              mean_relative_speed(thermal_speed_sum(mix, temperature, k, j));  // ERRATA §2
+              mean_relative_speed(thermal_speed_sum(mix, temperature, k, j));  // \ref cm_pair_rate "docs/collision-model.md"
     }
     largest = std::max(largest, nu_k);
   }
@@ -118,33 +118,33 @@ double largest_collision_frequency(const Mixture& mix, std::span<const double> t
 // -------------------------------------------------------------------------------------------------
 
 double mean_relative_speed(double s_kj) {
-  return std::sqrt(8.0 * s_kj / pi);  // ERRATA §2 (seed 000 eq 60)
+  return std::sqrt(8.0 * s_kj / pi);  // \ref cm_mean_speed "docs/collision-model.md" (DSMC notes, eq. (60))
 }
 
 double collision_frequency(double number_density, double diameter, double chi, double mass,
                            double temperature) {
-  // ERRATA §2: nu = 4 sqrt(pi) n sigma^2 chi sqrt(T/m)
+  // \ref cm_frequency "docs/collision-model.md": nu = 4 sqrt(pi) n sigma^2 chi sqrt(T/m)
   return 4.0 * std::sqrt(pi) * number_density * diameter * diameter * chi *
          std::sqrt(temperature / mass);
 }
 
 double haff_cooling_rate(double number_density, double diameter, double chi, double mass,
                          double alpha, double temperature) {
-  // ERRATA §3: zeta_0 = (4/3) sqrt(pi) (1 - alpha^2) n sigma^2 chi sqrt(T/m)
+  // \ref haff_law "docs/haff-and-mixtures.md": zeta_0 = (4/3) sqrt(pi) (1 - alpha^2) n sigma^2 chi sqrt(T/m)
   return (4.0 / 3.0) * std::sqrt(pi) * (1.0 - alpha * alpha) * number_density * diameter *
          diameter * chi * std::sqrt(temperature / mass);
 }
 
 double sonine_a2(double alpha) {
-  // ERRATA §3 (van Noije and Ernst)
+  // \ref haff_sonine "docs/haff-and-mixtures.md" (van Noije and Ernst)
   return 16.0 * (1.0 - alpha) * (1.0 - 2.0 * alpha * alpha) /
          (81.0 - 17.0 * alpha + 30.0 * alpha * alpha * (1.0 - alpha));
 }
 
 double haff_temperature(double t, double T0, double zeta0) {
-  const double t0 = 2.0 / zeta0;  // ERRATA §3
+  const double t0 = 2.0 / zeta0;  // \ref haff_law "docs/haff-and-mixtures.md"
   const double stretch = 1.0 + t / t0;
-  return T0 / (stretch * stretch);  // ERRATA §3 (seed 000 eq 45 with the sign corrected)
+  return T0 / (stretch * stretch);  // \ref haff_law "docs/haff-and-mixtures.md" (DSMC notes, eq. (45) with the sign corrected)
 }
 
 // -------------------------------------------------------------------------------------------------
@@ -179,7 +179,7 @@ std::vector<double> partial_temperature_rates(const Mixture& mix,
   std::vector<double> rate(mix.size());
   cooling_rate_row_sums(mix, temperature, rate);
   for (std::size_t k = 0; k < mix.size(); ++k)
-    rate[k] *= -temperature[k];  // ERRATA §4: dT_k/dt = -T_k sum_j xi_kj
+    rate[k] *= -temperature[k];  // \ref haff_mixture_odes "docs/haff-and-mixtures.md": dT_k/dt = -T_k sum_j xi_kj
   return rate;
 }
 
@@ -215,8 +215,8 @@ TemperatureHistory integrate_partial_temperatures(const Mixture& mix,
       temperature[k] = reference_temperature * std::exp(y[k]);
     cooling_rate_row_sums(mix, temperature, row_sum);
     for (std::size_t k = 0; k < species_count; ++k)
-      dydt[k] = -row_sum[k];  // ERRATA §4: d ln T_k/dt = -sum_j xi_kj
-    dydt[species_count] = total_rate(mix, temperature);  // ERRATA §2: d(collisions)/dt
+      dydt[k] = -row_sum[k];  // \ref haff_mixture_odes "docs/haff-and-mixtures.md": d ln T_k/dt = -sum_j xi_kj
+    dydt[species_count] = total_rate(mix, temperature);  // \ref cm_mixture_rate "docs/collision-model.md": d(collisions)/dt
   };
   CvodeSolver solver(rhs, y0, relative_tolerance, absolute_tolerance);
 
@@ -247,7 +247,7 @@ std::vector<double> asymptotic_temperature_ratios(const Mixture& mix) {
   auto rhs = [&, species_count](double, std::span<const double> y, std::span<double> dydt) {
     for (std::size_t k = 0; k < species_count; ++k)
       temperature[k] = temperature_unit * std::exp(y[k]);
-    cooling_rate_row_sums(mix, temperature, row_sum);  // ERRATA §4
+    cooling_rate_row_sums(mix, temperature, row_sum);  // \ref haff_mixture_odes "docs/haff-and-mixtures.md"
     for (std::size_t k = 0; k < species_count; ++k) dydt[k] = -(row_sum[k] - row_sum[0]);
   };
 

@@ -34,7 +34,7 @@ double require_positive_viscosity(double value, const char* caller) {
   return value;
 }
 
-/// What the tau system of ERRATA §13 is built for: the state itself, or the dilute elastic
+/// What the tau system of \ref eta_mixture "docs/shear-viscosity.md" is built for: the state itself, or the dilute elastic
 /// reference at equal temperatures (eta_0 of the mixture).
 enum class Variant { state, elastic_reference };
 
@@ -49,7 +49,7 @@ MixtureViscosity solve_mixture(const species::Mixture& mix, const std::vector<do
     return variant == Variant::elastic_reference ? 1.0 : mix.restitution(i, j);
   };
   const auto chi = [&](std::size_t i, std::size_t j) {
-    return dense ? mix.pair_correlation(i, j) : 1.0;  // ERRATA §5: chi only in the Enskog gas
+    return dense ? mix.pair_correlation(i, j) : 1.0;  // \ref cm_chi "docs/collision-model.md": chi only in the Enskog gas
   };
   const auto mu = [&](std::size_t i, std::size_t j) { return mix.mass_fraction(i, j); };
   const auto sigma = [&](std::size_t i, std::size_t j) { return mix.contact_distance(i, j); };
@@ -67,7 +67,7 @@ MixtureViscosity solve_mixture(const species::Mixture& mix, const std::vector<do
     return mu(i, j) * theta[j] - mu(j, i) * theta[i];
   };
 
-  // zeta_0 = (1/T) sum_i x_i T_i zeta_i, zeta_i = sum_j xi_ij (ERRATA §4); the elastic reference
+  // zeta_0 = (1/T) sum_i x_i T_i zeta_i, zeta_i = sum_j xi_ij (\ref haff_mixture_odes "docs/haff-and-mixtures.md"); the elastic reference
   // does not cool.
   double cooling_rate = 0.0;
   if (variant == Variant::state) {
@@ -83,7 +83,7 @@ MixtureViscosity solve_mixture(const species::Mixture& mix, const std::vector<do
   Eigen::MatrixXd system(species_count, species_count);
   Eigen::VectorXd source(species_count);
   for (std::size_t i = 0; i < species_count; ++i) {
-    // S_i of ERRATA §13: the unlike-pair part of tau_ii.
+    // S_i of \ref eta_mixture "docs/shear-viscosity.md": the unlike-pair part of tau_ii.
     double unlike_sum = 0.0;
     for (std::size_t j = 0; j < species_count; ++j) {
       if (j == i) continue;
@@ -173,23 +173,23 @@ double elastic_viscosity(double mass, double diameter, double temperature) {
   if (!(mass > 0.0) || !(diameter > 0.0) || !(temperature > 0.0))
     throw std::invalid_argument("viscosity::elastic_viscosity: mass, diameter and temperature "
                                 "must be positive");
-  return 5.0 / (16.0 * diameter * diameter) * std::sqrt(mass * temperature / pi);  // ERRATA §10
+  return 5.0 / (16.0 * diameter * diameter) * std::sqrt(mass * temperature / pi);  // \ref eta_one_species "docs/shear-viscosity.md"
 }
 
 double reduced_momentum_collision_frequency(double alpha, double a2) {
   require_restitution(alpha, "viscosity::reduced_momentum_collision_frequency");
-  return (1.0 + alpha) * (3.0 - alpha) / 4.0 * (1.0 - a2 / 32.0);  // ERRATA §10
+  return (1.0 + alpha) * (3.0 - alpha) / 4.0 * (1.0 - a2 / 32.0);  // \ref eta_one_species "docs/shear-viscosity.md"
 }
 
 double reduced_cooling_rate(double alpha, double a2) {
   require_restitution(alpha, "viscosity::reduced_cooling_rate");
-  return 5.0 / 12.0 * (1.0 - alpha * alpha) * (1.0 + 3.0 * a2 / 16.0);  // ERRATA §10, §3
+  return 5.0 / 12.0 * (1.0 - alpha * alpha) * (1.0 + 3.0 * a2 / 16.0);  // \ref eta_one_species "docs/shear-viscosity.md", \ref haff_sonine "docs/haff-and-mixtures.md"
 }
 
 double dilute_reduced_viscosity(double alpha, State state, double a2) {
   return require_positive_viscosity(
       1.0 / (reduced_momentum_collision_frequency(alpha, a2) -
-             cooling_coefficient(state) * reduced_cooling_rate(alpha, a2)),  // ERRATA §10
+             cooling_coefficient(state) * reduced_cooling_rate(alpha, a2)),  // \ref eta_one_species "docs/shear-viscosity.md"
       "viscosity::dilute_reduced_viscosity");
 }
 
@@ -207,7 +207,7 @@ EnskogReducedViscosity enskog_reduced_viscosity(double alpha, double packing_fra
   if (!(chi > 0.0) || !std::isfinite(chi))
     throw std::invalid_argument("viscosity::enskog_reduced_viscosity: chi must be positive");
   const double phi_chi = packing_fraction * chi;
-  // Garzo and Dufty 1999: every collision rate carries chi (ERRATA §5).
+  // Garzo and Dufty 1999: every collision rate carries chi (\ref cm_chi "docs/collision-model.md").
   const double relaxation = chi * (reduced_momentum_collision_frequency(alpha, a2) -
                                    cooling_coefficient(state) * reduced_cooling_rate(alpha, a2));
   EnskogReducedViscosity eta;
@@ -224,7 +224,7 @@ EnskogReducedViscosity enskog_reduced_viscosity(double alpha, double packing_fra
                                                 State state) {
   require_restitution(alpha, "viscosity::enskog_reduced_viscosity");
   const double chi = (1.0 - 0.5 * packing_fraction) /
-                     std::pow(1.0 - packing_fraction, 3);  // Carnahan-Starling (ERRATA §5)
+                     std::pow(1.0 - packing_fraction, 3);  // Carnahan-Starling (\ref cm_chi "docs/collision-model.md")
   return enskog_reduced_viscosity(alpha, packing_fraction, chi, state, sonine_a2(alpha));
 }
 
@@ -270,9 +270,9 @@ double elastic_mixture_viscosity(const species::Mixture& mix, double temperature
 }
 
 std::vector<double> binary_state_temperature_ratios(const species::Mixture& mix) {
-  const double gamma = binary_hcs_first_sonine(mix).temperature_ratio;  // ERRATA §6
+  const double gamma = binary_hcs_first_sonine(mix).temperature_ratio;  // \ref son_binary_gamma "docs/sonine.md"
   const double x1 = mix.mole_fraction(0);
-  const double t2 = 1.0 / (1.0 + x1 * (gamma - 1.0));  // seed 003 eqs 13-14
+  const double t2 = 1.0 / (1.0 + x1 * (gamma - 1.0));  // Montanero and Garzo 2002, eqs. (13)-(14), \ref son_binary "docs/sonine.md"
   return {gamma * t2, t2};
 }
 
@@ -285,7 +285,7 @@ double binary_reduced_viscosity_frequency(const species::Mixture& mix, double te
     throw std::invalid_argument("viscosity::binary_reduced_viscosity_frequency: needs 2 species");
   const double sigma_12 = mix.contact_distance(0, 1);
   const double v0 = std::sqrt(2.0 * temperature * (mix.mass[0] + mix.mass[1]) /
-                              (mix.mass[0] * mix.mass[1]));  // seed 004 Sec. 2
+                              (mix.mass[0] * mix.mass[1]));  // Montanero 2003, Sec. 2, \ref eta_stages "docs/shear-viscosity.md"
   return std::sqrt(pi) * mix.total_density() * sigma_12 * sigma_12 * v0;
 }
 

@@ -3,7 +3,7 @@
  * \brief Navier-Stokes shear viscosity of a granular gas and of a granular mixture, dilute
  *        (Boltzmann) and moderately dense (Enskog), in the first Sonine approximation, for the
  *        homogeneous cooling state (HCS) and the Gaussian-thermostatted homogeneous steady state
- *        (HSS). These are the theory curves of seed 004 (Montanero and Garzo's overview),
+ *        (HSS). These are the theory curves of Montanero 2003,
  *        Figs 6-12.
  *
  * \section viscosity_intro What this module computes
@@ -12,27 +12,27 @@
  * P_xy = -eta du_x/dy. For a granular gas eta depends on the reference state the gradients are
  * applied to: in the HCS the temperature falls while the momentum relaxes (cooling coefficient
  * c = 1/2 below), with a Gaussian thermostat that compensates the cooling (HSS, the state the DSMC
- * of seed 004 Sec. 3 and ERRATA §13 measures) it does not (c = 1). The state is chosen with
+ * of Montanero 2003, Sec. 3 and \ref eta_measured "docs/shear-viscosity.md" measures) it does not (c = 1). The state is chosen with
  * viscosity::State. The physics page `docs/physics.md`, section "Shear viscosity", restates these
  * equations for users.
  *
- * Notation (ERRATA, species.hpp): species i with mass m_i, diameter sigma_i, number density n_i,
+ * Notation (\ref cm_notation "docs/collision-model.md", species.hpp): species i with mass m_i, diameter sigma_i, number density n_i,
  * n = sum_i n_i, x_i = n_i/n, partial temperature T_i, T = sum_i x_i T_i;
  * sigma_ij = (sigma_i + sigma_j)/2, mu_ij = m_i/(m_i + m_j), alpha_ij, chi_ij (1 dilute,
- * Carnahan-Starling for Enskog, ERRATA §5), packing fraction phi = (pi/6) sum_i n_i sigma_i^3.
+ * Carnahan-Starling for Enskog, \ref cm_chi "docs/collision-model.md"), packing fraction phi = (pi/6) sum_i n_i sigma_i^3.
  *
- * \subsection viscosity_one One component, dilute (ERRATA §10)
+ * \subsection viscosity_one One component, dilute (\ref eta_one_species "docs/shear-viscosity.md")
  * - Elastic first Chapman-Enskog value: eta_0 = (5/(16 sigma^2)) sqrt(m T/pi)
- *   (Chapman and Cowling; seed 004 Fig 6 normalisation).
+ *   (Chapman and Cowling; Montanero 2003, Fig. 6, \ref eta_one_species "docs/shear-viscosity.md" normalisation).
  * - Reduced collision frequency of the momentum flux and cooling rate, in units of
  *   nu_0 = n T/eta_0 (Brey, Dufty, Kim and Santos 1998, PRE 58, 4638; Garzo and Dufty 1999,
  *   PRE 59, 5895, eqs for nu_eta* and zeta* at d = 3):
  *   nu_eta* = (1 + alpha)(3 - alpha)/4 (1 - a2/32),  zeta* = (5/12)(1 - alpha^2)(1 + 3 a2/16),
- *   with the van Noije-Ernst a2(alpha) of theory::sonine_a2 (ERRATA §3).
+ *   with the van Noije-Ernst a2(alpha) of theory::sonine_a2 (\ref haff_sonine "docs/haff-and-mixtures.md").
  *   (Garzo and Dufty write c* = 2 a2: their (1 - c* / 64) and (1 + 3 c* / 32) are the factors
  *   above.)
  * - eta/eta_0 = 1/(nu_eta* - c zeta*), c = 1/2 in the HCS (Brey et al. 1998), c = 1 in the HSS
- *   with a Gaussian thermostat (Garzo and Montanero 2002, Physica A 313, 336). ERRATA §10:
+ *   with a Gaussian thermostat (Garzo and Montanero 2002, Physica A 313, 336). \ref eta_one_species "docs/shear-viscosity.md":
  *   at alpha = 0.5, HCS 1.2851, HSS 1.6119.
  *
  * \subsection viscosity_enskog_one One component, Enskog (Garzo and Dufty 1999, PRE 59, 5895)
@@ -42,7 +42,7 @@
  * In units of eta_0 (the dilute elastic value above), with chi = chi(phi):
  * - kinetic part: eta_k* = [1 - (2/5)(1 + alpha)(1 - 3 alpha) phi chi]/(nu_eta* - c zeta*), where
  *   nu_eta* and zeta* are the dilute values multiplied by chi (every collision rate carries chi,
- *   ERRATA §5);
+ *   \ref cm_chi "docs/collision-model.md");
  * - collisional transfer: eta_c* = (4/5) phi chi (1 + alpha) eta_k* + (3/5) kappa*,
  * - bulk viscosity: kappa* = (128/(5 pi)) phi^2 chi (1 + alpha)(1 - a2/16)  (their (1 - c* / 32));
  * - eta* = eta_k* + eta_c*. At alpha = 1 this is Enskog's hard-sphere result
@@ -50,13 +50,13 @@
  *   ch. 16, dense rigid spheres, with b rho = (2 pi/3) n sigma^3 = 4 phi), which
  *   tests/viscosity_test.cpp checks.
  *
- * \subsection viscosity_mixture Mixture, any number of species (ERRATA §13)
+ * \subsection viscosity_mixture Mixture, any number of species (\ref eta_mixture "docs/shear-viscosity.md")
  * Garzo and Dufty 2002 (Phys. Fluids 14, 1476) for the dilute mixture; Garzo, Hrenya and Dufty
  * 2007 (PRE 76, 031303 and 031304) for the Enskog mixture, in the form implemented by MFIX
  * (model/GhdTheory/shear_viscosity.f, bulk_viscosity.f, ghd.f; our code is written from the
  * equations, not translated; the papers are not among the seeds, so their equation numbers are not
  * quoted, and every term was checked instead: see \ref viscosity_checks). Leading Sonine order:
- * each species' reference distribution is a Maxwellian at its own T_i (the c_i of ERRATA §6 do not
+ * each species' reference distribution is a Maxwellian at its own T_i (the c_i of \ref son_binary "docs/sonine.md" do not
  * enter; for one species this drops the a2 factors of the one-component formulas above, which
  * tests/viscosity_test.cpp uses).
  * With mbar = (1/S) sum_i m_i (the plain mean of the masses, as GHD), v0 = sqrt(2 T/mbar),
@@ -70,9 +70,9 @@
  *   tau_ij = (8 sqrt(pi)/15) v0 n_i chi_ij sigma_ij^2 mu_ij theta_j^(3/2) theta_i^(-1/2)
  *            (1 + alpha_ij) [6 beta_ij/(theta_j^2 r_ij) + (9 - 3 alpha_ij)/2 mu_ji r_ij/theta_j^2
  *             - 5/(theta_j r_ij)]   (i != j),
- *   sum_j (tau_ij - c zeta_0 delta_ij) eta_j = n_i T_i + b_i         (ERRATA §13; GHD 2007 II),
+ *   sum_j (tau_ij - c zeta_0 delta_ij) eta_j = n_i T_i + b_i         (\ref eta_mixture "docs/shear-viscosity.md"; GHD 2007 II),
  * where zeta_0 = (1/T) sum_i x_i T_i zeta_i is the Maxwellian cooling rate of the mixture at these
- * T_i, zeta_i = sum_j xi_ij the partial cooling rates of ERRATA §4 (theory::cooling_rate_matrix;
+ * T_i, zeta_i = sum_j xi_ij the partial cooling rates of \ref haff_mixture_odes "docs/haff-and-mixtures.md" (theory::cooling_rate_matrix;
  * in the HCS all zeta_i are equal). The dilute gas has chi_ij = 1 and b_i = 0. The Enskog gas adds
  * the collisional-transfer source of the kinetic part (GHD 2007 II; MFIX shear_viscosity.f)
  *   b_i = (2 pi/15) m_i n_i sum_j n_j mu_ji sigma_ij^3 chi_ij (1 + alpha_ij)
@@ -90,11 +90,11 @@
  * Reference states:
  * - T_i: any vector of ratios T_i/T (normalised here so that sum_i x_i T_i/T = 1). For the
  *   HCS and HSS of a binary mixture, binary_state_temperature_ratios gives the first-Sonine
- *   gamma = T1/T2 of theory::binary_hcs_first_sonine (ERRATA §6: in the HSS gamma equals the HCS
- *   value, ERRATA §13).
+ *   gamma = T1/T2 of theory::binary_hcs_first_sonine (\ref son_binary_gamma "docs/sonine.md": in the HSS gamma equals the HCS
+ *   value, \ref eta_thermostat "docs/shear-viscosity.md").
  * - Normalisation: eta_0 of the mixture = the dilute (chi_ij = 1) elastic (alpha_ij = 1) mixture at
  *   T_i = T, from the same tau_ij system with zeta_0 = 0: Chapman and Cowling's first
- *   approximation for a hard-sphere mixture (ERRATA §13: DSMC divides by this). Seed 004 Figs 10-12
+ *   approximation for a hard-sphere mixture (\ref eta_mixture "docs/shear-viscosity.md": DSMC divides by this). Montanero 2003, Figs. 10-12
  *   use instead eta* = nu eta/(n T) with nu = sqrt(pi) n sigma_12^2 v0,
  *   v0 = sqrt(2 T (m1 + m2)/(m1 m2)) (binary_reduced_viscosity_frequency).
  *
@@ -103,13 +103,13 @@
  * sqrt(m T/pi). The reduced functions are dimensionless.
  *
  * \subsection viscosity_checks How it is checked
- * tests/viscosity_test.cpp: ERRATA §10 reference values, two identical species = one species at
+ * tests/viscosity_test.cpp: \ref eta_one_species "docs/shear-viscosity.md" reference values, two identical species = one species at
  * a2 = 0, the elastic limit against Chapman-Cowling numbers computed independently (one species and
  * a binary hard-sphere mixture from Chapman and Cowling's [eta]_1 formula), the tau_ij system at
  * unequal temperatures and restitutions against a Monte Carlo evaluation of the collision integrals
- * it stands for, permutation of species, the ERRATA §13 DSMC point (theory value 1.2044), the
+ * it stands for, permutation of species, the \ref eta_mixture "docs/shear-viscosity.md" DSMC point (theory value 1.2044), the
  * Enskog mixture against the one-component Enskog formulas and its dilute limit, the one-component
- * Enskog elastic limit against Enskog's hard-sphere formula, and the thresholds seed 004 states for
+ * Enskog elastic limit against Enskog's hard-sphere formula, and the thresholds Montanero 2003 states for
  * its Figs 11-12 (phi_0 ~ 0.22; the theory here crosses between 0.22 and 0.23).
  *
  * Input checks: std::invalid_argument for restitution outside [0, 1], non-positive or non-finite
@@ -128,7 +128,7 @@ namespace gdsmc::theory::viscosity {
 /// Reference state of the Chapman-Enskog expansion: it fixes the cooling coefficient c.
 enum class State {
   homogeneous_cooling,  ///< HCS, free cooling: c = 1/2 (Brey et al. 1998)
-  gaussian_thermostat,  ///< HSS, Gaussian thermostat: c = 1 (Garzo and Montanero 2002; ERRATA §13)
+  gaussian_thermostat,  ///< HSS, Gaussian thermostat: c = 1 (Garzo and Montanero 2002; \ref eta_thermostat "docs/shear-viscosity.md")
 };
 
 /// c of eta/eta_0 = 1/(nu_eta* - c zeta*): 1/2 for the HCS, 1 for the HSS.
@@ -138,20 +138,20 @@ double cooling_coefficient(State state);
 // One component
 // ---------------------------------------------------------------------------------------------
 
-/// ERRATA §10: elastic dilute first Chapman-Enskog viscosity
+/// \ref eta_one_species "docs/shear-viscosity.md": elastic dilute first Chapman-Enskog viscosity
 /// eta_0 = (5/(16 sigma^2)) sqrt(m T/pi).
 double elastic_viscosity(double mass, double diameter, double temperature);
 
-/// ERRATA §10: nu_eta* = (1 + alpha)(3 - alpha)/4 (1 - a2/32) (dilute; Enskog multiplies by chi).
+/// \ref eta_one_species "docs/shear-viscosity.md": nu_eta* = (1 + alpha)(3 - alpha)/4 (1 - a2/32) (dilute; Enskog multiplies by chi).
 double reduced_momentum_collision_frequency(double alpha, double a2);
 
-/// ERRATA §10: zeta* = (5/12)(1 - alpha^2)(1 + 3 a2/16) (dilute; Enskog multiplies by chi).
+/// \ref eta_one_species "docs/shear-viscosity.md": zeta* = (5/12)(1 - alpha^2)(1 + 3 a2/16) (dilute; Enskog multiplies by chi).
 double reduced_cooling_rate(double alpha, double a2);
 
-/// ERRATA §10: dilute eta/eta_0 = 1/(nu_eta* - c zeta*) with the given a2.
+/// \ref eta_one_species "docs/shear-viscosity.md": dilute eta/eta_0 = 1/(nu_eta* - c zeta*) with the given a2.
 double dilute_reduced_viscosity(double alpha, State state, double a2);
 
-/// ERRATA §10: dilute eta/eta_0 with the van Noije-Ernst a2(alpha) (theory::sonine_a2).
+/// \ref eta_one_species "docs/shear-viscosity.md": dilute eta/eta_0 with the van Noije-Ernst a2(alpha) (theory::sonine_a2).
 double dilute_reduced_viscosity(double alpha, State state);
 
 /// One-component Enskog viscosity in units of eta_0 (see \ref viscosity_enskog_one).
@@ -167,7 +167,7 @@ struct EnskogReducedViscosity {
 EnskogReducedViscosity enskog_reduced_viscosity(double alpha, double packing_fraction, double chi,
                                                 State state, double a2);
 
-/// As above with a2 = theory::sonine_a2(alpha) and chi = Carnahan-Starling (ERRATA §5).
+/// As above with a2 = theory::sonine_a2(alpha) and chi = Carnahan-Starling (\ref cm_chi "docs/collision-model.md").
 EnskogReducedViscosity enskog_reduced_viscosity(double alpha, double packing_fraction, State state);
 
 // ---------------------------------------------------------------------------------------------
@@ -184,7 +184,7 @@ struct MixtureViscosity {
   double total = 0.0;           ///< eta = kinetic + collisional
   double elastic = 0.0;         ///< eta_0: dilute elastic mixture, equal temperatures, same T
   double reduced = 0.0;         ///< total/elastic
-  double cooling_rate = 0.0;    ///< zeta_0 used (Maxwellian, ERRATA §4)
+  double cooling_rate = 0.0;    ///< zeta_0 used (Maxwellian, \ref haff_mixture_odes "docs/haff-and-mixtures.md")
 };
 
 /**
@@ -200,8 +200,8 @@ MixtureViscosity mixture_viscosity(const species::Mixture& mix,
 /// eta_0 of the mixture: dilute, elastic, T_i = T (Chapman and Cowling's first approximation).
 double elastic_mixture_viscosity(const species::Mixture& mix, double temperature);
 
-/// T_i/T of the HCS (= HSS, ERRATA §13) of a binary mixture from the first-Sonine
-/// gamma = T1/T2 (theory::binary_hcs_first_sonine, ERRATA §6): T1/T = gamma/(1 + x1 (gamma - 1)),
+/// T_i/T of the HCS (= HSS, \ref eta_mixture "docs/shear-viscosity.md") of a binary mixture from the first-Sonine
+/// gamma = T1/T2 (theory::binary_hcs_first_sonine, \ref son_binary_gamma "docs/sonine.md"): T1/T = gamma/(1 + x1 (gamma - 1)),
 /// T2/T = 1/(1 + x1 (gamma - 1)).
 std::vector<double> binary_state_temperature_ratios(const species::Mixture& mix);
 
@@ -209,7 +209,7 @@ std::vector<double> binary_state_temperature_ratios(const species::Mixture& mix)
 /// binary_state_temperature_ratios).
 MixtureViscosity binary_viscosity(const species::Mixture& mix, double temperature, State state);
 
-/// Seed 004 Figs 10-12: nu = sqrt(pi) n sigma_12^2 v0, v0 = sqrt(2 T (m1 + m2)/(m1 m2)); the
+/// Montanero 2003, Figs. 10-12, \ref eta_mixture "docs/shear-viscosity.md": nu = sqrt(pi) n sigma_12^2 v0, v0 = sqrt(2 T (m1 + m2)/(m1 m2)); the
 /// reduced viscosity there is eta* = nu eta/(n T).
 double binary_reduced_viscosity_frequency(const species::Mixture& mix, double temperature);
 

@@ -1,11 +1,11 @@
-// Aggregation and fragmentation against the Smoluchowski rate equations (seed 000 eqs 8-14,
-// ERRATA §12). See README.md for the cases, the references and the tolerances.
+// Aggregation and fragmentation against the Smoluchowski rate equations (DSMC notes, eqs. (8)-(14), \ref af_outcome "docs/agg-frag.md",
+// \ref af_smoluchowski "docs/agg-frag.md"). See README.md for the cases, the references and the tolerances.
 //
 // usage: validate_agg_frag INPUT.nml [--set ...] [--output F.h5] [--exact-until T]
 //   Samples at t <= T (default: nu_0 t <= 0.15) are checked against the theory with statistics
 //   only (z = 4): there the closure is exact to first order (Maxwellian monomers at t = 0).
 //   Later samples are compared and the theory's drift is printed, not asserted: no independent
-//   estimate of it exists beyond the one ERRATA §12 gives for pure sticking (N_1 about 6 % low when
+//   estimate of it exists beyond the one \ref af_accuracy "docs/agg-frag.md" gives for pure sticking (N_1 about 6 % low when
 //   <k> = 8.5), which is checked where it applies (--sticking-drift on).
 #include <algorithm>
 #include <cmath>
@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
 
   const theory::smoluchowski::Parameters p = theory::smoluchowski::parameters_of(c);
   const double n0 = static_cast<double>(c.dsmc.n_particles);
-  // nu_0 = 4 sqrt(pi) n sigma^2 sqrt(T0/m): collisions per monomer per unit time at t = 0 (ERRATA §2)
+  // nu_0 = 4 sqrt(pi) n sigma^2 sqrt(T0/m): collisions per monomer per unit time at t = 0 (\ref cm_frequency "docs/collision-model.md")
   const double nu0 = 4.0 * std::sqrt(M_PI) * p.monomer_density * p.monomer_diameter * p.monomer_diameter *
                      std::sqrt(p.initial_temperature / p.monomer_mass);
   const double exact_until = exact_until_option ? std::stod(*exact_until_option) : 0.15 / nu0;
@@ -58,7 +58,7 @@ int main(int argc, char** argv) {
   if (!report.require("replicas > 1, so standard errors exist", !monomers.error.empty())) return report.exit_code();
   const std::size_t width = number.shape.size() > 1 ? number.shape[1] : 1;
 
-  // 1. Exact bookkeeping in every sample (ERRATA §12): mass in monomers, and energy.
+  // 1. Exact bookkeeping in every sample (\ref af_observables "docs/agg-frag.md"): mass in monomers, and energy.
   double worst_mass = 0.0, worst_energy = 0.0;
   for (std::size_t i = 0; i < nt; ++i) {
     double mass = 0.0;
@@ -134,7 +134,7 @@ int main(int argc, char** argv) {
   }
   report.require("at least one sample in the exact window (nu_0 t <= 0.15)", exact_samples > 0);
 
-  // 3. Pure sticking: ERRATA §12 measured the closure's drift independently: N_1 about 6 % low by the
+  // 3. Pure sticking: \ref af_accuracy "docs/agg-frag.md" measured the closure's drift independently: N_1 about 6 % low by the
   // time <k> = 8.5. The sample nearest <k> = 8.5 must show the theory low by 3-9 % (that statement
   // within +-50 % of itself, its precision as stated: "about").
   if (sticking_drift) {
@@ -144,7 +144,7 @@ int main(int argc, char** argv) {
     const double measured = value_at(monomers, best), expected = theory.number_fraction[best * kt];
     const double low = (measured - expected) / measured;
     std::snprintf(text, sizeof text,
-                  "sticking: at <k> = %.2f the theory's N_1 is %.2f %% low (ERRATA §12: about 6 %% at <k> = 8.5; "
+                  "sticking: at <k> = %.2f the theory's N_1 is %.2f %% low (docs/agg-frag.md: about 6 %% at <k> = 8.5; "
                   "accepted 3-9 %%)",
                   value_at(mean_size, best), 100.0 * low);
     report.require(text, low > 0.03 && low < 0.09);

@@ -1,4 +1,4 @@
-// Collision counts against seed 000 eq 36 (ERRATA §2), Figs 2 and 4. See README.md in this folder.
+// Collision counts against the DSMC notes, eq. (36) (\ref cm_frequency "docs/collision-model.md"), Figs 2 and 4. See README.md in this folder.
 #include <cmath>
 
 #include "theory/sonine.hpp"

@@ -24,9 +24,11 @@
 
 namespace gdsmc::validation {
 
+/// One validation run: its checked input and its output file.
 struct Case {
-  io::config::Config config;
+  io::config::Config config;  ///< the namelist, with the command line's overrides
   std::string file;  ///< the H5MD output
+  /// Where the Report is copied: `<file>.report.txt` (the docs quote it).
   std::string report_file() const { return file + ".report.txt"; }
 };
 
@@ -50,7 +52,9 @@ class Report {
              double z, double systematic = 0.0);
   /// A plain condition (for sanity checks that are not statistical).
   bool require(const std::string& what, bool condition);
+  /// A line of text in the report (no check).
   void note(const std::string& text);
+  /// 0 when every check passed, else 1; prints the summary line.
   int exit_code();
 
  private:
@@ -60,13 +64,14 @@ class Report {
   int checks_ = 0, failures_ = 0;
 };
 
+/// The observable `name` of the case's output file.
 io::h5md::ObservableData observable(const Case& c, const std::string& name);
 
 /// An independent exact value (DSMC without time step, many replicas, by programs other than this
-/// one; docs/sonine.md "How good first Sonine is"), when one is known for the case.
+/// one; \ref son_binary_gamma "docs/sonine.md"), when one is known for the case.
 struct ExactValue {
-  bool known = false;
-  double value = 0.0;
+  bool known = false;   ///< an exact value is known for the case
+  double value = 0.0;   ///< the value
   double error = 0.0;  ///< its standard error (0 where none is quoted)
 };
 /// gamma = T1/T2 of the dilute binary HCS: 3.7968 +- 0.0011 for mu = 10, delta = 2, w = 1,

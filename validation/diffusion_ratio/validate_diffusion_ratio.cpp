@@ -1,4 +1,4 @@
-// D_k/D_1 (seed 001 eq 19, ERRATA §8) against DSMC, Figs 4, 5, 7. See README.md.
+// D_k/D_1 (Bodrova and Osinsky 2024, eq. (19), \ref dif_coefficients "docs/diffusion-msd.md") against DSMC, Figs 4, 5, 7. See README.md.
 //
 // usage: validate_diffusion_ratio INPUT.nml [--set ...] [--output FILE] --gap g
 // `--gap`: the relative systematic allowance of the theory ratio for this case, measured once and
@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
     const auto msd = io::h5md::read_observable(run.file, root + "msd");
     if (!report.require("replicas > 1, so standard errors exist", !msd.error.empty())) return report.exit_code();
     // In the HCS every D_k(t) has the same time dependence, so the ratio of the MSD increments over
-    // the last decade of time is D_k/D_1 (seed 001 eqs 17, 19).
+    // the last decade of time is D_k/D_1 (Bodrova and Osinsky 2024, eqs. (17), (19), \ref dif_msd "docs/diffusion-msd.md").
     const std::size_t nt = msd.time.size(), e = nt - 1;
     std::size_t a = e;
     while (a > 1 && msd.time[a] > msd.time[e] / 10.0) --a;

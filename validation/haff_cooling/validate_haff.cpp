@@ -1,4 +1,4 @@
-// Haff cooling against ERRATA §3 (seed 000 Figs 1 and 3). See README.md in this folder.
+// Haff cooling against \ref haff_law "docs/haff-and-mixtures.md" (DSMC notes, Figs. 1 and 3). See README.md in this folder.
 #include <cmath>
 #include <numbers>
 
@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
   const double a2 = theory::sonine_a2(alpha);
   // The cooling-rate factor zeta/zeta_Maxwell of the HCS: the bracket of the Sonine approximations of
   // orders 4 and 5 (docs/sonine.md "Beyond first Sonine"), allowance half their spread. Was first
-  // Sonine 1 + 3 a2/16 (ERRATA §3) with 15 % of its correction.
+  // Sonine 1 + 3 a2/16 (\ref haff_sonine "docs/haff-and-mixtures.md") with 15 % of its correction.
   const auto bracket = theory::sonine_cumulant_bracket(alpha);
   const double sonine = bracket.cooling_factor;
   const double zeta0 = theory::haff_cooling_rate(n, sigma, chi, m, alpha, t0_temperature);

@@ -1,4 +1,4 @@
-// The reduced distributions of the binary HCS (seed 003 Figs 3 and 7). See README.md.
+// The reduced distributions of the binary HCS (Montanero and Garzo 2002, Figs. 3 and 7, \ref son_reduced_distributions "docs/sonine.md"). See README.md.
 #include <cmath>
 
 #include "theory/sonine.hpp"

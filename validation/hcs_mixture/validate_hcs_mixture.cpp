@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
                     100.0 * (maxwellian[k] - r) / r);
       report.note(text);
     }
-    // ERRATA §6 (independent DSMC): the first-Sonine cumulants are 9-14 % high for one species; allowance
+    // \ref son_one_species "docs/sonine.md" (independent DSMC): the first-Sonine cumulants are 9-14 % high for one species; allowance
     // 15 % (the known error --compare states, io/compare.hpp). For s > 2 species no independent estimate
     // of first Sonine's error exists (README.md): a consistency check, labelled as such.
     std::snprintf(text, sizeof text,

@@ -1,5 +1,5 @@
-// The homogeneous steady state under the Gaussian thermostat (seed 004 Figs 1-5, ERRATA §13) against
-// the HCS first-Sonine theory (seed 003 App. A, ERRATA §6). See README.md.
+// The homogeneous steady state under the Gaussian thermostat (Montanero 2003, Figs. 1-5, \ref eta_thermostat "docs/shear-viscosity.md") against
+// the HCS first-Sonine theory (Montanero and Garzo 2002, App. A, \ref son_binary "docs/sonine.md"). See README.md.
 #include <cmath>
 #include <cstdio>
 
@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
   gamma /= samples;
   gamma_error /= samples;
   if (s == 1) {
-    // The HSS has the HCS's c (ERRATA §13). Reference: the exact value (docs/sonine.md "How good it is":
+    // The HSS has the HCS's c (\ref eta_thermostat "docs/shear-viscosity.md"). Reference: the exact value (docs/sonine.md "How good it is":
     // independent DSMC without time step; 0.0959 at alpha = 0.5, 0.2078 at alpha = 0.3) with an allowance
     // of 0.001, its last digit; elsewhere the bracket of the Sonine approximations of orders 4 and 5
     // (docs/sonine.md "Beyond first Sonine"), its half-width the allowance (was 15 % of first Sonine).

@@ -1,8 +1,8 @@
-// Partial MSDs against seed 001 eq 17 (ERRATA §8), Figs 1, 2, 6, 9, 10. See README.md.
+// Partial MSDs against Bodrova and Osinsky 2024, eq. (17) (\ref dif_msd "docs/diffusion-msd.md"), Figs 1, 2, 6, 9, 10. See README.md.
 //
 // usage: validate_msd INPUT.nml [--set ...] [--output FILE] --gap g1,g2[,g3]
 // `--gap` gives, per species, the relative systematic allowance of eq 17 for this case: the gap
-// between eq 17 and DSMC measured once and stated in README.md (ERRATA §8: eq 17 is itself an
+// between eq 17 and DSMC measured once and stated in README.md (\ref dif_msd "docs/diffusion-msd.md": eq 17 is itself an
 // approximation), never adjusted to make a run pass.
 #include <cmath>
 #include <cstring>
@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
   const auto beta = run.config.viscoelastic_beta();
   const auto msd = validation::observable(run, "msd");
   if (!report.require("replicas > 1, so standard errors exist", !msd.error.empty())) return report.exit_code();
-  // Measurement from msd_start_time (seed 001 Fig 3, dashed lines): eq 17 then starts from the
+  // Measurement from msd_start_time (Bodrova and Osinsky 2024, Fig. 3, \ref dif_msd "docs/diffusion-msd.md", dashed lines): eq 17 then starts from the
   // theory's temperatures at that time, T_1 != T_2, and counts time from there.
   const double start = run.config.output.msd_start_time.value_or(0.0);
   std::vector<double> start_temperature = run.config.initial.temperature;
@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
                     100.0 * (measured / th - 1.0));
       report.check(name, measured, msd.error[i * s + k], th, 4.0, allowance);
     }
-  // An independent reference (issue 13): MSDs of seed 001 Figs 1-2 from an independent time-stepped
+  // An independent reference (issue 13): MSDs of Bodrova and Osinsky 2024, Figs. 1-2, \ref dif_msd "docs/diffusion-msd.md" from an independent time-stepped
   // DSMC program (8 runs of 5000 + 5000 particles, good to about 1 %; docs/diffusion-msd.md "How good
   // the theory is"): binary, alpha = 0.5, m = (1, 100), n = (0.1, 0.1), T_k(0) = 1, sigma_1 = 1,
   // sigma_2 = 1 or 100^(1/3). Tolerance 4 SE (both programs' SEs combined) + 1 % (its stated accuracy).

@@ -1,4 +1,4 @@
-// <R_k^2>/<R_1^2> at the end of the run against eq 17 for many species (seed 001 Fig 8). See README.md.
+// <R_k^2>/<R_1^2> at the end of the run against eq 17 for many species (Bodrova and Osinsky 2024, Fig. 8, \ref dif_msd "docs/diffusion-msd.md"). See README.md.
 //
 // usage: validate_msd_ratio INPUT.nml [--set ...] [--output FILE] --gap g
 #include <cmath>

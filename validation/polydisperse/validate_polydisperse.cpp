@@ -1,4 +1,4 @@
-// Polydisperse partial temperatures against the ERRATA §4 ODEs (seed 000 Fig 6). See README.md.
+// Polydisperse partial temperatures against the ODEs of \ref haff_mixture_odes "docs/haff-and-mixtures.md" (DSMC notes, Fig. 6). See README.md.
 // usage: validate_polydisperse INPUT.nml [--set ...] [--output F.h5] [--check curves|initial_slope]
 //   curves (default): T_k(t) and the pair events against the ODE solution over the whole run;
 //   initial_slope: dT_k/dt at t = 0 (exact for the Maxwellian start) from one run per replica.
@@ -15,7 +15,7 @@ using namespace gdsmc;
 
 namespace {
 
-// dT_k/dt at t = 0 (README.md "Initial slope"). A Maxwellian start makes the ERRATA §4 rates exact at
+// dT_k/dt at t = 0 (README.md "Initial slope"). A Maxwellian start makes the \ref haff_mixture_odes "docs/haff-and-mixtures.md" rates exact at
 // t = 0: they are the Boltzmann collision integrals of Maxwellians, and only later do the cumulants that
 // they omit grow. T_k(t) = T_k(0) + a t + b t^2 + O(t^3) with a = dT_k/dt(0) exact and b not (b depends
 // on how fast the cumulants grow), so the two first samples t1 < t2 give a without b:
@@ -83,7 +83,7 @@ int check_initial_slope(int argc, char** argv) {
   // slope shows the size of the O(t1 t2) term the sample times leave (a proxy: the DSMC's third
   // derivative is not the ODE's, but of the same order).
   const auto ode = theory::integrate_partial_temperatures(mix, t0, {t1, t2});
-  // Collisions per particle per unit time at t = 0: 2 x (events per volume and time) / n (ERRATA §2).
+  // Collisions per particle per unit time at t = 0: 2 x (events per volume and time) / n (\ref cm_mixture_rate "docs/collision-model.md").
   double events = 0.0;
   const auto pair_rate = theory::pair_collision_rate(mix, t0);
   for (std::size_t k = 0; k < s; ++k)
@@ -170,7 +170,7 @@ int main(int argc, char** argv) {
     }
   }
 
-  // Pair events: integrate the ERRATA §2 rates along the ODE solution on a fine grid.
+  // Pair events: integrate the \ref cm_pair_rate "docs/collision-model.md" rates along the ODE solution on a fine grid.
   {
     const double t_end = temperature.time.back();
     const std::size_t grid = 4001;

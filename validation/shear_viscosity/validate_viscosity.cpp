@@ -1,5 +1,5 @@
 // Shear viscosity of a one-component granular gas in uniform shear flow with the Gaussian
-// thermostat (seed 004 Fig 6; ERRATA §10, §13). See README.md.
+// thermostat (Montanero 2003, Fig. 6; \ref eta_one_species "docs/shear-viscosity.md", \ref eta_thermostat "docs/shear-viscosity.md"). See README.md.
 //
 // usage: validate_viscosity INPUT.nml [--set ...] [--output F.h5] [--check viscosity|energy_balance]
 //   viscosity: the time average of eta/eta_0 (second half of the run, mean +- SE over replicas)
@@ -20,7 +20,7 @@ namespace {
 
 // First-Sonine HSS theory against exact results, independent of this code: at alpha = 1 the first
 // Chapman-Enskog approximation is 1.6 % below the converged value 1.016 (Chapman and Cowling); for
-// alpha < 1, ERRATA §13 (independent DSMC): within 1 % for alpha >= 0.75, 2.8 % high at alpha = 0.6.
+// alpha < 1, \ref eta_measured "docs/shear-viscosity.md" (independent DSMC): within 1 % for alpha >= 0.75, 2.8 % high at alpha = 0.6.
 // Allowance: 1.6 % for alpha >= 0.75, then linear to 2.8 % at alpha = 0.6, 2.8 % below.
 double first_sonine_allowance(double alpha) {
   if (alpha >= 0.75) return 0.016;
@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
   const auto mix = c.mixture();
   const bool one = mix.size() == 1;
   if (mix.enskog) {
-    // Enskog (seed 004 Figs 10-12: one species, and the binary mixture against the solid fraction and
+    // Enskog (Montanero 2003, Figs. 10-12, \ref eta_mixture "docs/shear-viscosity.md": one species, and the binary mixture against the solid fraction and
     // the mass ratio). (1) The trace of the collisional transfer is the Enskog equation of state, exact
     // for the Enskog collision operator whatever the velocity distribution: a pair (i, j) collides along
     // e at the rate chi_ij sigma_ij^2 n_i n_j (g.e) Theta(g.e) and transfers m_ij sigma_ij (1 + alpha_ij)
@@ -135,13 +135,13 @@ int main(int argc, char** argv) {
                   100.0 * (theory_kinetic - kinetic) / kinetic);
     report.note(text);
     if (!one) {
-      // seed 004's reduction eta* = nu eta/(n T), nu = sqrt(pi) n sigma_12^2 v0 (Figs 10-12), at T = 1
+      // Montanero 2003's reduction eta* = nu eta/(n T), nu = sqrt(pi) n sigma_12^2 v0 (Figs 10-12), at T = 1
       // (eta/eta_0 does not depend on T; eta_0 of the elastic mixture at T = 1).
       const double nu = vt::binary_reduced_viscosity_frequency(mix, 1.0);
       const double eta0 = vt::elastic_mixture_viscosity(mix, 1.0);
       const double to_star = nu * eta0 / mix.total_density();
       std::snprintf(text, sizeof text,
-                    "in seed 004's units: eta* DSMC %.4f +- %.4f, first Sonine %.4f; eta_k* DSMC %.4f +- %.4f, "
+                    "in Montanero 2003's units: eta* DSMC %.4f +- %.4f, first Sonine %.4f; eta_k* DSMC %.4f +- %.4f, "
                     "first Sonine %.4f",
                     to_star * measured, to_star * error, to_star * theory_total, to_star * kinetic,
                     to_star * kinetic_error, to_star * theory_kinetic);
@@ -156,12 +156,12 @@ int main(int argc, char** argv) {
   const double hcs = one ? vt::dilute_reduced_viscosity(alpha, vt::State::homogeneous_cooling)
                          : vt::binary_viscosity(mix, 1.0, vt::State::homogeneous_cooling).reduced;
   report.note("HCS first Sonine for contrast (another state, not checked): " + std::to_string(hcs));
-  // Mixtures: ERRATA §13 (independent DSMC) finds the binary first-Sonine theory within about 1 % at
+  // Mixtures: \ref eta_mixture "docs/shear-viscosity.md" (independent DSMC) finds the binary first-Sonine theory within about 1 % at
   // alpha = 0.85 (mass ratio 3); that 1 % is the allowance of the mixture cases (alpha >= 0.85 only).
   const double allowance = one ? first_sonine_allowance(alpha) : 0.01;
   if (!one && alpha < 0.85) {
     // Below alpha = 0.85 no independent estimate of the mixture theory's error exists here: the
-    // difference is stated per point (seed 004 reports disagreement growing below alpha = 0.8).
+    // difference is stated per point (Montanero 2003 reports disagreement growing below alpha = 0.8).
     std::snprintf(text, sizeof text,
                   "mixture, alpha = %.2f: eta/eta_0 DSMC %.4f +- %.4f, HSS first Sonine %.4f: theory %+.2f %% (%.1f SE)",
                   alpha, measured, error, hss, 100.0 * (hss - measured) / measured, (hss - measured) / error);

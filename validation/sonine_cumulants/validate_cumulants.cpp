@@ -1,4 +1,4 @@
-// c1, c2 of the binary HCS against first Sonine (seed 003 Fig 2). See README.md.
+// c1, c2 of the binary HCS against first Sonine (Montanero and Garzo 2002, Fig. 2, \ref son_binary_cumulants "docs/sonine.md"). See README.md.
 #include <algorithm>
 #include <cmath>
 
@@ -33,7 +33,7 @@ OneSpeciesEstimate one_species_estimate(double alpha) {
 
 int main(int argc, char** argv) {
   const auto run = validation::run_case(argc, argv, "sonine_cumulants.h5");
-  // First Sonine overestimates the cumulants (ERRATA §6: 9-14 % for one species, c1 = 0.1280 +- 0.0004
+  // First Sonine overestimates the cumulants (\ref son_one_species "docs/sonine.md": 9-14 % for one species, c1 = 0.1280 +- 0.0004
   // against 0.1428 at mu = 2, alpha = 0.5). Allowance (issue 13): the one-species estimate of first
   // Sonine's relative error at the same alpha (above), where it is defined; else the gap measured with the
   // paper tier of this check, 20 % of the first-Sonine value (README.md), a consistency check only.

@@ -1,4 +1,4 @@
-// gamma = T1/T2 in the HCS against alpha, against first Sonine (seed 003 Figs 4, 5). See README.md.
+// gamma = T1/T2 in the HCS against alpha, against first Sonine (Montanero and Garzo 2002, Figs. 4, 5, \ref son_binary_gamma "docs/sonine.md"). See README.md.
 #include <cmath>
 
 #include "theory/theory.hpp"

@@ -1,4 +1,4 @@
-// gamma = T1/T2 of the Enskog HCS against n* (seed 003 Fig 6). See README.md.
+// gamma = T1/T2 of the Enskog HCS against n* (Montanero and Garzo 2002, Fig. 6, \ref son_binary_gamma "docs/sonine.md"). See README.md.
 #include <cmath>
 
 #include "theory/theory.hpp"
@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
     const double gamma = t.value[2 * i] / t.value[2 * i + 1];
     const double se = gamma * std::hypot(t.error[2 * i] / t.value[2 * i], t.error[2 * i + 1] / t.value[2 * i + 1]);
     // Allowance (issue 13; was 2 %): first Sonine's own correction |gamma(first Sonine) - gamma(Maxwellian)|
-    // at the same n* (the Maxwellian ODE with chi_ij, ERRATA §4-§5), an estimate of the next correction's
+    // at the same n* (the Maxwellian ODE with chi_ij, \ref haff_mixture_odes "docs/haff-and-mixtures.md", \ref cm_chi "docs/collision-model.md"), an estimate of the next correction's
     // size independent of this code's output (docs/sonine.md: at the two exact dilute cases the next
     // correction is 1/7 and 1/60 of it).
     const auto maxwell = theory::asymptotic_temperature_ratios(mix);

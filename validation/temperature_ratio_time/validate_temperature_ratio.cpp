@@ -1,4 +1,4 @@
-// gamma(t) = T1/T2 against the first-Sonine HCS value (seed 003 Fig 1). See README.md.
+// gamma(t) = T1/T2 against the first-Sonine HCS value (Montanero and Garzo 2002, Fig. 1, \ref son_binary_gamma "docs/sonine.md"). See README.md.
 #include <cmath>
 
 #include "theory/theory.hpp"
@@ -8,7 +8,7 @@ using namespace gdsmc;
 
 int main(int argc, char** argv) {
   const auto run = validation::run_case(argc, argv, "temperature_ratio_time.h5");
-  validation::Report report("temperature ratio against time (seed 003 Fig 1)", run.report_file());
+  validation::Report report("temperature ratio against time (Montanero and Garzo 2002, Fig. 1, docs/sonine.md)", run.report_file());
   const auto points = run.config.sweep_points();
   for (std::size_t p = 0; p < points.size(); ++p) {
     const auto mix = points[p].mixture();

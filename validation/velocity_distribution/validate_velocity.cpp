@@ -1,4 +1,4 @@
-// Relaxation to the Maxwellian and the cumulant of the HCS (seed 000 Fig 5). See README.md.
+// Relaxation to the Maxwellian and the cumulant of the HCS (DSMC notes, Fig. 5, \ref cm_relaxation "docs/collision-model.md"). See README.md.
 #include <gsl/gsl_cdf.h>
 
 #include <cmath>
