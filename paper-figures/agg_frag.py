@@ -44,7 +44,8 @@ def draw(case, title):
                     label=f"$k = {k + 1}$")
         if k < tn.shape[1]:
             ax.plot(tt[s], tn[s, k] / n0, "-", color=c)
-            residuals(ar, t[s], number[s, k], dnumber[s, k], fc.on_times(t[s], tt[s], tn[s, k]), kind="percent",
+            # in standard errors: the rare large clusters of early times have relative errors of 100 %
+            residuals(ar, t[s], number[s, k], dnumber[s, k], fc.on_times(t[s], tt[s], tn[s, k]), kind="se",
                       fmt=marker, mfc="none", color=c, ms=2.5)
     ax.set(xscale="log", yscale="log", ylabel=r"$N_k/N_0$")
     ax.legend(title="DSMC", title_fontsize="small")
@@ -55,17 +56,18 @@ def draw(case, title):
         y, dy = np.ravel(y), np.ravel(dy)
         yt, yv = np.array(th[key]["time"]), np.ravel(th[key]["value"])
         ax.errorbar(t[s], y[s], yerr=dy[s], fmt="o", mfc="none", color="C0", label="DSMC")
-        ax.plot(yt[s], yv[s], "-", color="k", lw=1, label="Smoluchowski, Maxwellian kernels")
+        ax.plot(yt[s], yv[s], "-", color="k", lw=1, label="Smoluchowski,\nMaxwellian kernels")
         residuals(ar, t[s], y[s], dy[s], fc.on_times(t[s], yt[s], yv[s]), kind="percent", fmt="o", mfc="none",
                   color="C0", ms=2.5)
         ax.set(xscale="log", ylabel=label)
-    axes[0, 1].legend()
+    axes[0, 2].legend(loc="upper left")
     for ar in axes[1]:
         ar.set(xlabel=r"$t$")
         ar.set_ylabel("")
     for ax in axes[0]:
         ax.tick_params(labelbottom=False)
-    axes[1, 0].set_ylabel(fc.PERCENT_LABEL)
+    axes[1, 0].set_ylabel(fc.SE_LABEL)
+    axes[1, 1].set_ylabel(fc.PERCENT_LABEL)
     fig.suptitle(f"{title}, $N_0 = {n0}$")
     save(fig, f"agg_frag_{case}")
 

@@ -40,7 +40,7 @@ RUNS = os.path.join(BUILD, "validation-output")
 THEORY = os.path.join(BUILD, "bin", "granular-theory")
 DOCS_DIR = None      # when set: the figures named in DOCS_STEMS are also written there as small PNGs
 DOCS_STEMS = ()
-DOCS_DPI = 110
+DOCS_DPI = 150
 
 
 def configure(build=None, out=None, docs_dir=None, docs_stems=()):
@@ -351,6 +351,10 @@ def ctest_command(build, cases):
     return f"ctest --test-dir {shown(build)} -R '^validation\\.({'|'.join(parts)})$'"
 
 
+def _tier_note(cmd):
+    return "" if "_quick" in cmd else " (paper tier: these cases have no quick variant)"
+
+
 def report(results, build):
     """Prints what was made and what not (with the commands to make it); returns the number of errors."""
     counts = {}
@@ -364,14 +368,16 @@ def report(results, build):
             tiers = sorted({tier(p) for p in d["used"]})
             print(f"  made     {stems}" + (f" ({', '.join(tiers)} runs)" if tiers else " (theory only)"))
         elif status == "partial":
+            cmd = ctest_command(build, d["missing"])
             print(f"  partial  {stems}: drawn without {', '.join(d['missing'])}\n"
-                  f"           to add them: {ctest_command(build, d['missing'])}")
+                  f"           to add them{_tier_note(cmd)}: {cmd}")
         elif status == "missing":
             if d.get("hint"):
                 print(f"  NOT MADE {stems}: {d['message']}\n           build it: {d['hint']}")
             else:
+                cmd = ctest_command(build, d["missing"])
                 print(f"  NOT MADE {stems}: validation runs missing: {', '.join(d['missing'])}\n"
-                      f"           run them: {ctest_command(build, d['missing'])}")
+                      f"           run them{_tier_note(cmd)}: {cmd}")
         else:
             print(f"  ERROR    {stems} ({fig.name}):\n" + "\n".join("           " + ln
                                                                    for ln in d["message"].rstrip().splitlines()))

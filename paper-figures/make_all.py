@@ -226,6 +226,22 @@ def check():
             failures.append(f"a figure changes the style: {style_drift()}")
         print(f"checked {len(paths)} scripts, {len(fc.REGISTRY)} figure functions ({len(stems)} figures)")
 
+    # the docs: every figure a page shows is in docs/figures/, is one make_all.py --docs writes, and is small
+    import re
+    shown = set()
+    for page in glob.glob(os.path.join(ROOT, "docs", "*.md")):
+        with open(page) as f:
+            shown |= set(re.findall(r"\]\(figures/([^)]+)\.png\)", f.read()))
+    for stem in sorted(shown):
+        path = os.path.join(ROOT, "docs", "figures", stem + ".png")
+        if stem not in DOCS_STEMS:
+            failures.append(f"docs show figures/{stem}.png, which make_all.py --docs does not write (DOCS_STEMS)")
+        if not os.path.exists(path):
+            failures.append(f"docs show figures/{stem}.png, which is not in docs/figures/")
+        elif os.path.getsize(path) > 150_000:
+            failures.append(f"docs/figures/{stem}.png has {os.path.getsize(path)} bytes (> 150 kB)")
+    print(f"checked {len(shown)} figures the docs show")
+
     for msg in failures:
         print("FAIL:", msg)
     if not failures:

@@ -57,7 +57,7 @@ def haff_figures():
     save(fig_c, "seed000_fig2_fig4_collisions")
 
 
-START_NAMES = {"shell": "start on a speed shell", "cube": "start uniform in a cube"}
+START_NAMES = {"shell": "from a speed shell", "cube": "from a uniform cube"}
 
 
 @figure("seed000_fig5_velocity")
@@ -74,15 +74,16 @@ def velocity_figure():
         start = START_NAMES[case.split("_")[1]]
         maxwell = np.exp(-mid * mid / 2) / np.sqrt(2 * np.pi)
         ax.errorbar(mid, h[-1], yerr=None if err is None else err[-1], fmt=marker, mfc="none", color=color,
-                    label=f"DSMC, {start}, final")
-        ax.plot(mid, h[0], ":", lw=1, color=color, label=f"DSMC, {start}, $t = 0$")
+                    label=f"DSMC, {start}")
+        ax.plot(mid, h[0], ":", lw=1, color=color)
         if err is not None:
             residuals(ar, mid, h[-1], err[-1], maxwell, kind="se", fmt=marker, mfc="none", color=color)
     x = np.linspace(edges[0], edges[-1], 400)
     ax.plot(x, np.exp(-x * x / 2) / np.sqrt(2 * np.pi), "k-", lw=1, label="Maxwellian")
-    ax.set(ylabel="probability density", yscale="log", ylim=(1e-6, 2))
+    ax.plot([], [], "k:", lw=1, label="initial distributions")
+    ax.set(ylabel="probability density", yscale="log", ylim=(1e-6, 30))
     ar.set(xlabel=r"$v_x/\sqrt{T/m}$")
-    ax.legend(loc="lower center")
+    ax.legend(loc="upper center", ncol=2, columnspacing=1.0)
     save(fig, "seed000_fig5_velocity")
 
 

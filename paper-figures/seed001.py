@@ -84,6 +84,8 @@ def slope_guide(ax, x0, x1, y0, power, label, ls="--", where="above"):
     ym = y0 * (xm / x0) ** power
     if where == "left":
         ax.annotate(label, (xm, ym), textcoords="offset points", xytext=(-8, 0), ha="right", va="center")
+    elif where == "below":
+        ax.annotate(label, (xm, ym), textcoords="offset points", xytext=(4, -12))
     else:
         ax.annotate(label, (xm, ym), textcoords="offset points", xytext=(-14, 6))
 
@@ -125,7 +127,7 @@ def msd_figure(case, title, filename, total=False, rescale=False, guides=("t^2",
     if "t" in guides:  # normal diffusion (Fig 1, dotted as in the paper)
         slope_guide(ax, xe / 30.0, xe, 3.0 * ye / 30.0, 1.0, "$t_s$", ls=":")
     if "t^(1/6)" in guides:
-        slope_guide(ax, xe / 1e3, xe, 3.0 * ye / 1e3 ** (1 / 6), 1.0 / 6.0, "$t^{1/6}$")
+        slope_guide(ax, xe / 1e3, xe, 3.0 * ye / 1e3 ** (1 / 6), 1.0 / 6.0, "$t^{1/6}$", where="below")
     ax.plot([], [], "k-", lw=1.2, label=f"lines: {THEORY_NAME}")
     ax.errorbar([], [], yerr=[], fmt="o", mfc="none", color="0.3", label="symbols: DSMC")
     ax.set(xscale="log", yscale="log", ylabel=r"$\langle R_k^2\rangle$")
@@ -251,7 +253,7 @@ def overlay_dsmc(ax, measured, want, fig_no, cases):
                 ax.errorbar([x], [r[k]], yerr=[e[k]], fmt=MARKERS[k - 1], ms=5, color=colors[k], mfc="none",
                             label=f"DSMC, {prefix}$D_{k + 1}/D_1$, last decade of $t$")
                 ax.plot([x], [r17[k]], "+", ms=8, mew=1.2, color="0.35",
-                        label=f"{THEORY_NAME}, same decade")
+                        label="MSD theory, same decade of $t$")
         shown += 1
         fc.note_used(m["path"])
         print(f"Fig {fig_no}: DSMC points from {m['name']}")
@@ -283,10 +285,10 @@ def fig4_fig5():
         x, r = ratio_line([1.0, 100.0], [1.0, s2], [0.1, 0.1], 0.5, "system:number_density", N2_LINE,
                           lambda n2: f"'0.1, {n2:.6g}'")
         note = f" (no theory below $n_2 = {x[0]:.1g}$)" if x[0] > N2_LINE[0] else ""
-        ax4.plot(x, r[:, 1], "-", color=color, lw=1.2, label=f"theory, long times, {label}{note}")
+        ax4.plot(x, r[:, 1], "-", color=color, lw=1.2, label=f"long-time theory, {label}{note}")
         x, r = ratio_line([1.0, 100.0], [1.0, s2], [0.1, 0.1], 0.5, "system:restitution", EPS_LINE,
                           lambda e: f"{e:g}")
-        ax5.plot(x, r[:, 1], "-", color=color, lw=1.2, label=f"theory, long times, {label}")
+        ax5.plot(x, r[:, 1], "-", color=color, lw=1.2, label=f"long-time theory, {label}")
     ax4.set(xscale="log", yscale="log", xlabel=r"$n_2$ ($n_1 = 0.1$)", ylabel=r"$D_2/D_1$",
             title=r"$m = 1, 100$, $\varepsilon = 0.5$")
     ax5.set(xlabel=r"restitution coefficient $\varepsilon$", ylabel=r"$D_2/D_1$", xlim=(0.0, 1.0), yscale="log",
@@ -319,7 +321,7 @@ def fig7():
     x, r = ratio_line(mass, diameter, [0.1] * 4, 0.5, "system:restitution", EPS_LINE, lambda e: f"{e:g}")
     fig, ax = plt.subplots(figsize=(COLUMN, 3.6))
     for k in range(1, 4):
-        ax.plot(x, r[:, k], "-", color=COLORS[k - 1], lw=1.2, label=f"theory, long times, $D_{k + 1}/D_1$")
+        ax.plot(x, r[:, k], "-", color=COLORS[k - 1], lw=1.2, label=f"long-time theory, $D_{k + 1}/D_1$")
     ax.set(xlabel=r"restitution coefficient $\varepsilon$", ylabel=r"$D_k/D_1$", xlim=(0.0, 1.0),
            title=r"$m_k = k$, $\sigma_k = k^{1/3}$, $n_k = 0.1$")
     ax.grid(alpha=0.3)
