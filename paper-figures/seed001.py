@@ -238,9 +238,18 @@ def sweep_x(variable, value):
     return nums[1] if "number_density" in variable else nums[0]
 
 
-def overlay_dsmc(ax, measured, want, fig_no, cases):
+def ratio_axes(measured, want, height):
+    """(fig, main axes, residual axes or None): a residual panel when DSMC points will be drawn."""
+    if any(want(m) is not None for m in measured):
+        return with_residuals(height=height + 1.0)
+    fig, ax = plt.subplots(figsize=(COLUMN, height))
+    return fig, ax, None
+
+
+def overlay_dsmc(fig, ax, ar, measured, want, fig_no, cases, xlabel):
     """Plots the DSMC D_k/D_1 points (and eq 17's ratio over the same decade of t) of the measurements for
-    which want(m) gives (colors per k, label prefix)."""
+    which want(m) gives (colors per k, label prefix); on `ar` (if any) DSMC against that ratio in percent.
+    The legend goes below the figure."""
     shown = 0
     for m in measured:
         spec = want(m)
@@ -254,6 +263,9 @@ def overlay_dsmc(ax, measured, want, fig_no, cases):
                             label=f"DSMC, {prefix}$D_{k + 1}/D_1$, last decade of $t$")
                 ax.plot([x], [r17[k]], "+", ms=8, mew=1.2, color="0.35",
                         label="MSD theory, same decade of $t$")
+                if ar is not None:
+                    residuals(ar, [x], [r[k]], [e[k]], [r17[k]], kind="percent", fmt=MARKERS[k - 1], ms=4,
+                              mfc="none", color=colors[k])
         shown += 1
         fc.note_used(m["path"])
         print(f"Fig {fig_no}: DSMC points from {m['name']}")
@@ -261,9 +273,10 @@ def overlay_dsmc(ax, measured, want, fig_no, cases):
         for c in cases:
             fc.note_missing(c)
         print(f"Fig {fig_no}: no diffusion_ratio_* DSMC outputs in {fc.runs_dir()}; theory lines only")
+    (ar if ar is not None else ax).set_xlabel(xlabel)
     h, lab = ax.get_legend_handles_labels()
     keep = dict(zip(lab, h))  # one legend entry per label
-    ax.legend(keep.values(), keep.keys(), loc="upper center", bbox_to_anchor=(0.5, -0.17), ncol=1)
+    fig.legend(keep.values(), keep.keys(), loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=1)
 
 
 def binary(m):
@@ -277,27 +290,7 @@ def sigma_kind(m):
 @figure("seed001_fig4_diffusion_ratio_n2", "seed001_fig5_diffusion_ratio_epsilon")
 def fig4_fig5():
     measured = dsmc_ratio_points()
-    fig4, ax4 = plt.subplots(figsize=(COLUMN, 3.4))
-    fig5, ax5 = plt.subplots(figsize=(COLUMN, 3.4))
     styles = {"equal": ("k", r"$\sigma_2 = 1$"), "material": ("C0", r"$\sigma_2 = 100^{1/3}$")}
-    for kind, s2 in (("equal", SIGMA2_EQUAL), ("material", SIGMA2_MATERIAL)):
-        color, label = styles[kind]
-        x, r = ratio_line([1.0, 100.0], [1.0, s2], [0.1, 0.1], 0.5, "system:number_density", N2_LINE,
-                          lambda n2: f"'0.1, {n2:.6g}'")
-        note = f" (no theory below $n_2 = {x[0]:.1g}$)" if x[0] > N2_LINE[0] else ""
-        ax4.plot(x, r[:, 1], "-", color=color, lw=1.2, label=f"long-time theory, {label}{note}")
-        x, r = ratio_line([1.0, 100.0], [1.0, s2], [0.1, 0.1], 0.5, "system:restitution", EPS_LINE,
-                          lambda e: f"{e:g}")
-        ax5.plot(x, r[:, 1], "-", color=color, lw=1.2, label=f"long-time theory, {label}")
-    ax4.set(xscale="log", yscale="log", xlabel=r"$n_2$ ($n_1 = 0.1$)", ylabel=r"$D_2/D_1$",
-            title=r"$m = 1, 100$, $\varepsilon = 0.5$")
-    ax5.set(xlabel=r"restitution coefficient $\varepsilon$", ylabel=r"$D_2/D_1$", xlim=(0.0, 1.0), yscale="log",
-            title=r"$m = 1, 100$, $n_1 = n_2 = 0.1$")
-    for ax in (ax4, ax5):
-        ax.grid(alpha=0.3, which="both")
-        ax.yaxis.set_major_locator(matplotlib.ticker.LogLocator(subs=(1.0, 2.0, 5.0)))
-        ax.yaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
-        ax.yaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
 
     def want(variable):
         def f(m):
@@ -307,8 +300,29 @@ def fig4_fig5():
             return (None, color), label + ", "
         return f
 
-    overlay_dsmc(ax4, measured, want("number_density"), 4, ("diffusion_ratio_fig4", "diffusion_ratio_fig4_sigma"))
-    overlay_dsmc(ax5, measured, want("restitution"), 5, ("diffusion_ratio_fig5", "diffusion_ratio_fig5_sigma"))
+    fig4, ax4, ar4 = ratio_axes(measured, want("number_density"), 3.0)
+    fig5, ax5, ar5 = ratio_axes(measured, want("restitution"), 3.0)
+    for kind, s2 in (("equal", SIGMA2_EQUAL), ("material", SIGMA2_MATERIAL)):
+        color, label = styles[kind]
+        x, r = ratio_line([1.0, 100.0], [1.0, s2], [0.1, 0.1], 0.5, "system:number_density", N2_LINE,
+                          lambda n2: f"'0.1, {n2:.6g}'")
+        note = f" (no theory below $n_2 = {x[0]:.1g}$)" if x[0] > N2_LINE[0] else ""
+        ax4.plot(x, r[:, 1], "-", color=color, lw=1.2, label=f"long-time theory, {label}{note}")
+        x, r = ratio_line([1.0, 100.0], [1.0, s2], [0.1, 0.1], 0.5, "system:restitution", EPS_LINE,
+                          lambda e: f"{e:g}")
+        ax5.plot(x, r[:, 1], "-", color=color, lw=1.2, label=f"long-time theory, {label}")
+    ax4.set(xscale="log", yscale="log", ylabel=r"$D_2/D_1$", title=r"$m = 1, 100$, $\varepsilon = 0.5$")
+    ax5.set(ylabel=r"$D_2/D_1$", xlim=(0.0, 1.0), yscale="log", title=r"$m = 1, 100$, $n_1 = n_2 = 0.1$")
+    for ax in (ax4, ax5):
+        ax.grid(alpha=0.3, which="both")
+        ax.yaxis.set_major_locator(matplotlib.ticker.LogLocator(subs=(1.0, 2.0, 5.0)))
+        ax.yaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+        ax.yaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+
+    overlay_dsmc(fig4, ax4, ar4, measured, want("number_density"), 4,
+                 ("diffusion_ratio_fig4", "diffusion_ratio_fig4_sigma"), r"$n_2$ ($n_1 = 0.1$)")
+    overlay_dsmc(fig5, ax5, ar5, measured, want("restitution"), 5,
+                 ("diffusion_ratio_fig5", "diffusion_ratio_fig5_sigma"), r"restitution coefficient $\varepsilon$")
     save(fig4, "seed001_fig4_diffusion_ratio_n2")
     save(fig5, "seed001_fig5_diffusion_ratio_epsilon")
 
@@ -319,14 +333,13 @@ def fig7():
     mass = [1.0, 2.0, 3.0, 4.0]
     diameter = [f"{k ** (1 / 3):.9f}" for k in (1, 2, 3, 4)]
     x, r = ratio_line(mass, diameter, [0.1] * 4, 0.5, "system:restitution", EPS_LINE, lambda e: f"{e:g}")
-    fig, ax = plt.subplots(figsize=(COLUMN, 3.6))
+    want = lambda m: ((None,) + COLORS[:3], "") if len(m["mass"]) == 4 and "restitution" in m["variable"] else None  # noqa: E731
+    fig, ax, ar = ratio_axes(measured, want, 3.0)
     for k in range(1, 4):
         ax.plot(x, r[:, k], "-", color=COLORS[k - 1], lw=1.2, label=f"long-time theory, $D_{k + 1}/D_1$")
-    ax.set(xlabel=r"restitution coefficient $\varepsilon$", ylabel=r"$D_k/D_1$", xlim=(0.0, 1.0),
-           title=r"$m_k = k$, $\sigma_k = k^{1/3}$, $n_k = 0.1$")
+    ax.set(ylabel=r"$D_k/D_1$", xlim=(0.0, 1.0), title=r"$m_k = k$, $\sigma_k = k^{1/3}$, $n_k = 0.1$")
     ax.grid(alpha=0.3)
-    overlay_dsmc(ax, measured, lambda m: ((None,) + COLORS[:3], "") if len(m["mass"]) == 4
-                 and "restitution" in m["variable"] else None, 7, ("diffusion_ratio_fig7",))
+    overlay_dsmc(fig, ax, ar, measured, want, 7, ("diffusion_ratio_fig7",), r"restitution coefficient $\varepsilon$")
     save(fig, "seed001_fig7_diffusion_ratio_4species")
 
 
