@@ -37,7 +37,7 @@ DOCS_STEMS = (
     "seed000_fig1_fig3_haff", "seed000_fig2_fig4_collisions", "seed000_fig5_velocity",
     "seed000_fig6_polydisperse", "seed003_fig1_gamma_time", "seed003_fig2_cumulants",
     "seed003_fig4_gamma_alpha_mu", "seed003_fig7_tail", "seed001_fig2_msd_binary",
-    "seed004_fig6_viscosity", "seed004_fig1_5_hss", "agg_frag_full",
+    "seed004_fig6_viscosity", "agg_frag_full", "hcs_mixture_temperature_ratios",
 )
 
 
