@@ -9,6 +9,7 @@ their validation runs are missing, with the ctest command that runs them.
 
 Command line of every script: [BUILD_DIR] [OUT_DIR] (defaults: build/, paper-figures/out/).
 """
+import glob
 import json
 import os
 import re
@@ -362,6 +363,10 @@ def report(results, build):
         counts[status] = counts.get(status, 0) + 1
     print()
     print("figures:", ", ".join(f"{n} {s}" for s, n in sorted(counts.items())))
+    runs = os.path.join(build, "validation-output")
+    if not glob.glob(os.path.join(runs, "*.h5")):
+        print(f"  no validation outputs in {shown(runs)}: run ctest --test-dir {shown(build)} -L quick -R "
+              "'^validation\\.' (reduced sizes) or -L paper (full sizes) first")
     for fig, status, d in results:
         stems = ", ".join(fig.stems)
         if status == "made":

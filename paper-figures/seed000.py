@@ -11,10 +11,9 @@ import h5py
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import figures_common as fc  # noqa: E402
-from figures_common import COLUMN, figure, pick, observable, theory, save, with_residuals, residuals  # noqa: E402
+from figures_common import figure, pick, observable, theory, save, with_residuals, residuals  # noqa: E402
 
 
 @figure("seed000_fig1_fig3_haff", "seed000_fig2_fig4_collisions")
