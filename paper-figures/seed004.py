@@ -89,7 +89,7 @@ def fig7_9():
             drawn = True
             x, eta, err, th = map(np.array, zip(*pts))
             ax.errorbar(x, eta, yerr=err, fmt=marker, mfc="none", color=f"C{k}", label=f"DSMC, $\\alpha = {alpha}$")
-            ax.plot(x, th, "--", color=f"C{k}")
+            ax.plot(x, th, "--x", color=f"C{k}", ms=5)
             residuals(ar, x, eta, err, th, kind="percent", fmt=marker, mfc="none", color=f"C{k}")
         ar.set(xlabel=label)
         ar.set_ylabel("")
@@ -98,7 +98,7 @@ def fig7_9():
         plt.close(fig)
         raise Missing("no shear viscosity outputs of mixtures", case="viscosity_fig7_mu3.0_alpha0.9")
     ars[0].set_ylabel(fc.PERCENT_LABEL)
-    axes[0].plot([], [], "k--", label="first Sonine, steady state")
+    axes[0].plot([], [], "k--x", ms=5, label="first Sonine, steady state")
     axes[0].legend()
     save(fig, "seed004_fig7_9_mixtures")
 
