@@ -12,7 +12,9 @@ file(GLOB reports ${REPORTS}/*.report.txt)
 set(body "# Validation results {#validation_results}\n\n"
   "The reports below were written by the validation programs when ctest ran them in this build "
   "tree (`ctest -L quick` or `ctest -L paper`). Each line: measured value +- its standard error over "
-  "replicas, theory, difference in standard errors, tolerance.\n\n")
+  "replicas, theory, difference in standard errors, tolerance. The figures drawn from these runs: "
+  "`cmake --build build --target figures` (PDF and PNG in build/figures/); \\ref validation_summary "
+  "shows them beside the measured numbers.\n\n")
 if(NOT reports)
   string(APPEND body "No validation has been run in this build tree yet.\n")
 endif()

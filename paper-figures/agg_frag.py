@@ -1,12 +1,13 @@
 #!/usr/bin/python3
 """Aggregation and fragmentation (seed 000 eqs 8-14, ERRATA §12) from the validation outputs: DSMC
 points (replica mean +- standard error) over the Smoluchowski rate equations of `granular-theory` for
-the same input, for pure sticking, rare reactions in a nearly elastic gas, and the full model.
+the same input, for pure sticking, rare reactions in a nearly elastic gas, and the full model, with the
+residuals (DSMC/theory - 1, in percent) below: the closure's drift is visible there.
 
 usage: /usr/bin/python3 paper-figures/agg_frag.py [BUILD_DIR] [OUT_DIR]
 Reads BUILD_DIR/validation-output/agg_frag_{sticking,rare,full}*.h5 (ctest -L validation; paper tier
-preferred, quick otherwise) and writes OUT_DIR/agg_frag_<case>.png: N_k(t) for k = 1..4, the monomer
-fraction, the mean cluster size <k> and the temperature per cluster T(t).
+preferred, quick otherwise) and writes OUT_DIR/agg_frag_<case>.pdf and .png: N_k(t) for k = 1..4, the
+monomer fraction, the mean cluster size <k> and the temperature per cluster T(t).
 """
 
 import h5py
@@ -15,12 +16,13 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from figures_common import pick, observable, theory, save, tier  # noqa: E402
+import figures_common as fc  # noqa: E402
+from figures_common import PAGE, figure, pick, observable, theory, save, residuals  # noqa: E402
 
-CASES = (("sticking", "pure sticking"), ("rare", "rare reactions, alpha = 0.99"), ("full", "full model"))
+CASES = (("sticking", "pure sticking"), ("rare", r"rare reactions, $\alpha = 0.99$"), ("full", "full model"))
 
 
-def figure(case, title):
+def draw(case, title):
     path = pick(f"agg_frag_{case}")
     th = theory(path)
     with h5py.File(path) as f:
@@ -31,27 +33,59 @@ def figure(case, title):
         n0 = f["parameters/dsmc"].attrs["n_particles"]
     tt = np.array(th["number"]["time"])
     tn = np.array(th["number"]["value"])
-    fig, axes = plt.subplots(2, 2, figsize=(9, 7))
-    ax = axes[0, 0]
-    for k in range(min(4, number.shape[1])):
-        ax.errorbar(t[1:], number[1:, k] / n0, yerr=dnumber[1:, k] / n0, fmt="o", ms=3, color=f"C{k}",
-                    label=f"DSMC, k = {k + 1}")
+    fig, axes = plt.subplots(2, 4, figsize=(PAGE, 3.3), sharex=True,
+                             gridspec_kw=dict(height_ratios=(3.0, 1.3)))
+    fig._gdsmc_hspace = 0.06
+    s = slice(1, None)
+    ax, ar = axes[:, 0]
+    for k, marker in zip(range(min(4, number.shape[1])), "os^D"):
+        c = f"C{k}"
+        ax.errorbar(t[s], number[s, k] / n0, yerr=dnumber[s, k] / n0, fmt=marker, mfc="none", color=c,
+                    label=f"$k = {k + 1}$")
         if k < tn.shape[1]:
-            ax.plot(tt[1:], tn[1:, k] / n0, "-", color=f"C{k}")
-    ax.set(xscale="log", yscale="log", xlabel="t", ylabel="N_k / N_0", title="clusters of size k (lines: theory)")
-    ax.legend(fontsize=7)
-    for ax, (y, dy, key, label) in zip(
-        (axes[0, 1], axes[1, 0], axes[1, 1]),
-        ((mono, dmono, "monomer_fraction", "N_1 / N_0"), (size, dsize, "mean_size", "<k> = N_0 / N"),
-         (temp, dtemp, "total_temperature", "T per cluster"))):
-        ax.errorbar(t[1:], y[1:], yerr=dy[1:], fmt="o", ms=3, label="DSMC")
-        ax.plot(th[key]["time"][1:], th[key]["value"][1:], "-", label="Smoluchowski, Maxwellian kernels")
-        ax.set(xscale="log", xlabel="t", ylabel=label)
-        ax.legend(fontsize=7)
-    fig.suptitle(f"Aggregation and fragmentation: {title} (N_0 = {n0}, {tier(path)})")
-    save(fig, f"agg_frag_{case}.png")
+            ax.plot(tt[s], tn[s, k] / n0, "-", color=c)
+            # in standard errors: the rare large clusters of early times have relative errors of 100 %
+            residuals(ar, t[s], number[s, k], dnumber[s, k], fc.on_times(t[s], tt[s], tn[s, k]), kind="se",
+                      fmt=marker, mfc="none", color=c, ms=2.5)
+    ax.set(xscale="log", yscale="log", ylabel=r"$N_k/N_0$")
+    ax.legend(title="DSMC", title_fontsize="small")
+    for (ax, ar), (y, dy, key, label) in zip(
+        (axes[:, 1], axes[:, 2], axes[:, 3]),
+        ((mono, dmono, "monomer_fraction", r"$N_1/N$"), (size, dsize, "mean_size", r"$\langle k\rangle = N_0/N$"),
+         (temp, dtemp, "total_temperature", r"$T$ per cluster"))):
+        y, dy = np.ravel(y), np.ravel(dy)
+        yt, yv = np.array(th[key]["time"]), np.ravel(th[key]["value"])
+        ax.errorbar(t[s], y[s], yerr=dy[s], fmt="o", mfc="none", color="C0", label="DSMC")
+        ax.plot(yt[s], yv[s], "-", color="k", lw=1, label="Smoluchowski,\nMaxwellian kernels")
+        residuals(ar, t[s], y[s], dy[s], fc.on_times(t[s], yt[s], yv[s]), kind="percent", fmt="o", mfc="none",
+                  color="C0", ms=2.5)
+        ax.set(xscale="log", ylabel=label)
+    axes[0, 2].legend(loc="upper left")
+    for ar in axes[1]:
+        ar.set(xlabel=r"$t$")
+        ar.set_ylabel("")
+    for ax in axes[0]:
+        ax.tick_params(labelbottom=False)
+    axes[1, 0].set_ylabel(fc.SE_LABEL)
+    axes[1, 1].set_ylabel(fc.PERCENT_LABEL)
+    fig.suptitle(f"{title}, $N_0 = {n0}$")
+    save(fig, f"agg_frag_{case}")
+
+
+@figure("agg_frag_sticking")
+def sticking():
+    draw(*CASES[0])
+
+
+@figure("agg_frag_rare")
+def rare():
+    draw(*CASES[1])
+
+
+@figure("agg_frag_full")
+def full():
+    draw(*CASES[2])
 
 
 if __name__ == "__main__":
-    for case, title in CASES:
-        figure(case, title)
+    fc.main()

@@ -1,48 +1,68 @@
 #!/usr/bin/python3
-"""Seed 000 Figs 1-6 from the validation outputs: DSMC points (replica mean +- standard error) over
-the theory lines of `granular-theory` for the same input.
+"""Seed 000 Figs 1-6 from the validation outputs: DSMC points (replica mean +- standard error) over the
+theory lines of `granular-theory` for the same input, with residual panels (DSMC minus theory) below.
 
 usage: /usr/bin/python3 paper-figures/seed000.py [BUILD_DIR] [OUT_DIR]
 Reads BUILD_DIR/validation-output/*.h5 (written by `ctest -L validation`, paper tier preferred,
-quick tier otherwise) and writes OUT_DIR/seed000_fig{1..6}.png (default OUT_DIR: paper-figures/out).
+quick tier otherwise) and writes OUT_DIR/seed000_*.pdf and .png (default OUT_DIR: paper-figures/out).
 """
 
 import h5py
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from figures_common import pick, observable, theory, save  # noqa: E402
+import figures_common as fc  # noqa: E402
+from figures_common import figure, pick, observable, theory, save, with_residuals, residuals  # noqa: E402
 
 
+@figure("seed000_fig1_fig3_haff", "seed000_fig2_fig4_collisions")
 def haff_figures():
-    fig_t, ax_t = plt.subplots(figsize=(5.5, 4))
-    fig_c, ax_c = plt.subplots(figsize=(5.5, 4))
-    for alpha, color in (("0.9", "C0"), ("0.5", "C1")):
+    fig_t, ax_t, ar_t = with_residuals()
+    fig_c, ax_c, ar_c = with_residuals()
+    for alpha, color, marker in (("0.9", "C0", "o"), ("0.5", "C1", "s")):
         path = pick(f"haff_cooling_alpha{alpha}")
         th = theory(path)
         with h5py.File(path) as f:
             t, T, dT = observable(f, "total_temperature")
             _, C, dC = observable(f, "collisions_per_particle")
-            n = f["parameters/dsmc"].attrs["n_particles"]
-        ax_t.errorbar(t[1:], T[1:], yerr=dT[1:], fmt="o", ms=3, color=color, label=f"DSMC, alpha = {alpha}, N = {n}")
         tt, TT = np.array(th["temperature"]["time"]), np.array(th["temperature"]["value"])[:, 0]
-        ax_t.plot(tt[1:], TT[1:], "-", color=color, label="Haff's law (ERRATA §3)")
-        ax_c.errorbar(T, C, yerr=dC, fmt="o", ms=3, color=color, label=f"DSMC, alpha = {alpha}")
-        ax_c.plot(TT, th["collisions_per_particle"]["value"], "-", color=color, label="eq 36 along Haff")
-    ax_t.set(xscale="log", yscale="log", xlabel="t", ylabel="T(t) / T0", title="Seed 000 Figs 1, 3: Haff cooling")
-    ax_t.legend(fontsize=8)
-    ax_c.set(xscale="log", xlabel="T / T0", ylabel="collisions per particle",
-             title="Seed 000 Figs 2, 4: collisions against temperature")
-    ax_c.legend(fontsize=8)
-    save(fig_t, "seed000_fig1_fig3_haff.png")
-    save(fig_c, "seed000_fig2_fig4_collisions.png")
+        CC = np.array(th["collisions_per_particle"]["value"], float).reshape(len(tt), -1)[:, 0]
+        name = fc.approximation(th, "temperature")
+        s = slice(1, None)
+        ax_t.errorbar(t[s], T[s], yerr=dT[s], fmt=marker, mfc="none", color=color,
+                      label=rf"DSMC, $\alpha = {alpha}$")
+        ax_t.plot(tt[s], TT[s], "-", color=color)
+        residuals(ar_t, t[s], T[s], dT[s], fc.on_times(t[s], tt[s], TT[s]), kind="percent", fmt=marker,
+                  mfc="none", color=color)
+        ax_c.errorbar(T, C, yerr=dC, fmt=marker, mfc="none", color=color, label=rf"DSMC, $\alpha = {alpha}$")
+        ax_c.plot(TT, CC, "-", color=color)
+        cname = fc.approximation(th, "collisions_per_particle")
+        # at the same temperature: the theory line C(T) interpolated in ln T (T falls with t)
+        inside = (T >= TT.min()) & (T <= TT.max())  # no extrapolation of the line
+        inside[0] = False
+        C_at_T = np.interp(-np.log(T[inside]), -np.log(TT), CC)
+        residuals(ar_c, T[inside], C[inside], dC[inside], C_at_T, kind="percent", fmt=marker, mfc="none",
+                  color=color)
+    ax_t.plot([], [], "k-", label=f"Haff's law, {name} cooling rate")
+    ax_c.plot([], [], "k-", label=f"{cname} collision rate along Haff's law")
+    ax_t.set(xscale="log", yscale="log", ylabel=r"$T(t)/T_0$")
+    ar_t.set(xscale="log", xlabel=r"$t$")
+    ax_t.legend()
+    ax_c.set(xscale="log", ylabel="collisions per particle")
+    ar_c.set(xscale="log", xlabel=r"$T/T_0$")
+    ax_c.legend()
+    save(fig_t, "seed000_fig1_fig3_haff")
+    save(fig_c, "seed000_fig2_fig4_collisions")
 
 
+START_NAMES = {"shell": "from a speed shell", "cube": "from a uniform cube"}
+
+
+@figure("seed000_fig5_velocity")
 def velocity_figure():
-    fig, ax = plt.subplots(figsize=(5.5, 4))
-    for case, marker in (("velocity_shell", "o"), ("velocity_cube", "s")):
+    fig, ax, ar = with_residuals()
+    for (case, marker), color in zip((("velocity_shell", "o"), ("velocity_cube", "s")), ("C0", "C1")):
         path = pick(case)
         with h5py.File(path) as f:
             g = f["observables/velocity_histogram"]
@@ -50,34 +70,46 @@ def velocity_figure():
             h = g["species_1/value"][()]
             err = g["species_1/error"][()] if "error" in g["species_1"] else None
         mid = 0.5 * (edges[1:] + edges[:-1])
-        ax.errorbar(mid, h[-1], yerr=None if err is None else err[-1], fmt=marker, ms=3,
-                    label=f"DSMC, start '{case.split('_')[1]}', end of run")
-        ax.plot(mid, h[0], ":", lw=1, label=f"start '{case.split('_')[1]}', t = 0")
+        start = START_NAMES[case.split("_")[1]]
+        maxwell = np.exp(-mid * mid / 2) / np.sqrt(2 * np.pi)
+        ax.errorbar(mid, h[-1], yerr=None if err is None else err[-1], fmt=marker, mfc="none", color=color,
+                    label=f"DSMC, {start}")
+        ax.plot(mid, h[0], ":", lw=1, color=color)
+        if err is not None:
+            residuals(ar, mid, h[-1], err[-1], maxwell, kind="se", fmt=marker, mfc="none", color=color)
     x = np.linspace(edges[0], edges[-1], 400)
-    ax.plot(x, np.exp(-x * x / 2) / np.sqrt(2 * np.pi), "k-", label="Maxwellian")
-    ax.set(xlabel="v_x / sqrt(T/m)", ylabel="probability density", yscale="log", ylim=(1e-6, 1),
-           title="Seed 000 Fig 5: velocity distribution (elastic)")
-    ax.legend(fontsize=8)
-    save(fig, "seed000_fig5_velocity.png")
+    ax.plot(x, np.exp(-x * x / 2) / np.sqrt(2 * np.pi), "k-", lw=1, label="Maxwellian")
+    ax.plot([], [], "k:", lw=1, label="initial distributions")
+    ax.set(ylabel="probability density", yscale="log", ylim=(1e-6, 30))
+    ar.set(xlabel=r"$v_x/\sqrt{T/m}$")
+    ax.legend(loc="upper center", ncol=2, columnspacing=1.0)
+    save(fig, "seed000_fig5_velocity")
 
 
+@figure("seed000_fig6_polydisperse")
 def polydisperse_figure():
     path = pick("polydisperse")
     th = theory(path)
-    fig, ax = plt.subplots(figsize=(5.5, 4))
+    fig, ax, ar = with_residuals(height=3.6)
     with h5py.File(path) as f:
         t, T, dT = observable(f, "temperature")
         masses = f["parameters/system"].attrs["mass"]
     tt, TT = np.array(th["temperature"]["time"]), np.array(th["temperature"]["value"])
-    for k in range(T.shape[1]):
-        ax.errorbar(t[1:], T[1:, k], yerr=dT[1:, k], fmt="o", ms=3, color=f"C{k}", label=f"DSMC, m = {masses[k]:g}")
-        ax.plot(tt[1:], TT[1:, k], "-", color=f"C{k}", label="ODE (ERRATA §4, CVODE)")
-    ax.set(xscale="log", yscale="log", xlabel="t", ylabel="T_k(t)", title="Seed 000 Fig 6: polydisperse cooling")
-    ax.legend(fontsize=8)
-    save(fig, "seed000_fig6_polydisperse.png")
+    name = fc.approximation(th, "temperature")
+    s = slice(1, None)
+    for k, marker in zip(range(T.shape[1]), "os^D"):
+        c = f"C{k}"
+        ax.errorbar(t[s], T[s, k], yerr=dT[s, k], fmt=marker, mfc="none", color=c,
+                    label=rf"DSMC, $m_{k + 1} = {masses[k]:g}$")
+        ax.plot(tt[s], TT[s, k], "-", color=c)
+        residuals(ar, t[s], T[s, k], dT[s, k], fc.on_times(t[s], tt[s], TT[s, k]), kind="percent", fmt=marker,
+                  mfc="none", color=c, ms=2.5)
+    ax.plot([], [], "k-", label=f"{name} temperature equations")
+    ax.set(xscale="log", yscale="log", ylabel=r"$T_k(t)$")
+    ar.set(xscale="log", xlabel=r"$t$")
+    ax.legend()
+    save(fig, "seed000_fig6_polydisperse")
 
 
 if __name__ == "__main__":
-    haff_figures()
-    velocity_figure()
-    polydisperse_figure()
+    fc.main()

@@ -5,13 +5,13 @@ ratios of diffusion coefficients D_k/D_1 (eq 19, long-time limit) against n_2 an
 
 usage: /usr/bin/python3 paper-figures/seed001.py [BUILD_DIR] [OUT_DIR]
 Reads BUILD_DIR/validation-output/msd_fig{1,2,6,9,10}.h5 (written by `ctest -L validation`, paper tier
-preferred, quick tier otherwise) and writes OUT_DIR/seed001_fig{N}_*.png (default OUT_DIR:
+preferred, quick tier otherwise) and writes OUT_DIR/seed001_fig{N}_*.pdf and .png (default OUT_DIR:
 paper-figures/out). Figs 4, 5, 7 are theory lines (`granular-theory` with a `&sweep`, temporary
 namelists only) with DSMC points only when `diffusion_ratio_*` outputs exist. A figure whose DSMC output
-is missing is skipped with a note.
+is missing is reported as not made (make_all.py says which ctest command runs it).
 
 Eq 17 is an approximation: DSMC lies up to ~14-16 % below it for the light species (ERRATA §8,
-validation/msd_binary/README.md), which the lower panels (DSMC / eq 17) show.
+validation/msd_binary/README.md), which the residual panels (DSMC/eq 17 - 1, in percent) show.
 """
 import glob
 import os
@@ -23,7 +23,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from figures_common import RUNS, pick, tier, observable, run_theory, theory, save, Missing, TheoryError  # noqa: E402
+import figures_common as fc  # noqa: E402
+from figures_common import (COLUMN, figure, pick, observable, run_theory, theory, save, Missing,  # noqa: E402
+                            TheoryError, with_residuals, residuals)
 
 
 LINE_SAMPLES = 161  # sample times of the smooth eq 17 lines (the DSMC runs have 41)
@@ -68,8 +70,11 @@ def msd_data(path):
     return d
 
 
+THEORY_NAME = "Bodrova-Osinsky theory"
+
+
 def species_label(d, k):
-    return f"m = {d['mass'][k]:g}, sigma = {d['diameter'][k]:.3g}"
+    return f"$m_{k + 1} = {d['mass'][k]:g}$, $\\sigma_{k + 1} = {d['diameter'][k]:.3g}$"
 
 
 def slope_guide(ax, x0, x1, y0, power, label, ls="--", where="above"):
@@ -78,18 +83,15 @@ def slope_guide(ax, x0, x1, y0, power, label, ls="--", where="above"):
     xm = np.sqrt(x0 * x1)
     ym = y0 * (xm / x0) ** power
     if where == "left":
-        ax.annotate(label, (xm, ym), textcoords="offset points", xytext=(-8, 0), ha="right", va="center",
-                    fontsize=9)
+        ax.annotate(label, (xm, ym), textcoords="offset points", xytext=(-8, 0), ha="right", va="center")
+    elif where == "below":
+        ax.annotate(label, (xm, ym), textcoords="offset points", xytext=(4, -12))
     else:
-        ax.annotate(label, (xm, ym), textcoords="offset points", xytext=(-14, 6), fontsize=9)
+        ax.annotate(label, (xm, ym), textcoords="offset points", xytext=(-14, 6))
 
 
-def msd_figure(case, fig_no, title, filename, total=False, rescale=False, guides=("t^2",)):
-    try:
-        path = pick(case)
-    except Missing as e:
-        print(f"Fig {fig_no} skipped: {e}")
-        return
+def msd_figure(case, title, filename, total=False, rescale=False, guides=("t^2",)):
+    path = pick(case)
     d = msd_data(path)
     S = d["R"].shape[1]
     t, tl = d["t"], d["tl"]
@@ -98,45 +100,42 @@ def msd_figure(case, fig_no, title, filename, total=False, rescale=False, guides
         xd, xl = rescaled_time(t, d["T"][:, 0]), rescaled_time(tl, d["Tl"][:, 0])
     else:
         xd, xl = t, tl
-    fig, (ax, ar) = plt.subplots(2, 1, figsize=(6.4, 6.4), sharex=True, gridspec_kw=dict(height_ratios=(3, 1.2)))
+    fig, ax, ar = with_residuals(width=COLUMN * 1.25, height=4.0)
     sel, sl = t > 0, tl > 0
     for k in range(S):
         c = COLORS[k]
-        ax.plot(xl[sl], d["Rl"][sl, k], "-", color=c, lw=1.5, label=f"eq 17, {species_label(d, k)}")
-        ax.errorbar(xd[sel], d["R"][sel, k], yerr=d["dR"][sel, k], fmt=MARKERS[k], ms=4, mfc="none", color=c,
-                    capsize=2, label=f"DSMC, species {k + 1}")
-        ar.errorbar(xd[sel], d["R"][sel, k] / d["Rth"][sel, k], yerr=d["dR"][sel, k] / d["Rth"][sel, k],
-                    fmt=MARKERS[k], ms=3.5, mfc="none", color=c, capsize=1.5)
+        ax.plot(xl[sl], d["Rl"][sl, k], "-", color=c, lw=1.2, label=species_label(d, k))
+        ax.errorbar(xd[sel], d["R"][sel, k], yerr=d["dR"][sel, k], fmt=MARKERS[k], mfc="none", color=c)
+        residuals(ar, xd[sel], d["R"][sel, k], d["dR"][sel, k], d["Rth"][sel, k], kind="percent", fmt=MARKERS[k],
+                  mfc="none", color=c, ms=2.5)
     if total:  # eq 16: number-fraction weighted mean of the partial MSDs
         x = d["x"]
         Rt_l = d["Rl"] @ x
         Rt_th = d["Rth"] @ x
         Rt = d["R"] @ x
         dRt = np.sqrt((d["dR"] ** 2) @ (x ** 2))  # species treated as independent
-        ax.plot(xl[sl], Rt_l[sl], "--", color="k", lw=1.5, label="eq 16 total, from eq 17")
-        ax.errorbar(xd[sel], Rt[sel], yerr=dRt[sel], fmt="x", ms=5, color="k", capsize=2,
-                    label="DSMC total (eq 16)")
-        ar.errorbar(xd[sel], Rt[sel] / Rt_th[sel], yerr=dRt[sel] / Rt_th[sel], fmt="x", ms=4, color="k",
-                    capsize=1.5)
+        ax.plot(xl[sl], Rt_l[sl], "--", color="k", lw=1.2, label=r"whole gas $\langle R^2\rangle$")
+        ax.errorbar(xd[sel], Rt[sel], yerr=dRt[sel], fmt="x", color="k")
+        residuals(ar, xd[sel], Rt[sel], dRt[sel], Rt_th[sel], kind="percent", fmt="x", color="k", ms=3)
     # slope guides, offset from the light species' line so they do not hide data
     x0 = xl[sl][0]
     y_first = d["Rl"][sl, 0][0]
     if "t^2" in guides:
         x1 = x0 * 30.0
-        slope_guide(ax, x0, x1, 4.0 * y_first, 2.0, "t_s^2" if rescale else "t^2", where="left")
+        slope_guide(ax, x0, x1, 4.0 * y_first, 2.0, "$t_s^2$" if rescale else "$t^2$", where="left")
     xe, ye = xl[sl][-1], d["Rl"][sl][-1].max()  # late guides end 3x above the highest line
     if "t" in guides:  # normal diffusion (Fig 1, dotted as in the paper)
-        slope_guide(ax, xe / 30.0, xe, 3.0 * ye / 30.0, 1.0, "t_s", ls=":")
+        slope_guide(ax, xe / 30.0, xe, 3.0 * ye / 30.0, 1.0, "$t_s$", ls=":")
     if "t^(1/6)" in guides:
-        slope_guide(ax, xe / 1e3, xe, 3.0 * ye / 1e3 ** (1 / 6), 1.0 / 6.0, "t^(1/6)")
-    ax.set(xscale="log", yscale="log", ylabel="<R_k^2>")
-    ax.set_title(title + f"\n(N = {d['N']}, {d['replicas']} replicas, {tier(path)})", fontsize=10)
-    ax.legend(fontsize=7.5, ncol=2, loc="lower right")
-    ar.axhline(1.0, color="0.5", lw=0.8)
-    ar.set(xlabel="t_s = int sqrt(T_1(t)/T_1(0)) dt" if rescale else "t", ylabel="DSMC / eq 17")
+        slope_guide(ax, xe / 1e3, xe, 3.0 * ye / 1e3 ** (1 / 6), 1.0 / 6.0, "$t^{1/6}$", where="below")
+    ax.plot([], [], "k-", lw=1.2, label=f"lines: {THEORY_NAME}")
+    ax.errorbar([], [], yerr=[], fmt="o", mfc="none", color="0.3", label="symbols: DSMC")
+    ax.set(xscale="log", yscale="log", ylabel=r"$\langle R_k^2\rangle$")
+    ax.set_title(title)
+    ax.legend(loc="lower right")
+    ar.set(xlabel=r"$t_s = \int_0^t \sqrt{T_1(t')/T_1(0)}\,dt'$" if rescale else "$t$")
     lo, hi = ar.get_ylim()
-    ar.set_ylim(min(lo, 0.8), max(hi, 1.2))
-    fig.tight_layout()
+    ar.set_ylim(min(lo, -20), max(hi, 20))
     save(fig, filename)
 
 
@@ -203,7 +202,7 @@ def dsmc_ratio_points():
     """D_k/D_1 measured by the `diffusion_ratio_*` validation cases (validation/diffusion_ratio), if any:
     a list of dicts (system parameters, sweep variable, rows of (value, DSMC ratio, its SE, eq 17's ratio
     over the same decade)). The paper tier of a case is preferred to its quick variant."""
-    files = sorted(glob.glob(os.path.join(RUNS, "diffusion_ratio_*.h5")))
+    files = sorted(glob.glob(os.path.join(fc.runs_dir(), "diffusion_ratio_*.h5")))
     names = {os.path.basename(p)[:-3] for p in files}
     out = []
     for p in files:
@@ -221,7 +220,7 @@ def dsmc_ratio_points():
                     t, R, dR = observable(f[f"sweep/point_{i + 1}"], "msd")
                     rows.append([v, *increment_ratio(t, R, dR), t])
                 m = dict(name=name, variable=variable, mass=s["mass"], diameter=s["diameter"],
-                         tier=tier(p), N=dsmc["n_particles"], replicas=dsmc["replicas"])
+                         path=p, N=dsmc["n_particles"], replicas=dsmc["replicas"])
             pts = theory(p)["points"]  # eq 17 on the same sample times, per sweep point
             for row, pt in zip(rows, pts):
                 assert np.allclose(pt["msd"]["time"], row[3], rtol=1e-9), "theory and DSMC sample times differ"
@@ -239,9 +238,18 @@ def sweep_x(variable, value):
     return nums[1] if "number_density" in variable else nums[0]
 
 
-def overlay_dsmc(ax, measured, want, fig_no):
+def ratio_axes(measured, want, height):
+    """(fig, main axes, residual axes or None): a residual panel when DSMC points will be drawn."""
+    if any(want(m) is not None for m in measured):
+        return with_residuals(height=height + 1.0)
+    fig, ax = plt.subplots(figsize=(COLUMN, height))
+    return fig, ax, None
+
+
+def overlay_dsmc(fig, ax, ar, measured, want, fig_no, cases, xlabel):
     """Plots the DSMC D_k/D_1 points (and eq 17's ratio over the same decade of t) of the measurements for
-    which want(m) gives (colors per k, label prefix)."""
+    which want(m) gives (colors per k, label prefix); on `ar` (if any) DSMC against that ratio in percent.
+    The legend goes below the figure."""
     shown = 0
     for m in measured:
         spec = want(m)
@@ -251,18 +259,24 @@ def overlay_dsmc(ax, measured, want, fig_no):
         for v, r, e, r17 in m["rows"]:
             x = sweep_x(m["variable"], v)
             for k in range(1, len(r)):
-                ax.errorbar([x], [r[k]], yerr=[e[k]], fmt=MARKERS[k - 1], ms=6, color=colors[k], mfc="none",
-                            capsize=3, label=f"DSMC {prefix}D_{k + 1}/D_1, last decade (N = {m['N']}, "
-                                             f"{m['replicas']} rep., {m['tier']})")
-                ax.plot([x], [r17[k]], "+", ms=9, mew=1.4, color="0.35",
-                        label="eq 17 over the same decade of t")
+                ax.errorbar([x], [r[k]], yerr=[e[k]], fmt=MARKERS[k - 1], ms=5, color=colors[k], mfc="none",
+                            label=f"DSMC, {prefix}$D_{k + 1}/D_1$, last decade of $t$")
+                ax.plot([x], [r17[k]], "+", ms=8, mew=1.2, color="0.35",
+                        label="MSD theory, same decade of $t$")
+                if ar is not None:
+                    residuals(ar, [x], [r[k]], [e[k]], [r17[k]], kind="percent", fmt=MARKERS[k - 1], ms=4,
+                              mfc="none", color=colors[k])
         shown += 1
+        fc.note_used(m["path"])
         print(f"Fig {fig_no}: DSMC points from {m['name']}")
     if not shown:
-        print(f"Fig {fig_no}: no diffusion_ratio_* DSMC outputs in {RUNS}; theory lines only")
+        for c in cases:
+            fc.note_missing(c)
+        print(f"Fig {fig_no}: no diffusion_ratio_* DSMC outputs in {fc.runs_dir()}; theory lines only")
+    (ar if ar is not None else ax).set_xlabel(xlabel)
     h, lab = ax.get_legend_handles_labels()
     keep = dict(zip(lab, h))  # one legend entry per label
-    ax.legend(keep.values(), keep.keys(), fontsize=7.5, loc="upper center", bbox_to_anchor=(0.5, -0.15), ncol=1)
+    fig.legend(keep.values(), keep.keys(), loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=1)
 
 
 def binary(m):
@@ -273,29 +287,10 @@ def sigma_kind(m):
     return "equal" if np.isclose(m["diameter"][1], m["diameter"][0]) else "material"
 
 
-def fig4_fig5(measured):
-    fig4, ax4 = plt.subplots(figsize=(6, 6))
-    fig5, ax5 = plt.subplots(figsize=(6, 6))
-    styles = {"equal": ("k", "sigma_2 = 1"), "material": ("C0", "sigma_2 = 100^(1/3)")}
-    for kind, s2 in (("equal", SIGMA2_EQUAL), ("material", SIGMA2_MATERIAL)):
-        color, label = styles[kind]
-        x, r = ratio_line([1.0, 100.0], [1.0, s2], [0.1, 0.1], 0.5, "system:number_density", N2_LINE,
-                          lambda n2: f"'0.1, {n2:.6g}'")
-        note = f" (no theory below n_2 = {x[0]:.1g})" if x[0] > N2_LINE[0] else ""
-        ax4.plot(x, r[:, 1], "-", color=color, lw=1.6, label=f"eq 19, {label}{note}")
-        x, r = ratio_line([1.0, 100.0], [1.0, s2], [0.1, 0.1], 0.5, "system:restitution", EPS_LINE,
-                          lambda e: f"{e:g}")
-        ax5.plot(x, r[:, 1], "-", color=color, lw=1.6, label=f"eq 19, {label}")
-    ax4.set(xscale="log", yscale="log", xlabel="n_2 (n_1 = 0.1)", ylabel="D_2 / D_1",
-            title="Seed 001 Fig 4: D_2/D_1 vs n_2, m = 1, 100, epsilon = 0.5")
-    ax5.set(xlabel="restitution coefficient epsilon", ylabel="D_2 / D_1", xlim=(0.0, 1.0), yscale="log",
-            title="Seed 001 Fig 5: D_2/D_1 vs epsilon, m = 1, 100, n_1 = n_2 = 0.1")
-    for ax in (ax4, ax5):
-        ax.title.set_fontsize(10)
-        ax.grid(alpha=0.3, which="both")
-        ax.yaxis.set_major_locator(matplotlib.ticker.LogLocator(subs=(1.0, 2.0, 5.0)))
-        ax.yaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
-        ax.yaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+@figure("seed001_fig4_diffusion_ratio_n2", "seed001_fig5_diffusion_ratio_epsilon")
+def fig4_fig5():
+    measured = dsmc_ratio_points()
+    styles = {"equal": ("k", r"$\sigma_2 = 1$"), "material": ("C0", r"$\sigma_2 = 100^{1/3}$")}
 
     def want(variable):
         def f(m):
@@ -305,40 +300,58 @@ def fig4_fig5(measured):
             return (None, color), label + ", "
         return f
 
-    overlay_dsmc(ax4, measured, want("number_density"), 4)
-    overlay_dsmc(ax5, measured, want("restitution"), 5)
-    for fig in (fig4, fig5):
-        fig.tight_layout()
-    save(fig4, "seed001_fig4_diffusion_ratio_n2.png")
-    save(fig5, "seed001_fig5_diffusion_ratio_epsilon.png")
+    fig4, ax4, ar4 = ratio_axes(measured, want("number_density"), 3.0)
+    fig5, ax5, ar5 = ratio_axes(measured, want("restitution"), 3.0)
+    for kind, s2 in (("equal", SIGMA2_EQUAL), ("material", SIGMA2_MATERIAL)):
+        color, label = styles[kind]
+        x, r = ratio_line([1.0, 100.0], [1.0, s2], [0.1, 0.1], 0.5, "system:number_density", N2_LINE,
+                          lambda n2: f"'0.1, {n2:.6g}'")
+        note = f" (no theory below $n_2 = {x[0]:.1g}$)" if x[0] > N2_LINE[0] else ""
+        ax4.plot(x, r[:, 1], "-", color=color, lw=1.2, label=f"long-time theory, {label}{note}")
+        x, r = ratio_line([1.0, 100.0], [1.0, s2], [0.1, 0.1], 0.5, "system:restitution", EPS_LINE,
+                          lambda e: f"{e:g}")
+        ax5.plot(x, r[:, 1], "-", color=color, lw=1.2, label=f"long-time theory, {label}")
+    ax4.set(xscale="log", yscale="log", ylabel=r"$D_2/D_1$", title=r"$m = 1, 100$, $\varepsilon = 0.5$")
+    ax5.set(ylabel=r"$D_2/D_1$", xlim=(0.0, 1.0), yscale="log", title=r"$m = 1, 100$, $n_1 = n_2 = 0.1$")
+    for ax in (ax4, ax5):
+        ax.grid(alpha=0.3, which="both")
+        ax.yaxis.set_major_locator(matplotlib.ticker.LogLocator(subs=(1.0, 2.0, 5.0)))
+        ax.yaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+        ax.yaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+
+    overlay_dsmc(fig4, ax4, ar4, measured, want("number_density"), 4,
+                 ("diffusion_ratio_fig4", "diffusion_ratio_fig4_sigma"), r"$n_2$ ($n_1 = 0.1$)")
+    overlay_dsmc(fig5, ax5, ar5, measured, want("restitution"), 5,
+                 ("diffusion_ratio_fig5", "diffusion_ratio_fig5_sigma"), r"restitution coefficient $\varepsilon$")
+    save(fig4, "seed001_fig4_diffusion_ratio_n2")
+    save(fig5, "seed001_fig5_diffusion_ratio_epsilon")
 
 
-def fig7(measured):
+@figure("seed001_fig7_diffusion_ratio_4species")
+def fig7():
+    measured = dsmc_ratio_points()
     mass = [1.0, 2.0, 3.0, 4.0]
     diameter = [f"{k ** (1 / 3):.9f}" for k in (1, 2, 3, 4)]
     x, r = ratio_line(mass, diameter, [0.1] * 4, 0.5, "system:restitution", EPS_LINE, lambda e: f"{e:g}")
-    fig, ax = plt.subplots(figsize=(6, 6))
+    want = lambda m: ((None,) + COLORS[:3], "") if len(m["mass"]) == 4 and "restitution" in m["variable"] else None  # noqa: E731
+    fig, ax, ar = ratio_axes(measured, want, 3.0)
     for k in range(1, 4):
-        ax.plot(x, r[:, k], "-", color=COLORS[k - 1], lw=1.6, label=f"eq 19, D_{k + 1}/D_1")
-    ax.set(xlabel="restitution coefficient epsilon", ylabel="D_k / D_1", xlim=(0.0, 1.0),
-           title="Seed 001 Fig 7: D_k/D_1 vs epsilon, m_k = k, sigma_k = k^(1/3), n_k = 0.1")
-    ax.title.set_fontsize(10)
+        ax.plot(x, r[:, k], "-", color=COLORS[k - 1], lw=1.2, label=f"long-time theory, $D_{k + 1}/D_1$")
+    ax.set(ylabel=r"$D_k/D_1$", xlim=(0.0, 1.0), title=r"$m_k = k$, $\sigma_k = k^{1/3}$, $n_k = 0.1$")
     ax.grid(alpha=0.3)
-    overlay_dsmc(ax, measured, lambda m: ((None,) + COLORS[:3], "") if len(m["mass"]) == 4
-                 and "restitution" in m["variable"] else None, 7)
-    fig.tight_layout()
-    save(fig, "seed001_fig7_diffusion_ratio_4species.png")
+    overlay_dsmc(fig, ax, ar, measured, want, 7, ("diffusion_ratio_fig7",), r"restitution coefficient $\varepsilon$")
+    save(fig, "seed001_fig7_diffusion_ratio_4species")
 
 
+@figure("seed001_fig8_msd_ratio")
 def fig8():
     """<R_k^2>/<R_1^2> against k at the end of the run, n_k = n_1 k^-theta (validation msd_many_species)."""
-    fig, ax = plt.subplots(figsize=(6, 5))
+    fig, ax, ar = with_residuals()
     drawn = False
     for case, marker, color in (("msd_ratio_theta3", "o", "C0"), ("msd_ratio_theta4", "s", "C1")):
         try:
             path = pick(case)
-        except Missing as e:
-            print(f"Fig 8 ({case}) skipped: {e}")
+        except Missing:
             continue
         th = theory(path)
         with h5py.File(path) as f:
@@ -349,34 +362,52 @@ def fig8():
         ratio = R[-1] / R[-1, 0]
         err = ratio * np.sqrt((dR[-1] / R[-1]) ** 2 + (dR[-1, 0] / R[-1, 0]) ** 2)
         Rth = np.array(th["msd"]["value"])[-1]
-        ax.plot(k, Rth / Rth[0], "-", color=color, label=f"eq 17, theta = {theta:g}")
-        ax.errorbar(k, ratio, yerr=err, fmt=marker, ms=4, mfc="none", color=color, capsize=2,
-                    label=f"DSMC, theta = {theta:g} ({tier(path)})")
+        ax.plot(k, Rth / Rth[0], "-", color=color, label=f"{THEORY_NAME}, $\\theta = {theta:g}$")
+        ax.errorbar(k, ratio, yerr=err, fmt=marker, mfc="none", color=color, label=f"DSMC, $\\theta = {theta:g}$")
+        residuals(ar, k, ratio, err, Rth / Rth[0], kind="percent", fmt=marker, mfc="none", color=color)
         drawn = True
     if not drawn:
         plt.close(fig)
-        return
-    ax.set(xscale="log", xlabel="k = m_k / m_1", ylabel="<R_k^2> / <R_1^2>",
-           title="Seed 001 Fig 8: MSD ratios, n_k = n_1 k^-theta, epsilon = 0.5, t = 1e6")
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    save(fig, "seed001_fig8_msd_ratio.png")
+        raise Missing("no MSD-ratio outputs", case="msd_ratio_theta3")
+    ax.set(xscale="log", ylabel=r"$\langle R_k^2\rangle/\langle R_1^2\rangle$",
+           title=r"$n_k = n_1 k^{-\theta}$, $\varepsilon = 0.5$, $t = 10^6$")
+    ar.set(xlabel=r"$k = m_k/m_1$")
+    ax.legend()
+    save(fig, "seed001_fig8_msd_ratio")
+
+
+@figure("seed001_fig3_msd_dilute_heavy")
+def fig3():
+    msd_figure("msd_fig3", r"dilute heavy species $n_2 = 0.001$, $m = 1, 100$", "seed001_fig3_msd_dilute_heavy")
+
+
+@figure("seed001_fig1_msd_rescaled")
+def fig1():
+    msd_figure("msd_fig1", r"$\varepsilon = 0.5$, $m = 1, 100$, $\sigma = 1, 1$", "seed001_fig1_msd_rescaled",
+               rescale=True, guides=("t^2", "t"))
+
+
+@figure("seed001_fig2_msd_binary")
+def fig2():
+    msd_figure("msd_fig2", r"$\varepsilon = 0.5$, $m = 1, 100$, $\sigma_2 = 100^{1/3}$", "seed001_fig2_msd_binary")
+
+
+@figure("seed001_fig6_msd_ternary")
+def fig6():
+    msd_figure("msd_fig6", r"$\varepsilon = 0.5$, $m = 1, 100, 500$", "seed001_fig6_msd_ternary", total=True)
+
+
+@figure("seed001_fig9_msd_viscoelastic")
+def fig9():
+    msd_figure("msd_fig9", r"viscoelastic, $A\kappa^{2/5} = 0.09$, $m = 1, 100$", "seed001_fig9_msd_viscoelastic",
+               guides=("t^2", "t^(1/6)"))
+
+
+@figure("seed001_fig10_msd_viscoelastic_ternary")
+def fig10():
+    msd_figure("msd_fig10", r"viscoelastic, $m = 1, 100, 500$", "seed001_fig10_msd_viscoelastic_ternary",
+               total=True, guides=("t^2", "t^(1/6)"))
 
 
 if __name__ == "__main__":
-    msd_figure("msd_fig3", 3, "Seed 001 Fig 3: partial MSDs, dilute heavy species n2 = 0.001, m = 1, 100",
-               "seed001_fig3_msd_dilute_heavy.png")
-    fig8()
-    msd_figure("msd_fig1", 1, "Seed 001 Fig 1: partial MSDs vs rescaled time, epsilon = 0.5, m = 1, 100, sigma = 1, 1",
-               "seed001_fig1_msd_rescaled.png", rescale=True, guides=("t^2", "t"))
-    msd_figure("msd_fig2", 2, "Seed 001 Fig 2: partial MSDs, epsilon = 0.5, m = 1, 100, sigma_2 = 100^(1/3)",
-               "seed001_fig2_msd_binary.png")
-    msd_figure("msd_fig6", 6, "Seed 001 Fig 6: partial and total MSDs, epsilon = 0.5, m = 1, 100, 500",
-               "seed001_fig6_msd_ternary.png", total=True)
-    msd_figure("msd_fig9", 9, "Seed 001 Fig 9: partial MSDs, viscoelastic (A kappa^(2/5) = 0.09), m = 1, 100",
-               "seed001_fig9_msd_viscoelastic.png", guides=("t^2", "t^(1/6)"))
-    msd_figure("msd_fig10", 10, "Seed 001 Fig 10: partial and total MSDs, viscoelastic, m = 1, 100, 500",
-               "seed001_fig10_msd_viscoelastic_ternary.png", total=True, guides=("t^2", "t^(1/6)"))
-    measured = dsmc_ratio_points()
-    fig4_fig5(measured)
-    fig7(measured)
+    fc.main()

@@ -1,10 +1,11 @@
 #!/usr/bin/python3
 """Seed 003 (Montanero and Garzo 2002) Figs 1-7 from the validation outputs: DSMC points (replica mean
-+- standard error) over the first-Sonine lines of `granular-theory` for the same mixture.
++- standard error) over the first-Sonine lines of `granular-theory` for the same mixture, with residual
+panels (DSMC minus theory) below where the two overlap.
 
 usage: /usr/bin/python3 paper-figures/seed003.py [BUILD_DIR] [OUT_DIR]
 Reads BUILD_DIR/validation-output/*.h5 (written by `ctest -L validation`, paper tier preferred, quick tier
-otherwise) and writes OUT_DIR/seed003_fig{1..7}_*.png (default OUT_DIR: paper-figures/out). The smooth
+otherwise) and writes OUT_DIR/seed003_fig{1..7}_*.pdf and .png (default OUT_DIR: paper-figures/out). The smooth
 theory lines come from `granular-theory` on the stored namelist with a dense `&sweep` of its own
 (temporary files only).
 """
@@ -16,7 +17,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from figures_common import pick, tier, observable, stored_input, run_theory, theory, save  # noqa: E402
+import figures_common as fc  # noqa: E402
+from figures_common import (COLUMN, PAGE, Missing, figure, pick, observable, stored_input, run_theory,  # noqa: E402
+                            theory, save, with_residuals, residuals)
 
 
 ALPHA_LINE = np.round(np.arange(0.1, 1.0001, 0.02), 2)  # alpha grid of the theory lines
@@ -52,28 +55,36 @@ def theory_alpha_line(path):
     return ALPHA_LINE, points
 
 
+def line_at(x_line, y_line, x):
+    """The theory line y(x) at the DSMC abscissae x (linear interpolation on the dense grid)."""
+    return np.interp(np.asarray(x, float), np.asarray(x_line, float), np.asarray(y_line, float))
+
+
+@figure("seed003_fig1_gamma_time")
 def fig1_gamma_time():
     path = pick("temperature_ratio_time")
     th = theory(path)["points"]
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    fig, axes, ars = with_residuals(ncols=2, width=PAGE, height=3.0, sharex="col")
     with h5py.File(path) as f:
-        n = f["parameters/dsmc"].attrs["n_particles"]
-        for k, (ax, (value, g)) in enumerate(zip(axes, sweep_points(f))):
+        for k, (ax, ar, (value, g)) in enumerate(zip(axes, ars, sweep_points(f))):
             _, T, dT = observable(g, "temperature")
             _, C, _ = observable(g, "collisions_per_particle")
             gam = T[:, 0] / T[:, 1]
             err = gam * np.hypot(dT[:, 0] / T[:, 0], dT[:, 1] / T[:, 1])
-            ax.errorbar(C, gam, yerr=err, fmt="o", ms=3.5, color="C0", capsize=2,
-                        label=f"DSMC, N = {n}")
+            ax.errorbar(C, gam, yerr=err, fmt="o", mfc="none", color="C0", label="DSMC")
             gs = th[k]["temperature_ratio"]
-            ax.axhline(gs, color="k", ls=":", lw=1.5, label=f"first Sonine HCS, gamma = {gs:.4f}")
-            ax.set(xlabel="collisions per particle", ylabel="gamma(t) = T1 / T2",
-                   title=f"({'ab'[k]}) alpha = {value}")
+            ax.axhline(gs, color="k", ls="--", lw=1, label=f"first Sonine, $\\gamma = {gs:.4f}$")
+            late = C >= SCALING_START  # the HCS: the residual of the settled ratio
+            residuals(ar, C[late], gam[late], err[late], np.full(late.sum(), gs), kind="percent", fmt="o",
+                      mfc="none", color="C0")
+            ax.set(ylabel=r"$\gamma(t) = T_1/T_2$")
+            ax.set_title(f"({'ab'[k]}) $\\alpha = {float(value):g}$")
+            ar.set(xlabel="collisions per particle")
             if abs(gs - 1.0) < 1e-12:
                 ax.set_ylim(0.96, 1.04)
-            ax.legend(fontsize=8, loc="lower right" if gs > 1 else "upper right")
-    fig.suptitle(f"Seed 003 Fig 1: gamma(t), mu = 10, delta = 2, w = 1, n* = 0 ({tier(path)})")
-    save(fig, "seed003_fig1_gamma_time.png")
+            ax.legend(loc="lower right" if gs > 1 else "upper right")
+    fig.suptitle(r"$\mu = 10$, $\delta = 2$, $w = 1$, $n^* = 0$")
+    save(fig, "seed003_fig1_gamma_time")
 
 
 def one_component_dsmc():
@@ -83,7 +94,7 @@ def one_component_dsmc():
     for case in ("haff_cooling_alpha0.5", "haff_cooling_alpha0.9"):
         try:
             path = pick(case)
-        except SystemExit:
+        except Missing:
             continue
         with h5py.File(path) as f:
             if "sonine_c" not in f["observables"]:
@@ -98,6 +109,7 @@ def one_component_dsmc():
     return out
 
 
+@figure("seed003_fig2_cumulants")
 def fig2_cumulants():
     path = pick("sonine_cumulants_fig2")
     alpha_line, pts = theory_alpha_line(path)
@@ -110,9 +122,8 @@ def fig2_cumulants():
     one_pts = theory_sweep(None, "system:restitution", [f"{a:.2f}" for a in ALPHA_LINE], stored=(one, []))
     c_one = np.array([p["sonine_c"][0] for p in one_pts])
 
-    fig, ax = plt.subplots(figsize=(6, 4.5))
+    fig, ax, ar = with_residuals(height=3.6)
     with h5py.File(path) as f:
-        n = f["parameters/dsmc"].attrs["n_particles"]
         rows = []
         for value, g in sweep_points(f):
             _, c, dc = observable(g, "sonine_c")
@@ -121,23 +132,26 @@ def fig2_cumulants():
             # mean over the scaling regime; the mean of the per-sample SEs bounds the SE of that mean
             rows.append((float(value), *c[sel].mean(axis=0), *dc[sel].mean(axis=0)))
     rows = np.array(rows)
-    ax.plot(alpha_line, c_line[:, 0], "-", color="C0", label="c1, first Sonine")
-    ax.plot(alpha_line, c_line[:, 1], "--", color="C1", label="c2, first Sonine")
-    ax.plot(alpha_line, c_one, ":", color="C2", lw=1.8, label="one component 2 a2, first Sonine")
-    ax.errorbar(rows[:, 0], rows[:, 1], yerr=rows[:, 3], fmt="o", color="C0", capsize=3,
-                label=f"c1, DSMC (N = {n})")
-    ax.errorbar(rows[:, 0], rows[:, 2], yerr=rows[:, 4], fmt="s", color="C1", capsize=3, label="c2, DSMC")
+    ax.plot(alpha_line, c_line[:, 0], "-", color="C0", label=r"$c_1$, first Sonine")
+    ax.plot(alpha_line, c_line[:, 1], "--", color="C1", label=r"$c_2$, first Sonine")
+    ax.plot(alpha_line, c_one, ":", color="C2", lw=1.5, label=r"one component $2a_2$, first Sonine")
+    ax.errorbar(rows[:, 0], rows[:, 1], yerr=rows[:, 3], fmt="o", mfc="none", color="C0", label=r"$c_1$, DSMC")
+    ax.errorbar(rows[:, 0], rows[:, 2], yerr=rows[:, 4], fmt="s", mfc="none", color="C1", label=r"$c_2$, DSMC")
+    for i, (fmt, color) in enumerate((("o", "C0"), ("s", "C1"))):
+        residuals(ar, rows[:, 0], rows[:, 1 + i], rows[:, 3 + i], line_at(alpha_line, c_line[:, i], rows[:, 0]),
+                  kind="se", fmt=fmt, mfc="none", color=color)
     one_dsmc = one_component_dsmc()
     if one_dsmc:
         a = np.array(one_dsmc)
-        ax.errorbar(a[:, 0], a[:, 1], yerr=a[:, 2], fmt="^", color="C2", capsize=3,
-                    label="one component, DSMC (seed 000 Haff runs)")
+        ax.errorbar(a[:, 0], a[:, 1], yerr=a[:, 2], fmt="^", mfc="none", color="C2", label="one component, DSMC")
+        residuals(ar, a[:, 0], a[:, 1], a[:, 2], line_at(alpha_line, c_one, a[:, 0]), kind="se", fmt="^",
+                  mfc="none", color="C2")
     ax.axhline(0.0, color="0.6", lw=0.6)
-    ax.set(xlabel="alpha", ylabel="c_i", xlim=(0.1, 1.0),
-           title=f"Seed 003 Fig 2: c1, c2 vs alpha, mu = 2, delta = 1, w = 1 ({tier(path)})")
-    ax.title.set_fontsize(10)
-    ax.legend(fontsize=8)
-    save(fig, "seed003_fig2_cumulants.png")
+    ax.set(ylabel=r"$c_i$", xlim=(0.1, 1.0))
+    ar.set(xlabel=r"$\alpha$")
+    ax.set_title(r"$\mu = 2$, $\delta = 1$, $w = 1$")
+    ax.legend(ncol=2)
+    save(fig, "seed003_fig2_cumulants")
 
 
 def reduced_distribution(path):
@@ -153,71 +167,78 @@ def reduced_distribution(path):
     return d
 
 
+@figure("seed003_fig3_delta")
 def fig3_delta():
     path = pick("hcs_distribution_alpha0.5")
     d = reduced_distribution(path)
     lam = d["lam"]
-    fig, axes = plt.subplots(1, 2, figsize=(10.5, 4.2))
-    for ax, vmax in ((axes[0], 1.4), (axes[1], 2.05)):
+    fig, axes, ars = with_residuals(ncols=2, width=PAGE, height=3.2)
+    sonine = lambda v: 0.5 * lam**2 * v**4 - 2.5 * lam * v**2 + 15.0 / 8.0  # noqa: E731
+    for ax, ar, vmax in ((axes[0], ars[0], 1.4), (axes[1], ars[1], 2.05)):
         sel = d["v"] <= vmax
         x = np.linspace(0.0, vmax, 400)
-        ax.plot(x, 0.5 * lam**2 * x**4 - 2.5 * lam * x**2 + 15.0 / 8.0, "k--",
-                label="Sonine polynomial, eq 28")
-        ax.errorbar(d["v"][sel], d["delta"][sel], yerr=d["delta_error"][sel], fmt="o", ms=3.5, color="C0",
-                    capsize=2, label=f"DSMC, N = {d['n']}")
+        ax.plot(x, sonine(x), "k--", lw=1, label="first Sonine polynomial")
+        ax.errorbar(d["v"][sel], d["delta"][sel], yerr=d["delta_error"][sel], fmt="o", mfc="none", color="C0",
+                    label="DSMC")
+        residuals(ar, d["v"][sel], d["delta"][sel], d["delta_error"][sel], sonine(d["v"][sel]), kind="se",
+                  fmt="o", mfc="none", color="C0")
         ax.axhline(0.0, color="0.6", lw=0.6)
-        ax.set(xlabel="v*", ylabel="Delta_1(v*)", xlim=(0.0, vmax))
-        ax.legend(fontsize=8, loc="upper left")
+        ax.set(ylabel=r"$\Delta_1(v^*)$", xlim=(0.0, vmax))
+        ar.set(xlabel=r"$v^*$")
+        ax.legend(loc="upper left")
     axes[0].set_ylim(-1.6, 3.2)
-    axes[0].set_title("(a) thermal speeds (the paper's scale)", fontsize=10)
-    axes[1].set_title("(b) up to v* = 2: the tail leaves eq 28", fontsize=10)
-    fig.suptitle(f"Seed 003 Fig 3: Delta_1(v*), alpha = {d['alpha']:g}, mu = 4, delta = 1/2, w = 1 "
-                 f"(lambda_1 = {lam:.3f}, {tier(path)})", fontsize=11)
-    save(fig, "seed003_fig3_delta.png")
+    axes[0].set_title("(a) thermal speeds")
+    axes[1].set_title(r"(b) up to $v^* = 2$: the tail leaves the polynomial")
+    fig.suptitle(f"$\\alpha = {d['alpha']:g}$, $\\mu = 4$, $\\delta = 1/2$, $w = 1$, $\\lambda_1 = {lam:.3f}$")
+    save(fig, "seed003_fig3_delta")
 
 
-def gamma_alpha_figure(cases, title, filename, log=False):
-    fig, ax = plt.subplots(figsize=(6, 4.5))
+def gamma_alpha_figure(cases, title, stem, log=False):
+    fig, ax, ar = with_residuals(height=3.6)
     for (case, label), (ls, marker), color in zip(cases, (("-", "o"), ("--", "s"), (":", "^")), ("C0", "C1", "C2")):
         path = pick(case)
         alpha_line, pts = theory_alpha_line(path)
-        ax.plot(alpha_line, [p["temperature_ratio"] for p in pts], ls, color=color, lw=1.6,
-                label=f"{label}, first Sonine")
+        g_line = [p["temperature_ratio"] for p in pts]
+        ax.plot(alpha_line, g_line, ls, color=color, lw=1.2, label=f"{label}, first Sonine")
         rows = []
         with h5py.File(path) as f:
             for value, g in sweep_points(f):
                 _, T, dT = observable(g, "temperature")
                 rows.append((float(value), *gamma_of(T, dT, -1)))
         rows = np.array(rows)
-        ax.errorbar(rows[:, 0], rows[:, 1], yerr=rows[:, 2], fmt=marker, color=color, capsize=3, ms=5,
-                    label=f"{label}, DSMC ({tier(path)})")
-    ax.set(xlabel="alpha", ylabel="gamma = T1 / T2", xlim=(0.1, 1.0), title=title)
+        ax.errorbar(rows[:, 0], rows[:, 1], yerr=rows[:, 2], fmt=marker, mfc="none", color=color,
+                    label=f"{label}, DSMC")
+        residuals(ar, rows[:, 0], rows[:, 1], rows[:, 2], line_at(alpha_line, g_line, rows[:, 0]), kind="percent",
+                  fmt=marker, mfc="none", color=color)
+    ax.set(ylabel=r"$\gamma = T_1/T_2$", xlim=(0.1, 1.0))
+    ar.set(xlabel=r"$\alpha$")
+    ax.set_title(title)
     if log:  # gamma spans 0.1 .. 7 (mu = 1/10 .. 10)
         ax.set_yscale("log")
         ax.yaxis.set_major_locator(matplotlib.ticker.LogLocator(subs=(1.0, 2.0, 3.0, 5.0)))
         ax.yaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
         ax.yaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
-    ax.title.set_fontsize(10)
-    ax.legend(fontsize=8, ncol=2)
-    save(fig, filename)
+    ax.legend(ncol=2)
+    save(fig, stem)
 
 
+@figure("seed003_fig4_gamma_alpha_mu")
 def fig4_gamma_mu():
-    gamma_alpha_figure((("gamma_alpha_fig4_mu10", "mu = 10"), ("gamma_alpha_fig4_mu2", "mu = 2"),
-                        ("gamma_alpha_fig4_mu0.1", "mu = 1/10")),
-                       "Seed 003 Fig 4: gamma vs alpha, delta = 2, w = 1, n* = 0",
-                       "seed003_fig4_gamma_alpha_mu.png", log=True)
+    gamma_alpha_figure((("gamma_alpha_fig4_mu10", r"$\mu = 10$"), ("gamma_alpha_fig4_mu2", r"$\mu = 2$"),
+                        ("gamma_alpha_fig4_mu0.1", r"$\mu = 1/10$")),
+                       r"$\delta = 2$, $w = 1$, $n^* = 0$", "seed003_fig4_gamma_alpha_mu", log=True)
 
 
+@figure("seed003_fig5_gamma_alpha_delta")
 def fig5_gamma_delta():
-    gamma_alpha_figure((("gamma_alpha_fig5_delta4", "delta = 4"), ("gamma_alpha_fig5_delta1", "delta = 1"),
-                        ("gamma_alpha_fig5_delta0.25", "delta = 1/4")),
-                       "Seed 003 Fig 5: gamma vs alpha, mu = 4, w = 1, n* = 0",
-                       "seed003_fig5_gamma_alpha_delta.png")
+    gamma_alpha_figure((("gamma_alpha_fig5_delta4", r"$\delta = 4$"), ("gamma_alpha_fig5_delta1", r"$\delta = 1$"),
+                        ("gamma_alpha_fig5_delta0.25", r"$\delta = 1/4$")),
+                       r"$\mu = 4$, $w = 1$, $n^* = 0$", "seed003_fig5_gamma_alpha_delta")
 
 
+@figure("seed003_fig6_gamma_density")
 def fig6_gamma_density():
-    fig, ax = plt.subplots(figsize=(6, 4.5))
+    fig, ax, ar = with_residuals(height=3.6)
     for alpha, ls, marker, color in (("0.6", "-", "o", "C0"), ("0.8", "--", "s", "C1")):
         path = pick(f"gamma_density_alpha{alpha}")
         with h5py.File(path) as f:
@@ -237,41 +258,38 @@ def fig6_gamma_density():
         pairs = [f"'{x1 * s / sigma12**3:.7g}, {(1 - x1) * s / sigma12**3:.7g}'" for s in nstar]
         pts = theory_sweep(path, "system:number_density", pairs)
         ratio = np.array([p["temperature_ratio"] for p in pts]) / g0
-        ax.plot(np.r_[0.0, nstar], np.r_[1.0, ratio], ls, color=color, lw=1.6,
-                label=f"alpha = {alpha}, first Sonine (Enskog)")
-        ax.errorbar(rows[:, 0], rows[:, 1] / g0, yerr=rows[:, 2] / g0, fmt=marker, color=color, capsize=3,
-                    label=f"alpha = {alpha}, DSMC / dilute Sonine ({tier(path)})")
-    ax.set(xlabel="n* = n sigma_12^3", ylabel="gamma(alpha, n*) / gamma(alpha, 0)", xlim=(0.0, 0.52),
-           title="Seed 003 Fig 6: gamma vs density, mu = 2, delta = 1/2, w = 2")
-    ax.title.set_fontsize(10)
-    ax.legend(fontsize=8)
-    save(fig, "seed003_fig6_gamma_density.png")
+        xl, yl = np.r_[0.0, nstar], np.r_[1.0, ratio]
+        ax.plot(xl, yl, ls, color=color, lw=1.2, label=f"$\\alpha = {alpha}$, first Sonine (Enskog)")
+        ax.errorbar(rows[:, 0], rows[:, 1] / g0, yerr=rows[:, 2] / g0, fmt=marker, mfc="none", color=color,
+                    label=f"$\\alpha = {alpha}$, DSMC")
+        residuals(ar, rows[:, 0], rows[:, 1] / g0, rows[:, 2] / g0, line_at(xl, yl, rows[:, 0]), kind="percent",
+                  fmt=marker, mfc="none", color=color)
+    ax.set(ylabel=r"$\gamma(\alpha, n^*)/\gamma(\alpha, 0)$", xlim=(0.0, 0.52))
+    ar.set(xlabel=r"$n^* = n\sigma_{12}^3$")
+    ax.set_title(r"$\mu = 2$, $\delta = 1/2$, $w = 2$; $\gamma(\alpha, 0)$: dilute first Sonine")
+    ax.legend()
+    save(fig, "seed003_fig6_gamma_density")
 
 
+@figure("seed003_fig7_tail")
 def fig7_tail():
-    fig, ax = plt.subplots(figsize=(6, 4.5))
+    # The Maxwellian lines are the contrast the flattening tail leaves: no residual panel.
+    fig, ax = plt.subplots(figsize=(COLUMN, 2.8))
     for alpha, marker, color in (("0.3", "s", "C1"), ("0.5", "o", "C0")):
         path = pick(f"hcs_distribution_alpha{alpha}")
         d = reduced_distribution(path)
         # bins where Phi_1 is measured (to 50 % or better): G_1 > 0 and its error bar stays above zero
         sel = (d["value"] > 0) & (d["error"] < 0.5 * d["value"])
-        ax.errorbar(d["v"][sel], d["g"][sel], yerr=d["g_error"][sel], fmt=marker, ms=3.5, color=color,
-                    capsize=2, label=f"alpha = {alpha}, DSMC (N = {d['n']})")
+        ax.errorbar(d["v"][sel], d["g"][sel], yerr=d["g_error"][sel], fmt=marker, mfc="none", color=color,
+                    label=f"DSMC, $\\alpha = {alpha}$")
         x = np.linspace(0.0, d["v"][sel].max(), 400)
         g_mb = np.exp(2 * d["beta"] * x / d["zeta"]) * (d["lam"] / np.pi) ** 1.5 * np.exp(-d["lam"] * x * x)
-        ax.plot(x, g_mb, "--", color=color, lw=1.4, label=f"alpha = {alpha}, Maxwellian")
-    ax.set(xlabel="v*", ylabel="G_1(v*)", yscale="log",
-           title="Seed 003 Fig 7: G_1(v*), mu = 4, delta = 1/2, w = 1, n* = 0")
-    ax.title.set_fontsize(10)
-    ax.legend(fontsize=8)
-    save(fig, "seed003_fig7_tail.png")
+        ax.plot(x, g_mb, "--", color=color, lw=1.1, label=f"Maxwellian, $\\alpha = {alpha}$")
+    ax.set(xlabel=r"$v^*$", ylabel=r"$G_1(v^*)$", yscale="log")
+    ax.set_title(r"$\mu = 4$, $\delta = 1/2$, $w = 1$, $n^* = 0$")
+    ax.legend()
+    save(fig, "seed003_fig7_tail")
 
 
 if __name__ == "__main__":
-    fig1_gamma_time()
-    fig2_cumulants()
-    fig3_delta()
-    fig4_gamma_mu()
-    fig5_gamma_delta()
-    fig6_gamma_density()
-    fig7_tail()
+    fc.main()

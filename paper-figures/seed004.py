@@ -3,15 +3,16 @@
 one-component granular gas against alpha in uniform shear flow with the Gaussian thermostat (DSMC, time
 average over replicas +- standard error) over the first-Sonine theory of `granular-theory` for the
 steady state the protocol measures (HSS) and, for contrast, the freely cooling gas (HCS); and Figs 1-5's
-check, the HSS temperature ratio and cumulants against the HCS first-Sonine values.
+check, the HSS temperature ratio and cumulants against the HCS first-Sonine values. Residual panels
+(DSMC/theory - 1 in percent, or DSMC minus theory in standard errors) below each comparison.
 
 usage: /usr/bin/python3 paper-figures/seed004.py [BUILD_DIR] [OUT_DIR]
 Reads BUILD_DIR/validation-output/viscosity_alpha*.h5 and hss_*.h5 (ctest -L validation; paper tier
-preferred, quick otherwise) and writes OUT_DIR/seed004_fig6_viscosity.png, seed004_fig7_9_mixtures.png
+preferred, quick otherwise) and writes (PDF and PNG) OUT_DIR/seed004_fig6_viscosity, seed004_fig7_9_mixtures
 (eta/eta_0 against mass ratio, size ratio and concentration at alpha = 0.9, 0.8, 0.7, over the mixture
-theory), seed004_fig10_12_enskog.png (Enskog binary mixture: kinetic and total eta/eta_0 against the solid
+theory), seed004_fig10_12_enskog (Enskog binary mixture: kinetic and total eta/eta_0 against the solid
 fraction, total against the mass ratio; one-component Enskog points beside them) and
-seed004_fig1_5_hss.png (the HSS gamma and c against the HCS values).
+seed004_fig1_5_hss (the HSS gamma and c against the HCS values).
 """
 
 import h5py
@@ -20,11 +21,13 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from figures_common import RUNS, Missing, pick, theory, save, tier  # noqa: E402
+import figures_common as fc  # noqa: E402
+from figures_common import COLUMN, PAGE, Missing, figure, pick, theory, save, with_residuals, residuals  # noqa: E402
 
 
+@figure("seed004_fig6_viscosity")
 def fig6():
-    alphas, eta, err, tiers = [], [], [], set()
+    alphas, eta, err, last = [], [], [], None
     for alpha in ("1.0", "0.9", "0.8", "0.7", "0.6"):
         try:
             path = pick(f"viscosity_alpha{alpha}")
@@ -35,23 +38,26 @@ def fig6():
             alphas.append(float(f["parameters/system"].attrs["restitution"][0]))
             eta.append(a["time_average"])
             err.append(a["time_average_error"])
-        tiers.add(tier(path))
-    if not alphas:
-        raise Missing(f"no viscosity outputs in {RUNS}")
+        last = path
+    if last is None:
+        raise Missing("no shear viscosity outputs", case="viscosity_alpha1.0")
     grid = np.linspace(0.5, 1.0, 26)
     hss, hcs = [], []
     for a in grid:
-        th = theory(path, [f"system:restitution={a:.4f}"])
+        th = theory(last, [f"system:restitution={a:.4f}"])
         hss.append(th["shear_viscosity_ratio"]["hss"])
         hcs.append(th["shear_viscosity_ratio"]["hcs"])
-    fig, ax = plt.subplots(figsize=(5.5, 4))
-    ax.errorbar(alphas, eta, yerr=err, fmt="o", ms=4, label="DSMC, USF + thermostat")
-    ax.plot(grid, hss, "-", label="first Sonine, HSS (ERRATA §10)")
-    ax.plot(grid, hcs, "--", label="first Sonine, HCS (contrast)")
-    ax.plot([1.0], [1.016], "k*", ms=8, label="converged Chapman-Enskog, alpha = 1")
-    ax.set(xlabel="alpha", ylabel="eta / eta_0", title=f"Seed 004 Fig 6: shear viscosity ({', '.join(sorted(tiers))})")
-    ax.legend(fontsize=8)
-    save(fig, "seed004_fig6_viscosity.png")
+    at_points = [theory(last, [f"system:restitution={a:.4f}"])["shear_viscosity_ratio"]["hss"] for a in alphas]
+    fig, ax, ar = with_residuals()
+    ax.errorbar(alphas, eta, yerr=err, fmt="o", mfc="none", color="C0", label="DSMC, sheared, thermostatted")
+    ax.plot(grid, hss, "-", color="k", lw=1, label="first Sonine, steady state")
+    ax.plot(grid, hcs, "--", color="0.5", lw=1, label="first Sonine, cooling state")
+    ax.plot([1.0], [1.016], "*", color="C1", ms=7, label=r"converged Chapman-Enskog, $\alpha = 1$")
+    residuals(ar, alphas, eta, err, at_points, kind="percent", fmt="o", mfc="none", color="C0")
+    ax.set(ylabel=r"$\eta/\eta_0$")
+    ar.set(xlabel=r"$\alpha$")
+    ax.legend()
+    save(fig, "seed004_fig6_viscosity")
 
 
 def time_average(path):
@@ -60,14 +66,15 @@ def time_average(path):
         return a["time_average"], a["time_average_error"], a.get("time_average_kinetic"), a.get("time_average_kinetic_error")
 
 
+@figure("seed004_fig7_9_mixtures")
 def fig7_9():
-    panels = (("fig7_mu", (1.5, 3.0, 6.0, 10.0), "mass ratio m1/m2", "system:mass={x},1.0"),
-              ("fig8_w", (1.5, 2.0), "size ratio sigma1/sigma2", "system:mass=1.0,1.0 system:diameter={x},1.0"),
-              ("fig9_x", (0.25, 0.75), "concentration x1", None))
-    fig, axes = plt.subplots(1, 3, figsize=(13, 4))
+    panels = (("fig7_mu", (1.5, 3.0, 6.0, 10.0), r"mass ratio $m_1/m_2$"),
+              ("fig8_w", (1.5, 2.0), r"size ratio $\sigma_1/\sigma_2$"),
+              ("fig9_x", (0.25, 0.75), r"concentration $x_1$"))
+    fig, axes, ars = with_residuals(ncols=3, width=PAGE, height=3.2)
     drawn = False
-    for ax, (stem, xs, label, override) in zip(axes, panels):
-        for k, alpha in enumerate(("0.9", "0.8", "0.7")):
+    for ax, ar, (stem, xs, label) in zip(axes, ars, panels):
+        for k, (alpha, marker) in enumerate(zip(("0.9", "0.8", "0.7"), "os^")):
             pts = []
             for x in xs:
                 try:
@@ -81,26 +88,39 @@ def fig7_9():
                 continue
             drawn = True
             x, eta, err, th = map(np.array, zip(*pts))
-            ax.errorbar(x, eta, yerr=err, fmt="o", ms=4, color=f"C{k}", label=f"DSMC, alpha = {alpha}")
-            ax.plot(x, th, "--", color=f"C{k}", label="first Sonine HSS")
-        ax.set(xlabel=label, ylabel="eta / eta_0 (elastic mixture)")
-        ax.legend(fontsize=7)
-    if drawn:
-        fig.suptitle("Seed 004 Figs 7-9: shear viscosity of binary mixtures")
-        save(fig, "seed004_fig7_9_mixtures.png")
+            ax.errorbar(x, eta, yerr=err, fmt=marker, mfc="none", color=f"C{k}", label=f"DSMC, $\\alpha = {alpha}$")
+            ax.plot(x, th, "--x", color=f"C{k}", ms=5)
+            residuals(ar, x, eta, err, th, kind="percent", fmt=marker, mfc="none", color=f"C{k}")
+        ar.set(xlabel=label)
+        ar.set_ylabel("")
+        ax.set(ylabel=r"$\eta/\eta_0$ (elastic mixture)" if stem == "fig7_mu" else "")
+    if not drawn:
+        plt.close(fig)
+        raise Missing("no shear viscosity outputs of mixtures", case="viscosity_fig7_mu3.0_alpha0.9")
+    ars[0].set_ylabel(fc.PERCENT_LABEL)
+    axes[0].plot([], [], "k--x", ms=5, label="first Sonine, steady state")
+    axes[0].legend()
+    save(fig, "seed004_fig7_9_mixtures")
 
 
+@figure("seed004_fig10_12_enskog")
 def fig10_12():
     """Seed 004 Figs 10-12 are for a binary Enskog mixture (equal sizes and numbers): Fig 10 the kinetic
     part and Fig 11 the total viscosity against the solid fraction at mass ratio 4, Fig 12 the total
     against the mass ratio at phi = 0.2, each at alpha = 0.9, 0.8, 0.7. Drawn as eta/eta_0 over the
     elastic dilute mixture (seed 004's eta* = nu eta/(n T) is that times nu eta_0/n, which does not
     depend on phi), with the one-component Enskog points (alpha = 1, 0.8) in the first two panels."""
-    fig, axes = plt.subplots(1, 3, figsize=(13, 4))
+    fig, axes, ars = with_residuals(ncols=3, width=PAGE, height=3.2)
     drawn = False
     phis = (0.1, 0.2, 0.3)
     grid = np.linspace(0.02, 0.32, 16)
-    for k, alpha in enumerate(("0.9", "0.8", "0.7")):
+
+    def enskog_theory(path, alpha, phi):
+        n = 3.0 * phi / np.pi  # each species: (pi/6) 2 n sigma^3 = phi
+        th = theory(path, [f"system:restitution={alpha}", f"system:number_density={n:.6f},{n:.6f}"])
+        return th["shear_viscosity_kinetic_ratio"]["hss"], th["shear_viscosity_ratio"]["hss"]
+
+    for k, (alpha, marker) in enumerate(zip(("0.9", "0.8", "0.7"), "os^")):
         color = f"C{k}"
         pts = []
         for phi in phis:
@@ -108,20 +128,18 @@ def fig10_12():
                 path = pick(f"viscosity_fig10_phi{phi}_alpha{alpha}")
             except Missing:
                 continue
-            pts.append((phi,) + tuple(time_average(path)))
+            pts.append((phi,) + tuple(time_average(path)) + enskog_theory(path, alpha, phi))
         if pts:
             drawn = True
-            phi, eta, err, kin, kin_err = map(np.array, zip(*pts))
-            axes[0].errorbar(phi, kin, yerr=kin_err, fmt="s", color=color, label=f"DSMC, alpha = {alpha}")
-            axes[1].errorbar(phi, eta, yerr=err, fmt="o", color=color, label=f"DSMC, alpha = {alpha}")
-            kinetic, total = [], []
-            for p in grid:
-                n = 3.0 * p / np.pi  # each species: (pi/6) 2 n sigma^3 = phi
-                th = theory(path, [f"system:restitution={alpha}", f"system:number_density={n:.6f},{n:.6f}"])
-                kinetic.append(th["shear_viscosity_kinetic_ratio"]["hss"])
-                total.append(th["shear_viscosity_ratio"]["hss"])
-            axes[0].plot(grid, kinetic, "-", color=color)
-            axes[1].plot(grid, total, "-", color=color, label="Enskog first Sonine, HSS" if k == 0 else None)
+            phi, eta, err, kin, kin_err, th_kin, th_tot = map(np.array, zip(*pts))
+            axes[0].errorbar(phi, kin, yerr=kin_err, fmt=marker, mfc="none", color=color,
+                             label=f"DSMC, $\\alpha = {alpha}$")
+            axes[1].errorbar(phi, eta, yerr=err, fmt=marker, mfc="none", color=color)
+            residuals(ars[0], phi, kin, kin_err, th_kin, kind="percent", fmt=marker, mfc="none", color=color)
+            residuals(ars[1], phi, eta, err, th_tot, kind="percent", fmt=marker, mfc="none", color=color)
+            lines = np.array([enskog_theory(path, alpha, p) for p in grid])
+            axes[0].plot(grid, lines[:, 0], "-", color=color)
+            axes[1].plot(grid, lines[:, 1], "-", color=color)
         pts = []
         for mu in ("2", "4", "8"):
             try:
@@ -129,11 +147,13 @@ def fig10_12():
             except Missing:
                 continue
             eta, err, _, _ = time_average(path)
-            pts.append((float(mu), eta, err))
+            th = theory(path, [f"system:restitution={alpha}", f"system:mass={float(mu):.4f},1.0"])
+            pts.append((float(mu), eta, err, th["shear_viscosity_ratio"]["hss"]))
         if pts:
             drawn = True
-            mu, eta, err = map(np.array, zip(*pts))
-            axes[2].errorbar(mu, eta, yerr=err, fmt="o", color=color, label=f"DSMC, alpha = {alpha}")
+            mu, eta, err, th_tot = map(np.array, zip(*pts))
+            axes[2].errorbar(mu, eta, yerr=err, fmt=marker, mfc="none", color=color)
+            residuals(ars[2], mu, eta, err, th_tot, kind="percent", fmt=marker, mfc="none", color=color)
             mus = np.linspace(1.0, 9.0, 17)
             th = [theory(path, [f"system:restitution={alpha}", f"system:mass={m:.4f},1.0"])["shear_viscosity_ratio"]["hss"]
                   for m in mus]
@@ -148,20 +168,32 @@ def fig10_12():
         phi = 0.1 if "phi0.1" in name else 0.2
         axes[0].errorbar([phi], [kin], yerr=[kin_err], fmt=marker, mfc="none", color="k")
         axes[1].errorbar([phi], [eta], yerr=[err], fmt=marker, mfc="none", color="k",
-                         label=f"one species, alpha = {alpha}" if phi == 0.2 else None)
-    axes[0].set(xlabel="solid fraction phi", ylabel="kinetic part eta_k / eta_0", title="Fig 10 (m1/m2 = 4)")
-    axes[1].set(xlabel="solid fraction phi", ylabel="eta / eta_0", title="Fig 11 (m1/m2 = 4)")
-    axes[2].set(xlabel="mass ratio m1/m2", ylabel="eta / eta_0", title="Fig 12 (phi = 0.2)")
-    for ax in axes:
-        ax.legend(fontsize=7)
-    if drawn:
-        fig.suptitle("Seed 004 Figs 10-12: shear viscosity of a dense (Enskog) binary mixture")
-        save(fig, "seed004_fig10_12_enskog.png")
+                         label=f"DSMC, one species, $\\alpha = {alpha}$" if phi == 0.2 else None)
+    if not drawn:
+        plt.close(fig)
+        raise Missing("no Enskog mixture viscosity outputs", case="viscosity_fig10_phi0.2_alpha0.9")
+    axes[0].set(ylabel=r"kinetic part $\eta_k/\eta_0$")
+    axes[0].set_title(r"$m_1/m_2 = 4$")
+    axes[1].set(ylabel=r"$\eta/\eta_0$")
+    axes[1].set_title(r"$m_1/m_2 = 4$")
+    axes[2].set(ylabel=r"$\eta/\eta_0$")
+    axes[2].set_title(r"$\phi = 0.2$")
+    ars[0].set(xlabel=r"solid fraction $\phi$")
+    ars[1].set(xlabel=r"solid fraction $\phi$")
+    ars[2].set(xlabel=r"mass ratio $m_1/m_2$")
+    for ar in ars[1:]:
+        ar.set_ylabel("")
+    axes[1].plot([], [], "k-", label="Enskog first Sonine, steady state")
+    for ax in axes[:2]:
+        ax.legend()
+    save(fig, "seed004_fig10_12_enskog")
 
 
+@figure("seed004_fig1_5_hss")
 def fig1_5():
-    fig, ax = plt.subplots(figsize=(5.5, 4))
-    labels, measured, errors, expected = [], [], [], []
+    """The steady state under the thermostat against the cooling state's first-Sonine values: the
+    cumulants (left) and the temperature ratio (right); the last half of the samples averaged."""
+    rows_c, rows_g = [], []  # (tick label, DSMC, SE, first Sonine)
     for name in ("hss_one", "hss_binary"):
         try:
             path = pick(name)
@@ -171,32 +203,42 @@ def fig1_5():
         with h5py.File(path) as f:
             n = len(f["observables/sonine_c/time"][()])
             T = f["observables/temperature/value"][()].reshape(n, -1)
+            dT = f["observables/temperature/error"][()].reshape(n, -1)
             c = f["observables/sonine_c/value"][()].reshape(n, -1)
             dc = f["observables/sonine_c/error"][()].reshape(n, -1)
         half = len(c) // 2
         for k in range(c.shape[1]):
-            labels.append(f"{name} c_{k + 1}")
-            measured.append(c[half:, k].mean())
-            errors.append(dc[half:, k].mean())
-            expected.append(th["sonine_c"][k])
+            label = r"$c$, one species" if c.shape[1] == 1 else f"$c_{k + 1}$, binary"
+            rows_c.append((label, c[half:, k].mean(), dc[half:, k].mean(), th["sonine_c"][k]))
         if T.shape[1] == 2:
-            labels.append(f"{name} gamma/10")
-            measured.append((T[half:, 0] / T[half:, 1]).mean() / 10)
-            errors.append(0.0)
-            expected.append(th["temperature_ratio"] / 10)
-    if not labels:
-        return
-    x = np.arange(len(labels))
-    ax.errorbar(x, measured, yerr=errors, fmt="o", label="DSMC, HSS (thermostat)")
-    ax.plot(x, expected, "x", ms=8, label="first Sonine, HCS")
-    ax.set_xticks(x, labels, rotation=30, fontsize=7)
-    ax.set(title="Seed 004 Figs 1-5: HSS = HCS (gamma, c_i)")
-    ax.legend(fontsize=8)
-    save(fig, "seed004_fig1_5_hss.png")
+            g = T[half:, 0] / T[half:, 1]
+            dg = g * np.hypot(dT[half:, 0] / T[half:, 0], dT[half:, 1] / T[half:, 1])
+            rows_g.append((r"$\gamma = T_1/T_2$, binary", g.mean(), dg.mean(), th["temperature_ratio"]))
+    if not rows_c:
+        raise Missing("no steady-state outputs", case="hss_one")
+    fig, axes, ars = with_residuals(ncols=2, width=COLUMN * 1.6, height=3.0, sharex=False)
+    for ax, ar, rows in zip(axes, ars, (rows_c, rows_g)):
+        if not rows:
+            ax.set_visible(False)
+            ar.set_visible(False)
+            continue
+        labels, y, dy, th = zip(*rows)
+        x = np.arange(len(rows))
+        ax.errorbar(x, y, yerr=dy, fmt="o", mfc="none", color="C0", label="DSMC, steady state")
+        ax.plot(x, th, "x", color="k", ms=6, label="first Sonine, cooling state")
+        residuals(ar, x, y, dy, th, kind="se", fmt="o", mfc="none", color="C0")
+        ar.set_xticks(x, labels)
+        ax.set_xticks(x)
+        ax.set_xlim(-0.5, len(rows) - 0.5)
+        ar.set_xlim(-0.5, len(rows) - 0.5)
+        ax.minorticks_off()
+        ar.minorticks_off()
+    axes[0].set(ylabel="cumulant")
+    axes[1].set(ylabel="temperature ratio")
+    ars[1].set_ylabel("")
+    axes[0].legend()
+    save(fig, "seed004_fig1_5_hss")
 
 
 if __name__ == "__main__":
-    fig6()
-    fig7_9()
-    fig10_12()
-    fig1_5()
+    fc.main()

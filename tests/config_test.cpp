@@ -1098,7 +1098,10 @@ TEST(ConfigSweep, ALongListIsCheckedInLinearTime) {
   // speed and load cancel.
   auto text_of = [](int count) {
     std::string values;
-    for (int k = 1; k <= count; ++k) values += (k > 1 ? ", " : "") + std::to_string(k);
+    for (int k = 1; k <= count; ++k) {
+      if (k > 1) values += ", ";
+      values += std::to_string(k);
+    }
     return base() + "&sweep\n  variable = 'dsmc:seed'\n  values = " + values + "\n/\n";
   };
   auto best_seconds = [&](const std::string& text) {
