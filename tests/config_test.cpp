@@ -602,7 +602,7 @@ TEST(ConfigError, TooFewParticlesForADiluteSpecies) {
 TEST(ConfigError, TooFewParticlesByDefaultNamesTheGroup) {
   // n_particles not given: the default 20000 is too few; reported at the &dsmc line.
   auto text = with_line(5, "  number_density = 1.0, 1e-5");
-  text = text.replace(text.find("  n_particles = 200\n"), 20, "\n");
+  text.erase(text.find("  n_particles = 200\n"), 19);  // the line's text, not its newline
   const std::string m = error_of(text);
   expect_error(m, 11, "dsmc", "n_particles", {"n_particles = 20000", "species 2"});
 }

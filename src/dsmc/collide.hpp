@@ -254,6 +254,7 @@ class Collider {
   /// OpenMP threads for the blocks of a step (header, "Threads inside one replica"); 1 by default.
   /// The results do not depend on it, bit for bit. Without blocks it has no effect.
   void use_threads(int threads);
+  /// The threads set by use_threads (1 by default).
   int threads() const { return threads_; }
   /// Memory the collider holds per particle besides the System (the remix buffers of blocks).
   std::size_t workspace_bytes() const {

@@ -40,9 +40,10 @@ int threads();  ///< OpenMP threads per rank (1 without OpenMP)
 /// with at least as many units as threads, one thread per unit; with fewer, threads / units for each
 /// (nested OpenMP is enabled for it). What a unit computes does not depend on either number.
 struct ThreadSplit {
-  int units = 1;
-  int per_unit = 1;
+  int units = 1;     ///< threads taking the units in turn
+  int per_unit = 1;  ///< threads of each unit's cache blocks
 };
+/// The split of this rank's threads() over `units` work units (see ThreadSplit).
 ThreadSplit split_threads(std::size_t units);
 
 /// Rank 0 receives every rank's buffer, in rank order (its own first); other ranks get an empty list.

@@ -144,8 +144,9 @@ class SumTree {
 /// O(1) with two memory reads; built in O(n). Used for LowRankSampler's frozen columns and for the
 /// species pairs of a mixture's block (collide.hpp, "Mixtures in blocks").
 struct AliasTable {
-  std::vector<double> threshold;
-  std::vector<std::size_t> alias;
+  std::vector<double> threshold;   ///< probability of keeping cell k rather than its alias
+  std::vector<std::size_t> alias;  ///< the other index of cell k
+  /// Builds the table of weights `w` (each finite and >= 0); all zero leaves it empty of draws.
   void build(const std::vector<double>& w) {
     const std::size_t n = w.size();
     threshold.assign(n, 0.0);
@@ -180,6 +181,7 @@ struct AliasTable {
       alias[k] = w[k] > 0.0 ? k : positive;
     }
   }
+  /// The index drawn by a uniform `u` in [0, 1).
   std::size_t sample(double u) const {
     const double x = u * static_cast<double>(threshold.size());
     const auto k = std::min(static_cast<std::size_t>(x), threshold.size() - 1);
