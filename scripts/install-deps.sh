@@ -13,6 +13,7 @@ packages=(
   doxygen graphviz      # `cmake --build build --target docs`
   python3-matplotlib python3-h5py python3-numpy  # paper-figures/
   libopenmpi-dev openmpi-bin  # mpirun: replicas and sweep points over ranks
+  clang libclang-rt-dev # scripts/clang-fuzz.sh: the clang build, sanitizers, libFuzzer (tests/fuzz)
 )
 
 missing=()
