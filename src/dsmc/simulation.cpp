@@ -26,6 +26,7 @@
 #include "dsmc/thermostat.hpp"
 #include "io/h5md.hpp"
 #include "io/sweep_table.hpp"
+#include "io/version.hpp"
 #include "theory/viscosity.hpp"
 
 namespace gdsmc::simulation {
@@ -1155,7 +1156,7 @@ class CheckpointStore {
 
  private:
   void write() const {
-    io::h5md::Writer w(path_, "granular-dsmc", "granular-dsmc checkpoint", GDSMC_VERSION);
+    io::h5md::Writer w(path_, "granular-dsmc", "granular-dsmc checkpoint", io::build_version());
     std::string done_units, running_units;
     for (const auto& [u, result] : done_) done_units += std::to_string(u) + " ";
     for (const auto& [u, snap] : running_) running_units += std::to_string(u) + " ";
@@ -1464,7 +1465,8 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
   std::string open_error;
   if (rank == 0) {
     try {
-      writer_storage.emplace(output_path, io::config::author_name(config.output), "granular-dsmc", GDSMC_VERSION);
+      writer_storage.emplace(output_path, io::config::author_name(config.output), "granular-dsmc",
+                             io::build_version());
     } catch (const std::runtime_error& e) {
       open_error = e.what();
       if (open_error.empty()) open_error = "cannot create the output file";
