@@ -435,17 +435,12 @@ class H5mdChecker {
     }
   }
 
- public:
-  /// Whether every dataset of `observables` must carry a unit (the project's rule; true by default).
-  void require_units(bool required) { require_units_ = required; }
-
- private:
 
   std::string path_;
   hid_t file_ = -1;
   std::vector<std::string> problems_;
   std::size_t elements_ = 0;
-  bool require_units_ = true;
+  bool require_units_ = true;  ///< the project's rule: every dataset of `observables` carries a unit
   std::string system_;                ///< `system` of the units module of the root being checked
   std::vector<std::string> symbols_;  ///< its `symbols`
 };

@@ -10,7 +10,7 @@
  * - `mass`: the unit of `&system mass`;
  * - `energy`: the unit of energies and temperatures (`&initial temperature`, k_B = 1);
  * - `time`: the unit of time that follows from them, `length` (`mass`/`energy`)^(1/2), in which the
- *   namelist gives times (`&dsmc t_end`, `&output sample_times`).
+ *   namelist gives times (`&dsmc t_end`, `&shear average_from`).
  * The fourth symbol is not independent: the units module allows integer powers only, and the unit
  * of time is a half-integer power of mass and energy. A dimensionless quantity (a count, a ratio,
  * a cumulant, a reduced variable) has the unit "1".
