@@ -9,6 +9,7 @@
 
 #include "base_namelist.hpp"
 #include "io/h5md.hpp"
+#include "io/version.hpp"
 
 #include <hdf5.h>
 
@@ -21,6 +22,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -424,6 +426,20 @@ TEST_F(CliDsmc, AWriteFailureIsOneLineAndLeavesNoFile) {
     EXPECT_NE(err.find("File too large"), std::string::npos) << err;
     EXPECT_EQ(files(), (std::vector<std::string>{"t.nml"})) << "limit " << limit;
   }
+}
+
+// The version of the build (\ref output_h5md "docs/output.md"): --version prints it, and the output
+// file records the same in /h5md/creator@version; the project's version, then "+" and git describe
+// when built from a git checkout.
+TEST_F(CliDsmc, VersionIsTheBuildVersionAlsoInTheFile) {
+  const std::string version = gdsmc::io::build_version();
+  EXPECT_TRUE(std::regex_match(version, std::regex("[0-9]+\\.[0-9]+\\.[0-9]+(\\+[A-Za-z0-9._-]+)?"))) << version;
+  const Result v = run("granular-dsmc", "--version");
+  EXPECT_EQ(v.status, 0);
+  EXPECT_EQ(v.out, "granular-dsmc " + version + "\n");
+  const Result r = dsmc(base());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(gdsmc::io::h5md::read_string_attribute((dir / "out.h5").string(), "/h5md/creator", "version"), version);
 }
 
 TEST_F(CliDsmc, Help) {

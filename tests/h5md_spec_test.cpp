@@ -13,12 +13,29 @@
 //    when step is not scalar); step and time in monotonically increasing order (implementation
 //    notes, "Dataset index lookup"); a group with `time` but no `step` is malformed;
 //  - beyond the core rules, the averaged-data convention of the H5MD discussion page: an `error`
-//    dataset beside `value` has the dimensions of `value`.
+//    dataset beside `value` has the dimensions of `value`;
+//  - modules (H5MD 1.1, "Modules"): every subgroup of `h5md/modules` has `version`: Integer[2];
+//  - the units module 1.0 (https://www.nongnu.org/h5md/modules/units.html): `h5md/modules/units` with
+//    `version` = {1, 0} and `system`: a scalar variable-length String; an attribute `unit` (on `time`
+//    and `value` of a time-dependent element, or on a time-independent element) is a scalar
+//    variable-length String of the ASCII character set whose text is a sequence of unit factors
+//    separated by a space, each a number (integer or decimal fraction) or a unit symbol, optionally
+//    followed by a signed non-zero integer power, at most one number and only as the first factor,
+//    no symbol twice.
+// And the project's own rules on top (\ref output_units "docs/output.md"): the
+// units module is declared; with a system other than "SI" the module group lists its symbols
+// (`symbols`), and every unit uses only those; every `time`, `value`, `error` and time-independent
+// dataset of `observables` has a unit, `time` the unit "time", `error` that of `value`; `step` none.
 #include <gtest/gtest.h>
 #include <hdf5.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <filesystem>
+#include <regex>
+#include <sstream>
+#include <tuple>
 #include <string>
 #include <vector>
 
@@ -82,8 +99,86 @@ class H5mdChecker {
       if (std::string(group) == "creator") check_string_attribute(g, "version", true);
       if (std::string(group) == "author") check_string_attribute(g, "email", false);
     }
+    check_modules(h5md);
     const std::string observables = base + "/observables";
     if (is_group(observables)) walk_observables(observables);
+  }
+
+  /// The unit string grammar of the units module, written here from its text (not the writer's).
+  static bool unit_grammar(const std::string& unit) {
+    static const std::regex factor_form("^(([0-9]+(\\.[0-9]+)?)|([A-Za-z]+))([+-][1-9][0-9]*)?$");
+    if (unit.empty() || unit.front() == ' ' || unit.back() == ' ' || unit.find("  ") != std::string::npos)
+      return false;
+    std::istringstream in(unit);
+    std::string factor;
+    std::vector<std::string> seen;
+    for (std::size_t index = 0; in >> factor; ++index) {
+      std::smatch m;
+      if (!std::regex_match(factor, m, factor_form)) return false;
+      if (m[2].matched && index != 0) return false;  // a number only as the first factor
+      if (m[4].matched) {
+        if (std::find(seen.begin(), seen.end(), m[4].str()) != seen.end()) return false;
+        seen.push_back(m[4].str());
+      }
+    }
+    return true;
+  }
+
+  /// Checks a `unit` attribute of `dataset` if it has one; `required`: its absence is a problem.
+  /// Returns the unit text ("" if absent or unreadable).
+  std::string check_unit(const std::string& dataset, bool required) {
+    if (!H5Aexists_by_name(file_, dataset.c_str(), "unit", H5P_DEFAULT)) {
+      if (required) fail(dataset, "attribute unit is missing");
+      return "";
+    }
+    const hid_t a = H5Aopen_by_name(file_, dataset.c_str(), "unit", H5P_DEFAULT, H5P_DEFAULT);
+    const hid_t t = H5Aget_type(a), space = H5Aget_space(a);
+    std::string text;
+    if (H5Sget_simple_extent_type(space) != H5S_SCALAR) fail(dataset, "unit is not of scalar dataspace");
+    if (H5Tget_class(t) != H5T_STRING) {
+      fail(dataset, "unit is not of class String");
+    } else if (H5Tis_variable_str(t) <= 0) {
+      fail(dataset, "unit is not a variable-length string");
+    } else {
+      if (H5Tget_cset(t) != H5T_CSET_ASCII) fail(dataset, "unit is not of the ASCII character set");
+      char* value = nullptr;
+      const hid_t memory = H5Tget_native_type(t, H5T_DIR_ASCEND);
+      if (H5Sget_simple_extent_type(space) == H5S_SCALAR && H5Aread(a, memory, &value) >= 0 && value) {
+        text = value;
+        H5free_memory(value);
+      }
+      H5Tclose(memory);
+      if (!unit_grammar(text)) fail(dataset, "unit '" + text + "' is not a unit string");
+      else if (system_ != "SI" && !symbols_.empty()) {
+        std::istringstream in(text);
+        std::string factor;
+        while (in >> factor) {
+          const std::string symbol = factor.substr(0, factor.find_first_of("+-"));
+          if (!symbol.empty() && !std::isdigit(static_cast<unsigned char>(symbol[0])) &&
+              std::find(symbols_.begin(), symbols_.end(), symbol) == symbols_.end())
+            fail(dataset, "unit '" + text + "' uses the symbol '" + symbol + "', not one of the system's symbols");
+        }
+      }
+    }
+    H5Tclose(t);
+    H5Sclose(space);
+    H5Aclose(a);
+    return text;
+  }
+
+  /// Checks `/sweep/results`: the value and error of every quantity carry the same valid unit.
+  void check_sweep_results() {
+    const std::string results = "/sweep/results";
+    if (!is_group(results)) {
+      fail(results, "missing");
+      return;
+    }
+    for (const auto& q : children(results)) {
+      const std::string g = results + "/" + q;
+      if (!is_group(g)) continue;
+      const std::string value = check_unit(g + "/value", true), error = check_unit(g + "/error", true);
+      if (value != error) fail(g + "/error", "its unit is not that of value");
+    }
   }
 
  private:
@@ -123,6 +218,110 @@ class H5mdChecker {
     if (H5Tget_class(t) != H5T_STRING) fail(object, std::string("attribute ") + name + " is not of class String");
     H5Tclose(t);
     H5Aclose(a);
+  }
+
+  /// Reads a string attribute (fixed or variable length) of `object`; "" if it cannot.
+  std::string string_attribute(const std::string& object, const char* name) const {
+    std::string text;
+    const hid_t a = H5Aopen_by_name(file_, object.c_str(), name, H5P_DEFAULT, H5P_DEFAULT);
+    const hid_t t = H5Aget_type(a);
+    if (H5Tget_class(t) == H5T_STRING) {
+      const hid_t memory = H5Tget_native_type(t, H5T_DIR_ASCEND);
+      if (H5Tis_variable_str(t) > 0) {
+        char* value = nullptr;
+        if (H5Aread(a, memory, &value) >= 0 && value) {
+          text = value;
+          H5free_memory(value);
+        }
+      } else {
+        std::vector<char> buffer(H5Tget_size(t) + 1, '\0');
+        if (H5Aread(a, memory, buffer.data()) >= 0) text = buffer.data();
+      }
+      H5Tclose(memory);
+    }
+    H5Tclose(t);
+    H5Aclose(a);
+    return text;
+  }
+
+  /// Reads an Integer[2] attribute; false (and a problem) if it is not one.
+  bool integer_pair(const std::string& object, const char* name, int (&v)[2]) {
+    if (!H5Aexists_by_name(file_, object.c_str(), name, H5P_DEFAULT)) {
+      fail(object, std::string("attribute ") + name + " is missing");
+      return false;
+    }
+    const hid_t a = H5Aopen_by_name(file_, object.c_str(), name, H5P_DEFAULT, H5P_DEFAULT);
+    const hid_t t = H5Aget_type(a), s = H5Aget_space(a);
+    hsize_t dims[4] = {0};
+    const int rank = H5Sget_simple_extent_ndims(s);
+    H5Sget_simple_extent_dims(s, dims, nullptr);
+    bool ok = H5Tget_class(t) == H5T_INTEGER && rank == 1 && dims[0] == 2;
+    if (!ok) fail(object, std::string(name) + " is not Integer[2]");
+    else ok = H5Aread(a, H5T_NATIVE_INT, v) >= 0;
+    H5Tclose(t);
+    H5Sclose(s);
+    H5Aclose(a);
+    return ok;
+  }
+
+  /// `h5md/modules`: a version for every module; the units module as described at the top.
+  void check_modules(const std::string& h5md) {
+    system_.clear();
+    symbols_.clear();
+    const std::string modules = h5md + "/modules", units = modules + "/units";
+    if (is_group(modules))
+      for (const auto& name : children(modules)) {
+        if (name == "units") continue;  // below
+        int v[2] = {0, 0};
+        if (is_group(modules + "/" + name)) integer_pair(modules + "/" + name, "version", v);
+        else fail(modules + "/" + name, "a module is not a group");
+      }
+    if (!is_group(units)) {
+      if (require_units_) fail(units, "the units module is not declared");
+      return;
+    }
+    int v[2] = {0, 0};
+    if (integer_pair(units, "version", v) && (v[0] != 1 || v[1] != 0))
+      fail(units, "version is not {1, 0}");
+    if (!H5Aexists_by_name(file_, units.c_str(), "system", H5P_DEFAULT)) {
+      fail(units, "attribute system is missing");
+    } else {
+      const hid_t a = H5Aopen_by_name(file_, units.c_str(), "system", H5P_DEFAULT, H5P_DEFAULT);
+      const hid_t t = H5Aget_type(a), space = H5Aget_space(a);
+      if (H5Sget_simple_extent_type(space) != H5S_SCALAR) fail(units, "system is not of scalar dataspace");
+      if (H5Tget_class(t) != H5T_STRING || H5Tis_variable_str(t) <= 0)
+        fail(units, "system is not a variable-length String");
+      H5Tclose(t);
+      H5Sclose(space);
+      H5Aclose(a);
+      system_ = string_attribute(units, "system");
+    }
+    if (system_ != "SI") {  // project rule: a system of its own lists its symbols
+      if (!H5Aexists_by_name(file_, units.c_str(), "symbols", H5P_DEFAULT)) {
+        fail(units, "a system other than SI without the attribute symbols");
+      } else {
+        const hid_t a = H5Aopen_by_name(file_, units.c_str(), "symbols", H5P_DEFAULT, H5P_DEFAULT);
+        const hid_t t = H5Aget_type(a), space = H5Aget_space(a);
+        const hssize_t n = H5Sget_simple_extent_npoints(space);
+        if (H5Tget_class(t) == H5T_STRING && H5Tis_variable_str(t) > 0 && n > 0) {
+          std::vector<char*> names(static_cast<std::size_t>(n), nullptr);
+          const hid_t memory = H5Tget_native_type(t, H5T_DIR_ASCEND);
+          if (H5Aread(a, memory, names.data()) >= 0)
+            for (char* name : names) {
+              symbols_.emplace_back(name ? name : "");
+              H5free_memory(name);
+            }
+          H5Tclose(memory);
+        } else {
+          fail(units, "symbols is not an array of variable-length strings");
+        }
+        H5Tclose(t);
+        H5Sclose(space);
+        H5Aclose(a);
+        for (const auto& symbol : symbols_)
+          if (!std::regex_match(symbol, std::regex("^[A-Za-z]+$"))) fail(units, "'" + symbol + "' is not a unit symbol");
+      }
+    }
   }
 
   std::vector<std::string> children(const std::string& group) const {
@@ -172,6 +371,7 @@ class H5mdChecker {
       const std::string path = group + "/" + name;
       if (is_dataset(path)) {
         ++elements_;  // a time-independent element
+        check_unit(path, require_units_);
       } else if (is_group(path)) {
         if (is_dataset(path + "/step") || exists(path + "/time")) check_time_dependent(path);
         else walk_observables(path);  // a subgroup of elements
@@ -219,12 +419,30 @@ class H5mdChecker {
     }
     if (is_dataset(g + "/error") && shape_of(g + "/error").dims != value.dims)
       fail(g + "/error", "its dimensions are not those of value");
+    // Units: the module's rules on every unit, the project's on which datasets carry one.
+    if (H5Aexists_by_name(file_, (g + "/step").c_str(), "unit", H5P_DEFAULT) > 0)
+      fail(g + "/step", "a step count carries a unit");
+    if (is_dataset(g + "/time")) {
+      const std::string time_unit = check_unit(g + "/time", require_units_);
+      if (require_units_ && !time_unit.empty() && time_unit != "time")
+        fail(g + "/time", "unit '" + time_unit + "' is not \"time\"");
+    }
+    const std::string value_unit = check_unit(g + "/value", require_units_);
+    for (const auto& name : children(g)) {
+      if (name == "step" || name == "time" || name == "value" || !is_dataset(g + "/" + name)) continue;
+      const std::string unit = check_unit(g + "/" + name, require_units_);
+      if (name == "error" && unit != value_unit) fail(g + "/error", "its unit is not that of value");
+    }
   }
+
 
   std::string path_;
   hid_t file_ = -1;
   std::vector<std::string> problems_;
   std::size_t elements_ = 0;
+  bool require_units_ = true;  ///< the project's rule: every dataset of `observables` carries a unit
+  std::string system_;                ///< `system` of the units module of the root being checked
+  std::vector<std::string> symbols_;  ///< its `symbols`
 };
 
 std::string scratch(const std::string& name) {
@@ -241,6 +459,7 @@ void expect_conforming(const std::string& name, const std::string& text, std::si
   H5mdChecker checker(path);
   checker.check_root("/");
   for (std::size_t k = 1; k <= sweep_points; ++k) checker.check_root("/sweep/point_" + std::to_string(k));
+  if (sweep_points > 0) checker.check_sweep_results();
   EXPECT_GT(checker.elements(), 0u) << name << ": no observable found";
   for (const auto& p : checker.problems()) ADD_FAILURE() << p;
 }
@@ -329,4 +548,108 @@ TEST(H5mdSpec, CheckerCatchesViolations) {
                                "step: not of class Integer", "first dimension is not that of step",
                                "not in increasing order"})
     EXPECT_NE(all.find(expected), std::string::npos) << expected << "\n" << all;
+}
+
+namespace {
+
+/// A scalar string attribute `name` = `text` on `object`: variable length or fixed, of `cset`.
+void put_string(hid_t object, const char* name, const char* text, bool variable = true,
+                H5T_cset_t cset = H5T_CSET_ASCII) {
+  const hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, variable ? H5T_VARIABLE : std::string(text).size() + 1);
+  H5Tset_cset(type, cset);
+  const hid_t space = H5Screate(H5S_SCALAR);
+  const hid_t a = H5Acreate2(object, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
+  if (variable) H5Awrite(a, type, &text);
+  else H5Awrite(a, type, text);
+  H5Aclose(a);
+  H5Sclose(space);
+  H5Tclose(type);
+}
+
+/// A float64 [3] dataset `name` in `group` (an Integer one if `integer`), with a unit if `unit` is given.
+hid_t put_dataset(hid_t group, const char* name, const char* unit = nullptr, bool integer = false) {
+  const hsize_t n = 3;
+  const hid_t space = H5Screate_simple(1, &n, nullptr);
+  const hid_t d = H5Dcreate2(group, name, integer ? H5T_STD_I64LE : H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT,
+                             H5P_DEFAULT);
+  const double data[3] = {0.0, 1.0, 2.0};
+  H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data);
+  if (unit) put_string(d, "unit", unit);
+  H5Sclose(space);
+  return d;
+}
+
+}  // namespace
+
+// The checker of the units module: a file that breaks each of its rules is caught.
+TEST(H5mdSpec, CheckerCatchesUnitViolations) {
+  const std::string path = scratch("bad_units.h5");
+  const hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
+  H5Pset_create_intermediate_group(lcpl, 1);
+  // The units module at version {1, 1}, without system; a symbol list; a module without a version.
+  const hid_t units = H5Gcreate2(f, "/h5md/modules/units", lcpl, H5P_DEFAULT, H5P_DEFAULT);
+  {
+    const hsize_t two = 2;
+    const hid_t space = H5Screate_simple(1, &two, nullptr);
+    const hid_t a = H5Acreate2(units, "version", H5T_STD_I32LE, space, H5P_DEFAULT, H5P_DEFAULT);
+    const int v[2] = {1, 1};
+    H5Awrite(a, H5T_NATIVE_INT, v);
+    H5Aclose(a);
+    H5Sclose(space);
+    const hsize_t one = 1;
+    const hid_t list = H5Screate_simple(1, &one, nullptr);
+    const hid_t type = H5Tcopy(H5T_C_S1);
+    H5Tset_size(type, H5T_VARIABLE);
+    const hid_t s = H5Acreate2(units, "symbols", type, list, H5P_DEFAULT, H5P_DEFAULT);
+    const char* symbols[1] = {"time"};
+    H5Awrite(s, type, symbols);
+    H5Aclose(s);
+    H5Tclose(type);
+    H5Sclose(list);
+  }
+  H5Gclose(units);
+  H5Gclose(H5Gcreate2(f, "/h5md/modules/other", lcpl, H5P_DEFAULT, H5P_DEFAULT));
+  // A time-dependent element: a unit on step, time in a symbol the system lacks, a zero power on value,
+  // an error in another unit than value.
+  const hid_t y = H5Gcreate2(f, "/observables/y", lcpl, H5P_DEFAULT, H5P_DEFAULT);
+  for (const auto& [name, unit, integer] : {std::tuple{"step", "1", true}, std::tuple{"time", "s", false},
+                                            std::tuple{"value", "time+0", false}, std::tuple{"error", "time", false}})
+    H5Dclose(put_dataset(y, name, unit, integer));
+  H5Gclose(y);
+  // Time-independent elements: a number after a symbol, a symbol twice, a fixed-length unit, a UTF-8
+  // unit, no unit.
+  const hid_t o = H5Gopen2(f, "/observables", H5P_DEFAULT);
+  H5Dclose(put_dataset(o, "number_last", "time 60"));
+  H5Dclose(put_dataset(o, "symbol_twice", "time time-1"));
+  hid_t d = put_dataset(o, "fixed_length");
+  put_string(d, "unit", "1", false);
+  H5Dclose(d);
+  d = put_dataset(o, "utf8");
+  put_string(d, "unit", "1", true, H5T_CSET_UTF8);
+  H5Dclose(d);
+  H5Dclose(put_dataset(o, "no_unit"));
+  H5Gclose(o);
+  H5Pclose(lcpl);
+  H5Fclose(f);
+
+  H5mdChecker checker(path);
+  checker.check_root("/");
+  std::string all;
+  for (const auto& p : checker.problems()) all += p + "\n";
+  for (const char* expected :
+       {"units: version is not {1, 0}", "units: attribute system is missing", "other: attribute version is missing",
+        "step: a step count carries a unit", "time: unit 's' is not \"time\"", "uses the symbol 's'",
+        "value: unit 'time+0' is not a unit string", "error: its unit is not that of value",
+        "number_last: unit 'time 60' is not a unit string", "symbol_twice: unit 'time time-1' is not a unit string",
+        "fixed_length: unit is not a variable-length string", "utf8: unit is not of the ASCII character set",
+        "no_unit: attribute unit is missing"})
+    EXPECT_NE(all.find(expected), std::string::npos) << expected << "\n" << all;
+
+  // And the grammar accepts what the module's own examples write.
+  for (const char* good : {"nm+3", "um+2 s-1", "60 s", "10+3 m", "1", "0.5 energy length-3 time", "length+2"})
+    EXPECT_TRUE(H5mdChecker::unit_grammar(good)) << good;
+  for (const char* bad : {"", " m", "m ", "m  s", "m+", "m+01", "s 60", "m-0", "m^2", "m/s", "1.", "m m"})
+    EXPECT_FALSE(H5mdChecker::unit_grammar(bad)) << bad;
 }

@@ -13,6 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -426,4 +427,71 @@ TEST(H5md, NoHdf5FilesOrObjectsLeftOpen) {
     EXPECT_EQ(open_count(), 1);  // the temporary file itself, nothing in it
   }
   EXPECT_EQ(open_count(), 0);
+}
+
+// ---- Units (H5MD's units module, \ref output_units "docs/output.md") ----
+
+namespace {
+
+/// The character set and whether the string attribute `name` of `object` is of variable length.
+std::pair<H5T_cset_t, bool> string_kind(const std::string& file, const std::string& object, const char* name) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t a = H5Aopen_by_name(f, object.c_str(), name, H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t t = H5Aget_type(a);
+  const std::pair<H5T_cset_t, bool> kind{H5Tget_cset(t), H5Tis_variable_str(t) > 0};
+  H5Tclose(t);
+  H5Aclose(a);
+  H5Fclose(f);
+  return kind;
+}
+
+}  // namespace
+
+TEST(H5md, UnitStringGrammar) {
+  for (const char* good : {"1", "nm+3", "um+2 s-1", "60 s", "10+3 m", "0.5 m", "energy length-3 time", "length+2"})
+    EXPECT_TRUE(is_unit_string(good)) << good;
+  for (const char* bad : {"", " m", "m ", "m  s", "m+", "m+0", "m-01", "m2", "s 60", "60 2 s", "m^2", "m/s", "1.",
+                          ".5", "m m", "m s m-1", "\xc3\x85"})
+    EXPECT_FALSE(is_unit_string(bad)) << bad;
+}
+
+TEST(H5md, UnitsModuleAndUnitAttributes) {
+  const TempDir dir;
+  const std::string path = dir.file("units.h5");
+  {
+    Writer w(path, "A. Uthor", "granular-dsmc", "0.1.0");
+    w.declare_units_module("namelist");
+    Series s;
+    s.time = {0.0, 1.0};
+    s.step = {0, 10};
+    s.value = {1.0, 0.5};
+    s.error = {0.1, 0.1};
+    s.time_unit = "time";
+    s.value_unit = "energy";
+    w.write_observable("temperature", s);
+    Series plain = s;  // no units: no attributes
+    plain.time_unit.clear();
+    plain.value_unit.clear();
+    w.write_observable("plain", plain);
+    w.write_dataset("/observables/edges", {0.0, 1.0, 2.0}, {});
+    w.write_unit("/observables/edges", "1");
+    w.write_unit("/observables/edges", "length-1");  // replaces
+    EXPECT_THROW(w.write_unit("/observables/edges", "m/s"), std::invalid_argument);
+    Series bad = s;
+    bad.time_unit = "s s";
+    EXPECT_THROW(w.write_observable("bad", bad), std::invalid_argument);
+    w.commit();
+  }
+  EXPECT_EQ(read_attribute(path, "/h5md/modules/units", "version"), ParameterValue(std::vector<long long>{1, 0}));
+  EXPECT_EQ(read_string_attribute(path, "/h5md/modules/units", "system"), "namelist");
+  EXPECT_EQ(read_string_attribute(path, "/observables/temperature/time", "unit"), "time");
+  EXPECT_EQ(read_string_attribute(path, "/observables/temperature/value", "unit"), "energy");
+  EXPECT_EQ(read_string_attribute(path, "/observables/temperature/error", "unit"), "energy");
+  EXPECT_EQ(read_string_attribute(path, "/observables/edges", "unit"), "length-1");
+  EXPECT_THROW(read_string_attribute(path, "/observables/temperature/step", "unit"), std::runtime_error);
+  EXPECT_THROW(read_string_attribute(path, "/observables/plain/value", "unit"), std::runtime_error);
+  EXPECT_THROW(read_observable(path, "bad"), std::runtime_error);  // rejected before anything was written
+  // The module's form: a scalar variable-length string of the ASCII character set.
+  EXPECT_EQ(string_kind(path, "/observables/temperature/value", "unit"), std::make_pair(H5T_CSET_ASCII, true));
+  EXPECT_TRUE(string_kind(path, "/h5md/modules/units", "system").second);
 }

@@ -21,6 +21,7 @@
 #include "io/h5md.hpp"
 #include "io/namelist.hpp"
 #include "io/sweep_table.hpp"
+#include "io/version.hpp"
 
 namespace {
 
@@ -147,7 +148,7 @@ int main(int argc, char** argv) {
       std::cout << kUsage;
       return 0;
     } else if (arg == "--version") {
-      std::cout << "granular-dsmc " << GDSMC_VERSION << "\n";
+      std::cout << "granular-dsmc " << gdsmc::io::build_version() << "\n";
       return 0;
     } else if (arg == "--print-defaults") {
       std::cout << gdsmc::io::config::defaults_template();

@@ -26,6 +26,8 @@
 #include "dsmc/thermostat.hpp"
 #include "io/h5md.hpp"
 #include "io/sweep_table.hpp"
+#include "io/units.hpp"
+#include "io/version.hpp"
 #include "theory/viscosity.hpp"
 
 namespace gdsmc::simulation {
@@ -1155,7 +1157,7 @@ class CheckpointStore {
 
  private:
   void write() const {
-    io::h5md::Writer w(path_, "granular-dsmc", "granular-dsmc checkpoint", GDSMC_VERSION);
+    io::h5md::Writer w(path_, "granular-dsmc", "granular-dsmc checkpoint", io::build_version());
     std::string done_units, running_units;
     for (const auto& [u, result] : done_) done_units += std::to_string(u) + " ";
     for (const auto& [u, snap] : running_) running_units += std::to_string(u) + " ";
@@ -1251,6 +1253,7 @@ void write_reduced(io::h5md::Writer& writer, const std::string& root, const io::
   std::vector<double> edges(bins + 1);
   for (std::size_t b = 0; b <= bins; ++b) edges[b] = width * static_cast<double>(b);
   writer.write_dataset(group + "/bin_edges", edges, {bins + 1});
+  writer.write_unit(group + "/bin_edges", io::units::kDimensionless);  // v* = |v - u|/v0
   const double sigma12 = mix.contact_distance(0, s - 1);
   for (std::size_t k = 0; k < s; ++k) {
     const std::size_t j = s - 1 - k;  // the other species (itself for one species)
@@ -1282,6 +1285,12 @@ void write_reduced(io::h5md::Writer& writer, const std::string& root, const io::
     if (!phi_error.empty()) writer.write_dataset(sp + "/delta_error", delta_error, {bins});
     writer.write_dataset(sp + "/g", g, {bins});
     if (!phi_error.empty()) writer.write_dataset(sp + "/g_error", g_error, {bins});
+    // Distributions of the reduced speed v* and their errors: dimensionless.
+    for (const char* dataset : {"value", "delta", "g"})
+      writer.write_unit(sp + "/" + dataset, io::units::kDimensionless);
+    if (!phi_error.empty())
+      for (const char* dataset : {"error", "delta_error", "g_error"})
+        writer.write_unit(sp + "/" + dataset, io::units::kDimensionless);
     writer.write_attribute(sp, "sonine_c", c[k]);
     writer.write_attribute(sp, "lambda", lambda);
     writer.write_attribute(sp, "tail_beta", beta);
@@ -1312,6 +1321,8 @@ void write_agg_frag_point(io::h5md::Writer& writer, const std::string& root, Poi
     series.value = a.mean();
     series.columns = a.columns;
     series.error = a.standard_error();
+    series.time_unit = io::units::kTime;
+    series.value_unit = io::units::of_observable(name);
     writer.write_observable(root + "/" + name, series);
   }
   const auto& number = acc["number"];
@@ -1321,6 +1332,8 @@ void write_agg_frag_point(io::h5md::Writer& writer, const std::string& root, Poi
   temperature.time = time_mean;
   temperature.step = step;
   temperature.columns = width;
+  temperature.time_unit = io::units::kTime;
+  temperature.value_unit = io::units::of_observable("temperature");
   for (std::size_t c = 0; c < time_mean.size() * width; ++c) {
     double sum_n = 0.0, sum_e = 0.0;
     for (std::size_t r = 0; r < replicas; ++r) {
@@ -1385,6 +1398,8 @@ void write_point(io::h5md::Writer& writer, const std::string& root, const io::co
     series.value = a.mean();
     series.columns = a.columns;
     series.error = a.standard_error();
+    series.time_unit = io::units::kTime;
+    series.value_unit = io::units::of_observable(name);
     writer.write_observable(root + "/" + name, series);
   }
   if (acc.count("velocity_histogram")) {  // one histogram observable per species: value (Nt x bins)
@@ -1395,6 +1410,8 @@ void write_point(io::h5md::Writer& writer, const std::string& root, const io::co
       series.time = time_mean;
       series.step = step;
       series.columns = bins;
+      series.time_unit = io::units::kTime;
+      series.value_unit = io::units::of_observable("velocity_histogram");
       for (std::size_t i = 0; i < n_samples; ++i)
         for (std::size_t b = 0; b < bins; ++b) {
           series.value.push_back(mean[i * s * bins + k * bins + b]);
@@ -1406,6 +1423,7 @@ void write_point(io::h5md::Writer& writer, const std::string& root, const io::co
     for (std::size_t b = 0; b <= bins; ++b)
       edges[b] = -range + 2.0 * range * static_cast<double>(b) / static_cast<double>(bins);
     writer.write_dataset(root + "/velocity_histogram/bin_edges", edges, {bins + 1});
+    writer.write_unit(root + "/velocity_histogram/bin_edges", io::units::kDimensionless);  // v/sqrt(T_k/m_k)
   }
   if (acc.count("reduced_distribution")) write_reduced(writer, root, config, result);
   if (acc.count("shear_viscosity_average")) {
@@ -1437,6 +1455,7 @@ void write_point(io::h5md::Writer& writer, const std::string& root, const io::co
     std::vector<double> start_times;
     for (const auto& row : starts) start_times.push_back(row[0]);
     writer.write_dataset(root + "/msd/start_time", start_times, {start_times.size()});
+    writer.write_unit(root + "/msd/start_time", io::units::kTime);
     writer.write_attribute(root + "/msd", "description",
                            std::string("<|R_k|^2> per species, displacement since start_time (seed 001 eq 15)"));
   }
@@ -1464,7 +1483,8 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
   std::string open_error;
   if (rank == 0) {
     try {
-      writer_storage.emplace(output_path, io::config::author_name(config.output), "granular-dsmc", GDSMC_VERSION);
+      writer_storage.emplace(output_path, io::config::author_name(config.output), "granular-dsmc",
+                             io::build_version());
     } catch (const std::runtime_error& e) {
       open_error = e.what();
       if (open_error.empty()) open_error = "cannot create the output file";
@@ -1593,6 +1613,9 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
   std::string joined;
   for (const auto& o : config.overrides) joined += o + "\n";
   writer.write_attribute("/parameters", "overrides", joined);
+  // H5MD's units module: every time and observable carries its unit, in the units of the namelist
+  // (\ref output_units "docs/output.md").
+  io::units::declare(writer);
 
   Summary summary;
   std::uint64_t events = 0;

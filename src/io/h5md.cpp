@@ -214,6 +214,23 @@ Handle utf8_string_type(const std::string& object) {
   return type;
 }
 
+void put_attribute(hid_t object, const std::string& where, const std::string& name, hid_t file_type,
+                   hid_t memory_type, const hsize_t* dims, const void* data);
+
+/// The `unit` attribute of H5MD's units module: a scalar variable-length ASCII string.
+void put_unit(hid_t dataset, const std::string& dataset_path, const std::string& unit) {
+  const std::string where = dataset_path + "@unit";
+  if (!is_unit_string(unit))
+    throw std::invalid_argument("h5md: '" + unit + "' is not a unit string of H5MD's units module (" + where + ")");
+  if (check(H5Aexists(dataset, "unit"), "H5Aexists", where) > 0)
+    check(H5Adelete(dataset, "unit"), "H5Adelete", where);
+  Handle type = make(H5Tcopy(H5T_C_S1), H5Tclose, "H5Tcopy(H5T_C_S1)", where);
+  check(H5Tset_size(type.get(), H5T_VARIABLE), "H5Tset_size", where);
+  check(H5Tset_cset(type.get(), H5T_CSET_ASCII), "H5Tset_cset", where);
+  const char* text = unit.c_str();
+  put_attribute(dataset, where, "unit", type.get(), type.get(), nullptr, &text);
+}
+
 /// Opens every group along `path`, creating the missing ones, and returns the last.
 Handle ensure_group(hid_t file, const std::string& path) {
   const std::vector<std::string> parts = split_path(path);
@@ -481,6 +498,47 @@ ParameterValue read_attribute_value(hid_t file, const std::string& object_path,
 
 }  // namespace
 
+bool is_unit_string(const std::string& unit) {
+  // Factors separated by single spaces: no empty factor, no leading or trailing space.
+  std::vector<std::string> symbols;
+  std::size_t start = 0, index = 0;
+  if (unit.empty()) return false;
+  for (;; ++index) {
+    const std::size_t space = unit.find(' ', start);
+    const std::string factor = unit.substr(start, space == std::string::npos ? std::string::npos : space - start);
+    if (factor.empty()) return false;
+    auto is_digit = [](char c) { return c >= '0' && c <= '9'; };
+    auto is_letter = [](char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); };
+    std::size_t i = 0;
+    if (is_digit(factor[0])) {  // a number: digits, optionally '.' and digits; only the first factor
+      if (index != 0) return false;
+      while (i < factor.size() && is_digit(factor[i])) ++i;
+      if (i < factor.size() && factor[i] == '.') {
+        ++i;
+        const std::size_t fraction = i;
+        while (i < factor.size() && is_digit(factor[i])) ++i;
+        if (i == fraction) return false;
+      }
+    } else if (is_letter(factor[0])) {  // a symbol: letters, each symbol once
+      while (i < factor.size() && is_letter(factor[i])) ++i;
+      const std::string symbol = factor.substr(0, i);
+      if (std::find(symbols.begin(), symbols.end(), symbol) != symbols.end()) return false;
+      symbols.push_back(symbol);
+    } else {
+      return false;
+    }
+    if (i < factor.size()) {  // a power: a sign and a non-zero integer without leading zeros
+      if (factor[i] != '+' && factor[i] != '-') return false;
+      ++i;
+      if (i >= factor.size() || factor[i] < '1' || factor[i] > '9') return false;
+      while (i < factor.size() && is_digit(factor[i])) ++i;
+      if (i != factor.size()) return false;
+    }
+    if (space == std::string::npos) return true;
+    start = space + 1;
+  }
+}
+
 void skip_library_shutdown() {
   // Only a flag before the library starts; once it has, the call fails and nothing changes.
   H5dont_atexit();
@@ -618,6 +676,9 @@ void Writer::write_observable(const std::string& name, const Series& series) {
   if (!series.error.empty() && series.error.size() != series.value.size())
     throw std::invalid_argument(what + std::to_string(series.error.size()) + " errors but " +
                                 std::to_string(series.value.size()) + " values");
+  for (const std::string* unit : {&series.time_unit, &series.value_unit})
+    if (!unit->empty() && !is_unit_string(*unit))
+      throw std::invalid_argument(what + "'" + *unit + "' is not a unit string of H5MD's units module");
 
   const hid_t file = impl_->open_file();
   with_context(impl_->context(), [&] {
@@ -635,6 +696,41 @@ void Writer::write_observable(const std::string& name, const Series& series) {
     if (!series.error.empty())
       put_dataset(group.get(), path, "error", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, dims, true,
                   series.error.data());
+    auto unit_of = [&](const char* dataset, const std::string& unit) {
+      const std::string where = path + "/" + dataset;
+      const Handle d = make(H5Dopen2(group.get(), dataset, H5P_DEFAULT), H5Dclose, "H5Dopen2", where);
+      put_unit(d.get(), where, unit);
+    };
+    if (!series.time_unit.empty()) unit_of("time", series.time_unit);
+    if (!series.value_unit.empty()) {
+      unit_of("value", series.value_unit);
+      if (!series.error.empty()) unit_of("error", series.value_unit);
+    }
+  });
+}
+
+void Writer::declare_units_module(const std::string& system) {
+  const hid_t file = impl_->open_file();
+  with_context(impl_->context(), [&] {
+    const std::string path = "/h5md/modules/units";
+    const Handle module = ensure_group(file, path);
+    const std::int32_t version[2] = {kUnitsModuleVersion[0], kUnitsModuleVersion[1]};
+    const hsize_t two = 2;
+    if (check(H5Aexists(module.get(), "version"), "H5Aexists", path + "@version") > 0)
+      check(H5Adelete(module.get(), "version"), "H5Adelete", path + "@version");
+    put_attribute(module.get(), path + "@version", "version", H5T_STD_I32LE, H5T_NATIVE_INT32, &two, version);
+    put_value(module.get(), path, "system", system, true);
+  });
+}
+
+void Writer::write_unit(const std::string& dataset_path, const std::string& unit) {
+  if (!is_unit_string(unit))
+    throw std::invalid_argument("h5md: '" + unit + "' is not a unit string of H5MD's units module (" +
+                                dataset_path + "@unit)");
+  const hid_t file = impl_->open_file();
+  with_context(impl_->context(), [&] {
+    const Handle d = make(H5Dopen2(file, dataset_path.c_str(), H5P_DEFAULT), H5Dclose, "H5Dopen2", dataset_path);
+    put_unit(d.get(), dataset_path, unit);
   });
 }
 

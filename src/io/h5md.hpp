@@ -9,16 +9,18 @@
  * /
  * +-- h5md                              +-- version: int32 [2] = {1, 1}
  * |   +-- author                        +-- name: string
- * |   \-- creator                       +-- name: string, +-- version: string
+ * |   +-- creator                       +-- name: string, +-- version: string
+ * |   \-- modules/units                 +-- version: int32 [2] = {1, 0}, +-- system: string
+ * |                                         (only when declare_units_module() was called)
  * +-- parameters                        +-- namelist: string (the input file as given)
  * |   +-- system                        +-- <variable>: one attribute per resolved variable
  * |   \-- <namelist group> ...              (defaults included)
  * \-- observables
  *     +-- temperature                   (H5MD time-dependent data element)
  *     |   +-- step: int64 [Nt]
- *     |   +-- time: float64 [Nt]
- *     |   +-- value: float64 [Nt] or [Nt][S]
- *     |   \-- error: float64, shape of value (only when there are several replicas)
+ *     |   +-- time: float64 [Nt]        +-- unit: string (Series::time_unit, when given)
+ *     |   +-- value: float64 [Nt] or [Nt][S]  +-- unit (Series::value_unit, when given)
+ *     |   \-- error: float64, shape of value (only when there are several replicas), +-- unit
  *     +-- histogram
  *     |   \-- species_1 ...             (names may nest: "histogram/species_1")
  *     \-- ...
@@ -30,6 +32,11 @@
  * A sweep point /sweep/point_K is an H5MD root of its own (the specification allows the root of the
  * H5MD structure to be any group): /sweep/point_K/h5md is a hard link to /h5md, beside its
  * observables. Checked against the specification by tests/h5md_spec_test.cpp.
+ *
+ * Units (H5MD's units module 1.0, \ref output_units "docs/output.md"): declare_units_module() declares
+ * the module and its unit system; a `unit` attribute (Series::time_unit and Series::value_unit, or
+ * write_unit() for a time-independent dataset) is a scalar variable-length ASCII string whose text
+ * follows the module's grammar (is_unit_string()); an invalid one throws std::invalid_argument.
  *
  * Attribute types: strings are variable-length UTF-8 (h5py returns them as str); logicals are
  * 8-bit signed integers 0/1, because HDF5 has no boolean class and a plain integer reads the same
@@ -80,7 +87,21 @@ struct Series {
   std::vector<double> value;     ///< row-major [time][column]
   std::size_t columns = 1;       ///< 1: a 1-D dataset
   std::vector<double> error;  ///< empty = no error dataset; else same size as value
+  /// The `unit` attribute of `time` (H5MD units module); empty = none. Must pass is_unit_string().
+  std::string time_unit;
+  /// The `unit` attribute of `value`, and of `error` (the same quantity); empty = none.
+  std::string value_unit;
 };
+
+/// Version {major, minor} of H5MD's units module that declare_units_module() declares.
+inline constexpr int kUnitsModuleVersion[2] = {1, 0};
+
+/// Whether `unit` is a unit string of H5MD's units module (\ref output_units "docs/output.md"):
+/// unit factors separated by one space each; a factor is a number (an integer or a decimal
+/// fraction) or a unit symbol (letters), either optionally followed by a signed non-zero integer
+/// power ("m+2", "s-1", "10+3"); at most one number, and only as the first factor; no symbol twice.
+/// "1" (a single number) is the unit of a dimensionless quantity.
+bool is_unit_string(const std::string& unit);
 
 /// Call first in main, before any other function of this module: HDF5 then does not run its own
 /// shutdown at exit. HDF5 1.10 segfaults there after a file failed to close (a write error: a full
@@ -105,8 +126,20 @@ class Writer {
   void write_parameters(const std::vector<Parameter>& parameters, const std::string& namelist_text);
 
   /// `/observables/NAME/{step,time,value[,error]}`; `name` may contain '/' for nested groups.
-  /// A `name` starting with '/' is an absolute path instead (points of a sweep).
+  /// A `name` starting with '/' is an absolute path instead (points of a sweep). The units of the
+  /// series (when given) become the `unit` attributes of time, value and error.
   void write_observable(const std::string& name, const Series& series);
+
+  /// Declares H5MD's units module: group `/h5md/modules/units` with `version` int32[2] =
+  /// kUnitsModuleVersion and `system` (scalar variable-length string) naming the unit system of
+  /// every `unit` attribute of the file. Further attributes of the module group (the meaning of the
+  /// system's symbols) can be added with write_attribute().
+  void declare_units_module(const std::string& system);
+
+  /// Attaches (or replaces) the `unit` attribute of the existing dataset `dataset_path`: a scalar
+  /// variable-length ASCII string, as the units module prescribes. Throws std::invalid_argument
+  /// if `unit` is not a unit string (is_unit_string()).
+  void write_unit(const std::string& dataset_path, const std::string& unit);
 
   /// Attaches (or replaces) attribute `name` on the existing group or dataset `object_path`.
   void write_attribute(const std::string& object_path, const std::string& name,

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "io/compare.hpp"
+#include "io/units.hpp"
 
 namespace gdsmc::io::sweep_table {
 
@@ -172,6 +173,9 @@ void write(h5md::Writer& writer, const Table& t) {
     const std::string g = "/sweep/results/" + r.name;
     writer.write_dataset(g + "/value", r.value, {t.points, r.columns});
     writer.write_dataset(g + "/error", r.error, {t.points, r.columns});
+    // The unit of the quantity (\ref output_units "docs/output.md"), as on its observable.
+    writer.write_unit(g + "/value", units::of_observable(r.name));
+    writer.write_unit(g + "/error", units::of_observable(r.name));
     writer.write_attribute(g, "at", r.at);
     writer.write_attribute(g, "description", r.description);
     quantities.push_back(r.name);
