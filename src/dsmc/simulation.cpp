@@ -1302,7 +1302,7 @@ void write_reduced(io::h5md::Writer& writer, const std::string& root, const io::
   writer.write_attribute(group, "description",
                          std::string("Phi_i(v*), v* = |v - u|/v0, v0 = sqrt(2T(m1+m2)/(m1 m2)), averaged over the "
                                      "samples past scaling_start collisions per particle; delta = Delta_i of "
-                                     "seed 003 eq 27, g = G_i of eq 30 (measured c_i, lambda_i, zeta*)"));
+                                     "Montanero and Garzo 2002 eq 27, g = G_i of eq 30 (measured c_i, lambda_i, zeta*); docs/sonine.md"));
 }
 
 /// The observables of an &agg_frag point. T_k of a size that most replicas lack is not the mean of
@@ -1360,7 +1360,7 @@ void write_agg_frag_point(io::h5md::Writer& writer, const std::string& root, Poi
                          std::string("T_k = m_k <|v-u|^2>/3 of clusters of size k = column + 1: ratio of the replica "
                                      "sums (2/3) sum E_k / sum N_k; 0 where no replica has such a cluster"));
   writer.write_attribute(root + "/total_temperature", "description",
-                         std::string("per cluster: sum_k N_k T_k / N (ERRATA §12)"));
+                         std::string("per cluster: sum_k N_k T_k / N (docs/agg-frag.md)"));
   writer.write_attribute(root + "/kinetic_energy", "description",
                          std::string("kinetic energy relative to the mean flow per initial monomer"));
   writer.write_attribute(root + "/dissipated_energy", "description",
@@ -1444,7 +1444,7 @@ void write_point(io::h5md::Writer& writer, const std::string& root, const io::co
   if (acc.count("shear_viscosity"))
     writer.write_attribute(root + "/shear_viscosity", "description",
                            std::string("eta/eta_0(T) = -P_xy/(a eta_0) with P_xy at the middle of the streaming jump "
-                                       "(thermostat.hpp), divided by 1 - (a* eta*)^2 (finite shear rate, ERRATA §13)"));
+                                       "(thermostat.hpp), divided by 1 - (a* eta*)^2 (finite shear rate, docs/shear-viscosity.md)"));
   if (acc.count("pressure_tensor"))
     writer.write_attribute(root + "/pressure_tensor", "description",
                            std::string("P = P^k + P^c, columns xx, yy, zz, xy, xz, yz; sampled at a stage's start, the mean of "
@@ -1457,12 +1457,12 @@ void write_point(io::h5md::Writer& writer, const std::string& root, const io::co
     writer.write_dataset(root + "/msd/start_time", start_times, {start_times.size()});
     writer.write_unit(root + "/msd/start_time", io::units::kTime);
     writer.write_attribute(root + "/msd", "description",
-                           std::string("<|R_k|^2> per species, displacement since start_time (seed 001 eq 15)"));
+                           std::string("<|R_k|^2> per species, displacement since start_time (Bodrova and Osinsky 2024 eq 15; docs/diffusion-msd.md)"));
   }
   writer.write_attribute(root + "/temperature", "description",
                          std::string("partial temperatures T_k = m_k <|v-u|^2>/3, columns = species"));
   writer.write_attribute(root + "/sonine_c", "description",
-                         std::string("c_k = 2[(3/5)<v^4>/<v^2>^2 - 1] (seed 003 eq 17)"));
+                         std::string("c_k = 2[(3/5)<v^4>/<v^2>^2 - 1] (Montanero and Garzo 2002 eq 17; docs/sonine.md)"));
   if (acc.count("collisions_pair"))
     writer.write_attribute(root + "/collisions_pair", "description",
                            std::string("cumulative events per species pair (k <= j, row-major upper triangle)"));

@@ -52,7 +52,7 @@ int check_initial_slope(int argc, char** argv) {
   const auto mix = config.mixture();
   const std::size_t s = mix.size();
   const auto& t0 = config.initial.temperature;
-  validation::Report report("polydisperse: dT_k/dt at t = 0 against the exact Maxwellian rates (ERRATA §4), " +
+  validation::Report report("polydisperse: dT_k/dt at t = 0 against the exact Maxwellian rates (docs/haff-and-mixtures.md), " +
                                 std::to_string(s) + " species",
                             stem + ".report.txt");
   if (!report.require("at least 8 replicas, each run on its own", replicas >= 8)) return report.exit_code();
