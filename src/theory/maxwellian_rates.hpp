@@ -18,8 +18,10 @@
  * and the collision events per unit volume and time (ERRATA §2, docs/collision-model.md "mixture
  * rates"; like pairs counted once) are
  *   R = sum_{k <= j} R_kj = sum_{k, j} e_kj r_kj,   e_kj = (1/2) n_k n_j pi sigma_kj^2 chi_kj sqrt(8/pi).
- * a, b and e are computed once (3 S^2 doubles); each evaluation is then one square root and a few
- * multiply-adds per pair, which Eigen vectorises.
+ * r_kj and e_kj are symmetric: the constants are stored per unordered pair k <= j, row by row
+ * (a_kj, b_kj, a_jk, b_jk, e_kj: 2.5 S^2 doubles), computed once; each evaluation sweeps the pairs
+ * once, one square root and a few multiply-adds per unordered pair, which Eigen vectorises, adding
+ * row k's terms to zeta_k and the partner's to zeta_j.
  *
  * \section mrates_jacobian Derivatives
  * With u_l = ln T_l, d r_kj/d u_k = theta_k/(2 r_kj), d r_kj/d u_j = theta_j/(2 r_kj) and
@@ -38,6 +40,7 @@
 
 #include <cstddef>
 #include <span>
+#include <vector>
 
 #include "dsmc/species.hpp"
 
@@ -69,10 +72,15 @@ class MaxwellianRates {
   void jacobian_diagonal(std::span<const double> T, std::span<double> diagonal) const;
 
  private:
+  double sums(std::span<const double> T, std::span<double> zeta, bool with_collisions) const;
+  void derivatives(std::span<const double> T, Eigen::MatrixXd* J, std::span<double> diagonal,
+                   std::span<double> collision_gradient) const;
+
   Eigen::VectorXd inverse_mass_, number_density_;
-  // Column k holds the pair constants of species k with every partner j (contiguous in j):
-  // a_(j, k) = a_kj, b_(j, k) = b_kj, e_(j, k) = e_kj.
-  Eigen::MatrixXd a_, b_, e_;
+  // Unordered pairs k <= j, row k at offset_[k] + (j - k): a_row_ = a_kj, b_row_ = b_kj,
+  // a_partner_ = a_jk, b_partner_ = b_jk (0 for j = k), e_ = e_kj.
+  std::vector<Eigen::Index> offset_;
+  Eigen::ArrayXd a_row_, b_row_, a_partner_, b_partner_, e_;
 };
 
 }  // namespace gdsmc::theory::detail
