@@ -37,12 +37,12 @@ constexpr double energy_tolerance = 1e-14;   // on E_k/(n_1(0) T0)
 constexpr double count_tolerance = 1e-12;    // on events per initial monomer
 constexpr double density_floor = 1e-18;      // n_floor/n_1(0) of the regularised T_k
 constexpr double reported_density = 1e-300;  // below it Solution::temperature reports 0
-// Pairs with a partner below it are skipped: their terms are < 1e-9 of the absolute tolerance per
+// Pairs with a partner below it are skipped: their terms are < 1e-5 of the absolute tolerance per
 // collision time (skipping a pair keeps the mass exactly, each pair conserves it on its own).
-constexpr double negligible_density = 1e-24;
-// ... and pairs whose densities multiply to less than this: at most ~1e-30 n_1(0) events per
-// collision time, 1e-15 of the absolute tolerance on any n_k.
-constexpr double negligible_product = 1e-26;
+constexpr double negligible_density = 1e-20;
+// ... and pairs whose densities multiply to less than this: at most ~1e-22 n_1(0) events per
+// collision time, 1e-7 of the absolute tolerance on any n_k.
+constexpr double negligible_product = 1e-22;
 
 void require(bool condition, const char* caller, const std::string& message) {
   if (!condition) throw std::invalid_argument(std::string(caller) + ": " + message);
@@ -72,7 +72,8 @@ void check_pair(std::size_t k, std::size_t j, double T_k, double T_j, const char
 // gamma(2, x) = 1 - (1 + x) e^-x and gamma(3, x) = 2 - (x^2 + 2x + 2) e^-x lose all digits to
 // cancellation as x -> 0 (they behave like x^2/2 and x^3/3); below x = 1 use the series
 // gamma(a, x) = Gamma(a) x^a e^-x sum_n x^n/Gamma(a + n + 1), whose terms are all positive.
-double lower_gamma_series(int a, double x) {
+// e = e^-x is passed in: both functions are needed at the same x and share it (one exp per pair).
+double lower_gamma_series(int a, double x, double e) {
   double term = 1.0;
   for (int i = 2; i <= a; ++i) term /= i;  // 1/a!
   double sum = term;
@@ -80,17 +81,20 @@ double lower_gamma_series(int a, double x) {
     term *= x / (a + n);
     sum += term;
   }
-  return std::tgamma(a) * std::pow(x, a) * std::exp(-x) * sum;
+  const double gamma_a = a == 2 ? 1.0 : 2.0;  // Gamma(a) = (a - 1)!, a = 2 or 3
+  double x_power_a = x * x;
+  if (a == 3) x_power_a *= x;
+  return gamma_a * x_power_a * e * sum;
 }
 
-double lower_gamma2(double x) {
-  if (x < 1.0) return lower_gamma_series(2, x);
-  return 1.0 - (1.0 + x) * std::exp(-x);
+double lower_gamma2(double x, double e) {
+  if (x < 1.0) return lower_gamma_series(2, x, e);
+  return 1.0 - (1.0 + x) * e;
 }
 
-double lower_gamma3(double x) {
-  if (x < 1.0) return lower_gamma_series(3, x);
-  return 2.0 - (x * x + 2.0 * x + 2.0) * std::exp(-x);
+double lower_gamma3(double x, double e) {
+  if (x < 1.0) return lower_gamma_series(3, x, e);
+  return 2.0 - (x * x + 2.0 * x + 2.0) * e;
 }
 
 // Integrals over the outcome regions of (x, U) with weight x e^-x dx dU (smoluchowski.hpp):
@@ -109,8 +113,9 @@ RegionIntegrals region_integrals(double x_a, double x_f) {
     r.x_agg = 2.0;
     return r;
   }
-  r.p_agg = lower_gamma2(x_a);
-  r.x_agg = lower_gamma3(x_a);
+  const double e_a = std::exp(-x_a);
+  r.p_agg = lower_gamma2(x_a, e_a);
+  r.x_agg = lower_gamma3(x_a, e_a);
   double xu_frag = 0.0;
   const double x_m = std::max(x_a, x_f);
   // e^-700 ~ 1e-304: beyond it the region is empty in double precision, and the products below

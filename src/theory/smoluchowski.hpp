@@ -64,16 +64,16 @@
  * three more components count aggregations, fragmentations and collisions per initial monomer.
  * The equations are not stiff (rates change on the collision time scale, which the accuracy
  * already resolves), so CVODE integrates them with Adams and fixed-point iteration: no Jacobian,
- * and the cost is O(K^2) per right-hand side. Pairs with a partner below 1e-24 n_1(0), or whose
- * densities multiply to less than 1e-26 n_1(0)^2, are skipped: their terms are far below the
- * absolute tolerance (1e-26 events per collision time against 1e-15 on any n_k), and each pair
+ * and the cost is O(K^2) per right-hand side. Pairs with a partner below 1e-20 n_1(0), or whose
+ * densities multiply to less than 1e-22 n_1(0)^2, are skipped: their terms are far below the
+ * absolute tolerance (at most ~1e-20 events per collision time against 1e-15 on any n_k), and each pair
  * conserves mass on its own.
  * BDF with a dense Newton solver, the other theory modules' choice, would cost (2K)^3 per
  * factorisation (bench/bench_smoluchowski.cpp, sticking gas to a mean cluster size of 10 at K = 512: BDF + dense
  * 33 s, BDF + matrix-free GMRES 4.1 s, Adams 1.9 s; 0.8 s with the skip).
  * The lost mass is checked 16 times per output interval (interpolated points, no extra steps).
  * Growing K during the integration instead of restarting from t = 0 (issue 17, "--compare adds no
- * measurable cost"): examples/agg_frag.nml 2.95 s -> 0.3 s of CPU, results within 1e-8 relative for
+ * measurable cost"): examples/agg_frag.nml 2.95 s -> 0.2 s of CPU, results within 1e-8 relative for
  * every size the run holds at least one cluster of (1e-9 for the totals), the tolerance of the
  * integration; docs/agg-frag.md "Numerical integration".
  * Partial temperatures for the right-hand side are regularised, T_k = (E_k + (3/2) n_floor T) /
