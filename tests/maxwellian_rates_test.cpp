@@ -190,3 +190,32 @@ TEST(AsymptoticRatios, AreStationaryForManySpecies) {
     }
   }
 }
+
+// The three methods of asymptotic_temperature_ratios (theory.hpp) find the same ratios: Newton's
+// method with line search, pseudo-transient continuation and the long-time ODE (the method before
+// issue 17), for the ERRATA §4 example (alpha = 0.3, m2/m1 = 100: T2/T1 = 60.6, where plain Newton
+// from equal temperatures is said to fail), a scattered 6-species Enskog mixture with a non-uniform
+// restitution matrix, and 250 species of the polydisperse laws (GMRES in the fixed-point methods).
+TEST(AsymptoticRatios, NewtonContinuationAndOdeAgree) {
+  using theory::detail::RatioMethod;
+  std::vector<Mixture> mixtures;
+  PairMatrix alpha(2, 0.3);
+  mixtures.push_back(make_mixture({1.0, 100.0}, {1.0, 1.0}, {0.01, 0.01}, alpha, false));
+  mixtures.push_back(scattered_mixture(6, true));
+  mixtures.push_back(law_mixture(250, false));
+  for (const Mixture& mix : mixtures) {
+    SCOPED_TRACE(::testing::Message() << "s " << mix.size());
+    const auto newton = theory::detail::asymptotic_temperature_ratios_by(mix, RatioMethod::newton);
+    const auto continuation =
+        theory::detail::asymptotic_temperature_ratios_by(mix, RatioMethod::continuation);
+    const auto ode = theory::detail::asymptotic_temperature_ratios_by(mix, RatioMethod::ode);
+    ASSERT_TRUE(newton && continuation && ode);
+    for (std::size_t k = 0; k < mix.size(); ++k) {
+      EXPECT_NEAR((*continuation)[k], (*newton)[k], 1e-12 * (*newton)[k]);
+      EXPECT_NEAR((*ode)[k], (*newton)[k], 1e-10 * (*newton)[k]);
+    }
+    if (mix.size() == 2) {
+      EXPECT_NEAR((*newton)[1], 60.6, 0.05);
+    }
+  }
+}

@@ -178,21 +178,6 @@ class CvodeSolver {
     return count;
   }
 
-  /// Steps, linear-solver setups and linear (Krylov) iterations so far, for benchmarks.
-  struct Statistics {
-    long steps = 0, setups = 0, linear_iterations = 0, linear_rhs_evaluations = 0;
-  };
-  Statistics statistics() const {
-    Statistics s;
-    CVodeGetNumSteps(memory_.get(), &s.steps);
-    CVodeGetNumLinSolvSetups(memory_.get(), &s.setups);
-    if (linear_solver_) {
-      CVodeGetNumLinIters(memory_.get(), &s.linear_iterations);
-      CVodeGetNumLinRhsEvals(memory_.get(), &s.linear_rhs_evaluations);
-    }
-    return s;
-  }
-
  private:
   void attach_linear_solver() {
     const int flag = CVodeSetLinearSolver(memory_.get(), linear_solver_.get(), matrix_.get());

@@ -436,6 +436,26 @@ std::optional<std::vector<double>> ratios_by_continuation(RatioEquations& eq) {
 
 }  // namespace
 
+std::optional<std::vector<double>> detail::asymptotic_temperature_ratios_by(const Mixture& mix,
+                                                                           RatioMethod method) {
+  if (mix.size() < 2) throw std::invalid_argument("asymptotic_temperature_ratios_by: two species or more");
+  const MaxwellianRates rates(mix);
+  RatioEquations equations(mix, rates);
+  switch (method) {
+    case RatioMethod::newton:
+      return ratios_by_newton(equations);
+    case RatioMethod::continuation:
+      return ratios_by_continuation(equations);
+    case RatioMethod::ode:
+      try {
+        return asymptotic_ratios_by_ode(mix, rates);
+      } catch (const std::runtime_error&) {
+        return std::nullopt;
+      }
+  }
+  return std::nullopt;
+}
+
 std::vector<double> asymptotic_temperature_ratios(const Mixture& mix) {
   const std::size_t species_count = mix.size();
   if (species_count == 0) throw std::invalid_argument("asymptotic_temperature_ratios: no species");

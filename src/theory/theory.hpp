@@ -66,6 +66,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "dsmc/species.hpp"
@@ -153,6 +154,14 @@ TemperatureHistory integrate_partial_temperatures(const Mixture& mix,
  * Documentation: docs/haff-and-mixtures.md "Asymptotic temperature ratios".
  */
 std::vector<double> asymptotic_temperature_ratios(const Mixture& mix);
+
+namespace detail {
+/// The three methods of asymptotic_temperature_ratios, each alone (tests/maxwellian_rates_test.cpp
+/// holds them against each other): empty when that method fails.
+enum class RatioMethod { newton, continuation, ode };
+std::optional<std::vector<double>> asymptotic_temperature_ratios_by(const Mixture& mix,
+                                                                    RatioMethod method);
+}  // namespace detail
 
 }  // namespace gdsmc::theory
 
