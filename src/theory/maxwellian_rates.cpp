@@ -57,21 +57,39 @@ double MaxwellianRates::sums(std::span<const double> T, std::span<double> zeta,
   const Eigen::ArrayXd theta = t * inverse_mass_.array();
   // zeta_k = sum_j r_kj a_kj - (1/T_k) sum_j r_kj b_kj T_j: the part j >= k from row k's segment,
   // the part j < k gathered into (partner_a, partner_b) while the rows j < k were swept (complete
-  // when row k is reached). One square root per unordered pair.
+  // when row k is reached). One square root per unordered pair, one pass over the pair constants
+  // (a vectorised loop: this file is compiled with -fopenmp-simd -fno-math-errno, src/CMakeLists.txt).
   Eigen::ArrayXd partner_a = Eigen::ArrayXd::Zero(s), partner_b = Eigen::ArrayXd::Zero(s);
-  Eigen::ArrayXd r(s);
+  const double* th = theta.data();
+  const double* temperature = T.data();
+  double* gathered_a = partner_a.data();
+  double* gathered_b = partner_b.data();
   double rate = 0.0;
   for (Eigen::Index k = 0; k < s; ++k) {
     const Eigen::Index n = s - k, p = offset_[static_cast<std::size_t>(k)];
-    auto rk = r.head(n);
-    rk = (theta.tail(n) + theta(k)).sqrt();  // r_kj, j = k..s-1
-    const double own = (a_row_.segment(p, n) * rk).sum() -
-                       (b_row_.segment(p, n) * rk * t.tail(n)).sum() / t(k);
-    zeta[static_cast<std::size_t>(k)] = own + partner_a(k) - partner_b(k) / t(k);
-    partner_a.tail(n) += a_partner_.segment(p, n) * rk;
-    partner_b.tail(n) += b_partner_.segment(p, n) * rk * t(k);
-    if (with_collisions)  // sum over ordered pairs: twice the pairs j > k, once j = k
-      rate += 2.0 * (e_.segment(p, n) * rk).sum() - e_(p) * rk(0);
+    const double theta_k = th[k], t_k = temperature[k];
+    const double* a_row = a_row_.data() + p;
+    const double* b_row = b_row_.data() + p;
+    const double* a_partner = a_partner_.data() + p;
+    const double* b_partner = b_partner_.data() + p;
+    const double* e = e_.data() + p;
+    const double* th_j = th + k;
+    const double* t_j = temperature + k;
+    double* g_a = gathered_a + k;
+    double* g_b = gathered_b + k;
+    double sum_a = 0.0, sum_b = 0.0, sum_e = 0.0;
+#pragma omp simd reduction(+ : sum_a, sum_b, sum_e)
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double r = std::sqrt(th_j[i] + theta_k);  // r_kj, j = k + i
+      sum_a += a_row[i] * r;
+      sum_b += b_row[i] * r * t_j[i];
+      sum_e += e[i] * r;
+      g_a[i] += a_partner[i] * r;  // 0 for j = k
+      g_b[i] += b_partner[i] * r * t_k;
+    }
+    zeta[static_cast<std::size_t>(k)] = sum_a - sum_b / t_k + gathered_a[k] - gathered_b[k] / t_k;
+    // sum over ordered pairs: twice the pairs j > k, once j = k
+    if (with_collisions) rate += 2.0 * sum_e - e[0] * std::sqrt(2.0 * theta_k);
   }
   return rate;
 }
