@@ -116,7 +116,8 @@ std::string agg_frag_json(const gdsmc::theory::AggFragPrediction& af, const std:
 void announce_large_mixture(const gdsmc::io::config::Config& config) {
   const auto s = static_cast<std::size_t>(config.system.n_species);
   if (s <= 1000 || config.has_agg_frag) return;
-  const double seconds = 40.0 * std::pow(static_cast<double>(s) / 3000.0, 2.0);  // measured: 3000 in 40 s
+  // measured (README "Performance"): 3000 species in 15-23 s of CPU
+  const double seconds = 20.0 * std::pow(static_cast<double>(s) / 3000.0, 2.0);
   std::cerr << "granular-theory: " << s << " species: ";
   if (s > gdsmc::theory::max_hcs_species)
     std::cerr << "the Maxwellian theory only (hcs.first_sonine stops at " << gdsmc::theory::max_hcs_species
