@@ -111,9 +111,25 @@ std::string agg_frag_json(const gdsmc::theory::AggFragPrediction& af, const std:
   return json.str();
 }
 
+/// Many species: says at once what will be computed and about how long it takes (issue 17,
+/// "Performance"; timings of bench/bench_theory.cpp, docs/haff-and-mixtures.md "Numerical integration").
+void announce_large_mixture(const gdsmc::io::config::Config& config) {
+  const auto s = static_cast<std::size_t>(config.system.n_species);
+  if (s <= 1000 || config.has_agg_frag) return;
+  // measured (README "Performance"): 3000 species in 15-23 s of CPU
+  const double seconds = 20.0 * std::pow(static_cast<double>(s) / 3000.0, 2.0);
+  std::cerr << "granular-theory: " << s << " species: ";
+  if (s > gdsmc::theory::max_hcs_species)
+    std::cerr << "the Maxwellian theory only (hcs.first_sonine stops at " << gdsmc::theory::max_hcs_species
+              << " species); ";
+  std::cerr << "O(S^2) per step of the partial-temperature ODEs, about " << std::lround(seconds)
+            << " s of one core\n";
+}
+
 /// The theory of one system (theory::predict) as a JSON object; `indent` prefixes every line. The
 /// notes of what was left out go to stderr.
 std::string point_json(const gdsmc::io::config::Config& config, const std::string& indent) {
+  announce_large_mixture(config);
   const auto p = gdsmc::theory::predict(config);
   for (const auto& note : p.notes) std::cerr << "granular-theory: " << note << "\n";
   const std::string in = indent + "  ";

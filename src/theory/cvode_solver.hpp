@@ -7,9 +7,12 @@
  * restitution), diffusion.cpp (viscoelastic restitution) and smoluchowski.cpp (cluster sizes).
  *
  * The default is BDF with a dense difference-quotient Jacobian, right for a few dozen components:
- * it costs n right-hand sides per Jacobian and n^3 per factorisation. Larger systems choose through
- * CvodeOptions a matrix-free SPGMR Krylov solver without preconditioner (stiff), or Adams with
- * fixed-point iteration (non-stiff problems only; no linear algebra at all).
+ * it costs n right-hand sides per Jacobian and n^3 per factorisation; CvodeOptions::jacobian
+ * replaces the difference quotients by the caller's Jacobian. Larger systems choose through
+ * CvodeOptions a matrix-free SPGMR Krylov solver (stiff; with CvodeOptions::jacobian_diagonal
+ * left-preconditioned by the diagonal of CVODE's Newton matrix I - gamma J), or Adams with
+ * fixed-point iteration (non-stiff problems only; no linear algebra at all). start_time lets an
+ * integration go on from a state at t > 0 (smoluchowski.cpp widens its system that way).
  */
 #pragma once
 
@@ -70,6 +73,13 @@ enum class CvodeMethod {
 struct CvodeOptions {
   CvodeMethod method = CvodeMethod::bdf_dense;
   long max_steps = 200000;
+  double start_time = 0.0;  ///< the time of y0
+  /// bdf_dense: the Jacobian df/dy written into a column-major n x n array (zeroed before the call)
+  /// instead of CVODE's difference quotients (n right-hand sides per Jacobian).
+  std::function<void(double, std::span<const double>, double*)> jacobian;
+  /// bdf_spgmr: the diagonal of df/dy; GMRES is then left-preconditioned by
+  /// diag(1 - gamma df_i/dy_i)^-1 (CVODE's Newton matrix I - gamma J reduced to its diagonal).
+  std::function<void(double, std::span<const double>, std::span<double>)> jacobian_diagonal;
 };
 
 class CvodeSolver {
@@ -104,7 +114,7 @@ class CvodeSolver {
         check_pointer(CVodeCreate(adams ? CV_ADAMS : CV_BDF, context_.get()), "CVodeCreate"));
     check(CVodeSetErrHandlerFn(memory_.get(), &CvodeSolver::record_error, this),
           "CVodeSetErrHandlerFn");
-    check(CVodeInit(memory_.get(), &CvodeSolver::evaluate_rhs, 0.0, state_.get()), "CVodeInit");
+    check(CVodeInit(memory_.get(), &CvodeSolver::evaluate_rhs, options.start_time, state_.get()), "CVodeInit");
     check(CVodeSetUserData(memory_.get(), this), "CVodeSetUserData");
     check(CVodeWFtolerances(memory_.get(), &CvodeSolver::error_weights), "CVodeWFtolerances");
     check(CVodeSetMaxNumSteps(memory_.get(), options.max_steps), "CVodeSetMaxNumSteps");
@@ -116,13 +126,29 @@ class CvodeSolver {
             check_pointer(SUNLinSol_Dense(state_.get(), matrix_.get(), context_.get()),
                           "SUNLinSol_Dense"));
         attach_linear_solver();
+        if (options.jacobian) {
+          jacobian_ = std::move(options.jacobian);
+          const int flag = CVodeSetJacFn(memory_.get(), &CvodeSolver::evaluate_jacobian);
+          if (flag != CVLS_SUCCESS) fail("CVodeSetJacFn", CVodeGetLinReturnFlagName(flag));
+        }
         break;
       }
-      case CvodeMethod::bdf_spgmr:
+      case CvodeMethod::bdf_spgmr: {
+        const bool preconditioned = static_cast<bool>(options.jacobian_diagonal);
         linear_solver_.reset(check_pointer(
-            SUNLinSol_SPGMR(state_.get(), SUN_PREC_NONE, 0, context_.get()), "SUNLinSol_SPGMR"));
+            SUNLinSol_SPGMR(state_.get(), preconditioned ? SUN_PREC_LEFT : SUN_PREC_NONE, 0,
+                            context_.get()),
+            "SUNLinSol_SPGMR"));
         attach_linear_solver();
+        if (preconditioned) {
+          jacobian_diagonal_ = std::move(options.jacobian_diagonal);
+          preconditioner_.assign(size_, 1.0);
+          const int flag = CVodeSetPreconditioner(memory_.get(), &CvodeSolver::setup_preconditioner,
+                                                  &CvodeSolver::solve_preconditioner);
+          if (flag != CVLS_SUCCESS) fail("CVodeSetPreconditioner", CVodeGetLinReturnFlagName(flag));
+        }
         break;
+      }
       case CvodeMethod::adams_fixed_point:
         nonlinear_solver_.reset(check_pointer(
             SUNNonlinSol_FixedPoint(state_.get(), 0, context_.get()), "SUNNonlinSol_FixedPoint"));
@@ -174,6 +200,46 @@ class CvodeSolver {
     return 0;
   }
 
+  static int evaluate_jacobian(sunrealtype t, N_Vector y, N_Vector, SUNMatrix jacobian,
+                               void* user_data, N_Vector, N_Vector, N_Vector) {
+    auto* self = static_cast<CvodeSolver*>(user_data);
+    SUNMatZero(jacobian);
+    try {
+      self->jacobian_(t, {N_VGetArrayPointer(y), self->size_}, SUNDenseMatrix_Data(jacobian));
+    } catch (const std::exception& error) {
+      self->rhs_error_ = error.what();
+      return -1;
+    }
+    return 0;
+  }
+
+  static int setup_preconditioner(sunrealtype t, N_Vector y, N_Vector, sunbooleantype,
+                                  sunbooleantype* jacobian_current, sunrealtype gamma,
+                                  void* user_data) {
+    auto* self = static_cast<CvodeSolver*>(user_data);
+    try {
+      self->jacobian_diagonal_(t, {N_VGetArrayPointer(y), self->size_}, self->preconditioner_);
+    } catch (const std::exception& error) {
+      self->rhs_error_ = error.what();
+      return -1;
+    }
+    for (double& d : self->preconditioner_) {
+      d = 1.0 - gamma * d;  // diagonal of I - gamma J
+      if (!std::isfinite(d) || d == 0.0) return 1;
+    }
+    *jacobian_current = SUNTRUE;
+    return 0;
+  }
+
+  static int solve_preconditioner(sunrealtype, N_Vector, N_Vector, N_Vector r, N_Vector z,
+                                  sunrealtype, sunrealtype, int, void* user_data) {
+    const auto* self = static_cast<const CvodeSolver*>(user_data);
+    const double* in = N_VGetArrayPointer(r);
+    double* out = N_VGetArrayPointer(z);
+    for (std::size_t i = 0; i < self->size_; ++i) out[i] = in[i] / self->preconditioner_[i];
+    return 0;
+  }
+
   static int error_weights(N_Vector y, N_Vector weight, void* user_data) {
     const auto* self = static_cast<const CvodeSolver*>(user_data);
     const double* value = N_VGetArrayPointer(y);
@@ -219,6 +285,9 @@ class CvodeSolver {
   }
 
   RightHandSide rhs_;
+  std::function<void(double, std::span<const double>, double*)> jacobian_;
+  std::function<void(double, std::span<const double>, std::span<double>)> jacobian_diagonal_;
+  std::vector<double> preconditioner_;  // diagonal of I - gamma J (bdf_spgmr with jacobian_diagonal)
   std::size_t size_;
   std::vector<double> relative_tolerance_;
   std::vector<double> absolute_tolerance_;

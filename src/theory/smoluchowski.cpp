@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <span>
 #include <stdexcept>
@@ -27,15 +28,21 @@ constexpr double infinity = std::numeric_limits<double>::infinity();
 constexpr std::size_t first_max_size = 64;
 constexpr std::size_t largest_max_size = 16384;
 constexpr double allowed_lost_mass = 1e-8;
+// K doubles (and the integration goes on) when this much mass has been lost at the current K: at
+// most 8 doublings from 64 to 16384 keep the total below the allowance.
+constexpr double grow_lost_mass = 1e-12;
 constexpr double relative_tolerance = 1e-9;
 constexpr double density_tolerance = 1e-15;  // on n_k/n_1(0)
 constexpr double energy_tolerance = 1e-14;   // on E_k/(n_1(0) T0)
 constexpr double count_tolerance = 1e-12;    // on events per initial monomer
 constexpr double density_floor = 1e-18;      // n_floor/n_1(0) of the regularised T_k
 constexpr double reported_density = 1e-300;  // below it Solution::temperature reports 0
-// Pairs with a partner below it are skipped: their terms are < 1e-9 of the absolute tolerance per
+// Pairs with a partner below it are skipped: their terms are < 1e-5 of the absolute tolerance per
 // collision time (skipping a pair keeps the mass exactly, each pair conserves it on its own).
-constexpr double negligible_density = 1e-24;
+constexpr double negligible_density = 1e-20;
+// ... and pairs whose densities multiply to less than this: at most ~1e-22 n_1(0) events per
+// collision time, 1e-7 of the absolute tolerance on any n_k.
+constexpr double negligible_product = 1e-22;
 
 void require(bool condition, const char* caller, const std::string& message) {
   if (!condition) throw std::invalid_argument(std::string(caller) + ": " + message);
@@ -65,7 +72,8 @@ void check_pair(std::size_t k, std::size_t j, double T_k, double T_j, const char
 // gamma(2, x) = 1 - (1 + x) e^-x and gamma(3, x) = 2 - (x^2 + 2x + 2) e^-x lose all digits to
 // cancellation as x -> 0 (they behave like x^2/2 and x^3/3); below x = 1 use the series
 // gamma(a, x) = Gamma(a) x^a e^-x sum_n x^n/Gamma(a + n + 1), whose terms are all positive.
-double lower_gamma_series(int a, double x) {
+// e = e^-x is passed in: both functions are needed at the same x and share it (one exp per pair).
+double lower_gamma_series(int a, double x, double e) {
   double term = 1.0;
   for (int i = 2; i <= a; ++i) term /= i;  // 1/a!
   double sum = term;
@@ -73,17 +81,20 @@ double lower_gamma_series(int a, double x) {
     term *= x / (a + n);
     sum += term;
   }
-  return std::tgamma(a) * std::pow(x, a) * std::exp(-x) * sum;
+  const double gamma_a = a == 2 ? 1.0 : 2.0;  // Gamma(a) = (a - 1)!, a = 2 or 3
+  double x_power_a = x * x;
+  if (a == 3) x_power_a *= x;
+  return gamma_a * x_power_a * e * sum;
 }
 
-double lower_gamma2(double x) {
-  if (x < 1.0) return lower_gamma_series(2, x);
-  return 1.0 - (1.0 + x) * std::exp(-x);
+double lower_gamma2(double x, double e) {
+  if (x < 1.0) return lower_gamma_series(2, x, e);
+  return 1.0 - (1.0 + x) * e;
 }
 
-double lower_gamma3(double x) {
-  if (x < 1.0) return lower_gamma_series(3, x);
-  return 2.0 - (x * x + 2.0 * x + 2.0) * std::exp(-x);
+double lower_gamma3(double x, double e) {
+  if (x < 1.0) return lower_gamma_series(3, x, e);
+  return 2.0 - (x * x + 2.0 * x + 2.0) * e;
 }
 
 // Integrals over the outcome regions of (x, U) with weight x e^-x dx dU (smoluchowski.hpp):
@@ -102,8 +113,9 @@ RegionIntegrals region_integrals(double x_a, double x_f) {
     r.x_agg = 2.0;
     return r;
   }
-  r.p_agg = lower_gamma2(x_a);
-  r.x_agg = lower_gamma3(x_a);
+  const double e_a = std::exp(-x_a);
+  r.p_agg = lower_gamma2(x_a, e_a);
+  r.x_agg = lower_gamma3(x_a, e_a);
   double xu_frag = 0.0;
   const double x_m = std::max(x_a, x_f);
   // e^-700 ~ 1e-304: beyond it the region is empty in double precision, and the products below
@@ -242,7 +254,7 @@ class RateEquations {
   // scaled derivatives `out`, with n_k/n_1(0) = c_k and temperatures T_k.
   void add_pair(std::size_t k, std::size_t j, double c_k, double T_k, double c_j, double T_j,
                 double scale, double* out) const {
-    if (c_k < negligible_density || c_j < negligible_density) return;
+    if (c_k < negligible_density || c_j < negligible_density || c_k * c_j < negligible_product) return;
     const PairConstants& c = pairs_[index(k, j)];
     const double theta_k = T_k / c.mass_k, theta_j = T_j / c.mass_j;
     const double s = theta_k + theta_j;
@@ -293,13 +305,36 @@ void check_times(const std::vector<double>& times) {
             "solve", "times must be finite, non-negative and strictly increasing");
 }
 
-Solution integrate(const Parameters& p, std::size_t max_size, const std::vector<double>& times) {
-  RateEquations equations(p, max_size);
-  const std::size_t n = equations.state_size();
-  std::vector<double> y0(n, 0.0);
+/// The state of RateEquations(max_size) for monomers at T0.
+std::vector<double> initial_state(const RateEquations& equations) {
+  std::vector<double> y0(equations.state_size(), 0.0);
   y0[equations.density_index(1)] = 1.0;
   y0[equations.energy_index(1)] = 1.5;  // (3/2) n_1 T0 in units of n_1(0) T0
+  return y0;
+}
 
+/// `y` of RateEquations(from) as a state of RateEquations(to), to > from: sizes from + 1..to start
+/// empty; lost mass and event counts are carried over.
+std::vector<double> widened_state(const RateEquations& from, const RateEquations& to,
+                                  std::span<const double> y) {
+  std::vector<double> out(to.state_size(), 0.0);
+  const std::size_t K = (from.state_size() - 4) / 2;
+  for (std::size_t k = 1; k <= K; ++k) {
+    out[to.density_index(k)] = y[from.density_index(k)];
+    out[to.energy_index(k)] = y[from.energy_index(k)];
+  }
+  out[to.lost_index()] = y[from.lost_index()];
+  out[to.aggregation_index()] = y[from.aggregation_index()];
+  out[to.fragmentation_index()] = y[from.fragmentation_index()];
+  out[to.collision_index()] = y[from.collision_index()];
+  return out;
+}
+
+/// CVODE for RateEquations, from state y0 at time t0 (see smoluchowski.hpp, "Numerical integration").
+std::unique_ptr<CvodeSolver> make_solver(RateEquations& equations, const std::vector<double>& y0,
+                                         double t0) {
+  const std::size_t n = equations.state_size();
+  const std::size_t max_size = (n - 4) / 2;
   std::vector<double> rtol(n, relative_tolerance), atol(n, density_tolerance);
   for (std::size_t k = 1; k <= max_size; ++k) atol[equations.energy_index(k)] = energy_tolerance;
   atol[equations.aggregation_index()] = count_tolerance;
@@ -311,46 +346,87 @@ Solution integrate(const Parameters& p, std::size_t max_size, const std::vector<
   // 1.9 s, against 4.1 s for BDF + matrix-free GMRES and 33 s for BDF + dense LU (2K + 4)^3.
   CvodeOptions options;
   options.method = CvodeMethod::adams_fixed_point;
-  CvodeSolver solver(
+  options.start_time = t0;
+  return std::make_unique<CvodeSolver>(
       [&equations](double, std::span<const double> y, std::span<double> dydt) {
         equations.rhs(y, dydt);
       },
       y0, rtol, atol, options);
+}
 
+/// Integrates from monomers at t = 0 with `max_size` sizes. With `grow`, whenever the lost mass
+/// passes grow_lost_mass the number of sizes is doubled and the integration goes on from the
+/// current state (smoluchowski.hpp, "Numerical integration"); without, an integration whose lost mass
+/// passes allowed_lost_mass is abandoned.
+Solution integrate(const Parameters& p, std::size_t max_size, const std::vector<double>& times,
+                   bool grow) {
+  auto equations = std::make_unique<RateEquations>(p, max_size);
+  auto solver = make_solver(*equations, initial_state(*equations), 0.0);
+
+  // Rows of the tables as they were written, each with the number of sizes integrated then.
+  std::vector<std::vector<double>> density_rows, temperature_rows;
   Solution solution;
   solution.time = times;
-  solution.max_size = max_size;
   // Lost mass only grows: once it passes the allowance this K is doomed, and finishing the run
   // would be wasted time. It is checked at interpolated points inside each output interval (CVODE
   // steps past them and interpolates, so they cost no extra steps).
   constexpr int checks_per_interval = 16;
-  const auto doomed = [&] { return solver.state()[equations.lost_index()] >= allowed_lost_mass; };
+  const auto lost = [&] { return solver->state()[equations->lost_index()]; };
+  const auto doomed = [&] { return lost() >= allowed_lost_mass; };
+  // Advances to t; with `grow`, doubles K once the mass lost at this K has passed grow_lost_mass.
+  double lost_before = 0.0;  // lost mass carried in from smaller K
+  const auto advance = [&](double t) {
+    solver->advance_to(t);
+    if (grow && lost() - lost_before >= grow_lost_mass && max_size < largest_max_size) {
+      lost_before = lost();
+      const std::vector<double> y(solver->state().begin(), solver->state().end());
+      auto wider = std::make_unique<RateEquations>(p, 2 * max_size);
+      std::vector<double> y_wide = widened_state(*equations, *wider, y);
+      solver.reset();
+      equations = std::move(wider);
+      max_size *= 2;
+      solver = make_solver(*equations, y_wide, t);
+    }
+  };
   double t_previous = 0.0;
   for (double t_out : times) {
     for (int i = 1; i < checks_per_interval && t_out > 0.0 && !doomed(); ++i)
-      solver.advance_to(t_previous + (t_out - t_previous) * i / checks_per_interval);
-    if (t_out > 0.0 && !doomed()) solver.advance_to(t_out);  // t_out == 0: the initial state
+      advance(t_previous + (t_out - t_previous) * i / checks_per_interval);
+    if (t_out > 0.0 && !doomed()) advance(t_out);  // t_out == 0: the initial state
     t_previous = t_out;
-    const auto y = solver.state();
+    const auto y = solver->state();
+    std::vector<double> density_row, temperature_row;
     double total_density = 0.0, total_energy = 0.0;
     for (std::size_t k = 1; k <= max_size; ++k) {
-      const double density = y[equations.density_index(k)];
-      const double energy = y[equations.energy_index(k)];
-      solution.number_fraction.push_back(density);
-      solution.temperature.push_back(
+      const double density = y[equations->density_index(k)];
+      const double energy = y[equations->energy_index(k)];
+      density_row.push_back(density);
+      temperature_row.push_back(
           density < reported_density ? 0.0
                                      : p.initial_temperature * std::max(energy, 0.0) / (1.5 * density));
       total_density += std::max(density, 0.0);
       total_energy += std::max(energy, 0.0);
     }
+    density_rows.push_back(std::move(density_row));
+    temperature_rows.push_back(std::move(temperature_row));
     solution.total_temperature.push_back(p.initial_temperature * total_energy /
                                          (1.5 * total_density));
     solution.kinetic_energy.push_back(p.initial_temperature * total_energy);
-    solution.aggregations.push_back(y[equations.aggregation_index()]);
-    solution.fragmentations.push_back(y[equations.fragmentation_index()]);
-    solution.collisions.push_back(y[equations.collision_index()]);
-    solution.lost_mass_fraction = y[equations.lost_index()];
+    solution.aggregations.push_back(y[equations->aggregation_index()]);
+    solution.fragmentations.push_back(y[equations->fragmentation_index()]);
+    solution.collisions.push_back(y[equations->collision_index()]);
+    solution.lost_mass_fraction = y[equations->lost_index()];
     if (doomed()) break;
+  }
+  // The tables with the final K columns: sizes not integrated yet at an earlier time held nothing.
+  solution.max_size = max_size;
+  for (std::size_t i = 0; i < density_rows.size(); ++i) {
+    density_rows[i].resize(max_size, 0.0);
+    temperature_rows[i].resize(max_size, 0.0);
+    solution.number_fraction.insert(solution.number_fraction.end(), density_rows[i].begin(),
+                                    density_rows[i].end());
+    solution.temperature.insert(solution.temperature.end(), temperature_rows[i].begin(),
+                                temperature_rows[i].end());
   }
   return solution;
 }
@@ -392,8 +468,12 @@ InitialRates initial_rates(const Parameters& parameters) {
 Solution solve(const Parameters& parameters, const std::vector<double>& times) {
   check_parameters(parameters, "solve");
   check_times(times);
-  for (std::size_t max_size = first_max_size; max_size <= largest_max_size; max_size *= 2) {
-    Solution solution = integrate(parameters, max_size, times);
+  // One integration whose K grows as the clusters do; should the mass lost on the way exceed the
+  // allowance, integrations from t = 0 with K doubled from that last K.
+  Solution grown = integrate(parameters, first_max_size, times, true);
+  if (grown.lost_mass_fraction < allowed_lost_mass) return grown;
+  for (std::size_t max_size = grown.max_size; max_size <= largest_max_size; max_size *= 2) {
+    Solution solution = integrate(parameters, max_size, times, false);
     if (solution.lost_mass_fraction < allowed_lost_mass) return solution;
   }
   throw std::runtime_error("smoluchowski::solve: more than 1e-8 of the mass grows beyond size " +

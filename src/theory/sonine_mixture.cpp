@@ -119,7 +119,6 @@ struct State {
   VectorXd zeta0, omega0, W, b, c, zeta;
   MatrixXd Z, O, M;
   Eigen::PartialPivLU<MatrixXd> lu;
-  bool maxwellian = false;
   bool ok = false;
 };
 
@@ -150,13 +149,9 @@ double weight_W(const Reduced& r, std::size_t i, double tau_i) {
   return 15.0 * t * t;  // <v^4>_i = W_i (1 + c_i/2)
 }
 
-/// With `maxwellian` the c's are held at 0 (zeta_i = zeta_i^(0)): the equal-cooling-rate
-/// conditions are then those of the Maxwellian theory (\ref haff_mixture_odes "docs/haff-and-mixtures.md"), whose solution starts the
-/// first-Sonine Newton iteration for large s.
-State evaluate(const Reduced& r, const std::vector<double>& tau, bool maxwellian) {
+State evaluate(const Reduced& r, const std::vector<double>& tau) {
   const std::size_t s = r.s;
   State st;
-  st.maxwellian = maxwellian;
   st.tau = tau;
   st.pairs.resize(s * s);
   for (std::size_t i = 0; i < s; ++i)
@@ -179,12 +174,6 @@ State evaluate(const Reduced& r, const std::vector<double>& tau, bool maxwellian
       st.O(i, j) = Or[j];
       st.M(i, j) = Mr[j];
     }
-  }
-  if (maxwellian) {
-    st.c = VectorXd::Zero(static_cast<Eigen::Index>(s));
-    st.zeta = st.zeta0;
-    st.ok = st.zeta.allFinite();
-    return st;
   }
   st.lu.compute(st.M);
   st.c = st.lu.solve(st.b);
@@ -249,7 +238,6 @@ MatrixXd zeta_jacobian(const Reduced& r, const State& st) {
       Dz(i, k) = (d_z0 + d_zii * st.c(i) + d_zik * st.c(k)) / h;
     }
   }
-  if (st.maxwellian) return Dz;
   const MatrixXd dC = st.lu.solve(R);  // dc/du
   return Dz + st.Z * dC;
 }
@@ -312,11 +300,10 @@ namespace {
 
 /// Newton's method of sonine_mixture.hpp (\ref sonmix_solve) from `start`; `iterations` returns
 /// the number of Newton steps taken.
-State newton(const Reduced& r, double nu, const std::vector<double>& start, bool maxwellian,
-             int& iterations) {
+State newton(const Reduced& r, double nu, const std::vector<double>& start, int& iterations) {
   const std::size_t s = r.s;
-  const char* what = maxwellian ? "hcs_first_sonine (Maxwellian start)" : "hcs_first_sonine";
-  State st = evaluate(r, start, maxwellian);
+  const char* what = "hcs_first_sonine";
+  State st = evaluate(r, start);
   if (!st.ok)
     throw std::runtime_error(std::string(what) +
                              ": the linearised fourth-moment system is singular at the starting "
@@ -346,7 +333,7 @@ State newton(const Reduced& r, double nu, const std::vector<double>& start, bool
     if (last) {
       std::vector<double> t(s);
       for (std::size_t k = 0; k < s; ++k) t[k] = st.tau[k] * std::exp(du(k));
-      State trial = evaluate(r, t, maxwellian);
+      State trial = evaluate(r, t);
       if (trial.ok) {
         const VectorXd Ft = residual(r, trial, nu);
         if (Ft.allFinite() && Ft.cwiseAbs().maxCoeff() <= fnorm) st = std::move(trial);
@@ -359,7 +346,7 @@ State newton(const Reduced& r, double nu, const std::vector<double>& start, bool
     for (int ls = 0; ls < 40; ++ls, lambda *= 0.5) {
       std::vector<double> t(s);
       for (std::size_t k = 0; k < s; ++k) t[k] = st.tau[k] * std::exp(lambda * du(k));
-      State trial = evaluate(r, t, maxwellian);
+      State trial = evaluate(r, t);
       if (!trial.ok) continue;
       const VectorXd Ft = residual(r, trial, nu);
       if (Ft.allFinite() && Ft.cwiseAbs().maxCoeff() < (1.0 - 1e-4 * lambda) * fnorm) {
@@ -415,21 +402,10 @@ HcsFirstSonine hcs_first_sonine(const species::Mixture& mix,
     for (std::size_t k = 0; k < s; ++k) mean += r.x[k] * tau[k];
     for (double& t : tau) t /= mean;
   } else if (s > 1 && alpha_min < 1.0) {
-    if (s <= ode_start_limit) {
-      tau = maxwellian_temperature_over_mean(mix);
-    } else {
-      // the same ratios as the fixed point of the Maxwellian equal-cooling-rate conditions, by
-      // Newton from equipartition; the long-time ODE if that fails
-      try {
-        int ignored = 0;
-        tau = newton(r, nu, tau, true, ignored).tau;
-      } catch (const std::runtime_error&) {
-        tau = maxwellian_temperature_over_mean(mix);
-      }
-    }
+    tau = maxwellian_temperature_over_mean(mix);  // Newton on the fixed point of \ref haff_mixture_odes "docs/haff-and-mixtures.md" (theory.hpp)
   }
   HcsFirstSonine out;
-  const State st = newton(r, nu, tau, false, out.newton_iterations);
+  const State st = newton(r, nu, tau, out.newton_iterations);
   out.temperature_over_mean = st.tau;
   out.sonine_c.assign(st.c.data(), st.c.data() + s);
   double z = 0.0;

@@ -33,10 +33,8 @@
  * in the unknowns u_k = ln tau_k, with the c's eliminated (solved at every tau). nu =
  * sum_ij x_i x_j chi_ij (sigma_ij/sigma_ref)^2 v0_ij/(v_ref/2) (a collision-frequency scale,
  * nonzero also for elastic mixtures). Start: the Maxwellian asymptotic ratios of
- * theory::asymptotic_temperature_ratios (\ref haff_ratios "docs/haff-and-mixtures.md"), normalised to sum_k x_k tau_k = 1
- * (equipartition when every alpha = 1, the exact answer then). The
- * Maxwellian ratios are computed by Newton's method on the Maxwellian equal-cooling-rate conditions
- * instead when s > ode_start_limit. The
+ * theory::asymptotic_temperature_ratios (\ref haff_ratios "docs/haff-and-mixtures.md"; their fixed point by Newton's method, theory.hpp),
+ * normalised to sum_k x_k tau_k = 1 (equipartition when every alpha = 1, the exact answer then). The
  * Jacobian: a finite difference (step 1e-7 in u_k) of the pair terms, of which only the 2s - 1
  * pairs containing k change, carried through the c system exactly, dc = M^-1 (db - dM c), with the
  * factorisation of M reused for all k (O(s^3) per iteration). Backtracking line search on |F|,
@@ -57,11 +55,12 @@
  *
  * \section sonmix_limits Limits and cost
  * Pair terms O(s^2) per evaluation, the c system and the Newton Jacobian O(s^3) per iteration;
- * 4 first-Sonine iterations are typical. Measured (Release, one core): s = 3 in 1 ms, s = 100 in
- * 0.2 s (0.14 s of it the Maxwellian ODE start), s = 1000 in 8-17 s (Maxwellian start by Newton,
- * see ode_start_limit; the range is the load of a shared machine). Above max_hcs_species = 1200
+ * 4 first-Sonine iterations are typical. Measured (Release, one core of the shared machine,
+ * bench/bench_theory.cpp, polydisperse laws of examples/03): s = 3 in 1 ms, s = 100 in 0.01 s,
+ * s = 300 in 0.2 s, s = 1000 in 2.3 s (8-17 s before issue 17's Maxwellian start by the fast fixed
+ * point and Eigen on one thread). Above max_hcs_species = 1200
  * species std::invalid_argument is thrown (the Maxwellian ratios of asymptotic_temperature_ratios
- * are what remains available).
+ * are what remains available; granular-theory says so).
  * Input checks as sonine.hpp, for any s >= 1: std::invalid_argument.
  * Checked by tests/sonine_mixture_test.cpp (binary reference, merging identical species,
  * permutations, elastic and one-species limits, Maxwellian zeta_i^(0) against \ref haff_mixture_odes "docs/haff-and-mixtures.md", the
@@ -88,11 +87,6 @@ struct HcsFirstSonine {
 
 /// Largest s that hcs_first_sonine accepts (its cost grows like s^3 per Newton iteration).
 inline constexpr std::size_t max_hcs_species = 1200;
-
-/// Above this s the Maxwellian starting ratios come from Newton's method on the Maxwellian
-/// equal-cooling-rate conditions (c = 0) from equipartition, not from the long-time ODE of
-/// asymptotic_temperature_ratios (same ratios; the ODE costs about 2.5 s at s = 300).
-inline constexpr std::size_t ode_start_limit = 150;
 
 /// Solves the first-Sonine HCS (see \ref sonmix_solve). `maxwellian_start` (optional): the
 /// Maxwellian ratios T_k/T_1 or T_k/T if the caller has them already (any normalisation), else

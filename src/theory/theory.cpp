@@ -2,7 +2,11 @@
 #include "theory/theory.hpp"
 
 #include "theory/cvode_solver.hpp"
+#include "theory/gmres.hpp"
 #include "theory/input_checks.hpp"
+#include "theory/maxwellian_rates.hpp"
+
+#include <Eigen/Dense>
 
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
@@ -15,6 +19,7 @@
 #include <functional>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -24,7 +29,10 @@ namespace gdsmc::theory {
 
 namespace {
 
+using detail::CvodeMethod;
+using detail::CvodeOptions;
 using detail::CvodeSolver;
+using detail::MaxwellianRates;
 
 constexpr double pi = std::numbers::pi;
 
@@ -95,20 +103,44 @@ void cooling_rate_row_sums(const Mixture& mix, std::span<const double> temperatu
   }
 }
 
-/// Largest collision frequency per particle, max_k sum_j n_j pi sigma_kj^2 chi_kj <|g_kj|>
-/// (\ref cm_pair_rate "docs/collision-model.md"): the fastest kinetic time scale, used to size output intervals.
-double largest_collision_frequency(const Mixture& mix, std::span<const double> temperature) {
-  double largest = 0.0;
-  for (std::size_t k = 0; k < mix.size(); ++k) {
-    double nu_k = 0.0;
-    for (std::size_t j = 0; j < mix.size(); ++j) {
-      const double sigma_kj = mix.contact_distance(k, j);
-      nu_k += mix.number_density[j] * pi * sigma_kj * sigma_kj * mix.pair_correlation(k, j) *
-              mean_relative_speed(thermal_speed_sum(mix, temperature, k, j));  // \ref cm_pair_rate "docs/collision-model.md"
-    }
-    largest = std::max(largest, nu_k);
+/// Above this many species the partial-temperature ODEs are integrated with matrix-free GMRES,
+/// left-preconditioned by the diagonal of CVODE's Newton matrix I - gamma J (theory.hpp,
+/// "Numerical integration"); below, by a dense LU of the analytic Jacobian (maxwellian_rates.hpp),
+/// whose (S + 1)^3 factorisations would dominate above it.
+constexpr std::size_t krylov_species = 200;
+
+/// CVODE options for the state y_k = ln(T_k/T_ref) (k < S), y_S = collisions per unit volume, with
+/// the Jacobian of maxwellian_rates.hpp: df_k/dy_l = -d zeta_k/d ln T_l, df_S/dy_l = dR/d ln T_l.
+CvodeOptions ode_options(const MaxwellianRates& rates, double reference_temperature) {
+  const std::size_t s = rates.size();
+  CvodeOptions options;
+  auto temperatures = [s, reference_temperature](std::span<const double> y) {
+    std::vector<double> T(s);
+    for (std::size_t k = 0; k < s; ++k) T[k] = reference_temperature * std::exp(y[k]);
+    return T;
+  };
+  if (s > krylov_species) {
+    options.method = CvodeMethod::bdf_spgmr;
+    options.jacobian_diagonal = [&rates, s, temperatures](double, std::span<const double> y,
+                                                          std::span<double> diagonal) {
+      rates.jacobian_diagonal(temperatures(y), diagonal.first(s));
+      for (std::size_t k = 0; k < s; ++k) diagonal[k] = -diagonal[k];
+      diagonal[s] = 0.0;  // the collision count does not enter any rate
+    };
+  } else {
+    options.jacobian = [&rates, s, temperatures](double, std::span<const double> y, double* jac) {
+      Eigen::MatrixXd J;
+      std::vector<double> gradient(s);
+      rates.jacobian(temperatures(y), J, gradient);
+      const std::size_t n = s + 1;  // column-major n x n, last row/column the collision count
+      for (std::size_t l = 0; l < s; ++l) {
+        for (std::size_t k = 0; k < s; ++k)
+          jac[l * n + k] = -J(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(l));
+        jac[l * n + s] = gradient[l];
+      }
+    };
   }
-  return largest;
+  return options;
 }
 
 }  // namespace
@@ -208,18 +240,19 @@ TemperatureHistory integrate_partial_temperatures(const Mixture& mix,
   relative_tolerance[species_count] = relative_tolerance_of_ode;
   absolute_tolerance[species_count] = 1e-12 * mix.total_density();  // events per unit volume
 
+  // The pair sums and their analytic Jacobian (maxwellian_rates.hpp), O(S^2) per evaluation.
+  const MaxwellianRates rates(mix);
   std::vector<double> temperature(species_count);
   std::vector<double> row_sum(species_count);
   auto rhs = [&, species_count](double, std::span<const double> y, std::span<double> dydt) {
     for (std::size_t k = 0; k < species_count; ++k)
       temperature[k] = reference_temperature * std::exp(y[k]);
-    cooling_rate_row_sums(mix, temperature, row_sum);
-    for (std::size_t k = 0; k < species_count; ++k)
-      dydt[k] = -row_sum[k];  // \ref haff_mixture_odes "docs/haff-and-mixtures.md": d ln T_k/dt = -sum_j xi_kj
-    dydt[species_count] = total_rate(mix, temperature);  // \ref cm_mixture_rate "docs/collision-model.md": d(collisions)/dt
+    // \ref haff_mixture_odes "docs/haff-and-mixtures.md": d ln T_k/dt = -sum_j xi_kj; \ref cm_mixture_rate "docs/collision-model.md": d(collisions)/dt
+    dydt[species_count] = rates.cooling_rates_and_collision_rate(temperature, row_sum);
+    for (std::size_t k = 0; k < species_count; ++k) dydt[k] = -row_sum[k];
   };
-  CvodeSolver solver(rhs, y0, relative_tolerance, absolute_tolerance);
-
+  CvodeSolver solver(rhs, y0, relative_tolerance, absolute_tolerance,
+                     ode_options(rates, reference_temperature));
   TemperatureHistory history;
   history.time = times;
   for (double t_out : times) {
@@ -234,11 +267,12 @@ TemperatureHistory integrate_partial_temperatures(const Mixture& mix,
   return history;
 }
 
-std::vector<double> asymptotic_temperature_ratios(const Mixture& mix) {
-  const std::size_t species_count = mix.size();
-  if (species_count == 0) throw std::invalid_argument("asymptotic_temperature_ratios: no species");
-  if (species_count == 1) return {1.0};
+namespace {
 
+/// The long-time ODE of the ratios (theory.hpp, asymptotic_temperature_ratios): the fallback of
+/// ratios_by_newton and ratios_by_continuation, and the method before them.
+std::vector<double> asymptotic_ratios_by_ode(const Mixture& mix, const MaxwellianRates& rates) {
+  const std::size_t species_count = mix.size();
   // State y_k = ln(T_k/T_1) with T_1 held at the unit m_1: xi_kj is homogeneous of degree 1/2 in
   // the temperatures, so d ln(T_k/T_1)/dtau = -(sum_j xi_kj - sum_j xi_1j), dtau = sqrt(T_1/m_1) dt.
   const double temperature_unit = mix.mass[0];
@@ -247,15 +281,26 @@ std::vector<double> asymptotic_temperature_ratios(const Mixture& mix) {
   auto rhs = [&, species_count](double, std::span<const double> y, std::span<double> dydt) {
     for (std::size_t k = 0; k < species_count; ++k)
       temperature[k] = temperature_unit * std::exp(y[k]);
-    cooling_rate_row_sums(mix, temperature, row_sum);  // \ref haff_mixture_odes "docs/haff-and-mixtures.md"
+    rates.cooling_rates(temperature, row_sum);  // \ref haff_mixture_odes "docs/haff-and-mixtures.md"
     for (std::size_t k = 0; k < species_count; ++k) dydt[k] = -(row_sum[k] - row_sum[0]);
   };
 
   // Start at equal temperatures (the usual initial condition) and follow the ODE.
-  const double first_interval = 1.0 / largest_collision_frequency(mix, temperature);
+  const double first_interval = 1.0 / rates.largest_collision_frequency(temperature);
+  CvodeOptions options;  // as the partial-temperature ODEs: GMRES for many species
+  if (species_count > krylov_species) {
+    options.method = CvodeMethod::bdf_spgmr;
+    options.jacobian_diagonal = [&](double, std::span<const double> y, std::span<double> diagonal) {
+      for (std::size_t k = 0; k < species_count; ++k)
+        temperature[k] = temperature_unit * std::exp(y[k]);
+      rates.jacobian_diagonal(temperature, diagonal);  // d zeta_k/d ln T_k; the zeta_1 part left out
+      for (double& d : diagonal) d = -d;
+      diagonal[0] = 0.0;
+    };
+  }
   CvodeSolver solver(rhs, std::vector<double>(species_count, 0.0),
                      std::vector<double>(species_count, 0.0),
-                     std::vector<double>(species_count, log_temperature_tolerance));
+                     std::vector<double>(species_count, log_temperature_tolerance), options);
 
   constexpr double converged_change = 1e-12;
   constexpr int max_intervals = 400;
@@ -277,6 +322,149 @@ std::vector<double> asymptotic_temperature_ratios(const Mixture& mix) {
   }
   throw std::runtime_error(
       "asymptotic_temperature_ratios: ratios did not settle to 1e-12 within 2^400 collision times");
+}
+
+// The fixed point of the ratio ODE (theory.hpp, asymptotic_temperature_ratios): Newton's method
+// with a backtracking line search, then, should it fail, pseudo-transient continuation (C. T. Kelley
+// and D. E. Keyes, SIAM J. Numer. Anal. 35, 508 (1998), eqs. 1.3-1.4 with the SER step rule 1.5).
+constexpr int newton_max_iterations = 60;
+constexpr int continuation_max_iterations = 500;
+constexpr double ratio_residual = 1e-13;  // max |zeta_k - zeta_1|/zeta_1 at the solution
+constexpr double max_log_step = 1.0;      // largest change of ln(T_k/T_1) per Newton step
+constexpr std::size_t dense_ratio_species = 300;  // above: GMRES instead of LU per linear solve
+constexpr double gmres_tolerance = 1e-10;
+
+/// F_k(u) = zeta_k - zeta_1 (k = 2..s) over the unknowns u_k = ln(T_k/T_1), T_1 = m_1, and their
+/// derivatives (maxwellian_rates.hpp), with the linear solves of both methods.
+class RatioEquations {
+ public:
+  RatioEquations(const Mixture& mix, const MaxwellianRates& rates)
+      : rates_(rates), s_(mix.size()), n_(static_cast<Eigen::Index>(mix.size() - 1)),
+        unit_(mix.mass[0]), T_(mix.size(), mix.mass[0]), zeta_(mix.size()) {}
+  Eigen::Index unknowns() const { return n_; }
+  /// max_k |F_k|/zeta_1 (infinite when not finite); F and the temperatures are left set at u.
+  double evaluate(const Eigen::VectorXd& u, Eigen::VectorXd& F) {
+    for (Eigen::Index k = 0; k < n_; ++k) T_[static_cast<std::size_t>(k + 1)] = unit_ * std::exp(u(k));
+    rates_.cooling_rates(T_, zeta_);  // \ref haff_mixture_odes "docs/haff-and-mixtures.md"
+    F.resize(n_);
+    for (Eigen::Index k = 0; k < n_; ++k) F(k) = zeta_[static_cast<std::size_t>(k + 1)] - zeta_[0];
+    return F.allFinite() && zeta_[0] > 0.0 ? F.cwiseAbs().maxCoeff() / zeta_[0] : HUGE_VAL;
+  }
+  /// Solves (shift I + dF/du) delta = -F at the temperatures of the last evaluate().
+  Eigen::VectorXd step(const Eigen::VectorXd& F, double shift) {
+    rates_.jacobian(T_, J_);  // dF_k/du_l = J_kl - J_1l
+    A_ = J_.bottomRightCorner(n_, n_).rowwise() - J_.row(0).tail(n_);
+    A_.diagonal().array() += shift;
+    if (s_ - 1 <= dense_ratio_species) return A_.partialPivLu().solve(-F);
+    Eigen::VectorXd delta = Eigen::VectorXd::Zero(n_);
+    const Eigen::VectorXd diagonal = A_.diagonal();
+    detail::gmres(A_, -F, diagonal, delta, gmres_tolerance);
+    return delta;
+  }
+  double largest_collision_frequency() const { return rates_.largest_collision_frequency(T_); }
+
+ private:
+  const MaxwellianRates& rates_;
+  std::size_t s_;
+  Eigen::Index n_;
+  double unit_;
+  std::vector<double> T_, zeta_;
+  Eigen::MatrixXd J_, A_;
+};
+
+std::vector<double> ratios_of(const Eigen::VectorXd& u) {
+  std::vector<double> ratio(static_cast<std::size_t>(u.size() + 1), 1.0);
+  for (Eigen::Index k = 0; k < u.size(); ++k) ratio[static_cast<std::size_t>(k + 1)] = std::exp(u(k));
+  return ratio;
+}
+
+/// Newton's method from equal temperatures: steps in u limited to max_log_step, halved until
+/// max|F| decreases; empty if that fails or takes more than newton_max_iterations.
+std::optional<std::vector<double>> ratios_by_newton(RatioEquations& eq) {
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(eq.unknowns()), F, trial_F;
+  double residual = eq.evaluate(u, F);
+  for (int iteration = 0; iteration < newton_max_iterations; ++iteration) {
+    if (residual <= ratio_residual) return ratios_of(u);
+    if (!std::isfinite(residual)) return std::nullopt;
+    Eigen::VectorXd delta = eq.step(F, 0.0);
+    if (!delta.allFinite()) return std::nullopt;
+    const double largest = delta.cwiseAbs().maxCoeff();
+    if (largest > max_log_step) delta *= max_log_step / largest;
+    bool accepted = false;
+    for (double lambda = 1.0; lambda > 1e-4; lambda *= 0.5) {
+      const Eigen::VectorXd trial = u + lambda * delta;
+      const double trial_residual = eq.evaluate(trial, trial_F);
+      if (trial_residual < (1.0 - 1e-4 * lambda) * residual) {
+        u = trial;
+        F = trial_F;
+        residual = trial_residual;
+        accepted = true;
+        break;
+      }
+    }
+    if (!accepted) return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+/// Pseudo-transient continuation: implicit Euler steps (I/h + dF/du) delta = -F of the ratio ODE
+/// du/dtau = -F(u) from equal temperatures, h_0 = 1/nu_max, h growing as max|F| falls (SER);
+/// empty if it does not converge.
+std::optional<std::vector<double>> ratios_by_continuation(RatioEquations& eq) {
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(eq.unknowns()), F, trial_F;
+  double residual = eq.evaluate(u, F);
+  double h = 1.0 / eq.largest_collision_frequency();
+  for (int iteration = 0; iteration < continuation_max_iterations; ++iteration) {
+    if (residual <= ratio_residual) return ratios_of(u);
+    if (!std::isfinite(residual)) return std::nullopt;
+    const Eigen::VectorXd delta = eq.step(F, 1.0 / h);
+    if (!delta.allFinite()) return std::nullopt;
+    const Eigen::VectorXd trial = u + delta;
+    const double trial_residual = eq.evaluate(trial, trial_F);
+    if (!(trial_residual < 10.0 * residual)) {  // a step too long for the trajectory: shorten it
+      h *= 0.1;
+      eq.evaluate(u, F);  // the temperatures of u again, for the next Jacobian
+      continue;
+    }
+    h *= residual / trial_residual;  // switched evolution relaxation (SER)
+    u = trial;
+    F = trial_F;
+    residual = trial_residual;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<std::vector<double>> detail::asymptotic_temperature_ratios_by(const Mixture& mix,
+                                                                           RatioMethod method) {
+  if (mix.size() < 2) throw std::invalid_argument("asymptotic_temperature_ratios_by: two species or more");
+  const MaxwellianRates rates(mix);
+  RatioEquations equations(mix, rates);
+  switch (method) {
+    case RatioMethod::newton:
+      return ratios_by_newton(equations);
+    case RatioMethod::continuation:
+      return ratios_by_continuation(equations);
+    case RatioMethod::ode:
+      try {
+        return asymptotic_ratios_by_ode(mix, rates);
+      } catch (const std::runtime_error&) {
+        return std::nullopt;
+      }
+  }
+  return std::nullopt;
+}
+
+std::vector<double> asymptotic_temperature_ratios(const Mixture& mix) {
+  const std::size_t species_count = mix.size();
+  if (species_count == 0) throw std::invalid_argument("asymptotic_temperature_ratios: no species");
+  if (species_count == 1) return {1.0};
+  const MaxwellianRates rates(mix);
+  RatioEquations equations(mix, rates);
+  if (auto ratio = ratios_by_newton(equations)) return *ratio;
+  if (auto ratio = ratios_by_continuation(equations)) return *ratio;
+  return asymptotic_ratios_by_ode(mix, rates);
 }
 
 }  // namespace gdsmc::theory

@@ -36,12 +36,16 @@
  * "sigma_kj" read as sigma_kj^2 and mu_kj as the reduced mass); tests/theory_test.cpp checks this,
  * and checks the total energy loss and the energy change of one species against Monte Carlo
  * integrations of the collision rule (\ref cm_rule "docs/collision-model.md") over Maxwellian pairs.
- * With constant alpha the ratios T_k/T_1 tend to constants (asymptotic_temperature_ratios); they
- * are found from the long-time ODE solution, not by Newton from equal temperatures (\ref haff_ratios "docs/haff-and-mixtures.md").
+ * With constant alpha the ratios T_k/T_1 tend to constants (asymptotic_temperature_ratios): the
+ * fixed point of the ratio ODE, found by Newton's method with a line search, else by
+ * pseudo-transient continuation of that ODE, else by its long-time solution (\ref haff_ratios "docs/haff-and-mixtures.md"
+ * warns against plain Newton from equal temperatures).
  *
  * \subsection theory_ode Numerical integration
- * integrate_partial_temperatures solves the \ref haff_cvode "docs/haff-and-mixtures.md" ODEs with SUNDIALS CVODE (BDF, dense direct
- * Newton, difference-quotient Jacobian). The state is y_k = ln(T_k/T_ref), T_ref = sum_k x_k T_k(0),
+ * integrate_partial_temperatures solves the \ref haff_cvode "docs/haff-and-mixtures.md" ODEs with SUNDIALS CVODE (BDF, Newton with the
+ * analytic Jacobian of maxwellian_rates.hpp: dense LU up to 200 species, above matrix-free GMRES
+ * left-preconditioned by the diagonal of I - gamma J; the pair sums in O(S^2) vectorised arithmetic,
+ * maxwellian_rates.hpp). The state is y_k = ln(T_k/T_ref), T_ref = sum_k x_k T_k(0),
  * not T_k itself: temperatures fall by many decades during cooling, and an absolute error of y_k is
  * a relative error of T_k, which stays meaningful at every T (an atol on T_k that is scaled to T0
  * and then follows T_k down). Tolerances (CVodeWFtolerances): absolute 1e-11 on each y_k and no
@@ -61,6 +65,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "dsmc/species.hpp"
@@ -136,12 +141,26 @@ TemperatureHistory integrate_partial_temperatures(const Mixture& mix,
  * Long-time ratios T_k/T_1 (entry 0 is 1) for constant restitution (\ref haff_ratios "docs/haff-and-mixtures.md"). Because every
  * xi_kj is homogeneous of degree 1/2 in the temperatures, the ratios r_k = T_k/T_1 obey an
  * autonomous ODE, d ln r_k/dtau = -(sum_j xi_kj - sum_j xi_1j) evaluated at T_1 = m_1 (a fixed
- * temperature unit), with dtau = sqrt(T_1(t)/m_1) dt: tau grows like ln t in the Haff regime, so
- * this is the mixture ODE integrated in log-time. It is integrated with CVODE from equal
- * temperatures over output intervals that double in length, until the ratios change by less than
- * 1e-12 relatively over two successive intervals. Throws std::runtime_error if that does not happen.
+ * temperature unit), with dtau = sqrt(T_1(t)/m_1) dt: tau grows like ln t in the Haff regime.
+ * Its fixed point F_k = sum_j xi_kj - sum_j xi_1j = 0 is solved in u_k = ln r_k with the analytic
+ * Jacobian (maxwellian_rates.hpp) by Newton's method from equal temperatures (steps limited to 1 in
+ * u, backtracking until max|F| falls), should that fail by pseudo-transient continuation of the ODE
+ * (Kelley and Keyes, SIAM J. Numer. Anal. 35, 508 (1998): implicit Euler steps of growing length from
+ * equal temperatures), both to max|F|/zeta_1 < 1e-13 with LU up to 300 species and GMRES above
+ * (gmres.hpp); should both fail, the ODE is integrated with CVODE from equal temperatures over
+ * output intervals that double in length, until the ratios change by less than 1e-12 relatively
+ * over two successive intervals. Throws std::runtime_error if that does not happen either.
+ * Documentation: docs/haff-and-mixtures.md "Asymptotic temperature ratios".
  */
 std::vector<double> asymptotic_temperature_ratios(const Mixture& mix);
+
+namespace detail {
+/// The three methods of asymptotic_temperature_ratios, each alone (tests/maxwellian_rates_test.cpp
+/// holds them against each other): empty when that method fails.
+enum class RatioMethod { newton, continuation, ode };
+std::optional<std::vector<double>> asymptotic_temperature_ratios_by(const Mixture& mix,
+                                                                    RatioMethod method);
+}  // namespace detail
 
 }  // namespace gdsmc::theory
 
