@@ -656,3 +656,95 @@ TEST(DiffusionViscoelastic, MixtureApproachesEquipartition) {
       EXPECT_GT(lt.msd[i][k], msd.msd[i][k]);
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// Second approximation for tracer diffusion (Chapman and Cowling, ch. 9-10;
+// \ref dif_second_approximation "docs/diffusion-msd.md")
+// ---------------------------------------------------------------------------------------------
+
+TEST(DiffusionSecondApproximation, KnownLimits) {
+  // Equal masses and sizes (self-diffusion of elastic hard spheres): Delta = 1/59, a 1.7 % correction
+  // (the converged value is about 1.9-2 % above the first approximation).
+  const auto self = theory::tracer_diffusion_second_approximation_ratio(one_species(1.0));
+  EXPECT_NEAR(self[0], 59.0 / 58.0, 1e-13);
+  // The same for a binary of identical species, whatever their densities.
+  const Mixture twins = make_mixture({2.0, 2.0}, {1.5, 1.5}, {0.1, 0.003}, PairMatrix(2, 0.5), false);
+  for (double r : theory::tracer_diffusion_second_approximation_ratio(twins)) EXPECT_NEAR(r, 59.0 / 58.0, 1e-13);
+  // Lorentz gas (a light tracer among heavy partners): Delta -> 1/13, [D]_2/[D]_1 -> 13/12, below
+  // the exact Lorentz value 32/(3 pi) = 1.132 (the second approximation captures 63 % of it).
+  const Mixture lorentz = make_mixture({1.0, 1e8}, {1.0, 1.0}, {1e-10, 0.1}, PairMatrix(2, 1.0), false);
+  const auto l = theory::tracer_diffusion_second_approximation_ratio(lorentz);
+  EXPECT_NEAR(l[0], 13.0 / 12.0, 1e-6);
+  EXPECT_LT(l[0], 32.0 / (3.0 * pi));
+  // Rayleigh gas (a heavy tracer among light partners): the first approximation is exact.
+  const Mixture rayleigh = make_mixture({1.0, 1e8}, {1.0, 1.0}, {0.1, 1e-20}, PairMatrix(2, 1.0), false);
+  EXPECT_NEAR(theory::tracer_diffusion_second_approximation_ratio(rayleigh)[1], 1.0, 1e-6);
+  // Hand-computed: m_t = 1 among m_p = 3 only (M = 3/4): a_00 = 3/16, a_01 = -9/128,
+  // a_11 = (9/16)(27 (9/16) - 33 + 30)/12 = 585/1024, Delta = a_01^2/(a_00 a_11) = 3/65, ratio 65/62.
+  const auto a = theory::tracer_sonine_matrix(1.0, 3.0);
+  EXPECT_NEAR(a.a00, 3.0 / 16.0, 1e-15);
+  EXPECT_NEAR(a.a01, -9.0 / 128.0, 1e-15);
+  EXPECT_NEAR(a.a11, 585.0 / 1024.0, 1e-15);
+  const Mixture hand = make_mixture({1.0, 3.0}, {1.0, 1.0}, {1e-12, 0.1}, PairMatrix(2, 1.0), false);
+  EXPECT_NEAR(theory::tracer_diffusion_second_approximation_ratio(hand)[0], 65.0 / 62.0, 1e-9);
+  EXPECT_THROW(theory::tracer_sonine_matrix(0.0, 1.0), std::invalid_argument);
+}
+
+TEST(DiffusionSecondApproximation, MatrixElementsAgreeWithMaxwellianPairMonteCarlo) {
+  // a_pq = <|g| psi_p(v) [psi_q(v) - psi_q(v')]>/<|g|^3> over Maxwellian pairs (T = 1), with the
+  // elastic hard-sphere scattering isotropic in the centre-of-mass frame: v' = G + M_p |g| n'.
+  // Independent of the algebra that gave the closed forms.
+  const double mt = 1.0, mp = 3.0, M = mp / (mt + mp);
+  std::mt19937_64 rng(1234);
+  std::normal_distribution<double> normal;
+  const std::size_t samples = 2000000;
+  double s00 = 0.0, s01 = 0.0, s10 = 0.0, s11 = 0.0, g3 = 0.0;
+  auto psi = [&](const double* u, int p) {
+    const double c2 = 0.5 * mt * (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    return u[0] * (p == 0 ? 1.0 : 2.5 - c2);
+  };
+  for (std::size_t n = 0; n < samples; ++n) {
+    double v[3], w[3], G[3], g[3], d[3], vp[3];
+    for (int c = 0; c < 3; ++c) {
+      v[c] = normal(rng) / std::sqrt(mt);
+      w[c] = normal(rng) / std::sqrt(mp);
+      G[c] = (mt * v[c] + mp * w[c]) / (mt + mp);
+      g[c] = v[c] - w[c];
+      d[c] = normal(rng);
+    }
+    const double gn = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    const double dn = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    for (int c = 0; c < 3; ++c) vp[c] = G[c] + M * gn * d[c] / dn;
+    const double p0 = psi(v, 0), p1 = psi(v, 1), q0 = p0 - psi(vp, 0), q1 = p1 - psi(vp, 1);
+    s00 += gn * p0 * q0;
+    s01 += gn * p0 * q1;
+    s10 += gn * p1 * q0;
+    s11 += gn * p1 * q1;
+    g3 += gn * gn * gn;
+  }
+  const auto a = theory::tracer_sonine_matrix(mt, mp);
+  EXPECT_NEAR(s00 / g3, a.a00, 0.01 * a.a00);
+  EXPECT_NEAR(s01 / g3, a.a01, 0.03 * std::abs(a.a01));
+  EXPECT_NEAR(s10 / g3, a.a01, 0.03 * std::abs(a.a01));  // symmetric operator
+  EXPECT_NEAR(s11 / g3, a.a11, 0.02 * a.a11);
+}
+
+TEST(DiffusionSecondApproximation, FirstApproximationIsEquation19AtAlphaOne) {
+  // 1/(m_k^2 A_00) with A_00 = 16 sqrt(pi/2) T^(3/2) sum_i n_i sigma_ki^2 chi_ki mu_ki^(-3/2) a_00
+  // (\ref dif_second_approximation "docs/diffusion-msd.md") is Bodrova and Osinsky 2024, eq. (19)
+  // (\ref dif_coefficients "docs/diffusion-msd.md") at alpha = 1 and equal temperatures.
+  PairMatrix alpha(3, 1.0);
+  const Mixture mix = make_mixture({1.0, 3.0, 20.0}, {1.0, 1.5, 2.5}, {0.05, 0.02, 0.004}, alpha, true);
+  const double T = 1.7;
+  const auto d = theory::diffusion_coefficients(mix, {T, T, T});
+  for (std::size_t k = 0; k < 3; ++k) {
+    double a00 = 0.0;
+    for (std::size_t i = 0; i < 3; ++i) {
+      const double s = mix.contact_distance(k, i);
+      a00 += mix.number_density[i] * s * s * mix.pair_correlation(k, i) * std::pow(mix.reduced_mass(k, i), -1.5) *
+             theory::tracer_sonine_matrix(mix.mass[k], mix.mass[i]).a00;
+    }
+    a00 *= 16.0 * std::sqrt(pi / 2.0) * std::pow(T, 1.5);
+    EXPECT_NEAR(T * T / (mix.mass[k] * mix.mass[k] * a00), d[k], 1e-12 * d[k]) << "species " << k;
+  }
+}

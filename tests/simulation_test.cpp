@@ -87,7 +87,7 @@ TEST(Simulation, SweepWritesOneGroupPerPoint) {
 // first collision (nu = 0.0709 here, t = 0.5 is 0.035 collisions), and diffusive later with
 // 6 D per unit time, D = 3/(8 n sigma^2) sqrt(T/(pi m)) (first Chapman-Enskog approximation, which
 // the velocity-correlation theory of Bodrova and Osinsky 2024, eq. (19), \ref dif_coefficients "docs/diffusion-msd.md" also gives for alpha = 1; the second
-// approximation is 1.9 % higher). Ensemble: 4 replicas x 20000 particles; slope from t = 120 to 200
+// approximation is 1.7 % higher, 1 + 1/58, \ref dif_second_approximation "docs/diffusion-msd.md"; the converged value about 1.9 %). Ensemble: 4 replicas x 20000 particles; slope from t = 120 to 200
 // (8.5 to 14 collisions per particle) with its replica SE; tolerance 4 SE + 3 % (the approximation).
 TEST(Simulation, DisplacementsBallisticThenDiffusive) {
   const auto path = scratch("msd.h5");

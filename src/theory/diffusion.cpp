@@ -494,6 +494,45 @@ std::vector<double> diffusion_coefficient_ratio(const Mixture& mix) {
 }
 
 // -------------------------------------------------------------------------------------------------
+// Second approximation for tracer diffusion (Chapman and Cowling, ch. 9-10;
+// \ref dif_second_approximation "docs/diffusion-msd.md")
+// -------------------------------------------------------------------------------------------------
+
+TracerSonineMatrix tracer_sonine_matrix(double m_tracer, double m_partner) {
+  if (!(m_tracer > 0.0 && std::isfinite(m_tracer) && m_partner > 0.0 && std::isfinite(m_partner)))
+    throw std::invalid_argument("tracer_sonine_matrix: masses must be positive and finite");
+  // M = partner mass fraction; the closed forms of \ref dif_second_approximation "docs/diffusion-msd.md".
+  const double M = m_partner / (m_tracer + m_partner);
+  TracerSonineMatrix a;
+  a.a00 = M * M / 3.0;
+  a.a01 = -M * M * M / 6.0;
+  a.a11 = M * M * (27.0 * M * M - 44.0 * M + 30.0) / 12.0;
+  return a;
+}
+
+std::vector<double> tracer_diffusion_second_approximation_ratio(const Mixture& mix) {
+  std::vector<double> ratio(mix.size(), 1.0);
+  for (std::size_t k = 0; k < mix.size(); ++k) {
+    // A_pq = sum_i n_i sigma_ki^2 chi_ki mu_ki^(-3/2) a_pq(m_k, m_i) (common factors dropped:
+    // pi <g^3> mu^(3/2) = 16 sqrt(pi/2) T^(3/2) is the same for every partner at one temperature).
+    double a00 = 0.0, a01 = 0.0, a11 = 0.0;
+    for (std::size_t i = 0; i < mix.size(); ++i) {
+      const double sigma = mix.contact_distance(k, i);
+      const double weight = mix.number_density[i] * sigma * sigma * mix.pair_correlation(k, i) *
+                            std::pow(mix.reduced_mass(k, i), -1.5);
+      const auto a = tracer_sonine_matrix(mix.mass[k], mix.mass[i]);
+      a00 += weight * a.a00;
+      a01 += weight * a.a01;
+      a11 += weight * a.a11;
+    }
+    if (!(a00 > 0.0 && a11 > 0.0))
+      throw std::invalid_argument("tracer_diffusion_second_approximation_ratio: species without partners");
+    ratio[k] = 1.0 / (1.0 - a01 * a01 / (a00 * a11));  // [D]_2/[D]_1 = 1/(1 - Delta)
+  }
+  return ratio;
+}
+
+// -------------------------------------------------------------------------------------------------
 // Partial temperatures with viscoelastic restitution
 // -------------------------------------------------------------------------------------------------
 

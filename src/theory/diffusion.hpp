@@ -177,6 +177,42 @@ std::vector<double> diffusion_coefficient_ratio(const Mixture& mix,
 std::vector<double> diffusion_coefficient_ratio(const Mixture& mix);
 
 // ---------------------------------------------------------------------------------------------
+// Accuracy of the first approximation: Chapman-Enskog second approximation for tracer diffusion of
+// elastic hard spheres (Chapman and Cowling, ch. 9-10; \ref dif_second_approximation "docs/diffusion-msd.md")
+// ---------------------------------------------------------------------------------------------
+
+/**
+ * Sonine matrix elements of the tracer (Lorentz-Boltzmann) collision operator for a tracer of mass
+ * m_t among Maxwellian partners of mass m_p, elastic hard spheres, equal temperatures
+ * (\ref dif_second_approximation "docs/diffusion-msd.md"): a_pq = <psi_p (-L) psi_q>/(pi sigma^2 n_p <g^3>),
+ * psi_p = v_x S_p(m_t v^2/(2T)), S_0 = 1, S_1 = 5/2 - m_t v^2/(2T). With M = m_p/(m_t + m_p):
+ * a_00 = M^2/3, a_01 = -M^3/6, a_11 = M^2 (27 M^2 - 44 M + 30)/12.
+ */
+struct TracerSonineMatrix {
+  double a00 = 0.0;  ///< <psi_0 (-L) psi_0>, reduced
+  double a01 = 0.0;  ///< <psi_0 (-L) psi_1>, reduced
+  double a11 = 0.0;  ///< <psi_1 (-L) psi_1>, reduced
+};
+
+/// The reduced matrix elements of TracerSonineMatrix for tracer mass m_tracer and partner mass
+/// m_partner (\ref dif_second_approximation "docs/diffusion-msd.md"). Throws std::invalid_argument
+/// unless both masses are positive and finite.
+TracerSonineMatrix tracer_sonine_matrix(double m_tracer, double m_partner);
+
+/**
+ * [D_k]_2/[D_k]_1 = 1/(1 - Delta_k) for a tagged particle of each species k of `mix` (Chapman and
+ * Cowling's second approximation to the tracer diffusion coefficient, elastic hard spheres, every
+ * species at one temperature; \ref dif_second_approximation "docs/diffusion-msd.md"): the matrix
+ * elements are summed over the partner species i (the tagged particle's own species included) with
+ * the weights n_i sigma_ki^2 chi_ki mu_ki^(-3/2) (mu_ki the reduced mass), and
+ * Delta_k = A_01^2/(A_00 A_11). Limits: equal masses and sizes 59/58 (self-diffusion), a light tracer
+ * among heavy partners 13/12 (Lorentz gas; exact 32/(3 pi)), a heavy tracer 1 (Rayleigh gas).
+ * Restitution and temperatures of `mix` are not used: it is the elastic estimate of the error of the
+ * first approximation (Bodrova and Osinsky 2024, eq. (19) at alpha = 1).
+ */
+std::vector<double> tracer_diffusion_second_approximation_ratio(const Mixture& mix);
+
+// ---------------------------------------------------------------------------------------------
 // Partial temperatures with viscoelastic restitution (Bodrova and Osinsky 2024, eqs. (22)-(23), \ref visco_averaged "docs/viscoelastic.md" with A4)
 // ---------------------------------------------------------------------------------------------
 

@@ -1,9 +1,13 @@
 // Partial MSDs against Bodrova and Osinsky 2024, eq. (17) (\ref dif_msd "docs/diffusion-msd.md"), Figs 1, 2, 6, 9, 10. See README.md.
 //
-// usage: validate_msd INPUT.nml [--set ...] [--output FILE] --gap g1,g2[,g3]
-// `--gap` gives, per species, the relative systematic allowance of eq 17 for this case: the gap
-// between eq 17 and DSMC measured once and stated in README.md (\ref dif_msd "docs/diffusion-msd.md": eq 17 is itself an
-// approximation), never adjusted to make a run pass.
+// usage: validate_msd INPUT.nml [--set ...] [--output FILE] --measured-gap g1,g2[,g3]
+// The comparison with eq 17 after the first sample is a **consistency check (measured allowance)**:
+// `--measured-gap` gives, per species, the gap between eq 17 and DSMC measured once with the quick tier
+// + 25 % (README.md), never adjusted to make a run pass. No independent estimate covers it: the elastic
+// second Chapman-Enskog approximation (Chapman and Cowling, ch. 9-10; \ref dif_second_approximation "docs/diffusion-msd.md")
+// gives 1-8 % and is printed beside it, the inelastic and transient errors of eq 17 are larger. The
+// quantity is checked without a measured allowance by the independent MSD table below (Figs 1-2) and
+// by validation/schemes_agree (MSD across schemes, 4 SE).
 #include <cmath>
 #include <cstring>
 
@@ -13,7 +17,7 @@
 using namespace gdsmc;
 
 int main(int argc, char** argv) {
-  const auto gap_option = validation::take_option(argc, argv, "--gap");
+  const auto gap_option = validation::take_option(argc, argv, "--measured-gap");
   const std::vector<double> gap = gap_option ? validation::number_list(*gap_option) : std::vector<double>{};
   const auto run = validation::run_case(argc, argv, "msd.h5");
   const auto mix = run.config.mixture();
@@ -21,7 +25,22 @@ int main(int argc, char** argv) {
   validation::Report report("partial MSDs against eq 17, " + std::to_string(s) + " species, " +
                                 run.config.system.restitution_model + " restitution",
                             run.report_file());
-  if (!report.require("--gap gives one allowance per species", gap.size() == s)) return report.exit_code();
+  if (!report.require("--measured-gap gives one allowance per species", gap.size() == s)) return report.exit_code();
+  {
+    char text[300];
+    std::snprintf(text, sizeof text, "ensemble: %lld replicas x %lld particles, %s scheme", run.config.dsmc.replicas,
+                  run.config.dsmc.n_particles, run.config.dsmc.scheme.c_str());
+    report.note(text);
+    // The independent estimate of the first approximation's error (elastic, \ref dif_second_approximation "docs/diffusion-msd.md").
+    const auto second = theory::tracer_diffusion_second_approximation_ratio(mix);
+    for (std::size_t k = 0; k < s; ++k) {
+      std::snprintf(text, sizeof text,
+                    "species %zu: elastic second Chapman-Enskog approximation [D]_2/[D]_1 - 1 = %+.2f %%; "
+                    "measured allowance %.1f %% (README.md: consistency check)",
+                    k + 1, 100.0 * (second[k] - 1.0), 100.0 * gap[k]);
+      report.note(text);
+    }
+  }
   const auto beta = run.config.viscoelastic_beta();
   const auto msd = validation::observable(run, "msd");
   if (!report.require("replicas > 1, so standard errors exist", !msd.error.empty())) return report.exit_code();
@@ -49,12 +68,18 @@ int main(int argc, char** argv) {
   for (std::size_t i = first; i < nt; ++i)
     for (std::size_t k = 0; k < s; ++k) {
       const double th = theory_msd.msd[i][k], measured = msd.value[i * s + k];
-      // Short times: eq 17 is ballistic to within its first collision correction (gap measured
-      // <= 0.3 % at the first sample from t = 0), so that sample gets 1 %, the others the stated gap.
-      const double allowance = (i == 1 && start == 0.0 ? 0.01 : gap[k]) * th;
-      char name[128];
-      std::snprintf(name, sizeof name, "<R_%zu^2>(t = %.3g) (DSMC/eq 17 - 1 = %+.1f %%)", k + 1, msd.time[i],
-                    100.0 * (measured / th - 1.0));
+      // First sample from t = 0 (ballistic): eq 17 differs from 3 T_k(0) t^2/m_k by its first-collision
+      // term, and its error is a fraction of that term (the exact initial decay rate of the velocity
+      // correlation is the Maxwellian momentum relaxation rate, eq 17 uses A1, \ref dif_correlation_time "docs/diffusion-msd.md"; they differ by
+      // less than a factor 2): allowance = the term itself, an estimate from the theory, not from DSMC.
+      // Other samples: the measured allowance (consistency check).
+      const bool first_sample = i == 1 && start == 0.0;
+      const double ballistic = 3.0 * run.config.initial.temperature[k] * times[i] * times[i] / mix.mass[k];
+      const double allowance = (first_sample ? std::abs(th / ballistic - 1.0) : gap[k]) * th;
+      char name[160];
+      std::snprintf(name, sizeof name, "<R_%zu^2>(t = %.3g) (DSMC/eq 17 - 1 = %+.2f %%; %s)", k + 1, msd.time[i],
+                    100.0 * (measured / th - 1.0),
+                    first_sample ? "first-collision term of eq 17" : "consistency check, measured allowance");
       report.check(name, measured, msd.error[i * s + k], th, 4.0, allowance);
     }
   // An independent reference (issue 13): MSDs of Bodrova and Osinsky 2024, Figs. 1-2, \ref dif_msd "docs/diffusion-msd.md" from an independent time-stepped
