@@ -455,6 +455,18 @@ TEST(Collide, BlocksRestoreAndStopAtStepEnds) {
     EXPECT_EQ(a.counters().events, 40000u);
     EXPECT_TRUE(a.advance(1e9, 41000, false));  // a soft target: met at a step end
     EXPECT_GE(a.counters().events, 41000u);
+    // A soft target with a hard limit beyond it (a progress chunk inside a sample, whose steps bring
+    // ~2000 events here): the soft one is met at a step end, the limit never passed, then met exactly.
+    for (int chunk = 0; chunk < 6; ++chunk) {
+      const std::uint64_t before = a.counters().events, limit = 49000;
+      if (before >= limit) break;
+      EXPECT_TRUE(a.advance(1e9, std::min<std::uint64_t>(before + 10, limit), false, limit));
+      EXPECT_LE(a.counters().events, limit);
+    }
+    EXPECT_TRUE(a.advance(1e9, 49000, false, 49000));
+    EXPECT_EQ(a.counters().events, 49000u);
+    EXPECT_TRUE(a.advance(1e9, 1000000, false, 52000));  // a soft target far beyond the limit
+    EXPECT_EQ(a.counters().events, 52000u);
     a.advance(a.time() + 0.37 * a.mean_step());  // inside a step
     const Collider::State saved = a.state();
     auto sys_b = sys_a;

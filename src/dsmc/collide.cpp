@@ -339,7 +339,11 @@ void Collider::set_whole_gas_bound() {
   rate_ = 0.5 * static_cast<double>(sys_.size()) * mix_.total_density() * bound_;
 }
 
-bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool exact_events) {
+bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool exact_events,
+                              std::uint64_t event_limit) {
+  // The target met exactly: the exact one, else the hard limit beyond a soft one.
+  const std::uint64_t exact_target = exact_events ? std::min(event_target, event_limit) : event_limit;
+  const std::uint64_t any_target = std::min(event_target, event_limit);
   const std::size_t blocks = block_first_.size() - 1;
   const double n_total = static_cast<double>(sys_.size());
   const double n = mix_.total_density();
@@ -347,7 +351,7 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
   while (time_ < t_target) {
     if (time_ >= next_step_time_) {
       // Events are checked between steps only: all blocks are then at the same time.
-      if (counters_.events >= event_target) return true;
+      if (counters_.events >= any_target) return true;
       if (counters_.steps > 0) {  // the acceptance of the step that ended, for the next decision
         const auto candidates = counters_.candidates - step_candidates_start_;
         if (candidates > 0)
@@ -383,8 +387,8 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
       // whole gas, which stops at the target itself, and is made about 1.5 times as long as the
       // events left need.
       whole_step_ = false;
-      if (exact_events && event_target != UINT64_MAX) {
-        const double remaining = static_cast<double>(event_target - counters_.events);
+      if (exact_target != UINT64_MAX) {
+        const double remaining = static_cast<double>(exact_target - counters_.events);
         const double expected = step_acceptance_ * rate * step;
         if (!(step_acceptance_ > 0.0)) {
           whole_step_ = true;  // nothing measured yet: the first step
@@ -417,7 +421,7 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
     }
     if (whole_step_) {
       const double t_stop = std::min(t_target, next_step_time_);
-      const int stop = lowrank_blocks() ? run_lowrank<false>(t_stop, event_target) : run_majorant<false>(t_stop, event_target);
+      const int stop = lowrank_blocks() ? run_lowrank<false>(t_stop, any_target) : run_majorant<false>(t_stop, any_target);
       if (stop == static_cast<int>(Stop::bound_raised)) {
         raised_.clear();
         set_whole_gas_bound();
@@ -622,8 +626,9 @@ void Collider::collide_in_frame(std::size_t a, std::size_t b, std::uint32_t k, s
   count_event(k, j);
 }
 
-bool Collider::advance(double t_target, std::uint64_t event_target, bool exact_events) {
-  if (!block_first_.empty()) return advance_blocks(t_target, event_target, exact_events);
+bool Collider::advance(double t_target, std::uint64_t event_target, bool exact_events, std::uint64_t event_limit) {
+  if (!block_first_.empty()) return advance_blocks(t_target, event_target, exact_events, event_limit);
+  event_target = std::min(event_target, event_limit);  // without blocks every target is met exactly
   while (time_ < t_target) {
     if (counters_.events >= event_target) return true;
     if (time_ >= next_step_time_) {

@@ -265,8 +265,11 @@ class Collider {
   /// Returns true when the event target stopped it. With blocks and `exact_events`, the steps near
   /// the event target run on the whole gas and stop at it exactly (header, "Blocks"); without
   /// `exact_events` (a soft target: a progress or checkpoint chunk) it is checked at the end of
-  /// each blocked step only and may be passed by up to one step's events.
-  bool advance(double t_target, std::uint64_t event_target = UINT64_MAX, bool exact_events = true);
+  /// each blocked step only and may be passed by up to one step's events. `event_limit` is a hard
+  /// target beyond a soft one (the sample's own event target): never passed, met exactly as an exact
+  /// `event_target` is, so that a soft chunk's step cannot run past it.
+  bool advance(double t_target, std::uint64_t event_target = UINT64_MAX, bool exact_events = true,
+               std::uint64_t event_limit = UINT64_MAX);
 
   /// The velocities were changed from outside between two advance() calls (the streaming of a
   /// shear flow, a thermostat's rescaling): the largest speeds and the bounds are recomputed
@@ -349,7 +352,7 @@ class Collider {
   int run_substep(double t_stop, std::uint64_t event_target, TryCandidate&& try_candidate);
   template <bool Framed>
   int run_majorant(double t_stop, std::uint64_t event_target);  // returns a Stop (collide.cpp)
-  bool advance_blocks(double t_target, std::uint64_t event_target, bool exact_events);
+  bool advance_blocks(double t_target, std::uint64_t event_target, bool exact_events, std::uint64_t event_limit);
   void set_whole_gas_bound();       ///< bound_, rate_ and range of a whole-gas step (with blocks)
   bool whole_step_ = false;         ///< with blocks: this step runs on the whole gas (near an event target)
   double step_acceptance_ = 0.0;    ///< with blocks: events per candidate in the last step

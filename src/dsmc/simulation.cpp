@@ -956,7 +956,8 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
       const std::uint64_t done = collider.counters().events;
       const std::uint64_t chunk_end = event_target - done > kChunk ? done + kChunk : event_target;
       // The sample's own target is exact; a chunk's end is soft (blocks may pass it, collide.hpp).
-      collider.advance(chunk_stop(t_target), chunk_end, chunk_end == event_target);  // ... and at most ~1e5 candidates
+      // ... and at most ~1e5 candidates; the sample's target is never passed, even by a soft chunk's step.
+      collider.advance(chunk_stop(t_target), chunk_end, chunk_end == event_target, event_target);
       if (collider.time() >= t_target || collider.counters().events >= event_target) break;
       if (options.interrupt && options.interrupt->load()) throw Interrupted();
       report(std::min(fraction_done(collider), 0.999));
