@@ -28,6 +28,10 @@ status=0
 for f in *.h5; do
   if [ "$(md5sum < "$f" | cut -c1-32)" != "$reference" ]; then
     echo "FAIL: $f differs from threads-1.h5"; status=1
+    # The builds' own versions are part of the file (/h5md/creator/version): say so when they differ.
+    v1=$(h5dump -a /h5md/creator/version threads-1.h5 2>/dev/null | grep -o '"[^"]*"' | head -1)
+    v2=$(h5dump -a /h5md/creator/version "$f" 2>/dev/null | grep -o '"[^"]*"' | head -1)
+    [ "$v1" = "$v2" ] || echo "  (built from different versions, $v1 and $v2: rebuild both from the same commit)"
   fi
 done
 [ $status -eq 0 ] && echo "PASS: $(ls *.h5 | wc -l) runs, one file content ($reference)"
