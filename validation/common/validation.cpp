@@ -27,6 +27,43 @@ std::vector<double> number_list(const std::string& text) {
   return out;
 }
 
+Variants read_variants(int argc, char** argv, const std::string& default_stem) {
+  Variants v;
+  v.stem = default_stem;
+  std::string input;
+  std::vector<std::string> overrides;
+  v.args.push_back(argv[0]);
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--output" && i + 1 < argc) {
+      v.stem = std::filesystem::path(argv[++i]).replace_extension().string();
+      continue;
+    }
+    v.args.push_back(arg);
+    if (arg == "--set" && i + 1 < argc) {
+      overrides.push_back(argv[++i]);
+      v.args.push_back(argv[i]);
+    } else if (arg.rfind("--", 0) != 0) {
+      input = arg;
+    }
+  }
+  try {
+    v.config = io::config::read_file(input, overrides);
+  } catch (const std::exception& e) {
+    std::cerr << e.what() << "\n";
+    std::exit(2);
+  }
+  return v;
+}
+
+Case Variants::run(const std::vector<std::string>& extra) const {
+  std::vector<std::string> storage = args;
+  storage.insert(storage.end(), extra.begin(), extra.end());
+  std::vector<char*> argv;
+  for (auto& s : storage) argv.push_back(s.data());
+  return run_case(static_cast<int>(argv.size()), argv.data(), stem + ".h5");
+}
+
 Case run_case(int argc, char** argv, const std::string& default_output) {
   std::string input, output = default_output;
   std::vector<std::string> overrides;

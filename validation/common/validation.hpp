@@ -41,6 +41,19 @@ std::vector<double> number_list(const std::string& text);
 /// Parses the command line, reads the namelist and runs it (unless --reuse and the file exists).
 Case run_case(int argc, char** argv, const std::string& default_output);
 
+/// A program that runs several variants of one input (a scheme each, a seed each, ...): its command
+/// line without `--output`, the output stem (from `--output`, extension dropped) and the checked
+/// Config of the input with its `--set` overrides.
+struct Variants {
+  std::string stem;                 ///< output stem: each variant writes `<stem>_<name>.h5`
+  std::vector<std::string> args;    ///< the command line without `--output FILE`
+  io::config::Config config;        ///< the input with the command line's overrides
+  /// run_case on that command line plus `extra` (e.g. `--set ... --output FILE`).
+  Case run(const std::vector<std::string>& extra) const;
+};
+/// Reads the command line and the namelist for Variants; on a bad input prints it and exits with 2.
+Variants read_variants(int argc, char** argv, const std::string& default_stem);
+
 /// Collects checks and prints them; `exit_code()` is 1 if any failed.
 class Report {
  public:

@@ -4,7 +4,6 @@
 //   initial_slope: dT_k/dt at t = 0 (exact for the Maxwellian start) from one run per replica.
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <iostream>
 
@@ -25,30 +24,9 @@ namespace {
 // (mean and SE per sample) does not hold: so every replica runs as a run of its own (replicas = 1,
 // seed + r), a is formed per replica, and its mean and SE are taken over the replicas.
 int check_initial_slope(int argc, char** argv) {
-  std::string stem = "polydisperse_initial_slope", input;
-  std::vector<std::string> overrides;
-  std::vector<char*> base;
-  base.push_back(argv[0]);
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--output") == 0 && i + 1 < argc) {
-      stem = std::filesystem::path(argv[++i]).replace_extension().string();
-      continue;
-    }
-    base.push_back(argv[i]);
-    if (std::strcmp(argv[i], "--set") == 0 && i + 1 < argc) {
-      overrides.push_back(argv[++i]);
-      base.push_back(argv[i]);
-    } else if (std::strncmp(argv[i], "--", 2) != 0) {
-      input = argv[i];
-    }
-  }
-  io::config::Config config;
-  try {
-    config = io::config::read_file(input, overrides);
-  } catch (const std::exception& e) {
-    std::cerr << e.what() << "\n";
-    return 2;
-  }
+  const validation::Variants variants = validation::read_variants(argc, argv, "polydisperse_initial_slope");
+  const std::string& stem = variants.stem;
+  const io::config::Config& config = variants.config;
   const long long replicas = config.dsmc.replicas, seed = config.dsmc.seed;
   const auto mix = config.mixture();
   const std::size_t s = mix.size();
@@ -60,11 +38,8 @@ int check_initial_slope(int argc, char** argv) {
   std::vector<std::vector<double>> slope(s);  // [species][replica]
   std::vector<double> times;
   for (long long r = 0; r < replicas; ++r) {
-    std::vector<std::string> storage = {"--set", "dsmc:replicas=1", "--set", "dsmc:seed=" + std::to_string(seed + r),
-                                        "--output", stem + "_r" + std::to_string(r) + ".h5"};
-    std::vector<char*> a = base;
-    for (auto& x : storage) a.push_back(x.data());
-    const auto run = validation::run_case(static_cast<int>(a.size()), a.data(), stem + ".h5");
+    const auto run = variants.run({"--set", "dsmc:replicas=1", "--set", "dsmc:seed=" + std::to_string(seed + r),
+                                   "--output", stem + "_r" + std::to_string(r) + ".h5"});
     const auto t = validation::observable(run, "temperature");
     if (!(t.time.size() >= 3 && t.time[0] == 0.0 && t.time[1] > 0.0 && t.time[2] > t.time[1])) {
       report.require("replica " + std::to_string(r) + ": samples at 0 < t1 < t2 (the first three)", false);
@@ -155,7 +130,8 @@ int main(int argc, char** argv) {
     const std::size_t last = sonine.value.size() / s - 1;
     std::string text = "c_k at the end, DSMC (first-Sonine HCS):";
     for (std::size_t k = 0; k < s; ++k)
-      text += " " + std::to_string(sonine.value[last * s + k]) + " (" + std::to_string(sonine_hcs.sonine_c[k]) + ")";
+      text.append(" ").append(std::to_string(sonine.value[last * s + k])).append(" (")
+          .append(std::to_string(sonine_hcs.sonine_c[k])).append(")");
     report.note(text);
   }
   report.note("Sonine allowance eps = " + std::to_string(eps) + " (|a2(alpha)| = " + std::to_string(alpha_max_a2) +

@@ -3,7 +3,6 @@
 // and the MSD per species at 4 combined standard errors, with no systematic allowance (issue 13).
 // See README.md in this folder.
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <iostream>
 
@@ -31,52 +30,28 @@ std::size_t expected_blocks(long long n, long long block_size, const std::vector
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string stem = "schemes_agree", input;
-  std::vector<std::string> overrides;
-  std::vector<char*> base;  // the command line without --output
-  base.push_back(argv[0]);
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--output") == 0 && i + 1 < argc) {
-      stem = std::filesystem::path(argv[++i]).replace_extension().string();
-      continue;
-    }
-    base.push_back(argv[i]);
-    if (std::strcmp(argv[i], "--set") == 0 && i + 1 < argc) {
-      overrides.push_back(argv[++i]);
-      base.push_back(argv[i]);
-    } else if (std::strncmp(argv[i], "--", 2) != 0) {
-      input = argv[i];
-    }
-  }
-  io::config::Config config;
-  try {
-    config = io::config::read_file(input, overrides);
-  } catch (const std::exception& e) {
-    std::cerr << e.what() << "\n";
-    return 2;
-  }
+  const validation::Variants command = validation::read_variants(argc, argv, "schemes_agree");
+  const std::string& stem = command.stem;
+  const io::config::Config& config = command.config;
   const long long seed = config.dsmc.seed, block_size = config.dsmc.block_size;
 
-  // Each variant has its own seed (seed + index), so that the four ensembles are independent and the
+  // Each variant has its own seed (seed + index), so that the five ensembles are independent and the
   // standard error of a difference is the combined one, sqrt(SE_1^2 + SE_2^2).
   const std::vector<Variant> variants = {{"majorant, no blocks", "majorant", false},
                                          {"majorant, blocks", "majorant", true},
                                          {"pairs", "pairs", false},
-                                         {"lowrank", "lowrank", false}};
+                                         {"lowrank", "lowrank", false},
+                                         {"lowrank, blocks", "lowrank", true}};
   std::vector<validation::Case> runs;
   for (std::size_t v = 0; v < variants.size(); ++v) {
     const auto& variant = variants[v];
-    std::vector<std::string> storage = {
-        "--set", "dsmc:scheme='" + variant.scheme + "'",
-        "--set", "dsmc:seed=" + std::to_string(seed + static_cast<long long>(v)),
-        "--set", "dsmc:block_size=" + std::to_string(variant.blocks ? block_size : 0),
-        "--output", stem + "_" + variant.scheme + (variant.blocks ? "_blocks" : "") + ".h5"};
-    std::vector<char*> a = base;
-    for (auto& s : storage) a.push_back(s.data());
-    runs.push_back(validation::run_case(static_cast<int>(a.size()), a.data(), stem + ".h5"));
+    runs.push_back(command.run({"--set", "dsmc:scheme='" + variant.scheme + "'",
+                                "--set", "dsmc:seed=" + std::to_string(seed + static_cast<long long>(v)),
+                                "--set", "dsmc:block_size=" + std::to_string(variant.blocks ? block_size : 0),
+                                "--output", stem + "_" + variant.scheme + (variant.blocks ? "_blocks" : "") + ".h5"}));
   }
   const std::size_t s = runs[0].config.mixture().size();
-  validation::Report report("all schemes (majorant with and without blocks, pairs, lowrank), binary mixture",
+  validation::Report report("all schemes (majorant and lowrank with and without blocks, pairs), binary mixture",
                             stem + ".report.txt");
   const auto t_ref = validation::observable(runs[0], "temperature");
   if (!report.require("replicas > 1, so standard errors exist", !t_ref.error.empty()))
