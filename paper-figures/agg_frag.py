@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Aggregation and fragmentation (seed 000 eqs 8-14, ERRATA §12) from the validation outputs: DSMC
+"""Aggregation and fragmentation (DSMC notes, eqs. (8)-(14); docs/agg-frag.md) from the validation outputs: DSMC
 points (replica mean +- standard error) over the Smoluchowski rate equations of `granular-theory` for
 the same input, for pure sticking, rare reactions in a nearly elastic gas, and the full model, with the
 residuals (DSMC/theory - 1, in percent) below: the closure's drift is visible there.

@@ -10,7 +10,7 @@ paper-figures/out). Figs 4, 5, 7 are theory lines (`granular-theory` with a `&sw
 namelists only) with DSMC points only when `diffusion_ratio_*` outputs exist. A figure whose DSMC output
 is missing is reported as not made (make_all.py says which ctest command runs it).
 
-Eq 17 is an approximation: DSMC lies up to ~14-16 % below it for the light species (ERRATA §8,
+Eq 17 is an approximation: DSMC lies up to ~14-16 % below it for the light species (docs/diffusion-msd.md,
 validation/msd_binary/README.md), which the residual panels (DSMC/eq 17 - 1, in percent) show.
 """
 import glob

@@ -88,7 +88,7 @@ def fig1_gamma_time():
 
 
 def one_component_dsmc():
-    """2 a2 = c of one-species HCS runs in the validation outputs (seed 000's Haff cases), averaged past
+    """2 a2 = c of one-species HCS runs in the validation outputs (the Haff cases of validation/haff_cooling), averaged past
     SCALING_START collisions per particle: [(alpha, c, se)]. Missing runs are skipped."""
     out = []
     for case in ("haff_cooling_alpha0.5", "haff_cooling_alpha0.9"):

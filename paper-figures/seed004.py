@@ -108,7 +108,7 @@ def fig10_12():
     """Seed 004 Figs 10-12 are for a binary Enskog mixture (equal sizes and numbers): Fig 10 the kinetic
     part and Fig 11 the total viscosity against the solid fraction at mass ratio 4, Fig 12 the total
     against the mass ratio at phi = 0.2, each at alpha = 0.9, 0.8, 0.7. Drawn as eta/eta_0 over the
-    elastic dilute mixture (seed 004's eta* = nu eta/(n T) is that times nu eta_0/n, which does not
+    elastic dilute mixture (Montanero 2003's eta* = nu eta/(n T) is that times nu eta_0/n, which does not
     depend on phi), with the one-component Enskog points (alpha = 1, 0.8) in the first two panels."""
     fig, axes, ars = with_residuals(ncols=3, width=PAGE, height=3.2)
     drawn = False
