@@ -505,21 +505,24 @@ TEST(H5mdSpec, ShearWithThermostat) {
                     "&thermostat kind = 'gaussian' /\n&shear rate = 0.002 /\n");
 }
 
+// An Integer[2] `version` attribute {major, minor} on an open group (the test files built by hand).
+static void write_version(hid_t group, int major, int minor) {
+  const hsize_t two = 2;
+  const hid_t space = H5Screate_simple(1, &two, nullptr);
+  const hid_t a = H5Acreate2(group, "version", H5T_STD_I32LE, space, H5P_DEFAULT, H5P_DEFAULT);
+  const int v[2] = {major, minor};
+  H5Awrite(a, H5T_NATIVE_INT, v);
+  H5Aclose(a);
+  H5Sclose(space);
+}
+
 // The checker itself: a file that breaks the rules is caught (a checker that passes everything
 // would prove nothing).
 TEST(H5mdSpec, CheckerCatchesViolations) {
   const std::string path = scratch("bad.h5");
   const hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   const hid_t h = H5Gcreate2(f, "/h5md", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  {
-    const hsize_t two = 2;
-    const hid_t space = H5Screate_simple(1, &two, nullptr);
-    const hid_t a = H5Acreate2(h, "version", H5T_STD_I32LE, space, H5P_DEFAULT, H5P_DEFAULT);
-    const int v[2] = {1, 0};
-    H5Awrite(a, H5T_NATIVE_INT, v);
-    H5Aclose(a);
-    H5Sclose(space);
-  }
+  write_version(h, 1, 0);
   H5Gclose(h);
   // A time-dependent group with a float step out of order, and a value of another length.
   const hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
@@ -590,14 +593,8 @@ TEST(H5mdSpec, CheckerCatchesUnitViolations) {
   H5Pset_create_intermediate_group(lcpl, 1);
   // The units module at version {1, 1}, without system; a symbol list; a module without a version.
   const hid_t units = H5Gcreate2(f, "/h5md/modules/units", lcpl, H5P_DEFAULT, H5P_DEFAULT);
+  write_version(units, 1, 1);
   {
-    const hsize_t two = 2;
-    const hid_t space = H5Screate_simple(1, &two, nullptr);
-    const hid_t a = H5Acreate2(units, "version", H5T_STD_I32LE, space, H5P_DEFAULT, H5P_DEFAULT);
-    const int v[2] = {1, 1};
-    H5Awrite(a, H5T_NATIVE_INT, v);
-    H5Aclose(a);
-    H5Sclose(space);
     const hsize_t one = 1;
     const hid_t list = H5Screate_simple(1, &one, nullptr);
     const hid_t type = H5Tcopy(H5T_C_S1);
