@@ -781,6 +781,22 @@ TEST(Collide, BlockedCollisionDrivenRunsMatchUnblocked) {
   }
 }
 
+// With many blocks (K = 60 > 32) a whole-gas step near an event target is capped at 4 blocks' events
+// instead of N/8 (header "Blocks"): the blocked steps are shortened further, and every target is still
+// met exactly, with no acceptance overshoot.
+TEST(Collide, ManyBlocksMeetEventTargetsExactly) {
+  const auto mix = one_species(0.8);
+  auto sys = initial(mix, {24000}, {1.0}, 7);
+  Collider c(Scheme::majorant, mix, sys, rng::make_stream(7, 0, rng::Purpose::collisions), 1.0);
+  c.use_blocks(400);
+  ASSERT_EQ(c.blocks(), 60u);
+  for (std::uint64_t target : {5000u, 12000u, 30000u, 48000u, 120000u}) {
+    EXPECT_TRUE(c.advance(1e12, target));
+    ASSERT_EQ(c.counters().events, target);
+  }
+  EXPECT_EQ(c.counters().overshoots, 0u);
+}
+
 // Mixtures in blocks (header "Blocks": a slice of each species per block). Binary mixture (masses 1
 // and 4, diameters 1 and 2, alpha 0.9/0.8/0.7), N = 12000 in 4 blocks, 16 replicas, time-driven to
 // about 8 collisions per particle and then collision-driven to an exact target: T_1, T_2, the pair

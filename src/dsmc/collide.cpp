@@ -383,9 +383,10 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
       double step = block_steps * step_fraction_ * n_total / (2.0 * rate);
       // Near an exact event target (header "Blocks"): a blocked step is shortened so that its events
       // (its candidates R dt times the last step's acceptance, plus 10 % and 8 standard deviations)
-      // stay below those left; when that leaves less than N/8 events for it, the step runs on the
-      // whole gas, which stops at the target itself, and is made about 1.5 times as long as the
-      // events left need.
+      // stay below those left; when that leaves less than N/8 events for it (or 4 blocks' worth, N 4/K,
+      // when that is less: with many blocks a long whole-gas step, unblocked, costs more than another
+      // shortened blocked one), the step runs on the whole gas, which stops at the target itself, and
+      // is made about 1.5 times as long as the events left need.
       whole_step_ = false;
       if (exact_target != UINT64_MAX) {
         const double remaining = static_cast<double>(exact_target - counters_.events);
@@ -396,7 +397,7 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
           // the largest mu with 1.1 mu + 8 sqrt(mu) + 16 <= remaining (a quadratic in sqrt(mu))
           const double root = (-8.0 + std::sqrt(std::max(0.0, 64.0 - 4.4 * (16.0 - remaining)))) / 2.2;
           const double fits = root > 0.0 ? root * root : 0.0;
-          if (fits >= n_total / 8.0) {
+          if (fits >= std::min(n_total / 8.0, 4.0 * n_total / static_cast<double>(blocks))) {
             step *= fits / expected;
           } else {
             whole_step_ = true;
