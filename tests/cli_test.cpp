@@ -442,6 +442,25 @@ TEST_F(CliDsmc, VersionIsTheBuildVersionAlsoInTheFile) {
   EXPECT_EQ(gdsmc::io::h5md::read_string_attribute((dir / "out.h5").string(), "/h5md/creator", "version"), version);
 }
 
+// Threads a single replica cannot use are said once on stderr (not with --quiet), never idle silently:
+// `pairs` has no cache blocks; a blocked run uses them (collide.hpp, "Threads inside one replica").
+TEST_F(CliDsmc, IdleThreadsOfOneReplicaAreNoted) {
+  ::setenv("OMP_NUM_THREADS", "2", 1);
+  write("t.nml", base());
+  const Result unblocked = run("granular-dsmc", "t.nml --set dsmc:replicas=1 --set \"dsmc:scheme='pairs'\"");
+  const Result blocked = run("granular-dsmc", "t.nml --force --set dsmc:replicas=1 --set dsmc:n_particles=4000 "
+                                              "--set dsmc:block_size=1000");
+  const Result quiet = run("granular-dsmc", "t.nml --force --quiet --set dsmc:replicas=1 --set \"dsmc:scheme='pairs'\"");
+  ::unsetenv("OMP_NUM_THREADS");
+  ASSERT_EQ(unblocked.status, 0) << unblocked.err;
+  EXPECT_NE(unblocked.err.find("note: 1 of the 2 threads per work unit stay idle: this run has no cache blocks"),
+            std::string::npos) << unblocked.err;
+  ASSERT_EQ(blocked.status, 0) << blocked.err;
+  EXPECT_EQ(blocked.err.find("stay idle"), std::string::npos) << blocked.err;
+  ASSERT_EQ(quiet.status, 0) << quiet.err;
+  EXPECT_EQ(quiet.err.find("stay idle"), std::string::npos) << quiet.err;
+}
+
 TEST_F(CliDsmc, Help) {
   const Result r = run("granular-dsmc", "--help");
   EXPECT_EQ(r.status, 0);

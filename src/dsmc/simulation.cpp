@@ -851,8 +851,22 @@ namespace {
 ReplicaResult run_replica(const io::config::Config& config, const Options& options, Progress& progress,
                           std::size_t slot, const std::string& label, std::size_t r, const Snapshot* resume,
                           const SafePoint& safe_point, int block_threads) {
-  if (config.has_agg_frag) return run_agg_frag_replica(config, options, progress, slot, label, r, resume, safe_point);
-  if (config.staged()) return run_staged_replica(config, options, progress, slot, label, r, resume, safe_point);
+  // Threads given to a replica's cache blocks that this run cannot use: said once, not left idle silently.
+  const auto note_idle_threads = [&](const std::string& why) {
+    if (block_threads > 1 && slot == 0 && options.progress)
+      std::fprintf(stderr,
+                   "granular-dsmc: note: %d of the %d threads per work unit stay idle: %s; threads serve "
+                   "replicas and sweep points first, then cache blocks (docs/schemes.md)\n",
+                   block_threads - 1, block_threads, why.c_str());
+  };
+  if (config.has_agg_frag) {
+    note_idle_threads("aggregation and fragmentation run each replica on one thread");
+    return run_agg_frag_replica(config, options, progress, slot, label, r, resume, safe_point);
+  }
+  if (config.staged()) {
+    note_idle_threads("a thermostat or shear flow runs each replica on one thread (no cache blocks)");
+    return run_staged_replica(config, options, progress, slot, label, r, resume, safe_point);
+  }
   const species::Mixture mix = config.mixture();
   const std::size_t s = mix.size();
   const auto counts = particles::species_counts(static_cast<std::size_t>(config.dsmc.n_particles), mix);
@@ -892,6 +906,9 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
   // the steps near each sample's event target run on the whole gas and stop at it exactly.
   collider.use_blocks(static_cast<std::size_t>(config.dsmc.block_size));
   collider.use_threads(block_threads);
+  if (collider.blocks() == 1)
+    note_idle_threads("this run has no cache blocks (they need 'majorant' or 'lowrank', at most 64 species and "
+                      "N >= 2 block_size)");
   ReplicaProgress p;
   p.c_sum.assign(s, 0.0);
   p.share_sum.assign(s, 0.0);
