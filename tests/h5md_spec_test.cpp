@@ -505,6 +505,15 @@ TEST(H5mdSpec, ShearWithThermostat) {
                     "&thermostat kind = 'gaussian' /\n&shear rate = 0.002 /\n");
 }
 
+// Every problem the checker finds in the file at `path`, one per line.
+static std::string problems_of(const std::string& path) {
+  H5mdChecker checker(path);
+  checker.check_root("/");
+  std::string all;
+  for (const auto& p : checker.problems()) all += p + "\n";
+  return all;
+}
+
 // An Integer[2] `version` attribute {major, minor} on an open group (the test files built by hand).
 static void write_version(hid_t group, int major, int minor) {
   const hsize_t two = 2;
@@ -543,10 +552,7 @@ TEST(H5mdSpec, CheckerCatchesViolations) {
   H5Gclose(x);
   H5Pclose(lcpl);
   H5Fclose(f);
-  H5mdChecker checker(path);
-  checker.check_root("/");
-  std::string all;
-  for (const auto& p : checker.problems()) all += p + "\n";
+  const std::string all = problems_of(path);
   for (const char* expected : {"version is not {1, 1}", "author: mandatory group missing", "creator: mandatory group missing",
                                "step: not of class Integer", "first dimension is not that of step",
                                "not in increasing order"})
@@ -631,10 +637,7 @@ TEST(H5mdSpec, CheckerCatchesUnitViolations) {
   H5Pclose(lcpl);
   H5Fclose(f);
 
-  H5mdChecker checker(path);
-  checker.check_root("/");
-  std::string all;
-  for (const auto& p : checker.problems()) all += p + "\n";
+  const std::string all = problems_of(path);
   for (const char* expected :
        {"units: version is not {1, 0}", "units: attribute system is missing", "other: attribute version is missing",
         "step: a step count carries a unit", "time: unit 's' is not \"time\"", "uses the symbol 's'",
