@@ -533,6 +533,180 @@ std::vector<double> tracer_diffusion_second_approximation_ratio(const Mixture& m
 }
 
 // -------------------------------------------------------------------------------------------------
+// Second Sonine approximation for inelastic tracer diffusion in the homogeneous cooling state
+// (\ref dif_second_sonine_inelastic "docs/diffusion-msd.md")
+// -------------------------------------------------------------------------------------------------
+
+namespace {
+
+/// Nodes and weights of an n-point GSL fixed rule (Legendre on [a, b], or Hermite with weight e^(-x^2)).
+struct FixedRule {
+  std::vector<double> node, weight;
+};
+
+FixedRule fixed_rule(const gsl_integration_fixed_type* type, std::size_t n, double a, double b) {
+  std::unique_ptr<gsl_integration_fixed_workspace, decltype(&gsl_integration_fixed_free)> w(
+      gsl_integration_fixed_alloc(type, n, a, b, 0.0, 0.0), &gsl_integration_fixed_free);
+  if (!w) throw std::runtime_error("inelastic_tracer_sonine_matrix: GSL fixed quadrature rule not available");
+  FixedRule rule;
+  rule.node.assign(gsl_integration_fixed_nodes(w.get()), gsl_integration_fixed_nodes(w.get()) + n);
+  rule.weight.assign(gsl_integration_fixed_weights(w.get()), gsl_integration_fixed_weights(w.get()) + n);
+  return rule;
+}
+
+}  // namespace
+
+namespace {
+
+/// S_p(x) = L_p^(3/2)(x), p = 0, 1, 2 (x = c^2): the Sonine polynomials of the vector functions v S_p.
+inline double sonine_vector(int p, double x) {
+  switch (p) {
+    case 0: return 1.0;
+    case 1: return 2.5 - x;
+    default: return 0.5 * x * x - 3.5 * x + 35.0 / 8.0;
+  }
+}
+
+}  // namespace
+
+InelasticTracerSonine inelastic_tracer_sonine_matrix(double m_tracer, double t_tracer, double m_partner,
+                                                     double t_partner, double alpha) {
+  if (!(m_tracer > 0.0 && std::isfinite(m_tracer) && m_partner > 0.0 && std::isfinite(m_partner) &&
+        t_tracer > 0.0 && std::isfinite(t_tracer) && t_partner > 0.0 && std::isfinite(t_partner)))
+    throw std::invalid_argument("inelastic_tracer_sonine_matrix: masses and temperatures must be positive and finite");
+  if (!(alpha >= 0.0 && alpha <= 1.0))
+    throw std::invalid_argument("inelastic_tracer_sonine_matrix: restitution must lie in [0, 1]");
+  // Velocities: v ~ N(0, a2) per component (tracer), v_p ~ N(0, b2) (partner); g = v - v_p ~ N(0, s2).
+  // Given g, v = beta g + w with w ~ N(0, a2 b2/s2) independent of g (Gaussian conditioning), so the
+  // pair average is an integral over |g| (g along z: the whole average is rotation invariant), over
+  // the collision direction e on the hemisphere e.g > 0 and over w. The integrands are polynomials in
+  // w of degree <= 10 and in the components of e of degree <= 9 (times the weight e.g), so the
+  // 6-point Hermite rule (exact to degree 11), the 10-point Legendre rule in cos(theta) and the
+  // 20-point trapezoidal rule in phi are exact; the |g| integral, a polynomial times
+  // g^2 exp(-g^2/(2 s2)), uses 120 Legendre nodes on [0, 15 s], converged to round-off.
+  const double a2 = t_tracer / m_tracer, b2 = t_partner / m_partner, s2 = a2 + b2, s = std::sqrt(s2);
+  const double beta = a2 / s2, w_scale = std::sqrt(2.0 * a2 * b2 / s2);
+  const double impulse = m_partner / (m_tracer + m_partner) * (1.0 + alpha);  // mu_pt (1 + alpha)
+  const double v02 = 2.0 * a2;                                                 // c^2 = v^2/v02
+  static const FixedRule hermite = fixed_rule(gsl_integration_fixed_hermite, 6, 0.0, 1.0);
+  static const FixedRule cosine = fixed_rule(gsl_integration_fixed_legendre, 10, 0.0, 1.0);
+  const FixedRule speed = fixed_rule(gsl_integration_fixed_legendre, 120, 0.0, 15.0 * s);
+  constexpr int azimuths = 20;
+  constexpr int n = InelasticTracerSonine::terms;
+  const double pi = std::numbers::pi;
+  const double hermite_norm = std::pow(pi, -1.5);                      // E over w
+  const double speed_norm = 4.0 * pi * std::pow(2.0 * pi * s2, -1.5);  // density of |g|
+  // The collision directions relative to g (along z): (e_x, e_y, e_z = u) and the weight du dphi.
+  struct Direction {
+    double x, y, u, weight;
+  };
+  std::vector<Direction> directions;
+  for (std::size_t iu = 0; iu < cosine.node.size(); ++iu) {
+    const double u = cosine.node[iu], sin_t = std::sqrt(1.0 - u * u);
+    for (int iphi = 0; iphi < azimuths; ++iphi) {
+      const double phi = 2.0 * pi * (iphi + 0.5) / azimuths;
+      directions.push_back({sin_t * std::cos(phi), sin_t * std::sin(phi), u, cosine.weight[iu] * 2.0 * pi / azimuths});
+    }
+  }
+  std::array<std::array<double, n>, n> e{};  // e[p][q] = E[S_q(c^2) int de (g.e) v.(v' S_p(c'^2) - v S_p(c^2))]
+  double energy = 0.0;                       // E[int de (g.e) (v'^2 - v^2)]
+  for (std::size_t ig = 0; ig < speed.node.size(); ++ig) {
+    const double g = speed.node[ig];
+    const double g_weight = speed.weight[ig] * speed_norm * g * g * std::exp(-g * g / (2.0 * s2));
+    std::array<std::array<double, n>, n> f{};
+    double fe = 0.0;
+    for (std::size_t ia = 0; ia < hermite.node.size(); ++ia)
+      for (std::size_t ib = 0; ib < hermite.node.size(); ++ib)
+        for (std::size_t ic = 0; ic < hermite.node.size(); ++ic) {
+          const double w_weight = hermite.weight[ia] * hermite.weight[ib] * hermite.weight[ic] * hermite_norm;
+          const double vx = w_scale * hermite.node[ia], vy = w_scale * hermite.node[ib];
+          const double vz = beta * g + w_scale * hermite.node[ic];
+          const double v2 = vx * vx + vy * vy + vz * vz, c2 = v2 / v02;
+          std::array<double, n> sq{}, h{};
+          for (int p = 0; p < n; ++p) sq[p] = sonine_vector(p, c2);
+          double he = 0.0;
+          for (const Direction& d : directions) {
+            const double ge = g * d.u;
+            const double kick = impulse * ge;  // v' = v - mu (1 + alpha)(g.e) e
+            const double px = vx - kick * d.x, py = vy - kick * d.y, pz = vz - kick * d.u;
+            const double vp2 = px * px + py * py + pz * pz, cp2 = vp2 / v02;
+            const double vdotvp = vx * px + vy * py + vz * pz;
+            const double weight = d.weight * ge;
+            for (int p = 0; p < n; ++p) h[p] += weight * (vdotvp * sonine_vector(p, cp2) - v2 * sq[p]);
+            he += weight * (vp2 - v2);
+          }
+          for (int p = 0; p < n; ++p)
+            for (int q = 0; q < n; ++q) f[p][q] += w_weight * sq[q] * h[p];
+          fe += w_weight * he;
+        }
+    for (int p = 0; p < n; ++p)
+      for (int q = 0; q < n; ++q) e[p][q] += g_weight * f[p][q];
+    energy += g_weight * fe;
+  }
+  InelasticTracerSonine r;
+  for (int p = 0; p < n; ++p)
+    for (int q = 0; q < n; ++q) r.l[p][q] = -e[p][q] / v02;
+  r.cooling = -(2.0 / (3.0 * t_tracer)) * 0.5 * m_tracer * energy;  // xi: dT/dt = -xi T
+  return r;
+}
+
+double tracer_sonine_cooling_matrix(int p, int q) {
+  // Z_pq = <c^2 S_p [(2 - c^2) S_q + c^2 S_q']> over the Maxwellian, by hand with <c^(2j)> =
+  // Gamma(j + 3/2)/Gamma(3/2) (\ref dif_second_sonine_inelastic "docs/diffusion-msd.md").
+  static constexpr double z[3][3] = {{-0.75, 0.0, 0.0}, {3.75, -5.625, 0.0}, {0.0, 13.125, -16.40625}};
+  if (p < 0 || p > 2 || q < 0 || q > 2) throw std::out_of_range("tracer_sonine_cooling_matrix: p, q in 0..2");
+  return z[p][q];
+}
+
+std::vector<double> tracer_diffusion_sonine_ratio(const Mixture& mix, const std::vector<double>& temperature,
+                                                  int terms) {
+  require_temperatures(mix, temperature, "tracer_diffusion_sonine_ratio");
+  constexpr int n = InelasticTracerSonine::terms;
+  if (terms < 1 || terms > n)
+    throw std::invalid_argument("tracer_diffusion_sonine_ratio: terms must be 1, 2 or 3");
+  std::vector<double> ratio(mix.size(), 1.0);
+  for (std::size_t k = 0; k < mix.size(); ++k) {
+    std::array<std::array<double, n>, n> l{};
+    double zeta = 0.0;
+    for (std::size_t i = 0; i < mix.size(); ++i) {
+      const double sigma = mix.contact_distance(k, i);
+      const double weight = mix.number_density[i] * sigma * sigma * mix.pair_correlation(k, i);
+      if (weight == 0.0) continue;
+      const auto e = inelastic_tracer_sonine_matrix(mix.mass[k], temperature[k], mix.mass[i], temperature[i],
+                                                    mix.restitution(k, i));
+      for (int p = 0; p < n; ++p)
+        for (int q = 0; q < n; ++q) l[p][q] += weight * e.l[p][q];
+      zeta += weight * e.cooling;
+    }
+    // Solve (L + zeta Z) a = -(3/2, 0, 0) in the first `terms` functions; D is proportional to -a_0.
+    double m[3][4] = {};
+    for (int p = 0; p < terms; ++p) {
+      for (int q = 0; q < terms; ++q) m[p][q] = l[p][q] + zeta * tracer_sonine_cooling_matrix(p, q);
+      m[p][terms] = p == 0 ? 1.0 : 0.0;
+    }
+    for (int c = 0; c < terms; ++c) {  // Gaussian elimination with partial pivoting (at most 3 x 3)
+      int pivot = c;
+      for (int r = c + 1; r < terms; ++r)
+        if (std::abs(m[r][c]) > std::abs(m[pivot][c])) pivot = r;
+      for (int q = 0; q <= terms; ++q) std::swap(m[c][q], m[pivot][q]);
+      if (!(std::abs(m[c][c]) > 0.0))
+        throw std::invalid_argument("tracer_diffusion_sonine_ratio: singular Sonine system (species without partners?)");
+      for (int r = 0; r < terms; ++r) {
+        if (r == c) continue;
+        const double factor = m[r][c] / m[c][c];
+        for (int q = c; q <= terms; ++q) m[r][q] -= factor * m[c][q];
+      }
+    }
+    const double a0 = m[0][terms] / m[0][0];
+    const double first = 1.0 / (l[0][0] + zeta * tracer_sonine_cooling_matrix(0, 0));
+    if (!(first > 0.0 && a0 > 0.0))
+      throw std::invalid_argument("tracer_diffusion_sonine_ratio: no positive diffusion coefficient (species without partners?)");
+    ratio[k] = a0 / first;
+  }
+  return ratio;
+}
+
+// -------------------------------------------------------------------------------------------------
 // Partial temperatures with viscoelastic restitution
 // -------------------------------------------------------------------------------------------------
 

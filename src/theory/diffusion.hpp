@@ -206,11 +206,66 @@ TracerSonineMatrix tracer_sonine_matrix(double m_tracer, double m_partner);
  * elements are summed over the partner species i (the tagged particle's own species included) with
  * the weights n_i sigma_ki^2 chi_ki mu_ki^(-3/2) (mu_ki the reduced mass), and
  * Delta_k = A_01^2/(A_00 A_11). Limits: equal masses and sizes 59/58 (self-diffusion), a light tracer
- * among heavy partners 13/12 (Lorentz gas; exact 32/(3 pi)), a heavy tracer 1 (Rayleigh gas).
+ * among heavy partners 13/12 (Lorentz gas; exact 32/(9 pi)), a heavy tracer 1 (Rayleigh gas).
  * Restitution and temperatures of `mix` are not used: it is the elastic estimate of the error of the
  * first approximation (Bodrova and Osinsky 2024, eq. (19) at alpha = 1).
  */
 std::vector<double> tracer_diffusion_second_approximation_ratio(const Mixture& mix);
+
+/**
+ * Sonine matrix of the inelastic tracer (Boltzmann-Lorentz) collision operator, per unit
+ * n_p sigma_tp^2 chi_tp, for a tracer of mass m_tracer and temperature t_tracer among Maxwellian
+ * partners of mass m_partner and temperature t_partner, constant restitution alpha
+ * (\ref dif_second_sonine_inelastic "docs/diffusion-msd.md"): with c^2 = m_t v^2/(2 T_t) and the Sonine
+ * polynomials S_0 = 1, S_1 = 5/2 - c^2, S_2 = c^4/2 - 7 c^2/2 + 35/8,
+ * l[p][q] = -<v S_p(c^2) . L[f_M v S_q]>/(n_t 2 T_t/m_t): row p the test function v S_p, column q the
+ * component v S_q; `cooling` is the partner's share xi_tp of the tracer's cooling rate. Computed by
+ * quadrature, exact for the polynomial parts (no closed form is used), so it also checks A1 and A2
+ * independently: l[0][0] = (3/2) nu_tp and `cooling` = xi_tp (\ref dif_correlation_time "docs/diffusion-msd.md").
+ */
+struct InelasticTracerSonine {
+  static constexpr int terms = 3;  ///< Sonine functions v S_0, v S_1, v S_2
+  double l[terms][terms] = {};     ///< the reduced matrix elements, row p, column q
+  double cooling = 0.0;            ///< xi_tp, the partner's share of the tracer's cooling rate
+};
+
+/// The elements of InelasticTracerSonine. Throws std::invalid_argument unless masses and
+/// temperatures are positive and finite and alpha lies in [0, 1].
+InelasticTracerSonine inelastic_tracer_sonine_matrix(double m_tracer, double t_tracer, double m_partner,
+                                                     double t_partner, double alpha);
+
+/**
+ * Z_pq of the cooling term (\ref dif_second_sonine_inelastic "docs/diffusion-msd.md"): the
+ * -zeta T d/dT of the Chapman-Enskog equation acting on the component v S_q of the normal solution
+ * (which scales as T^-2 at fixed v), projected on v S_p and divided by n 2T/m: zeta Z_pq, with
+ * Z = ((-3/4, 0, 0), (15/4, -45/8, 0), (0, 105/8, -525/32)). Throws std::out_of_range unless p, q are in 0..2.
+ */
+double tracer_sonine_cooling_matrix(int p, int q);
+
+/**
+ * D_k[terms]/D_k[1]: the tracer diffusion coefficient of a tagged particle of each species k of `mix`
+ * in the Sonine approximation with `terms` functions (1, 2 or 3) over the first Sonine
+ * (Maxwellian) one, in the homogeneous cooling state at the given partial temperatures (constant
+ * restitution; the tagged particle's own species among its partners; every species Maxwellian;
+ * \ref dif_second_sonine_inelastic "docs/diffusion-msd.md"). The first Sonine value is Bodrova and
+ * Osinsky 2024, eq. (19) with A1; the ratios estimate eq. (19)'s inelastic error independently of any
+ * DSMC. At alpha = 1, equal temperatures and terms = 2 it equals
+ * tracer_diffusion_second_approximation_ratio. Throws std::invalid_argument for a species without
+ * partners or terms outside 1..3.
+ */
+std::vector<double> tracer_diffusion_sonine_ratio(const Mixture& mix, const std::vector<double>& temperature,
+                                                  int terms);
+
+/**
+ * Tail of the Sonine series beyond three functions, in units of the last increment
+ * D[3] - D[2], in the case where it converges slowest and the converged value is known: the
+ * Lorentz gas, (32/(9 pi) - 425/384)/(425/384 - 13/12) = 1.0666
+ * (\ref dif_second_sonine_inelastic "docs/diffusion-msd.md"; tests/diffusion_test.cpp computes the
+ * three approximants by hand). The validation's allowance for the first Sonine value is
+ * |D[3]/D[1] - 1| + sonine_tail_factor |D[3] - D[2]|/D[1].
+ */
+inline constexpr double sonine_tail_factor = (32.0 / (9.0 * 3.14159265358979323846) - 425.0 / 384.0) /
+                                             (425.0 / 384.0 - 13.0 / 12.0);
 
 // ---------------------------------------------------------------------------------------------
 // Partial temperatures with viscoelastic restitution (Bodrova and Osinsky 2024, eqs. (22)-(23), \ref visco_averaged "docs/viscoelastic.md" with A4)

@@ -1,14 +1,13 @@
 // D_k/D_1 (Bodrova and Osinsky 2024, eq. (19), \ref dif_coefficients "docs/diffusion-msd.md") against DSMC, Figs 4, 5, 7. See README.md.
 //
-// usage: validate_diffusion_ratio INPUT.nml [--set ...] [--output FILE] [--measured-gap g_1,...,g_P]
+// usage: validate_diffusion_ratio INPUT.nml [--set ...] [--output FILE]
 //        validate_diffusion_ratio INPUT.nml [--set ...] [--output FILE] --check elastic
 // The systematic allowance of every ratio is an independent estimate of the error of the first
-// (Maxwellian, first Chapman-Enskog) approximation behind eq 19: the change of D_k/D_1 from the first
-// to the second Chapman-Enskog approximation for elastic hard spheres at the point's masses, sizes and
-// densities (Chapman and Cowling, ch. 9-10; \ref dif_second_approximation "docs/diffusion-msd.md").
-// `--measured-gap` gives one number per sweep point: where it is > 0 the point is a **consistency
-// check** with that measured allowance instead (a gap measured once with the paper tier, + 25 %,
-// stated in README.md), because the inelastic error of eq 19 exceeds the elastic estimate there.
+// (Maxwellian, first Sonine) approximation behind eqs 17 and 19: the change of D_k/D_1 from one to
+// three Sonine functions of the inelastic tracer problem in the homogeneous cooling state, plus the
+// tail beyond three functions estimated from the slowest-converging exactly known case (the Lorentz
+// gas), at the point's masses, sizes, densities, restitution and asymptotic temperature ratios
+// (\ref dif_second_sonine_inelastic "docs/diffusion-msd.md"; theory::tracer_diffusion_sonine_ratio).
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -22,11 +21,11 @@ namespace {
 
 // Elastic gas (--check elastic, README.md "Elastic mixture"): T_k stay at T_k(0) = T, every species is
 // Maxwellian, and the MSD grows as 6 D_k t at t >> tau_v,k. D_k from the slope of the MSD over the last
-// decade against the second Chapman-Enskog approximation [D_k]_2 = [D_k]_1 [D_k]_2/[D_k]_1 (Chapman and
-// Cowling, ch. 9-10; \ref dif_second_approximation "docs/diffusion-msd.md"), [D_k]_1 = Bodrova and Osinsky 2024, eq. (19) at alpha = 1
-// (\ref dif_coefficients "docs/diffusion-msd.md"). Allowance for the Sonine terms beyond the second: 0.6 ([D_k]_2/[D_k]_1 - 1), from
-// the two limits where the converged value is known: the Lorentz gas (exact 32/(3 pi) = 1.1318 against
-// 13/12: the remainder is 0.54 of the second-approximation correction) and self-diffusion (about 0.1 of it).
+// decade against the third Sonine (Chapman-Enskog) approximation [D_k]_3 = [D_k]_1 [D_k]_3/[D_k]_1
+// (\ref dif_second_sonine_inelastic "docs/diffusion-msd.md"), [D_k]_1 = Bodrova and Osinsky 2024, eq. (19)
+// at alpha = 1 (\ref dif_coefficients "docs/diffusion-msd.md"). Allowance for the Sonine terms beyond the
+// third: theory::sonine_tail_factor ([D_k]_3 - [D_k]_2), the tail of the slowest-converging case whose
+// converged value is known (the Lorentz gas: 1.07 times the last increment).
 int check_elastic(int argc, char** argv) {
   const auto run = validation::run_case(argc, argv, "diffusion_elastic.h5");
   const auto mix = run.config.mixture();
@@ -43,7 +42,8 @@ int check_elastic(int argc, char** argv) {
   const auto msd = validation::observable(run, "msd");
   if (!report.require("replicas > 1, so standard errors exist", !msd.error.empty())) return report.exit_code();
   const auto first = theory::diffusion_coefficients(mix, t0);
-  const auto second = theory::tracer_diffusion_second_approximation_ratio(mix);
+  const auto second = theory::tracer_diffusion_sonine_ratio(mix, t0, 2);
+  const auto third = theory::tracer_diffusion_sonine_ratio(mix, t0, 3);
   const auto tau_inverse = theory::inverse_velocity_correlation_time(mix, t0);
   const std::size_t e = msd.time.size() - 1;
   std::size_t a = e;
@@ -65,13 +65,13 @@ int check_elastic(int argc, char** argv) {
     if (!report.require(text, offset < 1e-3)) continue;
     const double d = (msd.value[e * s + k] - msd.value[a * s + k]) / (6.0 * dt);
     const double d_se = std::hypot(msd.error[e * s + k], msd.error[a * s + k]) / (6.0 * dt);
-    const double reference = first[k] * second[k];
-    const double allowance = 0.6 * (second[k] - 1.0);
+    const double reference = first[k] * third[k];
+    const double allowance = theory::sonine_tail_factor * std::abs(third[k] - second[k]) / third[k];
     std::snprintf(text, sizeof text,
-                  "D_%zu (DSMC/[D]_2 - 1 = %+.2f %%, DSMC/[D]_1 - 1 = %+.2f %%) [allowance %.2f %%: 0.6 x the second "
-                  "Chapman-Enskog correction %.2f %%]",
-                  k + 1, 100.0 * (d / reference - 1.0), 100.0 * (d / first[k] - 1.0), 100.0 * allowance,
-                  100.0 * (second[k] - 1.0));
+                  "D_%zu (DSMC/[D]_3 - 1 = %+.2f %%, DSMC/[D]_2 - 1 = %+.2f %%, DSMC/[D]_1 - 1 = %+.2f %%) [allowance "
+                  "%.2f %%: 1.07 x the third Sonine increment %.2f %%]",
+                  k + 1, 100.0 * (d / reference - 1.0), 100.0 * (d / (first[k] * second[k]) - 1.0),
+                  100.0 * (d / first[k] - 1.0), 100.0 * allowance, 100.0 * (third[k] / second[k] - 1.0));
     report.check(text, d, d_se, reference, 4.0, allowance * reference);
   }
   return report.exit_code();
@@ -82,14 +82,9 @@ int check_elastic(int argc, char** argv) {
 int main(int argc, char** argv) {
   const std::string check = validation::take_option(argc, argv, "--check").value_or("ratio");
   if (check == "elastic") return check_elastic(argc, argv);
-  const auto gap_option = validation::take_option(argc, argv, "--measured-gap");
-  const std::vector<double> measured_gap = gap_option ? validation::number_list(*gap_option) : std::vector<double>{};
   const auto run = validation::run_case(argc, argv, "diffusion_ratio.h5");
   validation::Report report("diffusion coefficient ratios D_k/D_1", run.report_file());
   const auto points = run.config.sweep_points();
-  if (!report.require("--measured-gap, if given, has one entry per sweep point",
-                      measured_gap.empty() || measured_gap.size() == points.size()))
-    return report.exit_code();
   char text[400];
   std::snprintf(text, sizeof text, "ensemble: %lld replicas x %lld particles per point, %s scheme",
                 run.config.dsmc.replicas, run.config.dsmc.n_particles, run.config.dsmc.scheme.c_str());
@@ -98,8 +93,11 @@ int main(int argc, char** argv) {
     const auto mix = points[p].mixture();
     const std::size_t s = mix.size();
     const auto long_time_ratio = theory::diffusion_coefficient_ratio(mix);  // eq 19, t -> infinity
-    // Independent estimate of the first approximation's error (\ref dif_second_approximation "docs/diffusion-msd.md").
-    const auto second = theory::tracer_diffusion_second_approximation_ratio(mix);
+    // Independent estimate of the first approximation's error: Sonine approximations with two and
+    // three functions at the asymptotic temperature ratios (\ref dif_second_sonine_inelastic "docs/diffusion-msd.md").
+    const auto hcs_temperature = theory::asymptotic_temperature_ratios(mix);
+    const auto second = theory::tracer_diffusion_sonine_ratio(mix, hcs_temperature, 2);
+    const auto third = theory::tracer_diffusion_sonine_ratio(mix, hcs_temperature, 3);
     const std::string root = run.config.is_sweep() ? "/sweep/point_" + std::to_string(p + 1) + "/observables/" : "";
     const auto msd = io::h5md::read_observable(run.file, root + "msd");
     if (!report.require("replicas > 1, so standard errors exist", !msd.error.empty())) return report.exit_code();
@@ -115,29 +113,24 @@ int main(int argc, char** argv) {
     const auto eq17 = theory::mean_squared_displacement(mix, points[p].initial.temperature, times);
     const double d1 = msd.value[e * s] - msd.value[a * s];
     const double d1_se = std::hypot(msd.error[e * s], msd.error[a * s]);
-    const bool consistency = !measured_gap.empty() && measured_gap[p] > 0.0;
     for (std::size_t k = 1; k < s; ++k) {
       const double dk = msd.value[e * s + k] - msd.value[a * s + k];
       const double dk_se = std::hypot(msd.error[e * s + k], msd.error[a * s + k]);
       const double ratio = dk / d1, se = ratio * std::hypot(dk_se / dk, d1_se / d1);
       const double theory_ratio =
           (eq17.msd[e][k] - eq17.msd[a][k]) / (eq17.msd[e][0] - eq17.msd[a][0]);
-      const double independent = std::abs(second[k] / second[0] - 1.0);
-      const double allowance = consistency ? measured_gap[p] : independent;
+      // D_k/D_1 with two and three Sonine functions, relative to the first Sonine ratio.
+      const double ratio2 = second[k] / second[0], ratio3 = third[k] / third[0];
+      const double allowance = std::abs(ratio3 - 1.0) + theory::sonine_tail_factor * std::abs(ratio3 - ratio2);
       std::snprintf(text, sizeof text,
                     "point %zu: D_%zu/D_1 over t = %g..%g: DSMC/theory - 1 = %+.1f %% (eq 19 long-time %.4g); "
-                    "elastic second Chapman-Enskog approximation changes it by %+.2f %%",
+                    "Sonine approximations change it by %+.2f %% (two functions), %+.2f %% (three)",
                     p + 1, k + 1, msd.time[a], msd.time[e], 100.0 * (ratio / theory_ratio - 1.0), long_time_ratio[k],
-                    100.0 * (second[k] / second[0] - 1.0));
+                    100.0 * (ratio2 - 1.0), 100.0 * (ratio3 - 1.0));
       report.note(text);
-      if (consistency)
-        std::snprintf(text, sizeof text,
-                      "point %zu D_%zu/D_1 [consistency check (measured allowance %.1f %%, README.md)]", p + 1, k + 1,
-                      100.0 * allowance);
-      else
-        std::snprintf(text, sizeof text,
-                      "point %zu D_%zu/D_1 [allowance %.2f %%: Chapman-Cowling second approximation]", p + 1, k + 1,
-                      100.0 * allowance);
+      std::snprintf(text, sizeof text,
+                    "point %zu D_%zu/D_1 [allowance %.2f %%: third Sonine change + 1.07 x its last increment]", p + 1,
+                    k + 1, 100.0 * allowance);
       report.check(text, ratio, se, theory_ratio, 4.0, allowance * theory_ratio);
     }
   }
