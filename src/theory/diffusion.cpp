@@ -583,14 +583,14 @@ InelasticTracerSonine inelastic_tracer_sonine_matrix(double m_tracer, double t_t
   // w of degree <= 10 and in the components of e of degree <= 9 (times the weight e.g), so the
   // 6-point Hermite rule (exact to degree 11), the 10-point Legendre rule in cos(theta) and the
   // 20-point trapezoidal rule in phi are exact; the |g| integral, a polynomial times
-  // g^2 exp(-g^2/(2 s2)), uses 120 Legendre nodes on [0, 15 s], converged to round-off.
+  // g^2 exp(-g^2/(2 s2)), uses 72 Legendre nodes on [0, 13 s], converged to round-off (1e-13).
   const double a2 = t_tracer / m_tracer, b2 = t_partner / m_partner, s2 = a2 + b2, s = std::sqrt(s2);
   const double beta = a2 / s2, w_scale = std::sqrt(2.0 * a2 * b2 / s2);
   const double impulse = m_partner / (m_tracer + m_partner) * (1.0 + alpha);  // mu_pt (1 + alpha)
   const double v02 = 2.0 * a2;                                                 // c^2 = v^2/v02
   static const FixedRule hermite = fixed_rule(gsl_integration_fixed_hermite, 6, 0.0, 1.0);
   static const FixedRule cosine = fixed_rule(gsl_integration_fixed_legendre, 10, 0.0, 1.0);
-  const FixedRule speed = fixed_rule(gsl_integration_fixed_legendre, 120, 0.0, 15.0 * s);
+  const FixedRule speed = fixed_rule(gsl_integration_fixed_legendre, 72, 0.0, 13.0 * s);
   constexpr int azimuths = 20;
   constexpr int n = InelasticTracerSonine::terms;
   const double pi = std::numbers::pi;
@@ -658,13 +658,12 @@ double tracer_sonine_cooling_matrix(int p, int q) {
   return z[p][q];
 }
 
-std::vector<double> tracer_diffusion_sonine_ratio(const Mixture& mix, const std::vector<double>& temperature,
-                                                  int terms) {
+std::array<std::vector<double>, 3> tracer_diffusion_sonine_ratios(const Mixture& mix,
+                                                                  const std::vector<double>& temperature) {
   require_temperatures(mix, temperature, "tracer_diffusion_sonine_ratio");
   constexpr int n = InelasticTracerSonine::terms;
-  if (terms < 1 || terms > n)
-    throw std::invalid_argument("tracer_diffusion_sonine_ratio: terms must be 1, 2 or 3");
-  std::vector<double> ratio(mix.size(), 1.0);
+  std::array<std::vector<double>, 3> ratio;
+  for (auto& r : ratio) r.assign(mix.size(), 1.0);
   for (std::size_t k = 0; k < mix.size(); ++k) {
     std::array<std::array<double, n>, n> l{};
     double zeta = 0.0;
@@ -678,32 +677,42 @@ std::vector<double> tracer_diffusion_sonine_ratio(const Mixture& mix, const std:
         for (int q = 0; q < n; ++q) l[p][q] += weight * e.l[p][q];
       zeta += weight * e.cooling;
     }
-    // Solve (L + zeta Z) a = -(3/2, 0, 0) in the first `terms` functions; D is proportional to -a_0.
-    double m[3][4] = {};
-    for (int p = 0; p < terms; ++p) {
-      for (int q = 0; q < terms; ++q) m[p][q] = l[p][q] + zeta * tracer_sonine_cooling_matrix(p, q);
-      m[p][terms] = p == 0 ? 1.0 : 0.0;
-    }
-    for (int c = 0; c < terms; ++c) {  // Gaussian elimination with partial pivoting (at most 3 x 3)
-      int pivot = c;
-      for (int r = c + 1; r < terms; ++r)
-        if (std::abs(m[r][c]) > std::abs(m[pivot][c])) pivot = r;
-      for (int q = 0; q <= terms; ++q) std::swap(m[c][q], m[pivot][q]);
-      if (!(std::abs(m[c][c]) > 0.0))
-        throw std::invalid_argument("tracer_diffusion_sonine_ratio: singular Sonine system (species without partners?)");
-      for (int r = 0; r < terms; ++r) {
-        if (r == c) continue;
-        const double factor = m[r][c] / m[c][c];
-        for (int q = c; q <= terms; ++q) m[r][q] -= factor * m[c][q];
-      }
-    }
-    const double a0 = m[0][terms] / m[0][0];
     const double first = 1.0 / (l[0][0] + zeta * tracer_sonine_cooling_matrix(0, 0));
-    if (!(first > 0.0 && a0 > 0.0))
-      throw std::invalid_argument("tracer_diffusion_sonine_ratio: no positive diffusion coefficient (species without partners?)");
-    ratio[k] = a0 / first;
+    for (int terms = 1; terms <= n; ++terms) {
+      // Solve (L + zeta Z) a = -(3/2, 0, 0) in the first `terms` functions; D is proportional to -a_0
+      // (the common factor 3/2 cancels in the ratio).
+      double m[3][4] = {};
+      for (int p = 0; p < terms; ++p) {
+        for (int q = 0; q < terms; ++q) m[p][q] = l[p][q] + zeta * tracer_sonine_cooling_matrix(p, q);
+        m[p][terms] = p == 0 ? 1.0 : 0.0;
+      }
+      for (int c = 0; c < terms; ++c) {  // Gauss-Jordan elimination with partial pivoting (at most 3 x 3)
+        int pivot = c;
+        for (int r = c + 1; r < terms; ++r)
+          if (std::abs(m[r][c]) > std::abs(m[pivot][c])) pivot = r;
+        for (int q = 0; q <= terms; ++q) std::swap(m[c][q], m[pivot][q]);
+        if (!(std::abs(m[c][c]) > 0.0))
+          throw std::invalid_argument("tracer_diffusion_sonine_ratio: singular Sonine system (species without partners?)");
+        for (int r = 0; r < terms; ++r) {
+          if (r == c) continue;
+          const double factor = m[r][c] / m[c][c];
+          for (int q = c; q <= terms; ++q) m[r][q] -= factor * m[c][q];
+        }
+      }
+      const double a0 = m[0][terms] / m[0][0];
+      if (!(first > 0.0 && a0 > 0.0))
+        throw std::invalid_argument("tracer_diffusion_sonine_ratio: no positive diffusion coefficient (species without partners?)");
+      ratio[terms - 1][k] = a0 / first;
+    }
   }
   return ratio;
+}
+
+std::vector<double> tracer_diffusion_sonine_ratio(const Mixture& mix, const std::vector<double>& temperature,
+                                                  int terms) {
+  if (terms < 1 || terms > InelasticTracerSonine::terms)
+    throw std::invalid_argument("tracer_diffusion_sonine_ratio: terms must be 1, 2 or 3");
+  return tracer_diffusion_sonine_ratios(mix, temperature)[terms - 1];
 }
 
 // -------------------------------------------------------------------------------------------------

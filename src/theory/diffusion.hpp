@@ -97,6 +97,7 @@
  */
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -255,6 +256,11 @@ double tracer_sonine_cooling_matrix(int p, int q);
  */
 std::vector<double> tracer_diffusion_sonine_ratio(const Mixture& mix, const std::vector<double>& temperature,
                                                   int terms);
+
+/// tracer_diffusion_sonine_ratio for terms = 1, 2, 3 at once (entry N - 1), from one set of matrix
+/// elements (S^2 quadratures of a few ms each).
+std::array<std::vector<double>, 3> tracer_diffusion_sonine_ratios(const Mixture& mix,
+                                                                  const std::vector<double>& temperature);
 
 /**
  * Tail of the Sonine series beyond three functions, in units of the last increment

@@ -42,8 +42,9 @@ int check_elastic(int argc, char** argv) {
   const auto msd = validation::observable(run, "msd");
   if (!report.require("replicas > 1, so standard errors exist", !msd.error.empty())) return report.exit_code();
   const auto first = theory::diffusion_coefficients(mix, t0);
-  const auto second = theory::tracer_diffusion_sonine_ratio(mix, t0, 2);
-  const auto third = theory::tracer_diffusion_sonine_ratio(mix, t0, 3);
+  const auto sonine = theory::tracer_diffusion_sonine_ratios(mix, t0);
+  const auto& second = sonine[1];
+  const auto& third = sonine[2];
   const auto tau_inverse = theory::inverse_velocity_correlation_time(mix, t0);
   const std::size_t e = msd.time.size() - 1;
   std::size_t a = e;
@@ -96,8 +97,9 @@ int main(int argc, char** argv) {
     // Independent estimate of the first approximation's error: Sonine approximations with two and
     // three functions at the asymptotic temperature ratios (\ref dif_second_sonine_inelastic "docs/diffusion-msd.md").
     const auto hcs_temperature = theory::asymptotic_temperature_ratios(mix);
-    const auto second = theory::tracer_diffusion_sonine_ratio(mix, hcs_temperature, 2);
-    const auto third = theory::tracer_diffusion_sonine_ratio(mix, hcs_temperature, 3);
+    const auto sonine = theory::tracer_diffusion_sonine_ratios(mix, hcs_temperature);
+    const auto& second = sonine[1];
+    const auto& third = sonine[2];
     const std::string root = run.config.is_sweep() ? "/sweep/point_" + std::to_string(p + 1) + "/observables/" : "";
     const auto msd = io::h5md::read_observable(run.file, root + "msd");
     if (!report.require("replicas > 1, so standard errors exist", !msd.error.empty())) return report.exit_code();
