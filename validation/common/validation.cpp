@@ -1,6 +1,10 @@
 #include "validation.hpp"
 
+
+#include <array>
 #include <cstdarg>
+#include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <sstream>
 #include <iostream>
@@ -185,6 +189,72 @@ ExactValue exact_cumulant_species1(const species::Mixture& mix) {
 ExactValue exact_cumulant_one_species(double alpha) {
   if (close(alpha, 0.5)) return {true, 0.0959, 0.0001};
   if (close(alpha, 0.3)) return {true, 0.2078, 0.0001};
+  return {};
+}
+
+IndependentHcs independent_hcs_reference(const species::Mixture& mix) {
+  // validation/independent_reference/README.md: hcs_reference --particles 50000 --warmup 300 --samples 1000
+  // --replicas 8; per species T_k/T, its SE, c_k, its SE.
+  struct Entry {
+    std::vector<double> mass, diameter, fraction;
+    double alpha;
+    std::uint64_t seed;
+    std::vector<std::array<double, 4>> values;
+  };
+  static const std::vector<Entry> table = {
+      {{2.0, 1.0}, {1.0, 1.0}, {1.0, 1.0}, 0.3, 11,
+       {{{1.221774, 0.000098, 0.236530, 0.000369}}, {{0.778226, 0.000098, 0.156619, 0.000432}}}},
+      {{2.0, 1.0}, {1.0, 1.0}, {1.0, 1.0}, 0.5, 11,
+       {{{1.153311, 0.000062, 0.129490, 0.000187}}, {{0.846689, 0.000062, 0.063553, 0.000181}}}},
+      {{2.0, 1.0}, {1.0, 1.0}, {1.0, 1.0}, 0.7, 11,
+       {{{1.087650, 0.000080, 0.022617, 0.000272}}, {{0.912350, 0.000080, -0.015063, 0.000182}}}},
+      {{2.0, 1.0}, {1.0, 1.0}, {1.0, 1.0}, 0.9, 11,
+       {{{1.027075, 0.000088, -0.024674, 0.000184}}, {{0.972925, 0.000088, -0.033346, 0.000192}}}},
+      {{1.0, 3.0, 10.0}, {1.0, 1.0, 1.0}, {1.0, 1.0, 1.0}, 0.7, 12,
+       {{{0.619266, 0.000103, -0.025200, 0.000187}},
+        {{0.896023, 0.000135, 0.030983, 0.000261}},
+        {{1.484740, 0.000203, 0.076300, 0.000326}}}},
+      {{1.0, 2.0, 4.0, 8.0, 16.0}, {1.0, 1.1, 1.2, 1.3, 1.4}, {1.0, 1.0, 1.0, 1.0, 1.0}, 0.8, 13,
+       {{{0.724424, 0.000119, -0.059611, 0.000146}},
+        {{0.845345, 0.000168, -0.034895, 0.000266}},
+        {{0.971698, 0.000249, -0.012513, 0.000199}},
+        {{1.122021, 0.000318, 0.003521, 0.000336}},
+        {{1.336512, 0.000260, 0.021660, 0.000291}}}},
+      {{10.0, 1.0}, {1.0, 1.0}, {2.0, 1.0}, 0.5, 14,
+       {{{1.325498, 0.000031, 0.099764, 0.000292}}, {{0.349023, 0.000062, 0.011453, 0.000261}}}},
+  };
+  const std::size_t s = mix.size();
+  if (mix.enskog || s == 0) return {};
+  const double alpha = mix.restitution(0, 0);
+  for (std::size_t i = 0; i < s; ++i)
+    for (std::size_t j = 0; j < s; ++j)
+      if (!close(mix.restitution(i, j), alpha)) return {};
+  for (const Entry& e : table) {
+    if (e.mass.size() != s || !close(alpha, e.alpha)) continue;
+    double fraction_sum = 0.0;
+    for (double x : e.fraction) fraction_sum += x;
+    bool same = true;
+    for (std::size_t k = 0; k < s && same; ++k)
+      same = close(mix.mass[k] / mix.mass[0], e.mass[k] / e.mass[0]) &&
+             close(mix.diameter[k] / mix.diameter[0], e.diameter[k] / e.diameter[0]) &&
+             close(mix.mole_fraction(k), e.fraction[k] / fraction_sum);
+    if (!same) continue;
+    IndependentHcs r;
+    r.known = true;
+    for (const auto& v : e.values) {
+      r.ratio.push_back(v[0]);
+      r.ratio_error.push_back(v[1]);
+      r.cumulant.push_back(v[2]);
+      r.cumulant_error.push_back(v[3]);
+    }
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "validation/independent_reference: hcs_reference (alpha = %g, 50000 particles x 8 replicas, "
+                  "1000 samples, seed %llu)",
+                  e.alpha, static_cast<unsigned long long>(e.seed));
+    r.source = text;
+    return r;
+  }
   return {};
 }
 

@@ -96,4 +96,19 @@ ExactValue exact_cumulant_species1(const species::Mixture& mix);
 /// c = 2 a2 of one species: 0.0959 (alpha = 0.5) and 0.2078 (alpha = 0.3); no SE quoted: 0.0001.
 ExactValue exact_cumulant_one_species(double alpha);
 
+/// T_k/T and c_k of the HCS of a dilute mixture from the independent program of
+/// validation/independent_reference (a second method that shares no code with src/; README.md there),
+/// when the table holds the mixture (matched by mass, diameter and number-fraction ratios and one
+/// common restitution).
+struct IndependentHcs {
+  bool known = false;                ///< the table holds the mixture
+  std::vector<double> ratio;         ///< T_k/T, T = sum_k x_k T_k
+  std::vector<double> ratio_error;   ///< their standard errors
+  std::vector<double> cumulant;      ///< c_k = 2 [(3/5) <v^4>_k/<v^2>_k^2 - 1]
+  std::vector<double> cumulant_error;  ///< their standard errors
+  std::string source;                ///< the command that produced the entry
+};
+/// The table entry for `mix` (known = false if there is none).
+IndependentHcs independent_hcs_reference(const species::Mixture& mix);
+
 }  // namespace gdsmc::validation

@@ -1,0 +1,311 @@
+// An independent reference for the homogeneous cooling state of dilute mixtures of inelastic hard
+// spheres: temperature ratios T_k/T and cumulants c_k, by a second method that shares no code with
+// src/ (its own random numbers, collision rule, pair selection and sampling). See README.md.
+//
+// Method. In the homogeneous cooling state the scaled velocity distribution is stationary, and time
+// only sets the scale of the velocities: the sequence of collisions (the jump chain of the master
+// equation) alone determines T_k/T and c_k. So no time is kept. The next colliding pair is (i, j) with
+// probability proportional to sigma_ij^2 |v_i - v_j|, drawn by rejection: a uniform pair is accepted
+// with probability sigma_ij^2 |g| / (sigma_max^2 2 v_max) (v_max the largest speed, raised exactly when
+// a collision produces a faster particle). The collision vector e is drawn with density proportional
+// to (g.e) on the hemisphere g.e > 0 (cos theta = sqrt(u) about g, azimuth uniform), and
+// v_i' = v_i - m_j/(m_i + m_j) (1 + alpha_ij)(g.e) e, v_j' = v_j + m_i/(m_i + m_j) (1 + alpha_ij)(g.e) e.
+// Every N collisions all velocities are multiplied by one factor that brings T back to 1, which
+// changes neither the jump chain (every acceptance probability scales alike) nor the scaled
+// distribution, and v_max is recomputed.
+//
+// Sampling: after `warmup` collisions per particle, once per collision per particle, per species k:
+// T_k = m_k <|v - u|^2>_k / 3 and c_k = 2 [(3/5) <|v - u|^4>_k / <|v - u|^2>_k^2 - 1] (u = 0: the total
+// momentum is set to zero at every rescaling, and conserved between them), T = sum_k x_k T_k. Each replica (its own seed) gives
+// the mean over its samples; the output is the mean over replicas and its standard error.
+//
+// usage: hcs_reference --mass m1,m2,... --diameter d1,... --fraction x1,... --alpha a
+//                      [--particles N] [--warmup W] [--samples S] [--replicas R] [--seed s]
+//                      [--expect-gamma value,se] [--expect-c1 value,se]
+// --expect-*: compare gamma = T_1/T_2 (or c_1) with a published value at 4 combined SE, print PASS or
+// FAIL and exit 1 on FAIL: how ctest checks this program itself against the literature (README.md).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace {
+
+// splitmix64 to seed, xoshiro256** to draw (Blackman and Vigna): written out here so that nothing is
+// shared with src/dsmc/rng.hpp.
+struct Random {
+  std::uint64_t s[4];
+  explicit Random(std::uint64_t seed) {
+    for (auto& w : s) {
+      seed += 0x9e3779b97f4a7c15ULL;
+      std::uint64_t z = seed;
+      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+      z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+      w = z ^ (z >> 31);
+    }
+  }
+  static std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+  std::uint64_t next() {
+    const std::uint64_t result = rotl(s[1] * 5, 7) * 9, t = s[1] << 17;
+    s[2] ^= s[0];
+    s[3] ^= s[1];
+    s[1] ^= s[2];
+    s[0] ^= s[3];
+    s[2] ^= t;
+    s[3] = rotl(s[3], 45);
+    return result;
+  }
+  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }  // [0, 1)
+  std::size_t below(std::size_t n) { return static_cast<std::size_t>(uniform() * static_cast<double>(n)); }
+  double normal() {  // Box-Muller
+    const double u = 1.0 - uniform(), v = uniform();
+    return std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * 3.14159265358979323846 * v);
+  }
+};
+
+std::vector<double> numbers(const char* text) {
+  std::vector<double> out;
+  std::string s(text);
+  std::size_t start = 0;
+  while (start <= s.size()) {
+    const std::size_t comma = s.find(',', start);
+    out.push_back(std::atof(s.substr(start, comma == std::string::npos ? std::string::npos : comma - start).c_str()));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+struct Result {
+  std::vector<double> ratio, cumulant;  // T_k/T, c_k (replica means)
+};
+
+Result run(const std::vector<double>& mass, const std::vector<double>& diameter, const std::vector<double>& fraction,
+           double alpha, std::size_t n, double warmup, double samples, std::uint64_t seed) {
+  const std::size_t s = mass.size();
+  Random rng(seed);
+  std::vector<std::size_t> kind(n);
+  {
+    std::size_t i = 0;
+    double total = 0.0;
+    for (double x : fraction) total += x;
+    for (std::size_t k = 0; k < s; ++k) {
+      const std::size_t count = k + 1 == s ? n - i : static_cast<std::size_t>(std::llround(n * fraction[k] / total));
+      for (std::size_t c = 0; c < count && i < n; ++c) kind[i++] = k;
+    }
+  }
+  std::vector<double> vx(n), vy(n), vz(n);
+  for (std::size_t i = 0; i < n; ++i) {  // Maxwellian at T = 1 for every species
+    const double sd = 1.0 / std::sqrt(mass[kind[i]]);
+    vx[i] = sd * rng.normal();
+    vy[i] = sd * rng.normal();
+    vz[i] = sd * rng.normal();
+  }
+  double sigma_max = 0.0;
+  for (double d : diameter) sigma_max = std::max(sigma_max, d);
+  std::vector<double> sigma2(s * s), fraction_to(s * s);
+  for (std::size_t a = 0; a < s; ++a)
+    for (std::size_t b = 0; b < s; ++b) {
+      const double sab = 0.5 * (diameter[a] + diameter[b]);
+      sigma2[a * s + b] = sab * sab / (sigma_max * sigma_max);
+      fraction_to[a * s + b] = mass[b] / (mass[a] + mass[b]) * (1.0 + alpha);  // of a's change
+    }
+  auto rescale = [&]() -> double {  // T back to 1; returns the new v_max
+    // The total momentum is conserved only up to round-off, and every rescaling would amplify that
+    // round-off (by about 1e23 over 400 collisions per particle at alpha = 0.5): it is removed first.
+    // A common velocity shift changes no relative velocity, so the jump chain is unchanged.
+    double px = 0, py = 0, pz = 0, mt = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double m = mass[kind[i]];
+      px += m * vx[i];
+      py += m * vy[i];
+      pz += m * vz[i];
+      mt += m;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      vx[i] -= px / mt;
+      vy[i] -= py / mt;
+      vz[i] -= pz / mt;
+    }
+    double e = 0.0;
+    for (std::size_t i = 0; i < n; ++i) e += mass[kind[i]] * (vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i]);
+    const double f = std::sqrt(3.0 * static_cast<double>(n) / e);
+    double vmax2 = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      vx[i] *= f;
+      vy[i] *= f;
+      vz[i] *= f;
+      vmax2 = std::max(vmax2, vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i]);
+    }
+    return std::sqrt(vmax2);
+  };
+  double vmax = rescale();
+  Result result;
+  result.ratio.assign(s, 0.0);
+  result.cumulant.assign(s, 0.0);
+  const auto total = static_cast<std::uint64_t>((warmup + samples) * n / 2.0);
+  const auto first_sample = static_cast<std::uint64_t>(warmup * n / 2.0);
+  const std::uint64_t sample_every = n / 2, rescale_every = n;
+  std::uint64_t taken = 0;
+  for (std::uint64_t event = 1; event <= total; ++event) {
+    for (;;) {
+      const std::size_t i = rng.below(n);
+      std::size_t j = rng.below(n - 1);
+      if (j >= i) ++j;
+      const double gx = vx[i] - vx[j], gy = vy[i] - vy[j], gz = vz[i] - vz[j];
+      const double g = std::sqrt(gx * gx + gy * gy + gz * gz);
+      const std::size_t a = kind[i], b = kind[j];
+      if (rng.uniform() * 2.0 * vmax >= sigma2[a * s + b] * g) continue;
+      // e with density ~ (g.e) on the hemisphere about g: cos theta = sqrt(u).
+      const double ct = std::sqrt(rng.uniform()), st = std::sqrt(1.0 - ct * ct);
+      const double phi = 2.0 * 3.14159265358979323846 * rng.uniform();
+      const double hx = gx / g, hy = gy / g, hz = gz / g;
+      // an orthonormal pair perpendicular to h
+      double px, py, pz;
+      if (std::abs(hx) < 0.9) {
+        px = 0.0;
+        py = hz;
+        pz = -hy;
+      } else {
+        px = -hz;
+        py = 0.0;
+        pz = hx;
+      }
+      const double pn = std::sqrt(px * px + py * py + pz * pz);
+      px /= pn;
+      py /= pn;
+      pz /= pn;
+      const double qx = hy * pz - hz * py, qy = hz * px - hx * pz, qz = hx * py - hy * px;
+      const double ex = ct * hx + st * (std::cos(phi) * px + std::sin(phi) * qx);
+      const double ey = ct * hy + st * (std::cos(phi) * py + std::sin(phi) * qy);
+      const double ez = ct * hz + st * (std::cos(phi) * pz + std::sin(phi) * qz);
+      const double ge = g * ct;
+      const double di = fraction_to[a * s + b] * ge, dj = fraction_to[b * s + a] * ge;
+      vx[i] -= di * ex;
+      vy[i] -= di * ey;
+      vz[i] -= di * ez;
+      vx[j] += dj * ex;
+      vy[j] += dj * ey;
+      vz[j] += dj * ez;
+      vmax = std::max({vmax, std::sqrt(vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i]),
+                       std::sqrt(vx[j] * vx[j] + vy[j] * vy[j] + vz[j] * vz[j])});
+      break;
+    }
+    if (event % rescale_every == 0) vmax = rescale();
+    if (event > first_sample && event % sample_every == 0) {
+      std::vector<double> v2(s, 0.0), v4(s, 0.0), count(s, 0.0);
+      for (std::size_t i = 0; i < n; ++i) {
+        const double w2 = vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i];
+        v2[kind[i]] += w2;
+        v4[kind[i]] += w2 * w2;
+        count[kind[i]] += 1.0;
+      }
+      std::vector<double> t(s);
+      double t_mix = 0.0;
+      for (std::size_t k = 0; k < s; ++k) {
+        t[k] = mass[k] * v2[k] / (3.0 * count[k]);
+        t_mix += count[k] * t[k] / static_cast<double>(n);
+      }
+      for (std::size_t k = 0; k < s; ++k) {
+        const double m2 = v2[k] / count[k], m4 = v4[k] / count[k];
+        result.ratio[k] += t[k] / t_mix;
+        result.cumulant[k] += 2.0 * (0.6 * m4 / (m2 * m2) - 1.0);
+      }
+      ++taken;
+    }
+  }
+  for (std::size_t k = 0; k < s; ++k) {
+    result.ratio[k] /= static_cast<double>(taken);
+    result.cumulant[k] /= static_cast<double>(taken);
+  }
+  return result;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<double> mass, diameter, fraction;
+  double alpha = -1.0, warmup = 40.0, samples = 400.0;
+  std::size_t n = 100000, replicas = 8;
+  std::uint64_t seed = 1;
+  std::vector<double> expect_gamma, expect_c1;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const char* key = argv[i];
+    const char* value = argv[i + 1];
+    if (!std::strcmp(key, "--mass")) mass = numbers(value);
+    else if (!std::strcmp(key, "--diameter")) diameter = numbers(value);
+    else if (!std::strcmp(key, "--fraction")) fraction = numbers(value);
+    else if (!std::strcmp(key, "--alpha")) alpha = std::atof(value);
+    else if (!std::strcmp(key, "--particles")) n = std::strtoull(value, nullptr, 10);
+    else if (!std::strcmp(key, "--warmup")) warmup = std::atof(value);
+    else if (!std::strcmp(key, "--samples")) samples = std::atof(value);
+    else if (!std::strcmp(key, "--replicas")) replicas = std::strtoull(value, nullptr, 10);
+    else if (!std::strcmp(key, "--seed")) seed = std::strtoull(value, nullptr, 10);
+    else if (!std::strcmp(key, "--expect-gamma")) expect_gamma = numbers(value);
+    else if (!std::strcmp(key, "--expect-c1")) expect_c1 = numbers(value);
+    else {
+      std::fprintf(stderr, "hcs_reference: unknown option %s\n", key);
+      return 2;
+    }
+  }
+  const std::size_t s = mass.size();
+  if (s == 0 || diameter.size() != s || fraction.size() != s || !(alpha >= 0.0 && alpha <= 1.0) || n < 100 ||
+      replicas < 2 || !(samples >= 1.0) || !(warmup >= 0.0)) {
+    std::fprintf(stderr,
+                 "usage: hcs_reference --mass m1,... --diameter d1,... --fraction x1,... --alpha a [--particles N] "
+                 "[--warmup W] [--samples S] [--replicas R >= 2] [--seed s]\n");
+    return 2;
+  }
+  std::vector<Result> all;
+  for (std::size_t r = 0; r < replicas; ++r)
+    all.push_back(run(mass, diameter, fraction, alpha, n, warmup, samples, seed * 1000003ULL + r));
+  std::printf("# hcs_reference: %zu replicas x %zu particles, warmup %g, %g samples (one per collision per particle)\n",
+              replicas, n, warmup, samples);
+  std::printf("# species  T_k/T  se  c_k  se\n");
+  std::vector<double> ratio(s), ratio_se(s), cumulant(s), cumulant_se(s);
+  std::vector<double> gamma_replica(replicas);
+  for (std::size_t k = 0; k < s; ++k) {
+    double mr = 0, mc = 0;
+    for (const auto& a : all) {
+      mr += a.ratio[k];
+      mc += a.cumulant[k];
+    }
+    mr /= replicas;
+    mc /= replicas;
+    double vr = 0, vc = 0;
+    for (const auto& a : all) {
+      vr += (a.ratio[k] - mr) * (a.ratio[k] - mr);
+      vc += (a.cumulant[k] - mc) * (a.cumulant[k] - mc);
+    }
+    const double rep = static_cast<double>(replicas);
+    ratio[k] = mr;
+    ratio_se[k] = std::sqrt(vr / (rep - 1.0) / rep);
+    cumulant[k] = mc;
+    cumulant_se[k] = std::sqrt(vc / (rep - 1.0) / rep);
+    std::printf("%zu %.6f %.6f %.6f %.6f\n", k + 1, ratio[k], ratio_se[k], cumulant[k], cumulant_se[k]);
+  }
+  int status = 0;
+  auto expect = [&status](const char* name, double value, double se, const std::vector<double>& published) {
+    if (published.size() != 2) return;
+    const double combined = std::hypot(se, published[1]), z = std::abs(value - published[0]) / combined;
+    const bool pass = z <= 4.0;
+    std::printf("%s %s: %.5f +- %.5f against the published %.5f +- %.5f: %.2f combined SE (tolerance 4)\n",
+                pass ? "PASS" : "FAIL", name, value, se, published[0], published[1], z);
+    if (!pass) status = 1;
+  };
+  if (s >= 2 && expect_gamma.size() == 2) {
+    double mean = 0.0, var = 0.0;
+    for (std::size_t r = 0; r < replicas; ++r) {
+      gamma_replica[r] = all[r].ratio[0] / all[r].ratio[1];
+      mean += gamma_replica[r] / static_cast<double>(replicas);
+    }
+    for (double g : gamma_replica) var += (g - mean) * (g - mean);
+    expect("gamma = T_1/T_2", mean, std::sqrt(var / (replicas - 1.0) / replicas), expect_gamma);
+  }
+  expect("c_1", cumulant[0], cumulant_se[0], expect_c1);
+  return status;
+}
