@@ -1,5 +1,6 @@
 // The reduced distributions of the binary HCS (Montanero and Garzo 2002, Figs. 3 and 7, \ref son_reduced_distributions "docs/sonine.md"). See README.md.
 #include <cmath>
+#include <fstream>
 
 #include "theory/sonine.hpp"
 #include "theory/theory.hpp"
@@ -14,6 +15,7 @@ std::vector<double> dataset(const std::string& file, const std::string& path) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const auto independent_file = validation::take_option(argc, argv, "--independent");
   const auto run = validation::run_case(argc, argv, "hcs_distribution.h5");
   const auto mix = run.config.mixture();
   const double alpha = mix.restitution(0, 0);
@@ -50,19 +52,53 @@ int main(int argc, char** argv) {
                hcs.cooling_rate, 3.0, zeta_allowance);
 
   // Fig 3: Delta_1(v*) against the Sonine polynomial (eq 28) over thermal speeds, 0.3 <= lambda v*^2 <= 3.
-  // Allowance 0.2: the higher Sonine terms that eq 28 omits, measured with the paper tier (README.md).
+  // With --independent FILE (validation/independent_reference: Phi_1(v*) on the same bins from a program
+  // that shares no code with src/), Phi_1 is asserted against it bin by bin at 4 combined SE with no
+  // allowance, and eq 28, which omits the higher Sonine terms, is stated beside it (issue 13). Without it,
+  // Delta_1 vs eq 28 with 0.35: the largest gap measured with the paper tier + 25 % (a consistency check).
   const double higher_sonine = 0.35;
+  std::vector<double> reference, reference_error;
+  if (independent_file) {
+    std::ifstream in(*independent_file);
+    std::string word;
+    while (in >> word) {
+      if (word != "phi") {
+        std::string rest;
+        std::getline(in, rest);
+        continue;
+      }
+      std::size_t b = 0;
+      double lo = 0, hi = 0, value = 0, error = 0;
+      in >> b >> lo >> hi >> value >> error;
+      if (b != reference.size() || b + 1 >= edges.size() || std::abs(lo - edges[b]) > 1e-6 ||
+          std::abs(hi - edges[b + 1]) > 1e-6)
+        break;
+      reference.push_back(value);
+      reference_error.push_back(error);
+    }
+    if (!report.require("the independent Phi_1 has the run's bins (" + *independent_file + ")",
+                        reference.size() + 1 == edges.size()))
+      return report.exit_code();
+  }
   double worst = 0.0;
   for (std::size_t b = 0; b + 1 < edges.size(); ++b) {
     const double v = 0.5 * (edges[b] + edges[b + 1]), x = lambda * v * v;
     if (x < 0.3 || x > 3.0) continue;
     const double sonine = 0.5 * x * x - 2.5 * x + 15.0 / 8.0;  // eq 28
     worst = std::max(worst, std::abs(delta[b] - sonine));
-    char name[96];
-    std::snprintf(name, sizeof name, "Delta_1(v* = %.3f) vs eq 28", v);
-    report.check(name, delta[b], delta_error[b], sonine, 3.0, higher_sonine);
+    char name[200];
+    if (!reference.empty()) {
+      std::snprintf(name, sizeof name,
+                    "Phi_1(v* = %.3f) vs the independent program (4 combined SE, no allowance; Delta_1 %.3f, eq 28 %.3f)",
+                    v, delta[b], sonine);
+      report.check(name, phi[b], std::hypot(phi_error[b], reference_error[b]), reference[b], 4.0, 0.0);
+    } else {
+      std::snprintf(name, sizeof name, "Delta_1(v* = %.3f) vs eq 28 (consistency check, measured allowance)", v);
+      report.check(name, delta[b], delta_error[b], sonine, 3.0, higher_sonine);
+    }
   }
-  report.note("largest |Delta_1 - eq 28| over the thermal range: " + std::to_string(worst));
+  report.note("largest |Delta_1 - eq 28| over the thermal range: " + std::to_string(worst) +
+              (reference.empty() ? "" : " (eq 28 omits the higher Sonine terms; stated, not asserted)"));
 
   // Fig 7: G_1 = exp(2 beta v*/zeta*) Phi_1 flattens at large v* (eqs 21, 29-30). Window: beyond the
   // thermal range (lambda v*^2 >= 9) while Phi is still measured to 20 %. Weighted fit of ln G.

@@ -21,7 +21,9 @@
 //
 // usage: hcs_reference --mass m1,m2,... --diameter d1,... --fraction x1,... --alpha a
 //                      [--particles N] [--warmup W] [--samples S] [--replicas R] [--seed s]
-//                      [--expect-gamma value,se] [--expect-c1 value,se]
+//                      [--expect-gamma value,se] [--expect-c1 value,se] [--bins B --range R]
+// --bins, --range: also Phi_1(v*) of species 1 on B bins of [0, R) (Montanero and Garzo 2002, eq. (22)),
+// one line "phi b low high value se" per bin.
 // --expect-*: compare gamma = T_1/T_2 (or c_1) with a published value at 4 combined SE, print PASS or
 // FAIL and exit 1 on FAIL: how ctest checks this program itself against the literature (README.md).
 #include <algorithm>
@@ -82,10 +84,12 @@ std::vector<double> numbers(const char* text) {
 
 struct Result {
   std::vector<double> ratio, cumulant;  // T_k/T, c_k (replica means)
+  std::vector<double> phi;              // Phi_1(v*) per bin (replica mean), when asked for
 };
 
 Result run(const std::vector<double>& mass, const std::vector<double>& diameter, const std::vector<double>& fraction,
-           double alpha, std::size_t n, double warmup, double samples, std::uint64_t seed) {
+           double alpha, std::size_t n, double warmup, double samples, std::uint64_t seed, std::size_t bins,
+           double range) {
   const std::size_t s = mass.size();
   Random rng(seed);
   std::vector<std::size_t> kind(n);
@@ -147,6 +151,7 @@ Result run(const std::vector<double>& mass, const std::vector<double>& diameter,
   Result result;
   result.ratio.assign(s, 0.0);
   result.cumulant.assign(s, 0.0);
+  result.phi.assign(bins, 0.0);
   const auto total = static_cast<std::uint64_t>((warmup + samples) * n / 2.0);
   const auto first_sample = static_cast<std::uint64_t>(warmup * n / 2.0);
   const std::uint64_t sample_every = n / 2, rescale_every = n;
@@ -215,6 +220,24 @@ Result run(const std::vector<double>& mass, const std::vector<double>& diameter,
         result.ratio[k] += t[k] / t_mix;
         result.cumulant[k] += 2.0 * (0.6 * m4 / (m2 * m2) - 1.0);
       }
+      if (bins > 0) {
+        // Phi_1(v*), v* = |v|/v0, v0 = sqrt(2 T (m1 + m2)/(m1 m2)) (m2 = m1 for one species), normalised
+        // to int Phi_1 d^3v* = 1 (Montanero and Garzo 2002, eq. (22)): counts / (N_1 shell volume).
+        const double m1 = mass[0], m2 = s > 1 ? mass[1] : mass[0];
+        const double v0 = std::sqrt(2.0 * t_mix * (m1 + m2) / (m1 * m2)), width = range / static_cast<double>(bins);
+        std::vector<double> histogram(bins, 0.0);
+        for (std::size_t i = 0; i < n; ++i) {
+          if (kind[i] != 0) continue;
+          const double v = std::sqrt(vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i]) / v0;
+          const auto b = static_cast<std::size_t>(v / width);
+          if (b < bins) histogram[b] += 1.0;
+        }
+        for (std::size_t b = 0; b < bins; ++b) {
+          const double lo = width * static_cast<double>(b), hi = lo + width;
+          const double shell = 4.0 * 3.14159265358979323846 / 3.0 * (hi * hi * hi - lo * lo * lo);
+          result.phi[b] += histogram[b] / (count[0] * shell);
+        }
+      }
       ++taken;
     }
   }
@@ -222,6 +245,7 @@ Result run(const std::vector<double>& mass, const std::vector<double>& diameter,
     result.ratio[k] /= static_cast<double>(taken);
     result.cumulant[k] /= static_cast<double>(taken);
   }
+  for (double& p : result.phi) p /= static_cast<double>(taken);
   return result;
 }
 
@@ -233,6 +257,8 @@ int main(int argc, char** argv) {
   std::size_t n = 100000, replicas = 8;
   std::uint64_t seed = 1;
   std::vector<double> expect_gamma, expect_c1;
+  std::size_t bins = 0;
+  double range = 4.0;
   for (int i = 1; i + 1 < argc; i += 2) {
     const char* key = argv[i];
     const char* value = argv[i + 1];
@@ -247,6 +273,8 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(key, "--seed")) seed = std::strtoull(value, nullptr, 10);
     else if (!std::strcmp(key, "--expect-gamma")) expect_gamma = numbers(value);
     else if (!std::strcmp(key, "--expect-c1")) expect_c1 = numbers(value);
+    else if (!std::strcmp(key, "--bins")) bins = std::strtoull(value, nullptr, 10);
+    else if (!std::strcmp(key, "--range")) range = std::atof(value);
     else {
       std::fprintf(stderr, "hcs_reference: unknown option %s\n", key);
       return 2;
@@ -262,7 +290,7 @@ int main(int argc, char** argv) {
   }
   std::vector<Result> all;
   for (std::size_t r = 0; r < replicas; ++r)
-    all.push_back(run(mass, diameter, fraction, alpha, n, warmup, samples, seed * 1000003ULL + r));
+    all.push_back(run(mass, diameter, fraction, alpha, n, warmup, samples, seed * 1000003ULL + r, bins, range));
   std::printf("# hcs_reference: %zu replicas x %zu particles, warmup %g, %g samples (one per collision per particle)\n",
               replicas, n, warmup, samples);
   std::printf("# species  T_k/T  se  c_k  se\n");
@@ -307,5 +335,15 @@ int main(int argc, char** argv) {
     expect("gamma = T_1/T_2", mean, std::sqrt(var / (replicas - 1.0) / replicas), expect_gamma);
   }
   expect("c_1", cumulant[0], cumulant_se[0], expect_c1);
+  if (bins > 0) {
+    std::printf("# Phi_1(v*): bin  v*_low  v*_high  value  se\n");
+    const double width = range / static_cast<double>(bins), rep = static_cast<double>(replicas);
+    for (std::size_t b = 0; b < bins; ++b) {
+      double mean = 0.0, var = 0.0;
+      for (const auto& a : all) mean += a.phi[b] / rep;
+      for (const auto& a : all) var += (a.phi[b] - mean) * (a.phi[b] - mean);
+      std::printf("phi %zu %.6f %.6f %.9e %.3e\n", b, width * b, width * (b + 1), mean, std::sqrt(var / (rep - 1.0) / rep));
+    }
+  }
   return status;
 }
