@@ -22,6 +22,10 @@
 // usage: hcs_reference --mass m1,m2,... --diameter d1,... --fraction x1,... --alpha a
 //                      [--particles N] [--warmup W] [--samples S] [--replicas R] [--seed s]
 //                      [--expect-gamma value,se] [--expect-c1 value,se] [--bins B --range R]
+//        hcs_reference --mass ... --diameter ... --density n1,... --alpha a --log-times first,last,count
+//                      [--particles N] [--replicas R] [--seed s]
+// the time-resolved mode: T_k(t) from T_k(0) = 1 on the DSMC's log grid of `count` samples (t = 0 and
+// first..last), one line "temperature t T_1 se T_2 se ..." per time.
 // --bins, --range: also Phi_1(v*) of species 1 on B bins of [0, R) (Montanero and Garzo 2002, eq. (22)),
 // one line "phi b low high value se" per bin.
 // --expect-*: compare gamma = T_1/T_2 (or c_1) with a published value at 4 combined SE, print PASS or
@@ -249,6 +253,156 @@ Result run(const std::vector<double>& mass, const std::vector<double>& diameter,
   return result;
 }
 
+/// The time-resolved mode (--density, --log-times): T_k(t) of a gas started Maxwellian at T_k = 1, by the
+/// same jump chain with the real time kept: each candidate pair (accepted or not) advances time by an
+/// exponential with rate (N - 1) n pi sigma_max^2 v_max, the majorant of the total collision rate
+/// (n = sum_k n_k the number density, v_max the largest real speed). The rescaling of the velocities to
+/// T = 1 is undone by the scale S it accumulates (real v = stored v / S), which also enters the rate.
+std::vector<std::vector<double>> run_in_time(const std::vector<double>& mass, const std::vector<double>& diameter,
+                                             const std::vector<double>& density, double alpha, std::size_t n,
+                                             const std::vector<double>& times, std::uint64_t seed) {
+  const std::size_t s = mass.size();
+  Random rng(seed);
+  double n_total = 0.0;
+  for (double x : density) n_total += x;
+  std::vector<std::size_t> kind(n);
+  {
+    std::size_t i = 0;
+    for (std::size_t k = 0; k < s; ++k) {
+      const std::size_t count = k + 1 == s ? n - i : static_cast<std::size_t>(std::llround(n * density[k] / n_total));
+      for (std::size_t c = 0; c < count && i < n; ++c) kind[i++] = k;
+    }
+  }
+  std::vector<double> vx(n), vy(n), vz(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double sd = 1.0 / std::sqrt(mass[kind[i]]);
+    vx[i] = sd * rng.normal();
+    vy[i] = sd * rng.normal();
+    vz[i] = sd * rng.normal();
+  }
+  double sigma_max = 0.0;
+  for (double d : diameter) sigma_max = std::max(sigma_max, d);
+  std::vector<double> sigma2(s * s), fraction_to(s * s);
+  for (std::size_t a = 0; a < s; ++a)
+    for (std::size_t b = 0; b < s; ++b) {
+      const double sab = 0.5 * (diameter[a] + diameter[b]);
+      sigma2[a * s + b] = sab * sab / (sigma_max * sigma_max);
+      fraction_to[a * s + b] = mass[b] / (mass[a] + mass[b]) * (1.0 + alpha);
+    }
+  double scale = 1.0;  // real v = stored v / scale
+  auto rescale = [&]() -> double {
+    double px = 0, py = 0, pz = 0, mt = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double m = mass[kind[i]];
+      px += m * vx[i];
+      py += m * vy[i];
+      pz += m * vz[i];
+      mt += m;
+    }
+    double e = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      vx[i] -= px / mt;
+      vy[i] -= py / mt;
+      vz[i] -= pz / mt;
+      e += mass[kind[i]] * (vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i]);
+    }
+    const double f = std::sqrt(3.0 * static_cast<double>(n) / e);
+    scale *= f;
+    double vmax2 = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      vx[i] *= f;
+      vy[i] *= f;
+      vz[i] *= f;
+      vmax2 = std::max(vmax2, vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i]);
+    }
+    return std::sqrt(vmax2);
+  };
+  auto temperatures = [&]() {
+    std::vector<double> v2(s, 0.0), count(s, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      v2[kind[i]] += vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i];
+      count[kind[i]] += 1.0;
+    }
+    std::vector<double> t(s);
+    for (std::size_t k = 0; k < s; ++k) t[k] = mass[k] * v2[k] / (3.0 * count[k]) / (scale * scale);
+    return t;
+  };
+  std::vector<std::vector<double>> out;
+  const double pi = 3.14159265358979323846;
+  const double rate_factor = static_cast<double>(n - 1) * n_total * pi * sigma_max * sigma_max;
+  double vmax = 0.0, t = 0.0;
+  {
+    // The initial momentum is removed (as the DSMC's initial state has none) without rescaling.
+    double px = 0, py = 0, pz = 0, mt = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double m = mass[kind[i]];
+      px += m * vx[i];
+      py += m * vy[i];
+      pz += m * vz[i];
+      mt += m;
+    }
+    double vmax2 = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      vx[i] -= px / mt;
+      vy[i] -= py / mt;
+      vz[i] -= pz / mt;
+      vmax2 = std::max(vmax2, vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i]);
+    }
+    vmax = std::sqrt(vmax2);
+  }
+  std::size_t next = 0;
+  std::uint64_t events = 0;
+  while (next < times.size()) {
+    const double dt = -std::log(1.0 - rng.uniform()) * scale / (rate_factor * vmax);
+    while (next < times.size() && times[next] <= t + dt) {
+      out.push_back(temperatures());
+      ++next;
+    }
+    if (next == times.size()) break;
+    t += dt;
+    const std::size_t i = rng.below(n);
+    std::size_t j = rng.below(n - 1);
+    if (j >= i) ++j;
+    const double gx = vx[i] - vx[j], gy = vy[i] - vy[j], gz = vz[i] - vz[j];
+    const double g = std::sqrt(gx * gx + gy * gy + gz * gz);
+    const std::size_t a = kind[i], b = kind[j];
+    if (rng.uniform() * 2.0 * vmax >= sigma2[a * s + b] * g) continue;
+    const double ct = std::sqrt(rng.uniform()), st = std::sqrt(1.0 - ct * ct);
+    const double phi = 2.0 * pi * rng.uniform();
+    const double hx = gx / g, hy = gy / g, hz = gz / g;
+    double px, py, pz;
+    if (std::abs(hx) < 0.9) {
+      px = 0.0;
+      py = hz;
+      pz = -hy;
+    } else {
+      px = -hz;
+      py = 0.0;
+      pz = hx;
+    }
+    const double pn = std::sqrt(px * px + py * py + pz * pz);
+    px /= pn;
+    py /= pn;
+    pz /= pn;
+    const double qx = hy * pz - hz * py, qy = hz * px - hx * pz, qz = hx * py - hy * px;
+    const double ex = ct * hx + st * (std::cos(phi) * px + std::sin(phi) * qx);
+    const double ey = ct * hy + st * (std::cos(phi) * py + std::sin(phi) * qy);
+    const double ez = ct * hz + st * (std::cos(phi) * pz + std::sin(phi) * qz);
+    const double ge = g * ct;
+    const double di = fraction_to[a * s + b] * ge, dj = fraction_to[b * s + a] * ge;
+    vx[i] -= di * ex;
+    vy[i] -= di * ey;
+    vz[i] -= di * ez;
+    vx[j] += dj * ex;
+    vy[j] += dj * ey;
+    vz[j] += dj * ez;
+    vmax = std::max({vmax, std::sqrt(vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i]),
+                     std::sqrt(vx[j] * vx[j] + vy[j] * vy[j] + vz[j] * vz[j])});
+    if (++events % n == 0) vmax = rescale();
+  }
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -259,6 +413,7 @@ int main(int argc, char** argv) {
   std::vector<double> expect_gamma, expect_c1;
   std::size_t bins = 0;
   double range = 4.0;
+  std::vector<double> density, log_times;
   for (int i = 1; i + 1 < argc; i += 2) {
     const char* key = argv[i];
     const char* value = argv[i + 1];
@@ -274,6 +429,8 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(key, "--expect-gamma")) expect_gamma = numbers(value);
     else if (!std::strcmp(key, "--expect-c1")) expect_c1 = numbers(value);
     else if (!std::strcmp(key, "--bins")) bins = std::strtoull(value, nullptr, 10);
+    else if (!std::strcmp(key, "--density")) density = numbers(value);
+    else if (!std::strcmp(key, "--log-times")) log_times = numbers(value);
     else if (!std::strcmp(key, "--range")) range = std::atof(value);
     else {
       std::fprintf(stderr, "hcs_reference: unknown option %s\n", key);
@@ -281,6 +438,36 @@ int main(int argc, char** argv) {
     }
   }
   const std::size_t s = mass.size();
+  if (!density.empty()) {  // the time-resolved mode
+    if (density.size() != s || diameter.size() != s || log_times.size() != 3 || !(log_times[0] > 0.0) ||
+        !(log_times[1] > log_times[0]) || log_times[2] < 3 || !(alpha >= 0.0 && alpha <= 1.0) || replicas < 2) {
+      std::fprintf(stderr, "usage: hcs_reference --mass ... --diameter ... --density n1,... --alpha a "
+                           "--log-times first,last,count [--particles N] [--replicas R >= 2] [--seed s]\n");
+      return 2;
+    }
+    // The DSMC's log grid (&output spacing = 'log'): t = 0, then first (last/first)^(i/(count - 2)).
+    const auto count = static_cast<std::size_t>(log_times[2]);
+    std::vector<double> times{0.0};
+    for (std::size_t i = 0; i + 1 < count; ++i)
+      times.push_back(log_times[0] * std::pow(log_times[1] / log_times[0], static_cast<double>(i) / (count - 2.0)));
+    std::vector<std::vector<std::vector<double>>> all;
+    for (std::size_t r = 0; r < replicas; ++r)
+      all.push_back(run_in_time(mass, diameter, density, alpha, n, times, seed * 1000003ULL + r));
+    std::printf("# hcs_reference (time-resolved): %zu replicas x %zu particles, T_k(0) = 1\n", replicas, n);
+    std::printf("# temperature  t  T_1 se  T_2 se ...\n");
+    const double rep = static_cast<double>(replicas);
+    for (std::size_t i = 0; i < times.size(); ++i) {
+      std::printf("temperature %.9g", times[i]);
+      for (std::size_t k = 0; k < s; ++k) {
+        double mean = 0.0, var = 0.0;
+        for (const auto& a : all) mean += a[i][k] / rep;
+        for (const auto& a : all) var += (a[i][k] - mean) * (a[i][k] - mean);
+        std::printf(" %.9e %.3e", mean, std::sqrt(var / (rep - 1.0) / rep));
+      }
+      std::printf("\n");
+    }
+    return 0;
+  }
   if (s == 0 || diameter.size() != s || fraction.size() != s || !(alpha >= 0.0 && alpha <= 1.0) || n < 100 ||
       replicas < 2 || !(samples >= 1.0) || !(warmup >= 0.0)) {
     std::fprintf(stderr,
