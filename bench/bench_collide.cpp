@@ -11,12 +11,13 @@
 // Default: the reference case, N = 1e6, alpha = 0.9, 10 collisions per particle timed. The gases
 // are those of bench_paths (one species; binary, masses 1 and 4, diameters 1 and 1.5; the same at packing
 // fraction 0.1, Enskog). "cand/coll" is candidates per accepted collision (1/acceptance), "ns/cand" the
-// wall-clock time of the timed advance() over its candidates (everything counted: collisions, bounds,
-// remixes), so that ns per collision = cand/coll x ns/cand. Figures are for comparing builds and paths on
-// one machine in one run (ratios), not absolute.
+// time of the timed advance() over its candidates (everything counted: collisions, bounds, remixes), so
+// that ns per collision = cand/coll x ns/cand. Times are the process's CPU time (one thread), which a
+// machine shared with other jobs disturbs less than the wall clock does (caches are still shared).
+// Figures are for comparing builds and paths on one machine in one run (ratios), not absolute.
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <cstdlib>
 #include <map>
 #include <sstream>
@@ -32,6 +33,12 @@
 using namespace gdsmc;
 
 namespace {
+
+double cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 struct Result {
   double events_per_second, candidates_per_event, ns_per_candidate, seconds, bytes_per_particle;
@@ -63,9 +70,9 @@ Result measure(const Path& path, double alpha, std::size_t n, double per_particl
   const auto before = collider.counters();
   const double t0 = collider.time();
   const double t_end = t0 + t0 / (2.0 * static_cast<double>(before.events) / static_cast<double>(n)) * per_particle;
-  const auto start = std::chrono::steady_clock::now();
+  const double start = cpu_seconds();
   collider.advance(t_end);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = cpu_seconds() - start;
   const auto& after = collider.counters();
   const double events = static_cast<double>(after.events - before.events);
   const double candidates = static_cast<double>(after.candidates - before.candidates);
