@@ -105,9 +105,10 @@
  * rng::unit_vector_32 (one draw per try; directions on a lattice of step 2^-31, about 1e-9 rad). The
  * random stream differs from run_majorant's, the law of the process does not; blocks still draw only
  * from their own streams (bitwise the same for any thread count). Viscoelastic restitution (whose alpha
- * needs g.e) and mixtures run run_majorant / run_lowrank in their blocks. Measured at N = 1e6 (bench_collide,
- * CPU time): 4.49 candidates per collision as before, from 28-29 to 18-19 ns per candidate, 1.6 times the
- * collisions per second. Tighter majorants were tried and left out (\ref sch_blocks "docs/schemes.md",
+ * needs g.e) and mixtures run run_majorant / run_lowrank in their blocks. Measured at N = 1e6 (CPU time,
+ * medians, both builds alternately): 4.49 candidates per collision as before, 31 ns per candidate before
+ * and 19 after, 1.6 times the collisions per second of bench_collide and 1.9 times end to end
+ * (bench_paths, one species, t_end). Tighter majorants were tried and left out (\ref sch_blocks "docs/schemes.md",
  * "The one-species kernel"): speed classes cut the candidates per collision to 1.5-1.7 and a single
  * fast layer to 2.5, but their pair law depends on the velocities, so pairs can no longer be drawn
  * ahead and prefetched, and each candidate costs more than the rejections saved.
