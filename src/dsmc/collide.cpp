@@ -515,7 +515,7 @@ void Collider::run_block_one_species(double t_stop) {
   // The process of run_majorant on the block's N_b particles (header "Blocks"): candidates at
   // R_b = N_b n B_b / 2, B_b = 2 pi sigma^2 chi vmax_b, candidate c of a sub-step at t0 + (c + 1)/R_b,
   // a uniform pair accepted with |g| / (2 vmax_b). Only the work per candidate is less: the pair from
-  // one draw (rng::Xoshiro256pp::below_pair), the drawn-ahead pairs in registers, no species, no frame,
+  // one draw (rng::Xoshiro256pp::below_pair), the drawn-ahead pairs in locals, no species, no frame,
   // and (g.e) e without e (hemisphere_projection), the same collision as hemisphere_normal's e gives.
   const auto first = static_cast<std::uint32_t>(range_first_);
   const auto n = static_cast<std::uint32_t>(range_count_);
