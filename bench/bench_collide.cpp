@@ -1,13 +1,28 @@
-// Collision-kernel throughput: accepted collisions per second and candidate pairs per second.
+// Collision-kernel throughput: accepted collisions per second, candidate pairs per collision and the
+// cost of one candidate, for every blocked path of issue 11 and the unblocked `pairs`.
 //
-// usage: bench_collide [N] [alpha] [collisions_per_particle] [block_size (default: &dsmc's; 0: no blocks)]
-// Blocks apply to majorant and lowrank (one species); pairs always runs unblocked.
-// Default: the issue's reference case, monodisperse, N = 1e6, alpha = 0.9, 'majorant' and 'pairs'.
-// Figures are for comparing builds and schemes on one machine in one run (ratios), not absolute.
-#include <chrono>
+// usage: bench_collide [N] [alpha] [collisions_per_particle] [block_size] [paths] [rounds]
+//   block_size: default &dsmc's; 0: no blocks. Blocks apply to majorant and lowrank; pairs always runs
+//               unblocked.
+//   paths:      comma-separated names of the table below, or "all" (default: every path but the slow
+//               `pairs` ones at N > 1e5).
+//   rounds:     the paths run one after another this many times in one process (default 1); with more
+//               than one, each path's best (largest rate, smallest ns/cand) and median figures follow.
+// Default: the issue's reference case, N = 1e6, alpha = 0.9, 10 collisions per particle timed. The gases
+// are those of bench_paths (one species; binary, masses 1 and 4, diameters 1 and 1.5; the same at packing
+// fraction 0.1, Enskog). "cand/coll" is candidates per accepted collision (1/acceptance), "ns/cand" the
+// time of the timed advance() over its candidates (everything counted: collisions, bounds, remixes), so
+// that ns per collision = cand/coll x ns/cand. Times are the process's CPU time (one thread), which a
+// machine shared with other jobs disturbs less than the wall clock does (caches are still shared).
+// Figures are for comparing builds and paths on one machine in one run (ratios), not absolute.
+#include <algorithm>
 #include <cstdio>
+#include <ctime>
 #include <cstdlib>
+#include <map>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "dsmc/collide.hpp"
 #include "dsmc/particles.hpp"
@@ -19,22 +34,45 @@ using namespace gdsmc;
 
 namespace {
 
+double cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 struct Result {
-  double events_per_second, candidates_per_second, acceptance, seconds, bytes_per_particle;
+  double events_per_second, candidates_per_event, ns_per_candidate, seconds, bytes_per_particle;
 };
 
-Result measure(collide::Scheme scheme, const species::Mixture& mix, std::size_t n, double per_particle,
-               std::size_t block_size) {
+struct Path {
+  std::string name;
+  collide::Scheme scheme;
+  int gas;  // 0: one species, 1: binary, 2: binary Enskog
+};
+
+species::Mixture gas_of(int gas, double alpha) {
+  if (gas == 0) return species::make_mixture({1.0}, {1.0}, {0.01}, species::PairMatrix(1, alpha), false);
+  // Packing fraction pi/6 (n_1 + n_2 1.5^3) = 0.1 at n_1 = n_2 = 0.0437 (bench_paths).
+  const double n_k = gas == 1 ? 0.005 : 0.0437;
+  return species::make_mixture({1.0, 4.0}, {1.0, 1.5}, {n_k, n_k}, species::PairMatrix(2, alpha), gas == 2);
+}
+
+Result measure(const Path& path, double alpha, std::size_t n, double per_particle, std::size_t block_size) {
+  const species::Mixture mix = gas_of(path.gas, alpha);
   auto init = rng::make_stream(1, 0, rng::Purpose::initial_state);
   auto sys = particles::make_system(mix, particles::species_counts(n, mix), std::vector<double>(mix.size(), 1.0),
                                     particles::InitialDistribution::maxwell, init);
-  collide::Collider collider(scheme, mix, sys, rng::make_stream(1, 0, rng::Purpose::collisions), 1.0);
+  collide::Collider collider(path.scheme, mix, sys, rng::make_stream(1, 0, rng::Purpose::collisions), 1.0);
   collider.use_blocks(block_size);
-  collider.advance(1e300, static_cast<std::uint64_t>(0.2 * n));  // warm up caches and bounds
+  // Warm up caches and bounds (the first step runs on the whole gas), then time by t_end as a
+  // time-driven run does: the time of per_particle collisions per particle at the warm-up's rate.
+  collider.advance(1e300, static_cast<std::uint64_t>(0.2 * n));
   const auto before = collider.counters();
-  const auto start = std::chrono::steady_clock::now();
-  collider.advance(1e300, before.events + static_cast<std::uint64_t>(per_particle * n / 2.0));
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double t0 = collider.time();
+  const double t_end = t0 + t0 / (2.0 * static_cast<double>(before.events) / static_cast<double>(n)) * per_particle;
+  const double start = cpu_seconds();
+  collider.advance(t_end);
+  const double seconds = cpu_seconds() - start;
   const auto& after = collider.counters();
   const double events = static_cast<double>(after.events - before.events);
   const double candidates = static_cast<double>(after.candidates - before.candidates);
@@ -43,7 +81,14 @@ Result measure(collide::Scheme scheme, const species::Mixture& mix, std::size_t 
                                            sys.species.capacity() * sizeof(std::uint32_t) +
                                            sys.r.capacity() * sizeof(particles::Displacement) +
                                            collider.workspace_bytes());
-  return {events / seconds, candidates / seconds, events / candidates, seconds, bytes / static_cast<double>(n)};
+  return {events / seconds, candidates / events, 1e9 * seconds / candidates, seconds,
+          bytes / static_cast<double>(n)};
+}
+
+double median(std::vector<double> x) {
+  std::sort(x.begin(), x.end());
+  const std::size_t m = x.size() / 2;
+  return x.size() % 2 ? x[m] : 0.5 * (x[m - 1] + x[m]);
 }
 
 }  // namespace
@@ -52,18 +97,48 @@ int main(int argc, char** argv) {
   const std::size_t n = argc > 1 ? std::strtoull(argv[1], nullptr, 10) : 1000000;
   const double alpha = argc > 2 ? std::atof(argv[2]) : 0.9;
   const double per_particle = argc > 3 ? std::atof(argv[3]) : 10.0;
-  // The default of &dsmc block_size; 0 measures the kernel without blocks.
+  // The default of &dsmc block_size; 0 measures the kernels without blocks.
   const std::size_t block_size = argc > 4 ? std::strtoull(argv[4], nullptr, 10) : io::config::Dsmc{}.block_size;
-  const auto mix = species::make_mixture({1.0}, {1.0}, {0.01}, species::PairMatrix(1, alpha), false);
-  std::printf("monodisperse, N = %zu, alpha = %g, %g collisions per particle timed, block_size = %zu\n", n, alpha,
-              per_particle, block_size);
-  std::printf("%-10s %18s %18s %12s %10s %16s\n", "scheme", "collisions/s", "candidates/s", "acceptance", "seconds",
-              "bytes/particle");
-  for (auto [name, scheme] : {std::pair{"majorant", collide::Scheme::majorant}, std::pair{"lowrank", collide::Scheme::lowrank},
-                              std::pair{"pairs", collide::Scheme::pairs}}) {
-    const Result r = measure(scheme, mix, n, per_particle, block_size);
-    std::printf("%-10s %18.4g %18.4g %12.4f %10.2f %16.1f\n", name, r.events_per_second, r.candidates_per_second,
-                r.acceptance, r.seconds, r.bytes_per_particle);
+  const std::string selected = argc > 5 ? argv[5] : "";
+  const int rounds = argc > 6 ? std::max(1, std::atoi(argv[6])) : 1;
+  const std::vector<Path> all = {
+      {"one_majorant", collide::Scheme::majorant, 0},    {"one_lowrank", collide::Scheme::lowrank, 0},
+      {"binary_majorant", collide::Scheme::majorant, 1}, {"binary_lowrank", collide::Scheme::lowrank, 1},
+      {"enskog_majorant", collide::Scheme::majorant, 2}, {"enskog_lowrank", collide::Scheme::lowrank, 2},
+      {"one_pairs", collide::Scheme::pairs, 0},          {"binary_pairs", collide::Scheme::pairs, 1},
+  };
+  std::vector<Path> paths;
+  for (const Path& p : all) {
+    const bool chosen = selected.empty() ? (p.scheme != collide::Scheme::pairs || n <= 100000)
+                                         : selected == "all" || ("," + selected + ",").find("," + p.name + ",") !=
+                                                                    std::string::npos;
+    if (chosen) paths.push_back(p);
+  }
+  std::printf("N = %zu, alpha = %g, %g collisions per particle timed, block_size = %zu, %d round(s)\n", n, alpha,
+              per_particle, block_size, rounds);
+  std::printf("%-16s %14s %10s %9s %9s %10s\n", "path", "collisions/s", "cand/coll", "ns/cand", "seconds",
+              "bytes/part");
+  std::map<std::string, std::vector<Result>> results;
+  for (int round = 0; round < rounds; ++round)
+    for (const Path& p : paths) {
+      const Result r = measure(p, alpha, n, per_particle, block_size);
+      results[p.name].push_back(r);
+      std::printf("%-16s %14.4g %10.3f %9.2f %9.2f %10.1f\n", p.name.c_str(), r.events_per_second,
+                  r.candidates_per_event, r.ns_per_candidate, r.seconds, r.bytes_per_particle);
+      std::fflush(stdout);
+    }
+  if (rounds > 1) {
+    std::printf("\n%-16s %22s %10s %20s\n", "path", "collisions/s max/med", "cand/coll", "ns/cand min/med");
+    for (const Path& p : paths) {
+      std::vector<double> rate, cand, ns;
+      for (const Result& r : results[p.name]) {
+        rate.push_back(r.events_per_second);
+        cand.push_back(r.candidates_per_event);
+        ns.push_back(r.ns_per_candidate);
+      }
+      std::printf("%-16s %10.4g %10.4g %10.3f %9.2f %9.2f\n", p.name.c_str(), *std::max_element(rate.begin(), rate.end()),
+                  median(rate), median(cand), *std::min_element(ns.begin(), ns.end()), median(ns));
+    }
   }
   return 0;
 }

@@ -10,10 +10,13 @@
 // `pairs`; one replica of the reference case on 2 threads (its blocks on threads, collide.hpp
 // "Threads inside one replica") against 1. Each run is about 10 collisions per particle. The rate is
 // events per second of the collision loop (Summary::events_per_second: setup and sampling are not
-// counted), on one replica; the thread row gives the ratio of wall-clock rates.
+// counted), on one replica; the thread row gives the ratio of wall-clock rates. "CPU coll/s" is the
+// run's collisions over the CPU time of the whole run (setup and output included; all threads added),
+// which a machine shared with other jobs disturbs less than the wall clock.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <string>
 #include <unistd.h>
@@ -58,6 +61,12 @@ std::string namelist(const Path& p, std::size_t n, double t_end, double per_part
   return text;
 }
 
+double cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 simulation::Summary run(const std::string& text, int threads) {
 #ifdef _OPENMP
   omp_set_num_threads(threads);
@@ -93,7 +102,8 @@ int main(int argc, char** argv) {
   constexpr double per_particle = 10.0;
   for (std::size_t n : sizes) {
     std::printf("N = %zu, one replica, ~%g collisions per particle per run\n", n, per_particle);
-    std::printf("%-40s %14s %12s %10s %10s\n", "path", "collisions/s", "coll/part.", "seconds", "ratio");
+    std::printf("%-40s %14s %12s %10s %10s %12s\n", "path", "collisions/s", "coll/part.", "seconds", "ratio",
+                "CPU coll/s");
     double reference = 0.0;
     for (const Path& p : paths) {
       if (p.scheme == "pairs" && n > 1000000) {  // ~3e5 collisions/s: minutes at N = 1e7
@@ -108,11 +118,13 @@ int main(int argc, char** argv) {
         t_end = run(namelist(pilot, 20000, 0.0, per_particle), 1).final_time;
       }
       const auto start = std::chrono::steady_clock::now();
+      const double cpu_start = cpu_seconds();
       const simulation::Summary s = run(namelist(p, n, t_end, per_particle), p.threads);
+      const double cpu = cpu_seconds() - cpu_start;
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       if (reference == 0.0) reference = s.events_per_second;
-      std::printf("%-40s %14.4g %12.2f %10.2f %10.2f\n", p.name, s.events_per_second, s.collisions_per_particle, wall,
-                  s.events_per_second / reference);
+      std::printf("%-40s %14.4g %12.2f %10.2f %10.2f %12.4g\n", p.name, s.events_per_second, s.collisions_per_particle,
+                  wall, s.events_per_second / reference, s.collisions_per_particle * static_cast<double>(n) / 2.0 / cpu);
       std::fflush(stdout);
     }
   }

@@ -93,6 +93,37 @@ std::pair<double, double> mean_se(const std::vector<double>& x) {
 
 }  // namespace
 
+// hemisphere_projection (\ref cm_hemisphere "docs/collision-model.md"): p = (g.e) e for e of density
+// (g_hat.e)/pi on the hemisphere. Over 1e6 draws for one g: |p|^2 equals the returned (g.e)^2 and p.g
+// equals it too (to round-off), and U = (g.e)^2/g^2 is uniform on (0, 1): <U> = 1/2 (SE sqrt(1/(12 N))),
+// <U^2> = 1/3 (Var U^2 = 1/5 - 1/9, SE sqrt(4/(45 N))); the component of e across g averages to 0
+// (e_perp.x, SE <= sqrt(1/N)); tolerance 5 SE.
+TEST(Collide, HemisphereProjectionIsTheHemisphereImpulse) {
+  rng::Xoshiro256pp gen(99);
+  const double gx = 0.3, gy = -1.2, gz = 0.7, g2 = gx * gx + gy * gy + gz * gz, g = std::sqrt(g2);
+  const int n = 1000000;
+  double su = 0.0, su2 = 0.0, sperp = 0.0, worst = 0.0;
+  for (int i = 0; i < n; ++i) {
+    double px, py, pz;
+    const double q = collide::hemisphere_projection(gen, gx, gy, gz, g, px, py, pz);
+    worst = std::max({worst, std::abs(px * px + py * py + pz * pz - q) / g2, std::abs(px * gx + py * gy + pz * gz - q) / g2});
+    const double u = q / g2;
+    su += u;
+    su2 += u * u;
+    // e's component along x after removing its part along g_hat (p / |p| = e)
+    const double norm = std::sqrt(q);
+    if (norm > 0.0) sperp += (px - (px * gx + py * gy + pz * gz) / g2 * gx) / norm;
+  }
+  const double se_u = std::sqrt(1.0 / 12.0 / n), se_u2 = std::sqrt(4.0 / 45.0 / n), se_perp = std::sqrt(1.0 / n);
+  std::printf("[ Collide.HemisphereProjection ] <U> = %.5f (SE %.5f, exp 0.5), <U^2> = %.5f (SE %.5f, exp 0.33333), "
+              "<e_perp,x> = %.5f, worst round-off %.2e\n",
+              su / n, se_u, su2 / n, se_u2, sperp / n, worst);
+  EXPECT_LT(worst, 1e-14);
+  EXPECT_NEAR(su / n, 0.5, 5.0 * se_u);
+  EXPECT_NEAR(su2 / n, 1.0 / 3.0, 5.0 * se_u2);
+  EXPECT_NEAR(sperp / n, 0.0, 5.0 * se_perp);
+}
+
 TEST(Collide, ParseScheme) {
   EXPECT_EQ(collide::parse_scheme("majorant"), Scheme::majorant);
   EXPECT_EQ(collide::parse_scheme("pairs"), Scheme::pairs);

@@ -224,6 +224,53 @@ TEST(Rng, BelowIsBoundedAndUniform) {
   }
 }
 
+// below_pair(n1, n2): both < n, each uniform (chi-square over 10 equiprobable bins of 1e6 draws, as
+// above) and the two independent (chi-square of the 10 x 10 joint bins against the product, 81 dof:
+// P(chi2_81 > X) > 1e-4). Done for (10, 20) (one and two values per bin), for block sizes (32768, 32767),
+// and for (3e9, 4e9 - 1), whose multiply-shift rejects about 30 % and 7 % of the halves (2^32 mod n / 2^32):
+// the rejection branch is exercised and leaves the draws uniform and independent.
+TEST(Rng, BelowPairIsUniformAndIndependent) {
+  Xoshiro256pp gen(1234);
+  const std::uint32_t cases[3][2] = {{10u, 20u}, {32768u, 32767u}, {3000000000u, 3999999999u}};
+  for (const auto& c : cases) {
+    const int draws_n = 1000000, bins = 10;
+    std::vector<double> c1(bins, 0.0), c2(bins, 0.0), joint(bins * bins, 0.0);
+    for (int i = 0; i < draws_n; ++i) {
+      std::uint32_t x, y;
+      gen.below_pair(c[0], c[1], x, y);
+      ASSERT_LT(x, c[0]);
+      ASSERT_LT(y, c[1]);
+      const auto bx = static_cast<std::size_t>(std::uint64_t{x} * bins / c[0]);
+      const auto by = static_cast<std::size_t>(std::uint64_t{y} * bins / c[1]);
+      c1[bx] += 1.0;
+      c2[by] += 1.0;
+      joint[bx * bins + by] += 1.0;
+    }
+    // Bin probabilities (exact counts of values per bin: n need not be a multiple of 10).
+    auto share = [&](std::uint32_t n, int b) {
+      const std::uint64_t lo = (std::uint64_t{n} * static_cast<std::uint64_t>(b) + bins - 1) / bins;
+      const std::uint64_t hi = (std::uint64_t{n} * static_cast<std::uint64_t>(b + 1) + bins - 1) / bins;
+      return static_cast<double>(hi - lo) / n;
+    };
+    double chi1 = 0.0, chi2 = 0.0, chij = 0.0;
+    for (int b = 0; b < bins; ++b) {
+      const double e1 = draws_n * share(c[0], b), e2 = draws_n * share(c[1], b);
+      chi1 += (c1[b] - e1) * (c1[b] - e1) / e1;
+      chi2 += (c2[b] - e2) * (c2[b] - e2) / e2;
+      for (int d = 0; d < bins; ++d) {
+        const double e = draws_n * share(c[0], b) * share(c[1], d);
+        chij += (joint[b * bins + d] - e) * (joint[b * bins + d] - e) / e;
+      }
+    }
+    const double p1 = gsl_cdf_chisq_Q(chi1, bins - 1), p2 = gsl_cdf_chisq_Q(chi2, bins - 1);
+    const double pj = gsl_cdf_chisq_Q(chij, (bins - 1) * (bins - 1));
+    std::printf("[ Rng.BelowPair ] (%u, %u): p = %.4f, %.4f (each), %.4f (joint)\n", c[0], c[1], p1, p2, pj);
+    EXPECT_GT(p1, 1e-4);
+    EXPECT_GT(p2, 1e-4);
+    EXPECT_GT(pj, 1e-4);
+  }
+}
+
 // normal(): 1e6 deviates. Expected <x> = 0 (SE = 1/sqrt(N)), <x^2> = 1 (Var x^2 = 3 - 1 = 2,
 // SE = sqrt(2/N)), <x^4> = 3 (Var x^4 = 105 - 9 = 96, SE = sqrt(96/N)); tolerance 5 SE each.
 TEST(Rng, NormalMoments) {
@@ -268,6 +315,30 @@ TEST(Rng, UnitVectorIsotropic) {
   const double se_mean = std::sqrt(1.0 / 3.0 / n), se_z2 = std::sqrt(4.0 / 45.0 / n);
   std::printf("[ Rng.UnitVector ] <x,y,z> = (%.5f, %.5f, %.5f) (SE %.5f), <z^2> = %.5f "
               "(SE %.5f, exp 0.33333)\n", sx / n, sy / n, sz / n, se_mean, sz2 / n, se_z2);
+  EXPECT_NEAR(sx / n, 0.0, 5.0 * se_mean);
+  EXPECT_NEAR(sy / n, 0.0, 5.0 * se_mean);
+  EXPECT_NEAR(sz / n, 0.0, 5.0 * se_mean);
+  EXPECT_NEAR(sz2 / n, 1.0 / 3.0, 5.0 * se_z2);
+}
+
+// unit_vector_32: the same moments as unit_vector (above); |e| = 1 to round-off.
+TEST(Rng, UnitVector32Isotropic) {
+  Xoshiro256pp gen(2719);
+  const int n = 1000000;
+  double sx = 0.0, sy = 0.0, sz = 0.0, sz2 = 0.0, worst = 0.0;
+  for (int i = 0; i < n; ++i) {
+    double x, y, z;
+    gdsmc::rng::unit_vector_32(gen, x, y, z);
+    worst = std::max(worst, std::abs(std::sqrt(x * x + y * y + z * z) - 1.0));
+    sx += x;
+    sy += y;
+    sz += z;
+    sz2 += z * z;
+  }
+  EXPECT_LT(worst, 1e-15);
+  const double se_mean = std::sqrt(1.0 / 3.0 / n), se_z2 = std::sqrt(4.0 / 45.0 / n);
+  std::printf("[ Rng.UnitVector32 ] <x,y,z> = (%.5f, %.5f, %.5f) (SE %.5f), <z^2> = %.5f (SE %.5f, exp 0.33333)\n",
+              sx / n, sy / n, sz / n, se_mean, sz2 / n, se_z2);
   EXPECT_NEAR(sx / n, 0.0, 5.0 * se_mean);
   EXPECT_NEAR(sy / n, 0.0, 5.0 * se_mean);
   EXPECT_NEAR(sz / n, 0.0, 5.0 * se_mean);

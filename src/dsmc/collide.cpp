@@ -490,6 +490,13 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
       rate_ = 0.5 * static_cast<double>(range_count_) * n * bound_;
     }
     if (rate_ <= 0.0) break;
+    if (s_ == 1 && !viscoelastic_) {  // the one-species kernel: raised bounds handled inside
+      if (sys_.tracks_displacements())
+        run_block_one_species<true>(t_stop);
+      else
+        run_block_one_species<false>(t_stop);
+      break;
+    }
     const int stop = lowrank ? run_lowrank<false>(t_stop, UINT64_MAX) : run_majorant<false>(t_stop, UINT64_MAX);
     if (stop != static_cast<int>(Stop::bound_raised)) break;
   }
@@ -501,6 +508,99 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
   out.largest_acceptance = counters_.largest_acceptance;
   out.dissipated = counters_.dissipated;
   std::copy(counters_.pair_events.begin(), counters_.pair_events.end(), out.pair_events.begin());
+}
+
+template <bool Track>
+void Collider::run_block_one_species(double t_stop) {
+  // The process of run_majorant on the block's N_b particles (header "Blocks"): candidates at
+  // R_b = N_b n B_b / 2, B_b = 2 pi sigma^2 chi vmax_b, candidate c of a sub-step at t0 + (c + 1)/R_b,
+  // a uniform pair accepted with |g| / (2 vmax_b). Only the work per candidate is less: the pair from
+  // one draw (rng::Xoshiro256pp::below_pair), the drawn-ahead pairs in locals, no species, no frame,
+  // and (g.e) e without e (hemisphere_projection), the same collision as hemisphere_normal's e gives.
+  const auto first = static_cast<std::uint32_t>(range_first_);
+  const auto n = static_cast<std::uint32_t>(range_count_);
+  particles::Vec3* v = sys_.v.data() + first;
+  const double n_density = mix_.total_density();
+  const double alpha = alpha_[0], impulse = 0.5 * (1.0 + alpha);  // mass fraction 1/2
+  const double loss = 0.25 * (1.0 - alpha * alpha) * mix_.mass[0];  // (1 - alpha^2) m_kk (g.e)^2 / 2, m_kk = m/2
+  double max_speed2 = block_speed2_[0];
+  // The drawn-ahead pairs (header "Look-ahead"): uniform, independent of the state, prefetched.
+  std::array<std::uint32_t, 2 * lookahead> ahead;
+  const auto draw = [&](std::size_t slot) {
+    std::uint32_t a, b;
+    gen_.below_pair(n, n - 1, a, b);
+    b += b >= a;
+    ahead[2 * slot] = a;
+    ahead[2 * slot + 1] = b;
+    const auto* base = reinterpret_cast<const char*>(v);
+    for (std::uint32_t i : {a, b}) {
+      __builtin_prefetch(base + i * sizeof(particles::Vec3), 1);
+      __builtin_prefetch(base + (i + 1) * sizeof(particles::Vec3) - 1, 1);
+      if constexpr (Track) __builtin_prefetch(sys_.r.data() + first + i, 1);
+    }
+  };
+  for (std::size_t slot = 0; slot < lookahead; ++slot) draw(slot);
+  std::size_t next = 0;
+  std::uint64_t events = 0, candidates = 0;
+  double dissipated = 0.0;
+  for (;;) {
+    const double vmax = std::sqrt(max_speed2), limit = 2.0 * vmax;  // |g| <= 2 vmax_b
+    bound_ = 2.0 * cross_section_[0] * vmax;
+    rate_ = 0.5 * static_cast<double>(n) * n_density * bound_;
+    const double dt_candidate = 1.0 / rate_;
+    const double available = credit_ + (t_stop - time_);
+    const auto n_candidates = static_cast<std::uint64_t>(available * rate_);
+    const double t0 = time_ - credit_;
+    bool raised = false;
+    std::uint64_t c = 0;
+    for (; c < n_candidates; ++c) {
+      const std::uint32_t a = ahead[2 * next], b = ahead[2 * next + 1];
+      draw(next);
+      next = (next + 1) % lookahead;
+      const double gx = v[a].x - v[b].x, gy = v[a].y - v[b].y, gz = v[a].z - v[b].z;
+      const double g2 = gx * gx + gy * gy + gz * gz;
+      // Accept with |g| / (2 vmax_b) = pi sigma^2 chi |g| / B_b (\ref sch_majorant "docs/schemes.md"), compared squared.
+      const double threshold = gen_.uniform() * limit;
+      if (threshold * threshold >= g2) continue;
+      if (g2 > limit * limit) [[unlikely]] note_overshoot(std::sqrt(g2) / limit);
+      double px, py, pz;
+      const double g_dot_e2 = hemisphere_projection(gen_, gx, gy, gz, std::sqrt(g2), px, py, pz);
+      if (g_dot_e2 == 0.0) continue;
+      if constexpr (Track) {
+        const double t_collision = t0 + static_cast<double>(c + 1) * dt_candidate;
+        particles::flush_free_flight(sys_, first + a, t_collision);
+        particles::flush_free_flight(sys_, first + b, t_collision);
+      }
+      particles::Vec3& va = v[a];
+      particles::Vec3& vb = v[b];
+      va = {va.x - impulse * px, va.y - impulse * py, va.z - impulse * pz};
+      vb = {vb.x + impulse * px, vb.y + impulse * py, vb.z + impulse * pz};
+      dissipated += loss * g_dot_e2;
+      ++events;
+      // "(sigma g)_max raised when exceeded" (header), for either partner: a new sub-step from here.
+      const double speed2 = std::max(va.x * va.x + va.y * va.y + va.z * va.z, vb.x * vb.x + vb.y * vb.y + vb.z * vb.z);
+      if (speed2 > max_speed2) {
+        max_speed2 = speed2;
+        raised = true;
+        ++c;
+        break;
+      }
+    }
+    candidates += c;
+    if (raised) {
+      time_ = t0 + static_cast<double>(c) * dt_candidate;
+      credit_ = 0.0;
+      continue;
+    }
+    credit_ = available - static_cast<double>(n_candidates) * dt_candidate;
+    time_ = t_stop;
+    break;
+  }
+  block_speed2_[0] = max_speed2;
+  counters_.events += events;
+  counters_.candidates += candidates;
+  counters_.dissipated += dissipated;
+  if (!counters_.pair_events.empty()) counters_.pair_events[0] += events;
 }
 
 void Collider::set_block_lowrank(double n) {

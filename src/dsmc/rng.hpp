@@ -11,7 +11,8 @@
  * conversions below are exact).
  *
  * Conversions: uniform doubles on [0, 1) and (0, 1] from the top 53 bits; integers in [0, n) by
- * the multiply-shift of Lemire (bias below n / 2^64, negligible for any particle count); normal
+ * the multiply-shift of Lemire (bias below n / 2^64, negligible for any particle count), and two at
+ * once from the halves of one draw (below_pair, exact by rejection); normal
  * deviates by the Marsaglia polar method (portable, unlike std::normal_distribution).
  * Checked by tests/rng_test.cpp.
  */
@@ -62,6 +63,21 @@ class Xoshiro256pp {
   std::uint64_t below(std::uint64_t n) {
     return static_cast<std::uint64_t>((static_cast<unsigned __int128>((*this)()) * n) >> 64);
   }
+  /// Two independent uniform integers in [0, n1) and [0, n2), 0 < n1, n2 < 2^32, from one 64-bit
+  /// draw: each half by the 32-bit multiply-shift of Lemire (2019), which is exactly uniform once the
+  /// products whose low half is below 2^32 mod n are rejected (fewer than n of the 2^32: the pair is
+  /// then drawn again, which keeps the two independent). Half the draws of two below() calls.
+  void below_pair(std::uint32_t n1, std::uint32_t n2, std::uint32_t& i1, std::uint32_t& i2) {
+    for (;;) {
+      const std::uint64_t r = (*this)();
+      const std::uint64_t m1 = (r & 0xffffffffULL) * n1, m2 = (r >> 32) * n2;
+      if (static_cast<std::uint32_t>(m1) < n1 && static_cast<std::uint32_t>(m1) < (0u - n1) % n1) continue;
+      if (static_cast<std::uint32_t>(m2) < n2 && static_cast<std::uint32_t>(m2) < (0u - n2) % n2) continue;
+      i1 = static_cast<std::uint32_t>(m1 >> 32);
+      i2 = static_cast<std::uint32_t>(m2 >> 32);
+      return;
+    }
+  }
   /// Standard normal deviate (Marsaglia polar method; the second deviate is kept).
   double normal();
 
@@ -101,6 +117,25 @@ inline void unit_vector(Gen& gen, double& x, double& y, double& z) {
   do {
     u1 = 2.0 * gen.uniform() - 1.0;
     u2 = 2.0 * gen.uniform() - 1.0;
+    s = u1 * u1 + u2 * u2;
+  } while (s >= 1.0);
+  const double scale = 2.0 * std::sqrt(1.0 - s);
+  x = u1 * scale;
+  y = u2 * scale;
+  z = 1.0 - 2.0 * s;
+}
+
+/// The same from 32-bit halves: each try of the pair (u1, u2) takes one 64-bit draw instead of two,
+/// u1 and u2 on the lattice of step 2^-31 in [-1, 1) (the directions resolved to about 1e-9 rad
+/// instead of 1e-16: far below any statistical resolution). For the collision kernels' hemisphere
+/// directions (collide.hpp, hemisphere_projection).
+template <class Gen>
+inline void unit_vector_32(Gen& gen, double& x, double& y, double& z) {
+  double u1, u2, s;
+  do {
+    const std::uint64_t r = gen();
+    u1 = static_cast<double>(static_cast<std::int32_t>(static_cast<std::uint32_t>(r))) * 0x1.0p-31;
+    u2 = static_cast<double>(static_cast<std::int32_t>(static_cast<std::uint32_t>(r >> 32))) * 0x1.0p-31;
     s = u1 * u1 + u2 * u2;
   } while (s >= 1.0);
   const double scale = 2.0 * std::sqrt(1.0 - s);
