@@ -34,18 +34,45 @@ int main(int argc, char** argv) {
     return report.exit_code();
   }
 
-  // Early times: eq 36 integrated along the measured T (trapezoid on sqrt(T)), a2 ~ 0 there.
+  // Early times: eq 36 integrated along the measured T (trapezoid on sqrt(T)). Allowance (issue 13; was
+  // 1 % with no stated source), from theory and numerics, not from this code's gap:
+  // - the collision frequency of the actual distribution is nu (1 - a2(t)/16) (first Sonine,
+  //   \ref son_one_species "docs/sonine.md"), and a2(t) grows from 0 towards its HCS value over these
+  //   first collisions, so |a2_HCS|/16 bounds the relative difference (a2_HCS from the order 4-5 Sonine
+  //   bracket, its half-width added);
+  // - the trapezoid's error, bounded with Haff's T(t) (below);
+  // and the measured T's standard error enters the prediction's, added in quadrature.
   {
-    double predicted = 0.0;
+    double predicted = 0.0, predicted_variance = 0.0;
     std::size_t i = 1;
-    for (; i < nt && collisions.value[i] < 1.0; ++i)
-      predicted += 0.5 * (collisions.time[i] - collisions.time[i - 1]) * nu0 *
-                   (std::sqrt(temperature.value[i] / temperature0) +
-                    std::sqrt(temperature.value[i - 1] / temperature0));
+    for (; i < nt && collisions.value[i] < 1.0; ++i) {
+      const double dt = collisions.time[i] - collisions.time[i - 1];
+      predicted += 0.5 * dt * nu0 *
+                   (std::sqrt(temperature.value[i] / temperature0) + std::sqrt(temperature.value[i - 1] / temperature0));
+      // d sqrt(T/T0) = dT / (2 sqrt(T T0)); each sample's error counted once per adjacent interval (upper bound)
+      const double e = 0.5 * dt * nu0 * temperature.error[i] / (2.0 * std::sqrt(temperature.value[i] * temperature0));
+      predicted_variance += 4.0 * e * e;
+    }
     if (i < nt && i > 1) {
       --i;
-      report.check("C over the first collision vs eq 36", collisions.value[i], collisions.error[i],
-                   predicted, 4.0, 0.01 * predicted);
+      // The trapezoid's error on each interval is dt^3 |f''|/12, f = sqrt(T/T0) = 1/(1 + t/t0) in Haff's
+      // cooling (\ref haff_law "docs/haff-and-mixtures.md"), |f''| <= 2/t0^2; t0 from the measured T at
+      // the last sample used, t0 = t/(sqrt(T0/T) - 1).
+      const double t_i = collisions.time[i];
+      const double t0 = t_i / (std::sqrt(temperature0 / temperature.value[i]) - 1.0);
+      double quadrature = 0.0;
+      for (std::size_t j = 1; j <= i; ++j) {
+        const double dt = collisions.time[j] - collisions.time[j - 1];
+        quadrature += nu0 * dt * dt * dt / 12.0 * 2.0 / (t0 * t0);
+      }
+      const auto bracket = theory::sonine_cumulant_bracket(alpha);
+      const double non_maxwellian = (0.5 * std::abs(bracket.value) + 0.5 * bracket.half_width) / 16.0;  // c = 2 a2
+      char name[240];
+      std::snprintf(name, sizeof name,
+                    "C over the first collision vs eq 36 (allowance: |a2_HCS|/16 = %.3f %% + quadrature %.3f %%)",
+                    100.0 * non_maxwellian, 100.0 * quadrature / predicted);
+      report.check(name, collisions.value[i], std::hypot(collisions.error[i], std::sqrt(predicted_variance)),
+                   predicted, 4.0, non_maxwellian * predicted + quadrature);
     }
   }
 
