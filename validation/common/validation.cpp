@@ -200,6 +200,7 @@ IndependentHcs independent_hcs_reference(const species::Mixture& mix) {
     double alpha;
     std::uint64_t seed;
     std::vector<std::array<double, 4>> values;
+    std::vector<double> enskog_density = {};  ///< the Enskog gas at these densities (empty: dilute)
   };
   static const std::vector<Entry> table = {
       {{2.0, 1.0}, {1.0, 1.0}, {1.0, 1.0}, 0.3, 11,
@@ -222,15 +223,50 @@ IndependentHcs independent_hcs_reference(const species::Mixture& mix) {
         {{1.336512, 0.000260, 0.021660, 0.000291}}}},
       {{10.0, 1.0}, {1.0, 1.0}, {2.0, 1.0}, 0.5, 14,
        {{{1.325498, 0.000031, 0.099764, 0.000292}}, {{0.349023, 0.000062, 0.011453, 0.000261}}}},
+      // Enskog (validation/temperature_ratio_density): --enskog-density, 30000 x 8 replicas, warmup 200, 600 samples
+      {{2.0, 1.0}, {2.0, 1.0}, {0.0098765, 0.019753}, 0.6, 41,
+       {{{0.953658, 0.000150, 0.029970, 0.000242}}, {{1.023171, 0.000075, 0.069530, 0.000260}}},
+       {0.0098765, 0.019753}},
+      {{2.0, 1.0}, {2.0, 1.0}, {0.019753, 0.039506}, 0.6, 42,
+       {{{0.947383, 0.000153, 0.028404, 0.000260}}, {{1.026308, 0.000077, 0.070739, 0.000387}}},
+       {0.019753, 0.039506}},
+      {{2.0, 1.0}, {2.0, 1.0}, {0.029630, 0.059259}, 0.6, 43,
+       {{{0.941082, 0.000185, 0.029132, 0.000313}}, {{1.029459, 0.000092, 0.074658, 0.000344}}},
+       {0.029630, 0.059259}},
+      {{2.0, 1.0}, {2.0, 1.0}, {0.039506, 0.079012}, 0.6, 44,
+       {{{0.934207, 0.000224, 0.028884, 0.000637}}, {{1.032896, 0.000112, 0.077107, 0.000464}}},
+       {0.039506, 0.079012}},
+      {{2.0, 1.0}, {2.0, 1.0}, {0.049383, 0.098765}, 0.6, 45,
+       {{{0.927161, 0.000183, 0.029124, 0.000382}}, {{1.036420, 0.000091, 0.080245, 0.000395}}},
+       {0.049383, 0.098765}},
+      {{2.0, 1.0}, {2.0, 1.0}, {0.0098765, 0.019753}, 0.8, 41,
+       {{{0.971527, 0.000086, -0.022214, 0.000392}}, {{1.014236, 0.000043, -0.035627, 0.000357}}},
+       {0.0098765, 0.019753}},
+      {{2.0, 1.0}, {2.0, 1.0}, {0.019753, 0.039506}, 0.8, 42,
+       {{{0.967776, 0.000142, -0.022576, 0.000382}}, {{1.016112, 0.000071, -0.035120, 0.000283}}},
+       {0.019753, 0.039506}},
+      {{2.0, 1.0}, {2.0, 1.0}, {0.029630, 0.059259}, 0.8, 43,
+       {{{0.964474, 0.000193, -0.023028, 0.000362}}, {{1.017763, 0.000096, -0.034902, 0.000369}}},
+       {0.029630, 0.059259}},
+      {{2.0, 1.0}, {2.0, 1.0}, {0.039506, 0.079012}, 0.8, 44,
+       {{{0.961099, 0.000148, -0.022229, 0.000425}}, {{1.019450, 0.000074, -0.034505, 0.000209}}},
+       {0.039506, 0.079012}},
+      {{2.0, 1.0}, {2.0, 1.0}, {0.049383, 0.098765}, 0.8, 45,
+       {{{0.957474, 0.000217, -0.022407, 0.000193}}, {{1.021263, 0.000109, -0.033154, 0.000317}}},
+       {0.049383, 0.098765}},
   };
   const std::size_t s = mix.size();
-  if (mix.enskog || s == 0) return {};
+  if (s == 0) return {};
   const double alpha = mix.restitution(0, 0);
   for (std::size_t i = 0; i < s; ++i)
     for (std::size_t j = 0; j < s; ++j)
       if (!close(mix.restitution(i, j), alpha)) return {};
   for (const Entry& e : table) {
-    if (e.mass.size() != s || !close(alpha, e.alpha)) continue;
+    if (e.mass.size() != s || !close(alpha, e.alpha) || mix.enskog != !e.enskog_density.empty()) continue;
+    bool same_density = true;
+    for (std::size_t k = 0; k < e.enskog_density.size(); ++k)
+      same_density = same_density && std::abs(mix.number_density[k] - e.enskog_density[k]) <= 1e-6 * e.enskog_density[k];
+    if (!same_density) continue;
     double fraction_sum = 0.0;
     for (double x : e.fraction) fraction_sum += x;
     bool same = true;
@@ -248,10 +284,10 @@ IndependentHcs independent_hcs_reference(const species::Mixture& mix) {
       r.cumulant_error.push_back(v[3]);
     }
     char text[200];
-    std::snprintf(text, sizeof text,
-                  "validation/independent_reference: hcs_reference (alpha = %g, 50000 particles x 8 replicas, "
-                  "1000 samples, seed %llu)",
-                  e.alpha, static_cast<unsigned long long>(e.seed));
+    std::snprintf(text, sizeof text, "validation/independent_reference: hcs_reference (alpha = %g%s, seed %llu)",
+                  e.alpha, e.enskog_density.empty() ? ", 50000 particles x 8 replicas x 1000 samples"
+                                                    : ", Enskog, 30000 particles x 8 replicas x 600 samples",
+                  static_cast<unsigned long long>(e.seed));
     r.source = text;
     return r;
   }

@@ -99,7 +99,7 @@ ExactValue exact_cumulant_one_species(double alpha);
 /// T_k/T and c_k of the HCS of a dilute mixture from the independent program of
 /// validation/independent_reference (a second method that shares no code with src/; README.md there),
 /// when the table holds the mixture (matched by mass, diameter and number-fraction ratios and one
-/// common restitution).
+/// common restitution; for the Enskog gas also by the number densities).
 struct IndependentHcs {
   bool known = false;                ///< the table holds the mixture
   std::vector<double> ratio;         ///< T_k/T, T = sum_k x_k T_k

@@ -26,6 +26,8 @@
 //                      [--particles N] [--replicas R] [--seed s]
 // the time-resolved mode: T_k(t) from T_k(0) = 1 on the DSMC's log grid of `count` samples (t = 0 and
 // first..last), one line "temperature t T_1 se T_2 se ..." per time.
+// --enskog-density n1,...: the homogeneous Enskog gas at these number densities (every pair rate times
+// its contact value chi_ij, contact_values below; the fractions follow from the densities).
 // --bins, --range: also Phi_1(v*) of species 1 on B bins of [0, R) (Montanero and Garzo 2002, eq. (22)),
 // one line "phi b low high value se" per bin.
 // --expect-*: compare gamma = T_1/T_2 (or c_1) with a published value at 4 combined SE, print PASS or
@@ -86,6 +88,29 @@ std::vector<double> numbers(const char* text) {
   return out;
 }
 
+/// Contact values of the pair correlation for hard-sphere mixtures (Boublik; Mansoori, Carnahan,
+/// Starling and Leland): chi_ij = 1/(1 - x3) + 3 x2 d_ij/(1 - x3)^2 + 2 x2^2 d_ij^2/(1 - x3)^3 with
+/// x_l = (pi/6) sum_k n_k sigma_k^l and d_ij = sigma_i sigma_j/(sigma_i + sigma_j); all 1 when `density`
+/// is empty (the dilute gas). Written out here, not taken from src/dsmc/species.cpp.
+std::vector<double> contact_values(const std::vector<double>& diameter, const std::vector<double>& density) {
+  const std::size_t s = diameter.size();
+  std::vector<double> chi(s * s, 1.0);
+  if (density.empty()) return chi;
+  const double pi = 3.14159265358979323846;
+  double x2 = 0.0, x3 = 0.0;
+  for (std::size_t k = 0; k < s; ++k) {
+    x2 += pi / 6.0 * density[k] * diameter[k] * diameter[k];
+    x3 += pi / 6.0 * density[k] * diameter[k] * diameter[k] * diameter[k];
+  }
+  for (std::size_t i = 0; i < s; ++i)
+    for (std::size_t j = 0; j < s; ++j) {
+      const double d = diameter[i] * diameter[j] / (diameter[i] + diameter[j]);
+      chi[i * s + j] = 1.0 / (1.0 - x3) + 3.0 * x2 * d / ((1.0 - x3) * (1.0 - x3)) +
+                       2.0 * x2 * x2 * d * d / ((1.0 - x3) * (1.0 - x3) * (1.0 - x3));
+    }
+  return chi;
+}
+
 struct Result {
   std::vector<double> ratio, cumulant;  // T_k/T, c_k (replica means)
   std::vector<double> phi;              // Phi_1(v*) per bin (replica mean), when asked for
@@ -93,7 +118,7 @@ struct Result {
 
 Result run(const std::vector<double>& mass, const std::vector<double>& diameter, const std::vector<double>& fraction,
            double alpha, std::size_t n, double warmup, double samples, std::uint64_t seed, std::size_t bins,
-           double range) {
+           double range, const std::vector<double>& enskog_density) {
   const std::size_t s = mass.size();
   Random rng(seed);
   std::vector<std::size_t> kind(n);
@@ -113,15 +138,18 @@ Result run(const std::vector<double>& mass, const std::vector<double>& diameter,
     vy[i] = sd * rng.normal();
     vz[i] = sd * rng.normal();
   }
-  double sigma_max = 0.0;
-  for (double d : diameter) sigma_max = std::max(sigma_max, d);
+  // The pair weights sigma_ij^2 chi_ij (chi = 1 for the dilute gas), divided by their largest value.
+  const auto chi = contact_values(diameter, enskog_density);
   std::vector<double> sigma2(s * s), fraction_to(s * s);
+  double weight_max = 0.0;
   for (std::size_t a = 0; a < s; ++a)
     for (std::size_t b = 0; b < s; ++b) {
       const double sab = 0.5 * (diameter[a] + diameter[b]);
-      sigma2[a * s + b] = sab * sab / (sigma_max * sigma_max);
+      sigma2[a * s + b] = sab * sab * chi[a * s + b];
+      weight_max = std::max(weight_max, sigma2[a * s + b]);
       fraction_to[a * s + b] = mass[b] / (mass[a] + mass[b]) * (1.0 + alpha);  // of a's change
     }
+  for (double& w : sigma2) w /= weight_max;
   auto rescale = [&]() -> double {  // T back to 1; returns the new v_max
     // The total momentum is conserved only up to round-off, and every rescaling would amplify that
     // round-off (by about 1e23 over 400 collisions per particle at alpha = 0.5): it is removed first.
@@ -413,7 +441,7 @@ int main(int argc, char** argv) {
   std::vector<double> expect_gamma, expect_c1;
   std::size_t bins = 0;
   double range = 4.0;
-  std::vector<double> density, log_times;
+  std::vector<double> density, log_times, enskog_density;
   for (int i = 1; i + 1 < argc; i += 2) {
     const char* key = argv[i];
     const char* value = argv[i + 1];
@@ -431,6 +459,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(key, "--bins")) bins = std::strtoull(value, nullptr, 10);
     else if (!std::strcmp(key, "--density")) density = numbers(value);
     else if (!std::strcmp(key, "--log-times")) log_times = numbers(value);
+    else if (!std::strcmp(key, "--enskog-density")) enskog_density = numbers(value);
     else if (!std::strcmp(key, "--range")) range = std::atof(value);
     else {
       std::fprintf(stderr, "hcs_reference: unknown option %s\n", key);
@@ -468,6 +497,11 @@ int main(int argc, char** argv) {
     }
     return 0;
   }
+  if (!enskog_density.empty() && fraction.empty()) fraction = enskog_density;
+  if (!enskog_density.empty() && enskog_density.size() != s) {
+    std::fprintf(stderr, "hcs_reference: --enskog-density needs one density per species\n");
+    return 2;
+  }
   if (s == 0 || diameter.size() != s || fraction.size() != s || !(alpha >= 0.0 && alpha <= 1.0) || n < 100 ||
       replicas < 2 || !(samples >= 1.0) || !(warmup >= 0.0)) {
     std::fprintf(stderr,
@@ -477,7 +511,8 @@ int main(int argc, char** argv) {
   }
   std::vector<Result> all;
   for (std::size_t r = 0; r < replicas; ++r)
-    all.push_back(run(mass, diameter, fraction, alpha, n, warmup, samples, seed * 1000003ULL + r, bins, range));
+    all.push_back(
+        run(mass, diameter, fraction, alpha, n, warmup, samples, seed * 1000003ULL + r, bins, range, enskog_density));
   std::printf("# hcs_reference: %zu replicas x %zu particles, warmup %g, %g samples (one per collision per particle)\n",
               replicas, n, warmup, samples);
   std::printf("# species  T_k/T  se  c_k  se\n");
