@@ -25,7 +25,8 @@
 //        hcs_reference --mass ... --diameter ... --density n1,... --alpha a --log-times first,last,count
 //                      [--particles N] [--replicas R] [--seed s]
 // the time-resolved mode: T_k(t) from T_k(0) = 1 on the DSMC's log grid of `count` samples (t = 0 and
-// first..last), one line "temperature t T_1 se T_2 se ..." per time.
+// first..last), one line "temperature t T_1 se T_2 se ..." per time; with --msd 1 also the mean squared
+// displacement of each species, "msd t <R_1^2> se ...".
 // --enskog-density n1,...: the homogeneous Enskog gas at these number densities (every pair rate times
 // its contact value chi_ij, contact_values below; the fractions follow from the densities).
 // --bins, --range: also Phi_1(v*) of species 1 on B bins of [0, R) (Montanero and Garzo 2002, eq. (22)),
@@ -288,7 +289,8 @@ Result run(const std::vector<double>& mass, const std::vector<double>& diameter,
 /// T = 1 is undone by the scale S it accumulates (real v = stored v / S), which also enters the rate.
 std::vector<std::vector<double>> run_in_time(const std::vector<double>& mass, const std::vector<double>& diameter,
                                              const std::vector<double>& density, double alpha, std::size_t n,
-                                             const std::vector<double>& times, std::uint64_t seed) {
+                                             const std::vector<double>& times, std::uint64_t seed,
+                                             std::vector<std::vector<double>>* msd = nullptr) {
   const std::size_t s = mass.size();
   Random rng(seed);
   double n_total = 0.0;
@@ -355,6 +357,34 @@ std::vector<std::vector<double>> run_in_time(const std::vector<double>& mass, co
     for (std::size_t k = 0; k < s; ++k) t[k] = mass[k] * v2[k] / (3.0 * count[k]) / (scale * scale);
     return t;
   };
+  // Displacements (with `msd`): r += v_real (t - t_last) at each collision of the particle and, without
+  // changing the state, up to each sample time; the MSD of species k is the mean of |r|^2 over its
+  // particles (Bodrova and Osinsky 2024, eq. (15)).
+  std::vector<double> rx, ry, rz, t_last;
+  if (msd) {
+    rx.assign(n, 0.0);
+    ry.assign(n, 0.0);
+    rz.assign(n, 0.0);
+    t_last.assign(n, 0.0);
+  }
+  auto flush = [&](std::size_t i, double at) {
+    const double dt = (at - t_last[i]) / scale;  // stored v / scale is the real velocity
+    rx[i] += vx[i] * dt;
+    ry[i] += vy[i] * dt;
+    rz[i] += vz[i] * dt;
+    t_last[i] = at;
+  };
+  auto mean_squared = [&](double at) {
+    std::vector<double> sum(s, 0.0), count(s, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double dt = (at - t_last[i]) / scale;
+      const double x = rx[i] + vx[i] * dt, y = ry[i] + vy[i] * dt, z = rz[i] + vz[i] * dt;
+      sum[kind[i]] += x * x + y * y + z * z;
+      count[kind[i]] += 1.0;
+    }
+    for (std::size_t k = 0; k < s; ++k) sum[k] /= count[k];
+    return sum;
+  };
   std::vector<std::vector<double>> out;
   const double pi = 3.14159265358979323846;
   const double rate_factor = static_cast<double>(n - 1) * n_total * pi * sigma_max * sigma_max;
@@ -384,6 +414,7 @@ std::vector<std::vector<double>> run_in_time(const std::vector<double>& mass, co
     const double dt = -std::log(1.0 - rng.uniform()) * scale / (rate_factor * vmax);
     while (next < times.size() && times[next] <= t + dt) {
       out.push_back(temperatures());
+      if (msd) msd->push_back(mean_squared(times[next]));
       ++next;
     }
     if (next == times.size()) break;
@@ -418,6 +449,10 @@ std::vector<std::vector<double>> run_in_time(const std::vector<double>& mass, co
     const double ez = ct * hz + st * (std::cos(phi) * pz + std::sin(phi) * qz);
     const double ge = g * ct;
     const double di = fraction_to[a * s + b] * ge, dj = fraction_to[b * s + a] * ge;
+    if (msd) {
+      flush(i, t);
+      flush(j, t);
+    }
     vx[i] -= di * ex;
     vy[i] -= di * ey;
     vz[i] -= di * ez;
@@ -426,7 +461,11 @@ std::vector<std::vector<double>> run_in_time(const std::vector<double>& mass, co
     vz[j] += dj * ez;
     vmax = std::max({vmax, std::sqrt(vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i]),
                      std::sqrt(vx[j] * vx[j] + vy[j] * vy[j] + vz[j] * vz[j])});
-    if (++events % n == 0) vmax = rescale();
+    if (++events % n == 0) {
+      if (msd)  // the rescaling keeps v_real, but its momentum removal changes v: flights end here
+        for (std::size_t p = 0; p < n; ++p) flush(p, t);
+      vmax = rescale();
+    }
   }
   return out;
 }
@@ -442,6 +481,7 @@ int main(int argc, char** argv) {
   std::size_t bins = 0;
   double range = 4.0;
   std::vector<double> density, log_times, enskog_density;
+  bool want_msd = false;
   for (int i = 1; i + 1 < argc; i += 2) {
     const char* key = argv[i];
     const char* value = argv[i + 1];
@@ -460,6 +500,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(key, "--density")) density = numbers(value);
     else if (!std::strcmp(key, "--log-times")) log_times = numbers(value);
     else if (!std::strcmp(key, "--enskog-density")) enskog_density = numbers(value);
+    else if (!std::strcmp(key, "--msd")) want_msd = std::atoi(value) != 0;
     else if (!std::strcmp(key, "--range")) range = std::atof(value);
     else {
       std::fprintf(stderr, "hcs_reference: unknown option %s\n", key);
@@ -479,9 +520,10 @@ int main(int argc, char** argv) {
     std::vector<double> times{0.0};
     for (std::size_t i = 0; i + 1 < count; ++i)
       times.push_back(log_times[0] * std::pow(log_times[1] / log_times[0], static_cast<double>(i) / (count - 2.0)));
-    std::vector<std::vector<std::vector<double>>> all;
+    std::vector<std::vector<std::vector<double>>> all, all_msd(replicas);
     for (std::size_t r = 0; r < replicas; ++r)
-      all.push_back(run_in_time(mass, diameter, density, alpha, n, times, seed * 1000003ULL + r));
+      all.push_back(run_in_time(mass, diameter, density, alpha, n, times, seed * 1000003ULL + r,
+                                want_msd ? &all_msd[r] : nullptr));
     std::printf("# hcs_reference (time-resolved): %zu replicas x %zu particles, T_k(0) = 1\n", replicas, n);
     std::printf("# temperature  t  T_1 se  T_2 se ...\n");
     const double rep = static_cast<double>(replicas);
@@ -494,6 +536,19 @@ int main(int argc, char** argv) {
         std::printf(" %.9e %.3e", mean, std::sqrt(var / (rep - 1.0) / rep));
       }
       std::printf("\n");
+    }
+    if (want_msd) {
+      std::printf("# msd  t  <R_1^2> se  <R_2^2> se ...\n");
+      for (std::size_t i = 0; i < times.size(); ++i) {
+        std::printf("msd %.9g", times[i]);
+        for (std::size_t k = 0; k < s; ++k) {
+          double mean = 0.0, var = 0.0;
+          for (const auto& a : all_msd) mean += a[i][k] / rep;
+          for (const auto& a : all_msd) var += (a[i][k] - mean) * (a[i][k] - mean);
+          std::printf(" %.9e %.3e", mean, std::sqrt(var / (rep - 1.0) / rep));
+        }
+        std::printf("\n");
+      }
     }
     return 0;
   }
