@@ -557,14 +557,11 @@ TEST(Collide, DealInPlaceIsTheDealing) {
       EXPECT_TRUE(sys.v == v) << "N = " << sys.size() << ", K = " << blocks << ", remix " << remix;
       EXPECT_TRUE(sys.r == r) << "N = " << sys.size() << ", K = " << blocks << ", remix " << remix;
     }
-    // The elements aside (fewer than seg K + K), a tile of seg K a thread and up to 2 saved tiles a
-    // thread on several threads, 2 N/seg bytes of cycles (deal.hpp); on one thread, as the collider
-    // here, a fraction of the N elements of the second array it replaced.
-    const std::size_t bound =
-        (2 + 3 * 3) * deal::segment_rows * blocks * sizeof(particles::Displacement) + sys.size() / 4 + 256;
-    EXPECT_LE(workspace.bytes(), bound);
-    EXPECT_LE(collider.workspace_bytes(), bound);
-    EXPECT_LT(collider.workspace_bytes(), sys.size() * sizeof(particles::Displacement) * 3 / 5);
+    // The elements aside (fewer than seg K + K) and at most 9 tiles of seg K a thread, seg <= N_k/(128 K),
+    // and 2 bits a grid place (deal.hpp): on 3 threads below a quarter of the second array it replaced,
+    // on one thread (the collider here) below an eighth.
+    EXPECT_LE(workspace.bytes(), sys.size() * sizeof(particles::Displacement) / 4 + 256);
+    EXPECT_LE(collider.workspace_bytes(), sys.size() * sizeof(particles::Displacement) / 8 + 256);
   }
   // Edge cases of the permutation itself: n < k, k = 1, k = n, segments of one row.
   deal::Workspace workspace;

@@ -76,11 +76,12 @@
  * every step end (and at every time target). Between steps the particles are dealt round the blocks
  * like cards from a random starting point (`remix`): each new block takes every K-th particle of
  * every old one, so the blocks never keep their members and no correlation builds up within one.
- * The dealing is done in place (deal.hpp, issue 11): a rotation by the starting point, then the
- * transposition of the rows of K particles into the K blocks, tile by tile and then in runs of 64
- * particles, with scratch memory of a few tiles (below 0.5 bytes a particle for blocks of 32768)
- * instead of a second copy of the velocities (24 bytes a particle) and displacements (32). It moves
- * the same bytes to the same places as dealing into a second array, so every output is unchanged.
+ * The dealing is done in place (deal.hpp, issue 11): the rows of K particles, read from the starting
+ * point, are transposed into the K blocks, tile by tile through a buffer onto a grid of runs of 64
+ * particles, and the runs are then permuted along the cycles of the transposition, with scratch memory
+ * of a few tiles (below 0.7 bytes a particle for blocks of 32768) instead of a second copy of the
+ * velocities (24 bytes a particle) and displacements (32). It moves the same bytes to the same places
+ * as dealing into a second array, so every output is unchanged.
  * What changes against the unblocked gas is the number of possible partners between remixes,
  * N_b - 1 instead of N - 1, a finite-N effect of order 1/N_b (block_size 32768 by default); the
  * validation cases `*_blocks_quick` (haff_cooling, collision_rate) compare blocked runs with the
