@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "dsmc/deal.hpp"
 #include "dsmc/particles.hpp"
 #include "dsmc/rng.hpp"
 #include "dsmc/species.hpp"
@@ -531,6 +532,81 @@ TEST(Collide, BlocksRestoreAndStopAtStepEnds) {
   const auto after = totals();
   EXPECT_NEAR(after[0], before[0], 1e-10 * before[0]);
   for (int k = 1; k < 4; ++k) EXPECT_NEAR(after[k], before[k], 1e-9);
+}
+
+// The remix in place (deal.hpp) is the dealing into a second array that it replaced, bit for bit: for
+// one species and a binary mixture (each species dealt round its own slices), velocities and tracked
+// displacements, with K = Collider::blocks() not dividing N (nor N_k), on 1, 2 and 3 threads, compared
+// with that dealing written out here (old index (offset + i) mod N_k to slice i mod K, slot i div K); and the remix's
+// scratch memory stays within its bound, below the second array it replaced.
+TEST(Collide, DealInPlaceIsTheDealing) {
+  const auto mix1 = one_species(0.9);
+  const auto mix2 = binary(0.9, 0.8, 0.7);
+  struct Case {
+    const species::Mixture* mix;
+    std::vector<std::size_t> counts;
+    std::size_t block_size;
+  };
+  for (const Case& c : {Case{&mix1, {10007}, 1000}, Case{&mix1, {4099}, 130}, Case{&mix2, {7001, 2999}, 1000},
+                        Case{&mix2, {5003, 1301}, 150}}) {
+    auto sys = initial(*c.mix, c.counts, std::vector<double>(c.counts.size(), 1.0), 11);
+    particles::start_tracking(sys, 0.0);
+    for (std::size_t i = 0; i < sys.size(); ++i) sys.r[i] = {0.5 * i, -1.0 * i, 2.0 * i, 0.25 * i};
+    Collider collider(Scheme::majorant, *c.mix, sys, rng::make_stream(11, 0, rng::Purpose::collisions), 1.0);
+    collider.use_blocks(c.block_size);
+    const std::size_t blocks = collider.blocks(), s = c.counts.size();
+    ASSERT_GT(blocks, 2u);
+    bool divides = true;
+    for (std::size_t n_k : c.counts) divides = divides && n_k % blocks == 0;
+    EXPECT_FALSE(divides) << "K = " << blocks;
+    // The slices of use_blocks(): ceil((N_k - j)/K) particles of species k in block j.
+    std::vector<std::size_t> slice_first(blocks * s);
+    for (std::size_t k = 0; k < s; ++k)
+      for (std::size_t j = 0, first = sys.first[k]; j < blocks; ++j) {
+        slice_first[j * s + k] = first;
+        first += (c.counts[k] - j + blocks - 1) / blocks;
+      }
+    auto rgen = rng::make_stream(12, 0, rng::Purpose::collisions);
+    deal::Workspace workspace;
+    for (int remix = 0; remix < 3; ++remix) {
+      std::vector<std::size_t> offset(s);
+      for (std::size_t k = 0; k < s; ++k) offset[k] = rgen.below(c.counts[k]);
+      auto dealt = [&](const auto& data) {  // the out-of-place dealing of each species round its slices
+        auto out = data;
+        for (std::size_t k = 0; k < s; ++k)
+          for (std::size_t i = 0; i < c.counts[k]; ++i)
+            out[slice_first[(i % blocks) * s + k] + i / blocks] =
+                data[sys.first[k] + (offset[k] + i) % c.counts[k]];
+        return out;
+      };
+      const auto v = dealt(sys.v);
+      const auto r = dealt(sys.r);
+      for (std::size_t k = 0; k < s; ++k) {  // on 1, 2 and 3 threads
+        deal::deal_in_place(sys.v.data() + sys.first[k], c.counts[k], blocks, offset[k], workspace, 1 + remix);
+        deal::deal_in_place(sys.r.data() + sys.first[k], c.counts[k], blocks, offset[k], workspace, 1 + remix);
+      }
+      EXPECT_TRUE(sys.v == v) << "N = " << sys.size() << ", K = " << blocks << ", remix " << remix;
+      EXPECT_TRUE(sys.r == r) << "N = " << sys.size() << ", K = " << blocks << ", remix " << remix;
+    }
+    // The elements aside (fewer than seg K + K) and at most 9 tiles of seg K a thread, seg <= N_k/(128 K),
+    // and 2 bits a grid place (deal.hpp): on 3 threads below a quarter of the second array it replaced,
+    // on one thread (the collider here) below an eighth.
+    EXPECT_LE(workspace.bytes(), sys.size() * sizeof(particles::Displacement) / 4 + 256);
+    EXPECT_LE(collider.workspace_bytes(), sys.size() * sizeof(particles::Displacement) / 8 + 256);
+  }
+  // Edge cases of the permutation itself: n < k, k = 1, k = n, segments of one row.
+  deal::Workspace workspace;
+  for (std::size_t n : {1u, 2u, 5u, 33u, 64u, 65u, 1000u})
+    for (std::size_t k : {1u, 2u, 3u, 31u, 64u, 200u})
+      for (std::size_t offset : {std::size_t{0}, n / 3, n - 1}) {
+        std::vector<double> data(n), out(n);
+        for (std::size_t i = 0; i < n; ++i) data[i] = static_cast<double>(i);
+        const std::size_t q = n / k, r = n % k;
+        for (std::size_t i = 0; i < n; ++i)
+          out[(i % k) * q + std::min(i % k, r) + i / k] = data[(offset + i) % n];
+        deal::deal_in_place(data.data(), n, k, offset, workspace, static_cast<int>(1 + n % 3));
+        EXPECT_EQ(data, out) << "n = " << n << ", k = " << k << ", offset = " << offset;
+      }
 }
 
 // Threads inside one replica (collide.hpp): the blocks of a step on 1, 2 or 3 threads give the same

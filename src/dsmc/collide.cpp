@@ -252,56 +252,34 @@ void Collider::use_blocks(std::size_t block_size) {
   for (std::size_t j = 0; j < blocks; ++j) block_first_[j + 1] = block_first_[j] + slice_cum_[j * (s_ + 1) + s_];
   block_max_speed2_.assign(blocks * s_, 0.0);
   block_credit_.assign(blocks, 0.0);
-  spare_v_.resize(n);
+  // The remix's scratch memory (deal.hpp), for the largest species and the largest particle array.
+  remix_workspace_ = {};
+  const std::size_t element = sys_.tracks_displacements() ? sizeof(particles::Displacement) : sizeof(particles::Vec3);
+  for (std::size_t k = 0; k < s_; ++k) remix_workspace_.reserve(sys_.count[k], blocks, element, threads_);
 }
 
 void Collider::remix() {
   // Deal the particles, from a random starting point, round the blocks like cards: old index
   // (offset + i) mod N goes to block i mod K, slot i div K. Each new block takes every K-th particle
   // of every old block, so no two particles stay together unless K divides their distance (header).
+  // In place (deal.hpp: the same permutation as dealing into a second array, for any thread count).
   const std::size_t n = sys_.size(), blocks = block_first_.size() - 1;
   if (s_ == 1) {
     const std::size_t offset = gen_.below(n);
-    // A fixed permutation: split over the threads (header "Threads"), the same for any number.
-    auto deal = [&](auto& data, auto& spare) {
-      const auto count = static_cast<std::ptrdiff_t>(n);
-#pragma omp parallel for num_threads(threads_) schedule(static) if (threads_ > 1)
-      for (std::ptrdiff_t c = 0; c < count; ++c) {
-        const auto i = static_cast<std::size_t>(c);
-        const std::size_t from = offset + i < n ? offset + i : offset + i - n;
-        spare[block_first_[i % blocks] + i / blocks] = data[from];
-      }
-      data.swap(spare);
-    };
-    deal(sys_.v, spare_v_);
-    if (sys_.tracks_displacements()) {
-      spare_r_.resize(n);
-      deal(sys_.r, spare_r_);
-    }
+    deal::deal_in_place(sys_.v.data(), n, blocks, offset, remix_workspace_, threads_);
+    if (sys_.tracks_displacements()) deal::deal_in_place(sys_.r.data(), n, blocks, offset, remix_workspace_, threads_);
     return;  // one species: the species array is all zeros and does not move
   }
   // A mixture: each species is dealt round its own slices, within its own range, so the species
-  // array never changes and every block keeps its share of every species.
+  // array never changes and every block keeps its share of every species (slice j of species k
+  // starts at first_k + j q_k + min(j, r_k), q_k = N_k div K, r_k = N_k mod K: deal.hpp's blocks).
   std::vector<std::size_t> offset(s_);
   for (std::size_t k = 0; k < s_; ++k) offset[k] = gen_.below(sys_.count[k]);
-  auto deal = [&](auto& data, auto& spare) {
-    for (std::size_t k = 0; k < s_; ++k) {
-      const std::size_t first = sys_.first[k], count = sys_.count[k], start = offset[k];
-      const auto n_k = static_cast<std::ptrdiff_t>(count);
-#pragma omp parallel for num_threads(threads_) schedule(static) if (threads_ > 1)
-      for (std::ptrdiff_t c = 0; c < n_k; ++c) {
-        const auto i = static_cast<std::size_t>(c);
-        const std::size_t from = start + i < count ? start + i : start + i - count;
-        spare[slice_first_[(i % blocks) * s_ + k] + i / blocks] = data[first + from];
-      }
-    }
-    data.swap(spare);
-  };
-  deal(sys_.v, spare_v_);
-  if (sys_.tracks_displacements()) {
-    spare_r_.resize(n);
-    deal(sys_.r, spare_r_);
-  }
+  for (std::size_t k = 0; k < s_; ++k)
+    deal::deal_in_place(sys_.v.data() + sys_.first[k], sys_.count[k], blocks, offset[k], remix_workspace_, threads_);
+  if (sys_.tracks_displacements())
+    for (std::size_t k = 0; k < s_; ++k)
+      deal::deal_in_place(sys_.r.data() + sys_.first[k], sys_.count[k], blocks, offset[k], remix_workspace_, threads_);
 }
 
 void Collider::set_block_max_speed2(std::size_t j, double* out) {
@@ -445,18 +423,15 @@ void Collider::use_threads(int threads) {
 }
 
 void Collider::make_workers() {
-  // A worker is a copy of this collider's tables and blocks, without the remix buffers (which only
-  // the master uses) and without workers of its own (workers_ is empty while the copies are made).
+  // A worker is a copy of this collider's tables and blocks, without the remix's scratch memory (which
+  // only the master uses) and without workers of its own (workers_ is empty while the copies are made).
   workers_.clear();
-  auto spare_v = std::move(spare_v_);
-  auto spare_r = std::move(spare_r_);
-  spare_v_ = {};
-  spare_r_ = {};
+  auto remix_workspace = std::move(remix_workspace_);
+  remix_workspace_ = {};
   std::vector<Collider> made;
   made.reserve(static_cast<std::size_t>(threads_));
   for (int t = 0; t < threads_; ++t) made.push_back(*this);
-  spare_v_ = std::move(spare_v);
-  spare_r_ = std::move(spare_r);
+  remix_workspace_ = std::move(remix_workspace);
   workers_ = std::move(made);
   block_counters_.assign(block_first_.size() - 1, counters_);
 }

@@ -76,6 +76,12 @@
  * every step end (and at every time target). Between steps the particles are dealt round the blocks
  * like cards from a random starting point (`remix`): each new block takes every K-th particle of
  * every old one, so the blocks never keep their members and no correlation builds up within one.
+ * The dealing is done in place (deal.hpp, issue 11): the rows of K particles, read from the starting
+ * point, are transposed into the K blocks, tile by tile through a buffer onto a grid of runs of 64
+ * particles, and the runs are then permuted along the cycles of the transposition, with scratch memory
+ * of a few tiles (below 0.7 bytes a particle for blocks of 32768) instead of a second copy of the
+ * velocities (24 bytes a particle) and displacements (32). It moves the same bytes to the same places
+ * as dealing into a second array, so every output is unchanged.
  * What changes against the unblocked gas is the number of possible partners between remixes,
  * N_b - 1 instead of N - 1, a finite-N effect of order 1/N_b (block_size 32768 by default); the
  * validation cases `*_blocks_quick` (haff_cooling, collision_rate) compare blocked runs with the
@@ -164,8 +170,9 @@
  * (rng::Xoshiro256pp::substream), i.e. keyed by (seed, replica, pass, block). Each block's counts and
  * sums (events, candidates, pair events, dissipated energy, overshoots) are kept apart and added to
  * the replica's in block order after the pass, so that every floating-point sum is the same for one
- * thread or many. Only the remix between steps and the whole-gas steps near event targets run on one
- * thread (the remix's dealing loop is split over the threads: it is a fixed permutation). The streams
+ * thread or many. Only the whole-gas steps near event targets run on one thread; the remix between
+ * steps is a fixed permutation, and two of its four in-place stages are split over the threads
+ * (deal.hpp, "Threads"): whichever thread moves a particle, it ends in the same place. The streams
  * of distinct (key, j) are distinct seeds of a generator of period 2^256 - 1 drawn about 1e5 times
  * each per pass: they overlap with a probability below 1e-60 in any run that could be executed.
  *
@@ -181,6 +188,7 @@
 #include <string>
 #include <vector>
 
+#include "dsmc/deal.hpp"
 #include "dsmc/particles.hpp"
 #include "dsmc/rng.hpp"
 #include "dsmc/restitution.hpp"
@@ -290,10 +298,9 @@ class Collider {
   void use_threads(int threads);
   /// The threads set by use_threads (1 by default).
   int threads() const { return threads_; }
-  /// Memory the collider holds per particle besides the System (the remix buffers of blocks).
-  std::size_t workspace_bytes() const {
-    return spare_v_.capacity() * sizeof(particles::Vec3) + spare_r_.capacity() * sizeof(particles::Displacement);
-  }
+  /// Memory the collider holds for the particles besides the System, in bytes: the scratch memory of
+  /// the blocks' remix, done in place (deal.hpp; about (2 seg + 1) K elements and N/seg bits).
+  std::size_t workspace_bytes() const { return remix_workspace_.bytes(); }
 
   /// Advances until time `t_target` or until `event_target` events, whichever comes first.
   /// Returns true when the event target stopped it. With blocks and `exact_events`, the steps near
@@ -432,8 +439,7 @@ class Collider {
   /// is then visited for about one collision per particle, which repays bringing it into the cache.
   static constexpr double block_steps = 5.0;
   std::size_t range_first_ = 0, range_count_ = 0;
-  particles::ParticleArray<particles::Vec3> spare_v_;  ///< remix() deals into these and swaps
-  particles::ParticleArray<particles::Displacement> spare_r_;
+  deal::Workspace remix_workspace_;  ///< remix() deals the particles in place with this (deal.hpp)
   template <bool Framed>
   int run_pairs(double t_stop, std::uint64_t event_target);
   template <bool Framed>

@@ -1,0 +1,252 @@
+/**
+ * \file deal.hpp
+ * \brief The remix of cache blocks done in place: n particles dealt round k blocks like cards from a starting point.
+ *
+ * **The permutation** (collide.hpp, "Blocks"). Old index (offset + i) mod n goes to block i mod k,
+ * slot i div k, where block j starts at first(j) = j q + min(j, r), q = n div k, r = n mod k (the
+ * first r blocks hold q + 1 particles, the others q). Written out of place this is
+ *   out[first(i mod k) + i div k] = in[(offset + i) mod n],   i = 0 .. n - 1,
+ * which is what the collider did until issue 11, with a second copy of the particle arrays (24 bytes a
+ * particle for the velocities, 32 more for tracked displacements). deal_in_place() computes the same
+ * permutation in place: the same bytes end in the same places (only copies, no arithmetic on them).
+ *
+ * **Four stages.** Let y be the array read from offset round (y[i] = in[(offset + i) mod n]) and view
+ * y as q rows of k (row a, column j holding y[a k + j]) and a last partial row of r: the dealing puts
+ * column j, top to bottom, into block j. With segments of seg rows (q div 128, at least 1 and at most
+ * 64, so that a tile is at most n/128 elements), rows = q div seg row
+ * groups ("tiles" of seg k elements) and slots = rows k segments, the target is a grid of slots
+ * places: place t = j rows + g is [first(j) + g seg, + seg), the g-th run of seg elements of block j.
+ * What is not on the grid (the last q - rows seg rows of each block and the partial row: the
+ * m = n - slots seg elements of y after its last whole tile) is handled apart.
+ *  1. The m elements of y after the last whole tile are copied aside.
+ *  2. Tile by tile in the order of y, a tile is copied into a buffer, transposed, and its column j
+ *     (segment s = g k + j of y, for tile g) is written to grid place (s + u) mod slots,
+ *     u = min(offset div seg, slots) mod slots. Place s + u starts between seg before and 2 m after
+ *     the position of segment s in y (the shift u takes the rotation by offset in whole segments, the
+ *     grid's gaps add at most m, the wrap round the array end at most m more), so reading the next
+ *     ceil(2 m / (seg k)) + 1 tiles ahead, and saving the last tile first (the first tile's segments may
+ *     land on it), nothing is overwritten before it is read. No separate pass rotates the array.
+ *  3. The segments are permuted on the grid: place t = j rows + g takes segment s = g k + j from place
+ *     (s + u) mod slots, by following the cycles of that permutation with one segment in a buffer.
+ *     Its cycles depend on (rows, k, u); they are found in each call by one pass over the slots places
+ *     (index arithmetic and one bit a place, no particle data).
+ *  4. The m elements aside go to first(j) + a, for their row a and column j.
+ * Afterwards place j rows + g holds rows g seg .. g seg + seg - 1 of column j, and the rows past the
+ * grid follow it: every element is where the dealing puts it. Stages 2 and 3 move runs of seg elements
+ * (1.5 KB of velocities), so they stream through memory: two passes over the particles against the
+ * one of the out-of-place dealing.
+ *
+ * **Threads.** Stage 2 splits the tiles into one run per thread; each thread first saves the first
+ * ceil(2 m / (seg k)) + 1 tiles and the last tile of its run, the only ones that other runs' segments
+ * can land on, and then proceeds as above within its run. Stage 3 deals out whole cycles, which are
+ * disjoint. Stages 1 and 4 (m elements) and the search for the cycles run on one thread. Whichever
+ * thread moves an element, it ends in the same place: the result does not depend on the thread count.
+ *
+ * **Memory** (Workspace): the m < (seg + 1) k elements aside; per thread, its saved tiles, its tiles
+ * read ahead and one being transposed (at most 9 tiles of seg k elements); one bit and at most 2
+ * bytes (the cycles' least places) per grid place. Against the n elements of a second array (24 or 32
+ * bytes a particle), this is below 0.7 bytes a particle for blocks of 32768 particles (seg k =
+ * 64 n/32768), and 0.6 more for each further thread.
+ *
+ * Checked by tests/collide_test.cpp (Collide.DealInPlaceIsTheDealing: against the out-of-place
+ * formula above for one species and mixtures, with and without displacements, k not dividing n, on
+ * 1 to 3 threads).
+ */
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <utility>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace gdsmc::deal {
+
+/// Rows of a segment: the unit that stages 2 and 3 move (header, "Four stages").
+inline constexpr std::size_t segment_rows = 64;
+
+/// The scratch memory of deal_in_place(), kept between calls (header, "Memory").
+struct Workspace {
+  std::vector<unsigned char> buffer;  ///< the elements set aside, and each thread's tiles and segment
+  std::vector<std::uint64_t> done;    ///< one bit per grid place while the cycles of stage 3 are found
+  std::vector<std::uint32_t> leaders; ///< the least place of each cycle of stage 3, longest cycles first
+
+  /// The sizes of one call: n elements in k blocks on `threads` threads (header, "Four stages").
+  struct Layout {
+    std::size_t q;           ///< n div k
+    std::size_t r;           ///< n mod k
+    std::size_t seg;         ///< rows of a segment, q div 128 within [1, segment_rows]
+    std::size_t rows;        ///< row groups (tiles), q div seg
+    std::size_t slots;       ///< grid places, rows k
+    std::size_t tile;        ///< elements of a tile, seg k
+    std::size_t whole;       ///< elements in whole tiles, slots seg
+    std::size_t aside;       ///< the other elements, n - whole
+    std::size_t ahead;       ///< tiles read ahead: a tile's segments land less than 2 aside past it
+    std::size_t per_thread;  ///< elements of buffer a thread uses: saved and read-ahead tiles, and one
+  };
+  /// The layout of a call (seg = 0 when n < k).
+  static Layout layout(std::size_t n, std::size_t k) {
+    Layout l{};
+    l.q = n / k;
+    l.r = n % k;
+    if (l.q == 0) return l;  // seg = 0
+    l.seg = std::clamp<std::size_t>(l.q / 128, 1, segment_rows);
+    l.rows = l.q / l.seg;
+    l.slots = l.rows * k;
+    l.tile = l.seg * k;
+    l.whole = l.slots * l.seg;
+    l.aside = n - l.whole;
+    l.ahead = 2 * l.aside / l.tile + 1;
+    l.per_thread = l.tile * (2 * l.ahead + 3);
+    return l;
+  }
+  /// Threads that stage 2 uses: each takes a run of at least ahead + 2 tiles.
+  static int stage2_threads(const Layout& l, int threads) {
+    return static_cast<int>(std::max<std::size_t>(1, std::min<std::size_t>(threads, l.rows / (l.ahead + 2))));
+  }
+  /// Grows the memory to what deal_in_place() needs for n elements of `element_size` bytes in k
+  /// blocks on `threads` threads.
+  void reserve(std::size_t n, std::size_t k, std::size_t element_size, int threads = 1) {
+    if (k < 2) return;
+    const Layout l = layout(n, k);
+    if (l.seg == 0) return;
+    const std::size_t used = static_cast<std::size_t>(std::max(1, threads));
+    const std::size_t bytes = (l.aside + used * l.per_thread) * element_size;
+    if (buffer.size() < bytes) buffer.resize(bytes);
+    if (done.capacity() < (l.slots + 63) / 64) done.reserve((l.slots + 63) / 64);
+    if (leaders.capacity() < l.slots / 2) leaders.reserve(l.slots / 2);
+  }
+  /// The memory held, in bytes.
+  std::size_t bytes() const {
+    return buffer.capacity() + done.capacity() * sizeof(std::uint64_t) + leaders.capacity() * sizeof(std::uint32_t);
+  }
+};
+
+/// Deals `data[0 .. n)` round `k` blocks from `offset` (< n), in place: afterwards
+/// data[j q + min(j, r) + i div k] holds what data[(offset + i) mod n] held, j = i mod k, q = n div k,
+/// r = n mod k (header, "The permutation"). `T` is trivially copyable; k >= 1. Stages 2 and 3 run on
+/// up to `threads` OpenMP threads; the result is the same for any number.
+template <class T>
+void deal_in_place(T* data, std::size_t n, std::size_t k, std::size_t offset, Workspace& workspace, int threads = 1) {
+  if (n < 2 || k < 1) return;
+  const Workspace::Layout l = Workspace::layout(n, k);
+  if (k == 1 || l.seg == 0) {  // y itself is the dealing (one block, or at most one element a block)
+    if (offset != 0) std::rotate(data, data + offset, data + n);
+    return;
+  }
+#ifdef _OPENMP
+  threads = std::max(1, threads);
+#else
+  threads = 1;
+#endif
+  workspace.reserve(n, k, sizeof(T), threads);
+  const std::size_t q = l.q, r = l.r, seg = l.seg, rows = l.rows, slots = l.slots, tile = l.tile, m = l.aside;
+  // The grid places are shifted by offset div seg, so that each segment lands near where it lies (at
+  // most seg before it, less than 2 aside after it); an offset in the last aside elements needs no shift.
+  const std::size_t ahead = l.ahead, shift = std::min(offset / seg, slots) % slots;
+  T* const aside = reinterpret_cast<T*>(workspace.buffer.data());
+  auto first = [q, r](std::size_t j) { return j * q + std::min(j, r); };
+  auto place = [&](std::size_t t) {  // grid place t: block t div rows, row group t mod rows
+    const std::size_t j = t / rows;
+    return data + first(j) + (t - j * rows) * seg;
+  };
+  auto read_y = [&](T* to, std::size_t i, std::size_t count) {  // y[i .. i + count), y[i] = data[(offset + i) mod n]
+    std::size_t at = offset + i;
+    if (at >= n) at -= n;
+    const std::size_t part = std::min(count, n - at);
+    std::memcpy(static_cast<void*>(to), data + at, part * sizeof(T));
+    std::memcpy(static_cast<void*>(to + part), data, (count - part) * sizeof(T));
+  };
+  // Stage 1: the elements after the last whole tile of y aside.
+  read_y(aside, l.whole, m);
+  // Stage 2: segment s of y (column s mod k of tile s div k) to grid place (s + shift) mod slots, near
+  // where it lies in y. Each thread takes a run of tiles in order, having saved the first `ahead` and
+  // the last tile of its run (the only ones other runs' segments can land on), and reads the next
+  // `ahead` tiles of its run before a tile's segments are written.
+  const int threads2 = Workspace::stage2_threads(l, threads);
+#pragma omp parallel num_threads(threads2) if (threads2 > 1)
+  {
+    int p = 0;
+#ifdef _OPENMP
+    p = omp_get_thread_num();
+#endif
+    const std::size_t g_begin = rows * static_cast<std::size_t>(p) / static_cast<std::size_t>(threads2);
+    const std::size_t g_end = rows * static_cast<std::size_t>(p + 1) / static_cast<std::size_t>(threads2);
+    T* const saved = aside + m + static_cast<std::size_t>(p) * l.per_thread;  // ahead + 1 tiles
+    T* const ring = saved + (ahead + 1) * tile;                                  // ahead + 1 tiles
+    T* const columns = ring + (ahead + 1) * tile;                                // one tile
+    const std::size_t n_first = std::min(ahead, g_end - g_begin);
+    const bool last_apart = g_end - 1 >= g_begin + n_first;
+    auto kept = [&](std::size_t g) -> T* {  // the saved copy of tile g, or nullptr
+      if (g < g_begin + n_first) return saved + (g - g_begin) * tile;
+      if (last_apart && g == g_end - 1) return saved + ahead * tile;
+      return nullptr;
+    };
+    for (std::size_t g = g_begin; g < g_begin + n_first; ++g) read_y(kept(g), g * tile, tile);
+    if (last_apart) read_y(kept(g_end - 1), (g_end - 1) * tile, tile);
+#pragma omp barrier
+    for (std::size_t g = g_begin; g < std::min(g_begin + ahead, g_end); ++g)
+      if (!kept(g)) read_y(ring + g % (ahead + 1) * tile, g * tile, tile);
+    for (std::size_t g = g_begin; g < g_end; ++g) {
+      const std::size_t next = g + ahead;
+      if (next < g_end && !kept(next)) read_y(ring + next % (ahead + 1) * tile, next * tile, tile);
+      const T* const from = kept(g) ? kept(g) : ring + g % (ahead + 1) * tile;
+      for (std::size_t a = 0; a < seg; ++a)
+        for (std::size_t j = 0; j < k; ++j) columns[j * seg + a] = from[a * k + j];
+      for (std::size_t j = 0; j < k; ++j) {
+        std::size_t t = g * k + j + shift;
+        if (t >= slots) t -= slots;
+        std::memcpy(static_cast<void*>(place(t)), columns + j * seg, seg * sizeof(T));
+      }
+    }
+  }
+  // Stage 3: place t = j rows + g takes segment s = g k + j, now at place (s + shift) mod slots, cycle
+  // by cycle (cycles are disjoint: any thread may follow any of them).
+  auto source = [&](std::size_t t) {
+    const std::size_t j = t / rows;
+    const std::size_t from = (t - j * rows) * k + j + shift;
+    return from >= slots ? from - slots : from;
+  };
+  workspace.done.assign((slots + 63) / 64, 0);
+  workspace.leaders.clear();
+  std::uint64_t* const done = workspace.done.data();
+  for (std::size_t start = 0; start < slots; ++start) {
+    if (done[start >> 6] >> (start & 63) & 1) continue;
+    std::size_t t = start;
+    do {
+      done[t >> 6] |= std::uint64_t{1} << (t & 63);
+      t = source(t);
+    } while (t != start);
+    if (source(start) != start) workspace.leaders.push_back(static_cast<std::uint32_t>(start));
+  }
+  const std::uint32_t* const leaders = workspace.leaders.data();
+  const auto n_cycles = static_cast<std::ptrdiff_t>(workspace.leaders.size());
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (threads > 1 && n_cycles > 1)
+  for (std::ptrdiff_t c = 0; c < n_cycles; ++c) {
+    int p = 0;
+#ifdef _OPENMP
+    p = omp_get_thread_num();
+#endif
+    T* const buffer = aside + m + static_cast<std::size_t>(p) * l.per_thread;
+    const std::size_t start = leaders[c];
+    std::memcpy(static_cast<void*>(buffer), place(start), seg * sizeof(T));
+    for (std::size_t t = start;;) {
+      const std::size_t from = source(t);
+      if (from == start) {
+        std::memcpy(static_cast<void*>(place(t)), buffer, seg * sizeof(T));
+        break;
+      }
+      std::memcpy(static_cast<void*>(place(t)), place(from), seg * sizeof(T));
+      t = from;
+    }
+  }
+  // Stage 4: element whole + i of y is in row whole/k + i div k, column i mod k (whole is a multiple of k).
+  for (std::size_t i = 0; i < m; ++i) data[first(i % k) + rows * seg + i / k] = aside[i];
+}
+
+}  // namespace gdsmc::deal
