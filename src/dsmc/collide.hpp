@@ -158,11 +158,17 @@
  * `lowrank`), the drawn-ahead pairs in locals with their species, which the slice of an index gives
  * (no read of the species array), each species pair's constants in one record (PairKernel), no frame
  * or viscoelastic branch, and the impulse from hemisphere_projection. Viscoelastic mixtures run the
- * general loops in their blocks. Measured: MIXKERNEL_NUMBERS
+ * general loops in their blocks. Measured at N = 1e6 (bench_collide, the binary gases of bench_paths,
+ * CPU time, medians of both builds alternately): `majorant` 38.5 -> 22.9 ns per candidate (5.8e6 ->
+ * 9.7e6 collisions/s, 0.80 of the one-species rate; Enskog 0.76), `lowrank` 52 -> 40 ns (4.5e6 -> 5.9e6,
+ * 0.49), the candidates per collision unchanged; end to end (bench_paths, collisions per CPU second)
+ * 1.8 times the rate before with `majorant` (0.86 of the one-species rate; Enskog 0.84) and 1.6 times with
+ * `lowrank` (0.73). `lowrank`'s candidate costs more (its species pair from the alias table before its
+ * particles), so in blocks `majorant` is the faster mixture scheme.
  * Checked by Collide.BlockedMixtureMatchesUnblocked (T_k, the share of unlike-pair events, the time at
  * an event target, over 16 replicas, both schemes) and by every mixture validation, which runs
  * blocked at N >= 2 block_size. Measured at N = 1e6 (binary, masses 1 and 4, diameters 1 and 1.5,
- * one replica): 5.5e6 collisions/s blocked against 2.1e6 unblocked; 0.72 of the one-species rate.
+ * one replica) before the kernels: 5.5e6 collisions/s blocked against 2.1e6 unblocked.
  *
  * **Threads inside one replica** (issue 11; `use_threads`). Within a blocked step the blocks are
  * independent gases over the same time interval: block j reads and writes only its own particles, its
