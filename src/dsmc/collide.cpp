@@ -44,6 +44,18 @@ Collider::Collider(Scheme scheme, const species::Mixture& mix, particles::System
         mass_fraction_[k * s_ + j] = mix.mass[j] / (mix.mass[k] + mix.mass[j]);
       }
   }
+  if (tables_ && s_ > 1 && s_ <= pair_event_limit) {  // the mixture block kernel's pair constants
+    pair_kernel_.resize(s_ * s_);
+    for (std::size_t k = 0; k < s_; ++k)
+      for (std::size_t j = 0; j < s_; ++j) {
+        const double alpha = alpha_[k * s_ + j], mf = mass_fraction_[k * s_ + j];
+        // v_a -= mu_jk (1 + alpha) p, v_b += mu_kj (1 + alpha) p for p = (g.e) e; loss (1 - alpha^2) m_kj (g.e)^2 / 2
+        pair_kernel_[k * s_ + j] = {cross_section_[k * s_ + j], mf * (1.0 + alpha), (1.0 - mf) * (1.0 + alpha),
+                                    0.5 * (1.0 - alpha * alpha) * mix.mass[k] * mf,
+                                    static_cast<std::uint32_t>(std::min(k, j) * s_ + std::max(k, j))};
+        pair_species_.insert(pair_species_.end(), {static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(j)});
+      }
+  }
   max_speed_.assign(s_, 0.0);
   max_speed2_.assign(s_, 0.0);
   range_first_ = 0;
@@ -472,6 +484,14 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
         run_block_one_species<false>(t_stop);
       break;
     }
+    if (!viscoelastic_) {  // the mixture kernel (header "Mixtures in blocks"): raised bounds handled inside
+      const bool track = sys_.tracks_displacements();
+      if (lowrank)
+        track ? run_block_mixture<true, true>(t_stop) : run_block_mixture<false, true>(t_stop);
+      else
+        track ? run_block_mixture<true, false>(t_stop) : run_block_mixture<false, false>(t_stop);
+      break;
+    }
     const int stop = lowrank ? run_lowrank<false>(t_stop, UINT64_MAX) : run_majorant<false>(t_stop, UINT64_MAX);
     if (stop != static_cast<int>(Stop::bound_raised)) break;
   }
@@ -576,6 +596,143 @@ void Collider::run_block_one_species(double t_stop) {
   counters_.candidates += candidates;
   counters_.dissipated += dissipated;
   if (!counters_.pair_events.empty()) counters_.pair_events[0] += events;
+}
+
+template <bool Track, bool Lowrank>
+void Collider::run_block_mixture(double t_stop) {
+  // The process of run_majorant (or run_lowrank) on the block's slices (header "Mixtures in blocks"):
+  // candidates at R_b, candidate c of a sub-step at t0 + (c + 1)/R_b; `majorant`: a uniform pair of the
+  // block's N_b particles accepted with pi sigma_kj^2 chi_kj |g| / B_b; `lowrank`: (i, k) from the block's
+  // alias table, a particle of each slice, accepted with |g| / (w_i + w_k). Only the work per candidate
+  // is less, as in run_block_one_species: a pair of indices from one draw, the drawn-ahead pairs (with
+  // their species, known from the slice, so no read of the species array) in locals, no frame and no
+  // viscoelastic branch, the pair's constants in one record, and (g.e) e without e (hemisphere_projection).
+  const std::size_t s = s_;
+  const std::size_t* cum = slice_cum_.data() + current_block_ * (s + 1);
+  const std::size_t* slice = slice_first_.data() + current_block_ * s;
+  const auto n = static_cast<std::uint32_t>(range_count_);
+  particles::Vec3* v = sys_.v.data();
+  const double n_density = mix_.total_density();
+  const PairKernel* kernel = pair_kernel_.data();
+  double* speed2 = block_speed2_;
+  // The species of the block's i-th particle (cum_k <= i < cum_k+1): counted without branches for few species.
+  const auto species_of = [&](std::uint32_t i) {
+    std::uint32_t k = 0;
+    if (s <= 8) {
+      for (std::size_t q = 1; q < s; ++q) k += i >= cum[q];
+    } else {
+      while (i >= cum[k + 1]) ++k;
+    }
+    return k;
+  };
+  std::array<PendingPair, lookahead> ahead;
+  const auto draw = [&](std::size_t slot) {
+    PendingPair& p = ahead[slot];
+    if constexpr (Lowrank) {  // (i, k) with probability A_ik / R_b, then a particle of each slice
+      const auto pair = static_cast<std::uint32_t>(pair_alias_.sample(gen_.uniform()));
+      const std::uint32_t i = pair_species_[2 * pair], k = pair_species_[2 * pair + 1];
+      std::uint32_t x, y;
+      gen_.below_pair(static_cast<std::uint32_t>(cum[i + 1] - cum[i]), static_cast<std::uint32_t>(cum[k + 1] - cum[k]),
+                      x, y);
+      p = {static_cast<std::uint32_t>(slice[i] + x), static_cast<std::uint32_t>(slice[k] + y), i, k};
+    } else {  // a uniform pair of the block's particles
+      std::uint32_t x, y;
+      gen_.below_pair(n, n - 1, x, y);
+      y += y >= x;
+      const std::uint32_t i = species_of(x), k = species_of(y);
+      p = {static_cast<std::uint32_t>(slice[i] + (x - cum[i])), static_cast<std::uint32_t>(slice[k] + (y - cum[k])), i,
+           k};
+    }
+    const auto* base = reinterpret_cast<const char*>(v);
+    for (std::uint32_t q : {p.a, p.b}) {
+      __builtin_prefetch(base + q * sizeof(particles::Vec3), 1);
+      __builtin_prefetch(base + (q + 1) * sizeof(particles::Vec3) - 1, 1);
+      if constexpr (Track) __builtin_prefetch(sys_.r.data() + q, 1);
+    }
+  };
+  for (std::size_t slot = 0; slot < lookahead; ++slot) draw(slot);
+  std::size_t next = 0;
+  std::uint64_t events = 0, candidates = 0;
+  double dissipated = 0.0;
+  for (;;) {
+    // rate_ (and bound_, or the alias table and w_k = max_speed_) are those of the block's current bounds.
+    const double bound = bound_;
+    const double dt_candidate = 1.0 / rate_;
+    const double available = credit_ + (t_stop - time_);
+    const auto n_candidates = static_cast<std::uint64_t>(available * rate_);
+    const double t0 = time_ - credit_;
+    bool raised = false;
+    std::uint64_t c = 0;
+    for (; c < n_candidates; ++c) {
+      const PendingPair p = ahead[next];
+      draw(next);
+      next = (next + 1) % lookahead;
+      const std::uint32_t a = p.a, b = p.b;
+      if constexpr (Lowrank)
+        if (a == b) continue;  // the self pair is part of the majorant's sum, never a collision
+      const PairKernel& pk = kernel[p.i * s + p.k];
+      const double gx = v[a].x - v[b].x, gy = v[a].y - v[b].y, gz = v[a].z - v[b].z;
+      const double g2 = gx * gx + gy * gy + gz * gz;
+      if constexpr (Lowrank) {
+        // Accept with |g| / (w_i + w_k) (run_lowrank in a block: chi_ik cancels), compared squared.
+        const double limit = max_speed_[p.i] + max_speed_[p.k];
+        const double threshold = gen_.uniform() * limit;
+        if (threshold * threshold >= g2) continue;
+        if (g2 > limit * limit) [[unlikely]] note_overshoot(std::sqrt(g2) / limit);
+      } else {
+        // Accept with pi sigma_kj^2 chi_kj |g| / B_b (\ref sch_majorant "docs/schemes.md"), compared squared.
+        const double rate2 = pk.cross_section * pk.cross_section * g2;
+        const double threshold = gen_.uniform() * bound;
+        if (threshold * threshold >= rate2) continue;
+        if (rate2 > bound * bound) [[unlikely]] note_overshoot(std::sqrt(rate2) / bound);
+      }
+      double px, py, pz;
+      const double g_dot_e2 = hemisphere_projection(gen_, gx, gy, gz, std::sqrt(g2), px, py, pz);
+      if (g_dot_e2 == 0.0) continue;
+      if constexpr (Track) {
+        const double t_collision = t0 + static_cast<double>(c + 1) * dt_candidate;
+        particles::flush_free_flight(sys_, a, t_collision);
+        particles::flush_free_flight(sys_, b, t_collision);
+      }
+      particles::Vec3& va = v[a];
+      particles::Vec3& vb = v[b];
+      va = {va.x - pk.share_a * px, va.y - pk.share_a * py, va.z - pk.share_a * pz};
+      vb = {vb.x + pk.share_b * px, vb.y + pk.share_b * py, vb.z + pk.share_b * pz};
+      dissipated += pk.loss * g_dot_e2;
+      ++events;
+      ++counters_.pair_events[pk.event];
+      // "(sigma g)_max raised when exceeded" (header), for both partners: a new sub-step from here.
+      const double speed2_a = va.x * va.x + va.y * va.y + va.z * va.z;
+      const double speed2_b = vb.x * vb.x + vb.y * vb.y + vb.z * vb.z;
+      if (speed2_a > speed2[p.i] || speed2_b > speed2[p.k]) [[unlikely]] {
+        speed2[p.i] = std::max(speed2[p.i], speed2_a);
+        speed2[p.k] = std::max(speed2[p.k], speed2_b);
+        raised = true;
+        ++c;
+        break;
+      }
+    }
+    candidates += c;
+    if (raised) {
+      time_ = t0 + static_cast<double>(c) * dt_candidate;
+      credit_ = 0.0;
+      if constexpr (Lowrank) {
+        set_block_lowrank(n_density);
+        for (std::size_t slot = 0; slot < lookahead; ++slot) draw(slot);  // drawn from the old A_ik: redraw
+        next = 0;
+      } else {
+        bound_ = mixture_bound(speed2);
+        rate_ = 0.5 * static_cast<double>(n) * n_density * bound_;
+      }
+      continue;
+    }
+    credit_ = available - static_cast<double>(n_candidates) * dt_candidate;
+    time_ = t_stop;
+    break;
+  }
+  counters_.events += events;
+  counters_.candidates += candidates;
+  counters_.dissipated += dissipated;
 }
 
 void Collider::set_block_lowrank(double n) {

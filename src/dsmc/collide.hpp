@@ -111,7 +111,8 @@
  * rng::unit_vector_32 (one draw per try; directions on a lattice of step 2^-31, about 1e-9 rad). The
  * random stream differs from run_majorant's, the law of the process does not; blocks still draw only
  * from their own streams (bitwise the same for any thread count). Viscoelastic restitution (whose alpha
- * needs g.e) and mixtures run run_majorant / run_lowrank in their blocks. Measured at N = 1e6 (CPU time,
+ * needs g.e) runs run_majorant / run_lowrank in its blocks; mixtures have a kernel of their own
+ * ("Mixtures in blocks"). Measured at N = 1e6 (CPU time,
  * medians, both builds alternately): 4.49 candidates per collision as before, 31 ns per candidate before
  * and 19 after, 1.6 times the collisions per second of bench_collide and 1.9 times end to end
  * (bench_paths, one species, t_end). Tighter majorants were tried and left out (\ref sch_blocks "docs/schemes.md",
@@ -155,10 +156,25 @@
  * pair (i, k) of a candidate is drawn with probability A_ik / R_b from an alias table of the S^2
  * entries (rebuilt when a bound is raised), then a particle of slice i and one of slice k; the
  * whole-gas steps near event targets run the unblocked `lowrank` loop.
+ * With constant restitution a mixture's block runs a kernel of its own (issue 11; `run_block_mixture`,
+ * for `majorant` and `lowrank`), which samples exactly the process just described (the same R_b, the
+ * same pair law, the same acceptance, bounds raised when exceeded, `lowrank`'s drawn-ahead pairs
+ * redrawn when A_ik changes) with the techniques of the one-species kernel: the two indices of a pair
+ * from one draw (below_pair: two block indices in `majorant`, a particle of each of the two slices in
+ * `lowrank`), the drawn-ahead pairs in locals with their species, which the slice of an index gives
+ * (no read of the species array), each species pair's constants in one record (PairKernel), no frame
+ * or viscoelastic branch, and the impulse from hemisphere_projection. Viscoelastic mixtures run the
+ * general loops in their blocks. Measured at N = 1e6 (bench_collide, the binary gases of bench_paths,
+ * CPU time, medians of both builds alternately): `majorant` 38.5 -> 22.9 ns per candidate (5.8e6 ->
+ * 9.7e6 collisions/s, 0.80 of the one-species rate; Enskog 0.76), `lowrank` 52 -> 40 ns (4.5e6 -> 5.9e6,
+ * 0.49), the candidates per collision unchanged; end to end (bench_paths, collisions per CPU second)
+ * 1.8 times the rate before with `majorant` (0.86 of the one-species rate; Enskog 0.84) and 1.6 times with
+ * `lowrank` (0.73). `lowrank`'s candidate costs more (its species pair from the alias table before its
+ * particles), so in blocks `majorant` is the faster mixture scheme.
  * Checked by Collide.BlockedMixtureMatchesUnblocked (T_k, the share of unlike-pair events, the time at
  * an event target, over 16 replicas, both schemes) and by every mixture validation, which runs
  * blocked at N >= 2 block_size. Measured at N = 1e6 (binary, masses 1 and 4, diameters 1 and 1.5,
- * one replica): 5.5e6 collisions/s blocked against 2.1e6 unblocked; 0.72 of the one-species rate.
+ * one replica) before the kernels: 5.5e6 collisions/s blocked against 2.1e6 unblocked.
  *
  * **Threads inside one replica** (issue 11; `use_threads`). Within a blocked step the blocks are
  * independent gases over the same time interval: block j reads and writes only its own particles, its
@@ -421,6 +437,22 @@ class Collider {
   /// bounds are handled inside. Leaves time_, credit_, bound_ and rate_ as run_substep does.
   template <bool Track>
   void run_block_one_species(double t_stop);
+  /// On a worker: the current block of a mixture with constant restitution up to t_stop, the process of
+  /// run_majorant (`Lowrank` false) or run_lowrank (true) on the block's slices in a loop of its own
+  /// (header "Mixtures in blocks", the kernel): raised bounds are handled inside. Leaves time_, credit_,
+  /// bound_ and rate_ as run_substep does.
+  template <bool Track, bool Lowrank>
+  void run_block_mixture(double t_stop);
+  /// The constants of species pair (k, j) in the mixture block kernel, row-major S x S (at most 64 species).
+  struct PairKernel {
+    double cross_section;  ///< pi sigma_kj^2 chi_kj
+    double share_a;        ///< mu_jk (1 + alpha_kj): v_a -= share_a (g.e) e
+    double share_b;        ///< mu_kj (1 + alpha_kj): v_b += share_b (g.e) e
+    double loss;           ///< (1 - alpha_kj^2) m_kj / 2: the energy lost per (g.e)^2
+    std::uint32_t event;   ///< min(k, j) S + max(k, j): the slot in Counters::pair_events
+  };
+  std::vector<PairKernel> pair_kernel_;
+  std::vector<std::uint32_t> pair_species_;  ///< (k, j) of pair k S + j, 2 per pair
   /// A mixture with `lowrank` in blocks: each block samples its own low-rank A_ik (header "Mixtures in blocks").
   bool lowrank_blocks() const { return scheme_ == Scheme::lowrank && s_ > 1 && !block_first_.empty(); }
   void set_block_lowrank(double n);  ///< on a worker: the current block's A_ik, their alias table and R
