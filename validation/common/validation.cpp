@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <iostream>
 
@@ -292,6 +293,28 @@ IndependentHcs independent_hcs_reference(const species::Mixture& mix) {
     return r;
   }
   return {};
+}
+
+IndependentSeries read_independent_series(const std::string& file, const std::string& keyword, std::size_t species) {
+  IndependentSeries series;
+  std::ifstream in(file);
+  std::string word;
+  while (in >> word) {
+    if (word != keyword) {
+      std::string rest;
+      std::getline(in, rest);
+      continue;
+    }
+    double t = 0.0;
+    in >> t;
+    std::vector<double> value(species), error(species);
+    for (std::size_t k = 0; k < species; ++k) in >> value[k] >> error[k];
+    if (!in) break;
+    series.time.push_back(t);
+    series.value.push_back(std::move(value));
+    series.error.push_back(std::move(error));
+  }
+  return series;
 }
 
 }  // namespace gdsmc::validation

@@ -111,4 +111,15 @@ struct IndependentHcs {
 /// The table entry for `mix` (known = false if there is none).
 IndependentHcs independent_hcs_reference(const species::Mixture& mix);
 
+/// The rows "KEYWORD t v_1 e_1 ... v_S e_S" (value and standard error per species) that
+/// validation/independent_reference's program writes in its time-resolved mode (`temperature`, `msd`).
+struct IndependentSeries {
+  std::vector<double> time;                ///< t of each row, in file order
+  std::vector<std::vector<double>> value;  ///< value[row][species]
+  std::vector<std::vector<double>> error;  ///< its standard error
+};
+/// Reads the `keyword` rows of `file` with `species` value-error pairs each; stops at the first
+/// malformed row. An unreadable file gives no rows.
+IndependentSeries read_independent_series(const std::string& file, const std::string& keyword, std::size_t species);
+
 }  // namespace gdsmc::validation

@@ -12,7 +12,6 @@
 // where eq 17's adiabatic form dominates (README.md).
 #include <cmath>
 #include <cstring>
-#include <fstream>
 
 #include "theory/theory.hpp"
 #include "validation.hpp"
@@ -84,22 +83,11 @@ int main(int argc, char** argv) {
   // asserted with a measured allowance.
   std::vector<std::vector<double>> reference, reference_error;
   if (independent_file) {
-    std::ifstream in(*independent_file);
-    std::string word;
-    while (in >> word) {
-      if (word != "msd") {
-        std::string rest;
-        std::getline(in, rest);
-        continue;
-      }
-      double t = 0.0;
-      in >> t;
-      std::vector<double> value(s), error(s);
-      for (std::size_t k = 0; k < s; ++k) in >> value[k] >> error[k];
-      const std::size_t i = reference.size();
-      if (!in || i >= nt || std::abs(t - msd.time[i]) > 1e-6 * std::max(1.0, t)) break;
-      reference.push_back(value);
-      reference_error.push_back(error);
+    const auto series = validation::read_independent_series(*independent_file, "msd", s);
+    for (std::size_t i = 0; i < series.time.size() && i < nt; ++i) {
+      if (std::abs(series.time[i] - msd.time[i]) > 1e-6 * std::max(1.0, series.time[i])) break;
+      reference.push_back(series.value[i]);
+      reference_error.push_back(series.error[i]);
     }
     if (!report.require("the independent <R_k^2>(t) has the run's sample times and species (" + *independent_file + ")",
                         reference.size() == nt && start == 0.0))

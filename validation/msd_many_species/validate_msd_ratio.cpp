@@ -10,7 +10,6 @@
 // species are several times larger (README.md).
 #include <cmath>
 #include <cstring>
-#include <fstream>
 
 #include "theory/theory.hpp"
 #include "validation.hpp"
@@ -45,24 +44,12 @@ int main(int argc, char** argv) {
   // stated beside the DSMC instead of asserted with the measured 30 %.
   std::vector<double> reference, reference_error;
   if (independent_file) {
-    std::ifstream in(*independent_file);
-    std::string word;
-    while (in >> word) {
-      if (word != "msd") {
-        std::string rest;
-        std::getline(in, rest);
-        continue;
+    const auto series = validation::read_independent_series(*independent_file, "msd", s);
+    for (std::size_t i = 0; i < series.time.size(); ++i)
+      if (std::abs(series.time[i] - msd.time[e]) <= 1e-6 * msd.time[e]) {
+        reference = series.value[i];
+        reference_error = series.error[i];
       }
-      double t = 0.0;
-      in >> t;
-      std::vector<double> value(s), error(s);
-      for (std::size_t k = 0; k < s; ++k) in >> value[k] >> error[k];
-      if (!in) break;
-      if (std::abs(t - msd.time[e]) <= 1e-6 * msd.time[e]) {
-        reference = value;
-        reference_error = error;
-      }
-    }
     if (!report.require("the independent file holds <R_k^2> at t_end for every species (" + *independent_file + ")",
                         reference.size() == s))
       return report.exit_code();

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 
 #include "theory/sonine_mixture.hpp"
@@ -181,22 +180,11 @@ int main(int argc, char** argv) {
   // be a consistency check (measured allowance), the ODE is then stated beside the DSMC instead.
   std::vector<std::vector<double>> reference, reference_error;
   if (independent_file) {
-    std::ifstream in(*independent_file);
-    std::string word;
-    while (in >> word) {
-      if (word != "temperature") {
-        std::string rest;
-        std::getline(in, rest);
-        continue;
-      }
-      double t = 0.0;
-      in >> t;
-      std::vector<double> value(s), error(s);
-      for (std::size_t k = 0; k < s; ++k) in >> value[k] >> error[k];
-      const std::size_t i = reference.size();
-      if (!in || i >= nt || std::abs(t - temperature.time[i]) > 1e-6 * std::max(1.0, t)) break;
-      reference.push_back(value);
-      reference_error.push_back(error);
+    const auto series = validation::read_independent_series(*independent_file, "temperature", s);
+    for (std::size_t i = 0; i < series.time.size() && i < nt; ++i) {
+      if (std::abs(series.time[i] - temperature.time[i]) > 1e-6 * std::max(1.0, series.time[i])) break;
+      reference.push_back(series.value[i]);
+      reference_error.push_back(series.error[i]);
     }
     if (!report.require("the independent T_k(t) has the run's sample times (" + *independent_file + ")",
                         reference.size() == nt && t0 == std::vector<double>(s, 1.0)))
