@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <span>
@@ -678,7 +679,10 @@ std::array<std::vector<double>, 3> tracer_diffusion_sonine_ratios(const Mixture&
       zeta += weight * e.cooling;
     }
     const double first = 1.0 / (l[0][0] + zeta * tracer_sonine_cooling_matrix(0, 0));
-    for (int terms = 1; terms <= n; ++terms) {
+    if (!(first > 0.0))
+      throw std::invalid_argument("tracer_diffusion_sonine_ratio: no positive first Sonine diffusion coefficient "
+                                  "(species without partners?)");
+    for (int terms = 2; terms <= n; ++terms) {
       // Solve (L + zeta Z) a = -(3/2, 0, 0) in the first `terms` functions; D is proportional to -a_0
       // (the common factor 3/2 cancels in the ratio).
       double m[3][4] = {};
@@ -686,23 +690,27 @@ std::array<std::vector<double>, 3> tracer_diffusion_sonine_ratios(const Mixture&
         for (int q = 0; q < terms; ++q) m[p][q] = l[p][q] + zeta * tracer_sonine_cooling_matrix(p, q);
         m[p][terms] = p == 0 ? 1.0 : 0.0;
       }
-      for (int c = 0; c < terms; ++c) {  // Gauss-Jordan elimination with partial pivoting (at most 3 x 3)
+      bool singular = false;
+      for (int c = 0; c < terms && !singular; ++c) {  // Gauss-Jordan elimination with partial pivoting (at most 3 x 3)
         int pivot = c;
         for (int r = c + 1; r < terms; ++r)
           if (std::abs(m[r][c]) > std::abs(m[pivot][c])) pivot = r;
         for (int q = 0; q <= terms; ++q) std::swap(m[c][q], m[pivot][q]);
-        if (!(std::abs(m[c][c]) > 0.0))
-          throw std::invalid_argument("tracer_diffusion_sonine_ratio: singular Sonine system (species without partners?)");
+        if (!(std::abs(m[c][c]) > 0.0)) {
+          singular = true;
+          break;
+        }
         for (int r = 0; r < terms; ++r) {
           if (r == c) continue;
           const double factor = m[r][c] / m[c][c];
           for (int q = c; q <= terms; ++q) m[r][q] -= factor * m[c][q];
         }
       }
-      const double a0 = m[0][terms] / m[0][0];
-      if (!(first > 0.0 && a0 > 0.0))
-        throw std::invalid_argument("tracer_diffusion_sonine_ratio: no positive diffusion coefficient (species without partners?)");
-      ratio[terms - 1][k] = a0 / first;
+      const double a0 = singular ? 0.0 : m[0][terms] / m[0][0];
+      // A heavy, dilute tracer can relax its higher Sonine modes more slowly than the gas cools: the
+      // truncated normal solution then has no positive D (the diagonal l_pp + zeta Z_pp < 0). No estimate
+      // exists there: NaN, which callers must test (\ref dif_second_sonine_inelastic "docs/diffusion-msd.md").
+      ratio[terms - 1][k] = a0 > 0.0 ? a0 / first : std::numeric_limits<double>::quiet_NaN();
     }
   }
   return ratio;

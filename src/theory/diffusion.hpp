@@ -251,8 +251,9 @@ double tracer_sonine_cooling_matrix(int p, int q);
  * \ref dif_second_sonine_inelastic "docs/diffusion-msd.md"). The first Sonine value is Bodrova and
  * Osinsky 2024, eq. (19) with A1; the ratios estimate eq. (19)'s inelastic error independently of any
  * DSMC. At alpha = 1, equal temperatures and terms = 2 it equals
- * tracer_diffusion_second_approximation_ratio. Throws std::invalid_argument for a species without
- * partners or terms outside 1..3.
+ * tracer_diffusion_second_approximation_ratio. A species whose truncated Sonine system has no positive
+ * solution (a heavy, dilute tracer whose higher modes relax more slowly than the gas cools) gets NaN for
+ * terms >= 2. Throws std::invalid_argument for a species without partners or terms outside 1..3.
  */
 std::vector<double> tracer_diffusion_sonine_ratio(const Mixture& mix, const std::vector<double>& temperature,
                                                   int terms);
