@@ -373,21 +373,23 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
       double step = block_steps * step_fraction_ * n_total / (2.0 * rate);
       // Near an exact event target (header "Blocks"): a blocked step is shortened so that its events
       // (its candidates R dt times the last step's acceptance, plus 10 % and 8 standard deviations)
-      // stay below those left; when that leaves less than N/8 events for it (or 4 blocks' worth, N 4/K,
-      // when that is less: with many blocks a long whole-gas step, unblocked, costs more than another
-      // shortened blocked one), the step runs on the whole gas, which stops at the target itself, and
-      // is made about 1.5 times as long as the events left need.
+      // stay below those left; the first step, with no acceptance measured yet, takes acceptance 1,
+      // which bounds it (every candidate an event). When that leaves less than N/64 events for it (or
+      // 4 blocks' worth, N 4/K, when that is less), the step runs instead on the whole gas, which stops at
+      // the target itself, and is made about 1.5 times as long as the events left need. N/64: a
+      // shortened blocked step costs a remix and a pass for the bounds (about 5 ns a particle), a
+      // whole-gas event about 0.15 us more than a blocked one (the velocities out of the cache), which
+      // break even near N/30 events; the shortened steps bring the events left down about tenfold each.
       whole_step_ = false;
       if (exact_target != UINT64_MAX) {
         const double remaining = static_cast<double>(exact_target - counters_.events);
-        const double expected = step_acceptance_ * rate * step;
-        if (!(step_acceptance_ > 0.0)) {
-          whole_step_ = true;  // nothing measured yet: the first step
-        } else if (1.1 * expected + 8.0 * std::sqrt(expected) + 16.0 > remaining) {
+        const double acceptance = step_acceptance_ > 0.0 ? step_acceptance_ : 1.0;
+        const double expected = acceptance * rate * step;
+        if (1.1 * expected + 8.0 * std::sqrt(expected) + 16.0 > remaining) {
           // the largest mu with 1.1 mu + 8 sqrt(mu) + 16 <= remaining (a quadratic in sqrt(mu))
           const double root = (-8.0 + std::sqrt(std::max(0.0, 64.0 - 4.4 * (16.0 - remaining)))) / 2.2;
           const double fits = root > 0.0 ? root * root : 0.0;
-          if (fits >= std::min(n_total / 8.0, 4.0 * n_total / static_cast<double>(blocks))) {
+          if (fits >= std::min(n_total / 64.0, 4.0 * n_total / static_cast<double>(blocks))) {
             step *= fits / expected;
           } else {
             whole_step_ = true;

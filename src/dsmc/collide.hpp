@@ -92,10 +92,10 @@
  * step (a pass in order over the block, which is also what brings it into the cache). Event targets
  * are met exactly all the same (collision-driven runs, `collisions_per_particle`): at the start of a
  * step, when fewer events are left to the target than the step could bring (its candidates R dt times
- * the acceptance of the last step, plus 10 % and 8 standard deviations), the step is shortened to fit;
- * when that would leave it fewer than min(N/8, 4 N/K) events, the step runs instead on the whole gas as one
- * block, with the exact bound of all particles, and stops at the target; the first step of a run,
- * with no acceptance measured yet, too. The time step only sets when bounds are refreshed and blocks
+ * the acceptance of the last step, 1 for the first step of a run, plus 10 % and 8 standard
+ * deviations), the step is shortened to fit; when that would leave it fewer than min(N/64, 4 N/K)
+ * events, the step runs instead on the whole gas as one block, with the exact bound of all particles,
+ * and stops at the target. The time step only sets when bounds are refreshed and blocks
  * remixed, so its length may change from step to step without changing the process. Such a step samples the unblocked process exactly, so the
  * mixture of blocked and whole-gas steps is as unbiased as either. Soft targets (the progress and
  * checkpoint chunks of the simulation) are checked at step ends only.
