@@ -607,6 +607,20 @@ TEST(Collide, DealInPlaceIsTheDealing) {
         deal::deal_in_place(data.data(), n, k, offset, workspace, static_cast<int>(1 + n % 3));
         EXPECT_EQ(data, out) << "n = " << n << ", k = " << k << ", offset = " << offset;
       }
+  // The long cycles of stage 3 cut into pieces on 2 and 3 threads (deal.hpp, "Threads"): at n = 200003
+  // in 30 blocks a random offset usually leaves one cycle holding most of the grid.
+  std::size_t cut = 0;
+  for (std::size_t offset : {std::size_t{0}, std::size_t{12345}, std::size_t{99991}, std::size_t{200002}})
+    for (int threads : {2, 3}) {
+      const std::size_t n = 200003, k = 30, q = n / k, r = n % k;
+      std::vector<std::uint64_t> data(n), out(n);
+      for (std::size_t i = 0; i < n; ++i) data[i] = i;
+      for (std::size_t i = 0; i < n; ++i) out[(i % k) * q + std::min(i % k, r) + i / k] = data[(offset + i) % n];
+      deal::deal_in_place(data.data(), n, k, offset, workspace, threads);
+      EXPECT_TRUE(data == out) << "n = " << n << ", offset = " << offset << ", threads = " << threads;
+      cut += workspace.pieces.size();
+    }
+  EXPECT_GT(cut, 0u);
 }
 
 // Threads inside one replica (collide.hpp): the blocks of a step on 1, 2 or 3 threads give the same
