@@ -152,3 +152,40 @@ TEST(Simulation, AuthorAndStepConvention) {
   EXPECT_NE(author, "granular-dsmc user");
   EXPECT_FALSE(author.empty());
 }
+
+TEST(Simulation, ScalingStateIsTheReplicasAverages) {
+  // /observables/scaling_state (docs/output.md): in a collision-driven run every replica samples at the
+  // same collisions per particle, so the mean over the replicas of each replica's average of c_k over
+  // its samples past scaling_start is the average of the replica means over those samples; T_k/T
+  // satisfies sum_k x_k T_k/T = 1 (T = sum_k x_k T_k) in every replica; the SE is that of 3 numbers.
+  const std::string text =
+      "&system n_species = 3, mass = 1.0, 2.0, 4.0, diameter = 1.0, 1.1, 1.2, number_density = 3*0.01,\n"
+      "        restitution = 0.8 /\n"
+      "&dsmc n_particles = 900, collisions_per_particle = 12.0, replicas = 3, seed = 5 /\n"
+      "&output n_samples = 13, scaling_start = 6.0 /\n";
+  const auto path = scratch("scaling.h5");
+  simulation::run(config_of(text), path.string(), {});
+  const auto c = io::h5md::read_observable(path.string(), "sonine_c");
+  const auto per_particle = io::h5md::read_observable(path.string(), "collisions_per_particle");
+  const std::size_t s = 3;
+  std::vector<double> average(s, 0.0);
+  double samples = 0.0;
+  for (std::size_t i = 1; i < per_particle.value.size(); ++i) {
+    if (per_particle.value[i] < 6.0) continue;
+    for (std::size_t k = 0; k < s; ++k) average[k] += c.value[i * s + k];
+    samples += 1.0;
+  }
+  ASSERT_EQ(samples, 7.0);  // 6, 7, ..., 12 collisions per particle
+  const auto state_c = io::h5md::read_dataset(path.string(), "/observables/scaling_state/sonine_c");
+  const auto state_c_error = io::h5md::read_dataset(path.string(), "/observables/scaling_state/sonine_c_error");
+  const auto share = io::h5md::read_dataset(path.string(), "/observables/scaling_state/temperature_over_mean");
+  ASSERT_EQ(state_c.shape, std::vector<std::size_t>{s});
+  double closure = 0.0;
+  for (std::size_t k = 0; k < s; ++k) {
+    EXPECT_NEAR(state_c.data[k], average[k] / samples, 1e-12) << "species " << k + 1;
+    EXPECT_GT(state_c_error.data[k], 0.0);
+    closure += share.data[k] / 3.0;  // x_k = 1/3
+  }
+  EXPECT_NEAR(closure, 1.0, 1e-12);
+  EXPECT_EQ(io::h5md::read_double_attribute(path.string(), "/observables/scaling_state", "scaling_start"), 6.0);
+}

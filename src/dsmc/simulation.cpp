@@ -275,6 +275,38 @@ struct ReplicaProgress {
   double scaling_samples = 0.0, t_first = 0.0, t_last = 0.0, temp_first = 0.0, temp_last = 0.0;
 };
 
+/// A sample of the scaling state (past `&output scaling_start` collisions per particle) added to this
+/// replica's sums of c_k and T_k/T. A checkpoint of an older version without the sums (their size not
+/// s) leaves them alone: the replica then reports no scaling state.
+void add_scaling_sample(ReplicaProgress& p, const sample::Moments& m, double time) {
+  const std::size_t s = m.sonine_c.size();
+  if (p.c_sum.size() != s || p.share_sum.size() != s) return;
+  for (std::size_t k = 0; k < s; ++k) {
+    p.c_sum[k] += m.sonine_c[k];
+    p.share_sum[k] += m.temperature[k] / m.total_temperature;
+  }
+  if (p.scaling_samples == 0.0) {
+    p.t_first = time;
+    p.temp_first = m.total_temperature;
+  }
+  p.t_last = time;
+  p.temp_last = m.total_temperature;
+  p.scaling_samples += 1.0;
+}
+
+/// This replica's averages of c_k and T_k/T over its scaling-state samples ("scaling_sonine_c",
+/// "scaling_temperature_share"): one value per replica, so that their standard error over the replicas
+/// is that of the time average itself, whatever the correlation between samples (written as
+/// /scaling_state, docs/output.md).
+void add_scaling_averages(ReplicaResult& result, const ReplicaProgress& p) {
+  if (p.scaling_samples < 1.0) return;
+  std::vector<double> c = p.c_sum, share = p.share_sum;
+  for (auto& x : c) x /= p.scaling_samples;
+  for (auto& x : share) x /= p.scaling_samples;
+  result.add("scaling_sonine_c", c.size(), c);
+  result.add("scaling_temperature_share", share.size(), share);
+}
+
 Snapshot make_snapshot(const particles::System& sys, const collide::Collider& collider, const ReplicaProgress& p,
                        const ReplicaResult& partial) {
   Snapshot snap;
@@ -643,6 +675,8 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
                              rng::make_stream(seed, r, rng::Purpose::collisions), config.dsmc.step_fraction);
   ReplicaResult result;
   ReplicaProgress p;
+  p.c_sum.assign(s, 0.0);
+  p.share_sum.assign(s, 0.0);
   // Enskog in shear flow: the shifted relative velocity and the collisional transfer (collide.hpp).
   const bool enskog_shear = shear > 0.0 && mix.enskog;
   if (enskog_shear) collider.set_shear(shear);
@@ -697,9 +731,10 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
     result.add("collisions", 1, {static_cast<double>(counters.events)});
     // The kernel's invariant (collide.hpp Counters::overshoots): 0 in a correct run.
     result.add("acceptance_overshoots", 1, {static_cast<double>(counters.overshoots)});
-    result.add("collisions_per_particle", 1,
-               {2.0 * static_cast<double>(counters.events) / static_cast<double>(sys.size())});
+    const double per_particle = 2.0 * static_cast<double>(counters.events) / static_cast<double>(sys.size());
+    result.add("collisions_per_particle", 1, {per_particle});
     result.add("time", 1, {collider.time()});
+    if (i > 0 && per_particle >= config.output.scaling_start) add_scaling_sample(p, m, collider.time());
     // P at the middle of this stage's streaming jump (thermostat.hpp, "Sampling point"): the value
     // before the jump follows exactly from the one after it (V_x before = V_x + a dt V_y), and the
     // mean of the two is second order in the stage length.
@@ -828,6 +863,7 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
   progress.update(slot, 1.0, label, collider.time(), 0);
   result.events = collider.counters().events;
   result.mean_step = collider.time() > 0.0 && stages > 0.0 ? collider.time() / stages : 0.0;
+  add_scaling_averages(result, p);
   if (shear > 0.0 && window_samples > 0.0) {
     result.add("shear_viscosity_average", 1, {window_sum / window_samples});
     if (enskog_shear) result.add("shear_viscosity_kinetic_average", 1, {window_kinetic_sum / window_samples});
@@ -1013,34 +1049,27 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
       result.add("msd", s,
                  p.tracking ? sample::mean_squared_displacement(sys, collider.time()) : std::vector<double>(s, 0.0));
     const double per_particle = 2.0 * static_cast<double>(counters.events) / static_cast<double>(n_total);
-    if (reduced && i > 0 && per_particle >= config.output.scaling_start) {
-      sample::add_reduced_speeds(mix, sys, m, sample::reduced_velocity_scale(mix, m.total_temperature),
-                                 reduced_bins, reduced_range, p.speed_counts);
-      for (std::size_t k = 0; k < s; ++k) {
-        p.c_sum[k] += m.sonine_c[k];
-        p.share_sum[k] += m.temperature[k] / m.total_temperature;
-      }
-      if (p.scaling_samples == 0.0) {
-        p.t_first = collider.time();
-        p.temp_first = m.total_temperature;
-      }
-      p.t_last = collider.time();
-      p.temp_last = m.total_temperature;
-      p.scaling_samples += 1.0;
+    if (i > 0 && per_particle >= config.output.scaling_start) {
+      if (reduced)
+        sample::add_reduced_speeds(mix, sys, m, sample::reduced_velocity_scale(mix, m.total_temperature),
+                                   reduced_bins, reduced_range, p.speed_counts);
+      add_scaling_sample(p, m, collider.time());
     }
     report(i + 1 == n_samples ? 1.0 : std::min(fraction_done(collider), 0.999));
   }
   result.events = collider.counters().events;
   result.mean_step = collider.mean_step();
   if (track) result.add("msd_start", 1, {p.tracking ? p.msd_start : -1.0});
-  if (p.scaling_samples >= 2.0 && p.t_last > p.t_first) {
+  add_scaling_averages(result, p);
+  if (reduced && p.scaling_samples >= 2.0 && p.t_last > p.t_first) {
     result.add("reduced_distribution", s * reduced_bins,
                sample::reduced_distribution(p.speed_counts, std::vector<double>(counts.begin(), counts.end()),
                                             p.scaling_samples, reduced_bins, reduced_range));
-    for (auto& c : p.c_sum) c /= p.scaling_samples;
-    for (auto& x : p.share_sum) x /= p.scaling_samples;
-    result.add("reduced_sonine_c", s, p.c_sum);
-    result.add("reduced_temperature_share", s, p.share_sum);
+    std::vector<double> c = p.c_sum, share = p.share_sum;
+    for (auto& x : c) x /= p.scaling_samples;
+    for (auto& x : share) x /= p.scaling_samples;
+    result.add("reduced_sonine_c", s, c);
+    result.add("reduced_temperature_share", s, share);
     // zeta* = zeta/(n sigma_12^2 v0) with zeta = 2 sqrt(T) d(T^-1/2)/dt, constant in the HCS
     // (\ref haff_law "docs/haff-and-mixtures.md", \ref son_scaling "docs/sonine.md"): zeta* = 2 slope / (n sigma_12^2 sqrt(2 (m1 + m2)/(m1 m2))).
     const double slope = (1.0 / std::sqrt(p.temp_last) - 1.0 / std::sqrt(p.temp_first)) / (p.t_last - p.t_first);
@@ -1323,6 +1352,41 @@ void write_reduced(io::h5md::Writer& writer, const std::string& root, const io::
                                      "Montanero and Garzo 2002 eq 27, g = G_i of eq 30 (measured c_i, lambda_i, zeta*); docs/sonine.md"));
 }
 
+/// /scaling_state (docs/output.md): c_k and T_k/T averaged over each replica's samples past
+/// scaling_start, then over the replicas, with the standard error over the replicas (that of the time
+/// average itself, whatever the correlation between its samples). Written when every replica has such
+/// samples.
+void write_scaling_state(io::h5md::Writer& writer, const std::string& root, const io::config::Config& config,
+                         PointResult& result) {
+  auto& acc = result.observables;
+  if (!acc.count("scaling_sonine_c") || !acc.count("scaling_temperature_share") || !acc.count("time")) return;
+  const std::size_t replicas = acc["time"].values.size();
+  for (const char* name : {"scaling_sonine_c", "scaling_temperature_share"}) {
+    const auto& values = acc[name].values;
+    if (values.size() != replicas) return;
+    for (const auto& v : values)
+      if (v.size() != acc[name].columns) return;
+  }
+  const std::string group = root + "/scaling_state";
+  const std::size_t s = acc["scaling_sonine_c"].columns;
+  for (const auto& [name, dataset] : std::vector<std::pair<std::string, std::string>>{
+           {"scaling_sonine_c", "sonine_c"}, {"scaling_temperature_share", "temperature_over_mean"}}) {
+    writer.write_dataset(group + "/" + dataset, acc[name].mean(), {s});
+    writer.write_unit(group + "/" + dataset, io::units::kDimensionless);
+    const auto error = acc[name].standard_error();
+    if (!error.empty()) {
+      writer.write_dataset(group + "/" + dataset + "_error", error, {s});
+      writer.write_unit(group + "/" + dataset + "_error", io::units::kDimensionless);
+    }
+  }
+  writer.write_attribute(group, "replicas", static_cast<long long>(replicas));
+  writer.write_attribute(group, "scaling_start", config.output.scaling_start);
+  writer.write_attribute(group, "description",
+                         std::string("c_k and T_k/T of each replica averaged over its samples past scaling_start "
+                                     "collisions per particle, then over the replicas; *_error: standard error "
+                                     "over the replicas (docs/output.md)"));
+}
+
 /// The observables of an &agg_frag point. T_k of a size that most replicas lack is not the mean of
 /// per-replica temperatures: it is the ratio estimator T_k = (2/3) sum_r E_kr / sum_r N_kr (E_kr the
 /// kinetic energy of size k in replica r), with the delta-method standard error
@@ -1407,7 +1471,8 @@ void write_point(io::h5md::Writer& writer, const std::string& root, const io::co
 
   for (const auto& [name, a] : acc) {
     if (name == "velocity_histogram" || name == "msd_start" ||
-        (name.rfind("reduced_", 0) == 0 && name != "reduced_shear_rate") || name == "shear_viscosity_average" ||
+        (name.rfind("reduced_", 0) == 0 && name != "reduced_shear_rate") || name.rfind("scaling_", 0) == 0 ||
+        name == "shear_viscosity_average" ||
         name == "shear_viscosity_kinetic_average")
       continue;
     io::h5md::Series series;
@@ -1444,6 +1509,7 @@ void write_point(io::h5md::Writer& writer, const std::string& root, const io::co
     writer.write_unit(root + "/velocity_histogram/bin_edges", io::units::kDimensionless);  // v/sqrt(T_k/m_k)
   }
   if (acc.count("reduced_distribution")) write_reduced(writer, root, config, result);
+  write_scaling_state(writer, root, config, result);
   if (acc.count("shear_viscosity_average")) {
     // One value per replica: the mean of eta/eta_0 over its samples from average_from on.
     const auto mean = acc["shear_viscosity_average"].mean();

@@ -72,6 +72,16 @@ void add_scaling_state(Point& pt, const config::Config& config, const theory::Pr
                  {}, s, {}, {}, {}, {}};
   Quantity cumulant{"sonine_c", "c_{k}", "first_sonine", "docs/sonine.md: first Sonine 9-14 % high; allowance 15 %",
                     {}, s, {}, {}, {}, {}};
+  // /scaling_state (docs/output.md): each replica's own average over its scaling samples, so that the SE
+  // over the replicas is that of the time average; files without it: the samples' average, with the mean
+  // of their SE (as if fully correlated: an upper bound).
+  auto array = [&](const char* name) -> const std::vector<double>* {
+    const auto it = m.arrays.find(std::string("scaling_state/") + name);
+    return it != m.arrays.end() && it->second.size() == s ? &it->second : nullptr;
+  };
+  const auto *replica_c = array("sonine_c"), *replica_c_error = array("sonine_c_error");
+  const auto *replica_ratio = array("temperature_over_mean"), *replica_ratio_error = array("temperature_over_mean_error");
+  const bool per_replica = replica_c && replica_c_error && replica_ratio && replica_ratio_error;
   std::size_t count = 0;
   for (std::size_t k = 0; k < s; ++k) {
     std::vector<double> r(nt), re(nt), c(nt), cerr(nt);
@@ -82,9 +92,13 @@ void add_scaling_state(Point& pt, const config::Config& config, const theory::Pr
       c[i] = sonine.value[i * s + k];
       cerr[i] = ce[i * s + k];
     }
-    const Average ar = scaling_average(r, re, per_particle, start);
-    const Average ac = scaling_average(c, cerr, per_particle, start);
+    Average ar = scaling_average(r, re, per_particle, start);
+    Average ac = scaling_average(c, cerr, per_particle, start);
     count = ar.count;
+    if (per_replica) {  // the averages per replica, and the SE over the replicas (/scaling_state)
+      ar.value = replica_ratio->at(k), ar.error = replica_ratio_error->at(k);
+      ac.value = replica_c->at(k), ac.error = replica_c_error->at(k);
+    }
     ratio.value.push_back(ar.value);
     ratio.error.push_back(ar.error);
     ratio.theory.push_back(fs.temperature_over_mean[k]);
@@ -103,9 +117,13 @@ void add_scaling_state(Point& pt, const config::Config& config, const theory::Pr
     pt.notes.push_back(text);
     return;
   }
-  char text[200];
-  std::snprintf(text, sizeof text, "T_k/T, c_k: averages of the %zu samples past scaling_start = %g collisions per "
-                "particle; SE = mean of the samples' SE (an upper bound)", count, start);
+  char text[300];
+  if (per_replica)
+    std::snprintf(text, sizeof text, "T_k/T, c_k: each replica's average over its samples past scaling_start = %g "
+                  "collisions per particle (%zu samples), averaged over the replicas; SE over the replicas", start, count);
+  else
+    std::snprintf(text, sizeof text, "T_k/T, c_k: averages of the %zu samples past scaling_start = %g collisions per "
+                  "particle; SE = mean of the samples' SE (an upper bound)", count, start);
   pt.notes.push_back(text);
   ratio.at = cumulant.at = "scaling state";
   if (s > 1) pt.quantities.push_back(std::move(ratio));
@@ -369,6 +387,13 @@ Measured read_measured(const std::string& file, const std::string& root) {
     try {
       m.attributes[group + "@" + name] = h5md::read_double_attribute(file, root + "/" + group, name);
     } catch (const std::runtime_error&) {
+    }
+  }
+  for (const char* name : {"sonine_c", "sonine_c_error", "temperature_over_mean", "temperature_over_mean_error"}) {
+    try {
+      m.arrays[std::string("scaling_state/") + name] = h5md::read_dataset(file, root + "/scaling_state/" + name).data;
+    } catch (const std::runtime_error&) {
+      // files of runs without a scaling state, or written before it existed
     }
   }
   return m;

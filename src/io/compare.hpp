@@ -124,6 +124,7 @@ struct Comparison {
 struct Measured {
   std::map<std::string, h5md::ObservableData> observables;  ///< by name
   std::map<std::string, double> attributes;                 ///< "group@name" -> value
+  std::map<std::string, std::vector<double>> arrays;        ///< "group/name" -> values (e.g. scaling_state)
   /// The observable `name` was read.
   bool has(const std::string& name) const { return observables.count(name) > 0; }
 };

@@ -78,8 +78,8 @@ Table build(const config::Config& config, const std::string& file) {
   const std::vector<std::pair<std::string, std::string>> names = {
       {"temperature", "last sample (final temperature; steady with a thermostat)"},
       {"total_temperature", "last sample (final temperature; steady with a thermostat)"},
-      {"temperature_over_mean", "scaling state: samples past &output scaling_start averaged (else the last sample)"},
-      {"sonine_c", "scaling state: samples past &output scaling_start averaged (else the last sample)"},
+      {"temperature_over_mean", "scaling state: samples past &output scaling_start averaged per replica, SE over the replicas (else the last sample)"},
+      {"sonine_c", "scaling state: samples past &output scaling_start averaged per replica, SE over the replicas (else the last sample)"},
       {"cooling_rate_reduced", "scaling state (reduced_distribution@cooling_rate_reduced)"},
       {"shear_viscosity", "time average from &shear average_from (shear_viscosity@time_average)"},
       {"collisions_per_particle", "last sample"}};
@@ -131,6 +131,17 @@ Table build(const config::Config& config, const std::string& file) {
         cumulant.value.push_back(ac.value);
         cumulant.error.push_back(ac.error);
         t.scaling_samples[k] = any ? static_cast<double>(ar.count) : 0.0;
+        // The file's scaling_state (docs/output.md): each replica's average, SE over the replicas.
+        const auto array = [&](const char* name) -> const std::vector<double>* {
+          const auto it = m.arrays.find(std::string("scaling_state/") + name);
+          return any && it != m.arrays.end() && it->second.size() == s ? &it->second : nullptr;
+        };
+        const auto *rv = array("temperature_over_mean"), *rerr = array("temperature_over_mean_error");
+        const auto *cvs = array("sonine_c"), *cerrs = array("sonine_c_error");
+        if (rv && rerr && cvs && cerrs) {
+          ratio.value.back() = (*rv)[c], ratio.error.back() = (*rerr)[c];
+          cumulant.value.back() = (*cvs)[c], cumulant.error.back() = (*cerrs)[c];
+        }
       }
       ratio.present = cumulant.present = s > 0 && nt > 0;
       per[2][k] = ratio;

@@ -317,4 +317,20 @@ IndependentSeries read_independent_series(const std::string& file, const std::st
   return series;
 }
 
+ScalingState read_scaling_state(const std::string& file, const std::string& observables_root, std::size_t species) {
+  ScalingState state;
+  try {
+    const std::string group = observables_root + "/scaling_state/";
+    state.c = io::h5md::read_dataset(file, group + "sonine_c").data;
+    state.c_error = io::h5md::read_dataset(file, group + "sonine_c_error").data;
+    state.share = io::h5md::read_dataset(file, group + "temperature_over_mean").data;
+    state.share_error = io::h5md::read_dataset(file, group + "temperature_over_mean_error").data;
+  } catch (const std::runtime_error&) {
+    return ScalingState{};
+  }
+  state.known = state.c.size() == species && state.c_error.size() == species && state.share.size() == species &&
+                state.share_error.size() == species;
+  return state;
+}
+
 }  // namespace gdsmc::validation

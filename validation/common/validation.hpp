@@ -122,4 +122,16 @@ struct IndependentSeries {
 /// malformed row. An unreadable file gives no rows.
 IndependentSeries read_independent_series(const std::string& file, const std::string& keyword, std::size_t species);
 
+/// The scaling state of a run (its `scaling_state` group, docs/output.md): c_k and T_k/T of each replica
+/// averaged over its samples past `&output scaling_start`, then over the replicas, with the standard
+/// error over the replicas, which is that of the time average whatever the correlation between the
+/// samples (unlike the mean of the samples' SE, an upper bound).
+struct ScalingState {
+  bool known = false;                  ///< the group exists with `species` values and errors
+  std::vector<double> c, c_error;      ///< c_k and its SE
+  std::vector<double> share, share_error;  ///< T_k/T and its SE
+};
+/// Reads `observables_root`/scaling_state ("/observables" or "/sweep/point_K/observables").
+ScalingState read_scaling_state(const std::string& file, const std::string& observables_root, std::size_t species);
+
 }  // namespace gdsmc::validation

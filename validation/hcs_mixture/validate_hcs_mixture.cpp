@@ -23,8 +23,8 @@ int main(int argc, char** argv) {
   validation::Report report("HCS of " + std::to_string(s) + " species vs first Sonine: " + run.config.source_file,
                             run.report_file());
   // The scaling-state averages and the first-Sonine theory are those of granular-dsmc --compare
-  // (io/compare.hpp): samples past scaling_start collisions per particle, averaged; the standard error of
-  // the average is the mean of the samples' (as if fully correlated: an upper bound).
+  // (io/compare.hpp): samples past scaling_start collisions per particle, averaged per replica, with the
+  // standard error over the replicas (the file's scaling_state, docs/output.md).
   const auto comparison = io::compare::compare_file(run.config, run.file);
   const auto& point = comparison.points.at(0);
   const io::compare::Quantity* ratio = nullptr;
