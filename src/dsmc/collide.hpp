@@ -457,7 +457,26 @@ class Collider {
   bool lowrank_blocks() const { return scheme_ == Scheme::lowrank && s_ > 1 && !block_first_.empty(); }
   void set_block_lowrank(double n);  ///< on a worker: the current block's A_ik, their alias table and R
   std::vector<double> pair_weights_;   ///< a block's A_ik, S x S (set_block_lowrank)
-  segment_tree::AliasTable pair_alias_;
+  segment_tree::AliasTable pair_alias_;  ///< over the S^2 pairs (run_lowrank in a block: viscoelastic)
+  /// The mixture kernel's draw of a `lowrank` candidate from one 64-bit word (header "Mixtures in blocks"):
+  /// an alias table over P = 2^m >= S^2 cells (the pairs, then zero weights), the cell from the top m
+  /// bits, its coin from the next 16 - m, two 24-bit halves for the particles (Lemire, exact by rejection).
+  struct LowrankOutcome {
+    std::uint32_t first_i, count_i, first_k, count_k;  ///< the slices of species i and k (system indices)
+    std::uint32_t reject_i, reject_k;                  ///< 2^24 mod count: a 24-bit half below it is rejected
+    std::uint32_t i, k;                                ///< the species pair
+  };
+  struct LowrankCell {
+    double fraction;        ///< t 2^c - whole, t the cell's alias threshold, c = 16 - m coin bits
+    std::uint32_t whole;    ///< floor(t 2^c): the coin q keeps the cell if q < whole (q = whole: fraction decides)
+    std::uint32_t keep;     ///< the cell's outcome (the pair it stands for)
+    std::uint32_t other;    ///< its alias's outcome
+  };
+  std::vector<LowrankCell> lowrank_cells_;        ///< P cells (set_block_lowrank)
+  std::vector<LowrankOutcome> lowrank_outcomes_;  ///< S^2 outcomes, pair i S + k
+  std::vector<double> lowrank_limits_;            ///< w_i + w_k of pair i S + k: the acceptance |g| / (w_i + w_k)
+  unsigned lowrank_cell_bits_ = 0;                ///< m
+  bool lowrank_narrow_ = false;                   ///< every slice of the block below 2^24 (the one-word draw)
   double step_start_ = 0.0;
   /// Exact vmax_k^2 of block j's slices, read in order, into out[k].
   void set_block_max_speed2(std::size_t block, double* out);
