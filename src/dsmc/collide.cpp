@@ -609,6 +609,9 @@ void Collider::run_block_mixture(double t_stop) {
   // is less, as in run_block_one_species: a pair of indices from one draw, the drawn-ahead pairs (with
   // their species, known from the slice, so no read of the species array) in locals, no frame and no
   // viscoelastic branch, the pair's constants in one record, and (g.e) e without e (hemisphere_projection).
+  // The block's stream in a local copy (written back at the end): its state then stays in registers
+  // instead of being stored and loaded again at every draw (the same draws, 2-5 % less time per candidate).
+  rng::Xoshiro256pp gen = gen_;
   const std::size_t s = s_;
   const std::size_t* cum = slice_cum_.data() + current_block_ * (s + 1);
   const std::size_t* slice = slice_first_.data() + current_block_ * s;
@@ -642,20 +645,20 @@ void Collider::run_block_mixture(double t_stop) {
       // 16 - m (a further uniform only when they tie with the threshold), the particles from the low two
       // 24-bit fields by below_pair's multiply-shift and rejection in 24 bits (Lemire 2019; either field
       // rejected: below_pair draws both particles of this pair again). Slices of 2^24 or more: below_pair.
-      const std::uint64_t r = gen_();
+      const std::uint64_t r = gen();
       const LowrankCell& cell = cells[r >> (64 - cell_bits)];
       const auto q = static_cast<std::uint32_t>(r >> 48) & coin_mask;
-      const bool keep = q < cell.whole || (q == cell.whole && gen_.uniform() < cell.fraction);
+      const bool keep = q < cell.whole || (q == cell.whole && gen.uniform() < cell.fraction);
       const LowrankOutcome& o = outcomes[keep ? cell.keep : cell.other];
       const std::uint64_t m1 = (r & 0xffffffULL) * o.count_i, m2 = ((r >> 24) & 0xffffffULL) * o.count_k;
       std::uint32_t x = static_cast<std::uint32_t>(m1 >> 24), y = static_cast<std::uint32_t>(m2 >> 24);
       if ((static_cast<std::uint32_t>(m1) & 0xffffffu) < o.reject_i ||
           (static_cast<std::uint32_t>(m2) & 0xffffffu) < o.reject_k || !narrow) [[unlikely]]
-        gen_.below_pair(o.count_i, o.count_k, x, y);
+        gen.below_pair(o.count_i, o.count_k, x, y);
       p = {o.first_i + x, o.first_k + y, o.i, o.k};
     } else {  // a uniform pair of the block's particles
       std::uint32_t x, y;
-      gen_.below_pair(n, n - 1, x, y);
+      gen.below_pair(n, n - 1, x, y);
       y += y >= x;
       const std::uint32_t i = species_of(x), k = species_of(y);
       p = {static_cast<std::uint32_t>(slice[i] + (x - cum[i])), static_cast<std::uint32_t>(slice[k] + (y - cum[k])), i,
@@ -694,18 +697,18 @@ void Collider::run_block_mixture(double t_stop) {
       if constexpr (Lowrank) {
         // Accept with |g| / (w_i + w_k) (run_lowrank in a block: chi_ik cancels), compared squared.
         const double limit = limits[p.i * s + p.k];  // w_i + w_k
-        const double threshold = gen_.uniform() * limit;
+        const double threshold = gen.uniform() * limit;
         if (threshold * threshold >= g2) continue;
         if (g2 > limit * limit) [[unlikely]] note_overshoot(std::sqrt(g2) / limit);
       } else {
         // Accept with pi sigma_kj^2 chi_kj |g| / B_b (\ref sch_majorant "docs/schemes.md"), compared squared.
         const double rate2 = pk.cross_section * pk.cross_section * g2;
-        const double threshold = gen_.uniform() * bound;
+        const double threshold = gen.uniform() * bound;
         if (threshold * threshold >= rate2) continue;
         if (rate2 > bound * bound) [[unlikely]] note_overshoot(std::sqrt(rate2) / bound);
       }
       double px, py, pz;
-      const double g_dot_e2 = hemisphere_projection(gen_, gx, gy, gz, std::sqrt(g2), px, py, pz);
+      const double g_dot_e2 = hemisphere_projection(gen, gx, gy, gz, std::sqrt(g2), px, py, pz);
       if (g_dot_e2 == 0.0) continue;
       if constexpr (Track) {
         const double t_collision = t0 + static_cast<double>(c + 1) * dt_candidate;
@@ -753,6 +756,7 @@ void Collider::run_block_mixture(double t_stop) {
   counters_.events += events;
   counters_.candidates += candidates;
   counters_.dissipated += dissipated;
+  gen_ = gen;
 }
 
 void Collider::set_block_lowrank(double n) {
