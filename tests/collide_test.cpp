@@ -925,6 +925,48 @@ TEST(Collide, ManyBlocksMeetEventTargetsExactly) {
 // errors, the target is met exactly and the species layout is unchanged (each particle keeps its
 // species' range); for `majorant` and for `lowrank` (each block its own A_ik), dilute and, with
 // `lowrank` (whose blocks use chi_ik itself, not chi_max), Enskog at packing fraction 0.2.
+TEST(Collide, BlockedThreeSpeciesLowrankMatchesUnblocked) {
+  // Three species: the block kernel's one-word draw then uses an alias table of 16 cells for the 9
+  // pairs (7 of zero weight) and 12 coin bits (collide.cpp, set_block_lowrank). The share of each
+  // species pair's events and each T_k, blocked against unblocked, over 16 replicas.
+  species::PairMatrix alpha(3, 0.9);
+  alpha(0, 2) = alpha(2, 0) = 0.7;
+  const auto mix = species::make_mixture({1.0, 2.0, 4.0}, {1.0, 1.3, 1.6}, {0.006, 0.004, 0.003}, alpha, false);
+  const std::vector<std::size_t> counts = {6000, 4000, 3000};
+  const std::size_t replicas = 16;
+  std::vector<std::vector<double>> observed[2];
+  for (int blocked = 0; blocked < 2; ++blocked) {
+    observed[blocked].assign(9, {});
+    for (std::size_t r = 0; r < replicas; ++r) {
+      auto sys = initial(mix, counts, {1.0, 1.0, 1.0}, 300 + r);
+      Collider c(Scheme::lowrank, mix, sys, rng::make_stream(300 + r, 0, rng::Purpose::collisions), 1.0);
+      if (blocked) c.use_blocks(3000);
+      ASSERT_EQ(c.blocks(), blocked ? 4u : 1u);
+      c.advance(60.0);
+      EXPECT_EQ(c.counters().overshoots, 0u);
+      double e[3] = {0.0, 0.0, 0.0};
+      for (std::size_t i = 0; i < sys.size(); ++i) {
+        const auto& v = sys.v[i];
+        e[sys.species[i]] += mix.mass[sys.species[i]] * (v.x * v.x + v.y * v.y + v.z * v.z);
+      }
+      for (std::size_t k = 0; k < 3; ++k) observed[blocked][k].push_back(e[k] / (3.0 * static_cast<double>(counts[k])));
+      const auto events = static_cast<double>(c.counters().events);
+      std::size_t q = 3;
+      for (std::size_t k = 0; k < 3; ++k)
+        for (std::size_t j = k; j < 3; ++j)
+          observed[blocked][q++].push_back(static_cast<double>(c.counters().pair_events[k * 3 + j]) / events);
+    }
+  }
+  const char* names[] = {"T1", "T2", "T3", "share 1-1", "share 1-2", "share 1-3", "share 2-2", "share 2-3", "share 3-3"};
+  for (std::size_t q = 0; q < 9; ++q) {
+    const auto [m0, s0] = mean_se(observed[0][q]);
+    const auto [m1, s1] = mean_se(observed[1][q]);
+    std::printf("[ Blocks.Three ] lowrank %s: unblocked %.6g +- %.2g, blocked %.6g +- %.2g (%.2f SE)\n", names[q], m0,
+                s0, m1, s1, (m1 - m0) / std::hypot(s0, s1));
+    EXPECT_LT(std::abs(m1 - m0), 4.0 * std::hypot(s0, s1)) << names[q];
+  }
+}
+
 TEST(Collide, BlockedMixtureMatchesUnblocked) {
   const auto dilute = binary(0.9, 0.8, 0.7);
   species::PairMatrix alpha(2, 0.9);

@@ -160,21 +160,43 @@
  * for `majorant` and `lowrank`), which samples exactly the process just described (the same R_b, the
  * same pair law, the same acceptance, bounds raised when exceeded, `lowrank`'s drawn-ahead pairs
  * redrawn when A_ik changes) with the techniques of the one-species kernel: the two indices of a pair
- * from one draw (below_pair: two block indices in `majorant`, a particle of each of the two slices in
- * `lowrank`), the drawn-ahead pairs in locals with their species, which the slice of an index gives
- * (no read of the species array), each species pair's constants in one record (PairKernel), no frame
- * or viscoelastic branch, and the impulse from hemisphere_projection. Viscoelastic mixtures run the
- * general loops in their blocks. Measured at N = 1e6 (bench_collide, the binary gases of bench_paths,
- * CPU time, medians of both builds alternately): `majorant` 38.5 -> 22.9 ns per candidate (5.8e6 ->
- * 9.7e6 collisions/s, 0.80 of the one-species rate; Enskog 0.76), `lowrank` 52 -> 40 ns (4.5e6 -> 5.9e6,
- * 0.49), the candidates per collision unchanged; end to end (bench_paths, collisions per CPU second)
- * 1.8 times the rate before with `majorant` (0.86 of the one-species rate; Enskog 0.84) and 1.6 times with
- * `lowrank` (0.73). `lowrank`'s candidate costs more (its species pair from the alias table before its
- * particles), so in blocks `majorant` is the faster mixture scheme.
+ * from one draw (below_pair: two block indices in `majorant`), the drawn-ahead pairs in locals with
+ * their species, which the slice of an index gives (no read of the species array), each species pair's
+ * constants in one record (PairKernel), the block's generator in a local copy (its state in registers,
+ * not stored and reloaded at every draw), no frame or viscoelastic branch, and the impulse from
+ * hemisphere_projection. A `lowrank` candidate is one 64-bit word too (set_block_lowrank lays the
+ * block's alias table over P = 2^m >= S^2 cells, zero weights after the S^2 pairs, each pair's two
+ * slices, Lemire thresholds and w_i + w_k in one record): the cell from the top m bits, its coin from
+ * the next 16 - m (a further uniform only when they tie with the threshold's leading bits, so the coin
+ * is exact), the two particles from two 24-bit fields by multiply-shift with rejection (below_pair's,
+ * in 24 bits; slices of 2^24 or more use below_pair). Viscoelastic mixtures run the general loops in
+ * their blocks.
+ * Why a `lowrank` candidate cost more than a `majorant` one (issue 11: 40 against 23 ns in a loaded
+ * session, 23.7 against 17.9 in the session below; perf on bench_collide, binary lowrank): its pair
+ * draw was half of the kernel's samples (49 %, `majorant`'s 25 %), a dependent chain before the
+ * particles could be prefetched: a 53-bit uniform converted to double, scaled, truncated and clamped,
+ * the alias threshold read and compared (a branch), the alias read, the pair's species read, the four
+ * slice bounds read and subtracted (spilled to the stack), then a second draw for below_pair. The
+ * one-word draw above cut that share to 33 % (about 9.5 -> 5 ns); the rest of a candidate (the
+ * velocities, the acceptance, whose branch goes either way, and a collision's two roots) is
+ * `majorant`'s. Measured at N = 1e6 (bench_collide 1000000 0.9 10 32768, the binary gases of
+ * bench_paths, CPU time, commit 8531ce2 and this code alternately three times, load about 5 on 2
+ * cores, medians): `lowrank` 23.7 -> 18.7 ns per candidate (1.00e7 -> 1.26e7 collisions/s, 0.62 ->
+ * 0.78 of the one-species rate; Enskog 23.4 -> 18.9, 0.63 -> 0.79), `majorant` 17.9 -> 17.2 ns (1.26e7
+ * -> 1.30e7, 0.77 -> 0.82; Enskog 0.77 -> 0.82), one species 14 ns; candidates per collision 4.23
+ * (`lowrank`) and 4.45 (`majorant`), unchanged. So in blocks the two schemes now cost within 4 % the
+ * same per collision (79 and 77 ns: `lowrank`'s 5 % fewer candidates for its 9 % dearer candidate, the
+ * record reads and the wider draw). End to end (bench_paths 1000000, medians of three, each over the
+ * one-species `t_end` run of the same process): the collision loop's rate (wall clock) `lowrank` 0.63 ->
+ * 0.85 (Enskog 0.64 -> 0.86), `majorant` 0.76 -> 0.84 (Enskog 0.76 -> 0.78); collisions per CPU second
+ * of the whole run `lowrank` 0.70 -> 0.81 (Enskog 0.69 -> 0.80), `majorant` 0.83 -> 0.83 (Enskog 0.79 -> 0.80). Tried and left out: a look-ahead of 16 instead of 8 (no gain: a block's
+ * velocities are in L2).
  * Checked by Collide.BlockedMixtureMatchesUnblocked (T_k, the share of unlike-pair events, the time at
- * an event target, over 16 replicas, both schemes) and by every mixture validation, which runs
- * blocked at N >= 2 block_size. Measured at N = 1e6 (binary, masses 1 and 4, diameters 1 and 1.5,
- * one replica) before the kernels: 5.5e6 collisions/s blocked against 2.1e6 unblocked.
+ * an event target, over 16 replicas, both schemes), Collide.BlockedThreeSpeciesLowrankMatchesUnblocked
+ * (three species: 16 alias cells for 9 pairs; T_k and each pair's share of events) and by every
+ * mixture validation, which runs blocked at N >= 2 block_size. Measured at N = 1e6 (binary, masses 1
+ * and 4, diameters 1 and 1.5, one replica) before the kernels: 5.5e6 collisions/s blocked against 2.1e6
+ * unblocked.
  *
  * **Threads inside one replica** (issue 11; `use_threads`). Within a blocked step the blocks are
  * independent gases over the same time interval: block j reads and writes only its own particles, its
@@ -457,7 +479,26 @@ class Collider {
   bool lowrank_blocks() const { return scheme_ == Scheme::lowrank && s_ > 1 && !block_first_.empty(); }
   void set_block_lowrank(double n);  ///< on a worker: the current block's A_ik, their alias table and R
   std::vector<double> pair_weights_;   ///< a block's A_ik, S x S (set_block_lowrank)
-  segment_tree::AliasTable pair_alias_;
+  segment_tree::AliasTable pair_alias_;  ///< over the S^2 pairs (run_lowrank in a block: viscoelastic)
+  /// The mixture kernel's draw of a `lowrank` candidate from one 64-bit word (header "Mixtures in blocks"):
+  /// an alias table over P = 2^m >= S^2 cells (the pairs, then zero weights), the cell from the top m
+  /// bits, its coin from the next 16 - m, two 24-bit halves for the particles (Lemire, exact by rejection).
+  struct LowrankOutcome {
+    std::uint32_t first_i, count_i, first_k, count_k;  ///< the slices of species i and k (system indices)
+    std::uint32_t reject_i, reject_k;                  ///< 2^24 mod count: a 24-bit half below it is rejected
+    std::uint32_t i, k;                                ///< the species pair
+  };
+  struct LowrankCell {
+    double fraction;        ///< t 2^c - whole, t the cell's alias threshold, c = 16 - m coin bits
+    std::uint32_t whole;    ///< floor(t 2^c): the coin q keeps the cell if q < whole (q = whole: fraction decides)
+    std::uint32_t keep;     ///< the cell's outcome (the pair it stands for)
+    std::uint32_t other;    ///< its alias's outcome
+  };
+  std::vector<LowrankCell> lowrank_cells_;        ///< P cells (set_block_lowrank)
+  std::vector<LowrankOutcome> lowrank_outcomes_;  ///< S^2 outcomes, pair i S + k
+  std::vector<double> lowrank_limits_;            ///< w_i + w_k of pair i S + k: the acceptance |g| / (w_i + w_k)
+  unsigned lowrank_cell_bits_ = 0;                ///< m
+  bool lowrank_narrow_ = false;                   ///< every slice of the block below 2^24 (the one-word draw)
   double step_start_ = 0.0;
   /// Exact vmax_k^2 of block j's slices, read in order, into out[k].
   void set_block_max_speed2(std::size_t block, double* out);
