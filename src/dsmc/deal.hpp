@@ -82,7 +82,9 @@ struct Workspace {
   std::vector<std::uint32_t> leaders; ///< the least place of each cycle of stage 3 (not cut into pieces)
   /// A piece of a long cycle of stage 3: its first place, its places, and its cycle's first piece.
   struct Piece {
-    std::uint32_t first, length, cycle;
+    std::uint32_t first;   ///< its first grid place
+    std::uint32_t length;  ///< its places
+    std::uint32_t cycle;   ///< the index (in `pieces`) of its cycle's first piece
   };
   std::vector<Piece> pieces;          ///< the pieces of the long cycles, cycle by cycle in cycle order
 

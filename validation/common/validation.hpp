@@ -128,8 +128,10 @@ IndependentSeries read_independent_series(const std::string& file, const std::st
 /// samples (unlike the mean of the samples' SE, an upper bound).
 struct ScalingState {
   bool known = false;                  ///< the group exists with `species` values and errors
-  std::vector<double> c, c_error;      ///< c_k and its SE
-  std::vector<double> share, share_error;  ///< T_k/T and its SE
+  std::vector<double> c;               ///< c_k
+  std::vector<double> c_error;         ///< its SE
+  std::vector<double> share;           ///< T_k/T
+  std::vector<double> share_error;     ///< its SE
 };
 /// Reads `observables_root`/scaling_state ("/observables" or "/sweep/point_K/observables").
 ScalingState read_scaling_state(const std::string& file, const std::string& observables_root, std::size_t species);
