@@ -1623,9 +1623,8 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
   // Threads serve the units first; when this rank has fewer units than threads, each unit's cache
   // blocks share the rest (collide.hpp, "Threads inside one replica"), and the output is the same.
   const parallel::ThreadSplit split = parallel::split_threads(mine.size());
-#pragma omp parallel for schedule(dynamic, 1) num_threads(split.units)
-  for (std::ptrdiff_t k = 0; k < n_mine; ++k) {
-    if (interrupted.load() || failed.load()) continue;
+  const auto run_unit = [&](std::ptrdiff_t k) {
+    if (interrupted.load() || failed.load()) return;
     const Unit& unit = units[mine[static_cast<std::size_t>(k)]];
     const auto& point = points[unit.point];
     std::string label = "replica " + std::to_string(unit.replica + 1) + "/" + std::to_string(point.dsmc.replicas);
@@ -1651,6 +1650,15 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
 #pragma omp critical(gdsmc_failure)
       if (!failed.exchange(true)) failure = e.what();
     }
+  };
+  if (split.units > 1) {
+#pragma omp parallel for schedule(dynamic, 1) num_threads(split.units)
+    for (std::ptrdiff_t k = 0; k < n_mine; ++k) run_unit(k);
+  } else {
+    // One unit at a time: no enclosing parallel region, so the blocks' parallel regions are not nested
+    // (libgomp starts new threads for every nested region instead of reusing its pool: 144 threads
+    // for a run of 40 steps).
+    for (std::ptrdiff_t k = 0; k < n_mine; ++k) run_unit(k);
   }
   progress.finish();
 
