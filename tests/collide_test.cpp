@@ -975,17 +975,21 @@ TEST(Collide, BlockedMixtureMatchesUnblocked) {
   // pi/6 (0.1 + 0.05 x 8) = 0.26: chi_11, chi_12, chi_22 well apart
   const auto dense = species::make_mixture({1.0, 4.0}, {1.0, 2.0}, {0.1, 0.05}, alpha, true);
   const std::size_t replicas = 16;
-  for (int path = 0; path < 3; ++path) {
+  // Path 3: viscoelastic restitution, whose blocks run the general lowrank loop (not the mixture kernel):
+  // its per-pair bounds with chi_ik (mutant 21).
+  const species::PairMatrix beta(2, 0.2);
+  for (int path = 0; path < 4; ++path) {
   const Scheme scheme = path == 0 ? Scheme::majorant : Scheme::lowrank;
-  const auto& mix = path == 2 ? dense : dilute;
-  const double t_mid = path == 2 ? 6.0 : 60.0;
-  SCOPED_TRACE(path == 2 ? "lowrank, Enskog" : name(scheme));
+  const auto& mix = path >= 2 ? dense : dilute;
+  const double t_mid = path >= 2 ? 6.0 : 60.0;
+  SCOPED_TRACE(path == 3 ? "lowrank, Enskog, viscoelastic" : path == 2 ? "lowrank, Enskog" : name(scheme));
   std::vector<std::vector<double>> t1(2), t2(2), cross(2), time(2);
   for (int blocked = 0; blocked < 2; ++blocked)
     for (std::size_t r = 0; r < replicas; ++r) {
       auto sys = initial(mix, {8000, 4000}, {1.0, 1.0}, 200 + r);
       const auto species_before = sys.species;
-      Collider c(scheme, mix, sys, rng::make_stream(200 + r, 0, rng::Purpose::collisions), 1.0);
+      Collider c(scheme, mix, sys, rng::make_stream(200 + r, 0, rng::Purpose::collisions), 1.0,
+                 path == 3 ? &beta : nullptr);
       if (blocked) c.use_blocks(3000);
       ASSERT_EQ(c.blocks(), blocked ? 4u : 1u);
       c.advance(t_mid);
@@ -1009,7 +1013,8 @@ TEST(Collide, BlockedMixtureMatchesUnblocked) {
     const auto [m0, s0] = mean_se((*x)[0]);
     const auto [m1, s1] = mean_se((*x)[1]);
     std::printf("[ Blocks.Mixture ] %s%s %s: unblocked %.6g +- %.2g, blocked %.6g +- %.2g (%.2f SE)\n", name(scheme),
-                path == 2 ? " Enskog" : "", names[q++], m0, s0, m1, s1, (m1 - m0) / std::hypot(s0, s1));
+                path == 3 ? " Enskog viscoelastic" : path == 2 ? " Enskog" : "", names[q++], m0, s0, m1, s1,
+                (m1 - m0) / std::hypot(s0, s1));
     EXPECT_LT(std::abs(m1 - m0), 4.0 * std::hypot(s0, s1));
   }
   }
