@@ -294,7 +294,7 @@ Result run(const std::vector<double>& mass, const std::vector<double>& diameter,
 /// attractive force is unphysical), and alpha = -x' then. Checks (--visco-check, README.md): (1 - alpha)/delta
 /// -> C1 = 1.1534488580952888 as delta -> 0, the published first coefficient, which fixes this
 /// normalisation (with (3/2) delta in front of the damping term the limit is (3/2) C1); alpha agrees with
-/// 1 + sum_j h_j u^j (u^2 = delta, /work/shared/ERRATA.md section 11) within 5e-9 for u <= 0.5 and 3.1e-7 at
+/// 1 + sum_j h_j u^j (u^2 = delta, \ref visco_series "docs/viscoelastic.md") within 5e-9 for u <= 0.5 and 3.1e-7 at
 /// u = 0.65, while ending the contact at x = 0 instead does not (it lacks the u^5 term, h_5 = 4/15).
 /// Integrated by RK4 on a graded mesh (steps proportional to t at the start and to x/|x'| near the end,
 /// where x^(1/2) is not smooth), started at t = 1e-6 from x = t - (4/15) delta t^(5/2) - (4/35) t^(7/2).
@@ -381,7 +381,7 @@ struct RestitutionTable {
 };
 
 /// The check of the contact model (--visco-check 1): C1 recovered as delta -> 0, the end-of-contact
-/// conventions, step convergence, the interpolation error, and the series of ERRATA section 11.
+/// conventions, step convergence, the interpolation error, and the series of \ref visco_series "docs/viscoelastic.md".
 int visco_check() {
   const double c1 = 1.1534488580952888;
   const double h[21] = {0.0,        0.0,        -1.1534489, 0.0,        0.7982666, 0.2666667,  -0.5228826,
@@ -473,7 +473,7 @@ std::vector<std::vector<double>> run_in_time(const std::vector<double>& mass, co
       fraction_to[a * s + b] = mass[b] / (mass[a] + mass[b]);  // times (1 + alpha) at the collision
       // Viscoelastic, one material: beta_ab = beta_11 [sqrt(s_ab/s_11) m_11/m_ab]^(2/5) with the effective
       // radius-like s_ab = sigma_a sigma_b/(sigma_a + sigma_b) (not the contact distance) and the reduced mass
-      // m_ab (/work/shared/ERRATA.md section 11); u = sqrt(beta_ab) |g.e|^(1/10).
+      // m_ab (\ref visco_one_material "docs/viscoelastic.md"); u = sqrt(beta_ab) |g.e|^(1/10).
       const double s_ab = diameter[a] * diameter[b] / (diameter[a] + diameter[b]), s_11 = diameter[0] / 2.0;
       const double m_ab = mass[a] * mass[b] / (mass[a] + mass[b]), m_11 = mass[0] / 2.0;
       sqrt_beta[a * s + b] = std::sqrt(visco_beta * std::pow(std::sqrt(s_ab / s_11) * m_11 / m_ab, 0.4));
