@@ -189,6 +189,7 @@ Collider::State Collider::state() const {
   st.pending_filled = pending_filled_;
   st.block_max_speed2 = block_max_speed2_;
   st.block_credit = block_credit_;
+  if (scattered_any_) st.slice_counts.assign(slice_count_.begin(), slice_count_.end());
   st.step_start = step_start_;
   st.whole_step = whole_step_;
   st.step_acceptance = step_acceptance_;
@@ -217,6 +218,21 @@ void Collider::restore(const State& st) {
     throw std::invalid_argument("collide: the saved state has other blocks than this collider");
   block_max_speed2_ = st.block_max_speed2;
   block_credit_ = st.block_credit;
+  if (scattered_any_) {  // this step's slices of the scattered species (the particles are in that order)
+    if (st.slice_counts.size() != slice_count_.size())
+      throw std::invalid_argument("collide: the saved state has no slices of the scattered species");
+    for (std::size_t q = 0; q < slice_count_.size(); ++q) {
+      if (!scattered_[q % s_] && st.slice_counts[q] != slice_count_[q])
+        throw std::invalid_argument("collide: the saved state has other slices than this collider");
+      slice_count_[q] = static_cast<std::size_t>(st.slice_counts[q]);
+    }
+    for (std::size_t k = 0; k < s_; ++k) {
+      std::size_t total = 0;
+      for (std::size_t q = k; q < slice_count_.size(); q += s_) total += slice_count_[q];
+      if (total != sys_.count[k]) throw std::invalid_argument("collide: the saved slices do not add up to the species' count");
+    }
+    set_slices();
+  }
   step_start_ = st.step_start;
   whole_step_ = st.whole_step;
   step_acceptance_ = st.step_acceptance;
@@ -239,35 +255,71 @@ void Collider::restore(const State& st) {
 
 void Collider::use_blocks(std::size_t block_size) {
   block_first_.clear();
+  scattered_.assign(s_, 0);
+  scattered_any_ = false;
   const std::size_t n = sys_.size();
   const bool one = s_ == 1 && scheme_ != Scheme::pairs;
   const bool mixture = s_ > 1 && scheme_ != Scheme::pairs && s_ <= pair_event_limit && tables_;
   if (block_size == 0 || !(one || mixture) || n < 2 * block_size) return;
   if (counters_.steps > 0) throw std::logic_error("collide: use_blocks() after the run has started");
-  std::size_t blocks = n / block_size;
-  // A mixture's block holds a slice of every species, at least min_slice particles of each (header).
-  for (std::size_t k = 0; k < s_ && mixture; ++k) blocks = std::min(blocks, sys_.count[k] / min_slice);
-  if (blocks < 2) return;
-  // Block j holds the particles dealt to it by remix(): ceil((N_k - j)/blocks) of species k.
+  const std::size_t blocks = n / block_size;
+  // A mixture's species with at least min_slice particles a block is dealt in equal slices, a rarer
+  // one scattered, each particle to a uniformly random block (header "Mixtures in blocks").
+  for (std::size_t k = 0; k < s_ && mixture; ++k) {
+    scattered_[k] = sys_.count[k] < min_slice * blocks;
+    scattered_any_ = scattered_any_ || scattered_[k];
+  }
+  // Block j holds the particles dealt to it by remix(): ceil((N_k - j)/blocks) of a dealt species k;
+  // a scattered species' counts are drawn here for the first step (its particles' order is the
+  // initial one, independent of their velocities) and at every remix.
   block_first_.assign(blocks + 1, 0);
   slice_first_.assign(blocks * s_, 0);
   slice_cum_.assign(blocks * (s_ + 1), 0);
-  for (std::size_t k = 0; k < s_; ++k) {
-    std::size_t first = sys_.first[k];
-    for (std::size_t j = 0; j < blocks; ++j) {
-      const std::size_t count = (sys_.count[k] - j + blocks - 1) / blocks;
-      slice_first_[j * s_ + k] = first;
-      slice_cum_[j * (s_ + 1) + k + 1] = slice_cum_[j * (s_ + 1) + k] + count;
-      first += count;
+  slice_count_.assign(blocks * s_, 0);
+  for (std::size_t k = 0; k < s_; ++k)
+    for (std::size_t j = 0; j < blocks && !scattered_[k]; ++j)
+      slice_count_[j * s_ + k] = (sys_.count[k] - j + blocks - 1) / blocks;
+  for (std::size_t k = 0; k < s_; ++k)
+    if (scattered_[k]) {
+      for (std::size_t i = 0; i < sys_.count[k]; ++i) ++slice_count_[gen_.below(blocks) * s_ + k];
     }
-  }
-  for (std::size_t j = 0; j < blocks; ++j) block_first_[j + 1] = block_first_[j] + slice_cum_[j * (s_ + 1) + s_];
+  set_slices();
   block_max_speed2_.assign(blocks * s_, 0.0);
   block_credit_.assign(blocks, 0.0);
   // The remix's scratch memory (deal.hpp), for the largest species and the largest particle array.
   remix_workspace_ = {};
   const std::size_t element = sys_.tracks_displacements() ? sizeof(particles::Displacement) : sizeof(particles::Vec3);
-  for (std::size_t k = 0; k < s_; ++k) remix_workspace_.reserve(sys_.count[k], blocks, element, threads_);
+  for (std::size_t k = 0; k < s_; ++k)
+    if (!scattered_[k]) remix_workspace_.reserve(sys_.count[k], blocks, element, threads_);
+}
+
+void Collider::set_slices() {
+  // Species k's slices lie in its own range in block order: slice j starts after the counts of blocks < j.
+  const std::size_t blocks = block_first_.size() - 1;
+  for (std::size_t k = 0; k < s_; ++k) {
+    std::size_t first = sys_.first[k];
+    for (std::size_t j = 0; j < blocks; ++j) {
+      slice_first_[j * s_ + k] = first;
+      slice_cum_[j * (s_ + 1) + k + 1] = slice_cum_[j * (s_ + 1) + k] + slice_count_[j * s_ + k];
+      first += slice_count_[j * s_ + k];
+    }
+  }
+  for (std::size_t j = 0; j < blocks; ++j) block_first_[j + 1] = block_first_[j] + slice_cum_[j * (s_ + 1) + s_];
+}
+
+void Collider::scatter(std::size_t k) {
+  // Each particle of species k to a uniformly random block, independently (header "Mixtures in blocks"):
+  // the particles in a uniformly random order (Fisher-Yates), then cut into slices of multinomial counts.
+  const std::size_t blocks = block_first_.size() - 1, count = sys_.count[k];
+  particles::Vec3* v = sys_.v.data() + sys_.first[k];
+  particles::Displacement* r = sys_.tracks_displacements() ? sys_.r.data() + sys_.first[k] : nullptr;
+  for (std::size_t i = count; i > 1; --i) {
+    const std::size_t q = gen_.below(i);
+    std::swap(v[i - 1], v[q]);
+    if (r) std::swap(r[i - 1], r[q]);
+  }
+  for (std::size_t j = 0; j < blocks; ++j) slice_count_[j * s_ + k] = 0;
+  for (std::size_t i = 0; i < count; ++i) ++slice_count_[gen_.below(blocks) * s_ + k];
 }
 
 void Collider::remix() {
@@ -285,13 +337,21 @@ void Collider::remix() {
   // A mixture: each species is dealt round its own slices, within its own range, so the species
   // array never changes and every block keeps its share of every species (slice j of species k
   // starts at first_k + j q_k + min(j, r_k), q_k = N_k div K, r_k = N_k mod K: deal.hpp's blocks).
+  // A scattered species is shuffled and cut anew (scatter).
   std::vector<std::size_t> offset(s_);
-  for (std::size_t k = 0; k < s_; ++k) offset[k] = gen_.below(sys_.count[k]);
   for (std::size_t k = 0; k < s_; ++k)
-    deal::deal_in_place(sys_.v.data() + sys_.first[k], sys_.count[k], blocks, offset[k], remix_workspace_, threads_);
+    if (!scattered_[k]) offset[k] = gen_.below(sys_.count[k]);
+  for (std::size_t k = 0; k < s_; ++k)
+    if (!scattered_[k])
+      deal::deal_in_place(sys_.v.data() + sys_.first[k], sys_.count[k], blocks, offset[k], remix_workspace_, threads_);
   if (sys_.tracks_displacements())
     for (std::size_t k = 0; k < s_; ++k)
-      deal::deal_in_place(sys_.r.data() + sys_.first[k], sys_.count[k], blocks, offset[k], remix_workspace_, threads_);
+      if (!scattered_[k])
+        deal::deal_in_place(sys_.r.data() + sys_.first[k], sys_.count[k], blocks, offset[k], remix_workspace_, threads_);
+  if (!scattered_any_) return;
+  for (std::size_t k = 0; k < s_; ++k)
+    if (scattered_[k]) scatter(k);
+  set_slices();
 }
 
 void Collider::set_block_max_speed2(std::size_t j, double* out) {
@@ -307,12 +367,15 @@ void Collider::set_block_max_speed2(std::size_t j, double* out) {
   }
 }
 
-double Collider::mixture_bound(const double* max_speed2) const {
-  // B = max_kj pi sigma_kj^2 chi_kj (vmax_k + vmax_j) (as rebuild_bounds, over the given speeds)
+double Collider::mixture_bound(const double* max_speed2, const std::size_t* cum) const {
+  // B = max_kj pi sigma_kj^2 chi_kj (vmax_k + vmax_j) (as rebuild_bounds, over the given speeds), over
+  // the pairs a block can draw when its counts are given
+  const auto present = [&](std::size_t k) { return cum == nullptr || cum[k + 1] > cum[k]; };
   double bound = 0.0;
   for (std::size_t k = 0; k < s_; ++k)
     for (std::size_t j = k; j < s_; ++j)
-      bound = std::max(bound, cross_section_[k * s_ + j] * (std::sqrt(max_speed2[k]) + std::sqrt(max_speed2[j])));
+      if (present(k) && present(j))
+        bound = std::max(bound, cross_section_[k * s_ + j] * (std::sqrt(max_speed2[k]) + std::sqrt(max_speed2[j])));
   return bound;
 }
 
@@ -475,7 +538,8 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
     } else {
       // A block of N_b particles at the gas's density n: R_b = N_b n B_b / 2 (as R, header "Blocks").
       // (a mixture: B_b = max_kj pi sigma_kj^2 chi_kj (vmax_bk + vmax_bj) over the block's slices)
-      bound_ = s_ == 1 ? 2.0 * cross_section_[0] * std::sqrt(block_speed2_[0]) : mixture_bound(block_speed2_);
+      bound_ = s_ == 1 ? 2.0 * cross_section_[0] * std::sqrt(block_speed2_[0])
+                       : mixture_bound(block_speed2_, slice_cum_.data() + j * (s_ + 1));
       rate_ = 0.5 * static_cast<double>(range_count_) * n * bound_;
     }
     if (rate_ <= 0.0) break;
@@ -744,7 +808,7 @@ void Collider::run_block_mixture(double t_stop) {
         for (std::size_t slot = 0; slot < lookahead; ++slot) draw(slot);  // drawn from the old A_ik: redraw
         next = 0;
       } else {
-        bound_ = mixture_bound(speed2);
+        bound_ = mixture_bound(speed2, cum);
         rate_ = 0.5 * static_cast<double>(n) * n_density * bound_;
       }
       continue;
@@ -828,6 +892,12 @@ void Collider::set_block_lowrank(double n) {
 void Collider::run_blocks_pass(double t_start, double t_stop) {
   if (workers_.size() != static_cast<std::size_t>(threads_)) make_workers();
   const std::size_t blocks = block_first_.size() - 1;
+  if (scattered_any_)  // the slices of this step's remix (the workers are copies made earlier)
+    for (Collider& w : workers_) {
+      w.slice_first_ = slice_first_;
+      w.slice_cum_ = slice_cum_;
+      w.block_first_ = block_first_;
+    }
   const std::uint64_t key = gen_();  // this pass's key (header "Threads")
   const bool first_visit = t_start == step_start_;
   std::vector<std::exception_ptr> failure(blocks);  // exceptions must not leave an OpenMP region

@@ -141,14 +141,21 @@
  *
  * **Mixtures in blocks** (issue 11). Block j holds a slice of every species: species k's particles
  * are dealt round K slices inside species k's own range (so the species layout of the System never
- * changes), ceil((N_k - j)/K) of them in block j, and K is lowered until every slice holds at least
- * min_slice = 64 particles. A block is then a mixture of N_b particles in the gas's proportions (to
- * one particle per species), run exactly as the unblocked `majorant` scheme with its own bound
- * B_b = max_kj pi sigma_kj^2 chi_kj (vmax_bk + vmax_bj) and rate R_b = N_b n B_b / 2: a candidate is a
- * uniform pair of the block's particles (an index into the block's slices). Each species-k particle
- * meets species-j partners at n N_jb/(N_b - 1) instead of n N_j/(N - 1): the finite-N effect of the
- * one-species blocks, of relative order 1/N_b on average since the slices differ from N_j/K by less
- * than one particle. With `lowrank` each block samples its own majorant A_ik of its slices, in the form
+ * changes), ceil((N_k - j)/K) of them in block j, when N_k >= min_slice K (min_slice = 64). A rarer
+ * species is *scattered* instead: at every remix its particles are put in a uniformly random order
+ * (Fisher-Yates) and cut into K slices of multinomial counts, i.e. each particle goes to a uniformly
+ * random block independently of all others (the first step draws the counts only: the initial order
+ * is independent of the velocities). Dealing a species with fewer than K particles would put them in
+ * the first blocks and never two of them together, and one with a few per block would meet itself at
+ * n (N_kb - 1)/(N_b - 1), a relative error 1/N_kb; scattered, any two particles share a block with
+ * probability 1/K, and E[1/(N_b - 1) | both in b] = K/(N - 1) for independent placements, so the
+ * expected pair rate is the gas's. The counts are part of the State. A block is then a mixture of N_b
+ * particles in the gas's proportions, run exactly as the unblocked `majorant` scheme with its own bound
+ * B_b = max_kj pi sigma_kj^2 chi_kj (vmax_bk + vmax_bj) over the species present in it and rate
+ * R_b = N_b n B_b / 2: a candidate is a uniform pair of the block's particles (an index into the
+ * block's slices). Each species-k particle meets species-j partners at n N_jb/(N_b - 1) instead of
+ * n N_j/(N - 1): the finite-N effect of the one-species blocks, of relative order 1/N_b on average
+ * (dealt slices differ from N_j/K by less than one particle; scattered ones are unbiased). With `lowrank` each block samples its own majorant A_ik of its slices, in the form
  * of segment_tree.hpp (A_ik = pi sigma_ik^2 chi_ik w_i N_i N_k / V, accepted with |g| / (w_i + w_k)), but
  * with each of the at most 64^2 entries computed exactly and chi_ik itself in place of chi_max: N_k the
  * slice's count, V = (N_b - 1)/n and w_k = vmax_k the block's, so that again each pair's rate is
@@ -410,6 +417,7 @@ class Collider {
     std::size_t pending_next = 0;
     bool pending_filled = false;
     std::vector<double> block_max_speed2, block_credit;  ///< with blocks (use_blocks)
+    std::vector<std::uint64_t> slice_counts;             ///< with scattered species: each block's counts, K x S
     double step_start = 0.0;                             ///< with blocks: when this step began
     bool whole_step = false;                             ///< with blocks: the step runs on the whole gas
     double step_acceptance = 0.0;
@@ -502,12 +510,21 @@ class Collider {
   double step_start_ = 0.0;
   /// Exact vmax_k^2 of block j's slices, read in order, into out[k].
   void set_block_max_speed2(std::size_t block, double* out);
-  double mixture_bound(const double* max_speed2) const;  ///< max_kj pi sigma_kj^2 chi_kj (vmax_k + vmax_j)
+  /// max_kj pi sigma_kj^2 chi_kj (vmax_k + vmax_j), over the species present in a block when its running
+  /// counts `cum` are given (a scattered species may have none there), else over all species
+  double mixture_bound(const double* max_speed2, const std::size_t* cum = nullptr) const;
   /// Slices (header "Blocks"): species k's particles of block j are [slice_first_[j S + k], + count),
   /// count = slice_cum_[j (S+1) + k + 1] - slice_cum_[j (S+1) + k]; cum is the block's running count.
   std::vector<std::size_t> slice_first_, slice_cum_;
-  /// A mixture's block holds at least this many particles of each species (fewer blocks otherwise).
+  /// A species with at least min_slice K particles is dealt round the K blocks in equal slices; a rarer
+  /// one is scattered (header "Mixtures in blocks": each particle to a uniformly random block, anew at
+  /// every remix).
   static constexpr std::size_t min_slice = 64;
+  std::vector<std::uint8_t> scattered_;   ///< per species: 1 if scattered (with blocks)
+  bool scattered_any_ = false;
+  std::vector<std::size_t> slice_count_;  ///< each block's count of each species, K x S
+  void scatter(std::size_t species);      ///< shuffles the species' particles and draws its slice counts
+  void set_slices();                      ///< slice_first_, slice_cum_ and block_first_ from slice_count_
   /// With blocks a step is this many majorant mean free times (times step_fraction): each block
   /// is then visited for about one collision per particle, which repays bringing it into the cache.
   static constexpr double block_steps = 5.0;

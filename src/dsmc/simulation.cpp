@@ -333,6 +333,7 @@ Snapshot make_snapshot(const particles::System& sys, const collide::Collider& co
   snap.integers["collider/pending"].assign(c.pending.begin(), c.pending.end());
   snap.reals["collider/block_max_speed2"] = c.block_max_speed2;
   snap.reals["collider/block_credit"] = c.block_credit;
+  if (!c.slice_counts.empty()) snap.integers["collider/slice_counts"] = c.slice_counts;
   snap.reals["collider/block_step_start"] = {c.step_start, c.step_acceptance};
   snap.integers["collider/block_mode"] = {c.whole_step, c.step_events_start, c.step_candidates_start};
   snap.reals["collider/transfer"].assign(c.counters.transfer.begin(), c.counters.transfer.end());
@@ -410,6 +411,8 @@ void load_snapshot(const Snapshot& snap, particles::System& sys, collide::Collid
   c.pending.assign(pending.begin(), pending.end());
   c.block_max_speed2 = snap.reals.at("collider/block_max_speed2");
   c.block_credit = snap.reals.at("collider/block_credit");
+  if (const auto it = snap.integers.find("collider/slice_counts"); it != snap.integers.end())
+    c.slice_counts.assign(it->second.begin(), it->second.end());
   {
     const auto& start = snap.reals.at("collider/block_step_start");
     c.step_start = start.at(0);
