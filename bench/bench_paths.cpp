@@ -6,7 +6,8 @@
 //
 // Paths (README "Performance"): one species driven by t_end (the reference) and by
 // collisions_per_particle; a binary mixture (masses 1 and 4, diameters 1 and 1.5, alpha = 0.8) with
-// `majorant`, `lowrank`, Enskog (packing fraction 0.1; `majorant` and `lowrank`) and `pairs`; one species with
+// `majorant`, `lowrank`, Enskog (packing fraction 0.1; `majorant` and `lowrank`) and `pairs`; 20 species
+// of Bodrova and Osinsky 2024's Fig 8 law with `lowrank` (13 of them scattered over the blocks at N = 1e5 and 1e6); one species with
 // `pairs`; one replica of the reference case on 2 threads (its blocks on threads, collide.hpp
 // "Threads inside one replica") against 1. Each run is about 10 collisions per particle. The rate is
 // events per second of the collision loop (Summary::events_per_second: setup and sampling are not
@@ -49,8 +50,13 @@ const std::string kBinary =
 const std::string kEnskog = "n_species = 2\n mass = 1.0, 4.0\n diameter = 1.0, 1.5\n"
                             " number_density = 0.0437, 0.0437\n restitution = 0.8\n enskog = .true.\n";
 
+// Bodrova and Osinsky 2024, Fig 8's law (validation/msd_many_species), dilute: m_k = k, sigma_k = k^(1/3), n_k = n_1 k^-3,
+// 20 species (N_20 = N / (1.2 8000), 10 at N = 1e5).
+const std::string kMany = "n_species = 20\n mass = 1.0\n diameter = 1.0\n number_density = 0.01\n mass_law = 'linear'\n"
+                          " diameter_law = 'cube_root'\n density_law = 'power'\n density_exponent = 3.0\n restitution = 0.8\n";
+
 std::string namelist(const Path& p, std::size_t n, double t_end, double per_particle) {
-  const std::string initial = p.system.find("n_species = 2") != std::string::npos ? "1.0, 1.0" : "1.0";
+  const std::string initial = p.system.find("n_species = 2\n") != std::string::npos ? "1.0, 1.0" : "1.0";
   std::string text = "&system\n " + p.system + "/\n&initial\n temperature = " + initial + "\n/\n&dsmc\n scheme = '" +
                      p.scheme + "'\n n_particles = " + std::to_string(n) + "\n replicas = 1\n seed = 1\n";
   if (t_end > 0.0)
@@ -95,6 +101,7 @@ int main(int argc, char** argv) {
       {"binary mixture, lowrank", kBinary, "lowrank", true, 1},
       {"binary mixture, Enskog (phi = 0.1)", kEnskog, "majorant", true, 1},
       {"binary mixture, Enskog, lowrank", kEnskog, "lowrank", true, 1},
+      {"20 species (Fig 8 law), lowrank", kMany, "lowrank", true, 1},
       {"binary mixture, pairs", kBinary, "pairs", true, 1},
       {"one species, pairs", kOne, "pairs", true, 1},
       {"one species, t_end, 2 threads", kOne, "majorant", true, 2},
@@ -115,7 +122,7 @@ int main(int argc, char** argv) {
       if (p.time_driven) {
         Path pilot = p;
         pilot.scheme = "majorant";
-        t_end = run(namelist(pilot, 20000, 0.0, per_particle), 1).final_time;
+        t_end = run(namelist(pilot, p.system == kMany ? 100000 : 20000, 0.0, per_particle), 1).final_time;
       }
       const auto start = std::chrono::steady_clock::now();
       const double cpu_start = cpu_seconds();

@@ -44,7 +44,7 @@ Collider::Collider(Scheme scheme, const species::Mixture& mix, particles::System
         mass_fraction_[k * s_ + j] = mix.mass[j] / (mix.mass[k] + mix.mass[j]);
       }
   }
-  if (tables_ && s_ > 1 && s_ <= pair_event_limit) {  // the mixture block kernel's pair constants
+  if (tables_ && s_ > 1 && s_ <= block_species_limit) {  // the mixture block kernel's pair constants
     pair_kernel_.resize(s_ * s_);
     for (std::size_t k = 0; k < s_; ++k)
       for (std::size_t j = 0; j < s_; ++j) {
@@ -52,7 +52,7 @@ Collider::Collider(Scheme scheme, const species::Mixture& mix, particles::System
         // v_a -= mu_jk (1 + alpha) p, v_b += mu_kj (1 + alpha) p for p = (g.e) e; loss (1 - alpha^2) m_kj (g.e)^2 / 2
         pair_kernel_[k * s_ + j] = {cross_section_[k * s_ + j], mf * (1.0 + alpha), (1.0 - mf) * (1.0 + alpha),
                                     0.5 * (1.0 - alpha * alpha) * mix.mass[k] * mf,
-                                    static_cast<std::uint32_t>(std::min(k, j) * s_ + std::max(k, j))};
+                                    s_ <= pair_event_limit ? static_cast<std::uint32_t>(std::min(k, j) * s_ + std::max(k, j)) : 0u};
         pair_species_.insert(pair_species_.end(), {static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(j)});
       }
   }
@@ -259,7 +259,7 @@ void Collider::use_blocks(std::size_t block_size) {
   scattered_any_ = false;
   const std::size_t n = sys_.size();
   const bool one = s_ == 1 && scheme_ != Scheme::pairs;
-  const bool mixture = s_ > 1 && scheme_ != Scheme::pairs && s_ <= pair_event_limit && tables_;
+  const bool mixture = s_ > 1 && scheme_ != Scheme::pairs && s_ <= block_species_limit && tables_;
   if (block_size == 0 || !(one || mixture) || n < 2 * block_size) return;
   if (counters_.steps > 0) throw std::logic_error("collide: use_blocks() after the run has started");
   const std::size_t blocks = n / block_size;
@@ -370,12 +370,19 @@ void Collider::set_block_max_speed2(std::size_t j, double* out) {
 double Collider::mixture_bound(const double* max_speed2, const std::size_t* cum) const {
   // B = max_kj pi sigma_kj^2 chi_kj (vmax_k + vmax_j) (as rebuild_bounds, over the given speeds), over
   // the pairs a block can draw when its counts are given
-  const auto present = [&](std::size_t k) { return cum == nullptr || cum[k + 1] > cum[k]; };
-  double bound = 0.0;
+  if (s_ > block_species_limit) throw std::logic_error("collide: mixture_bound() beyond block_species_limit species");
+  std::array<std::uint32_t, block_species_limit> present;
+  std::array<double, block_species_limit> speed;
+  std::size_t count = 0;
   for (std::size_t k = 0; k < s_; ++k)
-    for (std::size_t j = k; j < s_; ++j)
-      if (present(k) && present(j))
-        bound = std::max(bound, cross_section_[k * s_ + j] * (std::sqrt(max_speed2[k]) + std::sqrt(max_speed2[j])));
+    if (cum == nullptr || cum[k + 1] > cum[k]) {
+      present[count] = static_cast<std::uint32_t>(k);
+      speed[count++] = std::sqrt(max_speed2[k]);
+    }
+  double bound = 0.0;
+  for (std::size_t a = 0; a < count; ++a)
+    for (std::size_t b = a; b < count; ++b)
+      bound = std::max(bound, cross_section_[present[a] * s_ + present[b]] * (speed[a] + speed[b]));
   return bound;
 }
 
@@ -684,6 +691,9 @@ void Collider::run_block_mixture(double t_stop) {
   const double n_density = mix_.total_density();
   const PairKernel* kernel = pair_kernel_.data();
   double* speed2 = block_speed2_;
+  // Per-pair event counts (up to pair_event_limit species; above, every pair's slot 0 of a sink).
+  std::uint64_t sink = 0;
+  std::uint64_t* pair_events = counters_.pair_events.empty() ? &sink : counters_.pair_events.data();
   // The species of the block's i-th particle (cum_k <= i < cum_k+1): counted without branches for few species.
   const auto species_of = [&](std::uint32_t i) {
     std::uint32_t k = 0;
@@ -785,7 +795,7 @@ void Collider::run_block_mixture(double t_stop) {
       vb = {vb.x + pk.share_b * px, vb.y + pk.share_b * py, vb.z + pk.share_b * pz};
       dissipated += pk.loss * g_dot_e2;
       ++events;
-      ++counters_.pair_events[pk.event];
+      ++pair_events[pk.event];
       // "(sigma g)_max raised when exceeded" (header), for both partners: a new sub-step from here.
       const double speed2_a = va.x * va.x + va.y * va.y + va.z * va.z;
       const double speed2_b = vb.x * vb.x + vb.y * vb.y + vb.z * vb.z;
@@ -827,38 +837,53 @@ void Collider::set_block_lowrank(double n) {
   // The block's own A_ik (header "Mixtures in blocks"): the rank-3 hard-sphere majorant of its slices,
   // N_k the slice's count and V = (N_b - 1)/n, so that each pair's rate is pi sigma_ik^2 chi_ik |g|
   // n/(N_b - 1) as in the majorant blocks; vmax_k the block's. Columns as well as rows: the slices'
-  // counts differ between blocks by up to one particle.
-  // With at most 64 species the S^2 entries are few: each is computed exactly, with chi_ik itself
-  // instead of chi_max (the rank-3 form needs one chi for all pairs), A_ik = pi sigma_ik^2 chi_ik w_i
-  // N_i N_k / V (the form of segment_tree.hpp's hard_sphere_factors with chi_ik), a candidate then
-  // accepted with |g| / (w_i + w_k) (run_lowrank); a pair is drawn from their alias table (one
-  // uniform) rather than by the trees' descents.
+  // counts differ between blocks.
+  // With at most block_species_limit species the entries are few: each is computed exactly, with
+  // chi_ik itself instead of chi_max (the rank-3 form needs one chi for all pairs), A_ik = pi
+  // sigma_ik^2 chi_ik w_i N_i N_k / V (the form of segment_tree.hpp's hard_sphere_factors with chi_ik),
+  // a candidate then accepted with |g| / (w_i + w_k) (run_lowrank); a pair is drawn from their alias
+  // table (one uniform) rather than by the trees' descents. Only the P species present in the block
+  // (a scattered species may have no particle there) enter the kernel's table: P^2 pairs.
   const std::size_t* cum = slice_cum_.data() + current_block_ * (s_ + 1);
   lowrank_volume_ = static_cast<double>(range_count_ - 1) / n;
   for (std::size_t k = 0; k < s_; ++k) max_speed_[k] = std::sqrt(block_speed2_[k]);
-  pair_weights_.resize(s_ * s_);
-  rate_ = 0.0;
-  for (std::size_t i = 0; i < s_; ++i)
-    for (std::size_t k = 0; k < s_; ++k) {
-      const auto count_i = static_cast<double>(cum[i + 1] - cum[i]), count_k = static_cast<double>(cum[k + 1] - cum[k]);
-      pair_weights_[i * s_ + k] = cross_section_[i * s_ + k] * max_speed_[i] * count_i * count_k / lowrank_volume_;
-      rate_ += pair_weights_[i * s_ + k];
-    }
   pending_filled_ = false;  // drawn from the old A_ik: redraw (header, "Look-ahead")
-  if (!(rate_ > 0.0)) return;
-  if (viscoelastic_) {  // run_lowrank's draw
-    pair_alias_.build(pair_weights_);
+  if (viscoelastic_) {  // run_lowrank's draw, over all S^2 pairs
+    pair_weights_.resize(s_ * s_);
+    rate_ = 0.0;
+    for (std::size_t i = 0; i < s_; ++i)
+      for (std::size_t k = 0; k < s_; ++k) {
+        const auto count_i = static_cast<double>(cum[i + 1] - cum[i]), count_k = static_cast<double>(cum[k + 1] - cum[k]);
+        pair_weights_[i * s_ + k] = cross_section_[i * s_ + k] * max_speed_[i] * count_i * count_k / lowrank_volume_;
+        rate_ += pair_weights_[i * s_ + k];
+      }
+    if (rate_ > 0.0) pair_alias_.build(pair_weights_);
     return;
   }
-  // The mixture kernel's one-word draw (header "Mixtures in blocks"): the same alias table over
-  // P = 2^m cells, the S^2 pairs followed by zero weights (never drawn: Vose's construction sends
-  // them to their alias), so that the cell is m uniform bits of the word.
-  unsigned bits = 0;
-  while ((std::size_t{1} << bits) < s_ * s_) ++bits;
+  // The mixture kernel's one-word draw (header "Mixtures in blocks"): an alias table over P = 2^m
+  // cells, the pairs of the present species followed by zero weights (never drawn: Vose's construction
+  // sends them to their alias), so that the cell is m uniform bits of the word.
+  std::array<std::uint32_t, block_species_limit> present;
+  std::size_t p = 0;
+  for (std::size_t k = 0; k < s_; ++k)
+    if (cum[k + 1] > cum[k]) present[p++] = static_cast<std::uint32_t>(k);
+  const std::size_t pairs = p * p;
+  pair_weights_.resize(pairs);
+  rate_ = 0.0;
+  for (std::size_t a = 0; a < p; ++a)
+    for (std::size_t b = 0; b < p; ++b) {
+      const std::size_t i = present[a], k = present[b];
+      const auto count_i = static_cast<double>(cum[i + 1] - cum[i]), count_k = static_cast<double>(cum[k + 1] - cum[k]);
+      pair_weights_[a * p + b] = cross_section_[i * s_ + k] * max_speed_[i] * count_i * count_k / lowrank_volume_;
+      rate_ += pair_weights_[a * p + b];
+    }
+  if (!(rate_ > 0.0)) return;
+  unsigned bits = 1;  // at least two cells (one species present: its pair and a zero weight), r >> 64 being undefined
+  while ((std::size_t{1} << bits) < pairs) ++bits;
   lowrank_cell_bits_ = bits;
   pair_weights_.resize(std::size_t{1} << bits, 0.0);
   pair_alias_.build(pair_weights_);
-  pair_weights_.resize(s_ * s_);
+  pair_weights_.resize(pairs);
   const double coin_scale = std::ldexp(1.0, 16 - static_cast<int>(bits));  // 2^c, c = 16 - m coin bits
   lowrank_cells_.resize(std::size_t{1} << bits);
   for (std::size_t c = 0; c < lowrank_cells_.size(); ++c) {
@@ -868,24 +893,25 @@ void Collider::set_block_lowrank(double n) {
     const double whole = std::floor(scaled);
     const auto other = static_cast<std::uint32_t>(pair_alias_.alias[c]);
     lowrank_cells_[c] = {scaled - whole, static_cast<std::uint32_t>(whole),
-                         c < s_ * s_ ? static_cast<std::uint32_t>(c) : other, other};
+                         c < pairs ? static_cast<std::uint32_t>(c) : other, other};
   }
-  lowrank_outcomes_.resize(s_ * s_);
+  lowrank_outcomes_.resize(pairs);
   lowrank_limits_.resize(s_ * s_);
   const std::size_t* slice = slice_first_.data() + current_block_ * s_;
   lowrank_narrow_ = true;
   for (std::size_t i = 0; i < s_; ++i) lowrank_narrow_ = lowrank_narrow_ && cum[i + 1] - cum[i] < (std::size_t{1} << 24);
-  for (std::size_t i = 0; i < s_; ++i)
-    for (std::size_t k = 0; k < s_; ++k) {
+  for (std::size_t a = 0; a < p; ++a)
+    for (std::size_t b = 0; b < p; ++b) {
+      const std::size_t i = present[a], k = present[b];
       const auto count_i = static_cast<std::uint32_t>(cum[i + 1] - cum[i]);
       const auto count_k = static_cast<std::uint32_t>(cum[k + 1] - cum[k]);
       // Lemire's multiply-shift in 24 bits (Lemire 2019, as rng::Xoshiro256pp::below_pair): x n >> 24 is
       // uniform on [0, n) once the x with x n mod 2^24 < 2^24 mod n are rejected.
-      lowrank_outcomes_[i * s_ + k] = {static_cast<std::uint32_t>(slice[i]), count_i, static_cast<std::uint32_t>(slice[k]),
-                                       count_k, lowrank_narrow_ && count_i > 0 ? (1u << 24) % count_i : 0u,
-                                       lowrank_narrow_ && count_k > 0 ? (1u << 24) % count_k : 0u, static_cast<std::uint32_t>(i),
-                                       static_cast<std::uint32_t>(k)};
-      lowrank_limits_[i * s_ + k] = max_speed_[i] + max_speed_[k];
+      lowrank_outcomes_[a * p + b] = {static_cast<std::uint32_t>(slice[i]), count_i, static_cast<std::uint32_t>(slice[k]),
+                                      count_k, lowrank_narrow_ ? (1u << 24) % count_i : 0u,
+                                      lowrank_narrow_ ? (1u << 24) % count_k : 0u, static_cast<std::uint32_t>(i),
+                                      static_cast<std::uint32_t>(k)};
+      lowrank_limits_[i * s_ + k] = max_speed_[i] + max_speed_[k];  // (the pairs of absent species are never drawn)
     }
 }
 

@@ -63,7 +63,7 @@
  * A_ik changes, since they were drawn from the old rates, and discarding independent draws biases
  * nothing. The drawn-ahead pairs are part of the collider's state (State below).
  *
- * **Blocks** (issue 5; one species, or a mixture of at most 64 species, with `majorant` or `lowrank`;
+ * **Blocks** (issue 5; one species, or a mixture of at most 128 species, with `majorant` or `lowrank`;
  * N >= 2 block_size; `use_blocks`). With
  * 1e6 particles the velocities (24 MB) do not stay in the caches and every candidate waits for
  * memory. The particles are therefore split into K = N / block_size contiguous blocks, and during
@@ -157,11 +157,11 @@
  * n N_j/(N - 1): the finite-N effect of the one-species blocks, of relative order 1/N_b on average
  * (dealt slices differ from N_j/K by less than one particle; scattered ones are unbiased). With `lowrank` each block samples its own majorant A_ik of its slices, in the form
  * of segment_tree.hpp (A_ik = pi sigma_ik^2 chi_ik w_i N_i N_k / V, accepted with |g| / (w_i + w_k)), but
- * with each of the at most 64^2 entries computed exactly and chi_ik itself in place of chi_max: N_k the
+ * with each of the at most 128^2 entries computed exactly and chi_ik itself in place of chi_max: N_k the
  * slice's count, V = (N_b - 1)/n and w_k = vmax_k the block's, so that again each pair's rate is
  * pi sigma_ik^2 chi_ik |g| n/(N_b - 1) (the two orders (a, b) and (b, a) add w_i + w_k). The species
- * pair (i, k) of a candidate is drawn with probability A_ik / R_b from an alias table of the S^2
- * entries (rebuilt when a bound is raised), then a particle of slice i and one of slice k; the
+ * pair (i, k) of a candidate is drawn with probability A_ik / R_b from an alias table of the P^2
+ * entries of the P species present in the block (rebuilt when a bound is raised), then a particle of slice i and one of slice k; the
  * whole-gas steps near event targets run the unblocked `lowrank` loop.
  * With constant restitution a mixture's block runs a kernel of its own (issue 11; `run_block_mixture`,
  * for `majorant` and `lowrank`), which samples exactly the process just described (the same R_b, the
@@ -172,7 +172,7 @@
  * constants in one record (PairKernel), the block's generator in a local copy (its state in registers,
  * not stored and reloaded at every draw), no frame or viscoelastic branch, and the impulse from
  * hemisphere_projection. A `lowrank` candidate is one 64-bit word too (set_block_lowrank lays the
- * block's alias table over P = 2^m >= S^2 cells, zero weights after the S^2 pairs, each pair's two
+ * block's alias table over 2^m >= max(P^2, 2) cells, zero weights after the P^2 pairs, each pair's two
  * slices, Lemire thresholds and w_i + w_k in one record): the cell from the top m bits, its coin from
  * the next 16 - m (a further uniform only when they tie with the threshold's leading bits, so the coin
  * is exact), the two particles from two 24-bit fields by multiply-shift with rejection (below_pair's,
@@ -303,6 +303,9 @@ inline double hemisphere_projection(Gen& gen, double gx, double gy, double gz, d
 
 /// Per-species-pair event counts are kept for mixtures of at most this many species.
 inline constexpr std::size_t pair_event_limit = 64;
+/// Cache blocks serve mixtures of at most this many species (header "Mixtures in blocks": a block's
+/// alias table of the present species' pairs takes at most 14 bits of a candidate's word).
+inline constexpr std::size_t block_species_limit = 128;
 
 /// Counts kept by a run: the observables `collisions` and `collisions_pair` come from here.
 struct Counters {
@@ -334,7 +337,7 @@ class Collider {
            const species::PairMatrix* viscoelastic_beta = nullptr);
 
   /// Cache blocks of about `block_size` particles (header, "Blocks"), for one species or a mixture of
-  /// at most 64 species with the `majorant` or `lowrank` scheme and N >= 2 block_size; otherwise (or
+  /// at most block_species_limit (128) species with the `majorant` or `lowrank` scheme and N >= 2 block_size; otherwise (or
   /// with 0) the whole gas is one block. Call before the first advance().
   void use_blocks(std::size_t block_size);
   std::size_t blocks() const { return block_first_.empty() ? 1 : block_first_.size() - 1; }
@@ -473,13 +476,14 @@ class Collider {
   /// bound_ and rate_ as run_substep does.
   template <bool Track, bool Lowrank>
   void run_block_mixture(double t_stop);
-  /// The constants of species pair (k, j) in the mixture block kernel, row-major S x S (at most 64 species).
+  /// The constants of species pair (k, j) in the mixture block kernel, row-major S x S (at most
+  /// block_species_limit species).
   struct PairKernel {
     double cross_section;  ///< pi sigma_kj^2 chi_kj
     double share_a;        ///< mu_jk (1 + alpha_kj): v_a -= share_a (g.e) e
     double share_b;        ///< mu_kj (1 + alpha_kj): v_b += share_b (g.e) e
     double loss;           ///< (1 - alpha_kj^2) m_kj / 2: the energy lost per (g.e)^2
-    std::uint32_t event;   ///< min(k, j) S + max(k, j): the slot in Counters::pair_events
+    std::uint32_t event;   ///< min(k, j) S + max(k, j): the slot in Counters::pair_events (0 without them)
   };
   std::vector<PairKernel> pair_kernel_;
   std::vector<std::uint32_t> pair_species_;  ///< (k, j) of pair k S + j, 2 per pair
@@ -489,7 +493,7 @@ class Collider {
   std::vector<double> pair_weights_;   ///< a block's A_ik, S x S (set_block_lowrank)
   segment_tree::AliasTable pair_alias_;  ///< over the S^2 pairs (run_lowrank in a block: viscoelastic)
   /// The mixture kernel's draw of a `lowrank` candidate from one 64-bit word (header "Mixtures in blocks"):
-  /// an alias table over P = 2^m >= S^2 cells (the pairs, then zero weights), the cell from the top m
+  /// an alias table over 2^m >= max(P^2, 2) cells (the pairs, then zero weights), the cell from the top m
   /// bits, its coin from the next 16 - m, two 24-bit halves for the particles (Lemire, exact by rejection).
   struct LowrankOutcome {
     std::uint32_t first_i, count_i, first_k, count_k;  ///< the slices of species i and k (system indices)
@@ -503,7 +507,7 @@ class Collider {
     std::uint32_t other;    ///< its alias's outcome
   };
   std::vector<LowrankCell> lowrank_cells_;        ///< P cells (set_block_lowrank)
-  std::vector<LowrankOutcome> lowrank_outcomes_;  ///< S^2 outcomes, pair i S + k
+  std::vector<LowrankOutcome> lowrank_outcomes_;  ///< P^2 outcomes, the pairs of the P species present in the block
   std::vector<double> lowrank_limits_;            ///< w_i + w_k of pair i S + k: the acceptance |g| / (w_i + w_k)
   unsigned lowrank_cell_bits_ = 0;                ///< m
   bool lowrank_narrow_ = false;                   ///< every slice of the block below 2^24 (the one-word draw)

@@ -946,7 +946,7 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
   collider.use_blocks(static_cast<std::size_t>(config.dsmc.block_size));
   collider.use_threads(block_threads);
   if (collider.blocks() == 1)
-    note_idle_threads("this run has no cache blocks (they need 'majorant' or 'lowrank', at most 64 species and "
+    note_idle_threads("this run has no cache blocks (they need 'majorant' or 'lowrank', at most 128 species and "
                       "N >= 2 block_size)");
   ReplicaProgress p;
   p.c_sum.assign(s, 0.0);
