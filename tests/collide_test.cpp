@@ -1208,3 +1208,46 @@ TEST(Collide, ManySpeciesBlocksMatchUnblocked) {
     }
   }
 }
+
+// deal::scatter (deal.hpp, "Scattering"): each element goes to a uniformly random block, independently
+// of the others. 5 elements in 6 blocks (fewer than blocks) and 40 in 6, 60000 scatterings each, every
+// scattering starting from the order the previous one left (as in the remix): each element's frequency
+// in each block and each pair's frequency of sharing a block are within 4.5 binomial SE of 1/K (a
+// dealing in equal slices never puts two of 5 together; cut without the shuffle, neighbours share a
+// block far more often). The displacements follow the velocities; the counts add up.
+TEST(Collide, ScatterPlacesEveryParticleUniformly) {
+  for (std::size_t n : {std::size_t{5}, std::size_t{40}}) {
+    const std::size_t k = 6, draws = 60000, stride = 3;
+    auto gen = rng::make_stream(31, 0, rng::Purpose::collisions);
+    std::vector<std::size_t> data(n), second(n), counts(k * stride, 99);
+    for (std::size_t i = 0; i < n; ++i) data[i] = second[i] = i;
+    std::vector<double> in_block(n * k, 0.0), together(n * n, 0.0);
+    std::vector<std::size_t> block_of(n);
+    for (std::size_t d = 0; d < draws; ++d) {
+      deal::scatter(gen, data.data(), second.data(), n, k, counts.data(), stride);
+      ASSERT_EQ(data, second);
+      std::size_t position = 0, total = 0;
+      for (std::size_t j = 0; j < k; ++j) {
+        total += counts[j * stride];
+        for (std::size_t c = 0; c < counts[j * stride]; ++c) block_of[data[position++]] = j;
+      }
+      ASSERT_EQ(total, n);
+      for (std::size_t a = 0; a < n; ++a) {
+        in_block[a * k + block_of[a]] += 1.0;
+        for (std::size_t b = a + 1; b < n; ++b) together[a * n + b] += block_of[a] == block_of[b] ? 1.0 : 0.0;
+      }
+    }
+    const double p = 1.0 / static_cast<double>(k), se = std::sqrt(p * (1.0 - p) / static_cast<double>(draws));
+    double worst_block = 0.0, worst_pair = 0.0;
+    for (std::size_t a = 0; a < n; ++a) {
+      for (std::size_t j = 0; j < k; ++j)
+        worst_block = std::max(worst_block, std::abs(in_block[a * k + j] / static_cast<double>(draws) - p) / se);
+      for (std::size_t b = a + 1; b < n; ++b)
+        worst_pair = std::max(worst_pair, std::abs(together[a * n + b] / static_cast<double>(draws) - p) / se);
+    }
+    std::printf("[ Scatter ] n = %zu in %zu blocks, %zu draws: worst element-block %.2f SE, worst pair %.2f SE\n", n, k,
+                draws, worst_block, worst_pair);
+    EXPECT_LT(worst_block, 4.5);
+    EXPECT_LT(worst_pair, 4.5);
+  }
+}

@@ -309,17 +309,9 @@ void Collider::set_slices() {
 
 void Collider::scatter(std::size_t k) {
   // Each particle of species k to a uniformly random block, independently (header "Mixtures in blocks"):
-  // the particles in a uniformly random order (Fisher-Yates), then cut into slices of multinomial counts.
-  const std::size_t blocks = block_first_.size() - 1, count = sys_.count[k];
-  particles::Vec3* v = sys_.v.data() + sys_.first[k];
+  // the particles in a uniformly random order, then cut into slices of multinomial counts (deal.hpp).
   particles::Displacement* r = sys_.tracks_displacements() ? sys_.r.data() + sys_.first[k] : nullptr;
-  for (std::size_t i = count; i > 1; --i) {
-    const std::size_t q = gen_.below(i);
-    std::swap(v[i - 1], v[q]);
-    if (r) std::swap(r[i - 1], r[q]);
-  }
-  for (std::size_t j = 0; j < blocks; ++j) slice_count_[j * s_ + k] = 0;
-  for (std::size_t i = 0; i < count; ++i) ++slice_count_[gen_.below(blocks) * s_ + k];
+  deal::scatter(gen_, sys_.v.data() + sys_.first[k], r, sys_.count[k], block_first_.size() - 1, slice_count_.data() + k, s_);
 }
 
 void Collider::remix() {

@@ -56,6 +56,12 @@
  * Checked by tests/collide_test.cpp (Collide.DealInPlaceIsTheDealing: against the out-of-place
  * formula above for one species and mixtures, with and without displacements, k not dividing n, on
  * 1 to 3 threads).
+ *
+ * **Scattering** (scatter(); collide.hpp, "Mixtures in blocks"): a species too rare to be dealt in
+ * equal slices is put in a uniformly random order (Fisher-Yates) and cut into k slices of multinomial
+ * counts, so that each element goes to a uniformly random block independently of the others (any two
+ * share a block with probability 1/k). Checked by Collide.ScatterPlacesEveryParticleUniformly (each
+ * element's block and every pair's sharing of a block over 60000 scatterings).
  */
 #pragma once
 
@@ -307,6 +313,20 @@ void deal_in_place(T* data, std::size_t n, std::size_t k, std::size_t offset, Wo
   }
   // Stage 4: element whole + i of y is in row whole/k + i div k, column i mod k (whole is a multiple of k).
   for (std::size_t i = 0; i < m; ++i) data[first(i % k) + rows * seg + i / k] = aside[i];
+}
+
+/// Scatters n elements over k blocks (header, "Scattering"): permutes `data` (and `second` alike, if
+/// not null) uniformly at random and sets counts[j stride], j < k, to how many of them block j takes,
+/// in order: each element to a uniformly random block, independently. `gen.below(m)` is uniform on [0, m).
+template <class Gen, class T, class U>
+void scatter(Gen& gen, T* data, U* second, std::size_t n, std::size_t k, std::size_t* counts, std::size_t stride) {
+  for (std::size_t i = n; i > 1; --i) {
+    const std::size_t q = gen.below(i);
+    std::swap(data[i - 1], data[q]);
+    if (second) std::swap(second[i - 1], second[q]);
+  }
+  for (std::size_t j = 0; j < k; ++j) counts[j * stride] = 0;
+  for (std::size_t i = 0; i < n; ++i) ++counts[gen.below(k) * stride];
 }
 
 }  // namespace gdsmc::deal
