@@ -293,8 +293,9 @@ TEST_F(CliDsmc, StaleTemporariesOfDeadRunsAreRemoved) {
 }
 
 /// Starts an endless run (t_end = 1e30, asked for with allow_long_run, checkpoints every 0.2 s),
-/// sends it SIGINT after `wait_us` and waits up to 10 s: the exit status (-1: killed after the
-/// wait), and the seconds from the signal to the end.
+/// sends it SIGINT after `wait_us` and once its first checkpoint exists (up to 60 s more: a loaded
+/// machine or a sanitizer build may take longer than `wait_us` to write it), and waits up to 10 s:
+/// the exit status (-1: killed after the wait), and the seconds from the signal to the end.
 std::pair<int, double> interrupt_an_endless_run(CliFixture& f, useconds_t wait_us) {
   // It cools by ~50 decades: its relative speeds drown in round-off and events become ever rarer
   // among the candidates, so a loop that counted events only would not look at the signal again.
@@ -317,6 +318,7 @@ std::pair<int, double> interrupt_an_endless_run(CliFixture& f, useconds_t wait_u
     ::_exit(122);
   }
   ::usleep(wait_us);
+  for (int polls = 0; polls < 6000 && !fs::exists(f.dir / "out.checkpoint.h5"); ++polls) ::usleep(10000);
   const auto sent = std::chrono::steady_clock::now();
   ::kill(pid, SIGINT);
   int status = 0;
