@@ -2,7 +2,8 @@
 // granular-dsmc runs) on each path, beside the one-species `t_end` run of the same N, as ratios
 // measured in one process one after another on the same machine.
 //
-// usage: bench_paths [N ...]          (default: 100000 1000000; add 10000000 for the large case)
+// usage: bench_paths [--no-pairs] [N ...]   (default: 100000 1000000; add 10000000 for the large case)
+//   --no-pairs: skip the two `pairs` rows (about 25 s each at N = 1e6), e.g. to repeat the others often.
 //
 // Paths (README "Performance"): one species driven by t_end (the reference) and by
 // collisions_per_particle; a binary mixture (masses 1 and 4, diameters 1 and 1.5, alpha = 0.8) with
@@ -92,7 +93,14 @@ simulation::Summary run(const std::string& text, int threads) {
 
 int main(int argc, char** argv) {
   std::vector<std::size_t> sizes;
-  for (int i = 1; i < argc; ++i) sizes.push_back(std::strtoull(argv[i], nullptr, 10));
+  bool pairs = true;
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) == "--no-pairs") {
+      pairs = false;
+      continue;
+    }
+    sizes.push_back(std::strtoull(argv[i], nullptr, 10));
+  }
   if (sizes.empty()) sizes = {100000, 1000000};
   const std::vector<Path> paths = {
       {"one species, t_end", kOne, "majorant", true, 1},
@@ -113,6 +121,7 @@ int main(int argc, char** argv) {
                 "CPU coll/s");
     double reference = 0.0;
     for (const Path& p : paths) {
+      if (p.scheme == "pairs" && !pairs) continue;
       if (p.scheme == "pairs" && n > 1000000) {  // ~3e5 collisions/s: minutes at N = 1e7
         std::printf("%-40s %14s\n", p.name, "(skipped above N = 1e6)");
         continue;

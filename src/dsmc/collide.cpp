@@ -686,49 +686,86 @@ void Collider::run_block_mixture(double t_stop) {
   // Per-pair event counts (up to pair_event_limit species; above, every pair's slot 0 of a sink).
   std::uint64_t sink = 0;
   std::uint64_t* pair_events = counters_.pair_events.empty() ? &sink : counters_.pair_events.data();
-  // The species of the block's i-th particle (cum_k <= i < cum_k+1): counted without branches for few species.
+  // The block's i-th particle (0 <= i < N_b) is of species k for edge[k] <= i < edge[k + 1], at system
+  // index i + offset[k] (its slice's first index less cum_k): 32-bit locals, so that a candidate's
+  // species and indices take a compare and an add each instead of loads of the size_t slice tables.
+  std::array<std::uint32_t, block_species_limit + 1> edge;
+  std::array<std::uint32_t, block_species_limit> offset;
+  if constexpr (!Lowrank) {
+    for (std::size_t k = 0; k < s; ++k) {
+      edge[k] = static_cast<std::uint32_t>(cum[k]);
+      offset[k] = static_cast<std::uint32_t>(slice[k] - cum[k]);  // (modulo 2^32: x + offset is exact)
+    }
+    edge[s] = static_cast<std::uint32_t>(cum[s]);
+  }
+  // Counted without branches for few species (a binary mixture's one compare spelled out: the
+  // general loop costs it a dozen instructions).
+  const std::uint32_t edge_1 = Lowrank ? 0 : edge[1];
   const auto species_of = [&](std::uint32_t i) {
     std::uint32_t k = 0;
-    if (s <= 8) {
-      for (std::size_t q = 1; q < s; ++q) k += i >= cum[q];
-    } else {
-      while (i >= cum[k + 1]) ++k;
+    if (s == 2) {
+      k = i >= edge_1;
+    } else if (s <= 8) {
+      for (std::size_t q = 1; q < s; ++q) k += i >= edge[q];
+    } else {  // the number of edge[1..S-1] <= i by a search whose steps depend on S only (no mispredictions)
+      const std::uint32_t* first = edge.data() + 1;
+      std::size_t len = s - 1;
+      while (len > 1) {
+        const std::size_t half = len / 2;
+        first = first[half] <= i ? first + half : first;
+        len -= half;
+      }
+      k = static_cast<std::uint32_t>(first - (edge.data() + 1)) + (*first <= i);
     }
     return k;
   };
   // `lowrank`'s one-word draw (set_block_lowrank), rebuilt with A_ik.
   const LowrankCell* cells = lowrank_cells_.data();
   const LowrankOutcome* outcomes = lowrank_outcomes_.data();
-  const double* limits = lowrank_limits_.data();
   const unsigned cell_bits = lowrank_cell_bits_;
   const std::uint32_t coin_mask = (1u << (16 - cell_bits)) - 1;
-  bool narrow = lowrank_narrow_;
-  std::array<PendingPair, lookahead> ahead;
+  // A drawn-ahead candidate: its particles' system indices and the pair i S + k (its PairKernel; its
+  // species i and k, whose bounds are read only after a collision, from pair_species_).
+  struct Candidate {
+    std::uint32_t a, b, pair;
+  };
+  const std::uint32_t* pair_species = pair_species_.data();
+  std::array<Candidate, lookahead> ahead;
   const auto draw = [&](std::size_t slot) {
-    PendingPair& p = ahead[slot];
+    Candidate& p = ahead[slot];
     if constexpr (Lowrank) {  // (i, k) with probability A_ik / R_b, then a particle of each slice
       // From one word (set_block_lowrank): the alias cell from the top m bits, its coin from the next
       // 16 - m (a further uniform only when they tie with the threshold), the particles from the low two
       // 24-bit fields by below_pair's multiply-shift and rejection in 24 bits (Lemire 2019; either field
-      // rejected: below_pair draws both particles of this pair again). Slices of 2^24 or more: below_pair.
+      // rejected: below_pair draws both particles of this pair again). A block with a slice of 2^24 or
+      // more has every reject at 2^24: below_pair draws each of its candidates.
       const std::uint64_t r = gen();
       const LowrankCell& cell = cells[r >> (64 - cell_bits)];
       const auto q = static_cast<std::uint32_t>(r >> 48) & coin_mask;
-      const bool keep = q < cell.whole || (q == cell.whole && gen.uniform() < cell.fraction);
-      const LowrankOutcome& o = outcomes[keep ? cell.keep : cell.other];
+      // Without a branch on q < whole (taken at random, its mispredictions cost about as much as the
+      // rest of the draw): a mask selects the outcome; the tie q = whole (one in 2^(16-m)) branches.
+      const std::uint32_t keep_mask = 0u - static_cast<std::uint32_t>(q < cell.whole);
+      std::uint32_t outcome = (cell.keep & keep_mask) | (cell.other & ~keep_mask);
+      if (q == cell.whole) [[unlikely]]
+        outcome = gen.uniform() < cell.fraction ? cell.keep : cell.other;
+      const LowrankOutcome& o = outcomes[outcome];
       const std::uint64_t m1 = (r & 0xffffffULL) * o.count_i, m2 = ((r >> 24) & 0xffffffULL) * o.count_k;
       std::uint32_t x = static_cast<std::uint32_t>(m1 >> 24), y = static_cast<std::uint32_t>(m2 >> 24);
       if ((static_cast<std::uint32_t>(m1) & 0xffffffu) < o.reject_i ||
-          (static_cast<std::uint32_t>(m2) & 0xffffffu) < o.reject_k || !narrow) [[unlikely]]
-        gen.below_pair(o.count_i, o.count_k, x, y);
-      p = {o.first_i + x, o.first_k + y, o.i, o.k};
+          (static_cast<std::uint32_t>(m2) & 0xffffffu) < o.reject_k) [[unlikely]] {
+        // On a copy of the stream: the stream itself then never has its address taken and stays in
+        // registers (below_pair, out of line here, would otherwise make it live in memory throughout).
+        rng::Xoshiro256pp rare = gen;
+        rare.below_pair(o.count_i, o.count_k, x, y);
+        gen = rare;
+      }
+      p = {o.first_i + x, o.first_k + y, o.pair};
     } else {  // a uniform pair of the block's particles
       std::uint32_t x, y;
       gen.below_pair(n, n - 1, x, y);
       y += y >= x;
       const std::uint32_t i = species_of(x), k = species_of(y);
-      p = {static_cast<std::uint32_t>(slice[i] + (x - cum[i])), static_cast<std::uint32_t>(slice[k] + (y - cum[k])), i,
-           k};
+      p = {x + offset[i], y + offset[k], static_cast<std::uint32_t>(i * s + k)};
     }
     const auto* base = reinterpret_cast<const char*>(v);
     for (std::uint32_t q : {p.a, p.b}) {
@@ -751,18 +788,18 @@ void Collider::run_block_mixture(double t_stop) {
     bool raised = false;
     std::uint64_t c = 0;
     for (; c < n_candidates; ++c) {
-      const PendingPair p = ahead[next];
+      const Candidate p = ahead[next];
       draw(next);
       next = (next + 1) % lookahead;
       const std::uint32_t a = p.a, b = p.b;
       if constexpr (Lowrank)
         if (a == b) continue;  // the self pair is part of the majorant's sum, never a collision
-      const PairKernel& pk = kernel[p.i * s + p.k];
+      const PairKernel& pk = kernel[p.pair];
       const double gx = v[a].x - v[b].x, gy = v[a].y - v[b].y, gz = v[a].z - v[b].z;
       const double g2 = gx * gx + gy * gy + gz * gz;
       if constexpr (Lowrank) {
         // Accept with |g| / (w_i + w_k) (run_lowrank in a block: chi_ik cancels), compared squared.
-        const double limit = limits[p.i * s + p.k];  // w_i + w_k
+        const double limit = pk.limit;  // w_i + w_k
         const double threshold = gen.uniform() * limit;
         if (threshold * threshold >= g2) continue;
         if (g2 > limit * limit) [[unlikely]] note_overshoot(std::sqrt(g2) / limit);
@@ -791,9 +828,10 @@ void Collider::run_block_mixture(double t_stop) {
       // "(sigma g)_max raised when exceeded" (header), for both partners: a new sub-step from here.
       const double speed2_a = va.x * va.x + va.y * va.y + va.z * va.z;
       const double speed2_b = vb.x * vb.x + vb.y * vb.y + vb.z * vb.z;
-      if (speed2_a > speed2[p.i] || speed2_b > speed2[p.k]) [[unlikely]] {
-        speed2[p.i] = std::max(speed2[p.i], speed2_a);
-        speed2[p.k] = std::max(speed2[p.k], speed2_b);
+      const std::uint32_t i = pair_species[2 * p.pair], k = pair_species[2 * p.pair + 1];
+      if (speed2_a > speed2[i] || speed2_b > speed2[k]) [[unlikely]] {
+        speed2[i] = std::max(speed2[i], speed2_a);
+        speed2[k] = std::max(speed2[k], speed2_b);
         raised = true;
         ++c;
         break;
@@ -806,7 +844,6 @@ void Collider::run_block_mixture(double t_stop) {
       if constexpr (Lowrank) {
         set_block_lowrank(n_density);
         cells = lowrank_cells_.data();  // (their sizes do not change: the same data)
-        narrow = lowrank_narrow_;
         for (std::size_t slot = 0; slot < lookahead; ++slot) draw(slot);  // drawn from the old A_ik: redraw
         next = 0;
       } else {
@@ -888,7 +925,6 @@ void Collider::set_block_lowrank(double n) {
                          c < pairs ? static_cast<std::uint32_t>(c) : other, other};
   }
   lowrank_outcomes_.resize(pairs);
-  lowrank_limits_.resize(s_ * s_);
   const std::size_t* slice = slice_first_.data() + current_block_ * s_;
   lowrank_narrow_ = true;
   for (std::size_t i = 0; i < s_; ++i) lowrank_narrow_ = lowrank_narrow_ && cum[i + 1] - cum[i] < (std::size_t{1} << 24);
@@ -900,10 +936,9 @@ void Collider::set_block_lowrank(double n) {
       // Lemire's multiply-shift in 24 bits (Lemire 2019, as rng::Xoshiro256pp::below_pair): x n >> 24 is
       // uniform on [0, n) once the x with x n mod 2^24 < 2^24 mod n are rejected.
       lowrank_outcomes_[a * p + b] = {static_cast<std::uint32_t>(slice[i]), count_i, static_cast<std::uint32_t>(slice[k]),
-                                      count_k, lowrank_narrow_ ? (1u << 24) % count_i : 0u,
-                                      lowrank_narrow_ ? (1u << 24) % count_k : 0u, static_cast<std::uint32_t>(i),
-                                      static_cast<std::uint32_t>(k)};
-      lowrank_limits_[i * s_ + k] = max_speed_[i] + max_speed_[k];  // (the pairs of absent species are never drawn)
+                                      count_k, lowrank_narrow_ ? (1u << 24) % count_i : 1u << 24,
+                                      lowrank_narrow_ ? (1u << 24) % count_k : 1u << 24, static_cast<std::uint32_t>(i * s_ + k)};
+      pair_kernel_[i * s_ + k].limit = max_speed_[i] + max_speed_[k];  // (the pairs of absent species are never drawn)
     }
 }
 

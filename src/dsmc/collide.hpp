@@ -484,6 +484,7 @@ class Collider {
     double share_b;        ///< mu_kj (1 + alpha_kj): v_b += share_b (g.e) e
     double loss;           ///< (1 - alpha_kj^2) m_kj / 2: the energy lost per (g.e)^2
     std::uint32_t event;   ///< min(k, j) S + max(k, j): the slot in Counters::pair_events (0 without them)
+    double limit = 0.0;    ///< `lowrank` in blocks: w_k + w_j, the acceptance |g| / (w_k + w_j) (set_block_lowrank)
   };
   std::vector<PairKernel> pair_kernel_;
   std::vector<std::uint32_t> pair_species_;  ///< (k, j) of pair k S + j, 2 per pair
@@ -497,8 +498,8 @@ class Collider {
   /// bits, its coin from the next 16 - m, two 24-bit halves for the particles (Lemire, exact by rejection).
   struct LowrankOutcome {
     std::uint32_t first_i, count_i, first_k, count_k;  ///< the slices of species i and k (system indices)
-    std::uint32_t reject_i, reject_k;                  ///< 2^24 mod count: a 24-bit half below it is rejected
-    std::uint32_t i, k;                                ///< the species pair
+    std::uint32_t reject_i, reject_k;                  ///< 2^24 mod count: a 24-bit half below it is rejected (2^24: every one, below_pair draws)
+    std::uint32_t pair;                                ///< i S + k: the pair's PairKernel (and pair_species_)
   };
   struct LowrankCell {
     double fraction;        ///< t 2^c - whole, t the cell's alias threshold, c = 16 - m coin bits
@@ -508,7 +509,6 @@ class Collider {
   };
   std::vector<LowrankCell> lowrank_cells_;        ///< P cells (set_block_lowrank)
   std::vector<LowrankOutcome> lowrank_outcomes_;  ///< P^2 outcomes, the pairs of the P species present in the block
-  std::vector<double> lowrank_limits_;            ///< w_i + w_k of pair i S + k: the acceptance |g| / (w_i + w_k)
   unsigned lowrank_cell_bits_ = 0;                ///< m
   bool lowrank_narrow_ = false;                   ///< every slice of the block below 2^24 (the one-word draw)
   double step_start_ = 0.0;
