@@ -1209,6 +1209,34 @@ TEST(Collide, ManySpeciesBlocksMatchUnblocked) {
   }
 }
 
+// species_at, the mixture kernel's species of a block index, against counting by hand: for edges of
+// 2, 5 (one of them empty) and 20 species (three empty, two of them last and first), every index of
+// the block gets the k with edge[k] <= i < edge[k + 1], never an empty species; the block's first and
+// last index and each boundary checked explicitly (the cases an off-by-one search gets wrong).
+TEST(Collide, SpeciesOfABlockIndex) {
+  using gdsmc::collide::species_at;
+  const std::vector<std::uint32_t> two = {0, 3, 10};
+  EXPECT_EQ(species_at(two.data(), 2, 0), 0u);
+  EXPECT_EQ(species_at(two.data(), 2, 2), 0u);
+  EXPECT_EQ(species_at(two.data(), 2, 3), 1u);
+  EXPECT_EQ(species_at(two.data(), 2, 9), 1u);
+  const std::vector<std::uint32_t> five = {0, 4, 4, 9, 10, 16};  // species 1 empty
+  const std::uint32_t expected_five[16] = {0, 0, 0, 0, 2, 2, 2, 2, 2, 3, 4, 4, 4, 4, 4, 4};
+  for (std::uint32_t i = 0; i < 16; ++i) EXPECT_EQ(species_at(five.data(), 5, i), expected_five[i]) << "index " << i;
+  // 20 species: counts 0 (species 0 empty), then 1..17 of 3, 0, 2, ..., species 19 empty.
+  std::vector<std::uint32_t> counts = {0, 3, 1, 4, 1, 5, 9, 2, 6, 5, 3, 5, 8, 9, 7, 9, 3, 0, 2, 0};
+  std::vector<std::uint32_t> edges = {0};
+  for (std::uint32_t c : counts) edges.push_back(edges.back() + c);
+  std::uint32_t i = 0;
+  for (std::uint32_t k = 0; k < counts.size(); ++k)
+    for (std::uint32_t j = 0; j < counts[k]; ++j, ++i) EXPECT_EQ(species_at(edges.data(), 20, i), k) << "index " << i;
+  EXPECT_EQ(i, edges.back());
+  EXPECT_EQ(species_at(edges.data(), 20, 0), 1u);                // the first index: species 0 is empty
+  EXPECT_EQ(species_at(edges.data(), 20, edges.back() - 1), 18u);  // the last index: species 19 is empty
+  EXPECT_EQ(species_at(edges.data(), 20, edges[9] - 1), 8u);     // either side of a boundary
+  EXPECT_EQ(species_at(edges.data(), 20, edges[9]), 9u);
+}
+
 // deal::scatter (deal.hpp, "Scattering"): each element goes to a uniformly random block, independently
 // of the others. 5 elements in 6 blocks (fewer than blocks) and 40 in 6, 60000 scatterings each, every
 // scattering starting from the order the previous one left (as in the remix): each element's frequency

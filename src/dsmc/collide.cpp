@@ -50,7 +50,8 @@ Collider::Collider(Scheme scheme, const species::Mixture& mix, particles::System
       for (std::size_t j = 0; j < s_; ++j) {
         const double alpha = alpha_[k * s_ + j], mf = mass_fraction_[k * s_ + j];
         // v_a -= mu_jk (1 + alpha) p, v_b += mu_kj (1 + alpha) p for p = (g.e) e; loss (1 - alpha^2) m_kj (g.e)^2 / 2
-        pair_kernel_[k * s_ + j] = {cross_section_[k * s_ + j], mf * (1.0 + alpha), (1.0 - mf) * (1.0 + alpha),
+        pair_kernel_[k * s_ + j] = {cross_section_[k * s_ + j] * cross_section_[k * s_ + j], mf * (1.0 + alpha),
+                                    (1.0 - mf) * (1.0 + alpha),
                                     0.5 * (1.0 - alpha * alpha) * mix.mass[k] * mf,
                                     s_ <= pair_event_limit ? static_cast<std::uint32_t>(std::min(k, j) * s_ + std::max(k, j)) : 0u};
         pair_species_.insert(pair_species_.end(), {static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(j)});
@@ -698,27 +699,8 @@ void Collider::run_block_mixture(double t_stop) {
     }
     edge[s] = static_cast<std::uint32_t>(cum[s]);
   }
-  // Counted without branches for few species (a binary mixture's one compare spelled out: the
-  // general loop costs it a dozen instructions).
-  const std::uint32_t edge_1 = Lowrank ? 0 : edge[1];
-  const auto species_of = [&](std::uint32_t i) {
-    std::uint32_t k = 0;
-    if (s == 2) {
-      k = i >= edge_1;
-    } else if (s <= 8) {
-      for (std::size_t q = 1; q < s; ++q) k += i >= edge[q];
-    } else {  // the number of edge[1..S-1] <= i by a search whose steps depend on S only (no mispredictions)
-      const std::uint32_t* first = edge.data() + 1;
-      std::size_t len = s - 1;
-      while (len > 1) {
-        const std::size_t half = len / 2;
-        first = first[half] <= i ? first + half : first;
-        len -= half;
-      }
-      k = static_cast<std::uint32_t>(first - (edge.data() + 1)) + (*first <= i);
-    }
-    return k;
-  };
+  // (species_at: a binary mixture's species by one compare; the general loop cost it a dozen instructions.)
+  const auto species_of = [&](std::uint32_t i) { return species_at(edge.data(), s, i); };
   // `lowrank`'s one-word draw (set_block_lowrank), rebuilt with A_ik.
   const LowrankCell* cells = lowrank_cells_.data();
   const LowrankOutcome* outcomes = lowrank_outcomes_.data();
@@ -805,7 +787,7 @@ void Collider::run_block_mixture(double t_stop) {
         if (g2 > limit * limit) [[unlikely]] note_overshoot(std::sqrt(g2) / limit);
       } else {
         // Accept with pi sigma_kj^2 chi_kj |g| / B_b (\ref sch_majorant "docs/schemes.md"), compared squared.
-        const double rate2 = pk.cross_section * pk.cross_section * g2;
+        const double rate2 = pk.cross_section2 * g2;  // (the same product as (cs cs) g2)
         const double threshold = gen.uniform() * bound;
         if (threshold * threshold >= rate2) continue;
         if (rate2 > bound * bound) [[unlikely]] note_overshoot(std::sqrt(rate2) / bound);
