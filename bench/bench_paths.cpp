@@ -2,8 +2,13 @@
 // granular-dsmc runs) on each path, beside the one-species `t_end` run of the same N, as ratios
 // measured in one process one after another on the same machine.
 //
-// usage: bench_paths [--no-pairs] [N ...]   (default: 100000 1000000; add 10000000 for the large case)
+// usage: bench_paths [--no-pairs] [--repeat R] [N ...]   (default: 100000 1000000; add 10000000 for the large case)
 //   --no-pairs: skip the two `pairs` rows (about 25 s each at N = 1e6), e.g. to repeat the others often.
+//   --repeat R: R rounds (R >= 2) in which every path runs right after a run of the reference (one species,
+//               t_end), its ratio taken against that run: on a machine whose speed drifts from second to
+//               second (a shared host) the pair sees the same speed where one reference for the whole
+//               table would not. Prints each path's median rate and the median, quartiles and range of
+//               its R paired ratios.
 //
 // Paths (README "Performance"): one species driven by t_end (the reference) and by
 // collisions_per_particle; a binary mixture (masses 1 and 4, diameters 1 and 1.5, alpha = 0.8) with
@@ -15,6 +20,7 @@
 // counted), on one replica; the thread row gives the ratio of wall-clock rates. "CPU coll/s" is the
 // run's collisions over the CPU time of the whole run (setup and output included; all threads added),
 // which a machine shared with other jobs disturbs less than the wall clock.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -94,9 +100,14 @@ simulation::Summary run(const std::string& text, int threads) {
 int main(int argc, char** argv) {
   std::vector<std::size_t> sizes;
   bool pairs = true;
+  int repeat = 1;
   for (int i = 1; i < argc; ++i) {
     if (std::string(argv[i]) == "--no-pairs") {
       pairs = false;
+      continue;
+    }
+    if (std::string(argv[i]) == "--repeat" && i + 1 < argc) {
+      repeat = std::max(1, std::atoi(argv[++i]));
       continue;
     }
     sizes.push_back(std::strtoull(argv[i], nullptr, 10));
@@ -115,34 +126,75 @@ int main(int argc, char** argv) {
       {"one species, t_end, 2 threads", kOne, "majorant", true, 2},
   };
   constexpr double per_particle = 10.0;
+  struct Measured {
+    double rate, per_particle, wall, cpu_rate;
+  };
   for (std::size_t n : sizes) {
-    std::printf("N = %zu, one replica, ~%g collisions per particle per run\n", n, per_particle);
-    std::printf("%-40s %14s %12s %10s %10s %12s\n", "path", "collisions/s", "coll/part.", "seconds", "ratio",
-                "CPU coll/s");
-    double reference = 0.0;
-    for (const Path& p : paths) {
-      if (p.scheme == "pairs" && !pairs) continue;
-      if (p.scheme == "pairs" && n > 1000000) {  // ~3e5 collisions/s: minutes at N = 1e7
-        std::printf("%-40s %14s\n", p.name, "(skipped above N = 1e6)");
-        continue;
-      }
-      // The time of ~10 collisions per particle, from a short collision-driven pilot of the same gas.
-      double t_end = 0.0;
-      if (p.time_driven) {
-        Path pilot = p;
+    // The time of ~10 collisions per particle of each path, from a short collision-driven pilot of the same gas.
+    std::vector<double> t_end(paths.size(), 0.0);
+    for (std::size_t q = 0; q < paths.size(); ++q)
+      if (paths[q].time_driven) {
+        Path pilot = paths[q];
         pilot.scheme = "majorant";
-        t_end = run(namelist(pilot, p.system == kMany ? 100000 : 20000, 0.0, per_particle), 1).final_time;
+        t_end[q] = run(namelist(pilot, pilot.system == kMany ? 100000 : 20000, 0.0, per_particle), 1).final_time;
       }
+    const auto measure = [&](std::size_t q) {
       const auto start = std::chrono::steady_clock::now();
       const double cpu_start = cpu_seconds();
-      const simulation::Summary s = run(namelist(p, n, t_end, per_particle), p.threads);
+      const simulation::Summary s = run(namelist(paths[q], n, t_end[q], per_particle), paths[q].threads);
       const double cpu = cpu_seconds() - cpu_start;
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      if (reference == 0.0) reference = s.events_per_second;
-      std::printf("%-40s %14.4g %12.2f %10.2f %10.2f %12.4g\n", p.name, s.events_per_second, s.collisions_per_particle,
-                  wall, s.events_per_second / reference, s.collisions_per_particle * static_cast<double>(n) / 2.0 / cpu);
-      std::fflush(stdout);
+      return Measured{s.events_per_second, s.collisions_per_particle, wall,
+                      s.collisions_per_particle * static_cast<double>(n) / 2.0 / cpu};
+    };
+    const auto skipped = [&](std::size_t q) { return paths[q].scheme == "pairs" && (!pairs || n > 1000000); };
+    if (repeat == 1) {
+      std::printf("N = %zu, one replica, ~%g collisions per particle per run\n", n, per_particle);
+      std::printf("%-40s %14s %12s %10s %10s %12s\n", "path", "collisions/s", "coll/part.", "seconds", "ratio",
+                  "CPU coll/s");
+      double reference = 0.0;
+      for (std::size_t q = 0; q < paths.size(); ++q) {
+        if (skipped(q)) {  // pairs: ~3e5 collisions/s, minutes at N = 1e7
+          if (pairs) std::printf("%-40s %14s\n", paths[q].name, "(skipped above N = 1e6)");
+          continue;
+        }
+        const Measured m = measure(q);
+        if (reference == 0.0) reference = m.rate;
+        std::printf("%-40s %14.4g %12.2f %10.2f %10.2f %12.4g\n", paths[q].name, m.rate, m.per_particle, m.wall,
+                    m.rate / reference, m.cpu_rate);
+        std::fflush(stdout);
+      }
+      continue;
     }
+    // Paired rounds: reference, path; reference, next path; ... R times.
+    std::vector<std::vector<double>> rates(paths.size()), ratios(paths.size());
+    for (int r = 0; r < repeat; ++r) {
+      for (std::size_t q = 1; q < paths.size(); ++q) {
+        if (skipped(q)) continue;
+        const Measured ref = measure(0), m = measure(q);
+        rates[0].push_back(ref.rate);
+        rates[q].push_back(m.rate);
+        ratios[q].push_back(m.rate / ref.rate);
+      }
+      std::fprintf(stderr, "bench_paths: N = %zu, round %d of %d done\n", n, r + 1, repeat);
+    }
+    const auto median = [](std::vector<double> v) {
+      std::sort(v.begin(), v.end());
+      const std::size_t m = v.size() / 2;
+      return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+    };
+    std::printf("N = %zu, one replica, ~%g collisions per particle per run, %d paired rounds\n", n, per_particle, repeat);
+    std::printf("%-40s %14s %8s %15s %15s\n", "path", "median coll/s", "ratio", "quartiles", "range");
+    std::printf("%-40s %14.4g %8.2f\n", paths[0].name, median(rates[0]), 1.0);
+    for (std::size_t q = 1; q < paths.size(); ++q) {
+      if (ratios[q].empty()) continue;
+      std::vector<double> v = ratios[q];
+      std::sort(v.begin(), v.end());
+      const std::size_t k = v.size();
+      std::printf("%-40s %14.4g %8.2f %7.2f-%-7.2f %7.2f-%-7.2f\n", paths[q].name, median(rates[q]), median(v),
+                  v[k / 4], v[(3 * k) / 4 < k ? (3 * k) / 4 : k - 1], v.front(), v.back());
+    }
+    std::fflush(stdout);
   }
   return 0;
 }

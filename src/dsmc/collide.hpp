@@ -176,8 +176,15 @@
  * slices, Lemire thresholds and w_i + w_k in one record): the cell from the top m bits, its coin from
  * the next 16 - m (a further uniform only when they tie with the threshold's leading bits, so the coin
  * is exact), the two particles from two 24-bit fields by multiply-shift with rejection (below_pair's,
- * in 24 bits; slices of 2^24 or more use below_pair). Viscoelastic mixtures run the general loops in
- * their blocks.
+ * in 24 bits; a block with a slice of 2^24 or more has every rejection threshold at 2^24, so that
+ * below_pair draws each of its candidates). Viscoelastic mixtures run the general loops in their blocks.
+ * What a mixture candidate costs beyond a one-species one was cut further on 2026-11-27 without
+ * changing a single draw (the output of 16 runs byte for byte the same): a `majorant` candidate's
+ * species from 32-bit edges held in locals (species_at: one compare for two species, a search without
+ * mispredictions above 8) and its system index by one add; a drawn-ahead candidate carries its pair's
+ * index (its species looked up only after a collision); `lowrank`'s alias coin selects the outcome by a
+ * mask, since a branch on it went either way at random; (pi sigma^2 chi)^2 kept per pair. Measured in
+ * docs/schemes.md ("Cache blocks") and README ("Performance").
  * Why a `lowrank` candidate cost more than a `majorant` one (issue 11: 40 against 23 ns in a loaded
  * session, 23.7 against 17.9 in the session below; perf on bench_collide, binary lowrank): its pair
  * draw was half of the kernel's samples (49 %, `majorant`'s 25 %), a dependent chain before the
