@@ -10,12 +10,13 @@
 //               than one, each path's best (largest rate, smallest ns/cand) and median figures follow.
 // Default: the reference case, N = 1e6, alpha = 0.9, 10 collisions per particle timed. The gases
 // are those of bench_paths (one species; binary, masses 1 and 4, diameters 1 and 1.5; the same at packing
-// fraction 0.1, Enskog). "cand/coll" is candidates per accepted collision (1/acceptance), "ns/cand" the
+// fraction 0.1, Enskog; `many_*`: 20 species, m_k = k, sigma_k = k^(1/3), n_k ~ k^-3). "cand/coll" is candidates per accepted collision (1/acceptance), "ns/cand" the
 // time of the timed advance() over its candidates (everything counted: collisions, bounds, remixes), so
 // that ns per collision = cand/coll x ns/cand. Times are the process's CPU time (one thread), which a
 // machine shared with other jobs disturbs less than the wall clock does (caches are still shared).
 // Figures are for comparing builds and paths on one machine in one run (ratios), not absolute.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <cstdlib>
@@ -47,11 +48,20 @@ struct Result {
 struct Path {
   std::string name;
   collide::Scheme scheme;
-  int gas;  // 0: one species, 1: binary, 2: binary Enskog
+  int gas;  // 0: one species, 1: binary, 2: binary Enskog, 3: 20 species of Bodrova and Osinsky 2024's Fig 8 law
 };
 
 species::Mixture gas_of(int gas, double alpha) {
   if (gas == 0) return species::make_mixture({1.0}, {1.0}, {0.01}, species::PairMatrix(1, alpha), false);
+  if (gas == 3) {  // m_k = k, sigma_k = k^(1/3), n_k = 0.01 k^-3 (bench_paths' "20 species", dilute)
+    std::vector<double> mass, diameter, density;
+    for (int k = 1; k <= 20; ++k) {
+      mass.push_back(k);
+      diameter.push_back(std::cbrt(static_cast<double>(k)));
+      density.push_back(0.01 / (static_cast<double>(k) * k * k));
+    }
+    return species::make_mixture(mass, diameter, density, species::PairMatrix(20, alpha), false);
+  }
   // Packing fraction pi/6 (n_1 + n_2 1.5^3) = 0.1 at n_1 = n_2 = 0.0437 (bench_paths).
   const double n_k = gas == 1 ? 0.005 : 0.0437;
   return species::make_mixture({1.0, 4.0}, {1.0, 1.5}, {n_k, n_k}, species::PairMatrix(2, alpha), gas == 2);
@@ -105,6 +115,7 @@ int main(int argc, char** argv) {
       {"one_majorant", collide::Scheme::majorant, 0},    {"one_lowrank", collide::Scheme::lowrank, 0},
       {"binary_majorant", collide::Scheme::majorant, 1}, {"binary_lowrank", collide::Scheme::lowrank, 1},
       {"enskog_majorant", collide::Scheme::majorant, 2}, {"enskog_lowrank", collide::Scheme::lowrank, 2},
+      {"many_majorant", collide::Scheme::majorant, 3},   {"many_lowrank", collide::Scheme::lowrank, 3},
       {"one_pairs", collide::Scheme::pairs, 0},          {"binary_pairs", collide::Scheme::pairs, 1},
   };
   std::vector<Path> paths;
