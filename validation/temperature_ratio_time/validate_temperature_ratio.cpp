@@ -45,8 +45,11 @@ int main(int argc, char** argv) {
       report.check(label + "gamma at the end vs first Sonine (allowance: its Sonine correction)", g_end, se_end,
                    theory_gamma, 3.0, std::abs(theory_gamma - maxwell[0] / maxwell[1]));
     }
-    report.check(label + "gamma settled (3/4 of the run -> end)", g_end, std::hypot(se_end, se_q), g_quarter,
-                 3.0, 0.01 * g_end);
+    // In the scaling state gamma does not depend on time (exact: the HCS's T_k/T are constants, \ref haff_mixture_odes "docs/haff-and-mixtures.md"),
+    // and the transient of a few collisions has decayed long before 3/4 of the run: no allowance (was 1 %, with no
+    // source). The two samples share replicas, so the hypot of their SE overstates the SE of the change.
+    report.check(label + "gamma settled (3/4 of the run -> end; exact: no change, 3 SE, no allowance)", g_end,
+                 std::hypot(se_end, se_q), g_quarter, 3.0, 0.0);
   }
   return report.exit_code();
 }
