@@ -30,7 +30,7 @@ int check_elastic(int argc, char** argv) {
   const auto run = validation::run_case(argc, argv, "diffusion_elastic.h5");
   const auto mix = run.config.mixture();
   const std::size_t s = mix.size();
-  validation::Report report("elastic mixture: D_k against the second Chapman-Enskog approximation", run.report_file());
+  validation::Report report("elastic mixture: D_k against the third Sonine (Chapman-Enskog) approximation", run.report_file());
   bool elastic = true;
   for (std::size_t k = 0; k < s; ++k)
     for (std::size_t j = 0; j < s; ++j) elastic = elastic && mix.restitution(k, j) == 1.0;
