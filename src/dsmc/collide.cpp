@@ -908,8 +908,9 @@ void Collider::set_block_lowrank(double n) {
   }
   lowrank_outcomes_.resize(pairs);
   const std::size_t* slice = slice_first_.data() + current_block_ * s_;
-  lowrank_narrow_ = true;
-  for (std::size_t i = 0; i < s_; ++i) lowrank_narrow_ = lowrank_narrow_ && cum[i + 1] - cum[i] < (std::size_t{1} << 24);
+  // Every slice of the block below 2^24 (the one-word draw); else every candidate's reject is 2^24.
+  bool narrow = true;
+  for (std::size_t i = 0; i < s_; ++i) narrow = narrow && cum[i + 1] - cum[i] < (std::size_t{1} << 24);
   for (std::size_t a = 0; a < p; ++a)
     for (std::size_t b = 0; b < p; ++b) {
       const std::size_t i = present[a], k = present[b];
@@ -918,8 +919,8 @@ void Collider::set_block_lowrank(double n) {
       // Lemire's multiply-shift in 24 bits (Lemire 2019, as rng::Xoshiro256pp::below_pair): x n >> 24 is
       // uniform on [0, n) once the x with x n mod 2^24 < 2^24 mod n are rejected.
       lowrank_outcomes_[a * p + b] = {static_cast<std::uint32_t>(slice[i]), count_i, static_cast<std::uint32_t>(slice[k]),
-                                      count_k, lowrank_narrow_ ? (1u << 24) % count_i : 1u << 24,
-                                      lowrank_narrow_ ? (1u << 24) % count_k : 1u << 24, static_cast<std::uint32_t>(i * s_ + k)};
+                                      count_k, narrow ? (1u << 24) % count_i : 1u << 24,
+                                      narrow ? (1u << 24) % count_k : 1u << 24, static_cast<std::uint32_t>(i * s_ + k)};
       pair_kernel_[i * s_ + k].limit = max_speed_[i] + max_speed_[k];  // (the pairs of absent species are never drawn)
     }
 }

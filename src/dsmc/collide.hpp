@@ -540,7 +540,6 @@ class Collider {
   std::vector<LowrankCell> lowrank_cells_;        ///< P cells (set_block_lowrank)
   std::vector<LowrankOutcome> lowrank_outcomes_;  ///< P^2 outcomes, the pairs of the P species present in the block
   unsigned lowrank_cell_bits_ = 0;                ///< m
-  bool lowrank_narrow_ = false;                   ///< every slice of the block below 2^24 (the one-word draw)
   double step_start_ = 0.0;
   /// Exact vmax_k^2 of block j's slices, read in order, into out[k].
   void set_block_max_speed2(std::size_t block, double* out);
