@@ -5,7 +5,9 @@
 // 1. plain: the one-species collision loop (collide.hpp `majorant`), unblocked and with the default
 //    cache blocks, 2 collisions per particle;
 // 2. sticking: every collision aggregates (E_agg huge), from N monomers to mean size <k> = 100;
-// 3. full model: E_agg = 0.5, E_frag = 1.5, eps_f = 0.5, alpha = 0.8, T0 = 1, n = 0.1, for the given
+// 2b. the same to <k> = 4, where N stays above 2 block_size at N = 1e6; each with and without the
+//    cache blocks (agg_frag.hpp, "Cache blocks");
+// 3. full model (with and without blocks): E_agg = 0.5, E_frag = 1.5, eps_f = 0.5, alpha = 0.8, T0 = 1, n = 0.1, for the given
 //    collisions per initial monomer (default 10: by then <k> ~ 25, aggregation dominates).
 // Prints events per second, the ratio of the plain rate to it (the target: <= 3) and the
 // memory per initial monomer at the start and the end (it must not grow).
@@ -49,9 +51,10 @@ struct Run {
   double candidates_per_event;
 };
 
-Run cluster_rate(std::size_t n, const agg_frag::Model& model, std::uint64_t events) {
+Run cluster_rate(std::size_t n, const agg_frag::Model& model, std::uint64_t events, std::size_t block_size) {
   agg_frag::Gas gas(model, n, 1.0, particles::InitialDistribution::maxwell, rng::make_stream(1, 0, rng::Purpose::initial_state),
                     rng::make_stream(1, 0, rng::Purpose::collisions), 1.0);
+  gas.use_blocks(block_size);
   const double bytes_start = static_cast<double>(gas.memory_bytes());
   const auto start = Clock::now();
   gas.advance(std::numeric_limits<double>::infinity(), events);
@@ -84,11 +87,18 @@ int main(int argc, char** argv) {
   sticking.monomer_density = 0.1;
   sticking.restitution = 0.8;
   sticking.aggregation_energy = 1e300;  // every collision sticks
-  print("sticking", cluster_rate(n, sticking, n - n / 100), plain, plain_blocked, n);  // to <k> = 100
+  const auto block_size = static_cast<std::size_t>(io::config::Dsmc{}.block_size);
+  // to <k> = 100 (blocks while N >= 2 block_size), and to <k> = 4 (blocked throughout at N = 1e6)
+  print("sticking", cluster_rate(n, sticking, n - n / 100, 0), plain, plain_blocked, n);
+  print("+ blocks", cluster_rate(n, sticking, n - n / 100, block_size), plain, plain_blocked, n);
+  print("to <k>=4", cluster_rate(n, sticking, n - n / 4, 0), plain, plain_blocked, n);
+  print("+ blocks", cluster_rate(n, sticking, n - n / 4, block_size), plain, plain_blocked, n);
   agg_frag::Model full = sticking;
   full.aggregation_energy = 0.5;
   full.fragmentation_energy = 1.5;
   full.fragment_restitution = 0.5;
-  print("full model", cluster_rate(n, full, static_cast<std::uint64_t>(per_monomer * n / 2.0)), plain, plain_blocked, n);
+  const auto full_events = static_cast<std::uint64_t>(per_monomer * static_cast<double>(n) / 2.0);
+  print("full model", cluster_rate(n, full, full_events, 0), plain, plain_blocked, n);
+  print("+ blocks", cluster_rate(n, full, full_events, block_size), plain, plain_blocked, n);
   return 0;
 }

@@ -5,6 +5,10 @@
 #include <stdexcept>
 #include <string>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include "dsmc/collide.hpp"
 #include "dsmc/species.hpp"
 
@@ -248,11 +252,175 @@ Event Gas::collide(Cluster a, Cluster b) {
   return event;
 }
 
+// ---------------------------------------------------------------------------------------------
+// Cache blocks (header, "Cache blocks"; \ref af_blocks "docs/agg-frag.md")
+// ---------------------------------------------------------------------------------------------
+
+void Gas::use_blocks(std::size_t block_size, int threads) {
+  block_size_ = block_size;
+  block_threads_ = std::max(threads, 1);
+}
+
+std::size_t Gas::blocks() const {
+  if (block_size_ == 0 || clusters_ < 2 * block_size_) return 1;
+  return clusters_ / block_size_;
+}
+
+double Gas::block_step_end() const {
+  const double rate = sampler_.total();
+  if (blocks() == 1 || !(rate > 0.0)) return time_;
+  // block_steps step_fraction majorant mean free times (N/(2R) each), at most 2^23 candidates
+  const double dt = std::min(block_steps * step_fraction_ * static_cast<double>(clusters_) / (2.0 * rate),
+                             8388608.0 / rate);
+  return time_ + dt;
+}
+
+double Gas::blocked_step_end(double t_target, std::uint64_t event_target) const {
+  const double rate = sampler_.total();
+  if (blocks() == 1 || !(rate > 0.0) || counters_.events >= event_target) return -1.0;
+  const double free_time = static_cast<double>(clusters_) / (2.0 * rate);  // majorant mean free time
+  double end = std::min(block_step_end(), t_target);
+  // Towards an event target: expected candidates at most half the events left (events never
+  // exceed candidates; header, "Cache blocks").
+  if (event_target != UINT64_MAX)
+    end = std::min(end, time_ + 0.5 * static_cast<double>(event_target - counters_.events) / rate);
+  // A step shorter than half a mean free time runs on the whole gas (a deal costs O(N)).
+  return end - time_ >= 0.5 * free_time ? end : -1.0;
+}
+
+void Gas::reset_as_block(const Gas& whole) {
+  model_ = whole.model_;
+  step_fraction_ = whole.step_fraction_;
+  volume_ = whole.volume_;  // until the block's own is known (blocked_step)
+  if (lists_.size() < whole.capacity_ + 1) {
+    lists_.resize(whole.capacity_ + 1);
+    max_speed_.resize(whole.capacity_ + 1, 0.0);
+    diameter_.resize(whole.capacity_ + 1, 0.0);
+    for (std::size_t k = capacity_ + 1; k <= whole.capacity_; ++k)
+      diameter_[k] = std::cbrt(static_cast<double>(k)) * model_.monomer_diameter;  // sigma_k = k^(1/3) sigma_1
+    capacity_ = whole.capacity_;
+  }
+  for (std::size_t k = 1; k <= capacity_; ++k) {
+    lists_[k].clear();
+    max_speed_[k] = 0.0;
+  }
+  if (sampler_.size() != capacity_) rebuild_sampler();  // recompute_bounds() updates its rows
+  clusters_ = 0;
+  initial_monomers_ = 0;
+  largest_reached_ = 1;
+  time_ = whole.time_;
+  credit_ = 0.0;
+  next_step_time_ = whole.time_;
+  counters_ = Counters{};
+  touched_.clear();
+}
+
+void Gas::blocked_step(double end) {
+  const std::size_t n = clusters_, k_blocks = blocks();
+  // The partition: labels of K - N mod K blocks of N div K and N mod K of one more, shuffled
+  // (Fisher-Yates with the gas's own stream): every partition with these block sizes equally likely.
+  labels_.resize(n);
+  {
+    const std::size_t q = n / k_blocks, r = n % k_blocks;
+    std::size_t at = 0;
+    for (std::size_t b = 0; b < k_blocks; ++b)
+      for (std::size_t i = 0, size = q + (b < r ? 1 : 0); i < size; ++i) labels_[at++] = static_cast<std::uint32_t>(b);
+    for (std::size_t i = n - 1; i > 0; --i) std::swap(labels_[i], labels_[gen_.below(i + 1)]);
+  }
+  const std::uint64_t key = gen_();  // the blocks' streams for this step: substream(key, b)
+  if (blocks_.size() < k_blocks) blocks_.resize(k_blocks, Gas(model_));
+  for (std::size_t b = 0; b < k_blocks; ++b) blocks_[b].reset_as_block(*this);
+  // Deal: the clusters size by size, each list in order, to the block of their label; each list
+  // released once dealt.
+  std::size_t at = 0;
+  for (std::size_t k = 1; k <= capacity_; ++k) {
+    auto& list = lists_[k];
+    for (const Vec3& v : list) {
+      Gas& block = blocks_[labels_[at++]];
+      block.lists_[k].push_back(v);
+      block.initial_monomers_ += k;
+    }
+    if (!list.empty()) particles::ParticleArray<Vec3>().swap(list);
+  }
+  // V_b = V (n_b - 1)/(N - 1): every pair's expected rate is the whole gas's (header).
+  const double volume_per_partner = volume_ / static_cast<double>(n - 1);
+  const auto run_block = [&](std::size_t b) {
+    Gas& block = blocks_[b];
+    std::size_t members = 0;
+    for (std::size_t k = 1; k <= block.capacity_; ++k) {
+      members += block.lists_[k].size();
+      if (!block.lists_[k].empty()) block.largest_reached_ = k;
+    }
+    block.clusters_ = members;
+    block.volume_ = volume_per_partner * static_cast<double>(members - 1);
+    block.gen_ = rng::Xoshiro256pp::substream(key, b);
+    block.recompute_bounds();
+    block.rebuild_sampler();
+    const double rate = block.sampler_.total();
+    if (rate > 0.0) block.credit_ = block.gen_.uniform() / rate;  // a uniformly random phase (header)
+    block.start_step();
+    block.advance(end);
+  };
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(block_threads_) if (block_threads_ > 1)
+  for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(k_blocks); ++b) run_block(static_cast<std::size_t>(b));
+#else
+  for (std::size_t b = 0; b < k_blocks; ++b) run_block(b);
+#endif
+  // Gather in block order: the lists, the counters, the largest size.
+  std::size_t largest = 1;
+  for (std::size_t b = 0; b < k_blocks; ++b) largest = std::max(largest, blocks_[b].capacity_);
+  grow_to(largest);
+  clusters_ = 0;
+  for (std::size_t k = 1; k <= capacity_; ++k) {
+    std::size_t total = 0;
+    for (std::size_t b = 0; b < k_blocks; ++b)
+      if (k <= blocks_[b].capacity_) total += blocks_[b].lists_[k].size();
+    if (total == 0) continue;
+    auto& list = lists_[k];
+    list.reserve(total);
+    for (std::size_t b = 0; b < k_blocks; ++b)
+      if (k <= blocks_[b].capacity_) list.insert(list.end(), blocks_[b].lists_[k].begin(), blocks_[b].lists_[k].end());
+    clusters_ += total;
+  }
+  for (std::size_t b = 0; b < k_blocks; ++b) {
+    for (auto& list : blocks_[b].lists_)
+      if (list.capacity() > 0) particles::ParticleArray<Vec3>().swap(list);  // memory follows the gas
+    const Counters& c = blocks_[b].counters_;
+    counters_.events += c.events;
+    counters_.aggregations += c.aggregations;
+    counters_.fragmentations += c.fragmentations;
+    counters_.candidates += c.candidates;
+    counters_.dissipated += c.dissipated;
+    largest_reached_ = std::max(largest_reached_, blocks_[b].largest_reached_);
+  }
+  counters_.steps += 1;
+  counters_.step_sum += end - time_;
+  blocked_steps_ += 1;
+  time_ = end;
+  credit_ = 0.0;
+  next_step_time_ = end;  // the next step starts now, with exact bounds
+  for (std::size_t k = 1; k <= capacity_; ++k) max_speed_[k] = 0.0;
+  recompute_bounds();
+  rebuild_sampler();
+}
+
 bool Gas::advance(double t_target, std::uint64_t event_target) {
   if (counters_.events >= event_target) return true;
   for (;;) {
     if (time_ >= next_step_time_) {  // exact bounds again (they only rise within a step)
       recompute_bounds();
+      const double end = blocked_step_end(t_target, event_target);
+      if (end > time_) {
+        blocked_step(end);
+        if (counters_.events > event_target)
+          throw std::runtime_error("agg_frag: a blocked step passed the event target (" +
+                                   std::to_string(counters_.events) + " > " + std::to_string(event_target) +
+                                   " collisions); run with block_size = 0 or give t_end");
+        if (counters_.events == event_target) return true;
+        if (time_ >= t_target) return false;
+        continue;
+      }
       start_step();
     }
     const double rate = sampler_.total();
@@ -316,6 +484,8 @@ double Gas::kinetic_energy() const {
 std::size_t Gas::memory_bytes() const {
   std::size_t bytes = 0;
   for (const auto& list : lists_) bytes += list.capacity() * sizeof(Vec3) + sizeof(list);
+  for (const Gas& block : blocks_) bytes += block.memory_bytes();
+  bytes += labels_.capacity() * sizeof(std::uint32_t);
   bytes += (max_speed_.capacity() + diameter_.capacity()) * sizeof(double);
   bytes += 6 * 2 * capacity_ * sizeof(double);  // the sampler's six trees (2P doubles each, P < 2K)
   return bytes;

@@ -39,6 +39,40 @@
  * member; at every step start (step_fraction majorant mean free times) all w_k are recomputed
  * exactly. Post-collision speeds above w_k raise it at once (fragments can outrun both parents).
  *
+ * **Cache blocks** (issue 11; `use_blocks`, the `&dsmc` block_size of io/config.hpp; at N >= 2
+ * block_size clusters). At N = 1e6 the clusters' velocities (24 MB) do not fit in the cache, and each
+ * candidate reads two at random: the unblocked loop runs at the speed of the memory (measured in
+ * bench_agg_frag: about 0.07 of the blocked one-species rate). A blocked step therefore deals the N
+ * clusters into K = N div block_size blocks by a uniformly random partition (a Fisher-Yates shuffle of
+ * the block labels, K - N mod K blocks of N div K and N mod K of one more; the clusters, read size by
+ * size in order, go to the block of their label), and each block b of n_b clusters runs the scheme
+ * above as a gas of its own for the step, with the fixed volume
+ *   V_b = V (n_b - 1)/(N - 1)
+ * (
+ef af_blocks "docs/agg-frag.md"). Two given clusters share block b with probability n_b (n_b -
+ * 1)/(N (N - 1)), and there collide at pi sigma_ik^2 |g|/V_b, so the expected rate of every pair,
+ * summed over the blocks, is sum_b n_b/N pi sigma_ik^2 |g|/V = pi sigma_ik^2 |g|/V: the unblocked rate
+ * exactly, for every pair of sizes. What changes within a step is that a cluster's partners are the
+ * n_b - 1 of its block (their composition fluctuates by O(1/sqrt(n_b)) around the gas's), and the
+ * products of a block's events meet only that block until the next deal: a finite-N effect of order
+ * 1/n_b, as for the particle blocks (collide.hpp, "Blocks"), checked by AggFrag.BlockedMatchesUnblocked
+ * (N_1, aggregations, fragmentations, kinetic energy over replicas, within 4 combined standard errors)
+ * and by the Smoluchowski validation, whose runs of 2e5 to 1e6 monomers are blocked. A block starts its
+ * candidate clock at a uniformly random phase (credit u/R_b), so that its expected candidate count over
+ * the step is R_b dt, not one less. A blocked step is block_steps (5) majorant mean free times of the
+ * whole gas, at most 2^23 candidates (a Ctrl-C is seen within a second), ending at t_target; after it
+ * the clusters are gathered back block by block in order, the bounds recomputed exactly and the
+ * sampler rebuilt. Event targets: a blocked step is cut so that its expected candidates are at most
+ * half the events left to the target (events never exceed candidates, and about one candidate in
+ * four is accepted), and one shorter than half a mean free time runs on the whole gas instead, which
+ * stops at the target exactly. A blocked step that passed the target would be reported as an error
+ * (it would need the candidate rate to double within the step and nearly every candidate accepted). **Threads:** the blocks of a step are independent; block b draws from
+ * rng::Xoshiro256pp::substream(key, b), the key one draw of the gas's own stream per step, and the
+ * counters and clusters are gathered in block order, so the output is bit for bit the same on any
+ * thread count (AggFrag.BlockThreadsAreBitwiseTheSame, scale_out.reproducibility_agg_frag). Memory:
+ * during a step the clusters live in the blocks and the whole gas's lists are released, but while they
+ * are dealt both exist (48 bytes per cluster, plus 4 for the labels).
+ *
  * **Storage** (no allocation per event). The velocities of the clusters of size k are one array of
  * their own, lists[k] (Vec3, 24 bytes a cluster): "a random cluster of size k" is one draw and one
  * memory read, as in a plain gas, and a cluster is (size, place in its list). A removed cluster's
@@ -134,14 +168,31 @@ class Gas {
   /// momentum, exact kinetic temperature: particles.hpp), drawn from `initial`.
   Gas(const Model& model, std::size_t monomers, double temperature, particles::InitialDistribution distribution,
       rng::Xoshiro256pp initial, rng::Xoshiro256pp collisions, double step_fraction);
+  /// An empty gas of `model`: a cache block's, filled by the gas that owns it (header, "Cache blocks").
+  explicit Gas(const Model& model) : model_(model), volume_(0.0), step_fraction_(1.0), gen_(0) {}
   /// Explicit clusters (unit tests): sizes and velocities, listed in this order within each size;
   /// the initial monomer count N_0 is the sum of the sizes.
   Gas(const Model& model, const std::vector<std::uint32_t>& sizes, const std::vector<particles::Vec3>& velocities,
       rng::Xoshiro256pp collisions, double step_fraction);
 
   /// Advances to `t_target` or until `event_target` collisions, whichever comes first; returns
-  /// true when the event target stopped it (exactly at that event).
+  /// true when the event target stopped it (exactly at that event). With blocks, each blocked step
+  /// ends at a step boundary, so a call ends within one step of t_target only if it is called with
+  /// t_target at most block_step_end().
   bool advance(double t_target, std::uint64_t event_target = UINT64_MAX);
+
+  /// Cache blocks of about `block_size` clusters (header, "Cache blocks"; 0: none), run on up to
+  /// `threads` OpenMP threads. The results do not depend on `threads`.
+  void use_blocks(std::size_t block_size, int threads = 1);
+  /// Number of blocks the next step would use (1: the whole gas).
+  std::size_t blocks() const;
+  /// End of the blocked step that would start now (block_steps majorant mean free times, at most
+  /// 2^23 candidates); the time itself when the next step runs unblocked.
+  double block_step_end() const;
+  /// Blocked steps run so far.
+  std::uint64_t blocked_steps() const { return blocked_steps_; }
+  /// Majorant mean free times in a blocked step.
+  static constexpr double block_steps = 5.0;
 
   /// A cluster: its size and its place in the list of that size.
   struct Cluster {
@@ -215,6 +266,13 @@ class Gas {
   void remove(Cluster c);
   void remove_pair(Cluster a, Cluster b);  ///< both, whatever their order in one list
   void start_step();
+  /// End of the blocked step that may run now towards t_target and `event_target` (header, "Cache
+  /// blocks"), or -1 when the next step runs on the whole gas.
+  double blocked_step_end(double t_target, std::uint64_t event_target) const;
+  /// One blocked step from time_ to `end`: deal, run the blocks, gather.
+  void blocked_step(double end);
+  /// This gas as block `index` of `whole` for one step: empty lists of whole's capacity, its model.
+  void reset_as_block(const Gas& whole);
 
   Model model_;
   std::size_t initial_monomers_ = 0;
@@ -232,6 +290,11 @@ class Gas {
   Counters counters_;
   std::vector<std::uint32_t> touched_;  ///< sizes whose count or bound changed in this event
   std::vector<std::uint32_t> present_;  ///< recompute_bounds: the sizes present
+  std::size_t block_size_ = 0;          ///< cache blocks (0: none)
+  int block_threads_ = 1;               ///< threads for the blocks of a step
+  std::uint64_t blocked_steps_ = 0;     ///< blocked steps so far (not part of the State)
+  std::vector<Gas> blocks_;             ///< the blocks' gases, kept between steps for their lists
+  std::vector<std::uint32_t> labels_;   ///< the block of each cluster in a deal
 };
 
 }  // namespace gdsmc::agg_frag

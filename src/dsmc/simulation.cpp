@@ -567,7 +567,7 @@ void pad_size_columns(std::vector<ReplicaResult>& replicas) {
 /// or collisions per initial monomer 2 x events / N_0).
 ReplicaResult run_agg_frag_replica(const io::config::Config& config, const Options& options, Progress& progress,
                                    std::size_t slot, const std::string& label, std::size_t r, const Snapshot* resume,
-                                   const SafePoint& safe_point) {
+                                   const SafePoint& safe_point, int block_threads) {
   const auto n0 = static_cast<std::size_t>(config.dsmc.n_particles);
   const double initial_monomers = static_cast<double>(n0);
   const auto seed = static_cast<std::uint64_t>(config.dsmc.seed);
@@ -577,6 +577,8 @@ ReplicaResult run_agg_frag_replica(const io::config::Config& config, const Optio
   agg_frag::Gas gas(agg_frag_model(config), n0, config.initial.temperature[0],
                     parse_distribution(config.initial.distribution), rng::make_stream(seed, r, rng::Purpose::initial_state),
                     rng::make_stream(seed, r, rng::Purpose::collisions), config.dsmc.step_fraction);
+  // Cache blocks (agg_frag.hpp, "Cache blocks"): while N >= 2 block_size clusters, on block_threads.
+  gas.use_blocks(static_cast<std::size_t>(config.dsmc.block_size), block_threads);
   ReplicaResult result;
   std::uint64_t next_sample = 0;
   if (resume) next_sample = load_agg_frag_snapshot(*resume, gas, result);
@@ -606,11 +608,15 @@ ReplicaResult run_agg_frag_replica(const io::config::Config& config, const Optio
     constexpr std::uint64_t kChunk = 1u << 19;
     for (;;) {
       const std::uint64_t done = gas.counters().events;
-      const std::uint64_t chunk_end = event_target - done > kChunk ? done + kChunk : event_target;
+      // With blocks a chunk is one blocked step (at most 2^23 candidates, its own event margin).
+      const bool blocked = gas.blocks() > 1;
+      const std::uint64_t chunk_end = blocked || event_target - done <= kChunk ? event_target : done + kChunk;
       // ... and at most ~1e5 candidates (chunk_end_time); one cluster left or nothing moving: the
       // gas's advance() goes straight to the target.
       const bool still = gas.clusters() < 2 || !(gas.candidate_rate() > 0.0);
-      const double t_stop = still ? t_target : chunk_end_time(gas.time(), gas.counters().candidates, t_target);
+      const double t_stop = still     ? t_target
+                            : blocked ? std::min(t_target, gas.block_step_end())
+                                      : chunk_end_time(gas.time(), gas.counters().candidates, t_target);
       gas.advance(t_stop, chunk_end);
       if (gas.time() >= t_target || gas.counters().events >= event_target) break;
       if (options.interrupt && options.interrupt->load()) throw Interrupted();
@@ -899,8 +905,9 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
                    block_threads - 1, block_threads, why.c_str());
   };
   if (config.has_agg_frag) {
-    note_idle_threads("aggregation and fragmentation run each replica on one thread");
-    return run_agg_frag_replica(config, options, progress, slot, label, r, resume, safe_point);
+    if (config.dsmc.block_size == 0 || config.dsmc.n_particles < 2 * config.dsmc.block_size)
+      note_idle_threads("this aggregation run has no cache blocks (they need N >= 2 block_size clusters)");
+    return run_agg_frag_replica(config, options, progress, slot, label, r, resume, safe_point, block_threads);
   }
   if (config.staged()) {
     note_idle_threads("a thermostat or shear flow runs each replica on one thread (no cache blocks)");
