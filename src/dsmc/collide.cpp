@@ -247,6 +247,7 @@ void Collider::restore(const State& st) {
   // What the last rebuild or raise computed (header of State); with blocks each block sets its own.
   if (counters_.steps > 0 && block_first_.empty()) rebuild_bounds();
   if (counters_.steps > 0 && !block_first_.empty() && whole_step_) set_whole_gas_bound();
+  if (counters_.steps > 0 && !block_first_.empty() && !whole_step_ && framed_) rebuild_bounds();  // as advance_blocks
   for (std::size_t c = 0; c < lookahead; ++c)
     pending_[c] = {st.pending[4 * c], st.pending[4 * c + 1], st.pending[4 * c + 2], st.pending[4 * c + 3]};
   pending_next_ = st.pending_next;
@@ -388,7 +389,7 @@ void Collider::set_whole_gas_bound() {
     rebuild_bounds();
     return;
   }
-  bound_ = 2.0 * cross_section_[0] * max_speed_[0];
+  bound_ = 2.0 * cross_section_[0] * max_speed_[0] * speed_factor_;  // speed_factor_: 1 without a frame
   rate_ = 0.5 * static_cast<double>(sys_.size()) * mix_.total_density() * bound_;
 }
 
@@ -423,8 +424,12 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
         max_speed2_[k] = global;
         max_speed_[k] = std::sqrt(global);
       }
-      double rate = s_ == 1 ? 0.5 * n_total * n * 2.0 * cross_section * max_speed_[0]
-                            : 0.5 * n_total * n * mixture_bound(max_speed2_.data());
+      // In a frame the stage loop sizes its stages by candidate_rate(): R of these bounds, as a
+      // restored collider computes it (restore()).
+      if (framed_) rebuild_bounds();
+      double rate = (s_ == 1 ? 0.5 * n_total * n * 2.0 * cross_section * max_speed_[0]
+                             : 0.5 * n_total * n * mixture_bound(max_speed2_.data())) *
+                    speed_factor_;  // 1 without a frame
       if (lowrank_blocks()) {  // the low-rank majorant's own total over these vmax_k (rebuild_bounds)
         rebuild_bounds();
         rate = rate_;
@@ -477,7 +482,9 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
     }
     if (whole_step_) {
       const double t_stop = std::min(t_target, next_step_time_);
-      const int stop = lowrank_blocks() ? run_lowrank<false>(t_stop, any_target) : run_majorant<false>(t_stop, any_target);
+      const int stop = lowrank_blocks() ? run_lowrank<false>(t_stop, any_target)
+                       : framed_        ? run_majorant<true>(t_stop, any_target)
+                                        : run_majorant<false>(t_stop, any_target);
       if (stop == static_cast<int>(Stop::bound_raised)) {
         raised_.clear();
         set_whole_gas_bound();
@@ -525,9 +532,15 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
   range_count_ = block_first_[j + 1] - block_first_[j];
   pending_filled_ = false;  // the drawn-ahead pairs belong to another block
   block_speed2_ = master.block_max_speed2_.data() + j * s_;
+  // The whole gas's frame (header, "Frame"): G from the master; this block's change of Q kept apart.
+  framed_ = master.framed_;
+  frame_scale_ = master.frame_scale_;
+  frame_shear_ = master.frame_shear_;
+  speed_factor_ = master.speed_factor_;
+  if (framed_) moments_ = {};
   // First visit in this step: the block's exact bound, read in order (which also brings the block
   // into the cache before its random reads).
-  if (first_visit) set_block_max_speed2(j, block_speed2_);
+  if (first_visit || framed_) set_block_max_speed2(j, block_speed2_);
   time_ = t_start;
   credit_ = master.block_credit_[j];
   const double n = mix_.total_density();
@@ -538,11 +551,17 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
     } else {
       // A block of N_b particles at the gas's density n: R_b = N_b n B_b / 2 (as R, header "Blocks").
       // (a mixture: B_b = max_kj pi sigma_kj^2 chi_kj (vmax_bk + vmax_bj) over the block's slices)
-      bound_ = s_ == 1 ? 2.0 * cross_section_[0] * std::sqrt(block_speed2_[0])
-                       : mixture_bound(block_speed2_, slice_cum_.data() + j * (s_ + 1));
+      // (in a frame every relative speed bound times ||G||: header "Frame")
+      bound_ = (s_ == 1 ? 2.0 * cross_section_[0] * std::sqrt(block_speed2_[0])
+                        : mixture_bound(block_speed2_, slice_cum_.data() + j * (s_ + 1))) *
+               speed_factor_;
       rate_ = 0.5 * static_cast<double>(range_count_) * n * bound_;
     }
     if (rate_ <= 0.0) break;
+    if (framed_) {  // the general loop in the frame (majorant only: set_frame)
+      if (run_majorant<true>(t_stop, UINT64_MAX) != static_cast<int>(Stop::bound_raised)) break;
+      continue;
+    }
     if (s_ == 1 && !viscoelastic_) {  // the one-species kernel: raised bounds handled inside
       if (sys_.tracks_displacements())
         run_block_one_species<true>(t_stop);
@@ -562,6 +581,7 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
     if (stop != static_cast<int>(Stop::bound_raised)) break;
   }
   master.block_credit_[j] = rate_ > 0.0 ? credit_ : 0.0;
+  if (framed_) master.block_moments_[j] = moments_;
   Counters& out = master.block_counters_[j];
   out.events = counters_.events;
   out.candidates = counters_.candidates;
@@ -935,6 +955,7 @@ void Collider::run_blocks_pass(double t_start, double t_stop) {
       w.block_first_ = block_first_;
     }
   const std::uint64_t key = gen_();  // this pass's key (header "Threads")
+  if (framed_) block_moments_.assign(blocks, std::array<double, 4>{});
   const bool first_visit = t_start == step_start_;
   std::vector<std::exception_ptr> failure(blocks);  // exceptions must not leave an OpenMP region
   const auto n_blocks = static_cast<std::ptrdiff_t>(blocks);
@@ -962,6 +983,8 @@ void Collider::run_blocks_pass(double t_start, double t_stop) {
     counters_.largest_acceptance = std::max(counters_.largest_acceptance, c.largest_acceptance);
     counters_.dissipated += c.dissipated;
     for (std::size_t p = 0; p < c.pair_events.size(); ++p) counters_.pair_events[p] += c.pair_events[p];
+    if (framed_)
+      for (std::size_t q = 0; q < 4; ++q) moments_[q] += block_moments_[j][q];
   }
   time_ = t_stop;
 }
@@ -977,8 +1000,8 @@ void Collider::set_shear(double rate) {
 }
 
 void Collider::set_frame(double scale, double shear) {
-  if (viscoelastic_ || sys_.tracks_displacements() || !block_first_.empty())
-    throw std::logic_error("collide: a frame needs constant restitution, no displacements and no blocks");
+  if (viscoelastic_ || sys_.tracks_displacements() || (!block_first_.empty() && scheme_ != Scheme::majorant))
+    throw std::logic_error("collide: a frame needs constant restitution, no displacements, and blocks only with 'majorant'");
   if (!(scale > 0.0) || !std::isfinite(scale) || !std::isfinite(shear))
     throw std::logic_error("collide: the frame's scale must be positive and finite");
   if (!framed_) {
@@ -1004,6 +1027,8 @@ void Collider::reset_frame(const std::array<double, 4>& moments, const std::vect
   speed_factor_ = 1.0;
   moments_ = moments;
   set_max_speeds(max_speed2);
+  // In blocks: each block's exact bound again (the velocities were all replaced).
+  for (std::size_t j = 0; j + 1 < block_first_.size(); ++j) set_block_max_speed2(j, block_max_speed2_.data() + j * s_);
 }
 
 void Collider::collide_in_frame(std::size_t a, std::size_t b, std::uint32_t k, std::uint32_t j, double ex,

@@ -136,8 +136,17 @@
  * ||G||, which the stage loop keeps within 2 % of S by bringing the velocities back to G = 1 (one pass)
  * whenever |c| exceeds 0.04 and at every sample. The frame's second moments Q = sum m u u^T (xx, yy,
  * zz, xy) are kept up to date collision by collision, so that the thermostat knows the kinetic energy
- * S^2 (Q_xx + 2 c Q_xy + c^2 Q_yy + Q_yy + Q_zz)/2 of every stage without a pass. Constant restitution,
- * no displacement tracking and no blocks (what the stage loop runs).
+ * S^2 (Q_xx + 2 c Q_xy + c^2 Q_yy + Q_yy + Q_zz)/2 of every stage without a pass. Constant restitution
+ * and no displacement tracking (what the stage loop runs). **Frames in blocks** (issue 11; `majorant`,
+ * one species or a mixture): the frame is the whole gas's, so every block of a pass uses the same G
+ * (each worker takes it from the master at the start of its block) and run_majorant<true> on the
+ * block's particles, with the block's bound times ||G||; each block's change of Q is kept apart and
+ * added in block order after the pass, so Q, like the counts, is the same bit for bit on any thread
+ * count. A stage is usually far shorter than a blocked step (0.125 against 5 majorant mean free
+ * times), so a pass covers one stage and a block is remixed every ~40 stages; when the stage loop
+ * applies the frame to the velocities (reset_frame) each block's bound is recomputed by a pass over
+ * it. Measured at N = 1e6 (elastic gas, Gaussian thermostat, shear rate 0.00284, n = 0.01, one
+ * thread): see docs/shear-viscosity.md, "Cost".
  *
  * **Mixtures in blocks** (issue 11). Block j holds a slice of every species: species k's particles
  * are dealt round K slices inside species k's own range (so the species layout of the System never
@@ -416,11 +425,12 @@ class Collider {
   /// The frame of the stored velocities (header, "Frame"): V = S (u_x + c u_y, u_y, u_z), with
   /// S = `scale`, c = `shear`. The first call starts the frame with the moments of the stored u
   /// computed by a pass; later calls only rebuild the bounds (the u are unchanged). Throws
-  /// std::logic_error with viscoelastic restitution, displacement tracking or blocks.
+  /// std::logic_error with viscoelastic restitution, displacement tracking, or blocks of a scheme other
+  /// than `majorant` (header, "Frame").
   void set_frame(double scale, double shear);
   /// The stored u were just replaced by the actual velocities (the frame was applied to them in a
   /// pass that also computed `moments` = sum m V V^T (xx, yy, zz, xy) and the largest speed^2 of
-  /// each species): G = 1 again, and the bounds exact.
+  /// each species): G = 1 again, and the bounds exact (with blocks, each block's by a pass over it).
   void reset_frame(const std::array<double, 4>& moments, const std::vector<double>& max_speed2);
   bool framed() const { return framed_; }
   double frame_scale() const { return frame_scale_; }
@@ -489,6 +499,8 @@ class Collider {
   int threads_ = 1;
   std::vector<Collider> workers_;
   std::vector<Counters> block_counters_;
+  /// In a frame: each block's change of the moments sum m u u^T in the pass, added in block order.
+  std::vector<std::array<double, 4>> block_moments_;
   void make_workers();
   /// On a worker: block j of `master` over [t_start, t_stop), drawing from the stream (key, j); its
   /// counts go to master.block_counters_[j], its bounds and credit to the master's arrays.

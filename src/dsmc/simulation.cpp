@@ -656,6 +656,14 @@ ReplicaResult run_agg_frag_replica(const io::config::Config& config, const Optio
 // thermostat (thermostat.hpp, \ref eta_thermostat "docs/shear-viscosity.md")
 // ---------------------------------------------------------------------------------------------
 
+/// Whether a staged run uses cache blocks: `majorant` (frames in blocks, collide.hpp "Frame"), not the
+/// Enskog gas in shear flow (which needs `pairs`), N >= 2 block_size.
+bool staged_blocks(const io::config::Config& config) {
+  const bool enskog_shear = config.shear.rate.value_or(0.0) > 0.0 && config.mixture().enskog;
+  return config.dsmc.scheme == "majorant" && !enskog_shear && config.dsmc.block_size > 0 &&
+         config.dsmc.n_particles >= 2 * config.dsmc.block_size;
+}
+
 /// Replica r of a run with a thermostat or a shear rate. Each stage of length dt: streaming
 /// V_x -> V_x - a V_y dt; at a sample time the measurement (after the streaming, before the
 /// collisions: \ref eta_thermostat "docs/shear-viscosity.md"); the collisions of [t, t + dt] in continuous time (collide.hpp, no cache
@@ -663,7 +671,7 @@ ReplicaResult run_agg_frag_replica(const io::config::Config& config, const Optio
 /// at every sample time.
 ReplicaResult run_staged_replica(const io::config::Config& config, const Options& options, Progress& progress,
                                  std::size_t slot, const std::string& label, std::size_t r, const Snapshot* resume,
-                                 const SafePoint& safe_point) {
+                                 const SafePoint& safe_point, int block_threads) {
   const species::Mixture mix = config.mixture();
   const std::size_t s = mix.size();
   const auto counts = particles::species_counts(static_cast<std::size_t>(config.dsmc.n_particles), mix);
@@ -689,6 +697,12 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
   // Enskog in shear flow: the shifted relative velocity and the collisional transfer (collide.hpp).
   const bool enskog_shear = shear > 0.0 && mix.enskog;
   if (enskog_shear) collider.set_shear(shear);
+  // Cache blocks with `majorant` (collide.hpp, "Frame": frames in blocks); a pass over the blocks per
+  // stage, on block_threads.
+  if (staged_blocks(config)) {
+    collider.use_blocks(static_cast<std::size_t>(config.dsmc.block_size));
+    collider.use_threads(block_threads);
+  }
   // Stage accumulators: zeta dt since the last sample, the viscosity's window sums, stage count.
   double zeta_sum = 0.0, zeta_stages = 0.0, window_sum = 0.0, window_samples = 0.0, stages = 0.0;
   double window_kinetic_sum = 0.0, last_sample_time = 0.0;
@@ -910,8 +924,10 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
     return run_agg_frag_replica(config, options, progress, slot, label, r, resume, safe_point, block_threads);
   }
   if (config.staged()) {
-    note_idle_threads("a thermostat or shear flow runs each replica on one thread (no cache blocks)");
-    return run_staged_replica(config, options, progress, slot, label, r, resume, safe_point);
+    if (!staged_blocks(config))
+      note_idle_threads("a thermostat or shear flow has cache blocks only with 'majorant' (not in the Enskog gas "
+                        "in shear flow) and N >= 2 block_size");
+    return run_staged_replica(config, options, progress, slot, label, r, resume, safe_point, block_threads);
   }
   const species::Mixture mix = config.mixture();
   const std::size_t s = mix.size();
