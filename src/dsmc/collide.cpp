@@ -482,9 +482,9 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
     }
     if (whole_step_) {
       const double t_stop = std::min(t_target, next_step_time_);
-      const int stop = lowrank_blocks() ? run_lowrank<false>(t_stop, any_target)
-                       : framed_        ? run_majorant<true>(t_stop, any_target)
-                                        : run_majorant<false>(t_stop, any_target);
+      const bool lowrank = lowrank_blocks();
+      const int stop = framed_ ? (lowrank ? run_lowrank<true>(t_stop, any_target) : run_majorant<true>(t_stop, any_target))
+                               : (lowrank ? run_lowrank<false>(t_stop, any_target) : run_majorant<false>(t_stop, any_target));
       if (stop == static_cast<int>(Stop::bound_raised)) {
         raised_.clear();
         set_whole_gas_bound();
@@ -558,8 +558,9 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
       rate_ = 0.5 * static_cast<double>(range_count_) * n * bound_;
     }
     if (rate_ <= 0.0) break;
-    if (framed_) {  // the general loop in the frame (majorant only: set_frame)
-      if (run_majorant<true>(t_stop, UINT64_MAX) != static_cast<int>(Stop::bound_raised)) break;
+    if (framed_) {  // the general loops in the frame (header, "Frame")
+      const int stop = lowrank ? run_lowrank<true>(t_stop, UINT64_MAX) : run_majorant<true>(t_stop, UINT64_MAX);
+      if (stop != static_cast<int>(Stop::bound_raised)) break;
       continue;
     }
     if (s_ == 1 && !viscoelastic_) {  // the one-species kernel: raised bounds handled inside
@@ -879,13 +880,14 @@ void Collider::set_block_lowrank(double n) {
   lowrank_volume_ = static_cast<double>(range_count_ - 1) / n;
   for (std::size_t k = 0; k < s_; ++k) max_speed_[k] = std::sqrt(block_speed2_[k]);
   pending_filled_ = false;  // drawn from the old A_ik: redraw (header, "Look-ahead")
-  if (viscoelastic_) {  // run_lowrank's draw, over all S^2 pairs
+  if (viscoelastic_ || framed_) {  // run_lowrank's draw, over all S^2 pairs (in a frame w_i times ||G||)
     pair_weights_.resize(s_ * s_);
     rate_ = 0.0;
     for (std::size_t i = 0; i < s_; ++i)
       for (std::size_t k = 0; k < s_; ++k) {
         const auto count_i = static_cast<double>(cum[i + 1] - cum[i]), count_k = static_cast<double>(cum[k + 1] - cum[k]);
-        pair_weights_[i * s_ + k] = cross_section_[i * s_ + k] * max_speed_[i] * count_i * count_k / lowrank_volume_;
+        pair_weights_[i * s_ + k] =
+            cross_section_[i * s_ + k] * (max_speed_[i] * speed_factor_) * count_i * count_k / lowrank_volume_;
         rate_ += pair_weights_[i * s_ + k];
       }
     if (rate_ > 0.0) pair_alias_.build(pair_weights_);
@@ -1000,8 +1002,8 @@ void Collider::set_shear(double rate) {
 }
 
 void Collider::set_frame(double scale, double shear) {
-  if (viscoelastic_ || sys_.tracks_displacements() || (!block_first_.empty() && scheme_ != Scheme::majorant))
-    throw std::logic_error("collide: a frame needs constant restitution, no displacements, and blocks only with 'majorant'");
+  if (viscoelastic_ || sys_.tracks_displacements())
+    throw std::logic_error("collide: a frame needs constant restitution and no displacements");
   if (!(scale > 0.0) || !std::isfinite(scale) || !std::isfinite(shear))
     throw std::logic_error("collide: the frame's scale must be positive and finite");
   if (!framed_) {

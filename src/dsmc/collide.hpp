@@ -137,10 +137,11 @@
  * whenever |c| exceeds 0.04 and at every sample. The frame's second moments Q = sum m u u^T (xx, yy,
  * zz, xy) are kept up to date collision by collision, so that the thermostat knows the kinetic energy
  * S^2 (Q_xx + 2 c Q_xy + c^2 Q_yy + Q_yy + Q_zz)/2 of every stage without a pass. Constant restitution
- * and no displacement tracking (what the stage loop runs). **Frames in blocks** (issue 11; `majorant`,
- * one species or a mixture): the frame is the whole gas's, so every block of a pass uses the same G
- * (each worker takes it from the master at the start of its block) and run_majorant<true> on the
- * block's particles, with the block's bound times ||G||; each block's change of Q is kept apart and
+ * and no displacement tracking (what the stage loop runs). **Frames in blocks** (issue 11; `majorant`
+ * or `lowrank`, one species or a mixture): the frame is the whole gas's, so every block of a pass uses
+ * the same G (each worker takes it from the master at the start of its block) and run_majorant<true>
+ * or run_lowrank<true> on the block's particles, with the block's bound (or each w_i of its A_ik)
+ * times ||G||; each block's change of Q is kept apart and
  * added in block order after the pass, so Q, like the counts, is the same bit for bit on any thread
  * count. A stage is usually far shorter than a blocked step (0.125 against 5 majorant mean free
  * times), so a pass covers one stage and a block is remixed every ~40 stages; when the stage loop
@@ -425,8 +426,7 @@ class Collider {
   /// The frame of the stored velocities (header, "Frame"): V = S (u_x + c u_y, u_y, u_z), with
   /// S = `scale`, c = `shear`. The first call starts the frame with the moments of the stored u
   /// computed by a pass; later calls only rebuild the bounds (the u are unchanged). Throws
-  /// std::logic_error with viscoelastic restitution, displacement tracking, or blocks of a scheme other
-  /// than `majorant` (header, "Frame").
+  /// std::logic_error with viscoelastic restitution or displacement tracking.
   void set_frame(double scale, double shear);
   /// The stored u were just replaced by the actual velocities (the frame was applied to them in a
   /// pass that also computed `moments` = sum m V V^T (xx, yy, zz, xy) and the largest speed^2 of

@@ -656,11 +656,10 @@ ReplicaResult run_agg_frag_replica(const io::config::Config& config, const Optio
 // thermostat (thermostat.hpp, \ref eta_thermostat "docs/shear-viscosity.md")
 // ---------------------------------------------------------------------------------------------
 
-/// Whether a staged run uses cache blocks: `majorant` (frames in blocks, collide.hpp "Frame"), not the
-/// Enskog gas in shear flow (which needs `pairs`), N >= 2 block_size.
+/// Whether a staged run uses cache blocks (frames in blocks, collide.hpp "Frame"): `majorant` or
+/// `lowrank` (not `pairs`, which the Enskog gas in shear flow needs), N >= 2 block_size.
 bool staged_blocks(const io::config::Config& config) {
-  const bool enskog_shear = config.shear.rate.value_or(0.0) > 0.0 && config.mixture().enskog;
-  return config.dsmc.scheme == "majorant" && !enskog_shear && config.dsmc.block_size > 0 &&
+  return config.dsmc.scheme != "pairs" && config.dsmc.block_size > 0 &&
          config.dsmc.n_particles >= 2 * config.dsmc.block_size;
 }
 
@@ -925,8 +924,8 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
   }
   if (config.staged()) {
     if (!staged_blocks(config))
-      note_idle_threads("a thermostat or shear flow has cache blocks only with 'majorant' (not in the Enskog gas "
-                        "in shear flow) and N >= 2 block_size");
+      note_idle_threads("a thermostat or shear flow has cache blocks only with 'majorant' or 'lowrank' (the "
+                        "Enskog gas in shear flow needs 'pairs') and N >= 2 block_size");
     return run_staged_replica(config, options, progress, slot, label, r, resume, safe_point, block_threads);
   }
   const species::Mixture mix = config.mixture();
