@@ -15,7 +15,8 @@
 // `majorant`, `lowrank`, Enskog (packing fraction 0.1; `majorant` and `lowrank`) and `pairs`; 20 species
 // of Bodrova and Osinsky 2024's Fig 8 law with `lowrank` (13 of them scattered over the blocks at N = 1e5 and 1e6); one species with
 // `pairs`; one replica of the reference case on 2 threads (its blocks on threads, collide.hpp
-// "Threads inside one replica") against 1. Each run is about 10 collisions per particle. The rate is
+// "Threads inside one replica") against 1; uniform shear flow with the Gaussian thermostat (stages,
+// frames in blocks) and the aggregation/fragmentation full model (cluster blocks), on 1 and 2 threads. Each run is about 10 collisions per particle. The rate is
 // events per second of the collision loop (Summary::events_per_second: setup and sampling are not
 // counted), on one replica; the thread row gives the ratio of wall-clock rates. "CPU coll/s" is the
 // run's collisions over the CPU time of the whole run (setup and output included; all threads added),
@@ -48,6 +49,7 @@ struct Path {
   std::string scheme;
   bool time_driven;
   int threads;
+  std::string extra = "";  // further groups (&thermostat and &shear, &agg_frag)
 };
 
 const std::string kOne = "n_species = 1\n mass = 1.0\n diameter = 1.0\n number_density = 0.01\n restitution = 0.9\n";
@@ -62,6 +64,12 @@ const std::string kEnskog = "n_species = 2\n mass = 1.0, 4.0\n diameter = 1.0, 1
 const std::string kMany = "n_species = 20\n mass = 1.0\n diameter = 1.0\n number_density = 0.01\n mass_law = 'linear'\n"
                           " diameter_law = 'cube_root'\n density_law = 'power'\n density_exponent = 3.0\n restitution = 0.8\n";
 
+// Uniform shear flow with the Gaussian thermostat (validation/shear_viscosity's rate), and the full
+// aggregation/fragmentation model of validation/aggregation_fragmentation.
+const std::string kShear = "&thermostat\n kind = 'gaussian'\n/\n&shear\n rate = 0.00284\n/\n";
+const std::string kAggFrag =
+    "&agg_frag\n aggregation_energy = 0.5\n fragmentation_energy = 1.5\n fragment_restitution = 0.5\n/\n";
+
 std::string namelist(const Path& p, std::size_t n, double t_end, double per_particle) {
   const std::string initial = p.system.find("n_species = 2\n") != std::string::npos ? "1.0, 1.0" : "1.0";
   std::string text = "&system\n " + p.system + "/\n&initial\n temperature = " + initial + "\n/\n&dsmc\n scheme = '" +
@@ -70,7 +78,7 @@ std::string namelist(const Path& p, std::size_t n, double t_end, double per_part
     text += " t_end = " + std::to_string(t_end) + "\n";
   else
     text += " collisions_per_particle = " + std::to_string(per_particle) + "\n";
-  text += " allow_long_run = .true.\n/\n&output\n n_samples = 2\n/\n";
+  text += " allow_long_run = .true.\n/\n&output\n n_samples = 2\n/\n" + p.extra;
   return text;
 }
 
@@ -124,6 +132,10 @@ int main(int argc, char** argv) {
       {"binary mixture, pairs", kBinary, "pairs", true, 1},
       {"one species, pairs", kOne, "pairs", true, 1},
       {"one species, t_end, 2 threads", kOne, "majorant", true, 2},
+      {"one species, shear flow + thermostat", kOne, "majorant", true, 1, kShear},
+      {"the same, 2 threads", kOne, "majorant", true, 2, kShear},
+      {"aggregation/fragmentation", kOne, "lowrank", true, 1, kAggFrag},
+      {"the same, 2 threads", kOne, "lowrank", true, 2, kAggFrag},
   };
   constexpr double per_particle = 10.0;
   struct Measured {
@@ -135,7 +147,8 @@ int main(int argc, char** argv) {
     for (std::size_t q = 0; q < paths.size(); ++q)
       if (paths[q].time_driven) {
         Path pilot = paths[q];
-        pilot.scheme = "majorant";
+        if (pilot.extra != kAggFrag) pilot.scheme = "majorant";  // a staged run takes only t_end: its plain gas
+        if (pilot.extra == kShear) pilot.extra.clear();
         t_end[q] = run(namelist(pilot, pilot.system == kMany ? 100000 : 20000, 0.0, per_particle), 1).final_time;
       }
     const auto measure = [&](std::size_t q) {

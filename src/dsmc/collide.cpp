@@ -540,7 +540,7 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
   if (framed_) moments_ = {};
   // First visit in this step: the block's exact bound, read in order (which also brings the block
   // into the cache before its random reads).
-  if (first_visit || framed_) set_block_max_speed2(j, block_speed2_);
+  if (first_visit) set_block_max_speed2(j, block_speed2_);
   time_ = t_start;
   credit_ = master.block_credit_[j];
   const double n = mix_.total_density();
@@ -558,24 +558,23 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
       rate_ = 0.5 * static_cast<double>(range_count_) * n * bound_;
     }
     if (rate_ <= 0.0) break;
-    if (framed_) {  // the general loops in the frame (header, "Frame")
-      const int stop = lowrank ? run_lowrank<true>(t_stop, UINT64_MAX) : run_majorant<true>(t_stop, UINT64_MAX);
-      if (stop != static_cast<int>(Stop::bound_raised)) break;
-      continue;
-    }
     if (s_ == 1 && !viscoelastic_) {  // the one-species kernel: raised bounds handled inside
-      if (sys_.tracks_displacements())
-        run_block_one_species<true>(t_stop);
+      if (framed_)
+        run_block_one_species<false, true>(t_stop);  // a frame tracks no displacements (set_frame)
+      else if (sys_.tracks_displacements())
+        run_block_one_species<true, false>(t_stop);
       else
-        run_block_one_species<false>(t_stop);
+        run_block_one_species<false, false>(t_stop);
       break;
     }
     if (!viscoelastic_) {  // the mixture kernel (header "Mixtures in blocks"): raised bounds handled inside
       const bool track = sys_.tracks_displacements();
-      if (lowrank)
-        track ? run_block_mixture<true, true>(t_stop) : run_block_mixture<false, true>(t_stop);
+      if (framed_)  // (a frame tracks no displacements: set_frame)
+        lowrank ? run_block_mixture<false, true, true>(t_stop) : run_block_mixture<false, false, true>(t_stop);
+      else if (lowrank)
+        track ? run_block_mixture<true, true, false>(t_stop) : run_block_mixture<false, true, false>(t_stop);
       else
-        track ? run_block_mixture<true, false>(t_stop) : run_block_mixture<false, false>(t_stop);
+        track ? run_block_mixture<true, false, false>(t_stop) : run_block_mixture<false, false, false>(t_stop);
       break;
     }
     const int stop = lowrank ? run_lowrank<false>(t_stop, UINT64_MAX) : run_majorant<false>(t_stop, UINT64_MAX);
@@ -592,13 +591,15 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
   std::copy(counters_.pair_events.begin(), counters_.pair_events.end(), out.pair_events.begin());
 }
 
-template <bool Track>
+template <bool Track, bool Framed>
 void Collider::run_block_one_species(double t_stop) {
   // The process of run_majorant on the block's N_b particles (header "Blocks"): candidates at
   // R_b = N_b n B_b / 2, B_b = 2 pi sigma^2 chi vmax_b, candidate c of a sub-step at t0 + (c + 1)/R_b,
   // a uniform pair accepted with |g| / (2 vmax_b). Only the work per candidate is less: the pair from
-  // one draw (rng::Xoshiro256pp::below_pair), the drawn-ahead pairs in locals, no species, no frame,
+  // one draw (rng::Xoshiro256pp::below_pair), the drawn-ahead pairs in locals, no species,
   // and (g.e) e without e (hemisphere_projection), the same collision as hemisphere_normal's e gives.
+  // Framed (header, "Frame"): g = G (u_a - u_b), the bound times ||G||, the impulse mapped back with
+  // G^-1 (linear, so applied to (g.e) e itself), the change of Q summed here and added at the end.
   const auto first = static_cast<std::uint32_t>(range_first_);
   const auto n = static_cast<std::uint32_t>(range_count_);
   particles::Vec3* v = sys_.v.data() + first;
@@ -625,8 +626,13 @@ void Collider::run_block_one_species(double t_stop) {
   std::size_t next = 0;
   std::uint64_t events = 0, candidates = 0;
   double dissipated = 0.0;
+  [[maybe_unused]] const double scale = frame_scale_, shear = frame_shear_, inv_scale = 1.0 / frame_scale_;
+  [[maybe_unused]] const double mass = mix_.mass[0];
+  [[maybe_unused]] std::array<double, 4> moments{};  // the change of sum m u u^T (xx, yy, zz, xy)
   for (;;) {
-    const double vmax = std::sqrt(max_speed2), limit = 2.0 * vmax;  // |g| <= 2 vmax_b
+    double vmax = std::sqrt(max_speed2);
+    if constexpr (Framed) vmax *= speed_factor_;  // |G g| <= ||G|| |g|
+    const double limit = 2.0 * vmax;  // |g| <= 2 vmax_b
     bound_ = 2.0 * cross_section_[0] * vmax;
     rate_ = 0.5 * static_cast<double>(n) * n_density * bound_;
     const double dt_candidate = 1.0 / rate_;
@@ -639,7 +645,12 @@ void Collider::run_block_one_species(double t_stop) {
       const std::uint32_t a = ahead[2 * next], b = ahead[2 * next + 1];
       draw(next);
       next = (next + 1) % lookahead;
-      const double gx = v[a].x - v[b].x, gy = v[a].y - v[b].y, gz = v[a].z - v[b].z;
+      double gx = v[a].x - v[b].x, gy = v[a].y - v[b].y, gz = v[a].z - v[b].z;
+      if constexpr (Framed) {
+        gx = scale * (gx + shear * gy);
+        gy *= scale;
+        gz *= scale;
+      }
       const double g2 = gx * gx + gy * gy + gz * gz;
       // Accept with |g| / (2 vmax_b) = pi sigma^2 chi |g| / B_b (\ref sch_majorant "docs/schemes.md"), compared squared.
       const double threshold = gen_.uniform() * limit;
@@ -655,8 +666,22 @@ void Collider::run_block_one_species(double t_stop) {
       }
       particles::Vec3& va = v[a];
       particles::Vec3& vb = v[b];
-      va = {va.x - impulse * px, va.y - impulse * py, va.z - impulse * pz};
-      vb = {vb.x + impulse * px, vb.y + impulse * py, vb.z + impulse * pz};
+      if constexpr (Framed) {
+        const auto add = [&](const particles::Vec3& u, double sign) {
+          moments[0] += sign * u.x * u.x, moments[1] += sign * u.y * u.y, moments[2] += sign * u.z * u.z;
+          moments[3] += sign * u.x * u.y;
+        };
+        add(va, -1.0);
+        add(vb, -1.0);
+        const double wx = (px - shear * py) * inv_scale, wy = py * inv_scale, wz = pz * inv_scale;  // G^-1 (g.e) e
+        va = {va.x - impulse * wx, va.y - impulse * wy, va.z - impulse * wz};
+        vb = {vb.x + impulse * wx, vb.y + impulse * wy, vb.z + impulse * wz};
+        add(va, 1.0);
+        add(vb, 1.0);
+      } else {
+        va = {va.x - impulse * px, va.y - impulse * py, va.z - impulse * pz};
+        vb = {vb.x + impulse * px, vb.y + impulse * py, vb.z + impulse * pz};
+      }
       dissipated += loss * g_dot_e2;
       ++events;
       // "(sigma g)_max raised when exceeded" (header), for either partner: a new sub-step from here.
@@ -679,21 +704,25 @@ void Collider::run_block_one_species(double t_stop) {
     break;
   }
   block_speed2_[0] = max_speed2;
+  if constexpr (Framed)
+    for (std::size_t q = 0; q < 4; ++q) moments_[q] += mass * moments[q];
   counters_.events += events;
   counters_.candidates += candidates;
   counters_.dissipated += dissipated;
   if (!counters_.pair_events.empty()) counters_.pair_events[0] += events;
 }
 
-template <bool Track, bool Lowrank>
+template <bool Track, bool Lowrank, bool Framed>
 void Collider::run_block_mixture(double t_stop) {
   // The process of run_majorant (or run_lowrank) on the block's slices (header "Mixtures in blocks"):
   // candidates at R_b, candidate c of a sub-step at t0 + (c + 1)/R_b; `majorant`: a uniform pair of the
   // block's N_b particles accepted with pi sigma_kj^2 chi_kj |g| / B_b; `lowrank`: (i, k) from the block's
   // alias table, a particle of each slice, accepted with |g| / (w_i + w_k). Only the work per candidate
   // is less, as in run_block_one_species: a pair of indices from one draw, the drawn-ahead pairs (with
-  // their species, known from the slice, so no read of the species array) in locals, no frame and no
-  // viscoelastic branch, the pair's constants in one record, and (g.e) e without e (hemisphere_projection).
+  // their species, known from the slice, so no read of the species array) in locals, no viscoelastic
+  // branch, the pair's constants in one record, and (g.e) e without e (hemisphere_projection).
+  // Framed: as run_block_one_species (g = G (u_a - u_b), bounds times ||G||, the impulse mapped back with
+  // G^-1, the change of Q summed here with each partner's mass).
   // The block's stream in a local copy (written back at the end): its state then stays in registers
   // instead of being stored and loaded again at every draw (the same draws, 2-5 % less time per candidate).
   rng::Xoshiro256pp gen = gen_;
@@ -781,6 +810,8 @@ void Collider::run_block_mixture(double t_stop) {
   std::size_t next = 0;
   std::uint64_t events = 0, candidates = 0;
   double dissipated = 0.0;
+  [[maybe_unused]] const double scale = frame_scale_, shear = frame_shear_, inv_scale = 1.0 / frame_scale_;
+  [[maybe_unused]] std::array<double, 4> moments{};  // the change of sum m u u^T (xx, yy, zz, xy)
   for (;;) {
     // rate_ (and bound_, or the alias table and w_k = max_speed_) are those of the block's current bounds.
     const double bound = bound_;
@@ -798,7 +829,12 @@ void Collider::run_block_mixture(double t_stop) {
       if constexpr (Lowrank)
         if (a == b) continue;  // the self pair is part of the majorant's sum, never a collision
       const PairKernel& pk = kernel[p.pair];
-      const double gx = v[a].x - v[b].x, gy = v[a].y - v[b].y, gz = v[a].z - v[b].z;
+      double gx = v[a].x - v[b].x, gy = v[a].y - v[b].y, gz = v[a].z - v[b].z;
+      if constexpr (Framed) {
+        gx = scale * (gx + shear * gy);
+        gy *= scale;
+        gz *= scale;
+      }
       const double g2 = gx * gx + gy * gy + gz * gz;
       if constexpr (Lowrank) {
         // Accept with |g| / (w_i + w_k) (run_lowrank in a block: chi_ik cancels), compared squared.
@@ -823,15 +859,30 @@ void Collider::run_block_mixture(double t_stop) {
       }
       particles::Vec3& va = v[a];
       particles::Vec3& vb = v[b];
-      va = {va.x - pk.share_a * px, va.y - pk.share_a * py, va.z - pk.share_a * pz};
-      vb = {vb.x + pk.share_b * px, vb.y + pk.share_b * py, vb.z + pk.share_b * pz};
+      const std::uint32_t i = pair_species[2 * p.pair], k = pair_species[2 * p.pair + 1];
+      if constexpr (Framed) {
+        const auto add = [&](const particles::Vec3& u, double m) {
+          moments[0] += m * u.x * u.x, moments[1] += m * u.y * u.y, moments[2] += m * u.z * u.z;
+          moments[3] += m * u.x * u.y;
+        };
+        const double ma = mix_.mass[i], mb = mix_.mass[k];
+        add(va, -ma);
+        add(vb, -mb);
+        const double wx = (px - shear * py) * inv_scale, wy = py * inv_scale, wz = pz * inv_scale;  // G^-1 (g.e) e
+        va = {va.x - pk.share_a * wx, va.y - pk.share_a * wy, va.z - pk.share_a * wz};
+        vb = {vb.x + pk.share_b * wx, vb.y + pk.share_b * wy, vb.z + pk.share_b * wz};
+        add(va, ma);
+        add(vb, mb);
+      } else {
+        va = {va.x - pk.share_a * px, va.y - pk.share_a * py, va.z - pk.share_a * pz};
+        vb = {vb.x + pk.share_b * px, vb.y + pk.share_b * py, vb.z + pk.share_b * pz};
+      }
       dissipated += pk.loss * g_dot_e2;
       ++events;
       ++pair_events[pk.event];
       // "(sigma g)_max raised when exceeded" (header), for both partners: a new sub-step from here.
       const double speed2_a = va.x * va.x + va.y * va.y + va.z * va.z;
       const double speed2_b = vb.x * vb.x + vb.y * vb.y + vb.z * vb.z;
-      const std::uint32_t i = pair_species[2 * p.pair], k = pair_species[2 * p.pair + 1];
       if (speed2_a > speed2[i] || speed2_b > speed2[k]) [[unlikely]] {
         speed2[i] = std::max(speed2[i], speed2_a);
         speed2[k] = std::max(speed2[k], speed2_b);
@@ -851,6 +902,7 @@ void Collider::run_block_mixture(double t_stop) {
         next = 0;
       } else {
         bound_ = mixture_bound(speed2, cum);
+        if constexpr (Framed) bound_ *= speed_factor_;
         rate_ = 0.5 * static_cast<double>(n) * n_density * bound_;
       }
       continue;
@@ -862,6 +914,8 @@ void Collider::run_block_mixture(double t_stop) {
   counters_.events += events;
   counters_.candidates += candidates;
   counters_.dissipated += dissipated;
+  if constexpr (Framed)
+    for (std::size_t q = 0; q < 4; ++q) moments_[q] += moments[q];
   gen_ = gen;
 }
 
@@ -880,14 +934,13 @@ void Collider::set_block_lowrank(double n) {
   lowrank_volume_ = static_cast<double>(range_count_ - 1) / n;
   for (std::size_t k = 0; k < s_; ++k) max_speed_[k] = std::sqrt(block_speed2_[k]);
   pending_filled_ = false;  // drawn from the old A_ik: redraw (header, "Look-ahead")
-  if (viscoelastic_ || framed_) {  // run_lowrank's draw, over all S^2 pairs (in a frame w_i times ||G||)
+  if (viscoelastic_) {  // run_lowrank's draw, over all S^2 pairs
     pair_weights_.resize(s_ * s_);
     rate_ = 0.0;
     for (std::size_t i = 0; i < s_; ++i)
       for (std::size_t k = 0; k < s_; ++k) {
         const auto count_i = static_cast<double>(cum[i + 1] - cum[i]), count_k = static_cast<double>(cum[k + 1] - cum[k]);
-        pair_weights_[i * s_ + k] =
-            cross_section_[i * s_ + k] * (max_speed_[i] * speed_factor_) * count_i * count_k / lowrank_volume_;
+        pair_weights_[i * s_ + k] = cross_section_[i * s_ + k] * max_speed_[i] * count_i * count_k / lowrank_volume_;
         rate_ += pair_weights_[i * s_ + k];
       }
     if (rate_ > 0.0) pair_alias_.build(pair_weights_);
@@ -907,7 +960,9 @@ void Collider::set_block_lowrank(double n) {
     for (std::size_t b = 0; b < p; ++b) {
       const std::size_t i = present[a], k = present[b];
       const auto count_i = static_cast<double>(cum[i + 1] - cum[i]), count_k = static_cast<double>(cum[k + 1] - cum[k]);
-      pair_weights_[a * p + b] = cross_section_[i * s_ + k] * max_speed_[i] * count_i * count_k / lowrank_volume_;
+      // (in a frame every w_i times ||G||: header "Frame"; speed_factor_ is 1 without one)
+      pair_weights_[a * p + b] =
+          cross_section_[i * s_ + k] * (max_speed_[i] * speed_factor_) * count_i * count_k / lowrank_volume_;
       rate_ += pair_weights_[a * p + b];
     }
   if (!(rate_ > 0.0)) return;
@@ -943,7 +998,7 @@ void Collider::set_block_lowrank(double n) {
       lowrank_outcomes_[a * p + b] = {static_cast<std::uint32_t>(slice[i]), count_i, static_cast<std::uint32_t>(slice[k]),
                                       count_k, narrow ? (1u << 24) % count_i : 1u << 24,
                                       narrow ? (1u << 24) % count_k : 1u << 24, static_cast<std::uint32_t>(i * s_ + k)};
-      pair_kernel_[i * s_ + k].limit = max_speed_[i] + max_speed_[k];  // (the pairs of absent species are never drawn)
+      pair_kernel_[i * s_ + k].limit = (max_speed_[i] + max_speed_[k]) * speed_factor_;  // (pairs of absent species: never drawn)
     }
 }
 

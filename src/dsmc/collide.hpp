@@ -105,8 +105,8 @@
  * (the same candidate rate R_b, uniform pairs, acceptance |g| / (2 vmax_b), e of density (g_hat.e)/pi,
  * bounds raised when exceeded, candidate times t0 + (c + 1)/R_b) with less work per candidate and per
  * collision: the pair's two indices from the halves of one 64-bit draw (rng::Xoshiro256pp::below_pair,
- * exactly uniform by rejection), the drawn-ahead pairs in local variables, no species, frame or
- * viscoelastic branches, and the impulse from p = (g.e) e = (g + |g| w)/2 for e = (g_hat + w)/|g_hat + w|
+ * exactly uniform by rejection), the drawn-ahead pairs in local variables, no species or viscoelastic
+ * branches (a frame is a template parameter: "Frame" below), and the impulse from p = (g.e) e = (g + |g| w)/2 for e = (g_hat + w)/|g_hat + w|
  * (hemisphere_projection): no e is formed, so no second root nor division, with w from
  * rng::unit_vector_32 (one draw per try; directions on a lattice of step 2^-31, about 1e-9 rad). The
  * random stream differs from run_majorant's, the law of the process does not; blocks still draw only
@@ -139,15 +139,16 @@
  * S^2 (Q_xx + 2 c Q_xy + c^2 Q_yy + Q_yy + Q_zz)/2 of every stage without a pass. Constant restitution
  * and no displacement tracking (what the stage loop runs). **Frames in blocks** (issue 11; `majorant`
  * or `lowrank`, one species or a mixture): the frame is the whole gas's, so every block of a pass uses
- * the same G (each worker takes it from the master at the start of its block) and run_majorant<true>
- * or run_lowrank<true> on the block's particles, with the block's bound (or each w_i of its A_ik)
- * times ||G||; each block's change of Q is kept apart and
- * added in block order after the pass, so Q, like the counts, is the same bit for bit on any thread
- * count. A stage is usually far shorter than a blocked step (0.125 against 5 majorant mean free
- * times), so a pass covers one stage and a block is remixed every ~40 stages; when the stage loop
- * applies the frame to the velocities (reset_frame) each block's bound is recomputed by a pass over
- * it. Measured at N = 1e6 (elastic gas, Gaussian thermostat, shear rate 0.00284, n = 0.01, one
- * thread): see docs/shear-viscosity.md, "Cost".
+ * the same G (each worker takes it from the master at the start of its block). The block kernels
+ * (run_block_one_species, run_block_mixture) take it as a template parameter: g = G (u_a - u_b), the
+ * block's bound (or each w_i of its A_ik) times ||G||, the impulse mapped back with G^-1 (applied to
+ * (g.e) e itself, which hemisphere_projection gives), and the block's change of Q summed in the kernel
+ * and added to the master's in block order after the pass, so Q, like the counts, is the same bit for
+ * bit on any thread count. A stage is usually far shorter than a blocked step (0.125 against 5
+ * majorant mean free times), so a pass covers one stage and a block is remixed every ~40 stages; the
+ * kernels' drawn-ahead, prefetched pairs keep such short visits fast. When the stage loop applies the
+ * frame to the velocities (reset_frame) each block's bound is recomputed by a pass over it. Measured at
+ * N = 1e6: docs/shear-viscosity.md, "Cost".
  *
  * **Mixtures in blocks** (issue 11). Block j holds a slice of every species: species k's particles
  * are dealt round K slices inside species k's own range (so the species layout of the System never
@@ -180,7 +181,7 @@
  * from one draw (below_pair: two block indices in `majorant`), the drawn-ahead pairs in locals with
  * their species, which the slice of an index gives (no read of the species array), each species pair's
  * constants in one record (PairKernel), the block's generator in a local copy (its state in registers,
- * not stored and reloaded at every draw), no frame or viscoelastic branch, and the impulse from
+ * not stored and reloaded at every draw), no viscoelastic branch (a frame: a template parameter), and the impulse from
  * hemisphere_projection. A `lowrank` candidate is one 64-bit word too (set_block_lowrank lays the
  * block's alias table over 2^m >= max(P^2, 2) cells, zero weights after the P^2 pairs, each pair's two
  * slices, Lemire thresholds and w_i + w_k in one record): the cell from the top m bits, its coin from
@@ -510,13 +511,13 @@ class Collider {
   /// On a worker: the current block of one species with constant restitution up to t_stop, the
   /// `majorant` process of run_majorant in a loop of its own (header "Blocks", the kernel): raised
   /// bounds are handled inside. Leaves time_, credit_, bound_ and rate_ as run_substep does.
-  template <bool Track>
+  template <bool Track, bool Framed>
   void run_block_one_species(double t_stop);
   /// On a worker: the current block of a mixture with constant restitution up to t_stop, the process of
   /// run_majorant (`Lowrank` false) or run_lowrank (true) on the block's slices in a loop of its own
   /// (header "Mixtures in blocks", the kernel): raised bounds are handled inside. Leaves time_, credit_,
   /// bound_ and rate_ as run_substep does.
-  template <bool Track, bool Lowrank>
+  template <bool Track, bool Lowrank, bool Framed>
   void run_block_mixture(double t_stop);
   /// The constants of species pair (k, j) in the mixture block kernel, row-major S x S (at most
   /// block_species_limit species).
