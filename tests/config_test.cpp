@@ -469,6 +469,15 @@ TEST(ConfigError, RealWhereAnIntegerIsExpected) {
   expect_error(m, 12, "dsmc", "n_particles", {"expected an integer", "a real number", "'1.5'"});
 }
 
+// A cache block of a few particles would have no partners (a block of one: a crash before this
+// check); 64 is the smallest, 0 turns blocks off.
+TEST(ConfigError, BlockSizeBelow64IsRefused) {
+  const std::string m = error_of(with_line(12, "  n_particles = 200, block_size = 8"));
+  expect_error(m, 12, "dsmc", "block_size", {"at least 64", "got 8", "0 turns the blocks off"});
+  EXPECT_EQ(read_text(with_line(12, "  n_particles = 200, block_size = 64")).dsmc.block_size, 64);
+  EXPECT_EQ(read_text(with_line(12, "  n_particles = 200, block_size = 0")).dsmc.block_size, 0);
+}
+
 TEST(ConfigError, LogicalExpected) {
   const std::string m = error_of(with_line(6, "  restitution = 0.5, enskog = 1"));
   expect_error(m, 6, "system", "enskog", {"expected a logical", ".true.", "an integer", "'1'"});

@@ -120,7 +120,7 @@ const std::vector<Field<Dsmc>>& dsmc_fields() {
        "time step (bound refresh) in units of the majorant mean free time", Range{0, 100, true}},
       {"block_size", &Dsmc::block_size, "",
        "particles per cache block (majorant or lowrank, up to 128 species, N >= 2 block_size; with "
-       "&agg_frag, clusters per block while N >= 2 block_size); 0: none",
+       "&agg_frag, clusters per block while N >= 2 block_size); at least 64, or 0: none",
        Range{0, 2e9}},
       {"stage_step", &Dsmc::stage_step, "",
        "with &thermostat or &shear: length of one streaming/collision/thermostat stage in majorant mean free "
@@ -633,6 +633,13 @@ void check_dsmc(const Dsmc& d, const species::Mixture& mix, const Provenance& pr
                     std::to_string(mix.size() * mix.size()) +
                     " species pairs at every time step: with more than 256 species use scheme = 'lowrank' "
                     "(O(S log S), Bodrova and Osinsky 2024, docs/schemes.md)");
+  // A block is a gas of its own for a step: it needs partners (and a block of a few particles gains
+  // nothing from the cache); 64 is the mixtures' smallest slice (collide.hpp, "Mixtures in blocks").
+  if (d.block_size > 0 && d.block_size < 64)
+    throw Error(prov.file_of("block_size"), prov.line.count("block_size") ? prov.line.at("block_size") : group_line,
+                group, "block_size",
+                "a cache block needs at least 64 particles (got " + std::to_string(d.block_size) +
+                    "); 0 turns the blocks off");
   const auto counts = particles::species_counts(static_cast<std::size_t>(d.n_particles), mix);
   for (std::size_t k = 0; k < counts.size(); ++k)
     if (counts[k] < 2)
