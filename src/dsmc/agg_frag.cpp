@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <stdexcept>
 #include <string>
 
@@ -269,9 +270,10 @@ std::size_t Gas::blocks() const {
 double Gas::block_step_end() const {
   const double rate = sampler_.total();
   if (blocks() == 1 || !(rate > 0.0)) return time_;
-  // block_steps step_fraction majorant mean free times (N/(2R) each), at most 2^23 candidates
+  // block_steps step_fraction majorant mean free times (N/(2R) each), at most 2^22 candidates (under
+  // a second on one thread at ~0.2 us a candidate: the run notices a Ctrl-C between steps)
   const double dt = std::min(block_steps * step_fraction_ * static_cast<double>(clusters_) / (2.0 * rate),
-                             8388608.0 / rate);
+                             4194304.0 / rate);
   return time_ + dt;
 }
 
@@ -361,12 +363,19 @@ void Gas::blocked_step(double end) {
     block.start_step();
     block.advance(end);
   };
+  std::vector<std::exception_ptr> failure(k_blocks);  // exceptions must not leave an OpenMP region
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(block_threads_) if (block_threads_ > 1)
-  for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(k_blocks); ++b) run_block(static_cast<std::size_t>(b));
-#else
-  for (std::size_t b = 0; b < k_blocks; ++b) run_block(b);
 #endif
+  for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(k_blocks); ++b) {
+    try {
+      run_block(static_cast<std::size_t>(b));
+    } catch (...) {
+      failure[static_cast<std::size_t>(b)] = std::current_exception();
+    }
+  }
+  for (const auto& f : failure)
+    if (f) std::rethrow_exception(f);
   // Gather in block order: the lists, the counters, the largest size.
   std::size_t largest = 1;
   for (std::size_t b = 0; b < k_blocks; ++b) largest = std::max(largest, blocks_[b].capacity_);

@@ -60,7 +60,7 @@ ef af_blocks "docs/agg-frag.md"). Two given clusters share block b with probabil
  * and by the Smoluchowski validation, whose runs of 2e5 to 1e6 monomers are blocked. A block starts its
  * candidate clock at a uniformly random phase (credit u/R_b), so that its expected candidate count over
  * the step is R_b dt, not one less. A blocked step is block_steps (5) majorant mean free times of the
- * whole gas, at most 2^23 candidates (a Ctrl-C is seen within a second), ending at t_target; after it
+ * whole gas, at most 2^22 candidates (a Ctrl-C is seen within a second), ending at t_target; after it
  * the clusters are gathered back block by block in order, the bounds recomputed exactly and the
  * sampler rebuilt. Event targets: a blocked step is cut so that its expected candidates are at most
  * half the events left to the target (events never exceed candidates, and about one candidate in
@@ -187,7 +187,7 @@ class Gas {
   /// Number of blocks the next step would use (1: the whole gas).
   std::size_t blocks() const;
   /// End of the blocked step that would start now (block_steps majorant mean free times, at most
-  /// 2^23 candidates); the time itself when the next step runs unblocked.
+  /// 2^22 candidates); the time itself when the next step runs unblocked.
   double block_step_end() const;
   /// Blocked steps run so far.
   std::uint64_t blocked_steps() const { return blocked_steps_; }
