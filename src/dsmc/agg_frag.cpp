@@ -79,10 +79,14 @@ void Gas::grow_to(std::size_t size) {
   lists_.resize(capacity + 1);
   max_speed_.resize(capacity + 1, 0.0);
   diameter_.resize(capacity + 1, 0.0);
-  for (std::size_t k = capacity_ + 1; k <= capacity; ++k)
-    diameter_[k] = std::cbrt(static_cast<double>(k)) * model_.monomer_diameter;  // sigma_k = k^(1/3) sigma_1
+  set_diameters(capacity_ + 1, capacity);
   capacity_ = capacity;
   rebuild_sampler();  // at the new size: O(K), amortised by the doubling
+}
+
+void Gas::set_diameters(std::size_t first, std::size_t last) {
+  for (std::size_t k = first; k <= last; ++k)
+    diameter_[k] = std::cbrt(static_cast<double>(k)) * model_.monomer_diameter;  // sigma_k = k^(1/3) sigma_1
 }
 
 void Gas::rebuild_sampler() {
@@ -298,8 +302,7 @@ void Gas::reset_as_block(const Gas& whole) {
     lists_.resize(whole.capacity_ + 1);
     max_speed_.resize(whole.capacity_ + 1, 0.0);
     diameter_.resize(whole.capacity_ + 1, 0.0);
-    for (std::size_t k = capacity_ + 1; k <= whole.capacity_; ++k)
-      diameter_[k] = std::cbrt(static_cast<double>(k)) * model_.monomer_diameter;  // sigma_k = k^(1/3) sigma_1
+    set_diameters(capacity_ + 1, whole.capacity_);
     capacity_ = whole.capacity_;
   }
   for (std::size_t k = 1; k <= capacity_; ++k) {
@@ -412,13 +415,15 @@ void Gas::blocked_step(double end) {
   for (std::size_t k = 1; k <= capacity_; ++k) max_speed_[k] = 0.0;
   recompute_bounds();
   rebuild_sampler();
+  bounds_exact_ = true;  // advance() need not recompute them at the step that starts now
 }
 
 bool Gas::advance(double t_target, std::uint64_t event_target) {
   if (counters_.events >= event_target) return true;
   for (;;) {
     if (time_ >= next_step_time_) {  // exact bounds again (they only rise within a step)
-      recompute_bounds();
+      if (!bounds_exact_) recompute_bounds();
+      bounds_exact_ = false;
       const double end = blocked_step_end(t_target, event_target);
       if (end > time_) {
         blocked_step(end);
@@ -586,6 +591,7 @@ void Gas::restore(const State& s) {
   counters_ = s.counters;
   gen_.set_state(s.generator);
   touched_.clear();
+  bounds_exact_ = false;
 }
 
 }  // namespace gdsmc::agg_frag

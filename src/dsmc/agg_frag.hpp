@@ -258,6 +258,7 @@ class Gas {
 
  private:
   void grow_to(std::size_t size);        ///< per-size tables for sizes up to `size`
+  void set_diameters(std::size_t first, std::size_t last);  ///< sigma_k = k^(1/3) sigma_1, k = first..last
   void update_size(std::uint32_t size);  ///< row and column of one size in the sampler
   void rebuild_sampler();                ///< every row and column, from the counts and bounds
   void raise_bound(std::uint32_t size, const particles::Vec3& v);
@@ -293,6 +294,7 @@ class Gas {
   std::size_t block_size_ = 0;          ///< cache blocks (0: none)
   int block_threads_ = 1;               ///< threads for the blocks of a step
   std::uint64_t blocked_steps_ = 0;     ///< blocked steps so far (not part of the State)
+  bool bounds_exact_ = false;           ///< a blocked step just recomputed them (a restored gas recomputes: same values)
   std::vector<Gas> blocks_;             ///< the blocks' gases, kept between steps for their lists
   std::vector<std::uint32_t> labels_;   ///< the block of each cluster in a deal
 };

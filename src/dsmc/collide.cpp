@@ -626,7 +626,6 @@ void Collider::run_block_one_species(double t_stop) {
   std::size_t next = 0;
   std::uint64_t events = 0, candidates = 0;
   double dissipated = 0.0;
-  [[maybe_unused]] const double scale = frame_scale_, shear = frame_shear_, inv_scale = 1.0 / frame_scale_;
   [[maybe_unused]] const double mass = mix_.mass[0];
   [[maybe_unused]] std::array<double, 4> moments{};  // the change of sum m u u^T (xx, yy, zz, xy)
   for (;;) {
@@ -646,11 +645,7 @@ void Collider::run_block_one_species(double t_stop) {
       draw(next);
       next = (next + 1) % lookahead;
       double gx = v[a].x - v[b].x, gy = v[a].y - v[b].y, gz = v[a].z - v[b].z;
-      if constexpr (Framed) {
-        gx = scale * (gx + shear * gy);
-        gy *= scale;
-        gz *= scale;
-      }
+      to_actual<Framed>(gx, gy, gz);
       const double g2 = gx * gx + gy * gy + gz * gz;
       // Accept with |g| / (2 vmax_b) = pi sigma^2 chi |g| / B_b (\ref sch_majorant "docs/schemes.md"), compared squared.
       const double threshold = gen_.uniform() * limit;
@@ -666,18 +661,14 @@ void Collider::run_block_one_species(double t_stop) {
       }
       particles::Vec3& va = v[a];
       particles::Vec3& vb = v[b];
-      if constexpr (Framed) {
-        const auto add = [&](const particles::Vec3& u, double sign) {
-          moments[0] += sign * u.x * u.x, moments[1] += sign * u.y * u.y, moments[2] += sign * u.z * u.z;
-          moments[3] += sign * u.x * u.y;
-        };
-        add(va, -1.0);
-        add(vb, -1.0);
-        const double wx = (px - shear * py) * inv_scale, wy = py * inv_scale, wz = pz * inv_scale;  // G^-1 (g.e) e
-        va = {va.x - impulse * wx, va.y - impulse * wy, va.z - impulse * wz};
-        vb = {vb.x + impulse * wx, vb.y + impulse * wy, vb.z + impulse * wz};
-        add(va, 1.0);
-        add(vb, 1.0);
+      if constexpr (Framed) {  // (the mass, common to all, multiplies the sum at the end)
+        add_moments(moments, va, -1.0);
+        add_moments(moments, vb, -1.0);
+        const particles::Vec3 w = to_stored(px, py, pz);  // G^-1 (g.e) e
+        va = {va.x - impulse * w.x, va.y - impulse * w.y, va.z - impulse * w.z};
+        vb = {vb.x + impulse * w.x, vb.y + impulse * w.y, vb.z + impulse * w.z};
+        add_moments(moments, va, 1.0);
+        add_moments(moments, vb, 1.0);
       } else {
         va = {va.x - impulse * px, va.y - impulse * py, va.z - impulse * pz};
         vb = {vb.x + impulse * px, vb.y + impulse * py, vb.z + impulse * pz};
@@ -810,7 +801,6 @@ void Collider::run_block_mixture(double t_stop) {
   std::size_t next = 0;
   std::uint64_t events = 0, candidates = 0;
   double dissipated = 0.0;
-  [[maybe_unused]] const double scale = frame_scale_, shear = frame_shear_, inv_scale = 1.0 / frame_scale_;
   [[maybe_unused]] std::array<double, 4> moments{};  // the change of sum m u u^T (xx, yy, zz, xy)
   for (;;) {
     // rate_ (and bound_, or the alias table and w_k = max_speed_) are those of the block's current bounds.
@@ -830,11 +820,7 @@ void Collider::run_block_mixture(double t_stop) {
         if (a == b) continue;  // the self pair is part of the majorant's sum, never a collision
       const PairKernel& pk = kernel[p.pair];
       double gx = v[a].x - v[b].x, gy = v[a].y - v[b].y, gz = v[a].z - v[b].z;
-      if constexpr (Framed) {
-        gx = scale * (gx + shear * gy);
-        gy *= scale;
-        gz *= scale;
-      }
+      to_actual<Framed>(gx, gy, gz);
       const double g2 = gx * gx + gy * gy + gz * gz;
       if constexpr (Lowrank) {
         // Accept with |g| / (w_i + w_k) (run_lowrank in a block: chi_ik cancels), compared squared.
@@ -861,18 +847,14 @@ void Collider::run_block_mixture(double t_stop) {
       particles::Vec3& vb = v[b];
       const std::uint32_t i = pair_species[2 * p.pair], k = pair_species[2 * p.pair + 1];
       if constexpr (Framed) {
-        const auto add = [&](const particles::Vec3& u, double m) {
-          moments[0] += m * u.x * u.x, moments[1] += m * u.y * u.y, moments[2] += m * u.z * u.z;
-          moments[3] += m * u.x * u.y;
-        };
         const double ma = mix_.mass[i], mb = mix_.mass[k];
-        add(va, -ma);
-        add(vb, -mb);
-        const double wx = (px - shear * py) * inv_scale, wy = py * inv_scale, wz = pz * inv_scale;  // G^-1 (g.e) e
-        va = {va.x - pk.share_a * wx, va.y - pk.share_a * wy, va.z - pk.share_a * wz};
-        vb = {vb.x + pk.share_b * wx, vb.y + pk.share_b * wy, vb.z + pk.share_b * wz};
-        add(va, ma);
-        add(vb, mb);
+        add_moments(moments, va, -ma);
+        add_moments(moments, vb, -mb);
+        const particles::Vec3 w = to_stored(px, py, pz);  // G^-1 (g.e) e
+        va = {va.x - pk.share_a * w.x, va.y - pk.share_a * w.y, va.z - pk.share_a * w.z};
+        vb = {vb.x + pk.share_b * w.x, vb.y + pk.share_b * w.y, vb.z + pk.share_b * w.z};
+        add_moments(moments, va, ma);
+        add_moments(moments, vb, mb);
       } else {
         va = {va.x - pk.share_a * px, va.y - pk.share_a * py, va.z - pk.share_a * pz};
         vb = {vb.x + pk.share_b * px, vb.y + pk.share_b * py, vb.z + pk.share_b * pz};
@@ -1064,10 +1046,7 @@ void Collider::set_frame(double scale, double shear) {
   if (!framed_) {
     moments_ = {};
     for (std::size_t i = 0; i < sys_.size(); ++i) {
-      const particles::Vec3& u = sys_.v[i];
-      const double m = mix_.mass[s_ > 1 ? sys_.species[i] : 0];
-      moments_[0] += m * u.x * u.x, moments_[1] += m * u.y * u.y, moments_[2] += m * u.z * u.z;
-      moments_[3] += m * u.x * u.y;
+      add_moments(moments_, sys_.v[i], mix_.mass[s_ > 1 ? sys_.species[i] : 0]);
     }
     framed_ = true;
   }
@@ -1090,24 +1069,20 @@ void Collider::reset_frame(const std::array<double, 4>& moments, const std::vect
 
 void Collider::collide_in_frame(std::size_t a, std::size_t b, std::uint32_t k, std::uint32_t j, double ex,
                                 double ey, double ez, double g_dot_e, double alpha, double mass_fraction_b) {
-  const double inv_scale = 1.0 / frame_scale_;
-  const double wx = (ex - frame_shear_ * ey) * inv_scale, wy = ey * inv_scale, wz = ez * inv_scale;  // G^-1 e
+  const particles::Vec3 w = to_stored(ex, ey, ez);  // G^-1 e
+  const double wx = w.x, wy = w.y, wz = w.z;
   const double impulse = (1.0 + alpha) * g_dot_e;
   const double da = mass_fraction_b * impulse, db = (1.0 - mass_fraction_b) * impulse;
   particles::Vec3& ua = sys_.v[a];
   particles::Vec3& ub = sys_.v[b];
   const double ma = mix_.mass[k], mb = mix_.mass[j];
   // The moments change by m (u'u'^T - u u^T) for each partner.
-  auto moments_add = [this](const particles::Vec3& u, double m) {
-    moments_[0] += m * u.x * u.x, moments_[1] += m * u.y * u.y, moments_[2] += m * u.z * u.z;
-    moments_[3] += m * u.x * u.y;
-  };
-  moments_add(ua, -ma);
-  moments_add(ub, -mb);
+  add_moments(moments_, ua, -ma);
+  add_moments(moments_, ub, -mb);
   ua = {ua.x - da * wx, ua.y - da * wy, ua.z - da * wz};
   ub = {ub.x + db * wx, ub.y + db * wy, ub.z + db * wz};
-  moments_add(ua, ma);
-  moments_add(ub, mb);
+  add_moments(moments_, ua, ma);
+  add_moments(moments_, ub, mb);
   counters_.dissipated += 0.5 * (1.0 - alpha * alpha) * ma * mass_fraction_b * g_dot_e * g_dot_e;
   count_event(k, j);
 }

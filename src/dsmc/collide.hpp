@@ -604,6 +604,16 @@ class Collider {
       gz *= frame_scale_;
     }
   }
+  /// G^-1 w of an actual vector w (header, "Frame"): the change of the stored u for an impulse along w.
+  particles::Vec3 to_stored(double wx, double wy, double wz) const {
+    const double inv_scale = 1.0 / frame_scale_;
+    return {(wx - frame_shear_ * wy) * inv_scale, wy * inv_scale, wz * inv_scale};
+  }
+  /// q += w u u^T in the frame's four moments (xx, yy, zz, xy).
+  static void add_moments(std::array<double, 4>& q, const particles::Vec3& u, double w) {
+    q[0] += w * u.x * u.x, q[1] += w * u.y * u.y, q[2] += w * u.z * u.z;
+    q[3] += w * u.x * u.y;
+  }
 
   /// An acceptance probability `p` > 1 (header of Counters::overshoots); kept out of line, it never
   /// happens in a correct run.
