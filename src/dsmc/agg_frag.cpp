@@ -335,17 +335,29 @@ void Gas::blocked_step(double end) {
   const std::uint64_t key = gen_();  // the blocks' streams for this step: substream(key, b)
   if (blocks_.size() < k_blocks) blocks_.resize(k_blocks, Gas(model_));
   for (std::size_t b = 0; b < k_blocks; ++b) blocks_[b].reset_as_block(*this);
-  // Deal: the clusters size by size, each list in order, to the block of their label; each list
-  // released once dealt.
+  // Deal: the clusters size by size, each list in order, to the block of their label. The clusters
+  // are held about once, not twice (header, "Memory"): each block's list is reserved at its count
+  // plus an eighth (room for the step's new clusters), and the pages of the whole gas's list already
+  // dealt are returned to the system as the deal goes (every 2 MiB), the list freed at its end.
   std::size_t at = 0;
+  std::vector<std::size_t> count(k_blocks);
+  constexpr std::size_t release_every = (std::size_t{1} << 21) / sizeof(Vec3);
   for (std::size_t k = 1; k <= capacity_; ++k) {
     auto& list = lists_[k];
-    for (const Vec3& v : list) {
+    if (list.empty()) continue;
+    std::fill(count.begin(), count.end(), 0);
+    for (std::size_t i = 0; i < list.size(); ++i) ++count[labels_[at + i]];
+    for (std::size_t b = 0; b < k_blocks; ++b)
+      if (count[b] > 0) blocks_[b].lists_[k].reserve(count[b] + count[b] / 8);
+    const char* released = reinterpret_cast<const char*>(list.data());
+    for (std::size_t i = 0; i < list.size(); ++i) {
       Gas& block = blocks_[labels_[at++]];
-      block.lists_[k].push_back(v);
+      block.lists_[k].push_back(list[i]);
       block.initial_monomers_ += k;
+      if ((i + 1) % release_every == 0)
+        released = particles::release_pages(released, reinterpret_cast<const char*>(list.data() + i + 1));
     }
-    if (!list.empty()) particles::ParticleArray<Vec3>().swap(list);
+    particles::ParticleArray<Vec3>().swap(list);
   }
   // V_b = V (n_b - 1)/(N - 1): every pair's expected rate is the whole gas's (header).
   const double volume_per_partner = volume_ / static_cast<double>(n - 1);
@@ -389,10 +401,18 @@ void Gas::blocked_step(double end) {
     for (std::size_t b = 0; b < k_blocks; ++b)
       if (k <= blocks_[b].capacity_) total += blocks_[b].lists_[k].size();
     if (total == 0) continue;
+    // Each block's list released once copied (its pages first: a freed small array may stay in the
+    // heap), so that the clusters are again held about once (header, "Memory").
     auto& list = lists_[k];
     list.reserve(total);
-    for (std::size_t b = 0; b < k_blocks; ++b)
-      if (k <= blocks_[b].capacity_) list.insert(list.end(), blocks_[b].lists_[k].begin(), blocks_[b].lists_[k].end());
+    for (std::size_t b = 0; b < k_blocks; ++b) {
+      if (k > blocks_[b].capacity_) continue;
+      auto& from = blocks_[b].lists_[k];
+      list.insert(list.end(), from.begin(), from.end());
+      const char* data = reinterpret_cast<const char*>(from.data());
+      particles::release_pages(data, data + from.capacity() * sizeof(Vec3));
+      particles::ParticleArray<Vec3>().swap(from);
+    }
     clusters_ += total;
   }
   for (std::size_t b = 0; b < k_blocks; ++b) {

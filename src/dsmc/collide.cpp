@@ -608,7 +608,7 @@ void Collider::run_block_one_species(double t_stop) {
   const double loss = 0.25 * (1.0 - alpha * alpha) * mix_.mass[0];  // (1 - alpha^2) m_kk (g.e)^2 / 2, m_kk = m/2
   double max_speed2 = block_speed2_[0];
   // The drawn-ahead pairs (header "Look-ahead"): uniform, independent of the state, prefetched.
-  std::array<std::uint32_t, 2 * lookahead> ahead;
+  std::array<std::uint32_t, 2 * block_lookahead<Framed>> ahead;
   const auto draw = [&](std::size_t slot) {
     std::uint32_t a, b;
     gen_.below_pair(n, n - 1, a, b);
@@ -622,7 +622,7 @@ void Collider::run_block_one_species(double t_stop) {
       if constexpr (Track) __builtin_prefetch(sys_.r.data() + first + i, 1);
     }
   };
-  for (std::size_t slot = 0; slot < lookahead; ++slot) draw(slot);
+  for (std::size_t slot = 0; slot < block_lookahead<Framed>; ++slot) draw(slot);
   std::size_t next = 0;
   std::uint64_t events = 0, candidates = 0;
   double dissipated = 0.0;
@@ -643,7 +643,7 @@ void Collider::run_block_one_species(double t_stop) {
     for (; c < n_candidates; ++c) {
       const std::uint32_t a = ahead[2 * next], b = ahead[2 * next + 1];
       draw(next);
-      next = (next + 1) % lookahead;
+      next = (next + 1) % block_lookahead<Framed>;
       double gx = v[a].x - v[b].x, gy = v[a].y - v[b].y, gz = v[a].z - v[b].z;
       to_actual<Framed>(gx, gy, gz);
       const double g2 = gx * gx + gy * gy + gz * gz;
@@ -753,7 +753,7 @@ void Collider::run_block_mixture(double t_stop) {
     std::uint32_t a, b, pair;
   };
   const std::uint32_t* pair_species = pair_species_.data();
-  std::array<Candidate, lookahead> ahead;
+  std::array<Candidate, block_lookahead<Framed>> ahead;
   const auto draw = [&](std::size_t slot) {
     Candidate& p = ahead[slot];
     if constexpr (Lowrank) {  // (i, k) with probability A_ik / R_b, then a particle of each slice
@@ -797,7 +797,7 @@ void Collider::run_block_mixture(double t_stop) {
       if constexpr (Track) __builtin_prefetch(sys_.r.data() + q, 1);
     }
   };
-  for (std::size_t slot = 0; slot < lookahead; ++slot) draw(slot);
+  for (std::size_t slot = 0; slot < block_lookahead<Framed>; ++slot) draw(slot);
   std::size_t next = 0;
   std::uint64_t events = 0, candidates = 0;
   double dissipated = 0.0;
@@ -814,7 +814,7 @@ void Collider::run_block_mixture(double t_stop) {
     for (; c < n_candidates; ++c) {
       const Candidate p = ahead[next];
       draw(next);
-      next = (next + 1) % lookahead;
+      next = (next + 1) % block_lookahead<Framed>;
       const std::uint32_t a = p.a, b = p.b;
       if constexpr (Lowrank)
         if (a == b) continue;  // the self pair is part of the majorant's sum, never a collision
@@ -880,7 +880,7 @@ void Collider::run_block_mixture(double t_stop) {
       if constexpr (Lowrank) {
         set_block_lowrank(n_density);
         cells = lowrank_cells_.data();  // (their sizes do not change: the same data)
-        for (std::size_t slot = 0; slot < lookahead; ++slot) draw(slot);  // drawn from the old A_ik: redraw
+        for (std::size_t slot = 0; slot < block_lookahead<Framed>; ++slot) draw(slot);  // drawn from the old A_ik: redraw
         next = 0;
       } else {
         bound_ = mixture_bound(speed2, cum);

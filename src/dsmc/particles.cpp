@@ -3,6 +3,7 @@
 #include <new>
 #if defined(__linux__)
 #include <sys/mman.h>
+#include <unistd.h>
 #endif
 
 #include <algorithm>
@@ -25,6 +26,20 @@ void* allocate_bytes(std::size_t bytes) {
   madvise(p, rounded, MADV_HUGEPAGE);  // a hint: failure only costs speed
 #endif
   return p;
+}
+
+const char* release_pages(const char* begin, const char* end) {
+#if defined(__linux__) && defined(MADV_DONTNEED)
+  static const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
+  const std::uintptr_t lo = (reinterpret_cast<std::uintptr_t>(begin) + page - 1) / page * page;
+  const std::uintptr_t hi = reinterpret_cast<std::uintptr_t>(end) / page * page;
+  if (hi <= lo) return begin;
+  madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_DONTNEED);  // a hint: failure only keeps the memory
+  return reinterpret_cast<const char*>(hi);
+#else
+  (void)end;
+  return begin;
+#endif
 }
 
 std::vector<std::size_t> species_counts(std::size_t n_particles, const species::Mixture& mix) {

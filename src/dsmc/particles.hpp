@@ -49,6 +49,13 @@ enum class InitialDistribution {
 /// also miss the TLB. Falls back to ordinary pages where huge pages are unavailable.
 void* allocate_bytes(std::size_t bytes);  ///< throws std::bad_alloc; free with std::free
 
+/// Returns to the system the whole memory pages inside [begin, end) of a buffer whose bytes there will
+/// not be read again before it is freed (Linux: madvise MADV_DONTNEED; elsewhere nothing), so that
+/// the resident memory falls while a large array is consumed front to back and copied elsewhere
+/// (agg_frag.hpp, "Cache blocks": the deal). Returns the end of the last page released, or `begin`
+/// when [begin, end) holds no whole page: the next call then starts there.
+const char* release_pages(const char* begin, const char* end);
+
 /// std::allocator replacement that takes its blocks from allocate_bytes (huge pages where possible).
 template <class T>
 struct LargePageAllocator {
