@@ -125,6 +125,19 @@ int main(int argc, char** argv) {
                                                                     std::string::npos;
     if (chosen) paths.push_back(p);
   }
+  // A name that is no path is a typo, not an empty table.
+  if (!selected.empty() && selected != "all") {
+    std::string rest = selected + ",";
+    for (std::size_t at = 0, comma; (comma = rest.find(',', at)) != std::string::npos; at = comma + 1) {
+      const std::string name = rest.substr(at, comma - at);
+      if (std::none_of(all.begin(), all.end(), [&](const Path& p) { return p.name == name; })) {
+        std::fprintf(stderr, "bench_collide: no path '%s' (paths: all", name.c_str());
+        for (const Path& p : all) std::fprintf(stderr, ", %s", p.name.c_str());
+        std::fprintf(stderr, ")\n");
+        return 2;
+      }
+    }
+  }
   std::printf("N = %zu, alpha = %g, %g collisions per particle timed, block_size = %zu, %d round(s)\n", n, alpha,
               per_particle, block_size, rounds);
   std::printf("%-16s %14s %10s %9s %9s %10s\n", "path", "collisions/s", "cand/coll", "ns/cand", "seconds",

@@ -118,7 +118,13 @@ int main(int argc, char** argv) {
       repeat = std::max(1, std::atoi(argv[++i]));
       continue;
     }
-    sizes.push_back(std::strtoull(argv[i], nullptr, 10));
+    char* end = nullptr;
+    const unsigned long long n = std::strtoull(argv[i], &end, 10);
+    if (end == argv[i] || *end != '\0' || n < 2) {
+      std::fprintf(stderr, "usage: bench_paths [--no-pairs] [--repeat R] [N ...]   (N >= 2; default 100000 1000000)\n");
+      return std::string(argv[i]) == "--help" ? 0 : 2;
+    }
+    sizes.push_back(n);
   }
   if (sizes.empty()) sizes = {100000, 1000000};
   const std::vector<Path> paths = {
