@@ -113,6 +113,22 @@ TEST(SegmentTreeSumTree, ExactBoundariesAndZeroRuns) {
   for (std::size_t i = 0; i < w.size(); ++i) EXPECT_EQ(tree.find(std::nextafter(0.0, 1.0)) == i, i == 2);
 }
 
+// The leaf-0 shortcut of find() (u < w_0 returns 0 without the descent) gives what the descent gives on
+// both sides of its boundary, with exact integer sums: leaf 0 up to just below w_0 = 3, then the first
+// positive leaf after it (2, leaf 1 being empty), and the same with leaf 0 empty (never returned).
+TEST(SegmentTreeSumTree, LeafZeroShortcutAtItsBoundary) {
+  SumTree tree;
+  tree.assign({3.0, 0.0, 2.0, 5.0, 0.0});
+  EXPECT_EQ(tree.find(0.0), 0u);
+  EXPECT_EQ(tree.find(std::nextafter(3.0, 0.0)), 0u);
+  EXPECT_EQ(tree.find(3.0), 2u);
+  EXPECT_EQ(tree.find(std::nextafter(5.0, 0.0)), 2u);
+  EXPECT_EQ(tree.find(5.0), 3u);
+  tree.set(0, 0.0);
+  EXPECT_EQ(tree.find(0.0), 2u);
+  EXPECT_EQ(tree.find(-0.0), 2u);
+}
+
 // Round-off cannot land on a zero-weight leaf: 200 trees of 1000 weights over 300 decades
 // (1e-150..1e150, half of them zero), probed at 2e4 random targets, at the tree's own internal
 // boundaries +-1 ulp (for every leaf), and at and just below the total. Every result has weight > 0.

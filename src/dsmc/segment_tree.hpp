@@ -105,6 +105,10 @@ class SumTree {
     if (!(tree_[1] > 0.0))
       throw std::domain_error("segment_tree::SumTree::find: all weights are zero");
     if (!(u >= 0.0)) u = 0.0;
+    // Leaf 0 without the descent (agg_frag's monomers, its most frequent draw): every left sum on the
+    // path to leaf 0 is a floating-point sum of non-negative terms that include w_0, so never below
+    // w_0, and u < w_0 takes the descent left at every level: the same index as the loop below.
+    if (u < tree_[leaves_]) return 0;
     std::size_t n = 1;
     // Invariant: tree_[n] > 0. Go left when u falls there or when the right subtree is empty; the
     // parent is the exact sum left + right, so if right == 0 then left == parent > 0. Going right
