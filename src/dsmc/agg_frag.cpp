@@ -440,8 +440,14 @@ void Gas::blocked_step(double end) {
 
 bool Gas::advance(double t_target, std::uint64_t event_target) {
   if (counters_.events >= event_target) return true;
+  // The sampler's totals (R and its terms) and 1/R, computed once per change of the sampler (an
+  // event, a step start) instead of once per candidate: the same values, so the same draws.
+  decltype(sampler_)::Totals totals;
+  double inverse_rate = 0.0;
+  bool totals_valid = false;
   for (;;) {
     if (time_ >= next_step_time_) {  // exact bounds again (they only rise within a step)
+      totals_valid = false;
       if (!bounds_exact_) recompute_bounds();
       bounds_exact_ = false;
       const double end = blocked_step_end(t_target, event_target);
@@ -457,7 +463,12 @@ bool Gas::advance(double t_target, std::uint64_t event_target) {
       }
       start_step();
     }
-    const double rate = sampler_.total();
+    if (!totals_valid) {
+      totals = sampler_.totals();
+      inverse_rate = 1.0 / totals.sum;
+      totals_valid = true;
+    }
+    const double rate = totals.sum;
     // One cluster left (R > 0 still: its self pair, always rejected): nothing can collide.
     if (clusters_ < 2 || !(rate > 0.0)) {
       time_ = std::max(time_, t_target);
@@ -465,7 +476,7 @@ bool Gas::advance(double t_target, std::uint64_t event_target) {
     }
     // The next candidate comes 1/R after the last one, R the current rate (\ref af_scheme "docs/agg-frag.md")
     // (0 when a rise of R made the next candidate overdue: it comes now).
-    const double wait = std::max(0.0, 1.0 / rate - credit_);
+    const double wait = std::max(0.0, inverse_rate - credit_);
     const double stop = std::min(t_target, next_step_time_);
     if (time_ + wait > stop) {
       credit_ += stop - time_;
@@ -476,7 +487,7 @@ bool Gas::advance(double t_target, std::uint64_t event_target) {
     time_ += wait;
     credit_ = 0.0;
     counters_.candidates += 1;
-    const auto [row, column] = sampler_.sample(gen_);
+    const auto [row, column] = sampler_.sample(gen_, totals);
     const Cluster a{static_cast<std::uint32_t>(row + 1), 0}, b0{static_cast<std::uint32_t>(column + 1), 0};
     const auto& list_a = lists_[a.size];
     const auto& list_b = lists_[b0.size];
@@ -491,6 +502,7 @@ bool Gas::advance(double t_target, std::uint64_t event_target) {
     const double threshold = gen_.uniform() * (max_speed_[ca.size] + max_speed_[cb.size]);
     if (threshold * threshold >= g2) continue;
     collide(ca, cb);
+    totals_valid = false;  // the event changed the sampler
     if (counters_.events >= event_target) return true;
   }
 }

@@ -271,14 +271,33 @@ class LowRankSampler {
   /// so never a pair with C_ik = 0. Throws std::domain_error if R is not positive.
   template <class Gen>
   std::pair<std::size_t, std::size_t> sample(Gen& gen) const {
-    std::array<double, Rank> term{};
-    double sum = 0.0;
-    std::size_t last_positive = Rank;
+    return sample(gen, totals());
+  }
+
+  /// The term totals sum_i u_i^(r) sum_k v_k^(r) and R, as sample() and total() compute them (the
+  /// same operations in the same order, so the same bits): a caller that draws many pairs between
+  /// updates computes them once and passes them to sample(gen, totals).
+  struct Totals {
+    std::array<double, Rank> term{};  ///< the term totals
+    double sum = 0.0;                 ///< R = total()
+    std::size_t last_positive = Rank;  ///< the last term of positive total (Rank: none)
+  };
+  Totals totals() const {
+    Totals t;
     for (std::size_t r = 0; r < Rank; ++r) {
-      term[r] = term_total(r);
-      sum += term[r];
-      if (term[r] > 0.0) last_positive = r;
+      t.term[r] = term_total(r);
+      t.sum += t.term[r];
+      if (t.term[r] > 0.0) t.last_positive = r;
     }
+    return t;
+  }
+
+  /// sample(gen) with the totals of the current rows and columns given (totals() since the last update).
+  template <class Gen>
+  std::pair<std::size_t, std::size_t> sample(Gen& gen, const Totals& totals) const {
+    const auto& term = totals.term;
+    const double sum = totals.sum;
+    const std::size_t last_positive = totals.last_positive;
     if (last_positive == Rank)
       throw std::domain_error("segment_tree::LowRankSampler::sample: total majorant is zero");
     double x = gen.uniform() * sum;  // in [0, R)
