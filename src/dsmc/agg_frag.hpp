@@ -72,7 +72,7 @@ ef af_blocks "docs/agg-frag.md"). Two given clusters share block b with probabil
  * thread count (AggFrag.BlockThreadsAreBitwiseTheSame, scale_out.reproducibility_agg_frag). **Memory:**
  * the clusters are held about once at every moment (24 bytes each, plus 4 for the labels): each
  * block's list is reserved at its count plus an eighth, the pages of a whole-gas list already dealt are
- * returned to the system every 2 MiB as the deal goes (particles::release_pages) and the list freed at
+ * returned to the system every 64 KiB as the deal goes (particles::release_pages) and the list freed at
  * its end, and at the gather each block's list is released as soon as it is copied. Measured peak
  * (4e6 monomers, resident memory less that of a run of 2000): 28.2 bytes per monomer, against 52.6
  * when the two copies coexisted; the price is the page faults of memory given back and taken again
