@@ -120,9 +120,11 @@ int main(int argc, char** argv) {
     }
     char* end = nullptr;
     const unsigned long long n = std::strtoull(argv[i], &end, 10);
-    if (end == argv[i] || *end != '\0' || n < 2) {
-      std::fprintf(stderr, "usage: bench_paths [--no-pairs] [--repeat R] [N ...]   (N >= 2; default 100000 1000000)\n");
-      return std::string(argv[i]) == "--help" ? 0 : 2;
+    if (argv[i][0] == '-' || end == argv[i] || *end != '\0' || n < 2) {
+      const bool help = std::string(argv[i]) == "--help";
+      std::fprintf(help ? stdout : stderr,
+                   "usage: bench_paths [--no-pairs] [--repeat R] [N ...]   (N >= 2; default 100000 1000000)\n");
+      return help ? 0 : 2;
     }
     sizes.push_back(n);
   }

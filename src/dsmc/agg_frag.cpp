@@ -338,10 +338,10 @@ void Gas::blocked_step(double end) {
   // Deal: the clusters size by size, each list in order, to the block of their label. The clusters
   // are held about once, not twice (header, "Memory"): each block's list is reserved at its count
   // plus an eighth (room for the step's new clusters), and the pages of the whole gas's list already
-  // dealt are returned to the system as the deal goes (every 64 KiB), the list freed at its end.
+  // dealt are returned to the system as the deal goes (every 64 KiB, or every 2 MiB in a list of 2
+  // MiB or more, which allocate_bytes gives huge pages: not split), the list freed at its end.
   std::size_t at = 0;
   std::vector<std::size_t> count(k_blocks);
-  constexpr std::size_t release_every = (std::size_t{1} << 16) / sizeof(Vec3);
   for (std::size_t k = 1; k <= capacity_; ++k) {
     auto& list = lists_[k];
     if (list.empty()) continue;
@@ -350,6 +350,9 @@ void Gas::blocked_step(double end) {
     for (std::size_t b = 0; b < k_blocks; ++b)
       if (count[b] > 0) blocks_[b].lists_[k].reserve(count[b] + count[b] / 8);
     const char* released = reinterpret_cast<const char*>(list.data());
+    const std::size_t release_bytes = list.capacity() * sizeof(Vec3) >= (std::size_t{1} << 21) ? std::size_t{1} << 21
+                                                                                                : std::size_t{1} << 16;
+    const std::size_t release_every = release_bytes / sizeof(Vec3);
     for (std::size_t i = 0; i < list.size(); ++i) {
       Gas& block = blocks_[labels_[at++]];
       block.lists_[k].push_back(list[i]);

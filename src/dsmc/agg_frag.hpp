@@ -72,12 +72,12 @@ ef af_blocks "docs/agg-frag.md"). Two given clusters share block b with probabil
  * thread count (AggFrag.BlockThreadsAreBitwiseTheSame, scale_out.reproducibility_agg_frag). **Memory:**
  * the clusters are held about once at every moment (24 bytes each, plus 4 for the labels): each
  * block's list is reserved at its count plus an eighth, the pages of a whole-gas list already dealt are
- * returned to the system every 64 KiB as the deal goes (particles::release_pages) and the list freed at
+ * returned to the system as the deal goes (every 64 KiB, 2 MiB in huge-page lists) (particles::release_pages) and the list freed at
  * its end, and at the gather each block's list is released as soon as it is copied. Measured peak
  * (4e6 monomers, resident memory less that of a run of 2000): 28.2 bytes per monomer, against 52.6
  * when the two copies coexisted; the price is the page faults of memory given back and taken again
  * (the full model of validation/aggregation_fragmentation, 1e6 monomers to t = 20: 0.30-0.36 s of
- * system time against 0.05-0.10), repaid by block lists that no longer grow by doubling (wall
+ * system time against 0.05-0.10), repaid by block lists that no longer grow by doubling as they are dealt (wall
  * 2.02-2.11 s against 1.91-2.54 s; peak 50-55 MB against 80 MB).
  *
  * **Storage** (no allocation per event). The velocities of the clusters of size k are one array of

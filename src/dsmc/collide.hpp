@@ -63,8 +63,9 @@
  * A_ik changes, since they were drawn from the old rates, and discarding independent draws biases
  * nothing. The drawn-ahead pairs are part of the collider's state (State below). The block kernels
  * draw 8 ahead, or 32 in a frame (thermostat and shear stages, "Frame"): a stage gives each block only
- * about N_b/8 candidates, so its velocities are not in the cache and each read waits for memory
- * (measured on the uniform shear flow of bench_paths, N = 1e6, one thread: 0.86 of the time with 8).
+ * about N_b/16 candidates, so its velocities are not in the cache and each read waits for memory
+ * (uniform shear flow, N = 1e6, one thread, whole runs: 32 ahead take 0.87 of the time of 8; the
+ * stream's draws then fall differently, so such runs are no longer byte for byte those of before).
  *
  * **Blocks** (issue 5; one species, or a mixture of at most 128 species, with `majorant` or `lowrank`;
  * N >= 2 block_size; `use_blocks`). With
@@ -218,7 +219,7 @@
  * one-species `t_end` run of the same process): the collision loop's rate (wall clock) `lowrank` 0.63 ->
  * 0.85 (Enskog 0.64 -> 0.86), `majorant` 0.76 -> 0.84 (Enskog 0.76 -> 0.78); collisions per CPU second
  * of the whole run `lowrank` 0.70 -> 0.81 (Enskog 0.69 -> 0.80), `majorant` 0.83 -> 0.83 (Enskog 0.79 -> 0.80). Tried and left out: a look-ahead of 16 instead of 8 (no gain: a block's
- * velocities are in L2).
+ * velocities are in L2; in a frame they are not, and 32 are drawn ahead: "Look-ahead").
  * Checked by Collide.BlockedMixtureMatchesUnblocked (T_k, the share of unlike-pair events, the time at
  * an event target, over 16 replicas, both schemes), Collide.BlockedThreeSpeciesLowrankMatchesUnblocked
  * (three species: 16 alias cells for 9 pairs; T_k and each pair's share of events) and by every

@@ -257,11 +257,7 @@ class LowRankSampler {
   /// (sum_i u_i^(r)) (sum_k v_k^(r)): the share of term r in the total.
   double term_total(std::size_t r) const { return u_[r].total() * v_[r].total(); }
   /// R = sum_{i,k} C_ik = sum_r (sum_i u_i^(r)) (sum_k v_k^(r)), from the trees' roots; O(Rank).
-  double total() const {
-    double sum = 0.0;
-    for (std::size_t r = 0; r < Rank; ++r) sum += term_total(r);
-    return sum;
-  }
+  double total() const { return totals().sum; }
   /// Number of species M.
   std::size_t size() const { return size_; }
 
