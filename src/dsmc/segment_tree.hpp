@@ -270,14 +270,14 @@ class LowRankSampler {
     return sample(gen, totals());
   }
 
-  /// The term totals sum_i u_i^(r) sum_k v_k^(r) and R, as sample() and total() compute them (the
-  /// same operations in the same order, so the same bits): a caller that draws many pairs between
-  /// updates computes them once and passes them to sample(gen, totals).
+  /// The term totals sum_i u_i^(r) sum_k v_k^(r) and R (what totals() returns).
   struct Totals {
     std::array<double, Rank> term{};  ///< the term totals
     double sum = 0.0;                 ///< R = total()
     std::size_t last_positive = Rank;  ///< the last term of positive total (Rank: none)
   };
+  /// The term totals and R, as sample() and total() use them (total() is totals().sum): a caller that
+  /// draws many pairs between updates computes them once and passes them to sample(gen, totals).
   Totals totals() const {
     Totals t;
     for (std::size_t r = 0; r < Rank; ++r) {
