@@ -241,6 +241,7 @@ void Collider::restore(const State& st) {
   step_candidates_start_ = st.step_candidates_start;
   framed_ = st.framed;
   frame_scale_ = st.frame_scale;
+  frame_inverse_scale_ = 1.0 / frame_scale_;
   frame_shear_ = st.frame_shear;
   speed_factor_ = framed_ ? frame_norm(frame_scale_, frame_shear_) : 1.0;
   moments_ = st.moments;
@@ -535,6 +536,7 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
   // The whole gas's frame (header, "Frame"): G from the master; this block's change of Q kept apart.
   framed_ = master.framed_;
   frame_scale_ = master.frame_scale_;
+  frame_inverse_scale_ = master.frame_inverse_scale_;
   frame_shear_ = master.frame_shear_;
   speed_factor_ = master.speed_factor_;
   if (framed_) moments_ = {};
@@ -1051,6 +1053,7 @@ void Collider::set_frame(double scale, double shear) {
     framed_ = true;
   }
   frame_scale_ = scale;
+  frame_inverse_scale_ = 1.0 / scale;
   frame_shear_ = shear;
   speed_factor_ = frame_norm(scale, shear);
   if (rate_ > 0.0) rebuild_bounds();
@@ -1059,6 +1062,7 @@ void Collider::set_frame(double scale, double shear) {
 void Collider::reset_frame(const std::array<double, 4>& moments, const std::vector<double>& max_speed2) {
   framed_ = true;
   frame_scale_ = 1.0;
+  frame_inverse_scale_ = 1.0;
   frame_shear_ = 0.0;
   speed_factor_ = 1.0;
   moments_ = moments;

@@ -610,8 +610,7 @@ class Collider {
   }
   /// G^-1 w of an actual vector w (header, "Frame"): the change of the stored u for an impulse along w.
   particles::Vec3 to_stored(double wx, double wy, double wz) const {
-    const double inv_scale = 1.0 / frame_scale_;
-    return {(wx - frame_shear_ * wy) * inv_scale, wy * inv_scale, wz * inv_scale};
+    return {(wx - frame_shear_ * wy) * frame_inverse_scale_, wy * frame_inverse_scale_, wz * frame_inverse_scale_};
   }
   /// q += w u u^T in the frame's four moments (xx, yy, zz, xy).
   static void add_moments(std::array<double, 4>& q, const particles::Vec3& u, double w) {
@@ -670,6 +669,7 @@ class Collider {
   double lowrank_volume_ = 0.0;         ///< V = (N - 1)/n (lowrank)
   bool framed_ = false;                 ///< velocities stored in a frame (set_frame)
   double frame_scale_ = 1.0, frame_shear_ = 0.0;  ///< S and c of the frame
+  double frame_inverse_scale_ = 1.0;    ///< 1/S, set with S (to_stored needs no division per collision)
   double speed_factor_ = 1.0;           ///< ||G|| (frame_norm), 1 without a frame: every bound's factor
   std::array<double, 4> moments_{};     ///< sum m u u^T: xx, yy, zz, xy (in a frame)
   bool lowrank_columns_set_ = false;    ///< columns v_k set and frozen (they never change in a run)
