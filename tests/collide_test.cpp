@@ -18,6 +18,7 @@
 #include "dsmc/particles.hpp"
 #include "dsmc/rng.hpp"
 #include "dsmc/species.hpp"
+#include "sanitizer_scale.hpp"
 
 using namespace gdsmc;
 using collide::Collider;
@@ -993,7 +994,7 @@ TEST(Collide, ManyBlocksMeetEventTargetsExactly) {
 }
 
 // Mixtures in blocks (header "Blocks": a slice of each species per block). Binary mixture (masses 1
-// and 4, diameters 1 and 2, alpha 0.9/0.8/0.7), N = 12000 in 4 blocks, 16 replicas, time-driven to
+// and 4, diameters 1 and 2, alpha 0.9/0.8/0.7), N = 12000 in 4 blocks, 16 replicas (8 under the sanitizers: sanitizer_scale.hpp), time-driven to
 // about 8 collisions per particle and then collision-driven to an exact target: T_1, T_2, the pair
 // events 1-2 and the time at the target agree with the unblocked collider within 4 combined standard
 // errors, the target is met exactly and the species layout is unchanged (each particle keeps its
@@ -1007,7 +1008,7 @@ TEST(Collide, BlockedThreeSpeciesLowrankMatchesUnblocked) {
   alpha(0, 2) = alpha(2, 0) = 0.7;
   const auto mix = species::make_mixture({1.0, 2.0, 4.0}, {1.0, 1.3, 1.6}, {0.006, 0.004, 0.003}, alpha, false);
   const std::vector<std::size_t> counts = {6000, 4000, 3000};
-  const std::size_t replicas = 16;
+  const std::size_t replicas = gdsmc::test::replicas(16);  // 8 under the sanitizers
   std::vector<std::vector<double>> observed[2];
   for (int blocked = 0; blocked < 2; ++blocked) {
     observed[blocked].assign(9, {});
@@ -1048,7 +1049,7 @@ TEST(Collide, BlockedMixtureMatchesUnblocked) {
   alpha(1, 1) = 0.7;
   // pi/6 (0.1 + 0.05 x 8) = 0.26: chi_11, chi_12, chi_22 well apart
   const auto dense = species::make_mixture({1.0, 4.0}, {1.0, 2.0}, {0.1, 0.05}, alpha, true);
-  const std::size_t replicas = 16;
+  const std::size_t replicas = gdsmc::test::replicas(16);  // 8 under the sanitizers
   // Path 3: viscoelastic restitution, whose blocks run the general lowrank loop (not the mixture kernel):
   // its per-pair bounds with chi_ik (mutant 21).
   const species::PairMatrix beta(2, 0.2);
@@ -1098,7 +1099,7 @@ TEST(Collide, BlockedMixtureMatchesUnblocked) {
 // particle to a uniformly random block at every remix, so that every pair, rare-rare ones of one
 // species included, shares a block with probability 1/K. (a) Blocked runs with a scattered species
 // (N = 12000 + 200, K = 4; the rare species large, sigma 6, so that its own pairs are 0.5 % of the
-// events) agree with unblocked ones, `majorant` and `lowrank`, 16 replicas each: T_1, T_2, the shares
+// events) agree with unblocked ones, `majorant` and `lowrank`, 16 replicas each (8 under the sanitizers): T_1, T_2, the shares
 // of 1-2 and 2-2 events and the time at an event target within 4 combined SE. (b) Bitwise the same on
 // 1, 2 and 3 threads, with displacements, and after a restore in the middle of a step. (c) Nothing is
 // lost in the shuffles: an elastic run keeps energy and momentum. A species with 3 particles (fewer
@@ -1106,7 +1107,7 @@ TEST(Collide, BlockedMixtureMatchesUnblocked) {
 TEST(Collide, ScatteredRareSpeciesMatchUnblocked) {
   species::PairMatrix alpha(2, 0.8);
   const auto mix = species::make_mixture({1.0, 4.0}, {1.0, 6.0}, {0.01, 0.01 * 200.0 / 12000.0}, alpha, false);
-  const std::size_t replicas = 16;
+  const std::size_t replicas = gdsmc::test::replicas(16);  // 8 under the sanitizers
   for (Scheme scheme : {Scheme::majorant, Scheme::lowrank}) {
     SCOPED_TRACE(name(scheme));
     std::vector<std::vector<double>> t1(2), t2(2), cross(2), rare(2), time(2);
@@ -1228,7 +1229,7 @@ TEST(Collide, ScatteredRareSpeciesMatchUnblocked) {
 // blocks"): 100 species, m_k = k, sigma_k = k^(1/3), N_k ~ k^-1.5 (N = 16766, N_100 = 7), alpha = 0.8,
 // blocks of 3000 (K = 5: species 1-8 dealt, 92 scattered, most blocks missing some of them, so that
 // the alias table covers the species present only). Blocked and unblocked, `majorant` and `lowrank`,
-// 16 replicas each: T_1, the temperature of species 2-10 and of 11-100 together and the time at an
+// 16 replicas each (8 under the sanitizers): T_1, the temperature of species 2-10 and of 11-100 together and the time at an
 // event target agree within 4 combined SE; the blocked runs make no acceptance overshoot.
 TEST(Collide, ManySpeciesBlocksMatchUnblocked) {
   const std::size_t s = 100;
@@ -1244,7 +1245,7 @@ TEST(Collide, ManySpeciesBlocksMatchUnblocked) {
   }
   for (std::size_t k = 0; k < s; ++k) density[k] = 0.01 * static_cast<double>(counts[k]) / static_cast<double>(total);
   const auto mix = species::make_mixture(mass, diameter, density, species::PairMatrix(s, 0.8), false);
-  const std::size_t replicas = 16;
+  const std::size_t replicas = gdsmc::test::replicas(16);  // 8 under the sanitizers
   for (Scheme scheme : {Scheme::majorant, Scheme::lowrank}) {
     SCOPED_TRACE(name(scheme));
     std::vector<std::vector<double>> observed[2];

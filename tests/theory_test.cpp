@@ -4,6 +4,7 @@
 // different arrangement, the "equivalent form" of \ref haff_ratios "docs/haff-and-mixtures.md", Monte Carlo integration of the
 // collision rule (\ref cm_rule "docs/collision-model.md") over Maxwellian pairs, and exact conservation laws.
 #include "theory/theory.hpp"
+#include "sanitizer_scale.hpp"
 
 #include <gtest/gtest.h>
 
@@ -284,7 +285,7 @@ TEST(Theory, PairCollisionRateAgreesWithMonteCarlo) {
   const std::vector<double> T = {1.0, 3.0};
   const PairMatrix rate = theory::pair_collision_rate(mix, T);
   EXPECT_DOUBLE_EQ(rate(0, 1), rate(1, 0));
-  const long samples = 2'000'000;
+  const long samples = gdsmc::test::samples(2'000'000);  // 250000 under the sanitizers
   const std::size_t pairs[3][2] = {{0, 0}, {1, 1}, {0, 1}};
   for (int p = 0; p < 3; ++p) {
     const std::size_t k = pairs[p][0], j = pairs[p][1];
@@ -302,7 +303,7 @@ TEST(Theory, PairCollisionRateAgreesWithMonteCarlo) {
     std::printf("[ MC ] R_%zu%zu: MC %.6e +- %.1e, theory %.6e\n", k + 1, j + 1, rate_mc, rate_se,
                 rate(k, j));
     EXPECT_NEAR(rate_mc, rate(k, j), 4.0 * rate_se);
-    EXPECT_LT(rate_se, 2e-3 * rate_mc);  // precise enough to see a factor 2 or a wrong s_kj
+    EXPECT_LT(rate_se, gdsmc::test::precision_bound(2e-3) * rate_mc);  // precise enough to see a factor 2 or a wrong s_kj
   }
 }
 
@@ -314,7 +315,7 @@ TEST(Theory, EnergyLossAgreesWithMonteCarlo) {
   const std::vector<double> T = {1.0, 3.0};
   const auto rate = theory::partial_temperature_rates(mix, T);
   const double theory_loss = 1.5 * (0.02 * rate[0] + 0.01 * rate[1]);
-  const long samples = 2'000'000;
+  const long samples = gdsmc::test::samples(2'000'000);  // 250000 under the sanitizers
   const std::size_t pairs[3][2] = {{0, 0}, {1, 1}, {0, 1}};
   double mc = 0.0, variance = 0.0;
   for (int p = 0; p < 3; ++p) {
@@ -330,7 +331,7 @@ TEST(Theory, EnergyLossAgreesWithMonteCarlo) {
               se, theory_loss);
   EXPECT_LT(theory_loss, 0.0);
   EXPECT_NEAR(theory_loss, mc, 4.0 * se);
-  EXPECT_LT(se, 2e-3 * std::abs(mc));
+  EXPECT_LT(se, gdsmc::test::precision_bound(2e-3) * std::abs(mc));
 }
 
 // Energy change of each species alone, (3/2) n_k dT_k/dt: tests the exchange term and its sign.
@@ -338,7 +339,7 @@ TEST(Theory, EnergyLossAgreesWithMonteCarlo) {
 // The elastic case isolates the exchange term: energy flows from the hotter species.
 TEST(Theory, PartialEnergyChangeAgreesWithMonteCarlo) {
   const std::vector<double> T = {1.0, 3.0};
-  const long samples = 2'000'000;
+  const long samples = gdsmc::test::samples(2'000'000);  // 250000 under the sanitizers
   for (double alpha : {0.7, 1.0}) {
     const Mixture mix = binary_mixture(1.0, 4.0, 1.0, 2.0, 0.02, 0.01, alpha);
     const auto rate = theory::partial_temperature_rates(mix, T);
@@ -361,7 +362,7 @@ TEST(Theory, PartialEnergyChangeAgreesWithMonteCarlo) {
       std::printf("[ MC ] alpha %.1f, (3/2) n_%d dT_%d/dt: MC %.6e +- %.1e, theory %.6e\n", alpha,
                   k + 1, k + 1, mc[k], se[k], theory_value);
       EXPECT_NEAR(theory_value, mc[k], 4.0 * se[k]) << "alpha " << alpha << " species " << k + 1;
-      EXPECT_LT(se[k], 0.02 * std::abs(mc[k]));
+      EXPECT_LT(se[k], gdsmc::test::precision_bound(0.02) * std::abs(mc[k]));
     }
     if (alpha == 1.0) {  // species 2 is hotter: it loses what species 1 gains
       EXPECT_GT(rate[0], 0.0);
@@ -435,7 +436,7 @@ TEST(Theory, CoolingRateEntriesAgreeWithMaxwellianPairMonteCarlo) {
   alpha(1, 1) = 0.85;
   alpha(0, 1) = alpha(1, 0) = 0.75;
   const std::vector<double> T = {1.0, 2.5};
-  const long samples = 2'000'000;
+  const long samples = gdsmc::test::samples(2'000'000);  // 250000 under the sanitizers
   for (bool enskog : {false, true}) {
     const double scale = enskog ? 10.0 : 1.0;  // Enskog: solid fraction ~0.2, chi_kj 1.5-2.4
     const Mixture mix = make_mixture({1.0, 3.0}, {1.0, 1.6}, {0.02 * scale, 0.008 * scale}, alpha, enskog);
@@ -482,7 +483,7 @@ TEST(Theory, CoolingRateEntriesAgreeWithMaxwellianPairMonteCarlo) {
                     enskog ? "Enskog" : "dilute", k + 1, j + 1, a, chi, samples, mc, se, xi(k, j),
                     (xi(k, j) - mc) / se);
         EXPECT_NEAR(xi(k, j), mc, 4.0 * se) << (enskog ? "Enskog" : "dilute") << " k " << k << " j " << j;
-        EXPECT_LT(se, 0.01 * std::abs(mc));  // precise enough to see a few per cent in one entry
+        EXPECT_LT(se, gdsmc::test::precision_bound(0.01) * std::abs(mc));  // precise enough to see a few per cent in one entry
       }
   }
 }
