@@ -1003,7 +1003,7 @@ TEST(Collide, ManyBlocksMeetEventTargetsExactly) {
 TEST(Collide, BlockedThreeSpeciesLowrankMatchesUnblocked) {
   // Three species: the block kernel's one-word draw then uses an alias table of 16 cells for the 9
   // pairs (7 of zero weight) and 12 coin bits (collide.cpp, set_block_lowrank). The share of each
-  // species pair's events and each T_k, blocked against unblocked, over 16 replicas.
+  // species pair's events and each T_k, blocked against unblocked, over 16 replicas (8 under the sanitizers).
   species::PairMatrix alpha(3, 0.9);
   alpha(0, 2) = alpha(2, 0) = 0.7;
   const auto mix = species::make_mixture({1.0, 2.0, 4.0}, {1.0, 1.3, 1.6}, {0.006, 0.004, 0.003}, alpha, false);
