@@ -11,6 +11,7 @@
 /// measured standard errors, only a weaker test of the physics, which the optimised build's run
 /// checks in full.
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 
@@ -50,7 +51,7 @@ inline double precision_bound(double full_bound) {
 /// fewer than 8 would make a 4-SE bound loose on its own scale (Student's t with few degrees of
 /// freedom), not just less powerful.
 inline std::size_t replicas(std::size_t full) {
-  return sanitized ? (full / 2 < 8 ? (full < 8 ? full : 8) : full / 2) : full;
+  return sanitized ? std::min(full, std::max<std::size_t>(8, full / 2)) : full;
 }
 
 }  // namespace gdsmc::test
