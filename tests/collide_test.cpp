@@ -488,18 +488,26 @@ TEST(Collide, BlocksRestoreAndStopAtStepEnds) {
     EXPECT_EQ(a.counters().events, 40000u);
     EXPECT_TRUE(a.advance(1e9, 41000, false));  // a soft target: met at a step end
     EXPECT_GE(a.counters().events, 41000u);
-    // A soft target with a hard limit beyond it (a progress chunk inside a sample, whose steps bring
-    // ~2000 events here): the soft one is met at a step end, the limit never passed, then met exactly.
-    for (int chunk = 0; chunk < 6; ++chunk) {
-      const std::uint64_t before = a.counters().events, limit = 49000;
+    // A soft target with a hard limit beyond it (a progress chunk inside a sample; a step far from
+    // an exact target brings ~11000 events here, 5.6 collisions per particle, header "Step length"):
+    // the soft one is met at a step end, the limit never passed, then met exactly.
+    const std::uint64_t limit = a.counters().events + 30000;
+    for (int chunk = 0; chunk < 12; ++chunk) {
+      const std::uint64_t before = a.counters().events;
       if (before >= limit) break;
       EXPECT_TRUE(a.advance(1e9, std::min<std::uint64_t>(before + 10, limit), false, limit));
       EXPECT_LE(a.counters().events, limit);
     }
-    EXPECT_TRUE(a.advance(1e9, 49000, false, 49000));
-    EXPECT_EQ(a.counters().events, 49000u);
-    EXPECT_TRUE(a.advance(1e9, 1000000, false, 52000));  // a soft target far beyond the limit
-    EXPECT_EQ(a.counters().events, 52000u);
+    EXPECT_TRUE(a.advance(1e9, limit, false, limit));
+    EXPECT_EQ(a.counters().events, limit);
+    EXPECT_TRUE(a.advance(1e9, 1000000, false, limit + 3000));  // a soft target far beyond the limit
+    EXPECT_EQ(a.counters().events, limit + 3000);
+    // An exact target given inside a step (sized without it) that its rest would pass: met exactly.
+    a.advance(a.time() + 1e9, UINT64_MAX, true, UINT64_MAX, true);  // to the end of a (long) step
+    a.advance(a.time() + 0.2 * (a.mean_step()));  // inside the next
+    const std::uint64_t inside = a.counters().events;
+    EXPECT_TRUE(a.advance(1e9, inside + 4000));
+    EXPECT_EQ(a.counters().events, inside + 4000);
     a.advance(a.time() + 0.37 * a.mean_step());  // inside a step
     const Collider::State saved = a.state();
     auto sys_b = sys_a;

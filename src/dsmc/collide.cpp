@@ -272,6 +272,19 @@ void Collider::use_blocks(std::size_t block_size) {
     scattered_[k] = sys_.count[k] < min_slice * blocks;
     scattered_any_ = scattered_any_ || scattered_[k];
   }
+  // Collisions per particle a blocked step aims at (header "Blocks", "Step length"): sqrt(2 / gamma),
+  // gamma = max (1 - alpha_kj^2)/3 the fraction of the energy that one collision per particle
+  // dissipates at most (docs/schemes.md, "Cache blocks"), at most block_step_collisions_max.
+  double cooling = 0.0;
+  for (std::size_t k = 0; k < s_ && !viscoelastic_; ++k)
+    for (std::size_t j = 0; j < s_; ++j) {
+      const double alpha = mix_.restitution(k, j);
+      cooling = std::max(cooling, (1.0 - alpha * alpha) / 3.0);
+    }
+  block_step_collisions_ = viscoelastic_ ? 0.0
+                           : cooling > 2.0 / (block_step_collisions_max * block_step_collisions_max)
+                               ? std::sqrt(2.0 / cooling)
+                               : block_step_collisions_max;
   // Block j holds the particles dealt to it by remix(): ceil((N_k - j)/blocks) of a dealt species k;
   // a scattered species' counts are drawn here for the first step (its particles' order is the
   // initial one, independent of their velocities) and at every remix.
@@ -394,8 +407,22 @@ void Collider::set_whole_gas_bound() {
   rate_ = 0.5 * static_cast<double>(sys_.size()) * mix_.total_density() * bound_;
 }
 
+double Collider::block_step_length(double rate) const {
+  // Header "Blocks", "Step length": block_steps majorant mean free times N/(2R), or as many as make
+  // block_step_collisions_ collisions per particle at the last step's acceptance (one mean free time
+  // brings `acceptance` collisions per particle) when that is more; times step_fraction; at most
+  // max_block_step_candidates candidates.
+  const double n_total = static_cast<double>(sys_.size());
+  double free_times = block_steps;
+  if (!framed_ && block_step_collisions_ > 0.0 && step_acceptance_ > 0.0)
+    free_times = std::max(free_times, block_step_collisions_ / step_acceptance_);
+  const double step = free_times * step_fraction_ * n_total / (2.0 * rate);
+  return std::min(step, max_block_step_candidates / rate);
+}
+
 bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool exact_events,
-                              std::uint64_t event_limit) {
+                              std::uint64_t event_limit, bool to_step_end) {
+  const double entry_time = time_;
   // The target met exactly: the exact one, else the hard limit beyond a soft one.
   const std::uint64_t exact_target = exact_events ? std::min(event_target, event_limit) : event_limit;
   const std::uint64_t any_target = std::min(event_target, event_limit);
@@ -403,10 +430,21 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
   const double n_total = static_cast<double>(sys_.size());
   const double n = mix_.total_density();
   const double cross_section = cross_section_[0];  // one species: the tables always exist
+  // An exact target given inside a blocked step (which was sized without it): the step ends here,
+  // where every block is at time_, unless the rest of it surely stays below the target (its events
+  // at the step's rate so far, which only falls within a step, plus the margins below).
+  if (exact_target != UINT64_MAX && counters_.steps > 0 && !whole_step_ && time_ > step_start_ &&
+      time_ < next_step_time_ && counters_.events < exact_target) {
+    const double remaining = static_cast<double>(exact_target - counters_.events);
+    const double so_far = static_cast<double>(counters_.events - step_events_start_);
+    const double rest = so_far / (time_ - step_start_) * (next_step_time_ - time_);
+    if (so_far == 0.0 || 1.1 * rest + 8.0 * std::sqrt(rest) + 16.0 > remaining) next_step_time_ = time_;
+  }
   while (time_ < t_target) {
     if (time_ >= next_step_time_) {
       // Events are checked between steps only: all blocks are then at the same time.
       if (counters_.events >= any_target) return true;
+      if (to_step_end && time_ > entry_time) return false;  // one step (or the rest of one) done
       if (counters_.steps > 0) {  // the acceptance of the step that ended, for the next decision
         const auto candidates = counters_.candidates - step_candidates_start_;
         if (candidates > 0)
@@ -418,7 +456,7 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
       if (counters_.steps == 0)
         for (std::size_t j = 0; j < blocks; ++j) set_block_max_speed2(j, block_max_speed2_.data() + j * s_);
       // The step from the largest block bounds so far, an upper bound of the gas's vmax_k (the blocks'
-      // bounds are recomputed when visited): dt = block_steps step_fraction / nu_max.
+      // bounds are recomputed when visited): dt = block_step_length().
       for (std::size_t k = 0; k < s_; ++k) {
         double global = 0.0;
         for (std::size_t j = 0; j < blocks; ++j) global = std::max(global, block_max_speed2_[j * s_ + k]);
@@ -439,7 +477,7 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
         time_ = t_target;
         return false;
       }
-      double step = block_steps * step_fraction_ * n_total / (2.0 * rate);
+      double step = block_step_length(rate);
       // Near an exact event target (header "Blocks"): a blocked step is shortened so that its events
       // (its candidates R dt times the last step's acceptance, plus 10 % and 8 standard deviations)
       // stay below those left; the first step, with no acceptance measured yet, takes acceptance 1,
@@ -449,12 +487,20 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
       // shortened blocked step costs a remix and a pass for the bounds (about 5 ns a particle), a
       // whole-gas event about 0.15 us more than a blocked one (the velocities out of the cache), which
       // break even near N/30 events; the shortened steps bring the events left down about tenfold each.
+      // A step longer than block_steps mean free times (block_step_length) is taken only while an
+      // exact target is out of its reach: within a long step the acceptance falls (the gas cools, bounds
+      // are raised), so its mean underestimates the next step's, and a step after a long one takes
+      // acceptance 1 (a bound) instead; the approach runs steps of block_steps as before.
       whole_step_ = false;
       if (exact_target != UINT64_MAX) {
         const double remaining = static_cast<double>(exact_target - counters_.events);
-        const double acceptance = step_acceptance_ > 0.0 ? step_acceptance_ : 1.0;
+        const double short_candidates = block_steps * step_fraction_ * n_total / 2.0;
+        const bool after_long = static_cast<double>(counters_.candidates - step_candidates_start_) > 1.01 * short_candidates;
+        const double acceptance = step_acceptance_ > 0.0 && !after_long ? step_acceptance_ : 1.0;
+        const auto too_many = [&](double mu) { return 1.1 * mu + 8.0 * std::sqrt(mu) + 16.0 > remaining; };
+        if (too_many(acceptance * rate * step)) step = std::min(step, short_candidates / rate);
         const double expected = acceptance * rate * step;
-        if (1.1 * expected + 8.0 * std::sqrt(expected) + 16.0 > remaining) {
+        if (too_many(expected)) {
           // the largest mu with 1.1 mu + 8 sqrt(mu) + 16 <= remaining (a quadratic in sqrt(mu))
           const double root = (-8.0 + std::sqrt(std::max(0.0, 64.0 - 4.4 * (16.0 - remaining)))) / 2.2;
           const double fits = root > 0.0 ? root * root : 0.0;
@@ -602,6 +648,9 @@ void Collider::run_block_one_species(double t_stop) {
   // and (g.e) e without e (hemisphere_projection), the same collision as hemisphere_normal's e gives.
   // Framed (header, "Frame"): g = G (u_a - u_b), the bound times ||G||, the impulse mapped back with
   // G^-1 (linear, so applied to (g.e) e itself), the change of Q summed here and added at the end.
+  // The block's stream in a local copy, written back at the end (as run_block_mixture): its state
+  // then stays in registers instead of being stored at every draw. The same draws.
+  rng::Xoshiro256pp gen = gen_;
   const auto first = static_cast<std::uint32_t>(range_first_);
   const auto n = static_cast<std::uint32_t>(range_count_);
   particles::Vec3* v = sys_.v.data() + first;
@@ -613,7 +662,7 @@ void Collider::run_block_one_species(double t_stop) {
   std::array<std::uint32_t, 2 * block_lookahead<Framed>> ahead;
   const auto draw = [&](std::size_t slot) {
     std::uint32_t a, b;
-    gen_.below_pair(n, n - 1, a, b);
+    gen.below_pair(n, n - 1, a, b);
     b += b >= a;
     ahead[2 * slot] = a;
     ahead[2 * slot + 1] = b;
@@ -650,11 +699,11 @@ void Collider::run_block_one_species(double t_stop) {
       to_actual<Framed>(gx, gy, gz);
       const double g2 = gx * gx + gy * gy + gz * gz;
       // Accept with |g| / (2 vmax_b) = pi sigma^2 chi |g| / B_b (\ref sch_majorant "docs/schemes.md"), compared squared.
-      const double threshold = gen_.uniform() * limit;
+      const double threshold = gen.uniform() * limit;
       if (threshold * threshold >= g2) continue;
       if (g2 > limit * limit) [[unlikely]] note_overshoot(std::sqrt(g2) / limit);
       double px, py, pz;
-      const double g_dot_e2 = hemisphere_projection(gen_, gx, gy, gz, std::sqrt(g2), px, py, pz);
+      const double g_dot_e2 = hemisphere_projection(gen, gx, gy, gz, std::sqrt(g2), px, py, pz);
       if (g_dot_e2 == 0.0) continue;
       if constexpr (Track) {
         const double t_collision = t0 + static_cast<double>(c + 1) * dt_candidate;
@@ -696,6 +745,7 @@ void Collider::run_block_one_species(double t_stop) {
     time_ = t_stop;
     break;
   }
+  gen_ = gen;
   block_speed2_[0] = max_speed2;
   if constexpr (Framed)
     for (std::size_t q = 0; q < 4; ++q) moments_[q] += mass * moments[q];
@@ -1091,8 +1141,9 @@ void Collider::collide_in_frame(std::size_t a, std::size_t b, std::uint32_t k, s
   count_event(k, j);
 }
 
-bool Collider::advance(double t_target, std::uint64_t event_target, bool exact_events, std::uint64_t event_limit) {
-  if (!block_first_.empty()) return advance_blocks(t_target, event_target, exact_events, event_limit);
+bool Collider::advance(double t_target, std::uint64_t event_target, bool exact_events, std::uint64_t event_limit,
+                       bool to_step_end) {
+  if (!block_first_.empty()) return advance_blocks(t_target, event_target, exact_events, event_limit, to_step_end);
   event_target = std::min(event_target, event_limit);  // without blocks every target is met exactly
   while (time_ < t_target) {
     if (counters_.events >= event_target) return true;

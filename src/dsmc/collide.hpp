@@ -90,10 +90,16 @@
  * N_b - 1 instead of N - 1, a finite-N effect of order 1/N_b (block_size 32768 by default); the
  * validation cases `*_blocks_quick` (haff_cooling, collision_rate) compare blocked runs with the
  * same theory at the same tolerances. With one species the rank-3 majorant of `lowrank` is the
- * uniform one, so both schemes run the same blocked loop. A blocked step is block_steps = 5 majorant
- * mean free times long (times step_fraction), about one collision per particle, which repays
- * bringing a block into the cache; the block's bound is recomputed exactly at its first visit in a
- * step (a pass in order over the block, which is also what brings it into the cache). Event targets
+ * uniform one, so both schemes run the same blocked loop. The block's bound is recomputed exactly at
+ * its first visit in a step (a pass in order over the block, which is also what brings it into the
+ * cache). **Step length** (block_step_length; \ref sch_blocks "docs/schemes.md", "Step length"): a
+ * step costs a remix and that pass, and within it a block's bound is only raised, so that it loosens as
+ * the gas cools; one collision per particle dissipates at most gamma = max (1 - alpha_kj^2)/3 of the
+ * energy, and a step of c = min(sqrt(2/gamma), 6) collisions per particle balances the two (the measured
+ * remix-and-pass cost, half that of one collision per particle): c/p majorant mean free times at the
+ * last step's acceptance p, never less than block_steps = 5 (about one collision per particle), times
+ * step_fraction, at most max_block_step_candidates = 2^24 candidates. Viscoelastic restitution and
+ * frames keep block_steps. The length sets when bounds are refreshed and blocks remixed, not the process. Event targets
  * are met exactly all the same (collision-driven runs, `collisions_per_particle`): at the start of a
  * step, when fewer events are left to the target than the step could bring (its candidates R dt times
  * the acceptance of the last step, 1 for the first step of a run, plus 10 % and 8 standard
@@ -401,9 +407,12 @@ class Collider {
   /// `exact_events` (a soft target: a progress or checkpoint chunk) it is checked at the end of
   /// each blocked step only and may be passed by up to one step's events. `event_limit` is a hard
   /// target beyond a soft one (the sample's own event target): never passed, met exactly as an exact
-  /// `event_target` is, so that a soft chunk's step cannot run past it.
+  /// `event_target` is, so that a soft chunk's step cannot run past it. With blocks and `to_step_end`
+  /// it also stops at the end of the blocked step under way (or of the one that starts now): a chunk
+  /// of at most max_block_step_candidates candidates that never splits a step (header, "Blocks");
+  /// without blocks `to_step_end` is ignored.
   bool advance(double t_target, std::uint64_t event_target = UINT64_MAX, bool exact_events = true,
-               std::uint64_t event_limit = UINT64_MAX);
+               std::uint64_t event_limit = UINT64_MAX, bool to_step_end = false);
 
   /// The velocities were changed from outside between two advance() calls (the streaming of a
   /// shear flow, a thermostat's rescaling): the largest speeds and the bounds are recomputed
@@ -487,7 +496,10 @@ class Collider {
   int run_substep(double t_stop, std::uint64_t event_target, TryCandidate&& try_candidate);
   template <bool Framed>
   int run_majorant(double t_stop, std::uint64_t event_target);  // returns a Stop (collide.cpp)
-  bool advance_blocks(double t_target, std::uint64_t event_target, bool exact_events, std::uint64_t event_limit);
+  bool advance_blocks(double t_target, std::uint64_t event_target, bool exact_events, std::uint64_t event_limit,
+                      bool to_step_end);
+  /// The length of a blocked step that starts now at candidate rate `rate` (header "Blocks", "Step length").
+  double block_step_length(double rate) const;
   void set_whole_gas_bound();       ///< bound_, rate_ and range of a whole-gas step (with blocks)
   bool whole_step_ = false;         ///< with blocks: this step runs on the whole gas (near an event target)
   double step_acceptance_ = 0.0;    ///< with blocks: events per candidate in the last step
@@ -578,6 +590,12 @@ class Collider {
   /// With blocks a step is this many majorant mean free times (times step_fraction): each block
   /// is then visited for about one collision per particle, which repays bringing it into the cache.
   static constexpr double block_steps = 5.0;
+  /// ... or longer, to block_step_collisions_ collisions per particle (header "Blocks", "Step length"),
+  /// which is at most this many (an elastic gas's bounds do not loosen within a step) ...
+  static constexpr double block_step_collisions_max = 6.0;
+  double block_step_collisions_ = 0.0;  ///< 0: block_steps mean free times (viscoelastic restitution)
+  /// ... and at most this many candidates (about 0.3 s of work; a chunk of the simulation's loop).
+  static constexpr double max_block_step_candidates = 16777216.0;
   std::size_t range_first_ = 0, range_count_ = 0;
   deal::Workspace remix_workspace_;  ///< remix() deals the particles in place with this (deal.hpp)
   template <bool Framed>

@@ -987,19 +987,19 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
   };
   const std::function<Snapshot()> snapshot = [&] { return make_snapshot(sys, collider, p, result); };
   // The end of the next advance() towards `target` (chunk_end_time): ~1e5 candidates, or one time
-  // step's candidates when that is more (N/2 step_fraction), or with cache blocks four steps' (of
-  // block_steps = 5 mean free times each: their speed comes from visiting each block once per step,
-  // collide.hpp "Blocks", and a chunk end within a step costs a second visit), at most 2^24 (about a
-  // second of work).
+  // step's candidates when that is more (N/2 step_fraction), at most 2^24 (about a second of work).
+  // With cache blocks a chunk is one blocked step instead (the collider's `to_step_end`; at most 2^24
+  // candidates, collide.hpp "Blocks"): their speed comes from visiting each block once per step, and a
+  // chunk end within a step would cost a second visit.
   // A gas at rest (no candidates: the collider jumps to its target) goes straight there; with blocks
   // the collider does that itself.
-  const double step_candidates = 0.5 * static_cast<double>(n_total) * config.dsmc.step_fraction *
-                                 (collider.blocks() > 1 ? 4.0 * 5.0 : 1.0);
+  const bool blocked = collider.blocks() > 1;
+  const double step_candidates = 0.5 * static_cast<double>(n_total) * config.dsmc.step_fraction;
   const double chunk = std::clamp(step_candidates, chunk_candidates, 16777216.0);
   const auto chunk_stop = [&](double target) {
     const bool still =
         collider.blocks() == 1 && collider.counters().steps > 0 && !(collider.candidate_rate() > 0.0);
-    return still ? target : chunk_end_time(collider.time(), collider.counters().candidates, target, chunk);
+    return still || blocked ? target : chunk_end_time(collider.time(), collider.counters().candidates, target, chunk);
   };
 
   for (; p.next_sample < n_samples; ++p.next_sample, p.in_sample = false, safe_point(snapshot)) {
@@ -1019,7 +1019,7 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
         *config.output.msd_start_time <= t_target) {
       const double start = *config.output.msd_start_time;  // stop exactly at the start
       while (collider.time() < start && collider.counters().events < event_target) {
-        collider.advance(chunk_stop(start), event_target);
+        collider.advance(chunk_stop(start), event_target, true, UINT64_MAX, blocked);
         if (options.interrupt && options.interrupt->load()) throw Interrupted();
       }
       if (collider.time() >= *config.output.msd_start_time) {
@@ -1035,7 +1035,7 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
       const std::uint64_t chunk_end = event_target - done > kChunk ? done + kChunk : event_target;
       // The sample's own target is exact; a chunk's end is soft (blocks may pass it, collide.hpp).
       // ... and at most ~1e5 candidates; the sample's target is never passed, even by a soft chunk's step.
-      collider.advance(chunk_stop(t_target), chunk_end, chunk_end == event_target, event_target);
+      collider.advance(chunk_stop(t_target), chunk_end, chunk_end == event_target, event_target, blocked);
       if (collider.time() >= t_target || collider.counters().events >= event_target) break;
       if (options.interrupt && options.interrupt->load()) throw Interrupted();
       report(std::min(fraction_done(collider), 0.999));
