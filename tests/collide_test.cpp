@@ -1001,6 +1001,24 @@ TEST(Collide, ManyBlocksMeetEventTargetsExactly) {
   EXPECT_EQ(c.counters().overshoots, 0u);
 }
 
+// Long blocked steps near exact targets (header "Blocks", "Step length"): a strongly inelastic gas
+// (alpha = 0.3: steps of sqrt(2/gamma) = 2.5 collisions per particle, over which the acceptance falls
+// by about a third) large enough that the margins of 10 % and 8 standard deviations are small, driven
+// by events only; each target is met exactly (a step after a long one takes acceptance 1, since the
+// long step's mean acceptance underestimates the next one's), and the blocks passed none.
+TEST(Collide, LongBlockedStepsMeetEventTargetsExactly) {
+  const auto mix = one_species(0.3);
+  auto sys = initial(mix, {200000}, {1.0}, 8);
+  Collider c(Scheme::majorant, mix, sys, rng::make_stream(8, 0, rng::Purpose::collisions), 1.0);
+  c.use_blocks(10000);
+  ASSERT_EQ(c.blocks(), 20u);
+  for (std::uint64_t target : {1000000u, 2000000u, 2500000u}) {
+    EXPECT_TRUE(c.advance(1e12, target));
+    ASSERT_EQ(c.counters().events, target);
+  }
+  EXPECT_EQ(c.counters().overshoots, 0u);
+}
+
 // Mixtures in blocks (header "Blocks": a slice of each species per block). Binary mixture (masses 1
 // and 4, diameters 1 and 2, alpha 0.9/0.8/0.7), N = 12000 in 4 blocks, 16 replicas (8 under the sanitizers: sanitizer_scale.hpp), time-driven to
 // about 8 collisions per particle and then collision-driven to an exact target: T_1, T_2, the pair

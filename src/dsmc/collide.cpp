@@ -410,14 +410,13 @@ void Collider::set_whole_gas_bound() {
 double Collider::block_step_length(double rate) const {
   // Header "Blocks", "Step length": block_steps majorant mean free times N/(2R), or as many as make
   // block_step_collisions_ collisions per particle at the last step's acceptance (one mean free time
-  // brings `acceptance` collisions per particle) when that is more; times step_fraction; at most
-  // max_block_step_candidates candidates.
+  // brings `acceptance` collisions per particle), at most max_block_step_candidates candidates, when
+  // that is more; times step_fraction.
   const double n_total = static_cast<double>(sys_.size());
-  double free_times = block_steps;
-  if (!framed_ && block_step_collisions_ > 0.0 && step_acceptance_ > 0.0)
-    free_times = std::max(free_times, block_step_collisions_ / step_acceptance_);
-  const double step = free_times * step_fraction_ * n_total / (2.0 * rate);
-  return std::min(step, max_block_step_candidates / rate);
+  const double short_step = block_steps * step_fraction_ * n_total / (2.0 * rate);
+  if (framed_ || block_step_collisions_ <= 0.0 || step_acceptance_ <= 0.0) return short_step;
+  const double long_step = block_step_collisions_ / step_acceptance_ * step_fraction_ * n_total / (2.0 * rate);
+  return std::max(short_step, std::min(long_step, max_block_step_candidates / rate));
 }
 
 bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool exact_events,
@@ -498,7 +497,7 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
         const bool after_long = static_cast<double>(counters_.candidates - step_candidates_start_) > 1.01 * short_candidates;
         const double acceptance = step_acceptance_ > 0.0 && !after_long ? step_acceptance_ : 1.0;
         const auto too_many = [&](double mu) { return 1.1 * mu + 8.0 * std::sqrt(mu) + 16.0 > remaining; };
-        if (too_many(acceptance * rate * step)) step = std::min(step, short_candidates / rate);
+        if (too_many(acceptance * rate * step)) step = std::min(step, short_candidates / rate);  // (never longer)
         const double expected = acceptance * rate * step;
         if (too_many(expected)) {
           // the largest mu with 1.1 mu + 8 sqrt(mu) + 16 <= remaining (a quadratic in sqrt(mu))

@@ -98,7 +98,9 @@
  * energy, and a step of c = min(sqrt(2/gamma), 6) collisions per particle balances the two (the measured
  * remix-and-pass cost, half that of one collision per particle): c/p majorant mean free times at the
  * last step's acceptance p, never less than block_steps = 5 (about one collision per particle), times
- * step_fraction, at most max_block_step_candidates = 2^24 candidates. Viscoelastic restitution and
+ * step_fraction, and of at most max_block_step_candidates = 2^24 candidates unless block_steps is more
+ * (N > 6.7e6: the steps of before, which the simulation's chunks of 2^25 candidates split only above
+ * N = 1.3e7). Viscoelastic restitution and
  * frames keep block_steps. The length sets when bounds are refreshed and blocks remixed, not the process. Event targets
  * are met exactly all the same (collision-driven runs, `collisions_per_particle`): at the start of a
  * step, when fewer events are left to the target than the step could bring (its candidates R dt times
@@ -408,9 +410,9 @@ class Collider {
   /// each blocked step only and may be passed by up to one step's events. `event_limit` is a hard
   /// target beyond a soft one (the sample's own event target): never passed, met exactly as an exact
   /// `event_target` is, so that a soft chunk's step cannot run past it. With blocks and `to_step_end`
-  /// it also stops at the end of the blocked step under way (or of the one that starts now): a chunk
-  /// of at most max_block_step_candidates candidates that never splits a step (header, "Blocks");
-  /// without blocks `to_step_end` is ignored.
+  /// it also stops at the end of the blocked step under way (or of the one that starts now), so that
+  /// a chunk that ends there never splits a step (header, "Blocks"); without blocks `to_step_end` is
+  /// ignored.
   bool advance(double t_target, std::uint64_t event_target = UINT64_MAX, bool exact_events = true,
                std::uint64_t event_limit = UINT64_MAX, bool to_step_end = false);
 
@@ -594,7 +596,7 @@ class Collider {
   /// which is at most this many (an elastic gas's bounds do not loosen within a step) ...
   static constexpr double block_step_collisions_max = 6.0;
   double block_step_collisions_ = 0.0;  ///< 0: block_steps mean free times (viscoelastic restitution)
-  /// ... and at most this many candidates (about 0.3 s of work; a chunk of the simulation's loop).
+  /// ... and of at most this many candidates (about 0.3 s of work) when longer than block_steps.
   static constexpr double max_block_step_candidates = 16777216.0;
   std::size_t range_first_ = 0, range_count_ = 0;
   deal::Workspace remix_workspace_;  ///< remix() deals the particles in place with this (deal.hpp)

@@ -988,18 +988,19 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
   const std::function<Snapshot()> snapshot = [&] { return make_snapshot(sys, collider, p, result); };
   // The end of the next advance() towards `target` (chunk_end_time): ~1e5 candidates, or one time
   // step's candidates when that is more (N/2 step_fraction), at most 2^24 (about a second of work).
-  // With cache blocks a chunk is one blocked step instead (the collider's `to_step_end`; at most 2^24
-  // candidates, collide.hpp "Blocks"): their speed comes from visiting each block once per step, and a
-  // chunk end within a step would cost a second visit.
+  // With cache blocks a chunk also ends at the end of a blocked step (the collider's `to_step_end`), and
+  // is at most 2^25 candidates: a blocked step of up to 2^24 (collide.hpp "Blocks", "Step length"; 5
+  // mean free times, 2.5 N candidates, when more) is then never split, since a chunk end within a step
+  // costs a second visit of every block, and Ctrl-C is still noticed within about half a second.
   // A gas at rest (no candidates: the collider jumps to its target) goes straight there; with blocks
   // the collider does that itself.
   const bool blocked = collider.blocks() > 1;
   const double step_candidates = 0.5 * static_cast<double>(n_total) * config.dsmc.step_fraction;
-  const double chunk = std::clamp(step_candidates, chunk_candidates, 16777216.0);
+  const double chunk = blocked ? 33554432.0 : std::clamp(step_candidates, chunk_candidates, 16777216.0);
   const auto chunk_stop = [&](double target) {
     const bool still =
         collider.blocks() == 1 && collider.counters().steps > 0 && !(collider.candidate_rate() > 0.0);
-    return still || blocked ? target : chunk_end_time(collider.time(), collider.counters().candidates, target, chunk);
+    return still ? target : chunk_end_time(collider.time(), collider.counters().candidates, target, chunk);
   };
 
   for (; p.next_sample < n_samples; ++p.next_sample, p.in_sample = false, safe_point(snapshot)) {
