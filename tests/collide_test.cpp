@@ -508,6 +508,17 @@ TEST(Collide, BlocksRestoreAndStopAtStepEnds) {
     const std::uint64_t inside = a.counters().events;
     EXPECT_TRUE(a.advance(1e9, inside + 4000));
     EXPECT_EQ(a.counters().events, inside + 4000);
+    // ... and given a few candidates into a step (its rate so far known from a handful of events),
+    // then two close targets after the step it ended (its acceptance from those few candidates).
+    for (int round = 0; round < 20; ++round) {
+      a.advance(a.time() + 1e9, UINT64_MAX, true, UINT64_MAX, true);  // to a step end
+      a.advance(a.time() + 2e-4 * a.mean_step());  // a few candidates into the next step
+      const std::uint64_t early = a.counters().events;
+      EXPECT_TRUE(a.advance(1e9, early + 2500));
+      EXPECT_EQ(a.counters().events, early + 2500);
+      EXPECT_TRUE(a.advance(1e9, early + 2700));
+      EXPECT_EQ(a.counters().events, early + 2700);
+    }
     a.advance(a.time() + 0.37 * a.mean_step());  // inside a step
     const Collider::State saved = a.state();
     auto sys_b = sys_a;

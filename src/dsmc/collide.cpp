@@ -430,14 +430,19 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
   const double n = mix_.total_density();
   const double cross_section = cross_section_[0];  // one species: the tables always exist
   // An exact target given inside a blocked step (which was sized without it): the step ends here,
-  // where every block is at time_, unless the rest of it surely stays below the target (its events
-  // at the step's rate so far, which only falls within a step, plus the margins below).
+  // where every block is at time_, unless the rest of it surely stays below the target: its events at
+  // the step's rate so far (which only falls within a step), that rate taken from the events so far
+  // plus 8 standard deviations and 16 (few events bound it loosely, so that a step only begun ends),
+  // plus the margins below. The next step then takes acceptance 1 (its last step was short).
   if (exact_target != UINT64_MAX && counters_.steps > 0 && !whole_step_ && time_ > step_start_ &&
       time_ < next_step_time_ && counters_.events < exact_target) {
     const double remaining = static_cast<double>(exact_target - counters_.events);
     const double so_far = static_cast<double>(counters_.events - step_events_start_);
-    const double rest = so_far / (time_ - step_start_) * (next_step_time_ - time_);
-    if (so_far == 0.0 || 1.1 * rest + 8.0 * std::sqrt(rest) + 16.0 > remaining) next_step_time_ = time_;
+    const double rest = (so_far + 8.0 * std::sqrt(so_far) + 16.0) / (time_ - step_start_) * (next_step_time_ - time_);
+    if (1.1 * rest + 8.0 * std::sqrt(rest) + 16.0 > remaining) {
+      counters_.step_sum -= next_step_time_ - time_;  // (the step is as long as it ran: mean_step())
+      next_step_time_ = time_;
+    }
   }
   while (time_ < t_target) {
     if (time_ >= next_step_time_) {
@@ -493,9 +498,13 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
       whole_step_ = false;
       if (exact_target != UINT64_MAX) {
         const double remaining = static_cast<double>(exact_target - counters_.events);
+        // (and a step after one of fewer than min(N/64, 4 N/K) candidates, e.g. one ended early by a
+        // target given inside it, whose acceptance is too uncertain: also acceptance 1)
         const double short_candidates = block_steps * step_fraction_ * n_total / 2.0;
-        const bool after_long = static_cast<double>(counters_.candidates - step_candidates_start_) > 1.01 * short_candidates;
-        const double acceptance = step_acceptance_ > 0.0 && !after_long ? step_acceptance_ : 1.0;
+        const auto last_candidates = static_cast<double>(counters_.candidates - step_candidates_start_);
+        const bool after_long = last_candidates > 1.01 * short_candidates;
+        const bool too_few = last_candidates < std::min(n_total / 64.0, 4.0 * n_total / static_cast<double>(blocks));
+        const double acceptance = step_acceptance_ > 0.0 && !after_long && !too_few ? step_acceptance_ : 1.0;
         const auto too_many = [&](double mu) { return 1.1 * mu + 8.0 * std::sqrt(mu) + 16.0 > remaining; };
         if (too_many(acceptance * rate * step)) step = std::min(step, short_candidates / rate);  // (never longer)
         const double expected = acceptance * rate * step;

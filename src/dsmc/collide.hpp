@@ -463,6 +463,12 @@ class Collider {
   /// Mean length of the time steps so far (0 before the first step).
   double mean_step() const { return counters_.steps ? counters_.step_sum / counters_.steps : 0.0; }
   double candidate_rate() const { return rate_; }
+  /// With blocks: the candidates per unit time of the blocked step under way, or of the one that just
+  /// ended at a step end (0 before the first candidate); the simulation sizes its chunks with it.
+  double recent_candidate_rate() const {
+    const double elapsed = time_ - step_start_;
+    return elapsed > 0.0 ? static_cast<double>(counters_.candidates - step_candidates_start_) / elapsed : 0.0;
+  }
 
   /// Everything that evolves during a run, for checkpoints. The bounds and samplers are not stored:
   /// they are functions of the speeds vmax_k (rebuilt exactly on restore), and so is every tree

@@ -989,9 +989,10 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
   // The end of the next advance() towards `target` (chunk_end_time): ~1e5 candidates, or one time
   // step's candidates when that is more (N/2 step_fraction), at most 2^24 (about a second of work).
   // With cache blocks a chunk also ends at the end of a blocked step (the collider's `to_step_end`), and
-  // is at most 2^25 candidates: a blocked step of up to 2^24 (collide.hpp "Blocks", "Step length"; 5
-  // mean free times, 2.5 N candidates, when more) is then never split, since a chunk end within a step
-  // costs a second visit of every block, and Ctrl-C is still noticed within about half a second.
+  // is at most 2^25 candidates at the rate of the last step (not the run's mean rate, which a cooling
+  // gas leaves far behind): a blocked step of up to 2^24 (collide.hpp "Blocks", "Step length"; 5 mean
+  // free times, 2.5 N candidates, when more) is then never split, since a chunk end within a step costs
+  // a second visit of every block, and Ctrl-C is still noticed within about half a second.
   // A gas at rest (no candidates: the collider jumps to its target) goes straight there; with blocks
   // the collider does that itself.
   const bool blocked = collider.blocks() > 1;
@@ -1000,7 +1001,10 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
   const auto chunk_stop = [&](double target) {
     const bool still =
         collider.blocks() == 1 && collider.counters().steps > 0 && !(collider.candidate_rate() > 0.0);
-    return still ? target : chunk_end_time(collider.time(), collider.counters().candidates, target, chunk);
+    if (still) return target;
+    if (const double rate = collider.recent_candidate_rate(); blocked && rate > 0.0)
+      return std::min(target, collider.time() + chunk / rate);
+    return chunk_end_time(collider.time(), collider.counters().candidates, target, chunk);
   };
 
   for (; p.next_sample < n_samples; ++p.next_sample, p.in_sample = false, safe_point(snapshot)) {
