@@ -15,6 +15,9 @@ namespace gdsmc::collide {
 
 namespace {
 enum class Stop { reached_time, bound_raised, reached_events };
+/// Near an exact event target with blocks (header "Blocks"): whether a step expected to bring mu
+/// events could reach the `remaining` ones, with 10 % and 8 standard deviations and 16 to spare.
+bool may_reach(double mu, double remaining) { return 1.1 * mu + 8.0 * std::sqrt(mu) + 16.0 > remaining; }
 }
 
 Scheme parse_scheme(const std::string& name) {
@@ -412,8 +415,11 @@ double Collider::block_step_length(double rate) const {
   // block_step_collisions_ collisions per particle at the last step's acceptance (one mean free time
   // brings `acceptance` collisions per particle), at most max_block_step_candidates candidates, when
   // that is more; times step_fraction.
+  // The first step, which the simulation's chunks cannot bound yet (they take the last step's rate),
+  // is at most max_block_step_candidates as well.
   const double n_total = static_cast<double>(sys_.size());
   const double short_step = block_steps * step_fraction_ * n_total / (2.0 * rate);
+  if (counters_.steps == 0) return std::min(short_step, max_block_step_candidates / rate);
   if (framed_ || block_step_collisions_ <= 0.0 || step_acceptance_ <= 0.0) return short_step;
   const double long_step = block_step_collisions_ / step_acceptance_ * step_fraction_ * n_total / (2.0 * rate);
   return std::max(short_step, std::min(long_step, max_block_step_candidates / rate));
@@ -439,7 +445,7 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
     const double remaining = static_cast<double>(exact_target - counters_.events);
     const double so_far = static_cast<double>(counters_.events - step_events_start_);
     const double rest = (so_far + 8.0 * std::sqrt(so_far) + 16.0) / (time_ - step_start_) * (next_step_time_ - time_);
-    if (1.1 * rest + 8.0 * std::sqrt(rest) + 16.0 > remaining) {
+    if (may_reach(rest, remaining)) {
       counters_.step_sum -= next_step_time_ - time_;  // (the step is as long as it ran: mean_step())
       next_step_time_ = time_;
     }
@@ -503,16 +509,16 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
         const double short_candidates = block_steps * step_fraction_ * n_total / 2.0;
         const auto last_candidates = static_cast<double>(counters_.candidates - step_candidates_start_);
         const bool after_long = last_candidates > 1.01 * short_candidates;
-        const bool too_few = last_candidates < std::min(n_total / 64.0, 4.0 * n_total / static_cast<double>(blocks));
+        const double fewest = std::min(n_total / 64.0, 4.0 * n_total / static_cast<double>(blocks));
+        const bool too_few = last_candidates < fewest;
         const double acceptance = step_acceptance_ > 0.0 && !after_long && !too_few ? step_acceptance_ : 1.0;
-        const auto too_many = [&](double mu) { return 1.1 * mu + 8.0 * std::sqrt(mu) + 16.0 > remaining; };
-        if (too_many(acceptance * rate * step)) step = std::min(step, short_candidates / rate);  // (never longer)
+        if (may_reach(acceptance * rate * step, remaining)) step = std::min(step, short_candidates / rate);  // (never longer)
         const double expected = acceptance * rate * step;
-        if (too_many(expected)) {
+        if (may_reach(expected, remaining)) {
           // the largest mu with 1.1 mu + 8 sqrt(mu) + 16 <= remaining (a quadratic in sqrt(mu))
           const double root = (-8.0 + std::sqrt(std::max(0.0, 64.0 - 4.4 * (16.0 - remaining)))) / 2.2;
           const double fits = root > 0.0 ? root * root : 0.0;
-          if (fits >= std::min(n_total / 64.0, 4.0 * n_total / static_cast<double>(blocks))) {
+          if (fits >= fewest) {
             step *= fits / expected;
           } else {
             whole_step_ = true;

@@ -98,9 +98,9 @@
  * energy, and a step of c = min(sqrt(2/gamma), 6) collisions per particle balances the two (the measured
  * remix-and-pass cost, half that of one collision per particle): c/p majorant mean free times at the
  * last step's acceptance p, never less than block_steps = 5 (about one collision per particle), times
- * step_fraction, and of at most max_block_step_candidates = 2^24 candidates unless block_steps is more
- * (N > 6.7e6: the steps of before, which the simulation's chunks of 2^25 candidates split only above
- * N = 1.3e7). Viscoelastic restitution and
+ * step_fraction, and of at most max_block_step_candidates = 3/4 of 2^24 candidates unless block_steps
+ * is more (N > 5e6: the steps of before, which the simulation's chunks of 2^24 candidates split as
+ * before above N = 6.7e6; the first step is capped too). Viscoelastic restitution and
  * frames keep block_steps. The length sets when bounds are refreshed and blocks remixed, not the process. Event targets
  * are met exactly all the same (collision-driven runs, `collisions_per_particle`): at the start of a
  * step, when fewer events are left to the target than the step could bring (its candidates R dt times
@@ -602,8 +602,10 @@ class Collider {
   /// which is at most this many (an elastic gas's bounds do not loosen within a step) ...
   static constexpr double block_step_collisions_max = 6.0;
   double block_step_collisions_ = 0.0;  ///< 0: block_steps mean free times (viscoelastic restitution)
-  /// ... and of at most this many candidates (about 0.3 s of work) when longer than block_steps.
-  static constexpr double max_block_step_candidates = 16777216.0;
+  /// ... and of at most this many candidates (3/4 of 2^24, about 0.25 s of work) when longer than
+  /// block_steps: the simulation's chunks of 2^24 candidates at the last step's rate then end at its
+  /// end, not just before it, even after the rate fell by a quarter from one step to the next.
+  static constexpr double max_block_step_candidates = 12582912.0;
   std::size_t range_first_ = 0, range_count_ = 0;
   deal::Workspace remix_workspace_;  ///< remix() deals the particles in place with this (deal.hpp)
   template <bool Framed>

@@ -989,15 +989,15 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
   // The end of the next advance() towards `target` (chunk_end_time): ~1e5 candidates, or one time
   // step's candidates when that is more (N/2 step_fraction), at most 2^24 (about a second of work).
   // With cache blocks a chunk also ends at the end of a blocked step (the collider's `to_step_end`), and
-  // is at most 2^25 candidates at the rate of the last step (not the run's mean rate, which a cooling
-  // gas leaves far behind): a blocked step of up to 2^24 (collide.hpp "Blocks", "Step length"; 5 mean
-  // free times, 2.5 N candidates, when more) is then never split, since a chunk end within a step costs
-  // a second visit of every block, and Ctrl-C is still noticed within about half a second.
+  // is at most 2^24 candidates at the rate of the last step (not the run's mean rate, which a cooling
+  // gas leaves far behind): a blocked step of up to 3/4 of that (collide.hpp "Blocks", "Step length")
+  // is then not split, since a chunk end within a step costs a second visit of every block, and Ctrl-C
+  // is noticed within 2^24 candidates (0.25-0.5 s).
   // A gas at rest (no candidates: the collider jumps to its target) goes straight there; with blocks
   // the collider does that itself.
   const bool blocked = collider.blocks() > 1;
   const double step_candidates = 0.5 * static_cast<double>(n_total) * config.dsmc.step_fraction;
-  const double chunk = blocked ? 33554432.0 : std::clamp(step_candidates, chunk_candidates, 16777216.0);
+  const double chunk = blocked ? 16777216.0 : std::clamp(step_candidates, chunk_candidates, 16777216.0);
   const auto chunk_stop = [&](double target) {
     const bool still =
         collider.blocks() == 1 && collider.counters().steps > 0 && !(collider.candidate_rate() > 0.0);
