@@ -1,13 +1,15 @@
 // Collision-kernel throughput: accepted collisions per second, candidate pairs per collision and the
 // cost of one candidate, for every blocked path of issue 11 and the unblocked `pairs`.
 //
-// usage: bench_collide [N] [alpha] [collisions_per_particle] [block_size] [paths] [rounds]
+// usage: bench_collide [N] [alpha] [collisions_per_particle] [block_size] [paths] [rounds] [sampler]
 //   block_size: default &dsmc's; 0: no blocks. Blocks apply to majorant and lowrank; pairs always runs
 //               unblocked.
 //   paths:      comma-separated names of the table below, or "all" (default: every path but the slow
 //               `pairs` ones at N > 1e5).
 //   rounds:     the paths run one after another this many times in one process (default 1); with more
 //               than one, each path's best (largest rate, smallest ns/cand) and median figures follow.
+//   sampler:    `cheaper` (default: a mixture's blocks run the cheaper of the two samplers, as a run does;
+//               collide.hpp "Mixtures in blocks") or `scheme` (the path's own scheme's sampler: its kernel).
 // Default: the issue's reference case, N = 1e6, alpha = 0.9, 10 collisions per particle timed. The gases
 // are those of bench_paths (one species; binary, masses 1 and 4, diameters 1 and 1.5; the same at packing
 // fraction 0.1, Enskog; `many_*`: 20 species, m_k = k, sigma_k = k^(1/3), n_k ~ k^-3). "cand/coll" is candidates per accepted collision (1/acceptance), "ns/cand" the
@@ -67,13 +69,17 @@ species::Mixture gas_of(int gas, double alpha) {
   return species::make_mixture({1.0, 4.0}, {1.0, 1.5}, {n_k, n_k}, species::PairMatrix(2, alpha), gas == 2);
 }
 
-Result measure(const Path& path, double alpha, std::size_t n, double per_particle, std::size_t block_size) {
+Result measure(const Path& path, double alpha, std::size_t n, double per_particle, std::size_t block_size,
+               bool scheme_sampler) {
   const species::Mixture mix = gas_of(path.gas, alpha);
   auto init = rng::make_stream(1, 0, rng::Purpose::initial_state);
   auto sys = particles::make_system(mix, particles::species_counts(n, mix), std::vector<double>(mix.size(), 1.0),
                                     particles::InitialDistribution::maxwell, init);
   collide::Collider collider(path.scheme, mix, sys, rng::make_stream(1, 0, rng::Purpose::collisions), 1.0);
   collider.use_blocks(block_size);
+  if (scheme_sampler)
+    collider.set_block_sampler(path.scheme == collide::Scheme::lowrank ? collide::Collider::BlockSampler::lowrank
+                                                                       : collide::Collider::BlockSampler::majorant);
   // Warm up caches and bounds (the first step runs on the whole gas), then time by t_end as a
   // time-driven run does: the time of per_particle collisions per particle at the warm-up's rate.
   collider.advance(1e300, static_cast<std::uint64_t>(0.2 * n));
@@ -111,6 +117,11 @@ int main(int argc, char** argv) {
   const std::size_t block_size = argc > 4 ? std::strtoull(argv[4], nullptr, 10) : io::config::Dsmc{}.block_size;
   const std::string selected = argc > 5 ? argv[5] : "";
   const int rounds = argc > 6 ? std::max(1, std::atoi(argv[6])) : 1;
+  const std::string sampler = argc > 7 ? argv[7] : "cheaper";
+  if (sampler != "cheaper" && sampler != "scheme") {
+    std::fprintf(stderr, "bench_collide: sampler must be 'cheaper' or 'scheme', not '%s'\n", sampler.c_str());
+    return 2;
+  }
   const std::vector<Path> all = {
       {"one_majorant", collide::Scheme::majorant, 0},    {"one_lowrank", collide::Scheme::lowrank, 0},
       {"binary_majorant", collide::Scheme::majorant, 1}, {"binary_lowrank", collide::Scheme::lowrank, 1},
@@ -145,7 +156,7 @@ int main(int argc, char** argv) {
   std::map<std::string, std::vector<Result>> results;
   for (int round = 0; round < rounds; ++round)
     for (const Path& p : paths) {
-      const Result r = measure(p, alpha, n, per_particle, block_size);
+      const Result r = measure(p, alpha, n, per_particle, block_size, sampler == "scheme");
       results[p.name].push_back(r);
       std::printf("%-16s %14.4g %10.3f %9.2f %9.2f %10.1f\n", p.name.c_str(), r.events_per_second,
                   r.candidates_per_event, r.ns_per_candidate, r.seconds, r.bytes_per_particle);

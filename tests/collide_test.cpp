@@ -33,6 +33,13 @@ const char* name(Scheme s) {
   return s == Scheme::majorant ? "majorant" : s == Scheme::pairs ? "pairs" : "lowrank";
 }
 
+// The kernel tests below compare a scheme's own block sampler with its unblocked loops: the blocks then
+// run that sampler rather than the cheaper of the two (Collider::BlockSampler; the choice itself is
+// tested in Collide.BlocksRunTheCheaperSampler).
+void follow_scheme(Collider& c, Scheme s) {
+  c.set_block_sampler(s == Scheme::lowrank ? Collider::BlockSampler::lowrank : Collider::BlockSampler::majorant);
+}
+
 species::Mixture one_species(double alpha, double n = 0.01) {
   return species::make_mixture({1.0}, {1.0}, {n}, species::PairMatrix(1, alpha), false);
 }
@@ -467,6 +474,7 @@ TEST(Collide, BlocksRestoreAndStopAtStepEnds) {
     auto sys = initial(mix2, {2000, 2000}, {1.0, 1.0}, 3);
     Collider c(scheme, mix2, sys, rng::make_stream(3, 0, rng::Purpose::collisions), 1.0);
     c.use_blocks(1000);
+    follow_scheme(c, scheme);
     // mixtures are blocked with majorant and lowrank, not pairs (species slices, header "Blocks")
     EXPECT_EQ(c.blocks(), scheme != Scheme::pairs ? 4u : 1u) << name(scheme);
   }
@@ -663,6 +671,7 @@ TEST(Collide, BlockThreadsAreBitwiseTheSame) {
     if (track) particles::start_tracking(sys, 0.0);
     Collider c(scheme, mix, sys, rng::make_stream(8, 0, rng::Purpose::collisions), 1.0);
     c.use_blocks(1000);
+    follow_scheme(c, scheme);
     c.use_threads(threads);
     EXPECT_GT(c.blocks(), 2u);
     if (track) {
@@ -862,6 +871,7 @@ TEST(Collide, ShearedFrameInBlocks) {
     auto run = [&](int threads, particles::System& u) {
       Collider collider(scheme, *mix, u, rng::make_stream(31, 0, rng::Purpose::collisions), 0.5);
       collider.use_blocks(2000);
+      follow_scheme(collider, scheme);
       collider.use_threads(threads);
       EXPECT_EQ(collider.blocks(), 4u);
       collider.set_frame(s, c);
@@ -891,6 +901,7 @@ TEST(Collide, ShearedFrameInBlocks) {
     {
       Collider collider(scheme, *mix, u_one, rng::make_stream(32, 0, rng::Purpose::collisions), 0.5);
       collider.use_blocks(2000);
+      follow_scheme(collider, scheme);
       collider.set_frame(s, c);
       collider.advance(150.0, 200000);
       EXPECT_GT(collider.counters().events, 20000u);
@@ -1053,6 +1064,7 @@ TEST(Collide, BlockedThreeSpeciesLowrankMatchesUnblocked) {
       auto sys = initial(mix, counts, {1.0, 1.0, 1.0}, 300 + r);
       Collider c(Scheme::lowrank, mix, sys, rng::make_stream(300 + r, 0, rng::Purpose::collisions), 1.0);
       if (blocked) c.use_blocks(3000);
+      follow_scheme(c, Scheme::lowrank);
       ASSERT_EQ(c.blocks(), blocked ? 4u : 1u);
       c.advance(60.0);
       EXPECT_EQ(c.counters().overshoots, 0u);
@@ -1103,6 +1115,7 @@ TEST(Collide, BlockedMixtureMatchesUnblocked) {
       Collider c(scheme, mix, sys, rng::make_stream(200 + r, 0, rng::Purpose::collisions), 1.0,
                  path == 3 ? &beta : nullptr);
       if (blocked) c.use_blocks(3000);
+      follow_scheme(c, scheme);
       ASSERT_EQ(c.blocks(), blocked ? 4u : 1u);
       c.advance(t_mid);
       c.advance(1e12, c.counters().events + 20000);
@@ -1132,6 +1145,160 @@ TEST(Collide, BlockedMixtureMatchesUnblocked) {
   }
 }
 
+// The blocks of a mixture run the cheaper of their two exact samplers, whatever the scheme (collide.hpp,
+// "Mixtures in blocks", "The cheaper sampler"; docs/schemes.md). (a) The two candidate rates against
+// numbers computed by hand. (b) The choice: `lowrank` for diameters 1 and 2 and for 20 species (the
+// Fig 8 law), `majorant` for diameters 1 and 1.5 at equal densities, none for one species, the same for
+// either scheme; a forced sampler is taken at the next step, and the blocks run it: the candidates per
+// event of three steps with it over three with the chosen one are the ratio of the two rates (measured
+// within 1-4 %; 1 if the blocks ignored the choice, against 0.76-1.88 here). (c) Samplers forced in turn, changed 8 times in a run, sample the
+// unblocked process: T_1, T_2, the share of 1-2 events and the time at an event target over 16 replicas
+// (8 under the sanitizers) within 4 combined SE, the event target met exactly. (d) A checkpoint taken
+// inside a step continues bitwise, with the sampler saved and with it chosen again (an older checkpoint).
+TEST(Collide, BlocksRunTheCheaperSampler) {
+  using Sampler = Collider::BlockSampler;
+  const auto mix = binary(0.9, 0.8, 0.7);  // masses 1, 4; diameters 1, 2; n = 0.01, 0.005
+  {  // (a) N = 8000 + 4000, n = 0.015, vmax = 3 and 1.5; pi sigma_kj^2 = pi, 2.25 pi, 4 pi
+    auto sys = initial(mix, {8000, 4000}, {1.0, 1.0}, 1);
+    Collider c(Scheme::majorant, mix, sys, rng::make_stream(1, 0, rng::Purpose::collisions), 1.0);
+    c.use_blocks(3000);
+    c.set_max_speeds({9.0, 2.25});
+    // B = max(pi (3 + 3), 2.25 pi (3 + 1.5), 4 pi (1.5 + 1.5)) = 12 pi; N n B/2 = 12000 0.015 6 pi = 1080 pi
+    EXPECT_NEAR(c.block_candidate_rate(false), 1080.0 * kPi, 1e-9);
+    // pi n/(N - 1) (3 8000^2 + 2.25 3 8000 4000 + 2.25 1.5 4000 8000 + 4 1.5 4000^2) = 6.12e8 pi 0.015/11999
+    EXPECT_NEAR(c.block_candidate_rate(true), 6.12e8 * kPi * 0.015 / 11999.0, 1e-9);
+  }
+  {  // (b)
+    const auto near = species::make_mixture({1.0, 4.0}, {1.0, 1.5}, {0.01, 0.01}, species::PairMatrix(2, 0.9), false);
+    std::vector<double> mass(20), diameter(20), density(20), temperature(20, 1.0);
+    std::vector<std::size_t> counts(20);
+    for (std::size_t k = 0; k < 20; ++k) {
+      const double kk = static_cast<double>(k + 1);
+      mass[k] = kk;
+      diameter[k] = std::cbrt(kk);
+      density[k] = 0.01 * std::pow(kk, -3.0);
+      counts[k] = static_cast<std::size_t>(std::llround(12000.0 * std::pow(kk, -3.0))) + 1;
+    }
+    const auto many = species::make_mixture(mass, diameter, density, species::PairMatrix(20, 0.8), false);
+    struct Case {
+      const species::Mixture* mix;
+      std::vector<std::size_t> counts;
+      std::vector<double> temperature;
+      bool lowrank;
+    };
+    const Case cases[] = {{&mix, {8000, 4000}, {1.0, 1.0}, true},
+                          {&near, {6000, 6000}, {1.0, 1.0}, false},
+                          {&many, counts, temperature, true},
+                          {nullptr, {12000}, {1.0}, false}};
+    const auto one = one_species(0.9);
+    for (const Case& k : cases) {
+      const species::Mixture& m = k.mix ? *k.mix : one;
+      for (Scheme scheme : {Scheme::majorant, Scheme::lowrank}) {
+        SCOPED_TRACE(std::string(name(scheme)) + ", " + std::to_string(m.size()) + " species");
+        auto sys = initial(m, k.counts, k.temperature, 2);
+        Collider c(scheme, m, sys, rng::make_stream(2, 0, rng::Purpose::collisions), 1.0);
+        c.use_blocks(3000);
+        c.advance(5.0);
+        c.advance(1e12, UINT64_MAX, true, UINT64_MAX, true);  // to the end of the step
+        EXPECT_EQ(c.block_lowrank(), k.lowrank);
+        if (m.size() == 1) continue;
+        const double lowrank_rate = c.block_candidate_rate(true), majorant_rate = c.block_candidate_rate(false);
+        EXPECT_EQ(c.block_lowrank(), Collider::lowrank_candidate_cost * lowrank_rate < majorant_rate);
+        // Three steps with the chosen sampler, then three with the other one forced: the blocks run it,
+        // so that the candidates per event change by the ratio of the two rates (to 15 %: the bounds
+        // change as the gas cools, and loosen within each step).
+        const auto per_event = [&c](const collide::Counters from) {  // (a copy: counters() changes)
+          for (int step = 0; step < 3; ++step) c.advance(1e12, UINT64_MAX, true, UINT64_MAX, true);
+          return static_cast<double>(c.counters().candidates - from.candidates) /
+                 static_cast<double>(c.counters().events - from.events);
+        };
+        const double chosen = per_event(c.counters());
+        c.set_block_sampler(k.lowrank ? Sampler::majorant : Sampler::lowrank);
+        const double other = per_event(c.counters());
+        EXPECT_EQ(c.block_lowrank(), !k.lowrank);
+        const double predicted = k.lowrank ? majorant_rate / lowrank_rate : lowrank_rate / majorant_rate;
+        std::printf("[ Blocks.Samplers ] %zu species, %s: candidates per event %.3f chosen, %.3f other (%.3f predicted)\n",
+                    m.size(), name(scheme), chosen, other, chosen * predicted);
+        EXPECT_NEAR(other / chosen, predicted, 0.15 * predicted);
+      }
+    }
+  }
+  {  // (c)
+    const std::size_t replicas = gdsmc::test::replicas(16);  // 8 under the sanitizers
+    std::vector<std::vector<double>> t1(2), t2(2), cross(2), time(2);
+    for (int blocked = 0; blocked < 2; ++blocked)
+      for (std::size_t r = 0; r < replicas; ++r) {
+        auto sys = initial(mix, {8000, 4000}, {1.0, 1.0}, 600 + r);
+        // (steps of a quarter of the usual length, so that 8 of them end before t = 60)
+        Collider c(Scheme::majorant, mix, sys, rng::make_stream(600 + r, 0, rng::Purpose::collisions), 0.25);
+        if (blocked) c.use_blocks(3000);
+        int changes = 0;
+        bool last = false;
+        for (int piece = 1; piece <= 8; ++piece) {  // one step each (unblocked: to t = 60 in 8 pieces)
+          c.set_block_sampler(piece % 2 ? Sampler::lowrank : Sampler::majorant);
+          c.advance(blocked ? 1e12 : 7.5 * piece, UINT64_MAX, true, UINT64_MAX, true);
+          changes += c.block_lowrank() != last;
+          last = c.block_lowrank();
+        }
+        EXPECT_EQ(changes, blocked ? 8 : 0);
+        if (blocked) {
+          EXPECT_LT(c.time(), 60.0);  // (about 40)
+        }
+        c.advance(60.0);
+        // (a change of sampler at the target's approach: that step takes acceptance 1, a bound)
+        c.set_block_sampler(Sampler::lowrank);
+        const std::uint64_t target = c.counters().events + 20000;
+        c.advance(1e12, target);
+        EXPECT_EQ(c.counters().events, target);
+        EXPECT_EQ(c.counters().overshoots, 0u);
+        double e[2] = {0.0, 0.0};
+        for (std::size_t i = 0; i < sys.size(); ++i) {
+          const auto& v = sys.v[i];
+          e[sys.species[i]] += mix.mass[sys.species[i]] * (v.x * v.x + v.y * v.y + v.z * v.z);
+        }
+        t1[blocked].push_back(e[0] / (3.0 * 8000.0));
+        t2[blocked].push_back(e[1] / (3.0 * 4000.0));
+        cross[blocked].push_back(static_cast<double>(c.counters().pair_events[1]) /
+                                 static_cast<double>(c.counters().events));
+        time[blocked].push_back(c.time());
+      }
+    const char* names[] = {"T1", "T2", "share of 1-2 events", "time at the target"};
+    int q = 0;
+    for (auto* x : {&t1, &t2, &cross, &time}) {
+      const auto [m0, s0] = mean_se((*x)[0]);
+      const auto [m1, s1] = mean_se((*x)[1]);
+      std::printf("[ Blocks.Samplers ] %s: unblocked %.6g +- %.2g, samplers in turn %.6g +- %.2g (%.2f SE)\n",
+                  names[q++], m0, s0, m1, s1, (m1 - m0) / std::hypot(s0, s1));
+      EXPECT_LT(std::abs(m1 - m0), 4.0 * std::hypot(s0, s1));
+    }
+  }
+  {  // (d)
+    auto sys_a = initial(mix, {8000, 4000}, {1.0, 1.0}, 7);
+    Collider a(Scheme::majorant, mix, sys_a, rng::make_stream(7, 0, rng::Purpose::collisions), 1.0);
+    a.use_blocks(3000);
+    a.advance(20.0);
+    a.advance(20.0 + 0.4 * a.mean_step());  // inside a step
+    ASSERT_TRUE(a.block_lowrank());  // (so that a restore that took `majorant` would differ)
+    const Collider::State saved = a.state();
+    Collider::State older = saved;
+    older.block_lowrank = -1;
+    auto sys_b = sys_a, sys_c = sys_a;
+    Collider b(Scheme::majorant, mix, sys_b, rng::make_stream(1, 0, rng::Purpose::collisions), 1.0);
+    Collider c(Scheme::majorant, mix, sys_c, rng::make_stream(1, 0, rng::Purpose::collisions), 1.0);
+    b.use_blocks(3000);
+    c.use_blocks(3000);
+    b.restore(saved);
+    c.restore(older);
+    a.advance(40.0);
+    b.advance(40.0);
+    c.advance(40.0);
+    EXPECT_EQ(sys_b.v, sys_a.v);
+    EXPECT_EQ(sys_c.v, sys_a.v);
+    EXPECT_EQ(b.counters().events, a.counters().events);
+    EXPECT_EQ(c.counters().events, a.counters().events);
+  }
+}
+
 // A species with fewer than 64 K particles is scattered (collide.hpp, "Mixtures in blocks"): each
 // particle to a uniformly random block at every remix, so that every pair, rare-rare ones of one
 // species included, shares a block with probability 1/K. (a) Blocked runs with a scattered species
@@ -1153,6 +1320,7 @@ TEST(Collide, ScatteredRareSpeciesMatchUnblocked) {
         auto sys = initial(mix, {12000, 200}, {1.0, 1.0}, 300 + r);
         Collider c(scheme, mix, sys, rng::make_stream(300 + r, 0, rng::Purpose::collisions), 1.0);
         if (blocked) c.use_blocks(3000);
+        follow_scheme(c, scheme);
         ASSERT_EQ(c.blocks(), blocked ? 4u : 1u);
         c.advance(20.0);
         c.advance(1e12, c.counters().events + 20000);
@@ -1187,6 +1355,7 @@ TEST(Collide, ScatteredRareSpeciesMatchUnblocked) {
       particles::start_tracking(sys, 0.0);
       Collider c(scheme, mix, sys, rng::make_stream(21, 0, rng::Purpose::collisions), 1.0);
       c.use_blocks(1000);
+      follow_scheme(c, scheme);
       c.use_threads(threads);
       EXPECT_EQ(c.blocks(), 6u);
       c.advance(40.0);
@@ -1194,6 +1363,7 @@ TEST(Collide, ScatteredRareSpeciesMatchUnblocked) {
       auto sys_b = sys;
       Collider b(scheme, mix, sys_b, rng::make_stream(99, 0, rng::Purpose::collisions), 1.0);
       b.use_blocks(1000);
+      follow_scheme(b, scheme);
       b.use_threads(threads == 1 ? 2 : 1);
       if (restore) b.restore(c.state());
       Collider& go = restore ? b : c;
@@ -1225,6 +1395,7 @@ TEST(Collide, ScatteredRareSpeciesMatchUnblocked) {
         auto sys = initial(huge, {5995, 5}, {1.0, 1.0}, 500 + r);
         Collider c(Scheme::lowrank, huge, sys, rng::make_stream(500 + r, 0, rng::Purpose::collisions), 1.0);
         if (blocked) c.use_blocks(1000);
+        follow_scheme(c, Scheme::lowrank);
         ASSERT_EQ(c.blocks(), blocked ? 6u : 1u);
         c.advance(1e12, 12000);
         rare_events[blocked] += c.counters().pair_events[3];
@@ -1253,6 +1424,7 @@ TEST(Collide, ScatteredRareSpeciesMatchUnblocked) {
   const auto before = totals();
   Collider c(Scheme::lowrank, elastic, sys, rng::make_stream(22, 0, rng::Purpose::collisions), 1.0);
   c.use_blocks(1000);
+  follow_scheme(c, Scheme::lowrank);
   EXPECT_EQ(c.blocks(), 4u);
   c.advance(300.0);
   EXPECT_GT(c.counters().steps, 3u);
@@ -1292,6 +1464,7 @@ TEST(Collide, ManySpeciesBlocksMatchUnblocked) {
         auto sys = initial(mix, counts, temperature, 400 + r);
         Collider c(scheme, mix, sys, rng::make_stream(400 + r, 0, rng::Purpose::collisions), 1.0);
         if (blocked) c.use_blocks(3000);
+        follow_scheme(c, scheme);
         ASSERT_EQ(c.blocks(), blocked ? total / 3000 : 1u);
         c.advance(gdsmc::test::sanitized ? 5.0 : 15.0);  // (a third of the time under the sanitizers)
         c.advance(1e12, c.counters().events + 12000);

@@ -199,6 +199,7 @@ Collider::State Collider::state() const {
   st.step_acceptance = step_acceptance_;
   st.step_events_start = step_events_start_;
   st.step_candidates_start = step_candidates_start_;
+  st.block_lowrank = block_lowrank_ ? 1 : 0;
   st.framed = framed_;
   st.frame_scale = frame_scale_;
   st.frame_shear = frame_shear_;
@@ -248,6 +249,11 @@ void Collider::restore(const State& st) {
   frame_shear_ = st.frame_shear;
   speed_factor_ = framed_ ? frame_norm(frame_scale_, frame_shear_) : 1.0;
   moments_ = st.moments;
+  // The step's block sampler: as saved, or (a checkpoint written before it was saved) chosen again
+  // from the bounds the step began with, which max_speed2_ holds during a blocked step.
+  block_lowrank_ = st.block_lowrank >= 0 ? st.block_lowrank == 1
+                                         : s_ > 1 && !block_first_.empty() && counters_.steps > 0 &&
+                                               choose_block_lowrank(mixture_bound(max_speed2_.data()));
   // What the last rebuild or raise computed (header of State); with blocks each block sets its own.
   if (counters_.steps > 0 && block_first_.empty()) rebuild_bounds();
   if (counters_.steps > 0 && !block_first_.empty() && whole_step_) set_whole_gas_bound();
@@ -397,6 +403,32 @@ double Collider::mixture_bound(const double* max_speed2, const std::size_t* cum)
   return bound;
 }
 
+bool Collider::choose_block_lowrank(double majorant_bound) const {
+  // Both samplers are exact in a block (header "Mixtures in blocks"): a majorant sets only how many
+  // candidates a collision takes, not the process. The one whose candidates cost less in all: R (the
+  // same speed bounds, the same frame factor on both sides) times the cost of a candidate, a `lowrank`
+  // one lowrank_candidate_cost times a `majorant` one (docs/schemes.md, "The cheaper sampler").
+  // Viscoelastic mixtures run the general loops, which follow the scheme.
+  if (block_first_.empty() || s_ == 1) return false;
+  if (viscoelastic_) return lowrank_blocks();
+  if (block_sampler_ != BlockSampler::cheaper) return block_sampler_ == BlockSampler::lowrank;
+  const double majorant_rate = 0.5 * static_cast<double>(sys_.size()) * mix_.total_density() * majorant_bound;
+  return lowrank_candidate_cost * block_candidate_rate(true) < majorant_rate;
+}
+
+double Collider::lowrank_block_rate(const double* max_speed2) const {
+  // set_block_lowrank's R_b = sum_ik pi sigma_ik^2 chi_ik w_i N_bi N_bk n/(N_b - 1) with the gas's counts:
+  // one species gives N n pi sigma^2 chi w, the majorant's N n B/2 with B = 2 pi sigma^2 chi w.
+  const double n_total = static_cast<double>(sys_.size());
+  const double per_volume = mix_.total_density() / (n_total - 1.0);
+  double rate = 0.0;
+  for (std::size_t i = 0; i < s_; ++i) {
+    const double row = std::sqrt(max_speed2[i]) * static_cast<double>(sys_.count[i]) * per_volume;
+    for (std::size_t k = 0; k < s_; ++k) rate += cross_section_[i * s_ + k] * row * static_cast<double>(sys_.count[k]);
+  }
+  return rate;
+}
+
 void Collider::set_whole_gas_bound() {
   // The whole gas as one block (a step near an exact event target, header "Blocks"): B = 2 pi sigma^2
   // chi vmax over all particles, R = N n B / 2.
@@ -479,10 +511,15 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
       double rate = (s_ == 1 ? 0.5 * n_total * n * 2.0 * cross_section * max_speed_[0]
                              : 0.5 * n_total * n * mixture_bound(max_speed2_.data())) *
                     speed_factor_;  // 1 without a frame
-      if (lowrank_blocks()) {  // the low-rank majorant's own total over these vmax_k (rebuild_bounds)
-        rebuild_bounds();
-        rate = rate_;
-      }
+      if (lowrank_blocks()) rebuild_bounds();  // the low-rank majorant's own total over these vmax_k (rate_)
+      // The blocks' sampler for this step (header "Mixtures in blocks", "The cheaper sampler"), chosen
+      // here once for all blocks, so that R, the last step's acceptance and the output do not depend on
+      // the threads; a change of sampler makes the last step's acceptance that of another majorant.
+      const bool was_lowrank = block_lowrank_;
+      block_lowrank_ = s_ > 1 && choose_block_lowrank(mixture_bound(max_speed2_.data()));
+      const bool sampler_changed = counters_.steps > 0 && block_lowrank_ != was_lowrank;
+      if (block_lowrank_)  // the unblocked `lowrank` total (chi_max >= chi_ik) bounds the blocks' own
+        rate = lowrank_blocks() ? rate_ : lowrank_block_rate(max_speed2_.data()) * speed_factor_;
       if (rate <= 0.0) {
         time_ = t_target;
         return false;
@@ -511,7 +548,8 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
         const bool after_long = last_candidates > 1.01 * short_candidates;
         const double fewest = std::min(n_total / 64.0, 4.0 * n_total / static_cast<double>(blocks));
         const bool too_few = last_candidates < fewest;
-        const double acceptance = step_acceptance_ > 0.0 && !after_long && !too_few ? step_acceptance_ : 1.0;
+        const double acceptance =
+            step_acceptance_ > 0.0 && !after_long && !too_few && !sampler_changed ? step_acceptance_ : 1.0;
         if (may_reach(acceptance * rate * step, remaining)) step = std::min(step, short_candidates / rate);  // (never longer)
         const double expected = acceptance * rate * step;
         if (may_reach(expected, remaining)) {
@@ -606,7 +644,7 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
   time_ = t_start;
   credit_ = master.block_credit_[j];
   const double n = mix_.total_density();
-  const bool lowrank = lowrank_blocks();
+  const bool lowrank = master.block_lowrank_;  // the step's sampler (advance_blocks: choose_block_lowrank)
   for (;;) {
     if (lowrank) {
       set_block_lowrank(n);

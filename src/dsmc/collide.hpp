@@ -201,6 +201,20 @@
  * is exact), the two particles from two 24-bit fields by multiply-shift with rejection (below_pair's,
  * in 24 bits; a block with a slice of 2^24 or more has every rejection threshold at 2^24, so that
  * below_pair draws each of its candidates). Viscoelastic mixtures run the general loops in their blocks.
+ * *The cheaper sampler* (issue 11, 2026-11-28). In a block both samplers are exact for the same pair law
+ * (each pair at pi sigma_ik^2 chi_ik |g| n/(N_b - 1)): a majorant sets only how many candidates a
+ * collision takes, not the process. So a mixture's blocks run whichever costs less, whatever the
+ * scheme: at each step, from the gas's bounds vmax_k, `lowrank` when lowrank_candidate_cost (1.15, a
+ * `lowrank` candidate's cost over a `majorant` one's in the kernel) times its candidate rate
+ * sum_ik pi sigma_ik^2 chi_ik vmax_i N_i N_k n/(N - 1) is less than the `majorant` rate N n B/2
+ * (block_candidate_rate). The master chooses once per step for all blocks (so that R, the last step's
+ * acceptance and the output do not depend on the threads); the choice is part of the State; after a
+ * change of sampler the next step near an event target takes acceptance 1 (the last step's was another
+ * majorant's). Masses 1 and 4 with diameters 1 and 1.5 (bench_paths' binary gases) take `majorant`,
+ * diameters 1 and 2 and many species of unlike sizes `lowrank`. Viscoelastic mixtures and whole-gas
+ * steps keep the scheme's own loops, as does every unblocked run; set_block_sampler() forces one sampler
+ * (the kernel tests, bench_collide's `scheme`). Tested in Collide.BlocksRunTheCheaperSampler (the rates
+ * by hand, the choice, samplers changed step by step against the unblocked gas, restore).
  * What a mixture candidate costs beyond a one-species one was cut further on 2026-11-27 without
  * changing a single draw (the output of 16 runs byte for byte the same): a `majorant` candidate's
  * species from 32-bit edges held in locals (species_at: one compare for two species, a search without
@@ -394,6 +408,28 @@ class Collider {
   /// with 0) the whole gas is one block. Call before the first advance().
   void use_blocks(std::size_t block_size);
   std::size_t blocks() const { return block_first_.empty() ? 1 : block_first_.size() - 1; }
+  /// Which exact sampler a mixture's blocks run (header "Mixtures in blocks", "The cheaper sampler"):
+  /// `cheaper` (the default) takes, at each step, the one of the `majorant` and `lowrank` block majorants
+  /// whose candidates cost less in all, whatever the scheme; the other two force one (tests, benchmarks).
+  /// Viscoelastic mixtures and the whole-gas steps keep the scheme's own sampler.
+  enum class BlockSampler { cheaper, majorant, lowrank };
+  /// The sampler of the blocks from the next step on (BlockSampler::cheaper by default).
+  void set_block_sampler(BlockSampler sampler) { block_sampler_ = sampler; }
+  /// With blocks: whether the blocks of the step under way (or of the last one) run the `lowrank` sampler.
+  bool block_lowrank() const { return block_lowrank_; }
+  /// The candidate rate of the blocks' `lowrank` (true) or `majorant` sampler, summed over the blocks,
+  /// at the gas's speed bounds vmax_k (those of the step under way, or as set_max_speeds() set them),
+  /// without a frame's factor: sum_ik pi sigma_ik^2 chi_ik vmax_i N_i N_k n/(N - 1) and N n B/2 with
+  /// B = max_kj pi sigma_kj^2 chi_kj (vmax_k + vmax_j) (header "Mixtures in blocks"); the cheaper
+  /// sampler is `lowrank` when lowrank_candidate_cost times the first is less than the second.
+  double block_candidate_rate(bool lowrank) const {
+    return lowrank ? lowrank_block_rate(max_speed2_.data())
+                   : 0.5 * static_cast<double>(sys_.size()) * mix_.total_density() * mixture_bound(max_speed2_.data());
+  }
+  /// A `lowrank` block candidate's cost over a `majorant` one's, both in the mixture kernel (binary
+  /// gases at N = 1e6: 1.09 on 2026-11-27, 1.06-1.20 per bench_collide round and 1.18-1.19 from whole
+  /// processes on 2026-11-28; docs/schemes.md "The cheaper sampler").
+  static constexpr double lowrank_candidate_cost = 1.15;
   /// OpenMP threads for the blocks of a step (header, "Threads inside one replica"); 1 by default.
   /// The results do not depend on it, bit for bit. Without blocks it has no effect.
   void use_threads(int threads);
@@ -487,6 +523,7 @@ class Collider {
     bool whole_step = false;                             ///< with blocks: the step runs on the whole gas
     double step_acceptance = 0.0;
     std::uint64_t step_events_start = 0, step_candidates_start = 0;
+    int block_lowrank = -1;  ///< with blocks: the step's sampler (1 `lowrank`, 0 `majorant`; -1 unknown: chosen again)
     bool framed = false;                                 ///< set_frame: the frame and its moments
     double frame_scale = 1.0, frame_shear = 0.0;
     std::array<double, 4> moments{};
@@ -557,6 +594,14 @@ class Collider {
   std::vector<std::uint32_t> pair_species_;  ///< (k, j) of pair k S + j, 2 per pair
   /// A mixture with `lowrank` in blocks: each block samples its own low-rank A_ik (header "Mixtures in blocks").
   bool lowrank_blocks() const { return scheme_ == Scheme::lowrank && s_ > 1 && !block_first_.empty(); }
+  BlockSampler block_sampler_ = BlockSampler::cheaper;
+  bool block_lowrank_ = false;  ///< the blocks of this step run the `lowrank` sampler (choose_block_lowrank)
+  /// The step's block sampler from the gas's bounds max_speed2_ (header "Mixtures in blocks", "The cheaper
+  /// sampler"); `majorant_bound` is mixture_bound(max_speed2_).
+  bool choose_block_lowrank(double majorant_bound) const;
+  /// sum_ik pi sigma_ik^2 chi_ik w_i N_i N_k n/(N - 1) over the gas's species (w_i = sqrt(max_speed2[i])):
+  /// the blocks' `lowrank` candidate rate summed over the blocks, to within the slices' rounding.
+  double lowrank_block_rate(const double* max_speed2) const;
   void set_block_lowrank(double n);  ///< on a worker: the current block's A_ik, their alias table and R
   std::vector<double> pair_weights_;   ///< a block's A_ik, S x S (set_block_lowrank)
   segment_tree::AliasTable pair_alias_;  ///< over the S^2 pairs (run_lowrank in a block: viscoelastic)

@@ -335,7 +335,8 @@ Snapshot make_snapshot(const particles::System& sys, const collide::Collider& co
   snap.reals["collider/block_credit"] = c.block_credit;
   if (!c.slice_counts.empty()) snap.integers["collider/slice_counts"] = c.slice_counts;
   snap.reals["collider/block_step_start"] = {c.step_start, c.step_acceptance};
-  snap.integers["collider/block_mode"] = {c.whole_step, c.step_events_start, c.step_candidates_start};
+  snap.integers["collider/block_mode"] = {c.whole_step, c.step_events_start, c.step_candidates_start,
+                                          static_cast<std::uint64_t>(c.block_lowrank)};
   snap.reals["collider/transfer"].assign(c.counters.transfer.begin(), c.counters.transfer.end());
   snap.reals["collider/frame"] = {c.framed ? 1.0 : 0.0, c.frame_scale, c.frame_shear,
                                   c.moments[0],         c.moments[1],  c.moments[2], c.moments[3]};
@@ -417,10 +418,12 @@ void load_snapshot(const Snapshot& snap, particles::System& sys, collide::Collid
     const auto& start = snap.reals.at("collider/block_step_start");
     c.step_start = start.at(0);
     if (start.size() > 1) c.step_acceptance = start.at(1);
-    if (const auto it = snap.integers.find("collider/block_mode"); it != snap.integers.end() && it->second.size() == 3) {
+    if (const auto it = snap.integers.find("collider/block_mode"); it != snap.integers.end() && it->second.size() >= 3) {
       c.whole_step = it->second[0] != 0;
       c.step_events_start = it->second[1];
       c.step_candidates_start = it->second[2];
+      // (the step's block sampler; a checkpoint of an older version has none: chosen again on restore)
+      if (it->second.size() > 3) c.block_lowrank = it->second[3] != 0 ? 1 : 0;
     }
   }
   const auto& transfer = snap.reals.at("collider/transfer");
