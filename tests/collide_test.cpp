@@ -100,6 +100,36 @@ std::pair<double, double> mean_se(const std::vector<double>& x) {
   return {m, std::sqrt(v / static_cast<double>(x.size() - 1) / static_cast<double>(x.size()))};
 }
 
+// Per replica of a binary gas of 8000 + 4000 particles: T_1, T_2, the share of 1-2 events and the time.
+struct BinaryRuns {
+  std::vector<double> t1, t2, cross, time;
+  void add(const particles::System& sys, const species::Mixture& mix, const Collider& c) {
+    double e[2] = {0.0, 0.0};
+    for (std::size_t i = 0; i < sys.size(); ++i) {
+      const auto& v = sys.v[i];
+      e[sys.species[i]] += mix.mass[sys.species[i]] * (v.x * v.x + v.y * v.y + v.z * v.z);
+    }
+    t1.push_back(e[0] / (3.0 * 8000.0));
+    t2.push_back(e[1] / (3.0 * 4000.0));
+    cross.push_back(static_cast<double>(c.counters().pair_events[1]) / static_cast<double>(c.counters().events));
+    time.push_back(c.time());
+  }
+};
+
+// runs[1] (blocked) against runs[0] (unblocked): each observable within 4 combined SE, printed.
+void expect_binary_runs_agree(const BinaryRuns (&runs)[2], const std::string& label) {
+  const char* names[] = {"T1", "T2", "share of 1-2 events", "time at the target"};
+  const std::vector<double> BinaryRuns::*fields[] = {&BinaryRuns::t1, &BinaryRuns::t2, &BinaryRuns::cross,
+                                                     &BinaryRuns::time};
+  for (int q = 0; q < 4; ++q) {
+    const auto [m0, s0] = mean_se(runs[0].*fields[q]);
+    const auto [m1, s1] = mean_se(runs[1].*fields[q]);
+    std::printf("%s %s: unblocked %.6g +- %.2g, blocked %.6g +- %.2g (%.2f SE)\n", label.c_str(), names[q], m0, s0,
+                m1, s1, (m1 - m0) / std::hypot(s0, s1));
+    EXPECT_LT(std::abs(m1 - m0), 4.0 * std::hypot(s0, s1)) << names[q];
+  }
+}
+
 }  // namespace
 
 // hemisphere_projection (\ref cm_hemisphere "docs/collision-model.md"): p = (g.e) e for e of density
@@ -1107,7 +1137,7 @@ TEST(Collide, BlockedMixtureMatchesUnblocked) {
   const auto& mix = path >= 2 ? dense : dilute;
   const double t_mid = path >= 2 ? 6.0 : 60.0;
   SCOPED_TRACE(path == 3 ? "lowrank, Enskog, viscoelastic" : path == 2 ? "lowrank, Enskog" : name(scheme));
-  std::vector<std::vector<double>> t1(2), t2(2), cross(2), time(2);
+  BinaryRuns runs[2];
   for (int blocked = 0; blocked < 2; ++blocked)
     for (std::size_t r = 0; r < replicas; ++r) {
       auto sys = initial(mix, {8000, 4000}, {1.0, 1.0}, 200 + r);
@@ -1119,29 +1149,12 @@ TEST(Collide, BlockedMixtureMatchesUnblocked) {
       ASSERT_EQ(c.blocks(), blocked ? 4u : 1u);
       c.advance(t_mid);
       c.advance(1e12, c.counters().events + 20000);
-      double e[2] = {0.0, 0.0};
-      for (std::size_t i = 0; i < sys.size(); ++i) {
-        const auto& v = sys.v[i];
-        e[sys.species[i]] += mix.mass[sys.species[i]] * (v.x * v.x + v.y * v.y + v.z * v.z);
-      }
       EXPECT_EQ(sys.species, species_before);
       EXPECT_EQ(c.counters().overshoots, 0u);
-      t1[blocked].push_back(e[0] / (3.0 * 8000.0));
-      t2[blocked].push_back(e[1] / (3.0 * 4000.0));
-      cross[blocked].push_back(static_cast<double>(c.counters().pair_events[1]) /
-                               static_cast<double>(c.counters().events));
-      time[blocked].push_back(c.time());
+      runs[blocked].add(sys, mix, c);
     }
-  const char* names[] = {"T1", "T2", "share of 1-2 events", "time at the target"};
-  int q = 0;
-  for (auto* x : {&t1, &t2, &cross, &time}) {
-    const auto [m0, s0] = mean_se((*x)[0]);
-    const auto [m1, s1] = mean_se((*x)[1]);
-    std::printf("[ Blocks.Mixture ] %s%s %s: unblocked %.6g +- %.2g, blocked %.6g +- %.2g (%.2f SE)\n", name(scheme),
-                path == 3 ? " Enskog viscoelastic" : path == 2 ? " Enskog" : "", names[q++], m0, s0, m1, s1,
-                (m1 - m0) / std::hypot(s0, s1));
-    EXPECT_LT(std::abs(m1 - m0), 4.0 * std::hypot(s0, s1));
-  }
+  expect_binary_runs_agree(runs, std::string("[ Blocks.Mixture ] ") + name(scheme) +
+                                     (path == 3 ? " Enskog viscoelastic" : path == 2 ? " Enskog" : ""));
   }
 }
 
@@ -1225,7 +1238,7 @@ TEST(Collide, BlocksRunTheCheaperSampler) {
   }
   {  // (c)
     const std::size_t replicas = gdsmc::test::replicas(16);  // 8 under the sanitizers
-    std::vector<std::vector<double>> t1(2), t2(2), cross(2), time(2);
+    BinaryRuns runs[2];
     for (int blocked = 0; blocked < 2; ++blocked)
       for (std::size_t r = 0; r < replicas; ++r) {
         auto sys = initial(mix, {8000, 4000}, {1.0, 1.0}, 600 + r);
@@ -1251,26 +1264,9 @@ TEST(Collide, BlocksRunTheCheaperSampler) {
         c.advance(1e12, target);
         EXPECT_EQ(c.counters().events, target);
         EXPECT_EQ(c.counters().overshoots, 0u);
-        double e[2] = {0.0, 0.0};
-        for (std::size_t i = 0; i < sys.size(); ++i) {
-          const auto& v = sys.v[i];
-          e[sys.species[i]] += mix.mass[sys.species[i]] * (v.x * v.x + v.y * v.y + v.z * v.z);
-        }
-        t1[blocked].push_back(e[0] / (3.0 * 8000.0));
-        t2[blocked].push_back(e[1] / (3.0 * 4000.0));
-        cross[blocked].push_back(static_cast<double>(c.counters().pair_events[1]) /
-                                 static_cast<double>(c.counters().events));
-        time[blocked].push_back(c.time());
+        runs[blocked].add(sys, mix, c);
       }
-    const char* names[] = {"T1", "T2", "share of 1-2 events", "time at the target"};
-    int q = 0;
-    for (auto* x : {&t1, &t2, &cross, &time}) {
-      const auto [m0, s0] = mean_se((*x)[0]);
-      const auto [m1, s1] = mean_se((*x)[1]);
-      std::printf("[ Blocks.Samplers ] %s: unblocked %.6g +- %.2g, samplers in turn %.6g +- %.2g (%.2f SE)\n",
-                  names[q++], m0, s0, m1, s1, (m1 - m0) / std::hypot(s0, s1));
-      EXPECT_LT(std::abs(m1 - m0), 4.0 * std::hypot(s0, s1));
-    }
+    expect_binary_runs_agree(runs, "[ Blocks.Samplers ] samplers in turn,");
   }
   {  // (d)
     auto sys_a = initial(mix, {8000, 4000}, {1.0, 1.0}, 7);
