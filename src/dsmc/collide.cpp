@@ -49,12 +49,13 @@ Collider::Collider(Scheme scheme, const species::Mixture& mix, particles::System
   }
   if (tables_ && s_ > 1 && s_ <= block_species_limit) {  // the mixture block kernel's pair constants
     pair_kernel_.resize(s_ * s_);
+    pair_limit_.assign(s_ * s_, 0.0);
     for (std::size_t k = 0; k < s_; ++k)
       for (std::size_t j = 0; j < s_; ++j) {
         const double alpha = alpha_[k * s_ + j], mf = mass_fraction_[k * s_ + j];
         // v_a -= mu_jk (1 + alpha) p, v_b += mu_kj (1 + alpha) p for p = (g.e) e; loss (1 - alpha^2) m_kj (g.e)^2 / 2
-        pair_kernel_[k * s_ + j] = {cross_section_[k * s_ + j] * cross_section_[k * s_ + j], mf * (1.0 + alpha),
-                                    (1.0 - mf) * (1.0 + alpha),
+        pair_cross_section2_.push_back(cross_section_[k * s_ + j] * cross_section_[k * s_ + j]);
+        pair_kernel_[k * s_ + j] = {mf * (1.0 + alpha), (1.0 - mf) * (1.0 + alpha),
                                     0.5 * (1.0 - alpha * alpha) * mix.mass[k] * mf,
                                     s_ <= pair_event_limit ? static_cast<std::uint32_t>(std::min(k, j) * s_ + std::max(k, j)) : 0u};
         pair_species_.insert(pair_species_.end(), {static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(j)});
@@ -669,10 +670,15 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
     }
     if (!viscoelastic_) {  // the mixture kernel (header "Mixtures in blocks"): raised bounds handled inside
       const bool track = sys_.tracks_displacements();
+      // (`majorant` with two species: a kernel of its own, whose species and offsets are two locals)
       if (framed_)  // (a frame tracks no displacements: set_frame)
-        lowrank ? run_block_mixture<false, true, true>(t_stop) : run_block_mixture<false, false, true>(t_stop);
+        lowrank    ? run_block_mixture<false, true, true>(t_stop)
+        : s_ == 2  ? run_block_mixture<false, false, true, true>(t_stop)
+                   : run_block_mixture<false, false, true>(t_stop);
       else if (lowrank)
         track ? run_block_mixture<true, true, false>(t_stop) : run_block_mixture<false, true, false>(t_stop);
+      else if (s_ == 2)
+        track ? run_block_mixture<true, false, false, true>(t_stop) : run_block_mixture<false, false, false, true>(t_stop);
       else
         track ? run_block_mixture<true, false, false>(t_stop) : run_block_mixture<false, false, false>(t_stop);
       break;
@@ -807,7 +813,7 @@ void Collider::run_block_one_species(double t_stop) {
   if (!counters_.pair_events.empty()) counters_.pair_events[0] += events;
 }
 
-template <bool Track, bool Lowrank, bool Framed>
+template <bool Track, bool Lowrank, bool Framed, bool Two>
 void Collider::run_block_mixture(double t_stop) {
   // The process of run_majorant (or run_lowrank) on the block's slices (header "Mixtures in blocks"):
   // candidates at R_b, candidate c of a sub-step at t0 + (c + 1)/R_b; `majorant`: a uniform pair of the
@@ -828,6 +834,9 @@ void Collider::run_block_mixture(double t_stop) {
   particles::Vec3* v = sys_.v.data();
   const double n_density = mix_.total_density();
   const PairKernel* kernel = pair_kernel_.data();
+  // The acceptance's constant of each pair, apart from PairKernel so that a candidate reads 8 bytes at
+  // 8 pair: `majorant` (pi sigma^2 chi)^2, `lowrank` w_i + w_k (set_block_lowrank).
+  const double* acceptance = Lowrank ? pair_limit_.data() : pair_cross_section2_.data();
   double* speed2 = block_speed2_;
   // Per-pair event counts (up to pair_event_limit species; above, every pair's slot 0 of a sink).
   std::uint64_t sink = 0;
@@ -846,6 +855,8 @@ void Collider::run_block_mixture(double t_stop) {
   }
   // (species_at: a binary mixture's species by one compare; the general loop cost it a dozen instructions.)
   const auto species_of = [&](std::uint32_t i) { return species_at(edge.data(), s, i); };
+  [[maybe_unused]] const std::uint32_t edge1 = Two ? edge[1] : 0, offset0 = Two ? offset[0] : 0,
+                                       offset1 = Two ? offset[1] : 0;
   // `lowrank`'s one-word draw (set_block_lowrank), rebuilt with A_ik.
   const LowrankCell* cells = lowrank_cells_.data();
   const LowrankOutcome* outcomes = lowrank_outcomes_.data();
@@ -853,13 +864,15 @@ void Collider::run_block_mixture(double t_stop) {
   const std::uint32_t coin_mask = (1u << (16 - cell_bits)) - 1;
   // A drawn-ahead candidate: its particles' system indices and the pair i S + k (its PairKernel; its
   // species i and k, whose bounds are read only after a collision, from pair_species_).
+  // In three arrays of 32-bit words rather than one of 12-byte records: a slot's words are then at
+  // 4 slot, which an x86 address scales by itself (a record's 12 slot took extra instructions).
   struct Candidate {
     std::uint32_t a, b, pair;
   };
   const std::uint32_t* pair_species = pair_species_.data();
-  std::array<Candidate, block_lookahead<Framed>> ahead;
+  std::array<std::uint32_t, block_lookahead<Framed>> ahead_a, ahead_b, ahead_pair;
   const auto draw = [&](std::size_t slot) {
-    Candidate& p = ahead[slot];
+    Candidate p;
     if constexpr (Lowrank) {  // (i, k) with probability A_ik / R_b, then a particle of each slice
       // From one word (set_block_lowrank): the alias cell from the top m bits, its coin from the next
       // 16 - m (a further uniform only when they tie with the threshold), the particles from the low two
@@ -891,9 +904,17 @@ void Collider::run_block_mixture(double t_stop) {
       std::uint32_t x, y;
       gen.below_pair(n, n - 1, x, y);
       y += y >= x;
-      const std::uint32_t i = species_of(x), k = species_of(y);
-      p = {x + offset[i], y + offset[k], static_cast<std::uint32_t>(i * s + k)};
+      if constexpr (Two) {  // species_at's one compare, with edge[1] and the offsets in registers
+        const std::uint32_t i = x >= edge1, k = y >= edge1;
+        p = {x + (i ? offset1 : offset0), y + (k ? offset1 : offset0), 2 * i + k};
+      } else {
+        const std::uint32_t i = species_of(x), k = species_of(y);
+        p = {x + offset[i], y + offset[k], static_cast<std::uint32_t>(i * s + k)};
+      }
     }
+    ahead_a[slot] = p.a;
+    ahead_b[slot] = p.b;
+    ahead_pair[slot] = p.pair;
     const auto* base = reinterpret_cast<const char*>(v);
     for (std::uint32_t q : {p.a, p.b}) {
       __builtin_prefetch(base + q * sizeof(particles::Vec3), 1);
@@ -916,25 +937,23 @@ void Collider::run_block_mixture(double t_stop) {
     bool raised = false;
     std::uint64_t c = 0;
     for (; c < n_candidates; ++c) {
-      const Candidate p = ahead[next];
+      const std::uint32_t a = ahead_a[next], b = ahead_b[next], pair = ahead_pair[next];
       draw(next);
       next = (next + 1) % block_lookahead<Framed>;
-      const std::uint32_t a = p.a, b = p.b;
       if constexpr (Lowrank)
         if (a == b) continue;  // the self pair is part of the majorant's sum, never a collision
-      const PairKernel& pk = kernel[p.pair];
       double gx = v[a].x - v[b].x, gy = v[a].y - v[b].y, gz = v[a].z - v[b].z;
       to_actual<Framed>(gx, gy, gz);
       const double g2 = gx * gx + gy * gy + gz * gz;
       if constexpr (Lowrank) {
         // Accept with |g| / (w_i + w_k) (run_lowrank in a block: chi_ik cancels), compared squared.
-        const double limit = pk.limit;  // w_i + w_k
+        const double limit = acceptance[pair];  // w_i + w_k
         const double threshold = gen.uniform() * limit;
         if (threshold * threshold >= g2) continue;
         if (g2 > limit * limit) [[unlikely]] note_overshoot(std::sqrt(g2) / limit);
       } else {
         // Accept with pi sigma_kj^2 chi_kj |g| / B_b (\ref sch_majorant "docs/schemes.md"), compared squared.
-        const double rate2 = pk.cross_section2 * g2;  // (the same product as (cs cs) g2)
+        const double rate2 = acceptance[pair] * g2;  // (pi sigma^2 chi)^2 g^2: the same product as (cs cs) g2
         const double threshold = gen.uniform() * bound;
         if (threshold * threshold >= rate2) continue;
         if (rate2 > bound * bound) [[unlikely]] note_overshoot(std::sqrt(rate2) / bound);
@@ -949,7 +968,8 @@ void Collider::run_block_mixture(double t_stop) {
       }
       particles::Vec3& va = v[a];
       particles::Vec3& vb = v[b];
-      const std::uint32_t i = pair_species[2 * p.pair], k = pair_species[2 * p.pair + 1];
+      const PairKernel& pk = kernel[pair];  // (read only for a collision)
+      const std::uint32_t i = pair_species[2 * pair], k = pair_species[2 * pair + 1];
       if constexpr (Framed) {
         const double ma = mix_.mass[i], mb = mix_.mass[k];
         add_moments(moments, va, -ma);
@@ -1084,7 +1104,7 @@ void Collider::set_block_lowrank(double n) {
       lowrank_outcomes_[a * p + b] = {static_cast<std::uint32_t>(slice[i]), count_i, static_cast<std::uint32_t>(slice[k]),
                                       count_k, narrow ? (1u << 24) % count_i : 1u << 24,
                                       narrow ? (1u << 24) % count_k : 1u << 24, static_cast<std::uint32_t>(i * s_ + k)};
-      pair_kernel_[i * s_ + k].limit = (max_speed_[i] + max_speed_[k]) * speed_factor_;  // (pairs of absent species: never drawn)
+      pair_limit_[i * s_ + k] = (max_speed_[i] + max_speed_[k]) * speed_factor_;  // (pairs of absent species: never drawn)
     }
 }
 

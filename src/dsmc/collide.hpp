@@ -220,8 +220,13 @@
  * species from 32-bit edges held in locals (species_at: one compare for two species, a search without
  * mispredictions above 8) and its system index by one add; a drawn-ahead candidate carries its pair's
  * index (its species looked up only after a collision); `lowrank`'s alias coin selects the outcome by a
- * mask, since a branch on it went either way at random; (pi sigma^2 chi)^2 kept per pair. Measured in
- * docs/schemes.md ("Cache blocks") and README ("Performance").
+ * mask, since a branch on it went either way at random; (pi sigma^2 chi)^2 kept per pair. On
+ * 2026-11-28, again without changing a draw: the drawn-ahead candidates in three arrays of 32-bit words
+ * (a record of 12 bytes took extra instructions to address), the acceptance's constants in arrays of
+ * their own (pair_cross_section2_, pair_limit_; PairKernel is read only for a collision), and a kernel
+ * for a binary `majorant` mixture (`Two`) with its edge and offsets in registers: 10 % fewer
+ * instructions in that kernel, 5 % in `lowrank`'s. Measured in docs/schemes.md ("Cache blocks") and
+ * README ("Performance").
  * Why a `lowrank` candidate cost more than a `majorant` one (issue 11: 40 against 23 ns in a loaded
  * session, 23.7 against 17.9 in the session below; perf on bench_collide, binary lowrank): its pair
  * draw was half of the kernel's samples (49 %, `majorant`'s 25 %), a dependent chain before the
@@ -577,20 +582,23 @@ class Collider {
   /// On a worker: the current block of a mixture with constant restitution up to t_stop, the process of
   /// run_majorant (`Lowrank` false) or run_lowrank (true) on the block's slices in a loop of its own
   /// (header "Mixtures in blocks", the kernel): raised bounds are handled inside. Leaves time_, credit_,
-  /// bound_ and rate_ as run_substep does.
-  template <bool Track, bool Lowrank, bool Framed>
+  /// bound_ and rate_ as run_substep does. `Two`: `majorant` with two species (their edge and
+  /// offsets in locals).
+  template <bool Track, bool Lowrank, bool Framed, bool Two = false>
   void run_block_mixture(double t_stop);
   /// The constants of species pair (k, j) in the mixture block kernel, row-major S x S (at most
   /// block_species_limit species).
   struct PairKernel {
-    double cross_section2;  ///< (pi sigma_kj^2 chi_kj)^2: the `majorant` acceptance compared squared
     double share_a;        ///< mu_jk (1 + alpha_kj): v_a -= share_a (g.e) e
     double share_b;        ///< mu_kj (1 + alpha_kj): v_b += share_b (g.e) e
     double loss;           ///< (1 - alpha_kj^2) m_kj / 2: the energy lost per (g.e)^2
     std::uint32_t event;   ///< min(k, j) S + max(k, j): the slot in Counters::pair_events (0 without them)
-    double limit = 0.0;    ///< `lowrank` in blocks: w_k + w_j, the acceptance |g| / (w_k + w_j) (set_block_lowrank)
   };
   std::vector<PairKernel> pair_kernel_;
+  /// The acceptance's constants of pair k S + j, read for every candidate (PairKernel only for a
+  /// collision): (pi sigma_kj^2 chi_kj)^2, the `majorant` acceptance compared squared, and for `lowrank`
+  /// in blocks w_k + w_j, the acceptance |g| / (w_k + w_j) (set_block_lowrank).
+  std::vector<double> pair_cross_section2_, pair_limit_;
   std::vector<std::uint32_t> pair_species_;  ///< (k, j) of pair k S + j, 2 per pair
   /// A mixture with `lowrank` in blocks: each block samples its own low-rank A_ik (header "Mixtures in blocks").
   bool lowrank_blocks() const { return scheme_ == Scheme::lowrank && s_ > 1 && !block_first_.empty(); }
