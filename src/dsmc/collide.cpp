@@ -250,11 +250,9 @@ void Collider::restore(const State& st) {
   frame_shear_ = st.frame_shear;
   speed_factor_ = framed_ ? frame_norm(frame_scale_, frame_shear_) : 1.0;
   moments_ = st.moments;
-  // The step's block sampler: as saved, or (a checkpoint written before it was saved) chosen again
-  // from the bounds the step began with, which max_speed2_ holds during a blocked step.
-  block_lowrank_ = st.block_lowrank >= 0 ? st.block_lowrank == 1
-                                         : s_ > 1 && !block_first_.empty() && counters_.steps > 0 &&
-                                               choose_block_lowrank(mixture_bound(max_speed2_.data()));
+  // The step's block sampler: as saved, or (a checkpoint written before it was saved) the scheme's,
+  // which the code that wrote it ran; the next step chooses, as after any change of sampler.
+  block_lowrank_ = st.block_lowrank >= 0 ? st.block_lowrank == 1 : lowrank_blocks();
   // What the last rebuild or raise computed (header of State); with blocks each block sets its own.
   if (counters_.steps > 0 && block_first_.empty()) rebuild_bounds();
   if (counters_.steps > 0 && !block_first_.empty() && whole_step_) set_whole_gas_bound();
@@ -443,7 +441,7 @@ void Collider::set_whole_gas_bound() {
   rate_ = 0.5 * static_cast<double>(sys_.size()) * mix_.total_density() * bound_;
 }
 
-double Collider::block_step_length(double rate) const {
+double Collider::block_step_length(double rate, bool acceptance_unknown) const {
   // Header "Blocks", "Step length": block_steps majorant mean free times N/(2R), or as many as make
   // block_step_collisions_ collisions per particle at the last step's acceptance (one mean free time
   // brings `acceptance` collisions per particle), at most max_block_step_candidates candidates, when
@@ -453,7 +451,7 @@ double Collider::block_step_length(double rate) const {
   const double n_total = static_cast<double>(sys_.size());
   const double short_step = block_steps * step_fraction_ * n_total / (2.0 * rate);
   if (counters_.steps == 0) return std::min(short_step, max_block_step_candidates / rate);
-  if (framed_ || block_step_collisions_ <= 0.0 || step_acceptance_ <= 0.0) return short_step;
+  if (framed_ || acceptance_unknown || block_step_collisions_ <= 0.0 || step_acceptance_ <= 0.0) return short_step;
   const double long_step = block_step_collisions_ / step_acceptance_ * step_fraction_ * n_total / (2.0 * rate);
   return std::max(short_step, std::min(long_step, max_block_step_candidates / rate));
 }
@@ -515,8 +513,11 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
       if (lowrank_blocks()) rebuild_bounds();  // the low-rank majorant's own total over these vmax_k (rate_)
       // The blocks' sampler for this step (header "Mixtures in blocks", "The cheaper sampler"), chosen
       // here once for all blocks, so that R, the last step's acceptance and the output do not depend on
-      // the threads; a change of sampler makes the last step's acceptance that of another majorant.
-      const bool was_lowrank = block_lowrank_;
+      // the threads. The last step's acceptance is that of the sampler it ran: a whole-gas step runs the
+      // scheme's own; when this step's differs, the acceptance belongs to another majorant (with R
+      // several times another's: 1.8 for 20 species), so that this step takes acceptance 1 near a
+      // target and a step of block_steps (Collide.CheaperSamplerMeetsEventTargetsExactly).
+      const bool was_lowrank = whole_step_ ? lowrank_blocks() : block_lowrank_;
       block_lowrank_ = s_ > 1 && choose_block_lowrank(mixture_bound(max_speed2_.data()));
       const bool sampler_changed = counters_.steps > 0 && block_lowrank_ != was_lowrank;
       if (block_lowrank_)  // the unblocked `lowrank` total (chi_max >= chi_ik) bounds the blocks' own
@@ -525,7 +526,7 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
         time_ = t_target;
         return false;
       }
-      double step = block_step_length(rate);
+      double step = block_step_length(rate, sampler_changed);
       // Near an exact event target (header "Blocks"): a blocked step is shortened so that its events
       // (its candidates R dt times the last step's acceptance, plus 10 % and 8 standard deviations)
       // stay below those left; the first step, with no acceptance measured yet, takes acceptance 1,

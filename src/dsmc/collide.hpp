@@ -208,9 +208,10 @@
  * `lowrank` candidate's cost over a `majorant` one's in the kernel) times its candidate rate
  * sum_ik pi sigma_ik^2 chi_ik vmax_i N_i N_k n/(N - 1) is less than the `majorant` rate N n B/2
  * (block_candidate_rate). The master chooses once per step for all blocks (so that R, the last step's
- * acceptance and the output do not depend on the threads); the choice is part of the State; after a
- * change of sampler the next step near an event target takes acceptance 1 (the last step's was another
- * majorant's). Masses 1 and 4 with diameters 1 and 1.5 (bench_paths' binary gases) take `majorant`,
+ * acceptance and the output do not depend on the threads); the choice is part of the State. A step
+ * whose sampler differs from the one the last step ran (a change of choice, or after a whole-gas step,
+ * which runs the scheme's) takes acceptance 1 near an event target and 5 mean free times: the last
+ * step's acceptance was another majorant's. Masses 1 and 4 with diameters 1 and 1.5 (bench_paths' binary gases) take `majorant`,
  * diameters 1 and 2 and many species of unlike sizes `lowrank`. Viscoelastic mixtures and whole-gas
  * steps keep the scheme's own loops, as does every unblocked run; set_block_sampler() forces one sampler
  * (the kernel tests, bench_collide's `scheme`). Tested in Collide.BlocksRunTheCheaperSampler (the rates
@@ -528,7 +529,7 @@ class Collider {
     bool whole_step = false;                             ///< with blocks: the step runs on the whole gas
     double step_acceptance = 0.0;
     std::uint64_t step_events_start = 0, step_candidates_start = 0;
-    int block_lowrank = -1;  ///< with blocks: the step's sampler (1 `lowrank`, 0 `majorant`; -1 unknown: chosen again)
+    int block_lowrank = -1;  ///< with blocks: the step's sampler (1 `lowrank`, 0 `majorant`; -1 unknown: the scheme's)
     bool framed = false;                                 ///< set_frame: the frame and its moments
     double frame_scale = 1.0, frame_shear = 0.0;
     std::array<double, 4> moments{};
@@ -548,8 +549,9 @@ class Collider {
   int run_majorant(double t_stop, std::uint64_t event_target);  // returns a Stop (collide.cpp)
   bool advance_blocks(double t_target, std::uint64_t event_target, bool exact_events, std::uint64_t event_limit,
                       bool to_step_end);
-  /// The length of a blocked step that starts now at candidate rate `rate` (header "Blocks", "Step length").
-  double block_step_length(double rate) const;
+  /// The length of a blocked step that starts now at candidate rate `rate` (header "Blocks", "Step length");
+  /// `acceptance_unknown`: the last step's acceptance is another sampler's (block_steps mean free times).
+  double block_step_length(double rate, bool acceptance_unknown = false) const;
   void set_whole_gas_bound();       ///< bound_, rate_ and range of a whole-gas step (with blocks)
   bool whole_step_ = false;         ///< with blocks: this step runs on the whole gas (near an event target)
   double step_acceptance_ = 0.0;    ///< with blocks: events per candidate in the last step
