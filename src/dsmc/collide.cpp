@@ -515,8 +515,9 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
       // here once for all blocks, so that R, the last step's acceptance and the output do not depend on
       // the threads. The last step's acceptance is that of the sampler it ran: a whole-gas step runs the
       // scheme's own; when this step's differs, the acceptance belongs to another majorant (with R
-      // several times another's: 1.8 for 20 species), so that this step takes acceptance 1 near a
-      // target and a step of block_steps (Collide.CheaperSamplerMeetsEventTargetsExactly).
+      // several times another's: 1.8 for 20 species), so that this step judges its events near a target
+      // from the last step's events per unit time (below) and is block_steps long
+      // (Collide.CheaperSamplerMeetsEventTargetsExactly).
       const bool was_lowrank = whole_step_ ? lowrank_blocks() : block_lowrank_;
       block_lowrank_ = s_ > 1 && choose_block_lowrank(mixture_bound(max_speed2_.data()));
       const bool sampler_changed = counters_.steps > 0 && block_lowrank_ != was_lowrank;
@@ -550,8 +551,19 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
         const bool after_long = last_candidates > 1.01 * short_candidates;
         const double fewest = std::min(n_total / 64.0, 4.0 * n_total / static_cast<double>(blocks));
         const bool too_few = last_candidates < fewest;
-        const double acceptance =
-            step_acceptance_ > 0.0 && !after_long && !too_few && !sampler_changed ? step_acceptance_ : 1.0;
+        // After a change of sampler (or a whole-gas step of the other one) the last step's acceptance is
+        // another majorant's: its events per unit time instead, which do not depend on the majorant (and
+        // only fall as the gas cools), over this step's R. (Acceptance 1 there made the whole-gas steps
+        // before a target cover a third of the events left each: a collision-driven binary `lowrank` run
+        // whose blocks run `majorant` took 1.5-2 times as long.)
+        const double last_elapsed = time_ - step_start_;
+        const double changed_acceptance =
+            last_elapsed > 0.0
+                ? std::min(1.0, static_cast<double>(counters_.events - step_events_start_) / last_elapsed / rate)
+                : 1.0;
+        const double acceptance = step_acceptance_ > 0.0 && !after_long && !too_few
+                                      ? (sampler_changed ? changed_acceptance : step_acceptance_)
+                                      : 1.0;
         if (may_reach(acceptance * rate * step, remaining)) step = std::min(step, short_candidates / rate);  // (never longer)
         const double expected = acceptance * rate * step;
         if (may_reach(expected, remaining)) {

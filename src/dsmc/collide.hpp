@@ -210,8 +210,8 @@
  * (block_candidate_rate). The master chooses once per step for all blocks (so that R, the last step's
  * acceptance and the output do not depend on the threads); the choice is part of the State. A step
  * whose sampler differs from the one the last step ran (a change of choice, or after a whole-gas step,
- * which runs the scheme's) takes acceptance 1 near an event target and 5 mean free times: the last
- * step's acceptance was another majorant's. Masses 1 and 4 with diameters 1 and 1.5 (bench_paths' binary gases) take `majorant`,
+ * which runs the scheme's) judges its events near an event target from the last step's events per unit
+ * time (the last step's acceptance was another majorant's) and is 5 mean free times long. Masses 1 and 4 with diameters 1 and 1.5 (bench_paths' binary gases) take `majorant`,
  * diameters 1 and 2 and many species of unlike sizes `lowrank`. Viscoelastic mixtures and whole-gas
  * steps keep the scheme's own loops, as does every unblocked run; set_block_sampler() forces one sampler
  * (the kernel tests, bench_collide's `scheme`). Tested in Collide.BlocksRunTheCheaperSampler (the rates
