@@ -116,6 +116,26 @@ struct BinaryRuns {
   }
 };
 
+// Masses 1 and 4, diameters 1 and 1.5 at equal densities: its blocks run the `majorant` sampler.
+species::Mixture near_binary() {
+  return species::make_mixture({1.0, 4.0}, {1.0, 1.5}, {0.01, 0.01}, species::PairMatrix(2, 0.9), false);
+}
+
+// 20 species of the Fig 8 law (m_k = k, sigma_k = k^(1/3), n_k = 0.01 k^-3, alpha = 0.8), N_k =
+// 12000 k^-3 + 1 (N = 14441: 13 species scattered over blocks of 3000): its blocks run `lowrank`.
+std::pair<species::Mixture, std::vector<std::size_t>> fig8_gas() {
+  std::vector<double> mass(20), diameter(20), density(20);
+  std::vector<std::size_t> counts(20);
+  for (std::size_t k = 0; k < 20; ++k) {
+    const double kk = static_cast<double>(k + 1);
+    mass[k] = kk;
+    diameter[k] = std::cbrt(kk);
+    density[k] = 0.01 * std::pow(kk, -3.0);
+    counts[k] = static_cast<std::size_t>(std::llround(12000.0 * std::pow(kk, -3.0))) + 1;
+  }
+  return {species::make_mixture(mass, diameter, density, species::PairMatrix(20, 0.8), false), counts};
+}
+
 // runs[1] (blocked) against runs[0] (unblocked): each observable within 4 combined SE, printed.
 void expect_binary_runs_agree(const BinaryRuns (&runs)[2], const std::string& label) {
   const char* names[] = {"T1", "T2", "share of 1-2 events", "time at the target"};
@@ -1183,17 +1203,9 @@ TEST(Collide, BlocksRunTheCheaperSampler) {
     EXPECT_NEAR(c.block_candidate_rate(true), 6.12e8 * kPi * 0.015 / 11999.0, 1e-9);
   }
   {  // (b)
-    const auto near = species::make_mixture({1.0, 4.0}, {1.0, 1.5}, {0.01, 0.01}, species::PairMatrix(2, 0.9), false);
-    std::vector<double> mass(20), diameter(20), density(20), temperature(20, 1.0);
-    std::vector<std::size_t> counts(20);
-    for (std::size_t k = 0; k < 20; ++k) {
-      const double kk = static_cast<double>(k + 1);
-      mass[k] = kk;
-      diameter[k] = std::cbrt(kk);
-      density[k] = 0.01 * std::pow(kk, -3.0);
-      counts[k] = static_cast<std::size_t>(std::llround(12000.0 * std::pow(kk, -3.0))) + 1;
-    }
-    const auto many = species::make_mixture(mass, diameter, density, species::PairMatrix(20, 0.8), false);
+    const auto near = near_binary();
+    const auto [many, counts] = fig8_gas();
+    const std::vector<double> temperature(20, 1.0);
     struct Case {
       const species::Mixture* mix;
       std::vector<std::size_t> counts;
@@ -1304,20 +1316,12 @@ TEST(Collide, BlocksRunTheCheaperSampler) {
 // `lowrank` (diameters 1 and 2; 20 species of the Fig 8 law, 13 of them scattered) and `lowrank` runs whose
 // blocks take `majorant` (diameters 1 and 1.5), on 2 threads and with displacements tracked. The
 // whole-gas steps before each target run the scheme's own sampler, so that the step after one has its
-// acceptance from the other majorant (taken as 1 then, a bound): every target met exactly, no overshoot.
+// acceptance from the other majorant (its events are judged from the events per unit time then): every
+// target met exactly, no overshoot.
 TEST(Collide, CheaperSamplerMeetsEventTargetsExactly) {
   const auto wide = binary(0.9, 0.8, 0.7);  // diameters 1 and 2
-  const auto near = species::make_mixture({1.0, 4.0}, {1.0, 1.5}, {0.01, 0.01}, species::PairMatrix(2, 0.9), false);
-  std::vector<double> mass(20), diameter(20), density(20), temperature(20, 1.0);
-  std::vector<std::size_t> counts(20);
-  for (std::size_t k = 0; k < 20; ++k) {
-    const double kk = static_cast<double>(k + 1);
-    mass[k] = kk;
-    diameter[k] = std::cbrt(kk);
-    density[k] = 0.01 * std::pow(kk, -3.0);
-    counts[k] = static_cast<std::size_t>(std::llround(12000.0 * std::pow(kk, -3.0))) + 1;
-  }
-  const auto many = species::make_mixture(mass, diameter, density, species::PairMatrix(20, 0.8), false);
+  const auto near = near_binary();
+  const auto [many, counts] = fig8_gas();
   struct Case {
     const species::Mixture* mix;
     Scheme scheme;
