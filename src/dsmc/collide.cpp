@@ -402,7 +402,7 @@ double Collider::mixture_bound(const double* max_speed2, const std::size_t* cum)
   return bound;
 }
 
-bool Collider::choose_block_lowrank(double majorant_bound) const {
+bool Collider::choose_block_lowrank() const {
   // Both samplers are exact in a block (header "Mixtures in blocks"): a majorant sets only how many
   // candidates a collision takes, not the process. The one whose candidates cost less in all: R (the
   // same speed bounds, the same frame factor on both sides) times the cost of a candidate, a `lowrank`
@@ -411,8 +411,7 @@ bool Collider::choose_block_lowrank(double majorant_bound) const {
   if (block_first_.empty() || s_ == 1) return false;
   if (viscoelastic_) return lowrank_blocks();
   if (block_sampler_ != BlockSampler::cheaper) return block_sampler_ == BlockSampler::lowrank;
-  const double majorant_rate = 0.5 * static_cast<double>(sys_.size()) * mix_.total_density() * majorant_bound;
-  return lowrank_candidate_cost * block_candidate_rate(true) < majorant_rate;
+  return lowrank_candidate_cost * block_candidate_rate(true) < block_candidate_rate(false);
 }
 
 double Collider::lowrank_block_rate(const double* max_speed2) const {
@@ -519,7 +518,7 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
       // from the last step's events per unit time (below) and is block_steps long
       // (Collide.CheaperSamplerMeetsEventTargetsExactly).
       const bool was_lowrank = whole_step_ ? lowrank_blocks() : block_lowrank_;
-      block_lowrank_ = s_ > 1 && choose_block_lowrank(mixture_bound(max_speed2_.data()));
+      block_lowrank_ = choose_block_lowrank();
       const bool sampler_changed = counters_.steps > 0 && block_lowrank_ != was_lowrank;
       if (block_lowrank_)  // the unblocked `lowrank` total (chi_max >= chi_ik) bounds the blocks' own
         rate = lowrank_blocks() ? rate_ : lowrank_block_rate(max_speed2_.data()) * speed_factor_;

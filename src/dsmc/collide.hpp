@@ -607,8 +607,8 @@ class Collider {
   BlockSampler block_sampler_ = BlockSampler::cheaper;
   bool block_lowrank_ = false;  ///< the blocks of this step run the `lowrank` sampler (choose_block_lowrank)
   /// The step's block sampler from the gas's bounds max_speed2_ (header "Mixtures in blocks", "The cheaper
-  /// sampler"); `majorant_bound` is mixture_bound(max_speed2_).
-  bool choose_block_lowrank(double majorant_bound) const;
+  /// sampler"): the two block_candidate_rate() weighed by lowrank_candidate_cost.
+  bool choose_block_lowrank() const;
   /// sum_ik pi sigma_ik^2 chi_ik w_i N_i N_k n/(N - 1) over the gas's species (w_i = sqrt(max_speed2[i])):
   /// the blocks' `lowrank` candidate rate summed over the blocks, to within the slices' rounding.
   double lowrank_block_rate(const double* max_speed2) const;
