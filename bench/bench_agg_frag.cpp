@@ -20,7 +20,7 @@
 #include "dsmc/collide.hpp"
 #include "dsmc/particles.hpp"
 #include "dsmc/rng.hpp"
-#include "dsmc/species.hpp"
+#include "model/species.hpp"
 #include "io/config.hpp"
 
 using namespace gdsmc;

@@ -30,7 +30,7 @@
 #include "dsmc/collide.hpp"
 #include "dsmc/particles.hpp"
 #include "dsmc/rng.hpp"
-#include "dsmc/species.hpp"
+#include "model/species.hpp"
 #include "io/config.hpp"
 
 using namespace gdsmc;
@@ -73,7 +73,7 @@ Result measure(const Path& path, double alpha, std::size_t n, double per_particl
                bool scheme_sampler) {
   const species::Mixture mix = gas_of(path.gas, alpha);
   auto init = rng::make_stream(1, 0, rng::Purpose::initial_state);
-  auto sys = particles::make_system(mix, particles::species_counts(n, mix), std::vector<double>(mix.size(), 1.0),
+  auto sys = particles::make_system(mix, species::particle_counts(n, mix), std::vector<double>(mix.size(), 1.0),
                                     particles::InitialDistribution::maxwell, init);
   collide::Collider collider(path.scheme, mix, sys, rng::make_stream(1, 0, rng::Purpose::collisions), 1.0);
   collider.use_blocks(block_size);

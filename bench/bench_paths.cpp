@@ -35,7 +35,7 @@
 #include <omp.h>
 #endif
 
-#include "dsmc/simulation.hpp"
+#include "run/simulation.hpp"
 #include "io/config.hpp"
 #include "io/namelist.hpp"
 

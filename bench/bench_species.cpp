@@ -15,7 +15,7 @@
 #include "dsmc/collide.hpp"
 #include "dsmc/particles.hpp"
 #include "dsmc/rng.hpp"
-#include "dsmc/species.hpp"
+#include "model/species.hpp"
 
 using namespace gdsmc;
 
@@ -30,7 +30,7 @@ double collisions_per_second(collide::Scheme scheme, std::size_t n, std::size_t 
   // One restitution for all pairs, stored as one number (as the namelist reader does for many species).
   const auto mix = species::make_mixture(mass, diameter, density, species::PairMatrix::uniform(m, 0.9), false);
   auto init = rng::make_stream(1, 0, rng::Purpose::initial_state);
-  auto sys = particles::make_system(mix, particles::species_counts(n, mix), std::vector<double>(m, 1.0),
+  auto sys = particles::make_system(mix, species::particle_counts(n, mix), std::vector<double>(m, 1.0),
                                     particles::InitialDistribution::maxwell, init);
   collide::Collider collider(scheme, mix, sys, rng::make_stream(1, 0, rng::Purpose::collisions), 1.0);
   collider.advance(1e300, n / 5);  // warm up

@@ -5,7 +5,7 @@
 // Prints per s and density the time of one evaluation of the Maxwellian cooling rates (\ref haff_mixture_odes "docs/haff-and-mixtures.md")
 // entry by entry (theory.hpp) and of 100 by the pair sums of theory/maxwellian_rates.hpp,
 // the partial-temperature ODEs to t = 500 on 12 log-spaced times, the asymptotic ratios, the
-// first-Sonine HCS (theory/sonine_mixture.hpp) and theory::predict() on the equivalent namelist
+// first-Sonine HCS (theory/sonine_mixture.hpp) and analysis::predict() on the equivalent namelist
 // (everything granular-theory computes for it).
 // Not run by ctest: build/bin/bench_theory [s ...] (default 10 100 1000).
 #include <chrono>
@@ -22,7 +22,7 @@
 
 #include "io/config.hpp"
 #include "theory/maxwellian_rates.hpp"
-#include "theory/predictions.hpp"
+#include "analysis/predictions.hpp"
 #include "theory/sonine_mixture.hpp"
 #include "theory/theory.hpp"
 
@@ -112,7 +112,7 @@ int main(int argc, char** argv) {
       timed("first-Sonine HCS", [&] { theory::hcs_first_sonine(mix); });
       std::ofstream(file) << namelist(s, law);
       timed("predict (granular-theory)", [&] {
-        const auto p = theory::predict(gdsmc::io::config::read_file(file.string()));
+        const auto p = gdsmc::analysis::predict(gdsmc::io::config::read_file(file.string()));
         for (const auto& note : p.notes) std::printf("    note: %s\n", note.c_str());
       });
     }

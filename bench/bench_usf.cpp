@@ -15,7 +15,7 @@
 #include <unistd.h>
 #include <vector>
 
-#include "dsmc/simulation.hpp"
+#include "run/simulation.hpp"
 #include "io/config.hpp"
 
 using namespace gdsmc;

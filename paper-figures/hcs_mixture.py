@@ -6,7 +6,7 @@ five-species cases of validation/hcs_mixture, with residuals (DSMC/theory - 1 in
 
 The DSMC values are the averages over the samples past `&output scaling_start` collisions per particle,
 with the standard error of the average taken as the mean of the samples' (an upper bound), as
-`granular-dsmc --compare` and the validation program compute them (src/io/compare.cpp).
+`granular-dsmc --compare` and the validation program compute them (src/analysis/compare.cpp).
 
 usage: /usr/bin/python3 paper-figures/hcs_mixture.py [BUILD_DIR] [OUT_DIR]
 Reads BUILD_DIR/validation-output/hcs_{ternary,five}*.h5 (ctest -L validation; paper tier preferred,

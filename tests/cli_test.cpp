@@ -638,7 +638,7 @@ TEST_F(CliDsmc, UnknownOptionOrNoInput) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Sweep tables and --table (issue 17 item 3; io/sweep_table.hpp), --print-defaults' restitution line
+// Sweep tables and --table (issue 17 item 3; analysis/sweep_table.hpp), --print-defaults' restitution line
 // ---------------------------------------------------------------------------------------------
 
 class CliTable : public CliFixture {};
@@ -715,7 +715,7 @@ TEST_F(CliDsmc, PrintDefaultsSaysRequiredOnce) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// granular-dsmc --compare (io/compare.hpp)
+// granular-dsmc --compare (analysis/compare.hpp)
 // ---------------------------------------------------------------------------------------------
 
 class CliCompare : public CliFixture {

@@ -17,7 +17,7 @@
 #include "dsmc/deal.hpp"
 #include "dsmc/particles.hpp"
 #include "dsmc/rng.hpp"
-#include "dsmc/species.hpp"
+#include "model/species.hpp"
 #include "sanitizer_scale.hpp"
 
 using namespace gdsmc;

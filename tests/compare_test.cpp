@@ -1,7 +1,7 @@
-// Tests of io/compare (granular-dsmc --compare): the rows of the table against numbers computed by
+// Tests of analysis/compare (granular-dsmc --compare): the rows of the table against numbers computed by
 // hand here from the formulas compare.hpp cites (Haff's law, \ref haff_law "docs/haff-and-mixtures.md"; the scaling-state average;
 // the known errors of docs/physics.md "Comparison with theory"), the marks, and the three outputs.
-#include "io/compare.hpp"
+#include "analysis/compare.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -16,12 +16,12 @@
 #include "io/config.hpp"
 #include "io/h5md.hpp"
 #include "io/namelist.hpp"
-#include "theory/predictions.hpp"
+#include "analysis/predictions.hpp"
 #include "theory/sonine_mixture.hpp"
 
 namespace {
 
-namespace cmp = gdsmc::io::compare;
+namespace cmp = gdsmc::analysis::compare;
 namespace config = gdsmc::io::config;
 namespace h5md = gdsmc::io::h5md;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -98,7 +98,7 @@ TEST(CompareKnownError, SonineRateAndViscosity) {
 // (\ref cm_pair_rate "docs/collision-model.md"); DSMC 0.4 % above with SE 0.1 %: z = +4, +0.4 %, known error 1.15 eps ln(T0/T) T.
 TEST(CompareRows, HaffAgainstHandComputedNumbers) {
   const auto c = haff_config();
-  const auto theory = gdsmc::theory::predict(c);
+  const auto theory = gdsmc::analysis::predict(c);
   const double pi = std::numbers::pi, n = 0.01, alpha = 0.9;
   const double zeta0 = 4.0 / 3.0 * std::sqrt(pi) * (1.0 - alpha * alpha) * n;
   const double t0 = 2.0 / zeta0, nu0 = 4.0 * std::sqrt(pi) * n;
@@ -146,7 +146,7 @@ TEST(CompareRows, HaffAgainstHandComputedNumbers) {
 // collisions per particle, against the first-Sonine HCS; error = r hypot(e_k/T_k, e/T), averaged.
 TEST(CompareRows, BinaryScalingStateAverages) {
   const auto c = binary_config();
-  const auto theory = gdsmc::theory::predict(c);
+  const auto theory = gdsmc::analysis::predict(c);
   const std::vector<double> times{0.0, 100.0, 200.0, 300.0, 400.0};
   const double t1 = 1.2, t2 = 0.8, total = 0.5 * (t1 + t2);
   std::vector<double> temperature, temperature_error, sonine, sonine_error, total_value, total_error;
@@ -197,7 +197,7 @@ TEST(CompareRows, NoTheorySaysSoInsteadOfFailing) {
       "&system\n n_species = 1\n mass = 1.0\n diameter = 1.0\n number_density = 0.01\n restitution = 0.9\n/\n"
       "&dsmc\n n_particles = 1000\n t_end = 100.0\n/\n&shear\n rate = 0.001\n/\n");
   cmp::Measured m;
-  const auto pt = cmp::compare_point(c, gdsmc::theory::predict(c), m);
+  const auto pt = cmp::compare_point(c, gdsmc::analysis::predict(c), m);
   EXPECT_TRUE(pt.quantities.empty());
   const std::string text = cmp::table(cmp::Comparison{{pt}, false, ""});
   EXPECT_NE(text.find("no theory applies to this input"), std::string::npos) << text;

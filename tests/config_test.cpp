@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "analysis/run_checks.hpp"
 #include "base_namelist.hpp"
 #include "sanitizer_scale.hpp"
 
@@ -32,8 +33,9 @@ std::string with_line(int line, const std::string& text) {
   return gdsmc::test::with_line(base_lines, line, text);
 }
 
+/// Reads `text` as the programs do: the reader's checks, then the run's cost (analysis/run_checks.hpp).
 config::Config read_text(const std::string& text, const std::vector<std::string>& overrides = {}) {
-  return config::read(namelist::parse(text, "t.nml"), overrides);
+  return config::read(namelist::parse(text, "t.nml"), overrides, gdsmc::analysis::check_run_cost);
 }
 
 /// The message of the error reading `text` raises (parse or read), or a test failure.

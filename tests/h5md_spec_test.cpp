@@ -39,7 +39,7 @@
 #include <string>
 #include <vector>
 
-#include "dsmc/simulation.hpp"
+#include "run/simulation.hpp"
 #include "io/config.hpp"
 #include "io/namelist.hpp"
 

@@ -16,7 +16,7 @@
 #endif
 
 #include "dsmc/rng.hpp"
-#include "dsmc/species.hpp"
+#include "model/species.hpp"
 
 using namespace gdsmc;
 using particles::InitialDistribution;
@@ -72,26 +72,26 @@ const char* name(InitialDistribution d) {
 // counts always add up to N (issue 12: N = 3 with two equal species simulated 4 particles).
 TEST(Particles, SpeciesCountsAddUpToN) {
   const auto mix = binary();  // x = (2/3, 1/3)
-  EXPECT_EQ(particles::species_counts(1000, mix), (std::vector<std::size_t>{667, 333}));
-  EXPECT_EQ(particles::species_counts(30000, mix), (std::vector<std::size_t>{20000, 10000}));
-  EXPECT_EQ(particles::species_counts(20000, mix), (std::vector<std::size_t>{13333, 6667}));
+  EXPECT_EQ(species::particle_counts(1000, mix), (std::vector<std::size_t>{667, 333}));
+  EXPECT_EQ(species::particle_counts(30000, mix), (std::vector<std::size_t>{20000, 10000}));
+  EXPECT_EQ(species::particle_counts(20000, mix), (std::vector<std::size_t>{13333, 6667}));
   const auto quarter = species::make_mixture({1.0, 1.0}, {1.0, 1.0}, {1.0, 3.0},
                                              species::PairMatrix(2, 1.0), false);
-  EXPECT_EQ(particles::species_counts(10, quarter), (std::vector<std::size_t>{3, 7}));  // 2.5, 7.5: a tie
-  EXPECT_EQ(particles::species_counts(9, quarter), (std::vector<std::size_t>{2, 7}));   // 2.25, 6.75
+  EXPECT_EQ(species::particle_counts(10, quarter), (std::vector<std::size_t>{3, 7}));  // 2.5, 7.5: a tie
+  EXPECT_EQ(species::particle_counts(9, quarter), (std::vector<std::size_t>{2, 7}));   // 2.25, 6.75
   const auto thirds = species::make_mixture({1.0, 1.0, 1.0}, {1.0, 1.0, 1.0}, {0.1, 0.1, 0.1},
                                             species::PairMatrix(3, 1.0), false);
-  EXPECT_EQ(particles::species_counts(10, thirds), (std::vector<std::size_t>{4, 3, 3}));
+  EXPECT_EQ(species::particle_counts(10, thirds), (std::vector<std::size_t>{4, 3, 3}));
   const auto halves = species::make_mixture({1.0, 1.0}, {1.0, 1.0}, {0.1, 0.1}, species::PairMatrix(2, 1.0), false);
-  EXPECT_EQ(particles::species_counts(3, halves), (std::vector<std::size_t>{2, 1}));
+  EXPECT_EQ(species::particle_counts(3, halves), (std::vector<std::size_t>{2, 1}));
   const auto one = species::make_mixture({2.0}, {1.0}, {0.3}, species::PairMatrix(1, 1.0), false);
-  EXPECT_EQ(particles::species_counts(12345, one), (std::vector<std::size_t>{12345}));
+  EXPECT_EQ(species::particle_counts(12345, one), (std::vector<std::size_t>{12345}));
   // Many species of a power law, many N: always N in all.
   std::vector<double> m(300, 1.0), d(300, 1.0), n(300);
   for (std::size_t k = 0; k < n.size(); ++k) n[k] = 0.1 * std::pow(static_cast<double>(k + 1), -1.7);
   const auto many = species::make_mixture(m, d, n, species::PairMatrix::uniform(300, 1.0), false);
   for (std::size_t total : {300u, 1001u, 12000u, 123457u}) {
-    const auto counts = particles::species_counts(total, many);
+    const auto counts = species::particle_counts(total, many);
     std::size_t sum = 0;
     for (auto c : counts) sum += c;
     EXPECT_EQ(sum, total);

@@ -12,7 +12,7 @@
 
 #include "dsmc/particles.hpp"
 #include "dsmc/rng.hpp"
-#include "dsmc/species.hpp"
+#include "model/species.hpp"
 
 using namespace gdsmc;
 

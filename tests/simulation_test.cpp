@@ -1,5 +1,5 @@
 // Unit tests for gdsmc::simulation: the file a run writes, sweeps, and reproducibility.
-#include "dsmc/simulation.hpp"
+#include "run/simulation.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Unit tests for gdsmc::species: pair data and the Carnahan-Starling pair correlation (\ref cm_chi "docs/collision-model.md").
-#include "dsmc/species.hpp"
+#include "model/species.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,12 @@
-// Unit tests for gdsmc::io::sweep_table: the numbers of swept values and the CSV of --table.
-#include "io/sweep_table.hpp"
+// Unit tests for gdsmc::analysis::sweep_table: the numbers of swept values and the CSV of --table.
+#include "analysis/sweep_table.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 using namespace gdsmc::io;
+using namespace gdsmc::analysis;
 
 TEST(SweepTable, NumericValues) {
   EXPECT_DOUBLE_EQ(sweep_table::numeric_value("0.7"), 0.7);

@@ -14,13 +14,14 @@
 #include <system_error>
 #include <vector>
 
-#include "dsmc/parallel.hpp"
-#include "dsmc/simulation.hpp"
-#include "io/compare.hpp"
+#include "run/parallel.hpp"
+#include "run/simulation.hpp"
+#include "analysis/compare.hpp"
+#include "analysis/run_checks.hpp"
 #include "io/config.hpp"
 #include "io/h5md.hpp"
 #include "io/namelist.hpp"
-#include "io/sweep_table.hpp"
+#include "analysis/sweep_table.hpp"
 #include "io/version.hpp"
 
 namespace {
@@ -156,10 +157,10 @@ int main(int argc, char** argv) {
     } else if (arg == "--print-reference") {  // Markdown input reference, for docs/
       std::cout << gdsmc::io::config::reference_markdown();
       return 0;
-    } else if (arg == "--table") {  // the sweep table of an output file as CSV (io/sweep_table.hpp)
+    } else if (arg == "--table") {  // the sweep table of an output file as CSV (analysis/sweep_table.hpp)
       const std::string file = next();
       try {
-        std::cout << gdsmc::io::sweep_table::csv(gdsmc::io::sweep_table::read(file)) << std::flush;
+        std::cout << gdsmc::analysis::sweep_table::csv(gdsmc::analysis::sweep_table::read(file)) << std::flush;
       } catch (const std::exception& e) {
         std::cerr << "granular-dsmc: --table " << file << ": " << e.what() << "\n";
         return 2;
@@ -206,7 +207,7 @@ int main(int argc, char** argv) {
 
   gdsmc::io::config::Config config;
   try {
-    config = gdsmc::io::config::read_file(input, overrides);
+    config = gdsmc::io::config::read_file(input, overrides, gdsmc::analysis::check_run_cost);
   } catch (const gdsmc::io::namelist::Error& e) {
     if (root) std::cerr << "granular-dsmc: " << e.what() << "\n";
     return 2;
@@ -269,21 +270,21 @@ int main(int argc, char** argv) {
   // The theory depends on the input only: computed in a thread of its own while the DSMC runs, so
   // that --compare adds (almost) nothing to the wall time (the ODEs take milliseconds; the Smoluchowski
   // equations of an &agg_frag run seconds).
-  gdsmc::io::compare::Comparison comparison;
-  std::future<std::vector<gdsmc::io::compare::PointTheory>> theory;
+  gdsmc::analysis::compare::Comparison comparison;
+  std::future<std::vector<gdsmc::analysis::compare::PointTheory>> theory;
   if (compare && root) {
-    theory = std::async(std::launch::async, [&config] { return gdsmc::io::compare::predict_points(config); });
+    theory = std::async(std::launch::async, [&config] { return gdsmc::analysis::compare::predict_points(config); });
     options.before_commit = [&](gdsmc::io::h5md::Writer& writer) {
-      comparison = gdsmc::io::compare::compare_file(config, writer.temporary_path(), theory.get());
-      gdsmc::io::compare::write(writer, comparison);
+      comparison = gdsmc::analysis::compare::compare_file(config, writer.temporary_path(), theory.get());
+      gdsmc::analysis::compare::write(writer, comparison);
     };
   }
   try {
     const auto summary = gdsmc::simulation::run(config, path, options);
     if (compare && root) {
-      std::cout << gdsmc::io::compare::table(comparison) << std::flush;
+      std::cout << gdsmc::analysis::compare::table(comparison) << std::flush;
       if (!compare_json.empty())
-        if (const std::string reason = write_atomically(compare_json, gdsmc::io::compare::json(comparison));
+        if (const std::string reason = write_atomically(compare_json, gdsmc::analysis::compare::json(comparison));
             !reason.empty()) {
           std::cerr << "granular-dsmc: --compare=" << compare_json << ": cannot write the JSON file: " << reason
                     << " (the run's output " << path << " is complete)\n";

@@ -13,7 +13,8 @@
 
 #include "io/config.hpp"
 #include "io/namelist.hpp"
-#include "theory/predictions.hpp"
+#include "analysis/predictions.hpp"
+#include "analysis/run_checks.hpp"
 #include "theory/smoluchowski.hpp"
 #include "theory/sonine_mixture.hpp"
 #include "theory/theory.hpp"
@@ -68,8 +69,8 @@ std::string escape(const std::string& text) {
   return out;
 }
 
-/// The theory of an &agg_frag run (theory/predictions.hpp) as JSON, in the units of the DSMC observables.
-std::string agg_frag_json(const gdsmc::theory::AggFragPrediction& af, const std::string& indent) {
+/// The theory of an &agg_frag run (analysis/predictions.hpp) as JSON, in the units of the DSMC observables.
+std::string agg_frag_json(const gdsmc::analysis::AggFragPrediction& af, const std::string& indent) {
   const auto& sol = af.solution;
   const auto& rates = af.initial_rates;
   const double n0 = af.initial_monomers;
@@ -126,11 +127,11 @@ void announce_large_mixture(const gdsmc::io::config::Config& config) {
             << " s of one core\n";
 }
 
-/// The theory of one system (theory::predict) as a JSON object; `indent` prefixes every line. The
+/// The theory of one system (analysis::predict) as a JSON object; `indent` prefixes every line. The
 /// notes of what was left out go to stderr.
 std::string point_json(const gdsmc::io::config::Config& config, const std::string& indent) {
   announce_large_mixture(config);
-  const auto p = gdsmc::theory::predict(config);
+  const auto p = gdsmc::analysis::predict(config);
   for (const auto& note : p.notes) std::cerr << "granular-theory: " << note << "\n";
   const std::string in = indent + "  ";
   auto approximations = [&] {
@@ -228,7 +229,7 @@ int main(int argc, char** argv) {
   }
   gdsmc::io::config::Config config;
   try {
-    config = gdsmc::io::config::read_file(input, overrides);
+    config = gdsmc::io::config::read_file(input, overrides, gdsmc::analysis::check_run_cost);
   } catch (const gdsmc::io::namelist::Error& e) {
     std::cerr << "granular-theory: " << e.what() << "\n";
     return 2;

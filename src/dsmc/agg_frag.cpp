@@ -11,7 +11,7 @@
 #endif
 
 #include "dsmc/collide.hpp"
-#include "dsmc/species.hpp"
+#include "model/species.hpp"
 
 namespace gdsmc::agg_frag {
 

@@ -286,9 +286,9 @@
 #include "dsmc/deal.hpp"
 #include "dsmc/particles.hpp"
 #include "dsmc/rng.hpp"
-#include "dsmc/restitution.hpp"
+#include "model/restitution.hpp"
 #include "dsmc/segment_tree.hpp"
-#include "dsmc/species.hpp"
+#include "model/species.hpp"
 
 namespace gdsmc::collide {
 

@@ -42,32 +42,6 @@ const char* release_pages(const char* begin, const char* end) {
 #endif
 }
 
-std::vector<std::size_t> species_counts(std::size_t n_particles, const species::Mixture& mix) {
-  // Largest remainders (Hamilton's apportionment): N_k = floor(N x_k), and the N - sum_k N_k
-  // particles left go one each to the species with the largest fractional parts N x_k - N_k (the
-  // lower index first on a tie), so that sum_k N_k = N exactly. When rounding each N x_k to the
-  // nearest integer already adds up to N, this gives the same counts.
-  const std::size_t s = mix.size();
-  std::vector<std::size_t> counts(s);
-  std::vector<double> fraction(s);
-  const double n = mix.total_density();  // once: mole_fraction(k) would sum over all species each time
-  std::size_t assigned = 0;
-  for (std::size_t k = 0; k < s; ++k) {
-    const double share = static_cast<double>(n_particles) * mix.number_density[k] / n;
-    counts[k] = static_cast<std::size_t>(std::floor(share));
-    fraction[k] = share - std::floor(share);
-    assigned += counts[k];
-  }
-  std::vector<std::size_t> order(s);
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return fraction[a] > fraction[b]; });
-  // Round-off may leave the floors one above N (a share a hair above an integer): take back from the
-  // smallest fractional parts, which are last in `order`.
-  for (std::size_t i = s; assigned > n_particles && i-- > 0;)
-    if (counts[order[i]] > 0) --counts[order[i]], --assigned;
-  for (std::size_t i = 0; assigned < n_particles; i = (i + 1) % s) ++counts[order[i]], ++assigned;
-  return counts;
-}
 
 System make_system(const species::Mixture& mix, const std::vector<std::size_t>& counts,
                    const std::vector<double>& temperature, InitialDistribution distribution,

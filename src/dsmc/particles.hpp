@@ -32,7 +32,7 @@
 #include <vector>
 
 #include "dsmc/rng.hpp"
-#include "dsmc/species.hpp"
+#include "model/species.hpp"
 
 namespace gdsmc::particles {
 
@@ -127,9 +127,6 @@ inline void flush_free_flight(System& sys, std::size_t i, double t) {
   r.z += v.z * dt;
   r.t_last = t;
 }
-
-/// N_k ~ N x_k for each species, adding up to N exactly (largest remainders; the caller checks N_k >= 2).
-std::vector<std::size_t> species_counts(std::size_t n_particles, const species::Mixture& mix);
 
 /// Particles with the given counts and velocities drawn from `distribution` at temperatures T_k.
 System make_system(const species::Mixture& mix, const std::vector<std::size_t>& counts,

@@ -26,7 +26,7 @@
 
 #include "dsmc/collide.hpp"
 #include "dsmc/particles.hpp"
-#include "dsmc/species.hpp"
+#include "model/species.hpp"
 
 namespace gdsmc::sample {
 

@@ -75,7 +75,7 @@
 #include <vector>
 
 #include "dsmc/particles.hpp"
-#include "dsmc/species.hpp"
+#include "model/species.hpp"
 
 namespace gdsmc::thermostat {
 

@@ -14,9 +14,7 @@
 #include <type_traits>
 #include <variant>
 
-#include "dsmc/particles.hpp"
-#include "dsmc/restitution.hpp"
-#include "theory/run_cost.hpp"
+#include "model/restitution.hpp"
 
 namespace gdsmc::io::config {
 
@@ -640,7 +638,7 @@ void check_dsmc(const Dsmc& d, const species::Mixture& mix, const Provenance& pr
                 group, "block_size",
                 "a cache block needs at least 64 particles (got " + std::to_string(d.block_size) +
                     "); 0 turns the blocks off");
-  const auto counts = particles::species_counts(static_cast<std::size_t>(d.n_particles), mix);
+  const auto counts = species::particle_counts(static_cast<std::size_t>(d.n_particles), mix);
   for (std::size_t k = 0; k < counts.size(); ++k)
     if (counts[k] < 2)
       throw Error(prov.file_of("n_particles"),
@@ -781,41 +779,6 @@ void check_staged(const Config& c, std::map<std::string, Provenance>& prov) {
   }
 }
 
-/// The work of the run from kinetic theory (theory/run_cost.hpp), refused beyond the caps below
-/// unless &dsmc allow_long_run: more than 1e12 collision events per replica (a day or more at 1e7
-/// collisions per second), or a cooling below 1e-40 of the initial temperature, where the thermal
-/// speeds (1e-20 of the initial ones) drown in the round-off of the conserved total momentum, almost
-/// every candidate is rejected and the run never ends.
-void check_run_cost(const Config& c, std::map<std::string, Provenance>& prov) {
-  constexpr double kMaxEvents = 1e12, kMinTemperatureRatio = 1e-40;
-  if (c.dsmc.allow_long_run) return;
-  const theory::Cooling cooling = c.staged() ? theory::Cooling::held
-                                  : c.system.restitution_model == "viscoelastic" ? theory::Cooling::viscoelastic
-                                                                                 : theory::Cooling::haff;
-  const theory::RunCost cost = theory::estimate_run_cost(c.mixture(), c.initial.temperature, c.dsmc.t_end,
-                                                         c.dsmc.collisions_per_particle, cooling);
-  const double events = cost.collisions_per_particle * static_cast<double>(c.dsmc.n_particles) / 2.0;
-  const char* variable = c.dsmc.t_end ? "t_end" : "collisions_per_particle";
-  const auto number = [](double x) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.3g", x);
-    return std::string(text);
-  };
-  const std::string estimate = "kinetic theory estimates " + number(events) + " collision events per replica (" +
-                               number(cost.collisions_per_particle) + " collisions per particle)";
-  std::string reason;
-  if (!(cost.temperature_ratio >= kMinTemperatureRatio))
-    reason = estimate + ", and a cooling to " + number(cost.temperature_ratio) +
-             " of the initial temperature (Haff's law, docs/haff-and-mixtures.md): below 1e-40 the thermal speeds drown in the "
-             "round-off of the conserved momentum, almost every candidate is rejected and the run would not end";
-  else if (!(events <= kMaxEvents))
-    reason = estimate + ", beyond 1e12 (a day or more)";
-  if (reason.empty()) return;
-  const Provenance& p = prov["dsmc"];
-  throw Error(p.file_of(variable), p.line.count(variable) ? p.line.at(variable) : p.group_line, "dsmc", variable,
-              reason + "; shorten the run, or set &dsmc allow_long_run = .true. to run it anyway");
-}
-
 std::vector<double> spaced(const Output& out, double end) {
   if (!out.sample_times.empty()) {  // 0, the list, and the end of the run
     std::vector<double> t{0.0};
@@ -938,7 +901,7 @@ void reference_group(std::ostringstream& s, const std::string& group, const std:
 }
 
 Config read_point(const namelist::Document& document, const std::vector<std::string>& overrides,
-                  bool expand_sweep);
+                  bool expand_sweep, const RunCheck& run_check);
 
 /// Whether `group:name` is a string variable (a quoted sweep value of any other variable is
 /// inserted without its quotes, so that an array can be swept: values = '0.01, 0.02', ...).
@@ -1126,7 +1089,7 @@ bool per_species(const std::string& group, const std::string& name) {
 /// make points, and every point reads and checks as a Config of its own (so a bad value stops the
 /// run before any work).
 void check_sweep(const Config& c, const Provenance& prov, const namelist::Document& document,
-                 const std::vector<std::string>& overrides) {
+                 const std::vector<std::string>& overrides, const RunCheck& run_check) {
   const std::string group = "sweep";
   const auto line_of = [&](const char* v) { return prov.line.count(v) ? prov.line.at(v) : 0; };
   const Sweep& sweep = c.sweep;
@@ -1171,7 +1134,7 @@ void check_sweep(const Config& c, const Provenance& prov, const namelist::Docume
     auto o = overrides;
     for (std::size_t v = 0; v < rows[k].size(); ++v) o.push_back(sweep_override(sweep.variable[v], rows[k][v]));
     try {
-      read_point(document, o, false);
+      read_point(document, o, false, run_check);
     } catch (const Error& e) {
       // A bad value the namelist gave is blamed on its line; one a --set gave, on that --set (the
       // point's own override, which e.file names, is this sweep's doing, not the user's command).
@@ -1247,11 +1210,11 @@ std::vector<h5md::Parameter> Config::resolved() const {
 
 namespace {
 Config read_point(const namelist::Document& document, const std::vector<std::string>& overrides,
-                  bool expand_sweep);
+                  bool expand_sweep, const RunCheck& run_check);
 }
 
-Config read(const namelist::Document& document, const std::vector<std::string>& overrides) {
-  return read_point(document, overrides, true);
+Config read(const namelist::Document& document, const std::vector<std::string>& overrides, const RunCheck& run_check) {
+  return read_point(document, overrides, true, run_check);
 }
 
 std::vector<std::vector<std::string>> Sweep::table() const {
@@ -1292,14 +1255,14 @@ std::vector<Config> Config::sweep_points() const {
   for (const auto& row : sweep.table()) {
     auto o = overrides;
     for (std::size_t v = 0; v < row.size(); ++v) o.push_back(sweep_override(sweep.variable[v], row[v]));
-    points.push_back(read_point(document, o, false));
+    points.push_back(read_point(document, o, false, {}));
   }
   return points;
 }
 
 namespace {
 Config read_point(const namelist::Document& document, const std::vector<std::string>& overrides,
-                  bool expand_sweep) {
+                  bool expand_sweep, const RunCheck& run_check) {
   Config c;
   c.source_file = document.file;
   // A sweep point does not copy the document's text (nor read its &sweep group, below): with a long
@@ -1362,16 +1325,16 @@ Config read_point(const namelist::Document& document, const std::vector<std::str
   check_output(c.output, c.dsmc, prov["output"]);
   if (c.has_agg_frag) check_agg_frag(c, prov);
   check_staged(c, prov);
-  check_run_cost(c, prov);
+  if (run_check) run_check(c);
   if (expand_sweep && !prov["sweep"].line.empty()) {
-    check_sweep(c, prov["sweep"], document, overrides);
+    check_sweep(c, prov["sweep"], document, overrides, run_check);
   }
   return c;
 }
 }  // namespace
 
-Config read_file(const std::string& path, const std::vector<std::string>& overrides) {
-  return read(namelist::parse_file(path), overrides);
+Config read_file(const std::string& path, const std::vector<std::string>& overrides, const RunCheck& run_check) {
+  return read(namelist::parse_file(path), overrides, run_check);
 }
 
 Config read_from_output(const std::string& h5_path) {

@@ -23,13 +23,14 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <utility>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "dsmc/species.hpp"
+#include "model/species.hpp"
 #include "io/h5md.hpp"
 #include "io/namelist.hpp"
 
@@ -181,11 +182,19 @@ struct Config {
   std::vector<h5md::Parameter> resolved() const;
 };
 
+/// A check of a read Config that needs more than the input, given by the caller: the programs pass
+/// analysis::check_run_cost (the run's work estimated by kinetic theory, which this layer does not
+/// know). It runs where the reader's own checks end, on the Config and on every sweep point; it
+/// throws namelist::Error, which the reader reports as its own (a sweep point's with the point).
+using RunCheck = std::function<void(const Config&)>;
+
 /// Reads, checks and derives a Config from a parsed namelist plus command-line overrides
-/// (each `group:variable=value`, Fortran syntax for the value). Throws namelist::Error.
-Config read(const namelist::Document& document, const std::vector<std::string>& overrides = {});
+/// (each `group:variable=value`, Fortran syntax for the value), then `run_check`. Throws namelist::Error.
+Config read(const namelist::Document& document, const std::vector<std::string>& overrides = {},
+            const RunCheck& run_check = {});
 /// Parses and reads a namelist file.
-Config read_file(const std::string& path, const std::vector<std::string>& overrides = {});
+Config read_file(const std::string& path, const std::vector<std::string>& overrides = {},
+                 const RunCheck& run_check = {});
 /// Rebuilds the Config of an output file from its stored namelist text and overrides.
 Config read_from_output(const std::string& h5_path);
 

@@ -28,7 +28,7 @@
  * The first dimension of step, time and value is extensible (H5S_UNLIMITED), which is what H5MD
  * means by "[variable]"; the datasets are written in one piece all the same. `step` holds an integer
  * step of the simulation (granular-dsmc: the cumulative collision events of a replica, the mean over
- * replicas rounded; dsmc/simulation.cpp), `time` the simulation time.
+ * replicas rounded; run/simulation.cpp), `time` the simulation time.
  * A sweep point /sweep/point_K is an H5MD root of its own (the specification allows the root of the
  * H5MD structure to be any group): /sweep/point_K/h5md is a hard link to /h5md, beside its
  * observables. Checked against the specification by tests/h5md_spec_test.cpp.

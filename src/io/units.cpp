@@ -20,8 +20,8 @@ const std::vector<Symbol>& symbols() {
 }
 
 std::string of_observable(const std::string& name) {
-  // Every observable of dsmc/simulation.cpp (plain, staged and &agg_frag runs) and every quantity
-  // of /sweep/results (io/sweep_table.hpp).
+  // Every observable of run/simulation.cpp (plain, staged and &agg_frag runs) and every quantity
+  // of /sweep/results (analysis/sweep_table.hpp).
   static const std::map<std::string, std::string> table = {
       // the sample times themselves (the observable `time`)
       {"time", kTime},

@@ -101,8 +101,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "dsmc/restitution.hpp"
-#include "dsmc/species.hpp"
+#include "model/restitution.hpp"
+#include "model/species.hpp"
 #include "theory/theory.hpp"
 
 namespace gdsmc::theory {
@@ -111,7 +111,7 @@ namespace gdsmc::theory {
 // Viscoelastic restitution (\ref visco_series "docs/viscoelastic.md"; Bodrova and Osinsky 2024, eqs. (5)-(8))
 // ---------------------------------------------------------------------------------------------
 
-// The series itself lives in dsmc/restitution.hpp (the collision rule uses it); these names keep
+// The series itself lives in model/restitution.hpp (the collision rule uses it); these names keep
 // the theory's vocabulary.
 inline constexpr int restitution_series_terms = restitution::series_terms;  ///< terms h_1..h_20 of the series
 inline constexpr double restitution_c1 = restitution::series_c1;          ///< C_1, h_2 = -C_1

@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "dsmc/species.hpp"
+#include "model/species.hpp"
 
 namespace gdsmc::theory::detail {
 

@@ -42,7 +42,7 @@
 #include <span>
 #include <vector>
 
-#include "dsmc/species.hpp"
+#include "model/species.hpp"
 
 namespace gdsmc::theory::detail {
 

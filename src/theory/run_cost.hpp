@@ -22,7 +22,7 @@
 #include <optional>
 #include <vector>
 
-#include "dsmc/species.hpp"
+#include "model/species.hpp"
 
 namespace gdsmc::theory {
 

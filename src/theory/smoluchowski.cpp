@@ -480,17 +480,5 @@ Solution solve(const Parameters& parameters, const std::vector<double>& times) {
                            std::to_string(largest_max_size));
 }
 
-Parameters parameters_of(const io::config::Config& config) {
-  Parameters p;
-  p.monomer_mass = config.system.mass[0];
-  p.monomer_diameter = config.system.diameter[0];
-  p.monomer_density = config.system.number_density[0];
-  p.initial_temperature = config.initial.temperature[0];
-  p.restitution = config.system.restitution(0, 0);
-  p.aggregation_energy = config.agg_frag.aggregation_energy.value_or(0.0);
-  p.fragmentation_energy = config.agg_frag.fragmentation_energy.value_or(std::numeric_limits<double>::infinity());
-  p.fragment_restitution = config.agg_frag.fragment_restitution.value_or(1.0);
-  return p;
-}
 
 }  // namespace gdsmc::theory::smoluchowski

@@ -90,7 +90,6 @@
  */
 #pragma once
 
-#include "io/config.hpp"
 
 #include <cstddef>
 #include <vector>
@@ -110,9 +109,6 @@ struct Parameters {
   double fragmentation_energy;  ///< E_frag >= 0 or +infinity
   double fragment_restitution;  ///< eps_f in [0, 1]: fragments carry eps_f^2 E_imp in the CM frame
 };
-
-/// The monomer of &system and the thresholds of &agg_frag of a validated Config (io/config.hpp).
-Parameters parameters_of(const io::config::Config& config);
 
 /// Probabilities of the three outcomes of one collision of a pair (sum 1).
 struct Outcomes {

@@ -72,7 +72,7 @@
 
 #include <vector>
 
-#include "dsmc/species.hpp"
+#include "model/species.hpp"
 
 namespace gdsmc::theory {
 

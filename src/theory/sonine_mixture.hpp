@@ -72,7 +72,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "dsmc/species.hpp"
+#include "model/species.hpp"
 #include "theory/sonine.hpp"
 
 namespace gdsmc::theory {

@@ -467,4 +467,34 @@ std::vector<double> asymptotic_temperature_ratios(const Mixture& mix) {
   return asymptotic_ratios_by_ode(mix, rates);
 }
 
+std::vector<double> times_for_collisions(const Mixture& mix, const std::vector<double>& t0,
+                                         const std::vector<double>& targets) {
+  const double n = mix.total_density();
+  // Bracket the last target on a doubling time scale, then tabulate densely and interpolate.
+  double horizon = 1.0;
+  const double rate0 = total_collision_rate(mix, t0);
+  horizon = std::max(horizon, targets.back() * n / (2.0 * rate0));
+  for (int guard = 0; guard < 200; ++guard) {
+    const auto h = integrate_partial_temperatures(mix, t0, {0.0, horizon});
+    if (2.0 * h.collisions.back() / n >= targets.back()) break;
+    horizon *= 2.0;
+  }
+  const std::size_t grid = 20000;
+  std::vector<double> t(grid);
+  for (std::size_t i = 0; i < grid; ++i) t[i] = horizon * static_cast<double>(i) / (grid - 1);
+  const auto h = integrate_partial_temperatures(mix, t0, t);
+  std::vector<double> out;
+  std::size_t i = 1;
+  for (double c : targets) {
+    if (c <= 0.0) {
+      out.push_back(0.0);
+      continue;
+    }
+    while (i < grid - 1 && 2.0 * h.collisions[i] / n < c) ++i;
+    const double c0 = 2.0 * h.collisions[i - 1] / n, c1 = 2.0 * h.collisions[i] / n;
+    out.push_back(t[i - 1] + (t[i] - t[i - 1]) * (c - c0) / (c1 - c0));
+  }
+  return out;
+}
+
 }  // namespace gdsmc::theory

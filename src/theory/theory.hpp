@@ -68,7 +68,7 @@
 #include <optional>
 #include <vector>
 
-#include "dsmc/species.hpp"
+#include "model/species.hpp"
 #include "theory/sonine.hpp"
 
 namespace gdsmc::theory {
@@ -136,6 +136,12 @@ struct TemperatureHistory {
 TemperatureHistory integrate_partial_temperatures(const Mixture& mix,
                                                   const std::vector<double>& initial_temperature,
                                                   const std::vector<double>& times);
+
+/// Times at which the Maxwellian ODEs' collisions per particle (2 x events / n) reach `targets`
+/// (non-decreasing; a target <= 0 is at t = 0): integrate_partial_temperatures tabulated densely on
+/// a horizon doubled until it holds the last target, then interpolated linearly.
+std::vector<double> times_for_collisions(const Mixture& mix, const std::vector<double>& initial_temperature,
+                                         const std::vector<double>& targets);
 
 /**
  * Long-time ratios T_k/T_1 (entry 0 is 1) for constant restitution (\ref haff_ratios "docs/haff-and-mixtures.md"). Because every

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/run_checks.hpp"
 #include "io/config.hpp"
 #include "io/namelist.hpp"
 
@@ -18,7 +19,7 @@ namespace config = gdsmc::io::config;
 namespace namelist = gdsmc::io::namelist;
 
 void exercise(const std::string& text, const std::vector<std::string>& overrides) {
-  const config::Config c = config::read(namelist::parse(text, "fuzz.nml"), overrides);
+  const config::Config c = config::read(namelist::parse(text, "fuzz.nml"), overrides, gdsmc::analysis::check_run_cost);
   (void)c.sample_times();
   (void)c.sample_collisions();
   (void)c.resolved();

@@ -13,6 +13,7 @@
 #include <functional>
 #include <string>
 
+#include "analysis/predictions.hpp"
 #include "theory/smoluchowski.hpp"
 #include "validation.hpp"
 
@@ -38,7 +39,7 @@ int main(int argc, char** argv) {
   const auto& c = run.config;
   validation::Report report("aggregation and fragmentation: " + c.source_file, run.report_file());
 
-  const theory::smoluchowski::Parameters p = theory::smoluchowski::parameters_of(c);
+  const theory::smoluchowski::Parameters p = analysis::smoluchowski_parameters(c);
   const double n0 = static_cast<double>(c.dsmc.n_particles);
   // nu_0 = 4 sqrt(pi) n sigma^2 sqrt(T0/m): collisions per monomer per unit time at t = 0 (\ref cm_frequency "docs/collision-model.md")
   const double nu0 = 4.0 * std::sqrt(M_PI) * p.monomer_density * p.monomer_diameter * p.monomer_diameter *

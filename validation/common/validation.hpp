@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "dsmc/simulation.hpp"
+#include "run/simulation.hpp"
 #include "io/config.hpp"
 #include "io/h5md.hpp"
 

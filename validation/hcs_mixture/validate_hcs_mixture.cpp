@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <string>
 
-#include "io/compare.hpp"
+#include "analysis/compare.hpp"
 #include "theory/theory.hpp"
 #include "theory/sonine_mixture.hpp"
 #include "validation.hpp"
@@ -23,12 +23,12 @@ int main(int argc, char** argv) {
   validation::Report report("HCS of " + std::to_string(s) + " species vs first Sonine: " + run.config.source_file,
                             run.report_file());
   // The scaling-state averages and the first-Sonine theory are those of granular-dsmc --compare
-  // (io/compare.hpp): samples past scaling_start collisions per particle, averaged per replica, with the
+  // (analysis/compare.hpp): samples past scaling_start collisions per particle, averaged per replica, with the
   // standard error over the replicas (the file's scaling_state, docs/output.md).
-  const auto comparison = io::compare::compare_file(run.config, run.file);
+  const auto comparison = analysis::compare::compare_file(run.config, run.file);
   const auto& point = comparison.points.at(0);
-  const io::compare::Quantity* ratio = nullptr;
-  const io::compare::Quantity* sonine = nullptr;
+  const analysis::compare::Quantity* ratio = nullptr;
+  const analysis::compare::Quantity* sonine = nullptr;
   for (const auto& q : point.quantities) {
     if (q.name == "temperature_over_mean") ratio = &q;
     if (q.name == "sonine_c") sonine = &q;
@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
     // The second method (validation/independent_reference, issue 13): T_k/T and c_k from a program that
     // shares no code with src/, at 4 combined SE with no allowance. First Sonine's c_k has no independent
     // error estimate for s > 2 species (README.md): it is stated beside the DSMC; without a table entry it
-    // stays a consistency check with the 15 % --compare states (io/compare.hpp).
+    // stays a consistency check with the 15 % --compare states (analysis/compare.hpp).
     const auto independent = validation::independent_hcs_reference(mix);
     if (independent.known) {
       std::snprintf(text, sizeof text, "T_%zu/T vs the independent program %.5f +- %.5f (4 combined SE, no allowance)",

@@ -93,7 +93,7 @@ std::vector<double> numbers(const char* text) {
 /// Contact values of the pair correlation for hard-sphere mixtures (Boublik; Mansoori, Carnahan,
 /// Starling and Leland): chi_ij = 1/(1 - x3) + 3 x2 d_ij/(1 - x3)^2 + 2 x2^2 d_ij^2/(1 - x3)^3 with
 /// x_l = (pi/6) sum_k n_k sigma_k^l and d_ij = sigma_i sigma_j/(sigma_i + sigma_j); all 1 when `density`
-/// is empty (the dilute gas). Written out here, not taken from src/dsmc/species.cpp.
+/// is empty (the dilute gas). Written out here, not taken from src/model/species.cpp.
 std::vector<double> contact_values(const std::vector<double>& diameter, const std::vector<double>& density) {
   const std::size_t s = diameter.size();
   std::vector<double> chi(s * s, 1.0);
@@ -284,7 +284,7 @@ Result run(const std::vector<double>& mass, const std::vector<double>& diameter,
 }
 
 /// Viscoelastic restitution (--visco-beta), computed from the contact model itself, not from the series
-/// of src/dsmc/restitution.hpp. Two viscoelastic spheres (Hertz force plus its dissipative part,
+/// of src/model/restitution.hpp. Two viscoelastic spheres (Hertz force plus its dissipative part,
 /// F = rho (xi^(3/2) + (3/2) A xi^(1/2) xi')) obey, in units where the impact speed |g.e| is 1 and the
 /// Hertz time scale is 1,
 ///   x'' = -x^(3/2) - delta x^(1/2) x',  x(0) = 0, x'(0) = 1,  delta = beta_ki |g.e|^(1/5)

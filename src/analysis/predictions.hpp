@@ -2,7 +2,7 @@
  * \file predictions.hpp
  * \brief Everything the theory module predicts for the system of one validated Config, on the run's
  *        own sample points: what `granular-theory` prints (as JSON) and `granular-dsmc --compare`
- *        sets beside the DSMC results (io/compare.hpp). One computation, two formats.
+ *        sets beside the DSMC results (analysis/compare.hpp). One computation, two formats.
  *
  * No formula lives here: each entry calls the module that derives it, which names its sources.
  * - collision_frequency, cooling_rate, temperature, total_temperature, collisions_per_particle:
@@ -32,7 +32,7 @@
 #include "theory/sonine.hpp"
 #include "theory/sonine_mixture.hpp"
 
-namespace gdsmc::theory {
+namespace gdsmc::analysis {
 
 /// A time series per species (or per cluster size): value[time index][column].
 struct Trajectory {
@@ -42,8 +42,8 @@ struct Trajectory {
 
 /// The Smoluchowski solution of an &agg_frag run in the units of the DSMC observables.
 struct AggFragPrediction {
-  smoluchowski::Solution solution;     ///< on the run's sample times
-  smoluchowski::InitialRates initial_rates;  ///< event rates at t = 0 (exact: Maxwellian monomers)
+  theory::smoluchowski::Solution solution;     ///< on the run's sample times
+  theory::smoluchowski::InitialRates initial_rates;  ///< event rates at t = 0 (exact: Maxwellian monomers)
   double initial_monomers = 0.0;       ///< n_particles: number = number_fraction * this
   std::size_t width = 1;               ///< sizes of which the run would hold >= 1e-6 clusters at some time
   std::vector<double> mean_size;                ///< N_0/N per sample time
@@ -68,10 +68,10 @@ struct Predictions {
   std::optional<double> sonine_a2;            ///< one species: van Noije-Ernst a2
   std::optional<double> cooling_rate_sonine;  ///< one species: zeta_0 (1 + 3 a2/16)
   std::optional<std::vector<double>> asymptotic_temperature_ratio;  ///< T_k/T_1, Maxwellian
-  std::optional<HcsFirstSonine> hcs_first_sonine;  ///< HCS of any number of species, first Sonine
+  std::optional<theory::HcsFirstSonine> hcs_first_sonine;  ///< HCS of any number of species, first Sonine
   std::optional<std::vector<double>> hcs_maxwellian_temperature_over_mean;  ///< HCS T_k/T, Maxwellian
   std::optional<double> hcs_maxwellian_cooling_rate_reduced;  ///< HCS zeta*, Maxwellian
-  std::optional<BinaryHcs> binary_hcs;             ///< binary HCS in first Sonine, with tails
+  std::optional<theory::BinaryHcs> binary_hcs;             ///< binary HCS in first Sonine, with tails
   std::optional<double> binary_tail_decay_rate[2]; ///< k_i = 2 beta_i/zeta* of each species
   std::optional<double> shear_viscosity_hcs;          ///< eta/eta_0 in the HCS
   std::optional<double> shear_viscosity_hss;          ///< eta/eta_0 in the HSS
@@ -87,8 +87,8 @@ struct Predictions {
 /// std::runtime_error only when the ODEs themselves fail.
 Predictions predict(const io::config::Config& config);
 
-/// Times at which the Maxwellian ODEs' collisions per particle (2 x events / n) reach `targets`.
-std::vector<double> times_for_collisions(const species::Mixture& mix, const std::vector<double>& initial_temperature,
-                                         const std::vector<double>& targets);
+/// The monomer of &system and the thresholds of &agg_frag of a validated Config, for the Smoluchowski
+/// equations (theory/smoluchowski.hpp).
+theory::smoluchowski::Parameters smoluchowski_parameters(const io::config::Config& config);
 
-}  // namespace gdsmc::theory
+}  // namespace gdsmc::analysis

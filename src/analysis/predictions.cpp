@@ -1,49 +1,24 @@
 // Everything the theory predicts for one Config (predictions.hpp): the computations granular-theory
 // made in place before, moved here unchanged so that granular-dsmc --compare uses the same numbers.
-#include "theory/predictions.hpp"
+#include "analysis/predictions.hpp"
 
 #include <array>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <limits>
 #include <string>
 
 #include "io/namelist.hpp"
 #include "theory/theory.hpp"
 #include "theory/viscosity.hpp"
 
-namespace gdsmc::theory {
+namespace gdsmc::analysis {
 
-std::vector<double> times_for_collisions(const species::Mixture& mix, const std::vector<double>& t0,
-                                         const std::vector<double>& targets) {
-  const double n = mix.total_density();
-  // Bracket the last target on a doubling time scale, then tabulate densely and interpolate.
-  double horizon = 1.0;
-  const double rate0 = total_collision_rate(mix, t0);
-  horizon = std::max(horizon, targets.back() * n / (2.0 * rate0));
-  for (int guard = 0; guard < 200; ++guard) {
-    const auto h = integrate_partial_temperatures(mix, t0, {0.0, horizon});
-    if (2.0 * h.collisions.back() / n >= targets.back()) break;
-    horizon *= 2.0;
-  }
-  const std::size_t grid = 20000;
-  std::vector<double> t(grid);
-  for (std::size_t i = 0; i < grid; ++i) t[i] = horizon * static_cast<double>(i) / (grid - 1);
-  const auto h = integrate_partial_temperatures(mix, t0, t);
-  std::vector<double> out;
-  std::size_t i = 1;
-  for (double c : targets) {
-    if (c <= 0.0) {
-      out.push_back(0.0);
-      continue;
-    }
-    while (i < grid - 1 && 2.0 * h.collisions[i] / n < c) ++i;
-    const double c0 = 2.0 * h.collisions[i - 1] / n, c1 = 2.0 * h.collisions[i] / n;
-    out.push_back(t[i - 1] + (t[i] - t[i - 1]) * (c - c0) / (c1 - c0));
-  }
-  return out;
-}
+// Every formula is the theory module's (this file only evaluates it for one Config).
+using namespace gdsmc::theory;
+
 
 namespace {
 
@@ -72,7 +47,7 @@ auto over_the_run(const io::config::Config& config, F&& integrate) {
 /// DSMC observables (counts for n_particles initial monomers).
 AggFragPrediction agg_frag_prediction(const io::config::Config& config) {
   namespace sm = smoluchowski;
-  const sm::Parameters p = sm::parameters_of(config);
+  const sm::Parameters p = smoluchowski_parameters(config);
   AggFragPrediction out;
   out.initial_monomers = static_cast<double>(config.dsmc.n_particles);
   out.solution = over_the_run(config, [&] {
@@ -121,6 +96,19 @@ AggFragPrediction agg_frag_prediction(const io::config::Config& config) {
 }
 
 }  // namespace
+
+theory::smoluchowski::Parameters smoluchowski_parameters(const io::config::Config& config) {
+  theory::smoluchowski::Parameters p;
+  p.monomer_mass = config.system.mass[0];
+  p.monomer_diameter = config.system.diameter[0];
+  p.monomer_density = config.system.number_density[0];
+  p.initial_temperature = config.initial.temperature[0];
+  p.restitution = config.system.restitution(0, 0);
+  p.aggregation_energy = config.agg_frag.aggregation_energy.value_or(0.0);
+  p.fragmentation_energy = config.agg_frag.fragmentation_energy.value_or(std::numeric_limits<double>::infinity());
+  p.fragment_restitution = config.agg_frag.fragment_restitution.value_or(1.0);
+  return p;
+}
 
 Predictions predict(const io::config::Config& config) {
   Predictions out;
@@ -311,4 +299,4 @@ Predictions predict(const io::config::Config& config) {
   return out;
 }
 
-}  // namespace gdsmc::theory
+}  // namespace gdsmc::analysis

@@ -22,7 +22,7 @@
 #include <array>
 #include <cmath>
 
-#include "dsmc/species.hpp"
+#include "model/species.hpp"
 
 namespace gdsmc::restitution {
 

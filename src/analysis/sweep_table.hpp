@@ -39,7 +39,7 @@
 #include "io/config.hpp"
 #include "io/h5md.hpp"
 
-namespace gdsmc::io::sweep_table {
+namespace gdsmc::analysis::sweep_table {
 
 /// One result quantity of every point: value and error row-major [points][columns].
 struct Result {
@@ -66,12 +66,12 @@ struct Table {
 double numeric_value(const std::string& text);
 
 /// The table of the sweep run `config` whose points were written to `file` (/sweep/point_K).
-Table build(const config::Config& config, const std::string& file);
+Table build(const io::config::Config& config, const std::string& file);
 /// Writes /sweep/values and /sweep/results.
-void write(h5md::Writer& writer, const Table& table);
+void write(io::h5md::Writer& writer, const Table& table);
 /// Reads the table of an output file back. Throws std::runtime_error naming the file when it has none.
 Table read(const std::string& file);
 /// The table as CSV (\ref sweep_table_csv).
 std::string csv(const Table& table);
 
-}  // namespace gdsmc::io::sweep_table
+}  // namespace gdsmc::analysis::sweep_table

@@ -1,4 +1,4 @@
-#include "dsmc/restitution.hpp"
+#include "model/restitution.hpp"
 
 #include <stdexcept>
 #include <string>

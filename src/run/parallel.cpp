@@ -1,4 +1,4 @@
-#include "dsmc/parallel.hpp"
+#include "run/parallel.hpp"
 
 #include <cstdlib>
 #include <stdexcept>

@@ -42,7 +42,7 @@ struct Options {
   const std::atomic<bool>* interrupt = nullptr;  ///< set by a signal handler: stop, write nothing
   std::string restart_path;                      ///< continue from this checkpoint (empty: from the start)
   /// Called on rank 0 when the file is complete, just before it is committed: may add groups (the
-  /// /comparison of --compare, io/compare.hpp) and read the file back under writer.temporary_path().
+  /// /comparison of --compare, analysis/compare.hpp) and read the file back under writer.temporary_path().
   std::function<void(io::h5md::Writer&)> before_commit;
 };
 

@@ -1,7 +1,7 @@
 // granular-dsmc --compare: DSMC beside theory (compare.hpp). The theory values come from
-// theory::predict, the known errors from the estimates listed in compare.hpp \ref compare_known
+// analysis::predict, the known errors from the estimates listed in compare.hpp \ref compare_known
 // (docs/physics.md "Comparison with theory").
-#include "io/compare.hpp"
+#include "analysis/compare.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -13,7 +13,7 @@
 
 #include "theory/theory.hpp"
 
-namespace gdsmc::io::compare {
+namespace gdsmc::analysis::compare {
 
 namespace {
 
@@ -43,14 +43,14 @@ std::string species_label(const std::string& label, std::size_t k) {  // k: 0-ba
   return out;
 }
 
-std::vector<double> errors_or_nan(const h5md::ObservableData& o) {
+std::vector<double> errors_or_nan(const io::h5md::ObservableData& o) {
   return o.error.empty() ? std::vector<double>(o.value.size(), kNaN) : o.error;
 }
 
-std::size_t columns_of(const h5md::ObservableData& o) { return o.shape.size() > 1 ? o.shape[1] : 1; }
+std::size_t columns_of(const io::h5md::ObservableData& o) { return o.shape.size() > 1 ? o.shape[1] : 1; }
 
 /// The scaling-state quantities (T_k/T, c_k, zeta*) of a free-cooling or thermostatted run.
-void add_scaling_state(Point& pt, const config::Config& config, const theory::Predictions& p, const Measured& m) {
+void add_scaling_state(Point& pt, const io::config::Config& config, const analysis::Predictions& p, const Measured& m) {
   const auto mix = config.mixture();
   const std::size_t s = mix.size();
   for (const char* name : {"temperature", "total_temperature", "sonine_c", "collisions_per_particle"})
@@ -141,7 +141,7 @@ void add_scaling_state(Point& pt, const config::Config& config, const theory::Pr
 }
 
 /// T(t), T_k(t), and the collision count (or the sample times) of a free-cooling run.
-void add_free_cooling(Point& pt, const config::Config& config, const theory::Predictions& p, const Measured& m) {
+void add_free_cooling(Point& pt, const io::config::Config& config, const analysis::Predictions& p, const Measured& m) {
   const auto mix = config.mixture();
   const std::size_t s = mix.size();
   const std::size_t nt = p.time.size();
@@ -157,7 +157,7 @@ void add_free_cooling(Point& pt, const config::Config& config, const theory::Pre
           std::abs((*p.hcs_maxwellian_temperature_over_mean)[k] / p.hcs_first_sonine->temperature_over_mean[k] - 1.0);
   else if (s > 1)
     ratio_gap.assign(s, kNaN);
-  auto aligned = [&](const std::string& name) -> const h5md::ObservableData* {
+  auto aligned = [&](const std::string& name) -> const io::h5md::ObservableData* {
     if (!m.has(name)) return nullptr;
     const auto& o = m.observables.at(name);
     if (o.time.size() != nt) {
@@ -210,7 +210,7 @@ void add_free_cooling(Point& pt, const config::Config& config, const theory::Pre
 }
 
 /// The MSD (Bodrova and Osinsky 2024, eq. (17), \ref dif_msd "docs/diffusion-msd.md") and D_k/D_1 over the last decade of time (validation/diffusion_ratio).
-void add_diffusion(Point& pt, const config::Config& config, const theory::Predictions& p, const Measured& m) {
+void add_diffusion(Point& pt, const io::config::Config& config, const analysis::Predictions& p, const Measured& m) {
   if (!p.msd) {
     pt.notes.push_back(config.output.msd_start_temperature
                            ? "msd not compared: it starts at msd_start_temperature, a time the theory does not fix"
@@ -270,12 +270,12 @@ void add_diffusion(Point& pt, const config::Config& config, const theory::Predic
 }
 
 /// Cluster populations, mean size and temperature of an &agg_frag run (Smoluchowski, \ref af_smoluchowski "docs/agg-frag.md").
-void add_agg_frag(Point& pt, const theory::Predictions& p, const Measured& m) {
+void add_agg_frag(Point& pt, const analysis::Predictions& p, const Measured& m) {
   const auto& af = *p.agg_frag;
   const auto& sol = af.solution;
   const std::size_t nt = sol.time.size(), kt = sol.max_size;
   const std::string source = std::string(kNone) + " (the closure is exact only at t = 0, docs/agg-frag.md)";
-  auto aligned = [&](const std::string& name) -> const h5md::ObservableData* {
+  auto aligned = [&](const std::string& name) -> const io::h5md::ObservableData* {
     if (!m.has(name)) return nullptr;
     const auto& o = m.observables.at(name);
     if (o.time.size() != nt) {
@@ -373,7 +373,7 @@ Measured read_measured(const std::string& file, const std::string& root) {
   for (const char* name : {"total_temperature", "temperature", "sonine_c", "collisions_per_particle", "time", "msd",
                            "number", "mean_size"}) {
     try {
-      m.observables.emplace(name, h5md::read_observable(file, root + "/" + name));
+      m.observables.emplace(name, io::h5md::read_observable(file, root + "/" + name));
     } catch (const std::runtime_error&) {
       // not written for this kind of run
     }
@@ -385,13 +385,13 @@ Measured read_measured(const std::string& file, const std::string& root) {
            {"shear_viscosity", "time_average"},
            {"shear_viscosity", "time_average_error"}}) {
     try {
-      m.attributes[group + "@" + name] = h5md::read_double_attribute(file, root + "/" + group, name);
+      m.attributes[group + "@" + name] = io::h5md::read_double_attribute(file, root + "/" + group, name);
     } catch (const std::runtime_error&) {
     }
   }
   for (const char* name : {"sonine_c", "sonine_c_error", "temperature_over_mean", "temperature_over_mean_error"}) {
     try {
-      m.arrays[std::string("scaling_state/") + name] = h5md::read_dataset(file, root + "/scaling_state/" + name).data;
+      m.arrays[std::string("scaling_state/") + name] = io::h5md::read_dataset(file, root + "/scaling_state/" + name).data;
     } catch (const std::runtime_error&) {
       // files of runs without a scaling state, or written before it existed
     }
@@ -399,7 +399,7 @@ Measured read_measured(const std::string& file, const std::string& root) {
   return m;
 }
 
-Point compare_point(const config::Config& config, const theory::Predictions& p, const Measured& m) {
+Point compare_point(const io::config::Config& config, const analysis::Predictions& p, const Measured& m) {
   Point pt;
   for (const auto& note : p.notes) pt.notes.push_back("theory: " + note);
   if (p.agg_frag) {
@@ -434,12 +434,12 @@ Point compare_point(const config::Config& config, const theory::Predictions& p, 
   return pt;
 }
 
-std::vector<PointTheory> predict_points(const config::Config& config) {
+std::vector<PointTheory> predict_points(const io::config::Config& config) {
   std::vector<PointTheory> out;
   for (const auto& point : config.sweep_points()) {
     PointTheory t;
     try {
-      t.predictions = theory::predict(point);
+      t.predictions = analysis::predict(point);
     } catch (const std::exception& e) {  // the theory failed: the table says so instead of failing
       t.error = e.what();
     }
@@ -448,13 +448,13 @@ std::vector<PointTheory> predict_points(const config::Config& config) {
   return out;
 }
 
-Comparison compare_file(const config::Config& config, const std::string& file, std::vector<PointTheory> theory) {
+Comparison compare_file(const io::config::Config& config, const std::string& file, std::vector<PointTheory> theory) {
   Comparison c;
   c.sweep = config.is_sweep();
   c.sweep_variable = config.sweep.names();
   const auto table = config.sweep.table();
   if (c.sweep)
-    for (const auto& row : table) c.sweep_values.push_back(config::Sweep::row_text(row));
+    for (const auto& row : table) c.sweep_values.push_back(io::config::Sweep::row_text(row));
   const auto points = config.sweep_points();
   if (theory.size() != points.size()) theory = predict_points(config);
   for (std::size_t k = 0; k < points.size(); ++k) {
@@ -682,10 +682,10 @@ std::string json(const Comparison& comparison) {
   return out + "\n  ]\n}\n";
 }
 
-void write(h5md::Writer& writer, const Comparison& comparison) {
+void write(io::h5md::Writer& writer, const Comparison& comparison) {
   writer.write_group("/comparison");
   writer.write_attribute("/comparison", "description",
-                         "DSMC against theory (granular-dsmc --compare; src/io/compare.hpp, docs/physics.md "
+                         "DSMC against theory (granular-dsmc --compare; src/analysis/compare.hpp, docs/physics.md "
                          "\"Comparison with theory\")");
   for (std::size_t p = 0; p < comparison.points.size(); ++p) {
     const Point& pt = comparison.points[p];
@@ -716,4 +716,4 @@ void write(h5md::Writer& writer, const Comparison& comparison) {
   }
 }
 
-}  // namespace gdsmc::io::compare
+}  // namespace gdsmc::analysis::compare

@@ -1,4 +1,4 @@
-#include "io/sweep_table.hpp"
+#include "analysis/sweep_table.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -8,10 +8,10 @@
 #include <limits>
 #include <stdexcept>
 
-#include "io/compare.hpp"
+#include "analysis/compare.hpp"
 #include "io/units.hpp"
 
-namespace gdsmc::io::sweep_table {
+namespace gdsmc::analysis::sweep_table {
 
 namespace {
 
@@ -28,13 +28,13 @@ struct PointValues {
   bool present = false;
 };
 
-std::vector<double> errors_or_nan(const h5md::ObservableData& o) {
+std::vector<double> errors_or_nan(const io::h5md::ObservableData& o) {
   return o.error.empty() ? std::vector<double>(o.value.size(), kNaN) : o.error;
 }
-std::size_t columns_of(const h5md::ObservableData& o) { return o.shape.size() > 1 ? o.shape[1] : 1; }
+std::size_t columns_of(const io::h5md::ObservableData& o) { return o.shape.size() > 1 ? o.shape[1] : 1; }
 
 /// The last row of an observable.
-PointValues last(const h5md::ObservableData& o) {
+PointValues last(const io::h5md::ObservableData& o) {
   PointValues p;
   const std::size_t c = columns_of(o), nt = o.value.empty() ? 0 : o.value.size() / c;
   if (nt == 0) return p;
@@ -63,7 +63,7 @@ double numeric_value(const std::string& written) {
   return end && *end == '\0' && std::isfinite(x) ? x : kNaN;
 }
 
-Table build(const config::Config& config, const std::string& file) {
+Table build(const io::config::Config& config, const std::string& file) {
   Table t;
   t.variables = config.sweep.variable;
   const auto rows = config.sweep.table();
@@ -96,7 +96,7 @@ Table build(const config::Config& config, const std::string& file) {
   for (std::size_t k = 0; k < t.points; ++k) {
     const std::string root = "/sweep/point_" + std::to_string(k + 1) + "/observables";
     const compare::Measured m = compare::read_measured(file, root);
-    const auto get = [&](const char* name) -> const h5md::ObservableData* {
+    const auto get = [&](const char* name) -> const io::h5md::ObservableData* {
       const auto it = m.observables.find(name);
       return it == m.observables.end() ? nullptr : &it->second;
     };
@@ -174,7 +174,7 @@ Table build(const config::Config& config, const std::string& file) {
   return t;
 }
 
-void write(h5md::Writer& writer, const Table& t) {
+void write(io::h5md::Writer& writer, const Table& t) {
   writer.write_dataset("/sweep/values", t.values, {t.points, t.variables.size()});
   writer.write_attribute("/sweep/values", "variables", t.variables);
   writer.write_attribute("/sweep/values", "texts", t.texts);
@@ -185,8 +185,8 @@ void write(h5md::Writer& writer, const Table& t) {
     writer.write_dataset(g + "/value", r.value, {t.points, r.columns});
     writer.write_dataset(g + "/error", r.error, {t.points, r.columns});
     // The unit of the quantity (\ref output_units "docs/output.md"), as on its observable.
-    writer.write_unit(g + "/value", units::of_observable(r.name));
-    writer.write_unit(g + "/error", units::of_observable(r.name));
+    writer.write_unit(g + "/value", io::units::of_observable(r.name));
+    writer.write_unit(g + "/error", io::units::of_observable(r.name));
     writer.write_attribute(g, "at", r.at);
     writer.write_attribute(g, "description", r.description);
     quantities.push_back(r.name);
@@ -197,19 +197,19 @@ void write(h5md::Writer& writer, const Table& t) {
 
 Table read(const std::string& file) {
   Table t;
-  h5md::ArrayData values;
+  io::h5md::ArrayData values;
   try {
-    values = h5md::read_dataset(file, "/sweep/values");
+    values = io::h5md::read_dataset(file, "/sweep/values");
   } catch (const std::runtime_error& e) {
     // A file that cannot be read at all says why; one without the table says that.
     try {
-      (void)h5md::read_string_attribute(file, "/h5md/creator", "name");
+      (void)io::h5md::read_string_attribute(file, "/h5md/creator", "name");
     } catch (const std::runtime_error&) {
       throw std::runtime_error(e.what());
     }
     bool old_sweep = false;  // a sweep written before tables existed: /sweep@variable without /sweep/values
     try {
-      (void)h5md::read_attribute(file, "/sweep", "variable");
+      (void)io::h5md::read_attribute(file, "/sweep", "variable");
       old_sweep = true;
     } catch (const std::runtime_error&) {
     }
@@ -220,24 +220,24 @@ Table read(const std::string& file) {
   if (values.shape.size() != 2) throw std::runtime_error("'" + file + "': /sweep/values is not [points][variables]");
   t.points = values.shape[0];
   t.values = values.data;
-  const auto names = h5md::read_attribute(file, "/sweep/values", "variables");
+  const auto names = io::h5md::read_attribute(file, "/sweep/values", "variables");
   if (const auto* v = std::get_if<std::vector<std::string>>(&names)) t.variables = *v;
   else if (const auto* one = std::get_if<std::string>(&names)) t.variables = {*one};
   try {
-    const auto texts = h5md::read_attribute(file, "/sweep/values", "texts");
+    const auto texts = io::h5md::read_attribute(file, "/sweep/values", "texts");
     if (const auto* v = std::get_if<std::vector<std::string>>(&texts)) t.texts = *v;
     else if (const auto* one = std::get_if<std::string>(&texts)) t.texts = {*one};
   } catch (const std::runtime_error&) {
   }
-  const auto quantities = h5md::read_attribute(file, "/sweep/results", "quantities");
+  const auto quantities = io::h5md::read_attribute(file, "/sweep/results", "quantities");
   std::vector<std::string> list;
   if (const auto* v = std::get_if<std::vector<std::string>>(&quantities)) list = *v;
   else if (const auto* one = std::get_if<std::string>(&quantities)) list = {*one};
   for (const auto& name : list) {
     Result r;
     r.name = name;
-    const auto v = h5md::read_dataset(file, "/sweep/results/" + name + "/value");
-    const auto e = h5md::read_dataset(file, "/sweep/results/" + name + "/error");
+    const auto v = io::h5md::read_dataset(file, "/sweep/results/" + name + "/value");
+    const auto e = io::h5md::read_dataset(file, "/sweep/results/" + name + "/error");
     r.columns = v.shape.size() > 1 ? v.shape[1] : 1;
     r.value = v.data;
     r.error = e.data;
@@ -304,4 +304,4 @@ std::string csv(const Table& t) {
   return out;
 }
 
-}  // namespace gdsmc::io::sweep_table
+}  // namespace gdsmc::analysis::sweep_table

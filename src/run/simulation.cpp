@@ -1,4 +1,4 @@
-#include "dsmc/simulation.hpp"
+#include "run/simulation.hpp"
 
 #include <cstdlib>
 #include <algorithm>
@@ -19,13 +19,13 @@
 
 #include "dsmc/agg_frag.hpp"
 #include "dsmc/collide.hpp"
-#include "dsmc/parallel.hpp"
+#include "run/parallel.hpp"
 #include "dsmc/particles.hpp"
 #include "dsmc/rng.hpp"
 #include "dsmc/sample.hpp"
 #include "dsmc/thermostat.hpp"
 #include "io/h5md.hpp"
-#include "io/sweep_table.hpp"
+#include "analysis/sweep_table.hpp"
 #include "io/units.hpp"
 #include "io/version.hpp"
 #include "theory/viscosity.hpp"
@@ -676,7 +676,7 @@ ReplicaResult run_staged_replica(const io::config::Config& config, const Options
                                  const SafePoint& safe_point, int block_threads) {
   const species::Mixture mix = config.mixture();
   const std::size_t s = mix.size();
-  const auto counts = particles::species_counts(static_cast<std::size_t>(config.dsmc.n_particles), mix);
+  const auto counts = species::particle_counts(static_cast<std::size_t>(config.dsmc.n_particles), mix);
   const auto seed = static_cast<std::uint64_t>(config.dsmc.seed);
   const std::vector<double> targets = config.sample_times();
   const std::size_t n_samples = targets.size();
@@ -933,7 +933,7 @@ ReplicaResult run_replica(const io::config::Config& config, const Options& optio
   }
   const species::Mixture mix = config.mixture();
   const std::size_t s = mix.size();
-  const auto counts = particles::species_counts(static_cast<std::size_t>(config.dsmc.n_particles), mix);
+  const auto counts = species::particle_counts(static_cast<std::size_t>(config.dsmc.n_particles), mix);
   std::size_t n_total = 0;
   for (auto c : counts) n_total += c;
   const auto seed = static_cast<std::uint64_t>(config.dsmc.seed);
@@ -1775,9 +1775,9 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
     std::vector<std::string> texts;
     for (const auto& row : sweep_rows) texts.push_back(io::config::Sweep::row_text(row));
     writer.write_attribute("/sweep", "values", texts);
-    // The table (io/sweep_table.hpp): the swept values and the headline results, read back from the
+    // The table (analysis/sweep_table.hpp): the swept values and the headline results, read back from the
     // points just written.
-    io::sweep_table::write(writer, io::sweep_table::build(config, writer.temporary_path()));
+    analysis::sweep_table::write(writer, analysis::sweep_table::build(config, writer.temporary_path()));
   }
   if (options.before_commit) options.before_commit(writer);
   writer.commit();

@@ -88,4 +88,8 @@ PairMatrix carnahan_starling(const std::vector<double>& diameter,
 Mixture make_mixture(std::vector<double> mass, std::vector<double> diameter,
                      std::vector<double> number_density, PairMatrix restitution, bool enskog);
 
+/// The simulated particles of each species for N in all: N_k ~ N x_k, adding up to N exactly (largest
+/// remainders; the caller checks N_k >= 2; Montanero and Garzo 2002, eq. (22), \ref cm_initial "docs/collision-model.md").
+std::vector<std::size_t> particle_counts(std::size_t n_particles, const Mixture& mix);
+
 }  // namespace gdsmc::species

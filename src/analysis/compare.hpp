@@ -4,7 +4,7 @@
  *        input, as a table on stdout, the group /comparison of the output file and (optionally) JSON.
  *
  * \section compare_what What is compared
- * The theory values are those of theory::predict (theory/predictions.hpp), i.e. exactly what
+ * The theory values are those of analysis::predict (analysis/predictions.hpp), i.e. exactly what
  * `granular-theory` prints for the namelist; the DSMC values are read back from the H5MD file the run
  * wrote (mean +- standard error over replicas, sample.hpp). Per run, or per sweep point:
  * - free cooling (no &thermostat, &shear, &agg_frag): `total_temperature` T(t) and `temperature`
@@ -74,9 +74,9 @@
 
 #include "io/config.hpp"
 #include "io/h5md.hpp"
-#include "theory/predictions.hpp"
+#include "analysis/predictions.hpp"
 
-namespace gdsmc::io::compare {
+namespace gdsmc::analysis::compare {
 
 /// |d| <= kStatisticalZ SE counts as within statistics.
 inline constexpr double kStatisticalZ = 3.0;
@@ -122,7 +122,7 @@ struct Comparison {
 /// What a run measured, as read from its file: observables by name (relative to the point's
 /// observables group) and the scalar attributes the comparison uses ("group@name").
 struct Measured {
-  std::map<std::string, h5md::ObservableData> observables;  ///< by name
+  std::map<std::string, io::h5md::ObservableData> observables;  ///< by name
   std::map<std::string, double> attributes;                 ///< "group@name" -> value
   std::map<std::string, std::vector<double>> arrays;        ///< "group/name" -> values (e.g. scaling_state)
   /// The observable `name` was read.
@@ -160,20 +160,20 @@ double sonine_rate_error(const species::Mixture& mix, const std::vector<double>&
 double shear_viscosity_known_error(const species::Mixture& mix);
 
 /// The comparison of one point from its Config, its theory and its measurements (pure).
-Point compare_point(const config::Config& point, const theory::Predictions& theory, const Measured& measured);
+Point compare_point(const io::config::Config& point, const analysis::Predictions& theory, const Measured& measured);
 
 /// The theory of one point, or why it could not be computed.
 struct PointTheory {
-  std::optional<theory::Predictions> predictions;  ///< the theory, when it could be computed
+  std::optional<analysis::Predictions> predictions;  ///< the theory, when it could be computed
   std::string error;                               ///< else the reason
 };
-/// theory::predict for every point of `config` (sweep or not). It depends on the input only, so
+/// analysis::predict for every point of `config` (sweep or not). It depends on the input only, so
 /// granular-dsmc computes it in a thread of its own while the run goes on.
-std::vector<PointTheory> predict_points(const config::Config& config);
+std::vector<PointTheory> predict_points(const io::config::Config& config);
 
 /// Every point of `config` (sweep or not) against the file `file` written for it; `theory` from
 /// predict_points (computed here when empty).
-Comparison compare_file(const config::Config& config, const std::string& file, std::vector<PointTheory> theory = {});
+Comparison compare_file(const io::config::Config& config, const std::string& file, std::vector<PointTheory> theory = {});
 
 /// One table row: a quantity's column at one sample (the last of a trajectory).
 struct Row {
@@ -201,6 +201,6 @@ std::string table(const Comparison& comparison);
 /// The same numbers as JSON (NaN as null).
 std::string json(const Comparison& comparison);
 /// Writes /comparison (\ref compare_layout) into an open output file.
-void write(h5md::Writer& writer, const Comparison& comparison);
+void write(io::h5md::Writer& writer, const Comparison& comparison);
 
-}  // namespace gdsmc::io::compare
+}  // namespace gdsmc::analysis::compare

@@ -1,0 +1,43 @@
+#include "analysis/run_checks.hpp"
+
+#include <cstdio>
+#include <string>
+
+#include "theory/run_cost.hpp"
+
+namespace gdsmc::analysis {
+
+void check_run_cost(const io::config::Config& c) {
+  constexpr double kMaxEvents = 1e12, kMinTemperatureRatio = 1e-40;
+  if (c.dsmc.allow_long_run) return;
+  const theory::Cooling cooling = c.staged() ? theory::Cooling::held
+                                  : c.system.restitution_model == "viscoelastic" ? theory::Cooling::viscoelastic
+                                                                                 : theory::Cooling::haff;
+  const theory::RunCost cost = theory::estimate_run_cost(c.mixture(), c.initial.temperature, c.dsmc.t_end,
+                                                         c.dsmc.collisions_per_particle, cooling);
+  const double events = cost.collisions_per_particle * static_cast<double>(c.dsmc.n_particles) / 2.0;
+  const char* variable = c.dsmc.t_end ? "t_end" : "collisions_per_particle";
+  const auto number = [](double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", x);
+    return std::string(text);
+  };
+  const std::string estimate = "kinetic theory estimates " + number(events) + " collision events per replica (" +
+                               number(cost.collisions_per_particle) + " collisions per particle)";
+  std::string reason;
+  if (!(cost.temperature_ratio >= kMinTemperatureRatio))
+    reason = estimate + ", and a cooling to " + number(cost.temperature_ratio) +
+             " of the initial temperature (Haff's law, docs/haff-and-mixtures.md): below 1e-40 the thermal speeds drown in the "
+             "round-off of the conserved momentum, almost every candidate is rejected and the run would not end";
+  else if (!(events <= kMaxEvents))
+    reason = estimate + ", beyond 1e12 (a day or more)";
+  if (reason.empty()) return;
+  // Where the variable was set (exactly one of the two is required, so it was).
+  const auto it = c.origin.find(std::string("dsmc:") + variable);
+  const std::string file = it == c.origin.end() ? c.source_file : it->second.first;
+  const int line = it == c.origin.end() ? 0 : it->second.second;
+  throw io::namelist::Error(file, line, "dsmc", variable,
+                            reason + "; shorten the run, or set &dsmc allow_long_run = .true. to run it anyway");
+}
+
+}  // namespace gdsmc::analysis
