@@ -31,33 +31,31 @@ Collider::Collider(Scheme scheme, const species::Mixture& mix, particles::System
                    rng::Xoshiro256pp gen, double step_fraction,
                    const species::PairMatrix* viscoelastic_beta)
     : scheme_(scheme), mix_(mix), sys_(sys), gen_(gen), step_fraction_(step_fraction),
-      s_(mix.size()), tables_(!(scheme == Scheme::lowrank && s_ > species::dense_pair_limit)) {
+      s_(mix.size()), tables_(!(scheme == Scheme::lowrank && s_ > species::dense_pair_limit)),
+      rule_(rules::make_rule(mix, viscoelastic_beta)),
+      kernels_(std::visit([](const auto& r) { return std::decay_t<decltype(r)>::has_projection; }, rule_)) {
   if (sys.size() > UINT32_MAX) throw std::invalid_argument("collide: more than 2^32 - 1 particles in one replica");
-  // The S x S tables make the majorant and pairs loops table lookups; the lowrank scheme with
+  // The S x S cross sections make the majorant and pairs loops table lookups; the lowrank scheme with
   // thousands of species computes the few pair quantities it needs per accepted collision instead.
   if (tables_) {
     cross_section_.resize(s_ * s_);
-    alpha_.resize(s_ * s_);
-    mass_fraction_.resize(s_ * s_);
     for (std::size_t k = 0; k < s_; ++k)
       for (std::size_t j = 0; j < s_; ++j) {
         const double sigma = mix.contact_distance(k, j);
         cross_section_[k * s_ + j] = std::numbers::pi * sigma * sigma * mix.pair_correlation(k, j);
-        alpha_[k * s_ + j] = mix.restitution(k, j);
-        mass_fraction_[k * s_ + j] = mix.mass[j] / (mix.mass[k] + mix.mass[j]);
       }
   }
   if (tables_ && s_ > 1 && s_ <= block_species_limit) {  // the mixture block kernel's pair constants
-    pair_kernel_.resize(s_ * s_);
     pair_limit_.assign(s_ * s_, 0.0);
+    if (const auto* smooth = std::get_if<rules::SmoothRule>(&rule_))
+      for (std::size_t k = 0; k < s_; ++k)
+        for (std::size_t j = 0; j < s_; ++j)
+          pair_kernel_.push_back({smooth->pair(k, j), s_ <= pair_event_limit
+                                                         ? static_cast<std::uint32_t>(std::min(k, j) * s_ + std::max(k, j))
+                                                         : 0u});
     for (std::size_t k = 0; k < s_; ++k)
       for (std::size_t j = 0; j < s_; ++j) {
-        const double alpha = alpha_[k * s_ + j], mf = mass_fraction_[k * s_ + j];
-        // v_a -= mu_jk (1 + alpha) p, v_b += mu_kj (1 + alpha) p for p = (g.e) e; loss (1 - alpha^2) m_kj (g.e)^2 / 2
         pair_cross_section2_.push_back(cross_section_[k * s_ + j] * cross_section_[k * s_ + j]);
-        pair_kernel_[k * s_ + j] = {mf * (1.0 + alpha), (1.0 - mf) * (1.0 + alpha),
-                                    0.5 * (1.0 - alpha * alpha) * mix.mass[k] * mf,
-                                    s_ <= pair_event_limit ? static_cast<std::uint32_t>(std::min(k, j) * s_ + std::max(k, j)) : 0u};
         pair_species_.insert(pair_species_.end(), {static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(j)});
       }
   }
@@ -70,34 +68,11 @@ Collider::Collider(Scheme scheme, const species::Mixture& mix, particles::System
     pair_cumulative_.assign(s_ * s_, 0.0);
   }
   if (s_ <= pair_event_limit) counters_.pair_events.assign(s_ * s_, 0);
-  if (viscoelastic_beta) {
-    viscoelastic_ = true;
-    if (tables_)
-      for (std::size_t k = 0; k < s_; ++k)
-        for (std::size_t j = 0; j < s_; ++j) sqrt_beta_.push_back(std::sqrt((*viscoelastic_beta)(k, j)));
-    else
-      beta_ = *viscoelastic_beta;
-  }
   if (scheme_ == Scheme::lowrank) {
     chi_max_ = mix.enskog ? mix.pair_correlation.max() : 1.0;
     lowrank_ = segment_tree::LowRankSampler<3>(s_);
     lowrank_volume_ = static_cast<double>(sys.size() - 1) / mix.total_density();
   }
-}
-
-double Collider::restitution_of(std::size_t i, std::size_t k, std::size_t a, std::size_t b, double ex,
-                                double ey, double ez) const {
-  if (!viscoelastic_) return tables_ ? alpha_[i * s_ + k] : mix_.restitution(i, k);
-  const double g_dot_e = (sys_.v[a].x - sys_.v[b].x) * ex + (sys_.v[a].y - sys_.v[b].y) * ey +
-                         (sys_.v[a].z - sys_.v[b].z) * ez;
-  const double sqrt_beta = tables_ ? sqrt_beta_[i * s_ + k] : std::sqrt(beta_(i, k));
-  const double u = sqrt_beta * std::pow(std::abs(g_dot_e), 0.1);  // \ref visco_series "docs/viscoelastic.md"
-  if (u > restitution::u_max) return restitution::viscoelastic(sqrt_beta * sqrt_beta, g_dot_e);  // throws
-  return restitution::series(u);
-}
-
-double Collider::mass_fraction_of(std::size_t i, std::size_t k) const {
-  return tables_ ? mass_fraction_[i * s_ + k] : mix_.mass[k] / (mix_.mass[i] + mix_.mass[k]);
 }
 
 void Collider::set_lowrank_row(std::size_t k) {
@@ -283,13 +258,10 @@ void Collider::use_blocks(std::size_t block_size) {
   // Collisions per particle a blocked step aims at (header "Blocks", "Step length"): sqrt(2 / gamma),
   // gamma = max (1 - alpha_kj^2)/3 the fraction of the energy that one collision per particle
   // dissipates at most (docs/schemes.md, "Cache blocks"), at most block_step_collisions_max.
-  double cooling = 0.0;
-  for (std::size_t k = 0; k < s_ && !viscoelastic_; ++k)
-    for (std::size_t j = 0; j < s_; ++j) {
-      const double alpha = mix_.restitution(k, j);
-      cooling = std::max(cooling, (1.0 - alpha * alpha) / 3.0);
-    }
-  block_step_collisions_ = viscoelastic_ ? 0.0
+  // (a rule whose alpha depends on the impact speed has no such bound: block_steps mean free times)
+  const std::optional<double> loss = std::visit([](const auto& r) { return r.largest_loss_fraction(); }, rule_);
+  const double cooling = loss.value_or(0.0);
+  block_step_collisions_ = !loss ? 0.0
                            : cooling > 2.0 / (block_step_collisions_max * block_step_collisions_max)
                                ? std::sqrt(2.0 / cooling)
                                : block_step_collisions_max;
@@ -409,7 +381,7 @@ bool Collider::choose_block_lowrank() const {
   // one lowrank_candidate_cost times a `majorant` one (docs/schemes.md, "The cheaper sampler").
   // Viscoelastic mixtures run the general loops, which follow the scheme.
   if (block_first_.empty() || s_ == 1) return false;
-  if (viscoelastic_) return lowrank_blocks();
+  if (!kernels_) return lowrank_blocks();
   if (block_sampler_ != BlockSampler::cheaper) return block_sampler_ == BlockSampler::lowrank;
   return lowrank_candidate_cost * block_candidate_rate(true) < block_candidate_rate(false);
 }
@@ -595,8 +567,7 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
     if (whole_step_) {
       const double t_stop = std::min(t_target, next_step_time_);
       const bool lowrank = lowrank_blocks();
-      const int stop = framed_ ? (lowrank ? run_lowrank<true>(t_stop, any_target) : run_majorant<true>(t_stop, any_target))
-                               : (lowrank ? run_lowrank<false>(t_stop, any_target) : run_majorant<false>(t_stop, any_target));
+      const int stop = run_loop(lowrank ? Scheme::lowrank : Scheme::majorant, t_stop, any_target);
       if (stop == static_cast<int>(Stop::bound_raised)) {
         raised_.clear();
         set_whole_gas_bound();
@@ -671,31 +642,11 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
       rate_ = 0.5 * static_cast<double>(range_count_) * n * bound_;
     }
     if (rate_ <= 0.0) break;
-    if (s_ == 1 && !viscoelastic_) {  // the one-species kernel: raised bounds handled inside
-      if (framed_)
-        run_block_one_species<false, true>(t_stop);  // a frame tracks no displacements (set_frame)
-      else if (sys_.tracks_displacements())
-        run_block_one_species<true, false>(t_stop);
-      else
-        run_block_one_species<false, false>(t_stop);
+    if (kernels_) {  // the block kernels of a rule with the projection (rules.hpp): raised bounds handled inside
+      std::visit([&](const auto& rule) { run_block_kernel(rule, lowrank, t_stop); }, rule_);
       break;
     }
-    if (!viscoelastic_) {  // the mixture kernel (header "Mixtures in blocks"): raised bounds handled inside
-      const bool track = sys_.tracks_displacements();
-      // (`majorant` with two species: a kernel of its own, whose species and offsets are two locals)
-      if (framed_)  // (a frame tracks no displacements: set_frame)
-        lowrank    ? run_block_mixture<false, true, true>(t_stop)
-        : s_ == 2  ? run_block_mixture<false, false, true, true>(t_stop)
-                   : run_block_mixture<false, false, true>(t_stop);
-      else if (lowrank)
-        track ? run_block_mixture<true, true, false>(t_stop) : run_block_mixture<false, true, false>(t_stop);
-      else if (s_ == 2)
-        track ? run_block_mixture<true, false, false, true>(t_stop) : run_block_mixture<false, false, false, true>(t_stop);
-      else
-        track ? run_block_mixture<true, false, false>(t_stop) : run_block_mixture<false, false, false>(t_stop);
-      break;
-    }
-    const int stop = lowrank ? run_lowrank<false>(t_stop, UINT64_MAX) : run_majorant<false>(t_stop, UINT64_MAX);
+    const int stop = run_loop(lowrank ? Scheme::lowrank : Scheme::majorant, t_stop, UINT64_MAX);
     if (stop != static_cast<int>(Stop::bound_raised)) break;
   }
   master.block_credit_[j] = rate_ > 0.0 ? credit_ : 0.0;
@@ -709,8 +660,57 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
   std::copy(counters_.pair_events.begin(), counters_.pair_events.end(), out.pair_events.begin());
 }
 
-template <bool Track, bool Framed>
-void Collider::run_block_one_species(double t_stop) {
+template <class Rule>
+void Collider::run_block_kernel(const Rule& rule, bool lowrank, double t_stop) {
+  if constexpr (Rule::has_projection) {
+    const bool track = sys_.tracks_displacements();
+    if (s_ == 1) {  // the one-species kernel
+      if (framed_)
+        run_block_one_species<Rule, false, true>(rule, t_stop);  // a frame tracks no displacements (set_frame)
+      else if (track)
+        run_block_one_species<Rule, true, false>(rule, t_stop);
+      else
+        run_block_one_species<Rule, false, false>(rule, t_stop);
+      return;
+    }
+    // The mixture kernel (header "Mixtures in blocks"); `majorant` with two species: a kernel of its
+    // own, whose species and offsets are two locals.
+    if (framed_)  // (a frame tracks no displacements: set_frame)
+      lowrank    ? run_block_mixture<Rule, false, true, true>(rule, t_stop)
+      : s_ == 2  ? run_block_mixture<Rule, false, false, true, true>(rule, t_stop)
+                 : run_block_mixture<Rule, false, false, true>(rule, t_stop);
+    else if (lowrank)
+      track ? run_block_mixture<Rule, true, true, false>(rule, t_stop) : run_block_mixture<Rule, false, true, false>(rule, t_stop);
+    else if (s_ == 2)
+      track ? run_block_mixture<Rule, true, false, false, true>(rule, t_stop)
+            : run_block_mixture<Rule, false, false, false, true>(rule, t_stop);
+    else
+      track ? run_block_mixture<Rule, true, false, false>(rule, t_stop) : run_block_mixture<Rule, false, false, false>(rule, t_stop);
+  } else {
+    (void)rule, (void)lowrank, (void)t_stop;
+    throw std::logic_error("collide: the block kernels need a rule with the projection");
+  }
+}
+
+int Collider::run_loop(Scheme loop, double t_stop, std::uint64_t event_target) {
+  return std::visit(
+      [&](const auto& rule) -> int {
+        using Rule = std::decay_t<decltype(rule)>;
+        if constexpr (Rule::frames) {
+          if (framed_)
+            return loop == Scheme::majorant ? run_majorant<Rule, true>(rule, t_stop, event_target)
+                   : loop == Scheme::pairs  ? run_pairs<Rule, true>(rule, t_stop, event_target)
+                                            : run_lowrank<Rule, true>(rule, t_stop, event_target);
+        }
+        return loop == Scheme::majorant ? run_majorant<Rule, false>(rule, t_stop, event_target)
+               : loop == Scheme::pairs  ? run_pairs<Rule, false>(rule, t_stop, event_target)
+                                        : run_lowrank<Rule, false>(rule, t_stop, event_target);
+      },
+      rule_);
+}
+
+template <class Rule, bool Track, bool Framed>
+void Collider::run_block_one_species(const Rule& rule, double t_stop) {
   // The process of run_majorant on the block's N_b particles (header "Blocks"): candidates at
   // R_b = N_b n B_b / 2, B_b = 2 pi sigma^2 chi vmax_b, candidate c of a sub-step at t0 + (c + 1)/R_b,
   // a uniform pair accepted with |g| / (2 vmax_b). Only the work per candidate is less: the pair from
@@ -725,8 +725,10 @@ void Collider::run_block_one_species(double t_stop) {
   const auto n = static_cast<std::uint32_t>(range_count_);
   particles::Vec3* v = sys_.v.data() + first;
   const double n_density = mix_.total_density();
-  const double alpha = alpha_[0], impulse = 0.5 * (1.0 + alpha);  // mass fraction 1/2
-  const double loss = 0.25 * (1.0 - alpha * alpha) * mix_.mass[0];  // (1 - alpha^2) m_kk (g.e)^2 / 2, m_kk = m/2
+  // One species: both partners take half the impulse, share_a = share_b. (The constants as scalars,
+  // which stay in registers; a record of them was read from the stack in the loop.)
+  const typename Rule::Pair both = rule.pair(0, 0);
+  const double share = both.share_a, loss = both.loss;
   double max_speed2 = block_speed2_[0];
   // The drawn-ahead pairs (header "Look-ahead"): uniform, independent of the state, prefetched.
   std::array<std::uint32_t, 2 * block_lookahead<Framed>> ahead;
@@ -785,16 +787,12 @@ void Collider::run_block_one_species(double t_stop) {
       if constexpr (Framed) {  // (the mass, common to all, multiplies the sum at the end)
         add_moments(moments, va, -1.0);
         add_moments(moments, vb, -1.0);
-        const particles::Vec3 w = to_stored(px, py, pz);  // G^-1 (g.e) e
-        va = {va.x - impulse * w.x, va.y - impulse * w.y, va.z - impulse * w.z};
-        vb = {vb.x + impulse * w.x, vb.y + impulse * w.y, vb.z + impulse * w.z};
+        dissipated += Rule::collide_projected(va, vb, {share, share, loss}, g_dot_e2, to_stored(px, py, pz));  // G^-1 (g.e) e
         add_moments(moments, va, 1.0);
         add_moments(moments, vb, 1.0);
       } else {
-        va = {va.x - impulse * px, va.y - impulse * py, va.z - impulse * pz};
-        vb = {vb.x + impulse * px, vb.y + impulse * py, vb.z + impulse * pz};
+        dissipated += Rule::collide_projected(va, vb, {share, share, loss}, g_dot_e2, {px, py, pz});
       }
-      dissipated += loss * g_dot_e2;
       ++events;
       // "(sigma g)_max raised when exceeded" (header), for either partner: a new sub-step from here.
       const double speed2 = std::max(va.x * va.x + va.y * va.y + va.z * va.z, vb.x * vb.x + vb.y * vb.y + vb.z * vb.z);
@@ -825,8 +823,8 @@ void Collider::run_block_one_species(double t_stop) {
   if (!counters_.pair_events.empty()) counters_.pair_events[0] += events;
 }
 
-template <bool Track, bool Lowrank, bool Framed, bool Two>
-void Collider::run_block_mixture(double t_stop) {
+template <class Rule, bool Track, bool Lowrank, bool Framed, bool Two>
+void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_stop) {
   // The process of run_majorant (or run_lowrank) on the block's slices (header "Mixtures in blocks"):
   // candidates at R_b, candidate c of a sub-step at t0 + (c + 1)/R_b; `majorant`: a uniform pair of the
   // block's N_b particles accepted with pi sigma_kj^2 chi_kj |g| / B_b; `lowrank`: (i, k) from the block's
@@ -845,6 +843,8 @@ void Collider::run_block_mixture(double t_stop) {
   const auto n = static_cast<std::uint32_t>(range_count_);
   particles::Vec3* v = sys_.v.data();
   const double n_density = mix_.total_density();
+  static_assert(std::is_same_v<typename Rule::Projected, rules::SmoothRule::Projected>,
+                "the kernels' table (PairKernel) holds SmoothRule's projected constants");
   const PairKernel* kernel = pair_kernel_.data();
   // The acceptance's constant of each pair, apart from PairKernel so that a candidate reads 8 bytes at
   // 8 pair: `majorant` (pi sigma^2 chi)^2, `lowrank` w_i + w_k (set_block_lowrank).
@@ -986,16 +986,12 @@ void Collider::run_block_mixture(double t_stop) {
         const double ma = mix_.mass[i], mb = mix_.mass[k];
         add_moments(moments, va, -ma);
         add_moments(moments, vb, -mb);
-        const particles::Vec3 w = to_stored(px, py, pz);  // G^-1 (g.e) e
-        va = {va.x - pk.share_a * w.x, va.y - pk.share_a * w.y, va.z - pk.share_a * w.z};
-        vb = {vb.x + pk.share_b * w.x, vb.y + pk.share_b * w.y, vb.z + pk.share_b * w.z};
+        dissipated += Rule::collide_projected(va, vb, pk.constants, g_dot_e2, to_stored(px, py, pz));  // G^-1 (g.e) e
         add_moments(moments, va, ma);
         add_moments(moments, vb, mb);
       } else {
-        va = {va.x - pk.share_a * px, va.y - pk.share_a * py, va.z - pk.share_a * pz};
-        vb = {vb.x + pk.share_b * px, vb.y + pk.share_b * py, vb.z + pk.share_b * pz};
+        dissipated += Rule::collide_projected(va, vb, pk.constants, g_dot_e2, {px, py, pz});
       }
-      dissipated += pk.loss * g_dot_e2;
       ++events;
       ++pair_events[pk.event];
       // "(sigma g)_max raised when exceeded" (header), for both partners: a new sub-step from here.
@@ -1052,7 +1048,7 @@ void Collider::set_block_lowrank(double n) {
   lowrank_volume_ = static_cast<double>(range_count_ - 1) / n;
   for (std::size_t k = 0; k < s_; ++k) max_speed_[k] = std::sqrt(block_speed2_[k]);
   pending_filled_ = false;  // drawn from the old A_ik: redraw (header, "Look-ahead")
-  if (viscoelastic_) {  // run_lowrank's draw, over all S^2 pairs
+  if (!kernels_) {  // run_lowrank's draw, over all S^2 pairs
     pair_weights_.resize(s_ * s_);
     rate_ = 0.0;
     for (std::size_t i = 0; i < s_; ++i)
@@ -1175,7 +1171,7 @@ void Collider::set_shear(double rate) {
 }
 
 void Collider::set_frame(double scale, double shear) {
-  if (viscoelastic_ || sys_.tracks_displacements())
+  if (!std::visit([](const auto& r) { return std::decay_t<decltype(r)>::frames; }, rule_) || sys_.tracks_displacements())
     throw std::logic_error("collide: a frame needs constant restitution and no displacements");
   if (!(scale > 0.0) || !std::isfinite(scale) || !std::isfinite(shear))
     throw std::logic_error("collide: the frame's scale must be positive and finite");
@@ -1205,26 +1201,6 @@ void Collider::reset_frame(const std::array<double, 4>& moments, const std::vect
   for (std::size_t j = 0; j + 1 < block_first_.size(); ++j) set_block_max_speed2(j, block_max_speed2_.data() + j * s_);
 }
 
-void Collider::collide_in_frame(std::size_t a, std::size_t b, std::uint32_t k, std::uint32_t j, double ex,
-                                double ey, double ez, double g_dot_e, double alpha, double mass_fraction_b) {
-  const particles::Vec3 w = to_stored(ex, ey, ez);  // G^-1 e
-  const double wx = w.x, wy = w.y, wz = w.z;
-  const double impulse = (1.0 + alpha) * g_dot_e;
-  const double da = mass_fraction_b * impulse, db = (1.0 - mass_fraction_b) * impulse;
-  particles::Vec3& ua = sys_.v[a];
-  particles::Vec3& ub = sys_.v[b];
-  const double ma = mix_.mass[k], mb = mix_.mass[j];
-  // The moments change by m (u'u'^T - u u^T) for each partner.
-  add_moments(moments_, ua, -ma);
-  add_moments(moments_, ub, -mb);
-  ua = {ua.x - da * wx, ua.y - da * wy, ua.z - da * wz};
-  ub = {ub.x + db * wx, ub.y + db * wy, ub.z + db * wz};
-  add_moments(moments_, ua, ma);
-  add_moments(moments_, ub, mb);
-  counters_.dissipated += 0.5 * (1.0 - alpha * alpha) * ma * mass_fraction_b * g_dot_e * g_dot_e;
-  count_event(k, j);
-}
-
 bool Collider::advance(double t_target, std::uint64_t event_target, bool exact_events, std::uint64_t event_limit,
                        bool to_step_end) {
   if (!block_first_.empty()) return advance_blocks(t_target, event_target, exact_events, event_limit, to_step_end);
@@ -1245,12 +1221,7 @@ bool Collider::advance(double t_target, std::uint64_t event_target, bool exact_e
       counters_.step_sum += step;
     }
     const double t_stop = std::min(t_target, next_step_time_);
-    const int stop = framed_ ? (scheme_ == Scheme::majorant ? run_majorant<true>(t_stop, event_target)
-                                : scheme_ == Scheme::pairs  ? run_pairs<true>(t_stop, event_target)
-                                                            : run_lowrank<true>(t_stop, event_target))
-                             : (scheme_ == Scheme::majorant ? run_majorant<false>(t_stop, event_target)
-                                : scheme_ == Scheme::pairs  ? run_pairs<false>(t_stop, event_target)
-                                                            : run_lowrank<false>(t_stop, event_target));
+    const int stop = run_loop(scheme_, t_stop, event_target);
     if (stop == static_cast<int>(Stop::bound_raised)) {
       if (scheme_ == Scheme::lowrank) {  // O(log M) per raised species, not a rebuild
         for (std::size_t k : raised_) set_lowrank_row(k);
@@ -1325,8 +1296,8 @@ Collider::PendingPair Collider::next_pair(Draw&& draw) {
   return p;
 }
 
-template <bool Framed>
-int Collider::run_majorant(double t_stop, std::uint64_t event_target) {
+template <class Rule, bool Framed>
+int Collider::run_majorant(const Rule& rule, double t_stop, std::uint64_t event_target) {
   const bool track = sys_.tracks_displacements();  // may start in the middle of a run
   // Candidates among all particles, or among those of the current block (header, "Blocks").
   const auto first = static_cast<std::uint32_t>(range_first_);
@@ -1369,21 +1340,18 @@ int Collider::run_majorant(double t_stop, std::uint64_t event_target) {
     if (rate2 > bound_ * bound_) [[unlikely]] note_overshoot(std::sqrt(rate2) / bound_);
     double ex, ey, ez;
     if (!hemisphere_normal(gen_, gx, gy, gz, std::sqrt(g2), ex, ey, ez)) return false;
-    if constexpr (Framed) {
-      collide_in_frame(a, b, ka, kb, ex, ey, ez, gx * ex + gy * ey + gz * ez, alpha_[pair], mass_fraction_[pair]);
-      return true;
-    }
-    if (track) {
-      particles::flush_free_flight(sys_, a, t_collision);
-      particles::flush_free_flight(sys_, b, t_collision);
-    }
-    collide_and_count(a, b, ka, kb, ex, ey, ez, restitution_of(ka, kb, a, b, ex, ey, ez), mass_fraction_[pair]);
+    if constexpr (!Framed)  // (a frame tracks no displacements: set_frame)
+      if (track) {
+        particles::flush_free_flight(sys_, a, t_collision);
+        particles::flush_free_flight(sys_, b, t_collision);
+      }
+    collide_pair<Rule, Framed>(rule, a, b, ka, kb, ex, ey, ez, gx * ex + gy * ey + gz * ez);
     return true;
   });
 }
 
-template <bool Framed>
-int Collider::run_pairs(double t_stop, std::uint64_t event_target) {
+template <class Rule, bool Framed>
+int Collider::run_pairs(const Rule& rule, double t_stop, std::uint64_t event_target) {
   const bool track = sys_.tracks_displacements();  // may start in the middle of a run
   return run_substep(t_stop, event_target, [&](std::size_t& k, std::size_t& l, double t_collision) {
     // The ordered species pair (i, j) with probability R_ij / R.
@@ -1411,21 +1379,10 @@ int Collider::run_pairs(double t_stop, std::uint64_t event_target) {
       const double g_max = (max_speed_[i] + max_speed_[j]) * speed_factor_ + 0.5 * shear_rate_ * sigma;
       if (shifted <= 0.0 || gen_.uniform() * g_max >= shifted) return false;
       if (shifted > g_max) [[unlikely]] note_overshoot(shifted / g_max);  // accepted, as every p > 1
-      const double alpha = alpha_[pair], mf = mass_fraction_[pair];
-      const double impulse = (1.0 + alpha) * shifted;
-      const double reduced = mix_.mass[i] * mf;  // m_ij
-      if constexpr (Framed) {
-        collide_in_frame(k, l, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j), ex, ey, ez, shifted,
-                         alpha, mf);
-      } else {
-        particles::Vec3& va = sys_.v[k];
-        particles::Vec3& vb = sys_.v[l];
-        va = {va.x - mf * impulse * ex, va.y - mf * impulse * ey, va.z - mf * impulse * ez};
-        vb = {vb.x + (1.0 - mf) * impulse * ex, vb.y + (1.0 - mf) * impulse * ey, vb.z + (1.0 - mf) * impulse * ez};
-        counters_.dissipated += 0.5 * (1.0 - alpha * alpha) * reduced * shifted * shifted;
-        count_event(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
-      }
-      const double w = reduced * sigma * impulse;  // m_ij sigma_ij (1 + alpha)(g.e)
+      // (no displacements: a shear flow tracks none)
+      const rules::Outcome out =
+          collide_pair<Rule, Framed>(rule, k, l, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j), ex, ey, ez, shifted);
+      const double w = out.impulse * sigma;  // m_ij sigma_ij (1 + alpha)(g.e)
       auto& t = counters_.transfer;
       t[0] += w * ex * ex, t[1] += w * ey * ey, t[2] += w * ez * ez;
       t[3] += w * ex * ey, t[4] += w * ex * ez, t[5] += w * ey * ez;
@@ -1435,23 +1392,18 @@ int Collider::run_pairs(double t_stop, std::uint64_t event_target) {
     const double g_max = (max_speed_[i] + max_speed_[j]) * speed_factor_;
     if (g_dot_e <= 0.0 || gen_.uniform() * g_max >= g_dot_e) return false;
     if (g_dot_e > g_max) [[unlikely]] note_overshoot(g_dot_e / g_max);  // accepted, as every p > 1
-    if constexpr (Framed) {
-      collide_in_frame(k, l, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j), ex, ey, ez, g_dot_e,
-                       alpha_[pair], mass_fraction_[pair]);
-      return true;
-    }
-    if (track) {
-      particles::flush_free_flight(sys_, k, t_collision);
-      particles::flush_free_flight(sys_, l, t_collision);
-    }
-    collide_and_count(k, l, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j), ex, ey, ez,
-                      restitution_of(i, j, k, l, ex, ey, ez), mass_fraction_[pair]);
+    if constexpr (!Framed)  // (a frame tracks no displacements: set_frame)
+      if (track) {
+        particles::flush_free_flight(sys_, k, t_collision);
+        particles::flush_free_flight(sys_, l, t_collision);
+      }
+    collide_pair<Rule, Framed>(rule, k, l, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j), ex, ey, ez, g_dot_e);
     return true;
   });
 }
 
-template <bool Framed>
-int Collider::run_lowrank(double t_stop, std::uint64_t event_target) {
+template <class Rule, bool Framed>
+int Collider::run_lowrank(const Rule& rule, double t_stop, std::uint64_t event_target) {
   const bool track = sys_.tracks_displacements();  // may start in the middle of a run
   particles::Vec3* v = sys_.v.data();
   // In a block (a worker, header "Mixtures in blocks"): the particles of the block's slice of each species.
@@ -1490,17 +1442,13 @@ int Collider::run_lowrank(double t_stop, std::uint64_t event_target) {
     if (rate2 > bound * bound) [[unlikely]] note_overshoot(std::sqrt(rate2) / bound);  // accepted, as every p > 1
     double ex, ey, ez;  // e ~ (g_hat.e) on the hemisphere, as in run_majorant
     if (!hemisphere_normal(gen_, gx, gy, gz, std::sqrt(g2), ex, ey, ez)) return false;
-    if constexpr (Framed) {
-      collide_in_frame(a, b, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(k), ex, ey, ez,
-                       gx * ex + gy * ey + gz * ez, restitution_of(i, k, a, b, ex, ey, ez), mass_fraction_of(i, k));
-      return true;
-    }
-    if (track) {
-      particles::flush_free_flight(sys_, a, t_collision);
-      particles::flush_free_flight(sys_, b, t_collision);
-    }
-    collide_and_count(a, b, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(k), ex, ey, ez,
-                      restitution_of(i, k, a, b, ex, ey, ez), mass_fraction_of(i, k));
+    if constexpr (!Framed)  // (a frame tracks no displacements: set_frame)
+      if (track) {
+        particles::flush_free_flight(sys_, a, t_collision);
+        particles::flush_free_flight(sys_, b, t_collision);
+      }
+    collide_pair<Rule, Framed>(rule, a, b, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(k), ex, ey, ez,
+                               gx * ex + gy * ey + gz * ez);
     return true;
   });
 }

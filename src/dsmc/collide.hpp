@@ -286,32 +286,13 @@
 #include "dsmc/deal.hpp"
 #include "dsmc/particles.hpp"
 #include "dsmc/rng.hpp"
-#include "model/restitution.hpp"
+#include "dsmc/rules.hpp"
 #include "dsmc/segment_tree.hpp"
 #include "model/species.hpp"
 
 namespace gdsmc::collide {
 
 enum class Scheme { majorant, pairs, lowrank };
-
-/// Applies the collision rule of \ref cm_rule "docs/collision-model.md" to particles a and b along the unit vector (ex, ey, ez).
-/// `mass_fraction_b` = m_b/(m_a + m_b). Returns (g.e) before the collision.
-inline double apply_collision(particles::System& sys, std::size_t a, std::size_t b, double ex,
-                              double ey, double ez, double alpha, double mass_fraction_b) {
-  particles::Vec3& va = sys.v[a];
-  particles::Vec3& vb = sys.v[b];
-  const double g_dot_e = (va.x - vb.x) * ex + (va.y - vb.y) * ey + (va.z - vb.z) * ez;
-  const double impulse = (1.0 + alpha) * g_dot_e;  // per unit reduced mass ratio
-  const double da = mass_fraction_b * impulse;          // mu_jk (1 + alpha)(g.e)
-  const double db = (1.0 - mass_fraction_b) * impulse;  // mu_kj (1 + alpha)(g.e)
-  va.x -= da * ex;
-  va.y -= da * ey;
-  va.z -= da * ez;
-  vb.x += db * ex;
-  vb.y += db * ey;
-  vb.z += db * ez;
-  return g_dot_e;
-}
 
 /// e with density proportional to (g_hat.e) on the hemisphere g.e > 0 (\ref cm_hemisphere "docs/collision-model.md"), the direction of
 /// a collision of relative velocity g (|g| = g): e = (g_hat + w)/|g_hat + w|, w uniform on the
@@ -545,8 +526,16 @@ class Collider {
   bool raise_max_speed(std::size_t particle);
   template <class TryCandidate>
   int run_substep(double t_stop, std::uint64_t event_target, TryCandidate&& try_candidate);
-  template <bool Framed>
-  int run_majorant(double t_stop, std::uint64_t event_target);  // returns a Stop (collide.cpp)
+  /// The unblocked loop `loop` (the scheme's, or a whole-gas step's) with the collider's rule, up to
+  /// t_stop or the event target (returns a Stop, collide.cpp): the rule_ and the frame dispatched here,
+  /// once per sub-step, to the loops that take them as template parameters.
+  int run_loop(Scheme loop, double t_stop, std::uint64_t event_target);
+  /// On a worker: the current block in the block kernel of `rule` (one species or a mixture,
+  /// `lowrank`'s sampler or `majorant`'s), for a rule with the projection (rules.hpp).
+  template <class Rule>
+  void run_block_kernel(const Rule& rule, bool lowrank, double t_stop);
+  template <class Rule, bool Framed>
+  int run_majorant(const Rule& rule, double t_stop, std::uint64_t event_target);
   bool advance_blocks(double t_target, std::uint64_t event_target, bool exact_events, std::uint64_t event_limit,
                       bool to_step_end);
   /// The length of a blocked step that starts now at candidate rate `rate` (header "Blocks", "Step length");
@@ -579,22 +568,22 @@ class Collider {
   /// On a worker: the current block of one species with constant restitution up to t_stop, the
   /// `majorant` process of run_majorant in a loop of its own (header "Blocks", the kernel): raised
   /// bounds are handled inside. Leaves time_, credit_, bound_ and rate_ as run_substep does.
-  template <bool Track, bool Framed>
-  void run_block_one_species(double t_stop);
+  template <class Rule, bool Track, bool Framed>
+  void run_block_one_species(const Rule& rule, double t_stop);
   /// On a worker: the current block of a mixture with constant restitution up to t_stop, the process of
   /// run_majorant (`Lowrank` false) or run_lowrank (true) on the block's slices in a loop of its own
   /// (header "Mixtures in blocks", the kernel): raised bounds are handled inside. Leaves time_, credit_,
   /// bound_ and rate_ as run_substep does. `Two`: `majorant` with two species (their edge and
   /// offsets in locals).
-  template <bool Track, bool Lowrank, bool Framed, bool Two = false>
-  void run_block_mixture(double t_stop);
+  template <class Rule, bool Track, bool Lowrank, bool Framed, bool Two = false>
+  void run_block_mixture(const Rule& rule, double t_stop);
   /// The constants of species pair (k, j) in the mixture block kernel, row-major S x S (at most
-  /// block_species_limit species).
+  /// block_species_limit species): the rule's projected constants (rules.hpp; the kernels run only a
+  /// rule with the projection, SmoothRule) and the pair's slot in the event counts, in one record of
+  /// 32 bytes read only for a collision.
   struct PairKernel {
-    double share_a;        ///< mu_jk (1 + alpha_kj): v_a -= share_a (g.e) e
-    double share_b;        ///< mu_kj (1 + alpha_kj): v_b += share_b (g.e) e
-    double loss;           ///< (1 - alpha_kj^2) m_kj / 2: the energy lost per (g.e)^2
-    std::uint32_t event;   ///< min(k, j) S + max(k, j): the slot in Counters::pair_events (0 without them)
+    rules::SmoothRule::Projected constants;  ///< share_a, share_b, loss
+    std::uint32_t event;  ///< min(k, j) S + max(k, j): the slot in Counters::pair_events (0 without them)
   };
   std::vector<PairKernel> pair_kernel_;
   /// The acceptance's constants of pair k S + j, read for every candidate (PairKernel only for a
@@ -663,25 +652,39 @@ class Collider {
   static constexpr double max_block_step_candidates = 12582912.0;
   std::size_t range_first_ = 0, range_count_ = 0;
   deal::Workspace remix_workspace_;  ///< remix() deals the particles in place with this (deal.hpp)
-  template <bool Framed>
-  int run_pairs(double t_stop, std::uint64_t event_target);
-  template <bool Framed>
-  int run_lowrank(double t_stop, std::uint64_t event_target);
+  template <class Rule, bool Framed>
+  int run_pairs(const Rule& rule, double t_stop, std::uint64_t event_target);
+  template <class Rule, bool Framed>
+  int run_lowrank(const Rule& rule, double t_stop, std::uint64_t event_target);
   void set_lowrank_row(std::size_t species);
   void count_event(std::uint32_t k, std::uint32_t j);
-  /// The collision rule on particles a (species k) and b (species j), the event counted and its
-  /// energy loss added up (m_kj = m_k mass_fraction_b).
-  void collide_and_count(std::size_t a, std::size_t b, std::uint32_t k, std::uint32_t j, double ex, double ey,
-                         double ez, double alpha, double mass_fraction_b) {
-    const double g_dot_e = apply_collision(sys_, a, b, ex, ey, ez, alpha, mass_fraction_b);
-    counters_.dissipated += 0.5 * (1.0 - alpha * alpha) * mix_.mass[k] * mass_fraction_b * g_dot_e * g_dot_e;
+  /// The general loops' collision of particles a (species k) and b (species j) along e with `g_dot_e`
+  /// of the actual velocities: the rule (rules.hpp) on the stored velocities (in a frame along G^-1 e,
+  /// the frame's moments following them: header "Frame"), the energy lost added up, the event counted.
+  template <class Rule, bool Framed>
+  rules::Outcome collide_pair(const Rule& rule, std::size_t a, std::size_t b, std::uint32_t k, std::uint32_t j,
+                              double ex, double ey, double ez, double g_dot_e) {
+    rules::Contact contact{ex, ey, ez, g_dot_e, ex, ey, ez};
+    particles::Vec3& ua = sys_.v[a];
+    particles::Vec3& ub = sys_.v[b];
+    rules::Outcome out;
+    if constexpr (Framed) {
+      const particles::Vec3 w = to_stored(ex, ey, ez);  // G^-1 e
+      contact.dx = w.x, contact.dy = w.y, contact.dz = w.z;
+      const double ma = mix_.mass[k], mb = mix_.mass[j];
+      // The moments change by m (u'u'^T - u u^T) for each partner.
+      add_moments(moments_, ua, -ma);
+      add_moments(moments_, ub, -mb);
+      out = rule.collide(ua, ub, rule.pair(k, j), contact);
+      add_moments(moments_, ua, ma);
+      add_moments(moments_, ub, mb);
+    } else {
+      out = rule.collide(ua, ub, rule.pair(k, j), contact);
+    }
+    counters_.dissipated += out.loss;
     count_event(k, j);
+    return out;
   }
-
-  /// The same in a frame (header, "Frame"): `g_dot_e` = g.e of the actual velocities; the stored u
-  /// change by the impulse mapped back with G^-1, and the frame's moments follow them.
-  void collide_in_frame(std::size_t a, std::size_t b, std::uint32_t k, std::uint32_t j, double ex, double ey,
-                        double ez, double g_dot_e, double alpha, double mass_fraction_b);
   /// The actual relative velocity G g of a stored one (header, "Frame"); the identity without a frame.
   template <bool Framed>
   void to_actual(double& gx, double& gy, double& gz) const {
@@ -731,17 +734,11 @@ class Collider {
   double step_fraction_;
   std::size_t s_;
   bool tables_;  ///< pair constants stored as S x S tables (all but lowrank with very many species)
-  // Pair constants, row-major S x S.
-  std::vector<double> cross_section_;   ///< pi sigma_kj^2 chi_kj
-  std::vector<double> alpha_;           ///< alpha_kj (constant restitution)
-  std::vector<double> sqrt_beta_;       ///< beta_kj^(1/2) (viscoelastic with tables)
-  species::PairMatrix beta_;            ///< beta_kj (viscoelastic without tables)
-  bool viscoelastic_ = false;
-  /// alpha of species pair (i, k) for the collision of a and b along e (\ref cm_rule "docs/collision-model.md", \ref visco_series "docs/viscoelastic.md").
-  double restitution_of(std::size_t i, std::size_t k, std::size_t a, std::size_t b, double ex, double ey,
-                        double ez) const;
-  double mass_fraction_of(std::size_t i, std::size_t k) const;  ///< m_k/(m_i + m_k)
-  std::vector<double> mass_fraction_;   ///< m_j/(m_k + m_j): the share of the impulse taken by k
+  std::vector<double> cross_section_;   ///< pi sigma_kj^2 chi_kj, row-major S x S
+  rules::Rule rule_;                    ///< what a collision does (rules.hpp)
+  /// The rule has the projection option (rules.hpp), which the block kernels need; without it
+  /// (viscoelastic) the blocks run the general loops.
+  bool kernels_ = true;
   std::vector<double> max_speed_;       ///< vmax_k
   std::vector<double> max_speed2_;      ///< vmax_k^2
   std::vector<std::size_t> raised_;     ///< species whose vmax was raised since the last rebuild
