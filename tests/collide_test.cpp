@@ -166,7 +166,7 @@ TEST(Collide, HemisphereProjectionIsTheHemisphereImpulse) {
   double su = 0.0, su2 = 0.0, sperp = 0.0, worst = 0.0;
   for (int i = 0; i < n; ++i) {
     double px, py, pz;
-    const double q = collide::hemisphere_projection(gen, gx, gy, gz, g, px, py, pz);
+    const double q = rules::hemisphere_projection(gen, gx, gy, gz, g, px, py, pz);
     worst = std::max({worst, std::abs(px * px + py * py + pz * pz - q) / g2, std::abs(px * gx + py * gy + pz * gz - q) / g2});
     const double u = q / g2;
     su += u;

@@ -10,7 +10,7 @@
 #include <omp.h>
 #endif
 
-#include "dsmc/collide.hpp"
+#include "dsmc/rules.hpp"
 #include "model/species.hpp"
 
 namespace gdsmc::agg_frag {
@@ -202,7 +202,7 @@ Event Gas::collide(Cluster a, Cluster b) {
     double ex = 0.0, ey = 0.0, ez = 1.0;
     const double g = std::sqrt(g2);
     if (g > 0.0) {
-      while (!collide::hemisphere_normal(gen_, gx, gy, gz, g, ex, ey, ez)) {
+      while (!rules::hemisphere_normal(gen_, gx, gy, gz, g, ex, ey, ez)) {
       }
     }
     event.ex = ex, event.ey = ey, event.ez = ez;
@@ -235,18 +235,14 @@ Event Gas::collide(Cluster a, Cluster b) {
       counters_.fragmentations += 1;
       const double eps = model_.fragment_restitution;
       counters_.dissipated += (1.0 - eps * eps) * event.impact_energy;
-    } else {  // bounce: \ref cm_rule "docs/collision-model.md" with the monomer restitution
+    } else {  // bounce: the smooth rule (rules.hpp, \ref cm_rule "docs/collision-model.md") with the monomer restitution
       event.outcome = Outcome::bounce;
-      const double alpha = model_.restitution;
-      const double impulse = (1.0 + alpha) * g_dot_e;
-      const double da = (m_j / total) * impulse, db = (m_k / total) * impulse;
       Vec3& wa = lists_[k][a.place];
       Vec3& wb = lists_[j][b.place];
-      wa = {va.x - da * ex, va.y - da * ey, va.z - da * ez};
-      wb = {vb.x + db * ex, vb.y + db * ey, vb.z + db * ez};
+      const auto pair = rules::SmoothRule::make_pair(model_.restitution, m_k, m_j);
+      counters_.dissipated += rules::SmoothRule::collide(wa, wb, pair, {ex, ey, ez, g_dot_e, ex, ey, ez}).loss;
       raise_bound(k, wa);
       raise_bound(j, wb);
-      counters_.dissipated += (1.0 - alpha * alpha) * event.normal_energy;
     }
   }
   // The sampler follows every size whose count or bound changed (each at most a few times).

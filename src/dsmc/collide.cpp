@@ -775,7 +775,7 @@ void Collider::run_block_one_species(const Rule& rule, double t_stop) {
       if (threshold * threshold >= g2) continue;
       if (g2 > limit * limit) [[unlikely]] note_overshoot(std::sqrt(g2) / limit);
       double px, py, pz;
-      const double g_dot_e2 = hemisphere_projection(gen, gx, gy, gz, std::sqrt(g2), px, py, pz);
+      const double g_dot_e2 = rules::hemisphere_projection(gen, gx, gy, gz, std::sqrt(g2), px, py, pz);
       if (g_dot_e2 == 0.0) continue;
       if constexpr (Track) {
         const double t_collision = t0 + static_cast<double>(c + 1) * dt_candidate;
@@ -971,7 +971,7 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
         if (rate2 > bound * bound) [[unlikely]] note_overshoot(std::sqrt(rate2) / bound);
       }
       double px, py, pz;
-      const double g_dot_e2 = hemisphere_projection(gen, gx, gy, gz, std::sqrt(g2), px, py, pz);
+      const double g_dot_e2 = rules::hemisphere_projection(gen, gx, gy, gz, std::sqrt(g2), px, py, pz);
       if (g_dot_e2 == 0.0) continue;
       if constexpr (Track) {
         const double t_collision = t0 + static_cast<double>(c + 1) * dt_candidate;
@@ -1339,7 +1339,7 @@ int Collider::run_majorant(const Rule& rule, double t_stop, std::uint64_t event_
     // A probability above 1 is always accepted (U B < B < rate), so the invariant is checked here only.
     if (rate2 > bound_ * bound_) [[unlikely]] note_overshoot(std::sqrt(rate2) / bound_);
     double ex, ey, ez;
-    if (!hemisphere_normal(gen_, gx, gy, gz, std::sqrt(g2), ex, ey, ez)) return false;
+    if (!rules::hemisphere_normal(gen_, gx, gy, gz, std::sqrt(g2), ex, ey, ez)) return false;
     if constexpr (!Framed)  // (a frame tracks no displacements: set_frame)
       if (track) {
         particles::flush_free_flight(sys_, a, t_collision);
@@ -1441,7 +1441,7 @@ int Collider::run_lowrank(const Rule& rule, double t_stop, std::uint64_t event_t
     if (threshold * threshold >= rate2) return false;
     if (rate2 > bound * bound) [[unlikely]] note_overshoot(std::sqrt(rate2) / bound);  // accepted, as every p > 1
     double ex, ey, ez;  // e ~ (g_hat.e) on the hemisphere, as in run_majorant
-    if (!hemisphere_normal(gen_, gx, gy, gz, std::sqrt(g2), ex, ey, ez)) return false;
+    if (!rules::hemisphere_normal(gen_, gx, gy, gz, std::sqrt(g2), ex, ey, ez)) return false;
     if constexpr (!Framed)  // (a frame tracks no displacements: set_frame)
       if (track) {
         particles::flush_free_flight(sys_, a, t_collision);

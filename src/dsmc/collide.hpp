@@ -294,44 +294,6 @@ namespace gdsmc::collide {
 
 enum class Scheme { majorant, pairs, lowrank };
 
-/// e with density proportional to (g_hat.e) on the hemisphere g.e > 0 (\ref cm_hemisphere "docs/collision-model.md"), the direction of
-/// a collision of relative velocity g (|g| = g): e = (g_hat + w)/|g_hat + w|, w uniform on the
-/// sphere, has exactly that density (the ray from the origin meets the sphere |p - g_hat| = 1 at
-/// distance 2 cos(theta), with area element 4 cos(theta) dOmega). Returns false for w = -g_hat
-/// exactly (probability zero). Shared by the schemes here and by agg_frag.
-template <class Gen>
-inline bool hemisphere_normal(Gen& gen, double gx, double gy, double gz, double g, double& ex, double& ey,
-                              double& ez) {
-  double wx, wy, wz;
-  rng::unit_vector(gen, wx, wy, wz);
-  const double inv_g = 1.0 / g;
-  ex = gx * inv_g + wx;
-  ey = gy * inv_g + wy;
-  ez = gz * inv_g + wz;
-  const double norm2 = ex * ex + ey * ey + ez * ez;
-  if (norm2 == 0.0) return false;
-  const double inv_norm = 1.0 / std::sqrt(norm2);
-  ex *= inv_norm;
-  ey *= inv_norm;
-  ez *= inv_norm;
-  return true;
-}
-
-/// (g.e) e for e drawn as hemisphere_normal draws it, without forming e (\ref cm_hemisphere "docs/collision-model.md"):
-/// with w uniform on the sphere and e = (g_hat + w)/|g_hat + w|, (g.e) e = (g + g w)/2 exactly
-/// (g = |g|), which needs neither a root nor a division. Sets p to it and returns (g.e)^2 = g.p,
-/// which is 0 only for w = -g_hat (probability zero: no collision, as hemisphere_normal's false).
-template <class Gen>
-inline double hemisphere_projection(Gen& gen, double gx, double gy, double gz, double g, double& px, double& py,
-                                    double& pz) {
-  double wx, wy, wz;
-  rng::unit_vector_32(gen, wx, wy, wz);
-  px = 0.5 * (gx + g * wx);
-  py = 0.5 * (gy + g * wy);
-  pz = 0.5 * (gz + g * wz);
-  return gx * px + gy * py + gz * pz;
-}
-
 /// Per-species-pair event counts are kept for mixtures of at most this many species.
 inline constexpr std::size_t pair_event_limit = 64;
 /// Cache blocks serve mixtures of at most this many species (header "Mixtures in blocks": a block's
