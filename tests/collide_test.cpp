@@ -1669,7 +1669,10 @@ TEST(Collide, ScatterPlacesEveryParticleUniformly) {
     std::vector<double> in_block(n * k, 0.0), together(n * n, 0.0);
     std::vector<std::size_t> block_of(n);
     for (std::size_t d = 0; d < draws; ++d) {
-      deal::scatter(gen, data.data(), second.data(), n, k, counts.data(), stride);
+      deal::scatter(gen, n, k, counts.data(), stride, [&](std::size_t i, std::size_t q) {
+        std::swap(data[i], data[q]);
+        std::swap(second[i], second[q]);
+      });
       ASSERT_EQ(data, second);
       std::size_t position = 0, total = 0;
       for (std::size_t j = 0; j < k; ++j) {
@@ -1695,4 +1698,49 @@ TEST(Collide, ScatterPlacesEveryParticleUniformly) {
     EXPECT_LT(worst_block, 4.5);
     EXPECT_LT(worst_pair, 4.5);
   }
+}
+
+// The per-particle arrays are a list (particles.hpp System::for_each_array): the blocks' remix (dealt
+// species) and scatter (a rare species) move every array a particle carries with the same permutation,
+// whatever its name and type. Two extra arrays, an id (a number) and 2 id in a 3-vector, on a binary
+// gas of 20000 + 60 particles in blocks of 2048 (9 blocks: the rare species scattered) whose velocities
+// are all equal, so that no candidate is accepted and only the remixes move the particles: after more
+// than 20 steps the ids are a permutation of each species' own ids (not the identity), and the second
+// array still holds twice the id of every particle.
+TEST(Particles, EveryArrayMovesWithItsParticle) {
+  const auto mix = binary(0.9, 0.9, 0.9);
+  particles::System sys = initial(mix, {20000, 60}, {1.0, 1.0}, 3);
+  for (auto& v : sys.v) v = {0.3, -0.2, 0.1};
+  auto& id = sys.add_array<double>("id");
+  auto& twice = sys.add_array<particles::Vec3>("twice_id");
+  for (std::size_t i = 0; i < sys.size(); ++i) {
+    id[i] = static_cast<double>(i);
+    twice[i] = {2.0 * static_cast<double>(i), 0.0, -2.0 * static_cast<double>(i)};
+  }
+  EXPECT_THROW(sys.add_array<double>("id"), std::invalid_argument);
+  Collider c(Scheme::majorant, mix, sys, rng::make_stream(4, 0, rng::Purpose::collisions), 1.0);
+  c.use_blocks(2048);
+  ASSERT_EQ(c.blocks(), 9u);
+  for (int chunk = 0; chunk < 40; ++chunk) c.advance(c.time() + 1000.0);
+  EXPECT_EQ(c.counters().events, 0u);
+  EXPECT_GT(c.counters().steps, 20u);
+  std::size_t moved = 0;
+  std::vector<bool> seen(sys.size(), false);
+  for (std::size_t i = 0; i < sys.size(); ++i) {
+    const auto k = static_cast<std::size_t>(id[i]);
+    ASSERT_EQ(sys.species[k], sys.species[i]) << "particle " << i << " left its species' range";
+    ASSERT_FALSE(seen[k]);
+    seen[k] = true;
+    ASSERT_EQ(twice[i].x, 2.0 * id[i]);
+    ASSERT_EQ(twice[i].z, -2.0 * id[i]);
+    moved += k != i;
+  }
+  EXPECT_GT(moved, sys.size() / 2);
+  // The rare species (scattered) moved too.
+  std::size_t rare_moved = 0;
+  for (std::size_t i = sys.first[1]; i < sys.size(); ++i) rare_moved += static_cast<std::size_t>(id[i]) != i;
+  EXPECT_GT(rare_moved, 30u);
+  std::size_t names = 0;
+  sys.for_each_array([&](const char*, const auto&) { ++names; });
+  EXPECT_EQ(names, 3u);  // velocity, id, twice_id (no displacements tracked)
 }

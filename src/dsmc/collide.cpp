@@ -284,7 +284,8 @@ void Collider::use_blocks(std::size_t block_size) {
   block_credit_.assign(blocks, 0.0);
   // The remix's scratch memory (deal.hpp), for the largest species and the largest particle array.
   remix_workspace_ = {};
-  const std::size_t element = sys_.tracks_displacements() ? sizeof(particles::Displacement) : sizeof(particles::Vec3);
+  std::size_t element = 0;  // (the largest element of the arrays a particle carries; deal_in_place grows it)
+  sys_.for_each_array([&](const char*, const auto& a) { element = std::max(element, sizeof(a[0])); });
   for (std::size_t k = 0; k < s_; ++k)
     if (!scattered_[k]) remix_workspace_.reserve(sys_.count[k], blocks, element, threads_);
 }
@@ -306,8 +307,12 @@ void Collider::set_slices() {
 void Collider::scatter(std::size_t k) {
   // Each particle of species k to a uniformly random block, independently (header "Mixtures in blocks"):
   // the particles in a uniformly random order, then cut into slices of multinomial counts (deal.hpp).
-  particles::Displacement* r = sys_.tracks_displacements() ? sys_.r.data() + sys_.first[k] : nullptr;
-  deal::scatter(gen_, sys_.v.data() + sys_.first[k], r, sys_.count[k], block_first_.size() - 1, slice_count_.data() + k, s_);
+  // (every array a particle carries, the same transpositions: particles.hpp System::for_each_array)
+  const std::size_t first = sys_.first[k];
+  deal::scatter(gen_, sys_.count[k], block_first_.size() - 1, slice_count_.data() + k, s_,
+                [&](std::size_t i, std::size_t q) {
+                  sys_.for_each_array([&](const char*, auto& a) { std::swap(a[first + i], a[first + q]); });
+                });
 }
 
 void Collider::remix() {
@@ -318,8 +323,9 @@ void Collider::remix() {
   const std::size_t n = sys_.size(), blocks = block_first_.size() - 1;
   if (s_ == 1) {
     const std::size_t offset = gen_.below(n);
-    deal::deal_in_place(sys_.v.data(), n, blocks, offset, remix_workspace_, threads_);
-    if (sys_.tracks_displacements()) deal::deal_in_place(sys_.r.data(), n, blocks, offset, remix_workspace_, threads_);
+    // (every array a particle carries: particles.hpp System::for_each_array)
+    sys_.for_each_array(
+        [&](const char*, auto& a) { deal::deal_in_place(a.data(), n, blocks, offset, remix_workspace_, threads_); });
     return;  // one species: the species array is all zeros and does not move
   }
   // A mixture: each species is dealt round its own slices, within its own range, so the species
@@ -329,13 +335,11 @@ void Collider::remix() {
   std::vector<std::size_t> offset(s_);
   for (std::size_t k = 0; k < s_; ++k)
     if (!scattered_[k]) offset[k] = gen_.below(sys_.count[k]);
-  for (std::size_t k = 0; k < s_; ++k)
-    if (!scattered_[k])
-      deal::deal_in_place(sys_.v.data() + sys_.first[k], sys_.count[k], blocks, offset[k], remix_workspace_, threads_);
-  if (sys_.tracks_displacements())
+  sys_.for_each_array([&](const char*, auto& a) {
     for (std::size_t k = 0; k < s_; ++k)
       if (!scattered_[k])
-        deal::deal_in_place(sys_.r.data() + sys_.first[k], sys_.count[k], blocks, offset[k], remix_workspace_, threads_);
+        deal::deal_in_place(a.data() + sys_.first[k], sys_.count[k], blocks, offset[k], remix_workspace_, threads_);
+  });
   if (!scattered_any_) return;
   for (std::size_t k = 0; k < s_; ++k)
     if (scattered_[k]) scatter(k);

@@ -315,15 +315,15 @@ void deal_in_place(T* data, std::size_t n, std::size_t k, std::size_t offset, Wo
   for (std::size_t i = 0; i < m; ++i) data[first(i % k) + rows * seg + i / k] = aside[i];
 }
 
-/// Scatters n elements over k blocks (header, "Scattering"): permutes `data` (and `second` alike, if
-/// not null) uniformly at random and sets counts[j stride], j < k, to how many of them block j takes,
+/// Scatters n elements over k blocks (header, "Scattering"): permutes them uniformly at random, each
+/// transposition through `swap(i, q)` (which swaps elements i and q of every array that holds them),
+/// and sets counts[j stride], j < k, to how many of them block j takes,
 /// in order: each element to a uniformly random block, independently. `gen.below(m)` is uniform on [0, m).
-template <class Gen, class T, class U>
-void scatter(Gen& gen, T* data, U* second, std::size_t n, std::size_t k, std::size_t* counts, std::size_t stride) {
+template <class Gen, class Swap>
+void scatter(Gen& gen, std::size_t n, std::size_t k, std::size_t* counts, std::size_t stride, Swap&& swap) {
   for (std::size_t i = n; i > 1; --i) {
     const std::size_t q = gen.below(i);
-    std::swap(data[i - 1], data[q]);
-    if (second) std::swap(second[i - 1], second[q]);
+    swap(i - 1, q);
   }
   for (std::size_t j = 0; j < k; ++j) counts[j * stride] = 0;
   for (std::size_t i = 0; i < n; ++i) ++counts[gen.below(k) * stride];

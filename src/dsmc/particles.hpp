@@ -28,7 +28,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <deque>
+#include <stdexcept>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "dsmc/rng.hpp"
@@ -106,8 +109,56 @@ struct System {
   /// start of tracking); its displacement at t >= t_last is R + v (t - t_last).
   ParticleArray<Displacement> r;
 
+  /// A further per-particle array of a collision rule or a forcing (the angular velocity of rough
+  /// spheres, say): its name, and one value (a number or a 3-vector) per particle.
+  struct Extra {
+    std::string name;                                                    ///< particles/<name> in checkpoints
+    std::variant<ParticleArray<double>, ParticleArray<Vec3>> values;  ///< one per particle, in particle order
+  };
+  std::deque<Extra> extra;  ///< the further arrays, in the order they were added (a deque: adding one keeps the others in place)
+
+  /// Calls f(name, array) for every per-particle array that moves with its particle: `velocity`,
+  /// `displacement` (when tracked) and each extra array, `array` a ParticleArray of its own element
+  /// type. Whatever permutes the particles (the blocks' remix and scatter, collide.hpp) or saves them
+  /// (checkpoints) goes through this list, so that an array a new rule adds needs no change there.
+  /// The species array never moves (the species' ranges are fixed) and is not in the list.
+  template <class F>
+  void for_each_array(F&& f) {
+    visit_arrays(*this, f);
+  }
+  /// The same, read only.
+  template <class F>
+  void for_each_array(F&& f) const {
+    visit_arrays(*this, f);
+  }
+  /// An extra array named `name`, of values of type T (double or Vec3), all zero; throws
+  /// std::invalid_argument when the name is taken.
+  template <class T>
+  ParticleArray<T>& add_array(const std::string& name) {
+    if (name == "velocity" || name == "displacement" || find_array(name))
+      throw std::invalid_argument("particles: an array named '" + name + "' exists");
+    extra.push_back({name, ParticleArray<T>(size(), T{})});
+    return std::get<ParticleArray<T>>(extra.back().values);
+  }
+  /// The extra array named `name`, or nullptr.
+  Extra* find_array(const std::string& name) {
+    for (Extra& e : extra)
+      if (e.name == name) return &e;
+    return nullptr;
+  }
+
   /// N, the number of particles.
   std::size_t size() const { return v.size(); }
+
+ private:
+  template <class Self, class F>
+  static void visit_arrays(Self& self, F& f) {
+    f("velocity", self.v);
+    if (self.tracks_displacements()) f("displacement", self.r);
+    for (auto& e : self.extra) std::visit([&](auto& values) { f(e.name.c_str(), values); }, e.values);
+  }
+
+ public:
   /// S, the number of species.
   std::size_t n_species() const { return count.size(); }
   /// Displacements are tracked (r is not empty).

@@ -311,15 +311,15 @@ Snapshot make_snapshot(const particles::System& sys, const collide::Collider& co
                        const ReplicaResult& partial) {
   Snapshot snap;
   store_result(snap, partial);
-  auto& v = snap.reals["particles/velocity"];
-  v.reserve(3 * sys.size());
-  for (const auto& x : sys.v) v.insert(v.end(), {x.x, x.y, x.z});
+  // Every array a particle carries (particles.hpp System::for_each_array), as its doubles in order.
+  sys.for_each_array([&](const char* name, const auto& a) {
+    std::string key = "particles/";  // (not "particles/" + name: a false -Warray-bounds of GCC 12)
+    key += name;
+    auto& out = snap.reals[key];
+    out.resize(a.size() * (sizeof(a[0]) / sizeof(double)));
+    std::memcpy(out.data(), a.data(), out.size() * sizeof(double));
+  });
   snap.integers["particles/species"].assign(sys.species.begin(), sys.species.end());
-  if (sys.tracks_displacements()) {
-    auto& r = snap.reals["particles/displacement"];
-    r.reserve(4 * sys.size());
-    for (const auto& x : sys.r) r.insert(r.end(), {x.x, x.y, x.z, x.t_last});
-  }
   const collide::Collider::State c = collider.state();
   snap.reals["collider/clock"] = {c.time, c.credit, c.next_step_time, c.counters.step_sum, c.generator.spare,
                                  c.counters.dissipated};
@@ -378,15 +378,18 @@ void load_snapshot(const Snapshot& snap, particles::System& sys, collide::Collid
       require_intact(pending[q] < (q % 4 < 2 ? sys.size() : sys.n_species()),
                      "a drawn-ahead candidate names a particle or species that does not exist");
   }
-  for (std::size_t i = 0; i < sys.size(); ++i) {
-    sys.v[i] = {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
-    sys.species[i] = static_cast<std::uint32_t>(species[i]);
-  }
-  if (const auto it = snap.reals.find("particles/displacement"); it != snap.reals.end()) {
-    sys.r.resize(sys.size());
-    for (std::size_t i = 0; i < sys.size(); ++i)
-      sys.r[i] = {it->second[4 * i], it->second[4 * i + 1], it->second[4 * i + 2], it->second[4 * i + 3]};
-  }
+  for (std::size_t i = 0; i < sys.size(); ++i) sys.species[i] = static_cast<std::uint32_t>(species[i]);
+  // Tracking may have started during the run: the displacements then exist from there on.
+  if (snap.reals.count("particles/displacement") && !sys.tracks_displacements()) sys.r.resize(sys.size());
+  sys.for_each_array([&](const char* name, auto& a) {
+    std::string key = "particles/";
+    key += name;
+    const auto it = snap.reals.find(key);
+    require_intact(it != snap.reals.end(), std::string("the particles' array '") + name + "' is missing");
+    require_intact(it->second.size() == a.size() * (sizeof(a[0]) / sizeof(double)),
+                   std::string("the particles' array '") + name + "' has the wrong length");
+    std::memcpy(a.data(), it->second.data(), it->second.size() * sizeof(double));
+  });
   collide::Collider::State c;
   const auto& clock = snap.reals.at("collider/clock");
   const auto& counters = snap.integers.at("collider/counters");
