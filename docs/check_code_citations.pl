@@ -44,7 +44,7 @@ for my $p (@pages) {
   $t =~ s/`[^`\n]*`//g;
   while ($t =~ /\{#([A-Za-z0-9_]+)\}/g) { $anchor_file{$1} //= $p; }
 }
-$anchor_file{$_} //= '(generated)' for qw(input validation_results mainpage);
+$anchor_file{$_} //= '(generated)' for qw(input observables_page validation_results mainpage);
 
 my @files;
 find({no_chdir => 1, wanted => sub {

@@ -1,4 +1,5 @@
-# Writes input.md (from `granular-dsmc --print-reference` and --print-defaults) and
+# Writes input.md (from `granular-dsmc --print-reference` and --print-defaults), observables.md (from
+# --print-observables) and
 # validation_results.md (the reports the validation programs wrote in this build tree).
 file(READ ${TABLES} tables)
 # The help texts are plain text: a `<file stem>` is not an HTML tag.
@@ -8,6 +9,12 @@ execute_process(COMMAND ${TEMPLATE_CMD} --print-defaults OUTPUT_VARIABLE templat
 file(WRITE ${OUT}/input.md "# Input reference {#input}\n\n"
   "Generated from the parameter tables of `src/io/config.cpp` (the same tables the reader uses).\n\n"
   "${tables}\n## Template (`granular-dsmc --print-defaults`)\n\n```\n${template}```\n")
+execute_process(COMMAND ${TEMPLATE_CMD} --print-observables OUTPUT_VARIABLE observables)
+file(WRITE ${OUT}/observables.md "# Observables {#observables_page}\n\n"
+  "Generated from the table of observables of `src/model/observables.cpp` (`granular-dsmc --print-observables`), "
+  "the table the sampling, the writer, the units, the sweep tables and `--compare` read. A series is written as "
+  "`/observables/<name>` with `step`, `time`, `value` and `error` (\\ref output_observables \"the output page\"); the "
+  "others as the output page describes.\n\n${observables}\n")
 file(GLOB reports ${REPORTS}/*.report.txt)
 set(body "# Validation results {#validation_results}\n\n"
   "The reports below were written by the validation programs when ctest ran them in this build "

@@ -195,7 +195,7 @@ TEST(Sample, VelocityHistogramOfMaxwellian) {
 // with the unbiased s. Per element the replica values are (1,2,3), (2,4,6), (3,5,4), (4,6,8):
 // means 2, 4, 4, 6; s = 1, 2, 1, 2; SE = s / sqrt(3).
 TEST(Sample, AccumulatorMeanAndStandardError) {
-  sample::Accumulator acc;
+  observables::Accumulator acc;
   acc.columns = 2;
   acc.add(2, {3.0, 6.0});  // replicas may arrive in any order
   acc.add(0, {1.0, 2.0});
@@ -219,7 +219,7 @@ TEST(Sample, AccumulatorMeanAndStandardError) {
 }
 
 TEST(Sample, AccumulatorOneReplica) {
-  sample::Accumulator acc;
+  observables::Accumulator acc;
   acc.add(0, {1.5});
   acc.add(0, {-2.0});
   EXPECT_EQ(acc.mean(), (std::vector<double>{1.5, -2.0}));

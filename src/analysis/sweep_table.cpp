@@ -10,6 +10,7 @@
 
 #include "analysis/compare.hpp"
 #include "io/units.hpp"
+#include "model/observables.hpp"
 
 namespace gdsmc::analysis::sweep_table {
 
@@ -83,14 +84,9 @@ Table build(const io::config::Config& config, const std::string& file) {
       {"cooling_rate_reduced", "scaling state (reduced_distribution@cooling_rate_reduced)"},
       {"shear_viscosity", "time average from &shear average_from (shear_viscosity@time_average)"},
       {"collisions_per_particle", "last sample"}};
-  const std::vector<std::string> descriptions = {
-      "partial temperatures T_k = m_k <|v-u|^2>/3, columns = species (&agg_frag: cluster sizes)",
-      "T = sum_k n_k T_k / n",
-      "T_k/T, the ratio of the replica means at each sample (as --compare)",
-      "c_k = 2[(3/5)<v^4>/<v^2>^2 - 1] (Montanero and Garzo 2002, eq. (17), docs/sonine.md)",
-      "zeta* of the scaling state (one or two species)",
-      "eta/eta_0 time average (docs/shear-viscosity.md)",
-      "2 x events / N"};
+  // What each quantity is: the table of observables' definition (model/observables.hpp).
+  std::vector<std::string> descriptions;
+  for (const auto& [name, how] : names) descriptions.emplace_back(observables::find(name).description);
   std::vector<std::vector<PointValues>> per(names.size(), std::vector<PointValues>(t.points));
   t.scaling_samples.assign(t.points, 0.0);
   for (std::size_t k = 0; k < t.points; ++k) {

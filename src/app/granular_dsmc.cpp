@@ -23,6 +23,7 @@
 #include "io/namelist.hpp"
 #include "analysis/sweep_table.hpp"
 #include "io/version.hpp"
+#include "model/observables.hpp"
 
 namespace {
 
@@ -112,6 +113,7 @@ const char* kUsage =
     "                    --set dsmc:n_particles=2000 --set \"output:file='x.h5'\"\n"
     "  --force           write the output over an existing file that is not an earlier output of granular-dsmc\n"
     "  --print-defaults  print a commented namelist with every variable and its default\n"
+    "  --print-observables  print the table of observables (name, unit, columns, definition) as Markdown\n"
     "  --table FILE.h5   print the table of a sweep's output (/sweep/values, /sweep/results) as CSV:\n"
     "                    a header line, one row per point (docs/output.md \"Sweeps\")\n"
     "Exit status: 0 success, 2 bad input, 1 run-time failure, 130 interrupted.\n";
@@ -156,6 +158,9 @@ int main(int argc, char** argv) {
       return 0;
     } else if (arg == "--print-reference") {  // Markdown input reference, for docs/
       std::cout << gdsmc::io::config::reference_markdown();
+      return 0;
+    } else if (arg == "--print-observables") {  // the table of observables (model/observables.hpp), for docs/
+      std::cout << gdsmc::observables::markdown();
       return 0;
     } else if (arg == "--table") {  // the sweep table of an output file as CSV (analysis/sweep_table.hpp)
       const std::string file = next();

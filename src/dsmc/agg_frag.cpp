@@ -625,4 +625,50 @@ void Gas::restore(const State& s) {
   bounds_exact_ = false;
 }
 
+void Gas::save(state::Record& r) const {
+  const State s = state();
+  r.put("clusters/velocity", s.velocity);
+  r.put("clusters/count", s.count);
+  r.put("clusters/max_speed", s.max_speed);
+  r.put("clusters/time", s.time);
+  r.put("clusters/credit", s.credit);
+  r.put("clusters/next_step_time", s.next_step_time);
+  r.put("clusters/step_sum", s.counters.step_sum);
+  r.put("clusters/dissipated", s.counters.dissipated);
+  r.put("clusters/generator", std::vector<std::uint64_t>(std::begin(s.generator.s), std::end(s.generator.s)));
+  r.put("clusters/generator_spare", s.generator.spare);
+  r.put_integer("clusters/generator_has_spare", s.generator.has_spare);
+  r.put_integer("clusters/events", s.counters.events);
+  r.put_integer("clusters/aggregations", s.counters.aggregations);
+  r.put_integer("clusters/fragmentations", s.counters.fragmentations);
+  r.put_integer("clusters/candidates", s.counters.candidates);
+  r.put_integer("clusters/steps", s.counters.steps);
+  r.put_integer("clusters/capacity", s.capacity);
+  r.put_integer("clusters/largest_reached", s.largest_reached);
+}
+
+void Gas::restore(const state::Record& r) {
+  State s;
+  s.velocity = r.array("clusters/velocity");
+  s.count = r.integer_array("clusters/count");
+  s.max_speed = r.array("clusters/max_speed");
+  s.time = r.real("clusters/time");
+  s.credit = r.real("clusters/credit");
+  s.next_step_time = r.real("clusters/next_step_time");
+  s.counters.step_sum = r.real("clusters/step_sum");
+  s.counters.dissipated = r.real("clusters/dissipated");
+  const auto& generator = r.integer_array("clusters/generator", 4);
+  std::copy(generator.begin(), generator.end(), std::begin(s.generator.s));
+  s.generator.spare = r.real("clusters/generator_spare");
+  s.generator.has_spare = r.flag("clusters/generator_has_spare");
+  s.counters.events = r.integer("clusters/events");
+  s.counters.aggregations = r.integer("clusters/aggregations");
+  s.counters.fragmentations = r.integer("clusters/fragmentations");
+  s.counters.candidates = r.integer("clusters/candidates");
+  s.counters.steps = r.integer("clusters/steps");
+  s.capacity = r.integer("clusters/capacity");
+  s.largest_reached = r.integer("clusters/largest_reached");
+  restore(s);
+}
+
 }  // namespace gdsmc::agg_frag

@@ -109,6 +109,7 @@ ef af_blocks "docs/agg-frag.md"). Two given clusters share block b with probabil
 #include "dsmc/particles.hpp"
 #include "dsmc/rng.hpp"
 #include "dsmc/segment_tree.hpp"
+#include "dsmc/state.hpp"
 
 namespace gdsmc::agg_frag {
 
@@ -262,6 +263,11 @@ class Gas {
   /// Restores a state() of a Gas of the same input (same N_0); throws std::runtime_error when the
   /// tables do not add up to N_0.
   void restore(const State& state);
+  /// The State under named values "clusters/..." (dsmc/state.hpp), for checkpoints.
+  void save(state::Record& record) const;
+  /// Continues from save()'s record (as restore(State)); throws state::StateError for a missing or
+  /// misshapen value.
+  void restore(const state::Record& record);
 
  private:
   void grow_to(std::size_t size);        ///< per-size tables for sizes up to `size`

@@ -239,6 +239,90 @@ void Collider::restore(const State& st) {
 }
 
 
+void Collider::save(state::Record& r) const {
+  const State s = state();
+  r.put("collider/time", s.time);
+  r.put("collider/credit", s.credit);
+  r.put("collider/next_step_time", s.next_step_time);
+  r.put("collider/max_speed", s.max_speed);
+  r.put("collider/max_speed2", s.max_speed2);
+  r.put_integer("collider/events", s.counters.events);
+  r.put_integer("collider/candidates", s.counters.candidates);
+  r.put_integer("collider/steps", s.counters.steps);
+  r.put_integer("collider/overshoots", s.counters.overshoots);
+  r.put("collider/step_sum", s.counters.step_sum);
+  r.put("collider/dissipated", s.counters.dissipated);
+  r.put("collider/pair_events", s.counters.pair_events);
+  r.put("collider/transfer", std::vector<double>(s.counters.transfer.begin(), s.counters.transfer.end()));
+  r.put("collider/generator", std::vector<std::uint64_t>(std::begin(s.generator.s), std::end(s.generator.s)));
+  r.put("collider/generator_spare", s.generator.spare);
+  r.put_integer("collider/generator_has_spare", s.generator.has_spare);
+  r.put("collider/pending", std::vector<std::uint64_t>(s.pending.begin(), s.pending.end()));
+  r.put_integer("collider/pending_next", s.pending_next);
+  r.put_integer("collider/pending_filled", s.pending_filled);
+  r.put("collider/block_max_speed2", s.block_max_speed2);
+  r.put("collider/block_credit", s.block_credit);
+  if (!s.slice_counts.empty()) r.put("collider/slice_counts", s.slice_counts);
+  r.put("collider/step_start", s.step_start);
+  r.put("collider/step_acceptance", s.step_acceptance);
+  r.put_integer("collider/whole_step", s.whole_step);
+  r.put_integer("collider/step_events_start", s.step_events_start);
+  r.put_integer("collider/step_candidates_start", s.step_candidates_start);
+  // (the step's block sampler: 0 `majorant`, 1 `lowrank`, 2 unknown, i.e. the scheme's)
+  r.put_integer("collider/block_sampler", s.block_lowrank < 0 ? 2 : static_cast<std::uint64_t>(s.block_lowrank));
+  r.put_integer("collider/framed", s.framed);
+  r.put("collider/frame_scale", s.frame_scale);
+  r.put("collider/frame_shear", s.frame_shear);
+  r.put("collider/moments", std::vector<double>(s.moments.begin(), s.moments.end()));
+}
+
+void Collider::restore(const state::Record& r) {
+  State s;
+  s.time = r.real("collider/time");
+  s.credit = r.real("collider/credit");
+  s.next_step_time = r.real("collider/next_step_time");
+  s.max_speed = r.array("collider/max_speed", s_);
+  s.max_speed2 = r.array("collider/max_speed2", s_);
+  s.counters.events = r.integer("collider/events");
+  s.counters.candidates = r.integer("collider/candidates");
+  s.counters.steps = r.integer("collider/steps");
+  s.counters.overshoots = r.integer("collider/overshoots");
+  s.counters.step_sum = r.real("collider/step_sum");
+  s.counters.dissipated = r.real("collider/dissipated");
+  s.counters.pair_events = r.integer_array("collider/pair_events");
+  const auto& transfer = r.array("collider/transfer", 6);
+  std::copy(transfer.begin(), transfer.end(), s.counters.transfer.begin());
+  const auto& generator = r.integer_array("collider/generator", 4);
+  std::copy(generator.begin(), generator.end(), std::begin(s.generator.s));
+  s.generator.spare = r.real("collider/generator_spare");
+  s.generator.has_spare = r.flag("collider/generator_has_spare");
+  const auto& pending = r.integer_array("collider/pending", 4 * lookahead);
+  for (std::size_t q = 0; q < pending.size(); ++q)  // particles a, b and species i, k of each
+    if (pending[q] >= (q % 4 < 2 ? sys_.size() : s_))
+      throw state::StateError("a drawn-ahead candidate names a particle or species that does not exist");
+  s.pending.assign(pending.begin(), pending.end());
+  s.pending_next = r.integer("collider/pending_next");
+  s.pending_filled = r.flag("collider/pending_filled");
+  s.block_max_speed2 = r.array("collider/block_max_speed2");
+  s.block_credit = r.array("collider/block_credit");
+  if (r.has_integers("collider/slice_counts")) s.slice_counts = r.integer_array("collider/slice_counts");
+  s.step_start = r.real("collider/step_start");
+  s.step_acceptance = r.real("collider/step_acceptance");
+  s.whole_step = r.flag("collider/whole_step");
+  s.step_events_start = r.integer("collider/step_events_start");
+  s.step_candidates_start = r.integer("collider/step_candidates_start");
+  const std::uint64_t sampler = r.integer("collider/block_sampler");
+  if (sampler > 2) throw state::StateError("'collider/block_sampler' is " + std::to_string(sampler) + ", not 0, 1 or 2");
+  s.block_lowrank = sampler == 2 ? -1 : static_cast<int>(sampler);
+  s.framed = r.flag("collider/framed");
+  s.frame_scale = r.real("collider/frame_scale");
+  s.frame_shear = r.real("collider/frame_shear");
+  if (!(s.frame_scale > 0.0)) throw state::StateError("the velocity frame is damaged");
+  const auto& moments = r.array("collider/moments", 4);
+  std::copy(moments.begin(), moments.end(), s.moments.begin());
+  restore(s);
+}
+
 void Collider::use_blocks(std::size_t block_size) {
   block_first_.clear();
   scattered_.assign(s_, 0);

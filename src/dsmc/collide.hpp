@@ -288,6 +288,7 @@
 #include "dsmc/rng.hpp"
 #include "dsmc/rules.hpp"
 #include "dsmc/segment_tree.hpp"
+#include "dsmc/state.hpp"
 #include "model/species.hpp"
 
 namespace gdsmc::collide {
@@ -481,6 +482,11 @@ class Collider {
   /// Continues from `state`, taken from a Collider of the same scheme, mixture and particle counts
   /// at the end of an advance(); the System must hold the particles of that moment.
   void restore(const State& state);
+  /// The State under named values "collider/..." (dsmc/state.hpp), for checkpoints.
+  void save(state::Record& record) const;
+  /// Continues from save()'s record (as restore(State)); throws state::StateError for a missing,
+  /// misshapen or impossible value (a drawn-ahead candidate naming no particle, a frame's scale <= 0).
+  void restore(const state::Record& record);
 
  private:
   void recompute_max_speeds();

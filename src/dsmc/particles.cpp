@@ -7,6 +7,7 @@
 #endif
 
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 #include <numeric>
 
@@ -108,6 +109,34 @@ System make_system(const species::Mixture& mix, const std::vector<std::size_t>& 
 void start_tracking(System& sys, double t) {
   const std::size_t n = sys.size();
   sys.r.assign(n, Displacement{0.0, 0.0, 0.0, t});
+}
+
+void save(const System& sys, state::Record& r) {
+  sys.for_each_array([&](const char* name, const auto& a) {
+    std::string key = "particles/";  // (not "particles/" + name: a false -Warray-bounds of GCC 12)
+    key += name;
+    std::vector<double> out(a.size() * (sizeof(a[0]) / sizeof(double)));
+    std::memcpy(out.data(), a.data(), out.size() * sizeof(double));
+    r.put(key, std::move(out));
+  });
+  r.put("particles/species", std::vector<std::uint64_t>(sys.species.begin(), sys.species.end()));
+}
+
+void restore(System& sys, const state::Record& r) {
+  const auto& species = r.integer_array("particles/species");
+  if (species.size() != sys.size()) throw state::StateError("the particle count does not match the input");
+  for (std::size_t i = 0; i < sys.size(); ++i)  // the species layout is fixed by the input's counts
+    if (species[i] != sys.species[i])
+      throw state::StateError("particle " + std::to_string(i) + " has species " + std::to_string(species[i]) +
+                              ", the input gives " + std::to_string(sys.species[i]));
+  // Tracking may have started during the run: the displacements then exist from there on.
+  if (r.has("particles/displacement") && !sys.tracks_displacements()) sys.r.resize(sys.size());
+  sys.for_each_array([&](const char* name, auto& a) {
+    std::string key = "particles/";
+    key += name;
+    const auto& values = r.array(key, a.size() * (sizeof(a[0]) / sizeof(double)));
+    std::memcpy(a.data(), values.data(), values.size() * sizeof(double));
+  });
 }
 
 }  // namespace gdsmc::particles

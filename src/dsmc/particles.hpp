@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "dsmc/rng.hpp"
+#include "dsmc/state.hpp"
 #include "model/species.hpp"
 
 namespace gdsmc::particles {
@@ -112,7 +113,7 @@ struct System {
   /// A further per-particle array of a collision rule or a forcing (the angular velocity of rough
   /// spheres, say): its name, and one value (a number or a 3-vector) per particle.
   struct Extra {
-    std::string name;                                                    ///< particles/<name> in checkpoints
+    std::string name;  ///< its name: particles/\<name\> in checkpoints
     std::variant<ParticleArray<double>, ParticleArray<Vec3>> values;  ///< one per particle, in particle order
   };
   std::deque<Extra> extra;  ///< the further arrays, in the order they were added (a deque: adding one keeps the others in place)
@@ -164,6 +165,13 @@ struct System {
   /// Displacements are tracked (r is not empty).
   bool tracks_displacements() const { return !r.empty(); }
 };
+
+/// Every array of `sys` (System::for_each_array) under "particles/\<name\>" as its doubles in particle
+/// order, and the species under "particles/species", for checkpoints (dsmc/state.hpp).
+void save(const System& sys, state::Record& record);
+/// Restores save()'s arrays into a System made for the same input (the same counts: the species must
+/// be those the input gives); a "particles/displacement" starts the tracking. Throws state::StateError.
+void restore(System& sys, const state::Record& record);
 
 /// Starts (or restarts) displacement tracking at time t: R = 0 and t_last = t for every particle.
 void start_tracking(System& sys, double t);

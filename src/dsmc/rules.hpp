@@ -56,9 +56,13 @@ namespace gdsmc::rules {
 
 /// The line of centres of an accepted candidate, as a loop hands it to a rule (header, "The contact").
 struct Contact {
-  double ex, ey, ez;  ///< e, the unit vector from b to a at contact (actual velocities' frame)
-  double g_dot_e;     ///< g.e > 0 of the actual relative velocity g = v_a - v_b
-  double dx, dy, dz;  ///< the direction along which the stored velocities change: e, or G^-1 e in a frame
+  double ex;       ///< e, the unit vector from b to a at contact (actual velocities' frame): x
+  double ey;       ///< e: y
+  double ez;       ///< e: z
+  double g_dot_e;  ///< g.e > 0 of the actual relative velocity g = v_a - v_b
+  double dx;       ///< the direction along which the stored velocities change (e, or G^-1 e in a frame): x
+  double dy;       ///< that direction: y
+  double dz;       ///< that direction: z
 };
 
 /// e with density proportional to (g_hat.e) on the hemisphere g.e > 0 (\ref cm_hemisphere "docs/collision-model.md"), the direction of
@@ -173,8 +177,8 @@ class ViscoelasticRule {
     double mass_fraction;  ///< mu_jk = m_j/(m_k + m_j)
     double mass_a;         ///< m_k
   };
-  static constexpr bool has_projection = false;
-  static constexpr bool frames = false;
+  static constexpr bool has_projection = false;  ///< no collide_projected: alpha needs |g.e|
+  static constexpr bool frames = false;          ///< the stage loop runs constant restitution only
 
   /// beta_kj of the material (restitution::one_material_beta) for the species of `mix`.
   ViscoelasticRule(const species::Mixture& mix, const species::PairMatrix& beta);

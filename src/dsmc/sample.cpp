@@ -137,30 +137,6 @@ double maxwellian_shell_average(double lambda, double a, double b) {
   return (tail(a) - tail(b)) / (4.0 * M_PI / 3.0 * (b * b * b - a * a * a));
 }
 
-void Accumulator::add(std::size_t replica, const std::vector<double>& row) {
-  if (values.size() <= replica) values.resize(replica + 1);
-  values[replica].insert(values[replica].end(), row.begin(), row.end());
-}
-
-std::vector<double> Accumulator::mean() const {
-  std::vector<double> m(values.front().size(), 0.0);
-  for (const auto& r : values)
-    for (std::size_t i = 0; i < m.size(); ++i) m[i] += r[i];
-  for (double& x : m) x /= static_cast<double>(values.size());
-  return m;
-}
-
-std::vector<double> Accumulator::standard_error() const {
-  const std::size_t n = values.size();
-  if (n < 2) return {};
-  const std::vector<double> m = mean();
-  std::vector<double> var(m.size(), 0.0);
-  for (const auto& r : values)
-    for (std::size_t i = 0; i < m.size(); ++i) var[i] += (r[i] - m[i]) * (r[i] - m[i]);
-  for (double& v : var) v = std::sqrt(v / static_cast<double>(n - 1) / static_cast<double>(n));
-  return var;
-}
-
 std::array<double, 6> kinetic_pressure_tensor(const species::Mixture& mix, const particles::System& sys,
                                               const Moments& moments) {
   std::array<double, 6> p{};
@@ -182,6 +158,83 @@ std::array<double, 6> kinetic_pressure_tensor(const species::Mixture& mix, const
     for (std::size_t c = 0; c < 6; ++c) p[c] += weight * sum[c];
   }
   return p;
+}
+
+observables::ReducedDistributions reduced_distributions(const species::Mixture& mix, const std::vector<double>& phi,
+                                           const std::vector<double>& phi_error, const std::vector<double>& c,
+                                           const std::vector<double>& share, double zeta, std::size_t bins,
+                                           double range) {
+  const std::size_t s = mix.size();
+  const double width = range / static_cast<double>(bins);
+  observables::ReducedDistributions out;
+  out.edges.resize(bins + 1);
+  for (std::size_t b = 0; b <= bins; ++b) out.edges[b] = width * static_cast<double>(b);
+  const auto& edges = out.edges;
+  const double sigma12 = mix.contact_distance(0, s - 1);
+  for (std::size_t k = 0; k < s; ++k) {
+    observables::ReducedDistributions::Species sp;
+    const std::size_t j = s - 1 - k;  // the other species (itself for one species)
+    const double mu_jk = mix.mass[j] / (mix.mass[k] + mix.mass[j]);
+    const double lambda = 1.0 / (share[k] * mu_jk);  // lambda_i = T/(T_i mu_ji), \ref son_binary "docs/sonine.md"
+    double beta = 0.0;  // Montanero and Garzo 2002, eq. (20), \ref son_tails "docs/sonine.md"
+    for (std::size_t l = 0; l < s; ++l) {
+      const double ratio = mix.contact_distance(k, l) / sigma12;
+      beta += M_PI * mix.mole_fraction(l) * mix.pair_correlation(k, l) * ratio * ratio;
+    }
+    std::vector<double> value(bins), error(bins), delta(bins), delta_error(bins), g(bins), g_error(bins);
+    for (std::size_t b = 0; b < bins; ++b) {
+      value[b] = phi[k * bins + b];
+      error[b] = phi_error.empty() ? 0.0 : phi_error[k * bins + b];
+      const double maxwell = maxwellian_shell_average(lambda, edges[b], edges[b + 1]);
+      // eq 27; far out the Maxwellian underflows to 0 and Delta is undefined: written as 0 there
+      // (never NaN), and Phi itself, always finite, is the quantity to read in the far tail.
+      const bool defined = maxwell > 0.0 && c[k] != 0.0;
+      delta[b] = defined ? 2.0 / c[k] * (value[b] / maxwell - 1.0) : 0.0;
+      delta_error[b] = defined ? 2.0 / std::abs(c[k]) * error[b] / maxwell : 0.0;
+      const double weight = std::exp(2.0 * beta * 0.5 * (edges[b] + edges[b + 1]) / zeta);  // eq 30
+      g[b] = weight * value[b];
+      g_error[b] = weight * error[b];
+    }
+    sp.value = std::move(value);
+    sp.delta = std::move(delta);
+    sp.g = std::move(g);
+    if (!phi_error.empty()) {
+      sp.error = std::move(error);
+      sp.delta_error = std::move(delta_error);
+      sp.g_error = std::move(g_error);
+    }
+    sp.sonine_c = c[k];
+    sp.lambda = lambda;
+    sp.tail_beta = beta;
+    out.species.push_back(std::move(sp));
+  }
+  return out;
+}
+
+observables::ClusterTemperature cluster_temperature(const std::vector<std::vector<double>>& number,
+                                       const std::vector<std::vector<double>>& energy, std::size_t entries) {
+  observables::ClusterTemperature t;
+  const std::size_t replicas = number.size();
+  for (std::size_t c = 0; c < entries; ++c) {
+    double sum_n = 0.0, sum_e = 0.0;
+    for (std::size_t r = 0; r < replicas; ++r) {
+      sum_n += number[r][c];
+      sum_e += energy[r][c];
+    }
+    const double rho = sum_n > 0.0 ? sum_e / sum_n : 0.0;
+    t.value.push_back(2.0 / 3.0 * rho);
+    if (replicas > 1) {
+      double residual2 = 0.0;
+      for (std::size_t r = 0; r < replicas; ++r) {
+        const double d = energy[r][c] - rho * number[r][c];
+        residual2 += d * d;
+      }
+      const double mean_n = sum_n / static_cast<double>(replicas);
+      const double rr = static_cast<double>(replicas);
+      t.error.push_back(mean_n > 0.0 ? 2.0 / 3.0 * std::sqrt(residual2 / (rr * (rr - 1.0))) / mean_n : 0.0);
+    }
+  }
+  return t;
 }
 
 }  // namespace gdsmc::sample

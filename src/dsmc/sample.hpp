@@ -21,14 +21,29 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dsmc/collide.hpp"
 #include "dsmc/particles.hpp"
+#include "model/observables.hpp"
 #include "model/species.hpp"
 
 namespace gdsmc::sample {
+
+/// One replica's measured rows: per observable (a name of model/observables.hpp), its column count and
+/// its rows in sample order (one row for an observable of the whole replica, e.g. a time average).
+struct Rows {
+  std::map<std::string, std::pair<std::size_t, std::vector<double>>> rows;  ///< name -> (columns, rows)
+  /// Appends one row of `columns` values to observable `name`.
+  void add(const std::string& name, std::size_t columns, const std::vector<double>& row) {
+    auto& entry = rows[name];
+    entry.first = columns;
+    entry.second.insert(entry.second.end(), row.begin(), row.end());
+  }
+};
 
 /// Moments of one replica at one instant.
 struct Moments {
@@ -75,13 +90,26 @@ std::vector<double> reduced_distribution(const std::vector<double>& counts,
 /// The Maxwellian (lambda/pi)^(3/2) exp(-lambda v*^2) averaged over the shell [a, b) (exact, with erf).
 double maxwellian_shell_average(double lambda, double a, double b);
 
-/// One observable's samples from all replicas: values[replica][sample * columns + column].
-struct Accumulator {
-  std::size_t columns = 1;                 ///< values per sample (species, bins, ...)
-  std::vector<std::vector<double>> values; ///< values[replica][sample * columns + column]
-  void add(std::size_t replica, const std::vector<double>& row);  ///< appends one sample row
-  std::vector<double> mean() const;  ///< mean over the replicas of every entry
-  std::vector<double> standard_error() const;  ///< empty when fewer than 2 replicas
-};
+/// The HCS distributions of one point in reduced speed (Montanero and Garzo 2002, sec. 4, \ref son_reduced_distributions "docs/sonine.md"),
+/// from the replicas' mean Phi_i(v*) and its standard error (S x bins, empty error: one replica), the
+/// measured c_i, T_i/T and zeta*: per species the deviation Delta_i(v*) of eq 27 with lambda_i =
+/// T/(T_i mu_ji), and G_i(v*) = exp(2 beta_i v*/zeta*) Phi_i of eq 30 with beta_i of eq 20 (\ref son_tails "docs/sonine.md").
+/// Where the Maxwellian underflows to 0 Delta is undefined and given as 0 (never NaN); Phi itself,
+/// always finite, is the quantity to read in the far tail.
+/// The distributions of a point (above; model/observables.hpp ReducedDistributions).
+observables::ReducedDistributions reduced_distributions(const species::Mixture& mix, const std::vector<double>& phi,
+                                           const std::vector<double>& phi_error, const std::vector<double>& sonine_c,
+                                           const std::vector<double>& temperature_share, double reduced_cooling_rate,
+                                           std::size_t bins, double range);
+
+/// T_k of &agg_frag clusters of size k = column + 1 at every sample from the replicas' rows of N_k
+/// (`number`) and of the kinetic energy E_k (`energy`), R replicas, `samples` x `width` each: the ratio
+/// estimator (2/3) sum_r E_kr / sum_r N_kr (a size most replicas lack has no per-replica temperature),
+/// with the delta-method standard error (2/3) sqrt(sum_r (E_kr - rho N_kr)^2 / (R (R - 1))) / mean_r N_kr,
+/// rho = sum E / sum N (\ref af_observables "docs/agg-frag.md"); 0 where no replica has such a cluster (never NaN). The
+/// error is empty for one replica.
+/// The temperatures of a point's clusters (above; model/observables.hpp ClusterTemperature).
+observables::ClusterTemperature cluster_temperature(const std::vector<std::vector<double>>& number,
+                                       const std::vector<std::vector<double>>& energy, std::size_t entries);
 
 }  // namespace gdsmc::sample

@@ -132,4 +132,92 @@ Rescaling gaussian_rescaling(double energy_before, double loss, const particles:
   return {std::sqrt(energy_before / after), mean_flow, loss / energy_before};
 }
 
+std::array<double, 6> midpoint_pressure(const std::array<double, 6>& after, double h) {
+  // (xx, yy, zz, xy, xz, yz) before the jump V_x -> V_x - h V_y, from after it (header, "Sampling point")
+  const std::array<double, 6> before{after[0] + 2.0 * h * after[3] + h * h * after[1], after[1], after[2],
+                                     after[3] + h * after[1], after[4] + h * after[5], after[5]};
+  std::array<double, 6> mid;
+  for (std::size_t c = 0; c < 6; ++c) mid[c] = 0.5 * (after[c] + before[c]);
+  return mid;
+}
+
+void GaussianThermostat::compose(Rescaling& rescaling, double&) {
+  rescaling = pending_;  // decided at the end of the last stage
+  pending_ = Rescaling{};
+}
+
+void GaussianThermostat::end_stage(const StageEnd& end) {
+  if (viscous_work_) {
+    // The Enskog collisions in shear flow also do viscous work, which the thermostat must not remove
+    // (\ref eta_thermostat "docs/shear-viscosity.md"): only the inelastic loss is restored, s^2 = (E_after + L)/E_after.
+    const double after = end.energy_after();
+    pending_ = {std::sqrt((after + end.loss) / after), end.start.mean_flow, end.loss / end.start.kinetic};
+  } else {
+    // The dilute collisions change the energy only by their inelastic loss and keep the mean flow, so
+    // the thermostat needs no pass over the particles (header, "Cost: the frame").
+    pending_ = gaussian_rescaling(end.start.kinetic, end.loss, end.start.mean_flow);
+  }
+  zeta_sum_ += pending_.zeta_dt;
+  zeta_stages_ += 1.0;
+}
+
+void GaussianThermostat::measure(const Sample&, sample::Rows& rows) {
+  rows.add("thermostat_zeta_dt", 1, {zeta_stages_ > 0.0 ? zeta_sum_ / zeta_stages_ : 0.0});
+  zeta_sum_ = zeta_stages_ = 0.0;
+}
+
+void GaussianThermostat::save(state::Record& r) const {
+  r.put("thermostat/pending_scale", pending_.scale);
+  r.put("thermostat/pending_mean_flow", std::vector<double>{pending_.mean_flow.x, pending_.mean_flow.y, pending_.mean_flow.z});
+  r.put("thermostat/zeta_sum", zeta_sum_);
+  r.put("thermostat/zeta_stages", zeta_stages_);
+}
+
+void GaussianThermostat::restore(const state::Record& r) {
+  const auto& m = r.array("thermostat/pending_mean_flow", 3);
+  pending_ = {r.real("thermostat/pending_scale"), {m[0], m[1], m[2]}, 0.0};
+  zeta_sum_ = r.real("thermostat/zeta_sum");
+  zeta_stages_ = r.real("thermostat/zeta_stages");
+}
+
+void ShearFlow::measure(const Sample& sample, sample::Rows& rows) {
+  const double viscosity = -sample.pressure[3] / rate_;  // eta = -P_xy/a, P_xy at the middle of the jump
+  rows.add("shear_viscosity_raw", 1, {viscosity});
+  // eta/eta_0(T) with the finite-shear-rate correction of \ref eta_measured "docs/shear-viscosity.md", 1 - (a* eta*)^2,
+  // a* = a/nu_0(T), nu_0 = n T/eta_0; eta_0 of one species (\ref eta_one_species "docs/shear-viscosity.md"), or of the elastic
+  // mixture at the same T (Chapman and Cowling's first approximation; theory/viscosity.hpp).
+  const double eta0 = elastic_viscosity_(sample.total_temperature);
+  const double reduced_rate = rate_ * eta0 / (density_ * sample.total_temperature);
+  const double corrected = viscosity / eta0;
+  double eta = corrected;
+  for (int it = 0; it < 20; ++it) eta = corrected / (1.0 - reduced_rate * reduced_rate * eta * eta);
+  const double kinetic_part = eta * sample.kinetic[3] / sample.pressure[3];  // the same correction for each part
+  rows.add("reduced_shear_rate", 1, {reduced_rate});
+  rows.add("shear_viscosity", 1, {eta});
+  if (collisional_) rows.add("shear_viscosity_kinetic", 1, {kinetic_part});
+  if (sample.time >= average_from_ * (1.0 - 1e-12) && sample.averaged) {
+    window_sum_ += eta;
+    window_kinetic_sum_ += kinetic_part;
+    window_samples_ += 1.0;
+  }
+}
+
+void ShearFlow::finish(sample::Rows& rows) const {
+  if (!(window_samples_ > 0.0)) return;
+  rows.add("shear_viscosity_average", 1, {window_sum_ / window_samples_});
+  if (collisional_) rows.add("shear_viscosity_kinetic_average", 1, {window_kinetic_sum_ / window_samples_});
+}
+
+void ShearFlow::save(state::Record& r) const {
+  r.put("shear/window_sum", window_sum_);
+  r.put("shear/window_kinetic_sum", window_kinetic_sum_);
+  r.put("shear/window_samples", window_samples_);
+}
+
+void ShearFlow::restore(const state::Record& r) {
+  window_sum_ = r.real("shear/window_sum");
+  window_kinetic_sum_ = r.real("shear/window_kinetic_sum");
+  window_samples_ = r.real("shear/window_samples");
+}
+
 }  // namespace gdsmc::thermostat

@@ -72,9 +72,13 @@
 #pragma once
 
 #include <array>
+#include <functional>
+#include <limits>
 #include <vector>
 
 #include "dsmc/particles.hpp"
+#include "dsmc/sample.hpp"
+#include "dsmc/state.hpp"
 #include "model/species.hpp"
 
 namespace gdsmc::thermostat {
@@ -155,5 +159,105 @@ Rescaling gaussian_rescaling(double energy_before, double loss, const particles:
 /// to the mean flow), restores the inelastic loss by rescaling about the mean flow. Returns
 /// zeta dt = L / E_before, L = E_before - E_after.
 double rescale(const species::Mixture& mix, particles::System& sys, double energy_before);
+
+/// P (xx, yy, zz, xy, xz, yz) at the middle of a stage's streaming jump V_x -> V_x - h V_y (header,
+/// "Sampling point"), from P after it: P before it follows exactly (P_xx + 2 h P_xy + h^2 P_yy, P_xy +
+/// h P_yy, P_xz + h P_yz), and the mean of the two is second order in the stage length; h = a dt.
+std::array<double, 6> midpoint_pressure(const std::array<double, 6>& after, double h);
+
+/// The forcings: what acts on every velocity between the collision stages of a replica (LAMMPS's
+/// fixes, HOOMD's updaters), each an object with its own state, saved and restored under its own
+/// name, and its own observables. The stage loop (run/replica.cpp; \ref ext_forcing "docs/extending.md")
+/// calls, for a stage of length dt: compose() (the map the forcing applies to every velocity at the
+/// stage's start, composed into the frame of the stored velocities), the collisions, end_stage(); at a
+/// sample measure(), at the end of the replica finish().
+class Forcing {
+ public:
+  virtual ~Forcing() = default;
+  /// Its name: the prefix of its state in a checkpoint.
+  virtual const char* name() const = 0;
+  /// The longest stage it allows.
+  virtual double longest_stage() const { return std::numeric_limits<double>::infinity(); }
+  /// Composes the linear map it applies at the start of the stage about to begin into `rescaling`
+  /// (V -> m + s (V - m), first) and `shear_rate` (V_x -> V_x - a V_y dt, then).
+  virtual void compose(Rescaling& rescaling, double& shear_rate) = 0;
+  /// What the end of a stage tells it: the kinetic energy and mean flow at the stage's start (after
+  /// its streaming), the inelastic loss of its collisions, and the kinetic energy after them (a
+  /// function: computed only when asked for).
+  struct StageEnd {
+    Energy start;                          ///< at the stage's start
+    double loss = 0.0;                     ///< collide.hpp Counters::dissipated over the stage
+    std::function<double()> energy_after;  ///< after the collisions
+  };
+  /// After the stage's collisions.
+  virtual void end_stage(const StageEnd& end) = 0;
+  /// What a sample shows it: the time, the temperature, the total pressure tensor (xx, yy, zz, xy, xz, yz;
+  /// shear-viscosity.md's midpoint), its kinetic part, and whether the sample enters time averages.
+  struct Sample {
+    double time = 0.0, total_temperature = 0.0;
+    std::array<double, 6> pressure{}, kinetic{};
+    bool averaged = false;  ///< not the first sample
+  };
+  /// Adds its observables of a sample to `rows` (rows.add(name, columns, row), names of model/observables.hpp).
+  virtual void measure(const Sample& sample, sample::Rows& rows) = 0;
+  /// Adds its observables of the whole replica (time averages) to `rows`.
+  virtual void finish(sample::Rows& rows) const = 0;
+  /// Its state, under "<name>/...".
+  virtual void save(state::Record& record) const = 0;
+  /// Continues from save()'s record; throws state::StateError.
+  virtual void restore(const state::Record& record) = 0;
+};
+
+/// The Gaussian thermostat (header; \ref eta_thermostat "docs/shear-viscosity.md"): after each stage it decides the
+/// rescaling V -> u + s (V - u) that restores the stage's inelastic loss, applied at the next stage's
+/// start. With viscous work in the collisions (the Enskog gas in shear flow) s^2 = (E_after + L)/E_after
+/// from the energy after them; otherwise gaussian_rescaling(). Observable: thermostat_zeta_dt, the
+/// mean zeta dt of the stages since the last sample.
+class GaussianThermostat final : public Forcing {
+ public:
+  /// `viscous_work`: the collisions also do work on the particles (set_shear of collide.hpp).
+  explicit GaussianThermostat(bool viscous_work) : viscous_work_(viscous_work) {}
+  const char* name() const override { return "thermostat"; }
+  void compose(Rescaling& rescaling, double& shear_rate) override;
+  void end_stage(const StageEnd& end) override;
+  void measure(const Sample& sample, sample::Rows& rows) override;
+  void finish(sample::Rows&) const override {}
+  void save(state::Record& record) const override;
+  void restore(const state::Record& record) override;
+
+ private:
+  bool viscous_work_;
+  Rescaling pending_;  ///< decided at the end of a stage, applied at the start of the next
+  double zeta_sum_ = 0.0, zeta_stages_ = 0.0;  ///< zeta dt summed since the last sample, and the stages
+};
+
+/// Uniform shear flow u_x = a y (header; Montanero 2003, \ref eta_enskog_shear "docs/shear-viscosity.md"): the streaming V_x -> V_x - a V_y dt of
+/// every stage, stages of at most 0.01/a, and the shear viscosity eta = -P_xy/a of each sample, reduced
+/// by the elastic eta_0(T) of the gas with the finite-shear-rate correction 1 - (a* eta*)^2 (\ref eta_measured "docs/shear-viscosity.md"), and
+/// its time average from `average_from` on (observables shear_viscosity_raw, reduced_shear_rate,
+/// shear_viscosity, shear_viscosity_kinetic with collisional transfer, and the averages).
+class ShearFlow final : public Forcing {
+ public:
+  /// `elastic_viscosity(T)`: eta_0 of the gas at temperature T (theory/viscosity.hpp, given by the
+  /// caller); `density` n; `collisional`: the Enskog gas, whose kinetic part is measured apart.
+  ShearFlow(double rate, double average_from, double density, bool collisional,
+            std::function<double(double)> elastic_viscosity)
+      : rate_(rate), average_from_(average_from), density_(density), collisional_(collisional),
+        elastic_viscosity_(std::move(elastic_viscosity)) {}
+  const char* name() const override { return "shear"; }
+  double longest_stage() const override { return 0.01 / rate_; }
+  void compose(Rescaling&, double& shear_rate) override { shear_rate = rate_; }
+  void end_stage(const StageEnd&) override {}
+  void measure(const Sample& sample, sample::Rows& rows) override;
+  void finish(sample::Rows& rows) const override;
+  void save(state::Record& record) const override;
+  void restore(const state::Record& record) override;
+
+ private:
+  double rate_, average_from_, density_;
+  bool collisional_;
+  std::function<double(double)> elastic_viscosity_;
+  double window_sum_ = 0.0, window_kinetic_sum_ = 0.0, window_samples_ = 0.0;  ///< the time average's sums
+};
 
 }  // namespace gdsmc::thermostat

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "io/h5md.hpp"
+#include "model/observables.hpp"
 
 namespace gdsmc::io::units {
 
@@ -20,45 +21,8 @@ const std::vector<Symbol>& symbols() {
 }
 
 std::string of_observable(const std::string& name) {
-  // Every observable of run/simulation.cpp (plain, staged and &agg_frag runs) and every quantity
-  // of /sweep/results (analysis/sweep_table.hpp).
-  static const std::map<std::string, std::string> table = {
-      // the sample times themselves (the observable `time`)
-      {"time", kTime},
-      // energies and temperatures
-      {"temperature", kEnergy},
-      {"total_temperature", kEnergy},
-      {"kinetic_energy", kEnergy},     // per initial monomer (&agg_frag)
-      {"dissipated_energy", kEnergy},  // per initial monomer (&agg_frag)
-      // pressure (energy per volume) and viscosity (pressure times time), &thermostat and &shear
-      {"pressure_tensor", "energy length-3"},
-      {"pressure_tensor_kinetic", "energy length-3"},
-      {"pressure_tensor_collisional", "energy length-3"},
-      {"shear_viscosity_raw", "energy length-3 time"},
-      // mean squared displacement
-      {"msd", "length+2"},
-      // dimensionless: counts, ratios, cumulants, reduced quantities
-      {"sonine_c", kDimensionless},
-      {"number", kDimensionless},
-      {"collisions", kDimensionless},
-      {"collisions_pair", kDimensionless},
-      {"collisions_per_particle", kDimensionless},
-      {"acceptance_overshoots", kDimensionless},
-      {"velocity_histogram", kDimensionless},  // a pdf of v/sqrt(T_k/m_k)
-      {"mean_size", kDimensionless},
-      {"monomer_fraction", kDimensionless},
-      {"aggregations", kDimensionless},
-      {"fragmentations", kDimensionless},
-      {"thermostat_zeta_dt", kDimensionless},
-      {"shear_viscosity", kDimensionless},  // eta/eta_0
-      {"shear_viscosity_kinetic", kDimensionless},
-      {"reduced_shear_rate", kDimensionless},
-      {"temperature_over_mean", kDimensionless},
-      {"cooling_rate_reduced", kDimensionless},
-  };
-  const auto it = table.find(name);
-  if (it == table.end()) throw std::out_of_range("io::units: no unit for the observable '" + name + "'");
-  return it->second;
+  // Every observable has its unit in the table of observables (model/observables.hpp).
+  return observables::find(name).unit;
 }
 
 void declare(h5md::Writer& writer) {

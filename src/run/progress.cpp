@@ -1,0 +1,71 @@
+// The progress line of a run (progress.hpp).
+#include "run/progress.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace gdsmc::simulation {
+
+bool ProgressLine::due(double fraction_done) const {
+  if (!enabled_) return false;
+  if (!terminal_ && fraction_done >= 1.0) return false;  // the summary line follows
+  if (fraction_done >= 1.0) return true;
+  const auto now = Clock::now();
+  const auto interval = terminal_ ? std::chrono::milliseconds(200) : std::chrono::milliseconds(10000);
+  return now - last_ >= interval && (terminal_ || last_ != Clock::time_point{} || now - start_ >= interval);
+}
+
+void ProgressLine::update(double fraction_done, const std::string& what, double events_per_second) {
+  if (!due(fraction_done)) return;
+  const auto now = Clock::now();
+  last_ = now;
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  const double eta = fraction_done > 0 ? elapsed * (1.0 - fraction_done) / fraction_done : 0.0;
+  if (terminal_) {
+    const int width = 30;
+    const int filled = static_cast<int>(fraction_done * width);
+    std::fprintf(stderr, "\r[%.*s%*s] %5.1f%%  %s  %.3g coll/s  ETA %.0f s  ", filled,
+                 "##############################", width - filled, "", 100.0 * fraction_done, what.c_str(),
+                 events_per_second, eta);
+  } else {
+    std::fprintf(stderr, "granular-dsmc: %5.1f%% done, %s, %.3g coll/s, %.0f s elapsed, ETA %.0f s\n",
+                 100.0 * fraction_done, what.c_str(), events_per_second, elapsed, eta);
+  }
+  std::fflush(stderr);
+  printed_ = true;
+}
+
+void ProgressLine::finish() {
+  if (enabled_ && terminal_ && printed_) std::fputs("\n", stderr);
+}
+
+Progress::Progress(bool enabled, bool terminal, std::vector<std::size_t> point_of, std::size_t points)
+    : line_(enabled, terminal), partial_(point_of.size(), 0.0), point_of_(std::move(point_of)), open_(points, 0) {
+  for (std::size_t p : point_of_) ++open_[p];
+  for (std::size_t n : open_) points_ += n > 0 ? 1 : 0;
+}
+
+void Progress::update(std::size_t slot, double fraction, double time, std::uint64_t new_events) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const double before = partial_[slot];
+  partial_[slot] = fraction;
+  sum_ += fraction - before;
+  if (before < 1.0 && fraction >= 1.0) {
+    ++units_done_;
+    if (--open_[point_of_[slot]] == 0) ++points_done_;
+  }
+  events_ += new_events;
+  const double done = std::min(sum_ / static_cast<double>(partial_.size()), units_done_ == partial_.size() ? 1.0 : 0.999);
+  if (!line_.due(done)) return;
+  std::string what = std::to_string(units_done_) + "/" + std::to_string(partial_.size()) + " replicas";
+  if (points_ > 1) what += ", " + std::to_string(points_done_) + "/" + std::to_string(points_) + " sweep points";
+  if (partial_.size() == 1) {
+    char t[48];
+    std::snprintf(t, sizeof t, ", t = %.4g", time);
+    what += t;
+  }
+  const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+  line_.update(done, what, elapsed > 0 ? static_cast<double>(events_) / elapsed : 0.0);
+}
+
+}  // namespace gdsmc::simulation

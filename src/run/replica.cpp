@@ -1,0 +1,683 @@
+// One replica of one point, in one loop (replica.hpp).
+#include "run/replica.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "dsmc/agg_frag.hpp"
+#include "dsmc/collide.hpp"
+#include "dsmc/particles.hpp"
+#include "dsmc/rng.hpp"
+#include "dsmc/sample.hpp"
+#include "dsmc/thermostat.hpp"
+#include "run/model.hpp"
+
+namespace gdsmc::simulation {
+
+namespace {
+
+/// What steps a replica and what measures it (header): a free gas, a gas with forcings, the clusters.
+class Engine {
+ public:
+  using Between = std::function<void()>;  ///< called between two steps: interrupt, progress, checkpoint
+  virtual ~Engine() = default;
+  /// The number of samples, t = 0 included.
+  virtual std::size_t samples() const = 0;
+  /// A replica that starts from the beginning (not from a checkpoint): what precedes the first step.
+  virtual void start() {}
+  /// Steps up to sample i (its time, or its event target), calling `between` between steps.
+  virtual void advance_to_sample(std::size_t i, const Between& between) = 0;
+  /// Measures sample i into `result`.
+  virtual void sample(std::size_t i, ReplicaResult& result) = 0;
+  /// The end of the replica: the observables of the whole replica, its events and mean step.
+  virtual void finish(ReplicaResult& result) = 0;
+  /// The simulated time.
+  virtual double time() const = 0;
+  /// The collision events so far.
+  virtual std::uint64_t events() const = 0;
+  /// The share of the replica done: its time over the last sample time, or its events over the last target.
+  virtual double fraction_done() const = 0;
+  /// The state of the engine's modules (dsmc/state.hpp).
+  virtual void save(state::Record& record) const = 0;
+  /// Continues from save()'s record.
+  virtual void restore(const state::Record& record) = 0;
+};
+
+/// Threads given to a replica's cache blocks that this run cannot use: said once, not left idle silently.
+void note_idle_threads(const ReplicaContext& ctx, const std::string& why) {
+  if (ctx.block_threads > 1 && ctx.slot == 0 && ctx.options.progress)
+    std::fprintf(stderr,
+                 "granular-dsmc: note: %d of the %d threads per work unit stay idle: %s; threads serve "
+                 "replicas and sweep points first, then cache blocks (docs/schemes.md)\n",
+                 ctx.block_threads - 1, ctx.block_threads, why.c_str());
+}
+
+/// Replica r's particles, drawn from its stream (seed, r, initial_state).
+particles::System initial_system(const io::config::Config& config, const species::Mixture& mix,
+                                 const std::vector<std::size_t>& counts, std::size_t r) {
+  auto stream = rng::make_stream(static_cast<std::uint64_t>(config.dsmc.seed), r, rng::Purpose::initial_state);
+  return particles::make_system(mix, counts, config.initial.temperature, initial_distribution(config), stream);
+}
+
+/// The particles of a replica and their collider, with the samples of its scaling state: what the free
+/// gas and the gas with forcings share.
+class Gas : public Engine {
+ public:
+  std::size_t samples() const override { return targets_.size(); }
+  double time() const override { return collider_.time(); }
+  std::uint64_t events() const override { return collider_.counters().events; }
+
+ protected:
+  /// `viscoelastic_beta`: the viscoelastic rule's beta_kj (rules.hpp), or none for constant restitution.
+  Gas(const io::config::Config& config, std::size_t r, const std::optional<species::PairMatrix>& viscoelastic_beta)
+      : config_(config), mix_(config.mixture()), s_(mix_.size()),
+        counts_(species::particle_counts(static_cast<std::size_t>(config.dsmc.n_particles), mix_)),
+        sys_(initial_system(config, mix_, counts_, r)),
+        collider_(collide::parse_scheme(config.dsmc.scheme), mix_, sys_,
+                  rng::make_stream(static_cast<std::uint64_t>(config.dsmc.seed), r, rng::Purpose::collisions),
+                  config.dsmc.step_fraction, viscoelastic_beta ? &*viscoelastic_beta : nullptr),
+        targets_(config.dsmc.t_end ? config.sample_times() : config.sample_collisions()),
+        c_sum_(s_, 0.0), share_sum_(s_, 0.0) {}
+
+  /// The rows every gas sample has (temperatures, cumulants, counts, collisions, time); its moments.
+  sample::Moments measure_common(ReplicaResult& result) const;
+  /// 2 x events / N.
+  double collisions_per_particle() const {
+    return 2.0 * static_cast<double>(collider_.counters().events) / static_cast<double>(sys_.size());
+  }
+  /// A sample of the scaling state (past `&output scaling_start` collisions per particle) added to the
+  /// sums of c_k and T_k/T. A checkpoint of an older version without the sums (their size not s) leaves
+  /// them alone: the replica then reports no scaling state.
+  void add_scaling_sample(const sample::Moments& m, double time);
+  /// The replica's averages of c_k and T_k/T over its scaling-state samples (scaling_sonine_c,
+  /// scaling_temperature_share): one value per replica, so that their standard error over the replicas is
+  /// that of the time average itself, whatever the correlation between samples (/scaling_state).
+  void add_scaling_averages(ReplicaResult& result) const;
+  void save_gas(state::Record& r) const;
+  void restore_gas(const state::Record& r);
+
+  const io::config::Config& config_;
+  species::Mixture mix_;
+  std::size_t s_;
+  std::vector<std::size_t> counts_;
+  particles::System sys_;
+  collide::Collider collider_;
+  std::vector<double> targets_;  ///< sample points: times, or collisions per particle
+  double scaling_samples_ = 0.0, t_first_ = 0.0, t_last_ = 0.0, temp_first_ = 0.0, temp_last_ = 0.0;
+  std::vector<double> speed_counts_, c_sum_, share_sum_;
+};
+
+sample::Moments Gas::measure_common(ReplicaResult& result) const {
+  const sample::Moments m = sample::measure(mix_, sys_);
+  const auto& counters = collider_.counters();
+  result.add("temperature", s_, m.temperature);
+  result.add("total_temperature", 1, {m.total_temperature});
+  result.add("sonine_c", s_, m.sonine_c);
+  result.add("number", s_, m.number);
+  result.add("collisions", 1, {static_cast<double>(counters.events)});
+  // The kernel's invariant (collide.hpp Counters::overshoots): 0 in a correct run.
+  result.add("acceptance_overshoots", 1, {static_cast<double>(counters.overshoots)});
+  result.add("collisions_per_particle", 1, {collisions_per_particle()});
+  result.add("time", 1, {collider_.time()});
+  return m;
+}
+
+void Gas::add_scaling_sample(const sample::Moments& m, double time) {
+  if (c_sum_.size() != s_ || share_sum_.size() != s_) return;
+  for (std::size_t k = 0; k < s_; ++k) {
+    c_sum_[k] += m.sonine_c[k];
+    share_sum_[k] += m.temperature[k] / m.total_temperature;
+  }
+  if (scaling_samples_ == 0.0) {
+    t_first_ = time;
+    temp_first_ = m.total_temperature;
+  }
+  t_last_ = time;
+  temp_last_ = m.total_temperature;
+  scaling_samples_ += 1.0;
+}
+
+void Gas::add_scaling_averages(ReplicaResult& result) const {
+  if (scaling_samples_ < 1.0) return;
+  std::vector<double> c = c_sum_, share = share_sum_;
+  for (auto& x : c) x /= scaling_samples_;
+  for (auto& x : share) x /= scaling_samples_;
+  result.add("scaling_sonine_c", c.size(), c);
+  result.add("scaling_temperature_share", share.size(), share);
+}
+
+void Gas::save_gas(state::Record& r) const {
+  particles::save(sys_, r);
+  collider_.save(r);
+  r.put("gas/scaling_samples", scaling_samples_);
+  r.put("gas/t_first", t_first_);
+  r.put("gas/t_last", t_last_);
+  r.put("gas/temp_first", temp_first_);
+  r.put("gas/temp_last", temp_last_);
+  r.put("gas/speed_counts", speed_counts_);
+  r.put("gas/c_sum", c_sum_);
+  r.put("gas/share_sum", share_sum_);
+}
+
+void Gas::restore_gas(const state::Record& r) {
+  particles::restore(sys_, r);
+  collider_.restore(r);
+  scaling_samples_ = r.real("gas/scaling_samples");
+  t_first_ = r.real("gas/t_first");
+  t_last_ = r.real("gas/t_last");
+  temp_first_ = r.real("gas/temp_first");
+  temp_last_ = r.real("gas/temp_last");
+  speed_counts_ = r.array("gas/speed_counts");
+  c_sum_ = r.array("gas/c_sum");
+  share_sum_ = r.array("gas/share_sum");
+}
+
+// ---------------------------------------------------------------------------------------------
+// The free gas: collision chunks between samples
+// ---------------------------------------------------------------------------------------------
+
+class FreeGas final : public Gas {
+ public:
+  FreeGas(const io::config::Config& config, std::size_t r, const ReplicaContext& ctx);
+  void start() override;
+  void advance_to_sample(std::size_t i, const Between& between) override;
+  void sample(std::size_t i, ReplicaResult& result) override;
+  void finish(ReplicaResult& result) override;
+  double fraction_done() const override {
+    const double f = time_driven_ ? collider_.time() / targets_.back()
+                                  : static_cast<double>(collider_.counters().events) / std::max(1.0, final_events_);
+    return std::min(f, 1.0);
+  }
+  void save(state::Record& r) const override;
+  void restore(const state::Record& r) override;
+
+ private:
+  /// The end of the next advance() towards `target` (header): ~1e5 candidates (chunk_end_time), or one
+  /// time step's candidates when that is more, at most 2^24; with cache blocks 2^24 at the last step's
+  /// rate, ending at blocked steps' ends (collide.hpp "Blocks", "Step length"). A gas at rest (no
+  /// candidates: the collider jumps to its target) goes straight there.
+  double chunk_stop(double target) const;
+  /// Displacements from msd_start_time: stop there exactly, then start tracking.
+  void start_displacements(double t_target, std::uint64_t event_target, const Between& between);
+
+  bool time_driven_, track_, reduced_, blocked_;
+  double final_events_, chunk_;
+  bool in_sample_ = false;  ///< the current sample's msd start handling is done, its chunks are running
+  bool tracking_ = false;
+  double msd_start_ = 0.0;
+};
+
+FreeGas::FreeGas(const io::config::Config& config, std::size_t r, const ReplicaContext& ctx)
+    : Gas(config, r, config.viscoelastic_beta()), time_driven_(config.dsmc.t_end.has_value()),
+      track_(config.output.track_displacements),
+      // v0 and Phi_i(v*) are defined for one or two species (Montanero and Garzo 2002, \ref son_reduced_distributions "docs/sonine.md")
+      reduced_(s_ <= 2) {
+  final_events_ = time_driven_ ? 0.0 : std::ceil(targets_.back() * static_cast<double>(sys_.size()) / 2.0);
+  // Cache blocks (collide.hpp "Blocks"): in collision-driven runs the steps near each sample's event
+  // target run on the whole gas and stop at it exactly.
+  collider_.use_blocks(static_cast<std::size_t>(config.dsmc.block_size));
+  collider_.use_threads(ctx.block_threads);
+  if (collider_.blocks() == 1)
+    note_idle_threads(ctx, "this run has no cache blocks (they need 'majorant' or 'lowrank', at most 128 species and "
+                           "N >= 2 block_size)");
+  blocked_ = collider_.blocks() > 1;
+  const double step_candidates = 0.5 * static_cast<double>(sys_.size()) * config.dsmc.step_fraction;
+  chunk_ = blocked_ ? 16777216.0 : std::clamp(step_candidates, chunk_candidates, 16777216.0);
+}
+
+void FreeGas::start() {
+  // Displacements (Bodrova and Osinsky 2024, eq. (15), \ref dif_displacements "docs/diffusion-msd.md") from t = 0, from msd_start_time, or
+  // from the first sample with T <= msd_start_temperature.
+  if (track_ && !config_.output.msd_start_time && !config_.output.msd_start_temperature) {
+    particles::start_tracking(sys_, 0.0);
+    tracking_ = true;
+  }
+}
+
+double FreeGas::chunk_stop(double target) const {
+  const bool still = collider_.blocks() == 1 && collider_.counters().steps > 0 && !(collider_.candidate_rate() > 0.0);
+  if (still) return target;
+  if (const double rate = collider_.recent_candidate_rate(); blocked_ && rate > 0.0)
+    return std::min(target, collider_.time() + chunk_ / rate);
+  return chunk_end_time(collider_.time(), collider_.counters().candidates, target, chunk_);
+}
+
+void FreeGas::start_displacements(double t_target, std::uint64_t event_target, const Between& between) {
+  if (in_sample_ || !track_ || tracking_ || !config_.output.msd_start_time || *config_.output.msd_start_time > t_target)
+    return;
+  const double start = *config_.output.msd_start_time;  // stop exactly at the start
+  while (collider_.time() < start && collider_.counters().events < event_target) {
+    collider_.advance(chunk_stop(start), event_target, true, UINT64_MAX, blocked_);
+    between();
+  }
+  if (collider_.time() >= start) {
+    particles::start_tracking(sys_, collider_.time());
+    tracking_ = true;
+    msd_start_ = collider_.time();
+  }
+}
+
+void FreeGas::advance_to_sample(std::size_t i, const Between& between) {
+  // Chunks, so that the progress line, an interrupt and checkpoints are seen at least every ~1e6
+  // collisions and every ~1e5 candidates (chunk_end_time). The chunks end at the same events and times
+  // in every run, wherever and however often it is stopped and resumed: the same trajectory bit for bit.
+  const double t_target = time_driven_ ? targets_[i] : std::numeric_limits<double>::infinity();
+  // 2 x events / N reaches the target (\ref output_observables "docs/output.md": collisions_per_particle)
+  const std::uint64_t event_target =
+      time_driven_ ? std::numeric_limits<std::uint64_t>::max()
+                   : static_cast<std::uint64_t>(std::ceil(targets_[i] * static_cast<double>(sys_.size()) / 2.0));
+  start_displacements(t_target, event_target, between);
+  in_sample_ = true;
+  constexpr std::uint64_t kChunk = 1u << 20;
+  for (;;) {
+    const std::uint64_t done = collider_.counters().events;
+    const std::uint64_t chunk_end = event_target - done > kChunk ? done + kChunk : event_target;
+    // The sample's own target is exact; a chunk's end is soft (blocks may pass it, collide.hpp), and
+    // the sample's target is never passed, even by a soft chunk's step.
+    collider_.advance(chunk_stop(t_target), chunk_end, chunk_end == event_target, event_target, blocked_);
+    if (collider_.time() >= t_target || collider_.counters().events >= event_target) break;
+    between();
+  }
+}
+
+void FreeGas::sample(std::size_t i, ReplicaResult& result) {
+  const sample::Moments m = measure_common(result);
+  const auto& counters = collider_.counters();
+  if (s_ <= collide::pair_event_limit) {  // S(S+1)/2 columns, and a histogram per species: a few species only
+    std::vector<double> pairs;
+    for (std::size_t k = 0; k < s_; ++k)
+      for (std::size_t j = k; j < s_; ++j) pairs.push_back(static_cast<double>(counters.pair_events[k * s_ + j]));
+    result.add("collisions_pair", s_ * (s_ + 1) / 2, pairs);
+    const auto bins = static_cast<std::size_t>(config_.output.histogram_bins);
+    result.add("velocity_histogram", s_ * bins,
+               sample::velocity_histogram(mix_, sys_, m, bins, config_.output.histogram_range));
+  }
+  if (track_ && !tracking_ && config_.output.msd_start_temperature &&
+      m.total_temperature <= *config_.output.msd_start_temperature) {
+    particles::start_tracking(sys_, collider_.time());
+    tracking_ = true;
+    msd_start_ = collider_.time();
+  }
+  if (track_)
+    result.add("msd", s_, tracking_ ? sample::mean_squared_displacement(sys_, collider_.time()) : std::vector<double>(s_, 0.0));
+  if (i > 0 && collisions_per_particle() >= config_.output.scaling_start) {
+    if (reduced_)
+      sample::add_reduced_speeds(mix_, sys_, m, sample::reduced_velocity_scale(mix_, m.total_temperature),
+                                 static_cast<std::size_t>(config_.output.reduced_bins), config_.output.reduced_range,
+                                 speed_counts_);
+    add_scaling_sample(m, collider_.time());
+  }
+  in_sample_ = false;
+}
+
+void FreeGas::finish(ReplicaResult& result) {
+  result.events = collider_.counters().events;
+  result.mean_step = collider_.mean_step();
+  if (track_) result.add("msd_start", 1, {tracking_ ? msd_start_ : -1.0});
+  add_scaling_averages(result);
+  if (!reduced_ || scaling_samples_ < 2.0 || !(t_last_ > t_first_)) return;
+  const auto bins = static_cast<std::size_t>(config_.output.reduced_bins);
+  result.add("reduced_distribution", s_ * bins,
+             sample::reduced_distribution(speed_counts_, std::vector<double>(counts_.begin(), counts_.end()),
+                                          scaling_samples_, bins, config_.output.reduced_range));
+  std::vector<double> c = c_sum_, share = share_sum_;
+  for (auto& x : c) x /= scaling_samples_;
+  for (auto& x : share) x /= scaling_samples_;
+  result.add("reduced_sonine_c", s_, c);
+  result.add("reduced_temperature_share", s_, share);
+  // zeta* = zeta/(n sigma_12^2 v0) with zeta = 2 sqrt(T) d(T^-1/2)/dt, constant in the HCS
+  // (\ref haff_law "docs/haff-and-mixtures.md", \ref son_scaling "docs/sonine.md"): zeta* = 2 slope / (n sigma_12^2 sqrt(2 (m1 + m2)/(m1 m2))).
+  const double slope = (1.0 / std::sqrt(temp_last_) - 1.0 / std::sqrt(temp_first_)) / (t_last_ - t_first_);
+  const double sigma12 = mix_.contact_distance(0, s_ - 1);
+  const double v0_unit = sample::reduced_velocity_scale(mix_, 1.0);
+  result.add("reduced_cooling_rate", 1, {2.0 * slope / (mix_.total_density() * sigma12 * sigma12 * v0_unit)});
+}
+
+void FreeGas::save(state::Record& r) const {
+  save_gas(r);
+  r.put_integer("gas/in_sample", in_sample_);
+  r.put_integer("gas/tracking", tracking_);
+  r.put("gas/msd_start", msd_start_);
+}
+
+void FreeGas::restore(const state::Record& r) {
+  restore_gas(r);
+  in_sample_ = r.flag("gas/in_sample");
+  tracking_ = r.flag("gas/tracking");
+  msd_start_ = r.real("gas/msd_start");
+}
+
+// ---------------------------------------------------------------------------------------------
+// The gas with forcings (&thermostat, &shear): stages of the forcings' maps, collisions and ends
+// (dsmc/thermostat.hpp, \ref eta_thermostat "docs/shear-viscosity.md")
+// ---------------------------------------------------------------------------------------------
+
+class ForcedGas final : public Gas {
+ public:
+  ForcedGas(const io::config::Config& config, std::size_t r, const ReplicaContext& ctx);
+  void start() override { collider_.velocities_changed(); }  // the bounds (and the rate that sizes the stages)
+  void advance_to_sample(std::size_t i, const Between& between) override;
+  void sample(std::size_t i, ReplicaResult& result) override;
+  void finish(ReplicaResult& result) override;
+  double fraction_done() const override { return std::min(collider_.time() / targets_.back(), 1.0); }
+  void save(state::Record& r) const override;
+  void restore(const state::Record& r) override;
+
+ private:
+  /// The end of a stage of the default length from now, not beyond `limit` (then exactly `limit`).
+  double stage_end(double limit) const;
+  /// One stage from the collider's time to `end` (header of replica.hpp): the forcings' maps, the
+  /// sample `i` into `result` when given, the collisions (none for the last sample), the forcings' ends.
+  void stage(double end, std::size_t i, ReplicaResult* result, bool last);
+  /// The rows of a stage's sample: the common ones, the scaling state, the pressure tensor, the forcings'.
+  void measure(std::size_t i, double dt, ReplicaResult& result);
+
+  std::vector<std::unique_ptr<thermostat::Forcing>> forcings_;
+  double stage_step_, stage_cap_, shear_rate_;
+  bool collisional_;  ///< the Enskog gas in shear flow: collisional transfer (collide.hpp set_shear)
+  double total_mass_ = 0.0;
+  // The stored velocities are u in a frame, V = G u + b (thermostat.hpp, "Cost: the frame"): the frame
+  // (G in the collider, the offset b here), and the momentum sum m u of the stored u.
+  thermostat::Frame frame_;
+  particles::Vec3 momentum_{0.0, 0.0, 0.0};
+  double stages_ = 0.0;                  ///< stages run
+  double last_sample_time_ = 0.0;
+  std::array<double, 6> last_transfer_{};  ///< Counters::transfer at the previous sample
+};
+
+ForcedGas::ForcedGas(const io::config::Config& config, std::size_t r, const ReplicaContext& ctx)
+    : Gas(config, r, std::nullopt), forcings_(make_forcings(config, mix_)), stage_step_(config.dsmc.stage_step),
+      stage_cap_(std::numeric_limits<double>::infinity()), shear_rate_(config.shear.rate.value_or(0.0)),
+      collisional_(shear_rate_ > 0.0 && mix_.enskog) {
+  // The centre-of-mass velocity sum m V / sum m removed (\ref eta_thermostat "docs/shear-viscosity.md").
+  thermostat::remove_mean_flow(mix_, sys_);
+  for (const auto& f : forcings_) stage_cap_ = std::min(stage_cap_, f->longest_stage());
+  // Enskog in shear flow: the shifted relative velocity and the collisional transfer (collide.hpp).
+  if (collisional_) collider_.set_shear(shear_rate_);
+  // Cache blocks with `majorant` or `lowrank` (collide.hpp, "Frame": frames in blocks): a pass over the
+  // blocks per stage, on the block threads.
+  if (staged_blocks(config)) {
+    collider_.use_blocks(static_cast<std::size_t>(config.dsmc.block_size));
+    collider_.use_threads(ctx.block_threads);
+  } else {
+    note_idle_threads(ctx, "a thermostat or shear flow has cache blocks only with 'majorant' or 'lowrank' (the "
+                           "Enskog gas in shear flow needs 'pairs') and N >= 2 block_size");
+  }
+  for (std::size_t k = 0; k < s_; ++k) total_mass_ += mix_.mass[k] * static_cast<double>(counts_[k]);
+}
+
+double ForcedGas::stage_end(double limit) const {
+  const double free_time = static_cast<double>(sys_.size()) / (2.0 * collider_.candidate_rate());
+  const double end = collider_.time() + std::min(stage_step_ * free_time, stage_cap_);
+  return end < limit ? end : limit;
+}
+
+void ForcedGas::stage(double end, std::size_t i, ReplicaResult* result, bool last) {
+  const double dt = end - collider_.time();
+  // The forcings' maps of this stage (the thermostat's rescaling decided at the end of the last stage,
+  // then the shear's streaming), composed into the frame (thermostat.hpp, "Cost: the frame").
+  thermostat::Rescaling rescaling;
+  double shear_rate = 0.0;
+  for (const auto& f : forcings_) f->compose(rescaling, shear_rate);
+  frame_ = thermostat::advance_frame(frame_, rescaling.scale, rescaling.mean_flow, shear_rate, dt);
+  thermostat::Energy start;
+  if (result || !collider_.framed() || std::abs(frame_.shear) > thermostat::frame_shear_limit || frame_.scale < 0.5 ||
+      frame_.scale > 2.0) {
+    // One pass: V = G u + b for every particle, the energy, the moments and the largest speeds (the
+    // collider's bounds, exact again); the frame is the identity afterwards.
+    const thermostat::StageStart pass = thermostat::materialise(mix_, sys_, frame_);
+    frame_ = thermostat::Frame{};
+    momentum_ = {pass.mean_flow.x * total_mass_, pass.mean_flow.y * total_mass_, pass.mean_flow.z * total_mass_};
+    collider_.reset_frame(pass.moments, pass.max_speed2);
+    start = {pass.kinetic, pass.mean_flow};
+  } else {
+    collider_.set_frame(frame_.scale, frame_.shear);
+    start = thermostat::frame_energy(collider_.frame_moments(), momentum_, total_mass_, frame_);
+  }
+  if (result) measure(i, dt, *result);
+  if (last) return;
+  const double dissipated_before = collider_.counters().dissipated;
+  collider_.advance(end);
+  const thermostat::Forcing::StageEnd stage_end{
+      start, collider_.counters().dissipated - dissipated_before,
+      [&] { return thermostat::frame_energy(collider_.frame_moments(), momentum_, total_mass_, frame_).kinetic; }};
+  for (const auto& f : forcings_) f->end_stage(stage_end);
+  stages_ += 1.0;
+}
+
+void ForcedGas::measure(std::size_t i, double dt, ReplicaResult& result) {
+  // The sample of this instant: after the streaming of the stage that starts now.
+  const sample::Moments m = measure_common(result);
+  if (i > 0 && collisions_per_particle() >= config_.output.scaling_start) add_scaling_sample(m, collider_.time());
+  // P at the middle of this stage's streaming jump (thermostat.hpp, "Sampling point").
+  const auto kinetic = thermostat::midpoint_pressure(sample::kinetic_pressure_tensor(mix_, sys_, m), shear_rate_ * dt);
+  // Collisional transfer since the previous sample (\ref eta_pressure "docs/shear-viscosity.md"): P^c = sum m sigma (1 + alpha)(g.e) e e
+  // / (V dt), V = N/n the simulated volume; 0 in the dilute gas.
+  std::array<double, 6> collisional{};
+  const double now = collider_.time();
+  if (collisional_ && now > last_sample_time_) {
+    const auto& transfer = collider_.counters().transfer;
+    const double volume = static_cast<double>(sys_.size()) / mix_.total_density();
+    for (std::size_t q = 0; q < 6; ++q) collisional[q] = (transfer[q] - last_transfer_[q]) / (volume * (now - last_sample_time_));
+    last_transfer_ = transfer;
+  }
+  last_sample_time_ = now;
+  std::array<double, 6> total;
+  for (std::size_t q = 0; q < 6; ++q) total[q] = kinetic[q] + collisional[q];
+  result.add("pressure_tensor_kinetic", 6, std::vector<double>(kinetic.begin(), kinetic.end()));
+  result.add("pressure_tensor_collisional", 6, std::vector<double>(collisional.begin(), collisional.end()));
+  result.add("pressure_tensor", 6, std::vector<double>(total.begin(), total.end()));
+  const thermostat::Forcing::Sample sample{now, m.total_temperature, total, kinetic, i > 0};
+  for (const auto& f : forcings_) f->measure(sample, result);
+}
+
+void ForcedGas::advance_to_sample(std::size_t i, const Between& between) {
+  while (collider_.time() < targets_[i]) {  // stages up to the sample time, which the last one hits exactly
+    stage(stage_end(targets_[i]), i, nullptr, false);
+    between();
+  }
+}
+
+void ForcedGas::sample(std::size_t i, ReplicaResult& result) {
+  // The stage that samples (the last one: only its streaming, of the length the next would have).
+  const bool last = i + 1 == targets_.size();
+  stage(last ? stage_end(std::numeric_limits<double>::infinity()) : stage_end(targets_[i + 1]), i, &result, last);
+}
+
+void ForcedGas::finish(ReplicaResult& result) {
+  result.events = collider_.counters().events;
+  result.mean_step = collider_.time() > 0.0 && stages_ > 0.0 ? collider_.time() / stages_ : 0.0;
+  add_scaling_averages(result);
+  for (const auto& f : forcings_) f->finish(result);
+}
+
+void ForcedGas::save(state::Record& r) const {
+  save_gas(r);
+  r.put("stages/count", stages_);
+  r.put("stages/last_sample_time", last_sample_time_);
+  r.put("stages/last_transfer", std::vector<double>(last_transfer_.begin(), last_transfer_.end()));
+  r.put("stages/frame_offset", std::vector<double>{frame_.offset.x, frame_.offset.y, frame_.offset.z});
+  r.put("stages/momentum", std::vector<double>{momentum_.x, momentum_.y, momentum_.z});
+  for (const auto& f : forcings_) f->save(r);
+}
+
+void ForcedGas::restore(const state::Record& r) {
+  restore_gas(r);
+  stages_ = r.real("stages/count");
+  last_sample_time_ = r.real("stages/last_sample_time");
+  const auto& transfer = r.array("stages/last_transfer", 6);
+  std::copy(transfer.begin(), transfer.end(), last_transfer_.begin());
+  const auto& offset = r.array("stages/frame_offset", 3);
+  const auto& momentum = r.array("stages/momentum", 3);
+  frame_ = {collider_.frame_scale(), collider_.frame_shear(), {offset[0], offset[1], offset[2]}};
+  momentum_ = {momentum[0], momentum[1], momentum[2]};
+  for (const auto& f : forcings_) f->restore(r);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The cluster gas of &agg_frag (agg_frag.hpp): chunks of events between samples
+// ---------------------------------------------------------------------------------------------
+
+class Clusters final : public Engine {
+ public:
+  Clusters(const io::config::Config& config, std::size_t r, const ReplicaContext& ctx);
+  std::size_t samples() const override { return targets_.size(); }
+  void advance_to_sample(std::size_t i, const Between& between) override;
+  void sample(std::size_t i, ReplicaResult& result) override;
+  void finish(ReplicaResult& result) override;
+  double time() const override { return gas_.time(); }
+  std::uint64_t events() const override { return gas_.counters().events; }
+  double fraction_done() const override {
+    const double f = time_driven_ ? gas_.time() / targets_.back()
+                                  : static_cast<double>(gas_.counters().events) / std::max(1.0, final_events_);
+    return std::min(f, 0.999);
+  }
+  void save(state::Record& r) const override { gas_.save(r); }
+  void restore(const state::Record& r) override { gas_.restore(r); }
+
+ private:
+  bool time_driven_;
+  std::vector<double> targets_;  ///< sample points: times, or collisions per initial monomer 2 x events / N_0
+  double initial_monomers_, final_events_;
+  agg_frag::Gas gas_;
+};
+
+Clusters::Clusters(const io::config::Config& config, std::size_t r, const ReplicaContext& ctx)
+    : time_driven_(config.dsmc.t_end.has_value()),
+      targets_(time_driven_ ? config.sample_times() : config.sample_collisions()),
+      initial_monomers_(static_cast<double>(config.dsmc.n_particles)),
+      final_events_(time_driven_ ? 0.0 : std::ceil(targets_.back() * initial_monomers_ / 2.0)),
+      gas_(agg_frag_model(config), static_cast<std::size_t>(config.dsmc.n_particles), config.initial.temperature[0],
+           initial_distribution(config),
+           rng::make_stream(static_cast<std::uint64_t>(config.dsmc.seed), r, rng::Purpose::initial_state),
+           rng::make_stream(static_cast<std::uint64_t>(config.dsmc.seed), r, rng::Purpose::collisions),
+           config.dsmc.step_fraction) {
+  if (config.dsmc.block_size == 0 || config.dsmc.n_particles < 2 * config.dsmc.block_size)
+    note_idle_threads(ctx, "this aggregation run has no cache blocks (they need N >= 2 block_size clusters)");
+  // Cache blocks (agg_frag.hpp, "Cache blocks"): while N >= 2 block_size clusters, on the block threads.
+  gas_.use_blocks(static_cast<std::size_t>(config.dsmc.block_size), ctx.block_threads);
+}
+
+void Clusters::advance_to_sample(std::size_t i, const Between& between) {
+  const double t_target = time_driven_ ? targets_[i] : std::numeric_limits<double>::infinity();
+  const std::uint64_t event_target =
+      time_driven_ ? std::numeric_limits<std::uint64_t>::max()
+                   : static_cast<std::uint64_t>(std::ceil(targets_[i] * initial_monomers_ / 2.0));
+  // Chunks of events, as the free gas's: interrupts, progress and checkpoints at fixed events.
+  constexpr std::uint64_t kChunk = 1u << 19;
+  for (;;) {
+    const std::uint64_t done = gas_.counters().events;
+    // With blocks a chunk is one blocked step (at most 2^23 candidates, its own event margin).
+    const bool blocked = gas_.blocks() > 1;
+    const std::uint64_t chunk_end = blocked || event_target - done <= kChunk ? event_target : done + kChunk;
+    // ... and at most ~1e5 candidates (chunk_end_time); one cluster left or nothing moving: the
+    // gas's advance() goes straight to the target.
+    const bool still = gas_.clusters() < 2 || !(gas_.candidate_rate() > 0.0);
+    const double t_stop = still     ? t_target
+                          : blocked ? std::min(t_target, gas_.block_step_end())
+                                    : chunk_end_time(gas_.time(), gas_.counters().candidates, t_target);
+    gas_.advance(t_stop, chunk_end);
+    if (gas_.time() >= t_target || gas_.counters().events >= event_target) break;
+    between();
+  }
+  if (!time_driven_ && gas_.counters().events < event_target)
+    throw std::runtime_error("the gas aggregated into one cluster at t = " + std::to_string(gas_.time()) +
+                             " before collisions_per_particle = " + std::to_string(targets_[i]) +
+                             " was reached; give t_end instead");
+}
+
+void Clusters::sample(std::size_t i, ReplicaResult& result) {
+  const agg_frag::Measurement m = gas_.measure();
+  const auto& counters = gas_.counters();
+  result.add(sample_row("number", i), m.number.size(), m.number);
+  result.add(sample_row("size_energy", i), m.energy.size(), m.energy);
+  result.add("total_temperature", 1, {2.0 / 3.0 * m.kinetic_energy / m.clusters});  // per cluster, \ref af_observables "docs/agg-frag.md"
+  result.add("kinetic_energy", 1, {m.kinetic_energy / initial_monomers_});
+  result.add("mean_size", 1, {initial_monomers_ / m.clusters});
+  result.add("monomer_fraction", 1, {m.number[0] / initial_monomers_});
+  result.add("collisions", 1, {static_cast<double>(counters.events)});
+  result.add("aggregations", 1, {static_cast<double>(counters.aggregations)});
+  result.add("fragmentations", 1, {static_cast<double>(counters.fragmentations)});
+  result.add("dissipated_energy", 1, {counters.dissipated / initial_monomers_});
+  result.add("collisions_per_particle", 1, {2.0 * static_cast<double>(counters.events) / initial_monomers_});
+  result.add("time", 1, {gas_.time()});
+}
+
+void Clusters::finish(ReplicaResult& result) {
+  pad_size_rows(result, targets_.size());
+  result.events = gas_.counters().events;
+  result.mean_step = gas_.mean_step();
+}
+
+std::unique_ptr<Engine> make_engine(const io::config::Config& config, std::size_t r, const ReplicaContext& ctx) {
+  if (config.has_agg_frag) return std::make_unique<Clusters>(config, r, ctx);
+  if (config.staged()) return std::make_unique<ForcedGas>(config, r, ctx);
+  return std::make_unique<FreeGas>(config, r, ctx);
+}
+
+/// A checkpoint is read, not trusted: every real it holds must be finite (a damaged file must not run on NaN).
+void require_finite(const state::Record& record) {
+  for (const auto& [name, values] : record.reals)
+    for (double x : values)
+      if (!std::isfinite(x)) throw state::StateError("'" + name + "' holds a value that is not finite");
+}
+
+}  // namespace
+
+ReplicaResult run_replica(const io::config::Config& config, std::size_t replica, const state::Record* resume,
+                          ReplicaContext& ctx) {
+  const std::unique_ptr<Engine> engine = make_engine(config, replica, ctx);
+  ReplicaResult result;
+  std::uint64_t next_sample = 0;
+  if (resume) {
+    try {
+      require_finite(*resume);
+      result = load_result(*resume);
+      next_sample = resume->integer("replica/next_sample");
+      engine->restore(*resume);
+    } catch (const state::StateError& e) {
+      throw std::runtime_error(std::string("the checkpoint is damaged: ") + e.what());
+    }
+  } else {
+    engine->start();
+  }
+  std::uint64_t reported = engine->events();
+  const auto report = [&](double fraction) {
+    const std::uint64_t events = engine->events();
+    ctx.progress.update(ctx.slot, fraction, engine->time(), events - reported);
+    reported = events;
+  };
+  const std::function<state::Record()> snapshot = [&] {
+    state::Record record;
+    save(result, record);
+    record.put_integer("replica/next_sample", next_sample);
+    engine->save(record);
+    return record;
+  };
+  const auto interrupted = [&] { return ctx.options.interrupt && ctx.options.interrupt->load(); };
+  const Engine::Between between = [&] {
+    if (interrupted()) throw Interrupted();
+    report(std::min(engine->fraction_done(), 0.999));
+    ctx.safe_point(snapshot);
+  };
+  const std::size_t n_samples = engine->samples();
+  for (; next_sample < n_samples; ++next_sample, ctx.safe_point(snapshot)) {
+    if (interrupted()) throw Interrupted();
+    const auto t0 = Clock::now();
+    engine->advance_to_sample(next_sample, between);
+    engine->sample(next_sample, result);
+    result.collide_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+    report(next_sample + 1 == n_samples ? 1.0 : std::min(engine->fraction_done(), 0.999));
+  }
+  engine->finish(result);
+  return result;
+}
+
+}  // namespace gdsmc::simulation
