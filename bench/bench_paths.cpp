@@ -10,7 +10,7 @@
 //               table would not. Prints each path's median rate and the median, quartiles and range of
 //               its R paired ratios.
 //
-// Paths (README "Performance"): one species driven by t_end (the reference) and by
+// Paths (README "Performance", docs/performance.md): one species driven by t_end (the reference) and by
 // collisions_per_particle; a binary mixture (masses 1 and 4, diameters 1 and 1.5, alpha = 0.8) with
 // `majorant`, `lowrank`, Enskog (packing fraction 0.1; `majorant` and `lowrank`) and `pairs`; 20 species
 // of Bodrova and Osinsky 2024's Fig 8 law with `lowrank` (13 of them scattered over the blocks at N = 1e5 and 1e6); one species with

@@ -1,4 +1,4 @@
-// Wall-clock time of the s-species theory (issue 17, "Performance": s = 100 in under a second,
+// Wall-clock time of the s-species theory (\ref perf_theory "docs/performance.md": s = 100 in under a second,
 // s = 1000 within a minute) on the polydisperse mixture of examples/03-polydisperse-lowrank:
 // species k = 1..s with m_k = k m_1, sigma_k = k^(1/3) sigma_1, n_k = n_1 k^-theta, alpha = 0.8,
 // T_k(0) = 1; dilute (n_1 = 0.01, theta = 1.5) and Enskog (n_1 = 0.05, theta = 2).

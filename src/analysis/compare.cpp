@@ -22,7 +22,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// First Sonine's own error: 15 % of a first-Sonine correction or cumulant (\ref son_one_species "docs/sonine.md": 9-14 %).
 constexpr double kFirstSonineShare = 0.15;
 /// T_k/T in first Sonine: binary 0.2 % (\ref son_one_species "docs/sonine.md": 0.1 % against exact DSMC at mu = 10);
-/// three or more species 0.4 % (issue 17: independent work, ternary, 0.1-0.4 %).
+/// three or more species 0.4 % (\ref physics_compare "docs/physics.md": independent work, ternary, 0.1-0.4 %).
 constexpr double kRatioErrorBinary = 0.002;
 constexpr double kRatioErrorMany = 0.004;
 /// Stage splitting of &shear runs at the default stage_step 0.125: +0.33 % of eta (validation/shear_viscosity).

@@ -41,7 +41,7 @@
  *   |ln(T(0)/T(t))|) relative (collision frequency (1 - a2/16) along a temperature off by the above;
  *   validation/collision_rate);
  * - T_k/T, first Sonine: 0.2 % for two species (\ref son_one_species "docs/sonine.md": 0.1 % from exact DSMC at mu = 10), 0.4 %
- *   for more (issue 17: independent work puts the s-species theory within 0.1-0.4 % for a ternary);
+ *   for more (\ref physics_compare "docs/physics.md": independent work puts the s-species theory within 0.1-0.4 % for a ternary);
  * - c_k, first Sonine: 15 % (\ref son_scaling "docs/sonine.md"); cooling_rate_reduced: 0.15 |zeta*_FS - zeta*_M|;
  * - shear viscosity, HSS first Sonine: one dilute species 1.6 % (alpha >= 0.75) to 2.8 % (alpha <= 0.6)
  *   (\ref eta_mixture "docs/shear-viscosity.md" and Chapman-Cowling, validation/shear_viscosity), dilute binary 1 % for alpha >= 0.85

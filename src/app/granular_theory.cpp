@@ -112,12 +112,12 @@ std::string agg_frag_json(const gdsmc::analysis::AggFragPrediction& af, const st
   return json.str();
 }
 
-/// Many species: says at once what will be computed and about how long it takes (issue 17,
-/// "Performance"; timings of bench/bench_theory.cpp, docs/haff-and-mixtures.md "Numerical integration").
+/// Many species: says at once what will be computed and about how long it takes (timings of
+/// bench/bench_theory.cpp: \ref perf_theory "docs/performance.md"; docs/haff-and-mixtures.md "Numerical integration").
 void announce_large_mixture(const gdsmc::io::config::Config& config) {
   const auto s = static_cast<std::size_t>(config.system.n_species);
   if (s <= 1000 || config.has_agg_frag) return;
-  // measured (README "Performance"): 3000 species in 15-23 s of CPU
+  // measured (\ref perf_theory "docs/performance.md"): 3000 species in 15-23 s of CPU
   const double seconds = 20.0 * std::pow(static_cast<double>(s) / 3000.0, 2.0);
   std::cerr << "granular-theory: " << s << " species: ";
   if (s > gdsmc::theory::max_hcs_species)

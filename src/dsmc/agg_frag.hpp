@@ -39,17 +39,16 @@
  * member; at every step start (step_fraction majorant mean free times) all w_k are recomputed
  * exactly. Post-collision speeds above w_k raise it at once (fragments can outrun both parents).
  *
- * **Cache blocks** (issue 11; `use_blocks`, the `&dsmc` block_size of io/config.hpp; at N >= 2
- * block_size clusters). At N = 1e6 the clusters' velocities (24 MB) do not fit in the cache, and each
- * candidate reads two at random: the unblocked loop runs at the speed of the memory (measured in
- * bench_agg_frag: about 0.07 of the blocked one-species rate). A blocked step therefore deals the N
+ * **Cache blocks** (\ref af_blocks "docs/agg-frag.md"; `use_blocks`, the `&dsmc` block_size of io/config.hpp; at
+ * N >= 2 block_size clusters). At N = 1e6 the clusters' velocities (24 MB) do not fit in the cache, and each
+ * candidate reads two at random: the unblocked loop runs at the speed of the memory (measured:
+ * \ref perf_agg_frag "docs/performance.md"). A blocked step therefore deals the N
  * clusters into K = N div block_size blocks by a uniformly random partition (a Fisher-Yates shuffle of
  * the block labels, K - N mod K blocks of N div K and N mod K of one more; the clusters, read size by
  * size in order, go to the block of their label), and each block b of n_b clusters runs the scheme
  * above as a gas of its own for the step, with the fixed volume
  *   V_b = V (n_b - 1)/(N - 1)
- * (
-ef af_blocks "docs/agg-frag.md"). Two given clusters share block b with probability n_b (n_b -
+ * (\ref af_blocks "docs/agg-frag.md"). Two given clusters share block b with probability n_b (n_b -
  * 1)/(N (N - 1)), and there collide at pi sigma_ik^2 |g|/V_b, so the expected rate of every pair,
  * summed over the blocks, is sum_b n_b/N pi sigma_ik^2 |g|/V = pi sigma_ik^2 |g|/V: the unblocked rate
  * exactly, for every pair of sizes. What changes within a step is that a cluster's partners are the
@@ -73,12 +72,8 @@ ef af_blocks "docs/agg-frag.md"). Two given clusters share block b with probabil
  * the clusters are held about once at every moment (24 bytes each, plus 4 for the labels): each
  * block's list is reserved at its count plus an eighth, the pages of a whole-gas list already dealt are
  * returned to the system as the deal goes (every 64 KiB, 2 MiB in huge-page lists) (particles::release_pages) and the list freed at
- * its end, and at the gather each block's list is released as soon as it is copied. Measured peak
- * (4e6 monomers, resident memory less that of a run of 2000): 28.2 bytes per monomer, against 52.6
- * when the two copies coexisted; the price is the page faults of memory given back and taken again
- * (the full model of validation/aggregation_fragmentation, 1e6 monomers to t = 20: 0.30-0.36 s of
- * system time against 0.05-0.10), repaid by block lists that no longer grow by doubling as they are dealt (wall
- * 2.02-2.11 s against 1.91-2.54 s; peak 50-55 MB against 80 MB).
+ * its end, and at the gather each block's list is released as soon as it is copied (peak and cost
+ * measured: \ref perf_agg_frag "docs/performance.md").
  *
  * **Storage** (no allocation per event). The velocities of the clusters of size k are one array of
  * their own, lists[k] (Vec3, 24 bytes a cluster): "a random cluster of size k" is one draw and one
@@ -88,7 +83,7 @@ ef af_blocks "docs/agg-frag.md"). Two given clusters share block b with probabil
  * list that has shrunk to under a quarter of its capacity is trimmed at the next step start, so the
  * memory follows the population. Per-size tables (bounds, diameters, trees) grow by doubling up to
  * the largest size present. 24 bytes per initial monomer at t = 0.
-
+ *
  * **Observables** (\ref af_observables "docs/agg-frag.md"): N_k; the kinetic energy of each size relative to
  * u = total momentum/total mass; T_k = m_k <|v - u|^2>/3 = (2/3) E_k/N_k; the per-cluster total
  * T = sum_k N_k T_k/N (it can rise while energy is lost: aggregation removes slow pairs); the

@@ -1,278 +1,125 @@
 /**
  * \file collide.hpp
- * \brief Binary inelastic collisions of smooth hard spheres and the two homogeneous DSMC schemes.
+ * \brief Binary inelastic collisions of smooth hard spheres and the homogeneous DSMC schemes.
  *
- * **Collision rule** (Bodrova and Osinsky 2024, eq. (3), Montanero and Garzo 2002, eqs. (23)-(24); \ref cm_rule "docs/collision-model.md"). For particles a (species k)
- * and b (species j), g = v_a - v_b and e a unit vector along the line of centres:
- *   v_a' = v_a - mu_jk (1 + alpha_kj) (g.e) e,   v_b' = v_b + mu_kj (1 + alpha_kj) (g.e) e,
- * with mu_kj = m_k/(m_k + m_j). Momentum is conserved, (g'.e) = -alpha (g.e), and the energy
- * lost is (1 - alpha^2) m_kj (g.e)^2 / 2.
+ * **Collision rule** (Bodrova and Osinsky 2024, eq. (3), Montanero and Garzo 2002, eqs. (23)-(24);
+ * \ref cm_rule "docs/collision-model.md"; stated once in rules.hpp). For a (species k), b (species j), g = v_a - v_b
+ * and e along the line of centres:
+ *   v_a' = v_a - mu_jk (1 + alpha_kj) (g.e) e,   v_b' = v_b + mu_kj (1 + alpha_kj) (g.e) e,   mu_kj = m_k/(m_k + m_j).
+ * Momentum is conserved, (g'.e) = -alpha (g.e), and the energy lost is (1 - alpha^2) m_kj (g.e)^2 / 2.
  *
- * **Rates** (\ref cm_pair_rate "docs/collision-model.md"). A species-k particle meets species-j partners at the rate
- * n_j pi sigma_kj^2 chi_kj <|g|>: one unordered pair collides at pi sigma_kj^2 chi_kj |g| / V, or
- * equivalently at 2 pi sigma_kj^2 chi_kj |g.e| / V with e uniform on the full sphere.
+ * **Rates** (\ref cm_pair_rate "docs/collision-model.md"). A species-k particle meets species-j partners at n_j pi
+ * sigma_kj^2 chi_kj <|g|>: one unordered pair collides at pi sigma_kj^2 chi_kj |g| / V, or equivalently at 2 pi
+ * sigma_kj^2 chi_kj |g.e| / V with e uniform on the full sphere.
  *
- * **Scheme `majorant`** (DSMC notes, the algorithm of its steps 1-13 with the rate of \ref cm_pair_rate "docs/collision-model.md").
- * Candidate pairs (a, b), a != b uniform among all particles, arrive at the total rate
- *   R = N n B / 2,   B = max_kj pi sigma_kj^2 chi_kj (vmax_k + vmax_j)    (DSMC notes, eq. (8), \ref sch_majorant "docs/schemes.md", N^2 F_N/V_c = N n)
- * where vmax_k is the largest speed of species k, so that B >= (sigma g)_kj for every pair: the
- * majorant is exact, not an estimate. A candidate is accepted with probability
- * pi sigma_kj^2 chi_kj |g| / B (DSMC notes, eq. (7), \ref sch_majorant "docs/schemes.md"), and e is then drawn with density proportional to
- * (g_hat . e) on the hemisphere (\ref cm_hemisphere "docs/collision-model.md"), which samples the same process as the DSMC notes' step 9
- * with the correct rate, at twice its acceptance. A post-collision speed above vmax_k raises the
- * bound at once ("(sigma g)_max raised when exceeded"); the bound is recomputed exactly (lowered as
- * the gas cools) at the start of each time step.
+ * **Scheme `majorant`** (DSMC notes, steps 1-13, with the rate of \ref cm_pair_rate "docs/collision-model.md").
+ * Candidate pairs (a, b), a != b uniform among all particles, arrive at R = N n B / 2, B = max_kj pi sigma_kj^2 chi_kj
+ * (vmax_k + vmax_j) (DSMC notes, eq. (8), \ref sch_majorant "docs/schemes.md", N^2 F_N/V_c = N n), vmax_k the largest
+ * speed of species k, so that B bounds every pair exactly. A candidate is accepted with pi sigma_kj^2 chi_kj |g| / B
+ * (DSMC notes, eq. (7), \ref sch_majorant "docs/schemes.md"), and e is drawn with density proportional to (g_hat.e) on
+ * the hemisphere (\ref cm_hemisphere "docs/collision-model.md"): the process of the DSMC notes' step 9 with the correct
+ * rate, at twice its acceptance. A post-collision speed above vmax_k raises the bound at once; the bound is recomputed
+ * exactly (lowered as the gas cools) at the start of each time step.
  *
- * **Scheme `pairs`** (Montanero and Garzo 2002, sec. 3, \ref sch_pairs "docs/schemes.md"). For each ordered species pair (i, j), candidates arrive at
- * R_ij = (1/2) N_i omega_max^(ij), omega_max^(ij) = 4 pi sigma_ij^2 n_j chi_ij (vmax_i + vmax_j); a
- * candidate is a random particle of species i, a random other particle of species j and a direction
- * e uniform on the sphere, accepted with probability Theta(g.e) omega_kl / omega_max^(ij),
- * omega_kl = 4 pi sigma_ij^2 n_j chi_ij |g.e|. Montanero and Garzo 2002 sweeps the four pairs one after another in a
- * step; here the pair of each candidate is drawn with probability R_ij / sum R, which samples the
- * same rates without the operator-splitting error of a sweep (\ref sch_thinning "docs/schemes.md").
+ * **Scheme `pairs`** (Montanero and Garzo 2002, sec. 3, \ref sch_pairs "docs/schemes.md"). Ordered species pair (i, j)
+ * gets candidates at R_ij = (1/2) N_i omega_max^(ij), omega_max^(ij) = 4 pi sigma_ij^2 n_j chi_ij (vmax_i + vmax_j): a
+ * random particle of i, a random other of j and e uniform on the sphere, accepted with Theta(g.e) |g.e| / (vmax_i +
+ * vmax_j). The pair of each candidate is drawn with probability R_ij / sum R (the paper sweeps the pairs in turn): no
+ * operator-splitting error (\ref sch_thinning "docs/schemes.md").
  *
- * **Scheme `lowrank`** (Bodrova and Osinsky 2024, sec. II B, eqs. (9)-(14) with \ref sch_lowrank_decomposition "docs/schemes.md", \ref sch_lowrank "docs/schemes.md"). The ordered species pair
- * (i, k) of a candidate is drawn with probability A_ik / R from the rank-3 majorant
- * A_ik = pi sigma_ik^2 chi_max w_i N_i N_k / V, w_i = vmax_i, through segment trees in O(log M)
- * (segment_tree.hpp, which derives the decomposition); then a particle of each species, uniformly
- * (the same particle twice is rejected), accepted with chi_ik |g| / (chi_max (w_i + w_k)), and e drawn
- * as in `majorant`. V = (N - 1)/n gives every particle pair the candidate rate of `majorant`, so the
- * two schemes sample exactly the same process. A raised vmax_i updates species i's row in O(log M).
- * (For very many species the S x S pair tables below are the next limit: issue 4.)
+ * **Scheme `lowrank`** (Bodrova and Osinsky 2024, sec. II B, eqs. (9)-(14); \ref sch_lowrank "docs/schemes.md",
+ * \ref sch_lowrank_decomposition "docs/schemes.md"). The ordered species pair (i, k) is drawn with probability A_ik / R
+ * from the rank-3 majorant A_ik = pi sigma_ik^2 chi_max w_i N_i N_k / V, w_i = vmax_i, through segment trees in O(log
+ * M) (segment_tree.hpp); then a particle of each species uniformly (the same one twice rejected), accepted with chi_ik
+ * |g| / (chi_max (w_i + w_k)), e as in `majorant`. V = (N - 1)/n gives every particle pair the candidate rate of
+ * `majorant`: the two schemes sample the same process. A raised vmax_i updates row i in O(log M).
  *
- * **Restitution.** Constant alpha_kj, or viscoelastic (Bodrova and Osinsky 2024, eqs. (5)-(8), \ref visco_series "docs/viscoelastic.md"): alpha from the
- * normal impact speed |g.e| of each collision (restitution.hpp). The bounds and the acceptance do not
- * change: only the collision rule does (Bodrova and Osinsky 2024, sec. II, \ref sch_lowrank "docs/schemes.md").
+ * **Restitution**: constant alpha_kj, or viscoelastic (Bodrova and Osinsky 2024, eqs. (5)-(8),
+ * \ref visco_series "docs/viscoelastic.md"), alpha from |g.e| (restitution.hpp, rules.hpp); bounds and acceptance do
+ * not change. **Displacements** (Bodrova and Osinsky 2024, eq. (15), \ref sch_displacements "docs/schemes.md"), when
+ * tracked: at a collision at time t both partners add v (t - t_last) to R before their velocities change.
  *
- * **Displacements** (Bodrova and Osinsky 2024, eq. (15), \ref sch_displacements "docs/schemes.md"), when the System tracks them: at a collision at
- * time t both partners add their free flight v (t - t_last) to R before their velocities change.
+ * **Time.** Each scheme is a uniformised continuous-time process: a candidate advances time by 1 / R (the N_p = R dt
+ * candidates per step of the DSMC notes, eq. (8), the fraction carried over), and collisions are processed one after
+ * another with current velocities: no batch time-step bias (\ref sch_thinning "docs/schemes.md"). The time step dt =
+ * step_fraction / nu_max, nu_max = 2 R / N, only sets how often the bounds are recomputed; it is written to the output.
  *
- * **Time.** All schemes are uniformised continuous-time processes: each candidate advances time by
- * 1 / R (the mean waiting time; the N_p = R dt candidates of the DSMC notes, eq. (8), \ref sch_majorant "docs/schemes.md" per step, with the
- * fraction carried over). Collisions are processed one after another with current velocities, so
- * there is none of the batch time-step bias of \ref sch_thinning "docs/schemes.md". The time step dt only sets how often the
- * bounds are recomputed: dt = step_fraction / nu_max, nu_max = 2 R / N the majorant collision
- * frequency of one particle (the majorant mean free time). It is written to the output.
+ * **Look-ahead** (\ref sch_lookahead "docs/schemes.md"; no change to the process). The particle indices of the next
+ * `lookahead` candidates are drawn in advance and their velocities prefetched, so that memory reads overlap. A pair is
+ * drawn independently of the state, so drawing it earlier does not change its law; `lowrank` discards its drawn-ahead
+ * pairs whenever A_ik changes. They are part of the State. The block kernels draw 8 ahead, 32 in a frame ("Frame").
  *
- * **Look-ahead** (performance, no change to the process). The particle indices of the next
- * `lookahead` candidates are drawn in advance and their velocities prefetched, so that the memory
- * reads of many candidates overlap: with 1e6 particles the velocities do not fit in cache and a
- * candidate would otherwise wait for two memory reads in turn. A candidate pair is drawn
- * independently of the particles' state (uniformly in `majorant`; from A_ik in `lowrank`), so drawing
- * it earlier does not change its distribution; `lowrank` discards its drawn-ahead pairs whenever
- * A_ik changes, since they were drawn from the old rates, and discarding independent draws biases
- * nothing. The drawn-ahead pairs are part of the collider's state (State below). The block kernels
- * draw 8 ahead, or 32 in a frame (thermostat and shear stages, "Frame"): a stage gives each block only
- * about N_b/16 candidates, so its velocities are not in the cache and each read waits for memory
- * (uniform shear flow, N = 1e6, one thread, whole runs: 32 ahead take 0.87 of the time of 8; the
- * stream's draws then fall differently, so such runs are no longer byte for byte those of before).
+ * **Blocks** (\ref sch_blocks "docs/schemes.md"; `use_blocks`: one species or a mixture of at most 128 species,
+ * `majorant` or `lowrank`, N >= 2 block_size). The particles are split into K = N / block_size contiguous blocks;
+ * during a time step each block is a gas of its own, with candidates among its N_b particles at R_b = N_b n B_b / 2,
+ * B_b = 2 pi sigma^2 chi vmax_b: the pair rate is pi sigma^2 chi |g| n/(N_b - 1), every particle keeps the gas's
+ * collision frequency. The blocks run one after another, each from the step's start to its end. Between steps the
+ * particles are dealt round the blocks like cards from a random starting point (`remix`, in place: deal.hpp), so that
+ * blocks never keep their members. What differs from the unblocked gas is the number of partners between remixes, N_b -
+ * 1 instead of N - 1: a finite-N effect of order 1/N_b. A block's bound is recomputed exactly at its first visit in a
+ * step. **Step length** (block_step_length; \ref sch_blocks "docs/schemes.md", "Step length"): within a step a bound is
+ * only raised; one collision per particle dissipates at most gamma = max (1 - alpha_kj^2)/3 of the energy, and a step
+ * brings c = min(sqrt(2/gamma), 6) collisions per particle: c/p majorant mean free times at the last step's acceptance
+ * p, never less than block_steps = 5, times step_fraction, at most max_block_step_candidates = 3/4 of 2^24 candidates
+ * unless block_steps is more (N > 5e6; the first step capped too). Viscoelastic restitution and frames keep
+ * block_steps. The length sets when bounds are refreshed and blocks remixed, not the process. **Event targets**
+ * (`collisions_per_particle`) are met exactly: when fewer events are left than a step could bring (R dt times the last
+ * step's acceptance, 1 for a run's first step, plus 10 % and 8 standard deviations) the step is shortened, and when
+ * that would leave it fewer than min(N/64, 4 N/K) events it runs on the whole gas as one block with the exact bound of
+ * all particles, which samples the unblocked process and stops at the target. Soft targets (progress, checkpoints) are
+ * checked at step ends.
  *
- * **Blocks** (issue 5; one species, or a mixture of at most 128 species, with `majorant` or `lowrank`;
- * N >= 2 block_size; `use_blocks`). With
- * 1e6 particles the velocities (24 MB) do not stay in the caches and every candidate waits for
- * memory. The particles are therefore split into K = N / block_size contiguous blocks, and during
- * a time step each block is a gas of its own: its candidates are pairs of its own N_b particles at
- * R_b = N_b n B_b / 2 with its own bound B_b = 2 pi sigma^2 chi vmax_b, so that every particle keeps
- * the collision frequency n pi sigma^2 chi <|g|> of the whole gas (the pair rate is
- * pi sigma^2 chi |g| n/(N_b - 1) instead of n/(N - 1): a homogeneous gas of N_b particles at density
- * n). Each block is an unbiased sub-sample of the homogeneous gas. The blocks run one after another
- * over the step, each from the step's start to its end, so all of them are at the same time at
- * every step end (and at every time target). Between steps the particles are dealt round the blocks
- * like cards from a random starting point (`remix`): each new block takes every K-th particle of
- * every old one, so the blocks never keep their members and no correlation builds up within one.
- * The dealing is done in place (deal.hpp, issue 11): the rows of K particles, read from the starting
- * point, are transposed into the K blocks, tile by tile through a buffer onto a grid of runs of 64
- * particles, and the runs are then permuted along the cycles of the transposition, with scratch memory
- * of a few tiles (below 0.7 bytes a particle for blocks of 32768) instead of a second copy of the
- * velocities (24 bytes a particle) and displacements (32). It moves the same bytes to the same places
- * as dealing into a second array, so every output is unchanged.
- * What changes against the unblocked gas is the number of possible partners between remixes,
- * N_b - 1 instead of N - 1, a finite-N effect of order 1/N_b (block_size 32768 by default); the
- * validation cases `*_blocks_quick` (haff_cooling, collision_rate) compare blocked runs with the
- * same theory at the same tolerances. With one species the rank-3 majorant of `lowrank` is the
- * uniform one, so both schemes run the same blocked loop. The block's bound is recomputed exactly at
- * its first visit in a step (a pass in order over the block, which is also what brings it into the
- * cache). **Step length** (block_step_length; \ref sch_blocks "docs/schemes.md", "Step length"): a
- * step costs a remix and that pass, and within it a block's bound is only raised, so that it loosens as
- * the gas cools; one collision per particle dissipates at most gamma = max (1 - alpha_kj^2)/3 of the
- * energy, and a step of c = min(sqrt(2/gamma), 6) collisions per particle balances the two (the measured
- * remix-and-pass cost, half that of one collision per particle): c/p majorant mean free times at the
- * last step's acceptance p, never less than block_steps = 5 (about one collision per particle), times
- * step_fraction, and of at most max_block_step_candidates = 3/4 of 2^24 candidates unless block_steps
- * is more (N > 5e6: the steps of before, which the simulation's chunks of 2^24 candidates split as
- * before above N = 6.7e6; the first step is capped too). Viscoelastic restitution and
- * frames keep block_steps. The length sets when bounds are refreshed and blocks remixed, not the process. Event targets
- * are met exactly all the same (collision-driven runs, `collisions_per_particle`): at the start of a
- * step, when fewer events are left to the target than the step could bring (its candidates R dt times
- * the acceptance of the last step, 1 for the first step of a run, plus 10 % and 8 standard
- * deviations), the step is shortened to fit; when that would leave it fewer than min(N/64, 4 N/K)
- * events, the step runs instead on the whole gas as one block, with the exact bound of all particles,
- * and stops at the target. The time step only sets when bounds are refreshed and blocks
- * remixed, so its length may change from step to step without changing the process. Such a step samples the unblocked process exactly, so the
- * mixture of blocked and whole-gas steps is as unbiased as either. Soft targets (the progress and
- * checkpoint chunks of the simulation) are checked at step ends only.
+ * **The one-species block kernel** (`run_block_one_species`; constant restitution) samples the process of `majorant`
+ * (R_b, uniform pairs, acceptance |g| / (2 vmax_b), e of density (g_hat.e)/pi, bounds raised when exceeded, candidate
+ * times t0 + (c + 1)/R_b) with the pair's indices from one draw (rng::Xoshiro256pp::below_pair, exact by rejection),
+ * the drawn-ahead pairs in locals, the frame a template parameter, and the impulse from p = (g.e) e = (g + |g| w)/2 for
+ * e = (g_hat + w)/|g_hat + w| (hemisphere_projection; w from rng::unit_vector_32, directions on a lattice of step
+ * 2^-31, about 1e-9 rad). Its stream differs from run_majorant's, its law does not. With one species the rank-3
+ * majorant of `lowrank` is the uniform one, so both schemes run this kernel; viscoelastic restitution runs
+ * run_majorant / run_lowrank in the blocks.
  *
- * **The one-species block kernel** (issue 11; `run_block_one_species`). A block of one species with
- * constant restitution runs a loop of its own, which samples exactly the process of `majorant` above
- * (the same candidate rate R_b, uniform pairs, acceptance |g| / (2 vmax_b), e of density (g_hat.e)/pi,
- * bounds raised when exceeded, candidate times t0 + (c + 1)/R_b) with less work per candidate and per
- * collision: the pair's two indices from the halves of one 64-bit draw (rng::Xoshiro256pp::below_pair,
- * exactly uniform by rejection), the drawn-ahead pairs in local variables, no species or viscoelastic
- * branches (a frame is a template parameter: "Frame" below), and the impulse from p = (g.e) e = (g + |g| w)/2 for e = (g_hat + w)/|g_hat + w|
- * (hemisphere_projection): no e is formed, so no second root nor division, with w from
- * rng::unit_vector_32 (one draw per try; directions on a lattice of step 2^-31, about 1e-9 rad). The
- * random stream differs from run_majorant's, the law of the process does not; blocks still draw only
- * from their own streams (bitwise the same for any thread count). Viscoelastic restitution (whose alpha
- * needs g.e) runs run_majorant / run_lowrank in its blocks; mixtures have a kernel of their own
- * ("Mixtures in blocks"). Measured at N = 1e6 (CPU time,
- * medians, both builds alternately): 4.49 candidates per collision as before, 31 ns per candidate before
- * and 19 after, 1.6 times the collisions per second of bench_collide and 1.9 times end to end
- * (bench_paths, one species, t_end). Tighter majorants were tried and left out (\ref sch_blocks "docs/schemes.md",
- * "The one-species kernel"): speed classes cut the candidates per collision to 1.5-1.7 and a single
- * fast layer to 2.5, but their pair law depends on the velocities, so pairs can no longer be drawn
- * ahead and prefetched, and each candidate costs more than the rejections saved.
+ * **Frame** (`set_frame`; the stage loop of thermostat.hpp). Streaming and rescaling map every velocity alike, so the
+ * System may hold u in a frame, V = G u, G = S [[1, c, 0], [0, 1, 0], [0, 0, 1]]; a stage changes only G (a rescaling
+ * by s multiplies S, the streaming subtracts a dt from c). A candidate's g = G (u_a - u_b) is used as above, and the
+ * partners' u change by -/+ mu (1 + alpha)(g.e) G^-1 e, G^-1 e = (e_x - c e_y, e_y, e_z)/S: the same process, other
+ * round-off. Bounds hold the largest |u| times ||G|| = S (|c|/2 + sqrt(1 + c^2/4)), kept within 2 % of S by the stage
+ * loop (G back to 1 whenever |c| > 0.04 and at every sample). The moments Q = sum m u u^T (xx, yy, zz, xy) are kept
+ * collision by collision: the kinetic energy is S^2 (Q_xx + 2 c Q_xy + c^2 Q_yy + Q_yy + Q_zz)/2 without a pass.
+ * Constant restitution, no displacements. **Frames in blocks**: every block of a pass uses the master's G, the block
+ * kernels take the frame as a template parameter, and each block's change of Q is added in block order after the pass;
+ * reset_frame recomputes each block's bound by a pass over it.
  *
- * **Frame** (`set_frame`; the stage loop of thermostat.hpp). A uniform shear flow's streaming and a
- * thermostat's rescaling act on every velocity alike, V -> L V with one linear map L per stage.
- * Instead of a pass over all particles per stage, the System may hold the velocities u in a frame,
- * the actual peculiar velocity being
- *   V = G u,   G = S [[1, c, 0], [0, 1, 0], [0, 0, 1]]   (V_x = S (u_x + c u_y), V_y = S u_y, V_z = S u_z),
- * and a stage then changes only G: a rescaling by s multiplies S by s, the streaming V_x -> V_x - a dt V_y
- * subtracts a dt from c (both maps are of this form, and so are their products). The u change only at
- * collisions. A candidate's relative velocity is g = G (u_a - u_b) and the collision is computed from it
- * exactly as above (acceptance, e, g.e, the energy loss); the partners' u change by the impulse mapped
- * back, -/+ mu (1 + alpha)(g.e) G^-1 e, G^-1 e = (e_x - c e_y, e_y, e_z)/S. The process is therefore the
- * same as with the velocities updated in every stage; only the round-off differs. The bounds hold the
- * largest |u| of each species, and a relative speed is bounded by |G (u_a - u_b)| <= ||G|| (|u_a| + |u_b|),
- * ||G|| = S (|c|/2 + sqrt(1 + c^2/4)) the largest singular value of G: every bound is multiplied by
- * ||G||, which the stage loop keeps within 2 % of S by bringing the velocities back to G = 1 (one pass)
- * whenever |c| exceeds 0.04 and at every sample. The frame's second moments Q = sum m u u^T (xx, yy,
- * zz, xy) are kept up to date collision by collision, so that the thermostat knows the kinetic energy
- * S^2 (Q_xx + 2 c Q_xy + c^2 Q_yy + Q_yy + Q_zz)/2 of every stage without a pass. Constant restitution
- * and no displacement tracking (what the stage loop runs). **Frames in blocks** (issue 11; `majorant`
- * or `lowrank`, one species or a mixture): the frame is the whole gas's, so every block of a pass uses
- * the same G (each worker takes it from the master at the start of its block). The block kernels
- * (run_block_one_species, run_block_mixture) take it as a template parameter: g = G (u_a - u_b), the
- * block's bound (or each w_i of its A_ik) times ||G||, the impulse mapped back with G^-1 (applied to
- * (g.e) e itself, which hemisphere_projection gives), and the block's change of Q summed in the kernel
- * and added to the master's in block order after the pass, so Q, like the counts, is the same bit for
- * bit on any thread count. A stage is usually far shorter than a blocked step (0.125 against 5
- * majorant mean free times), so a pass covers one stage and a block is remixed every ~40 stages; the
- * kernels' drawn-ahead, prefetched pairs keep such short visits fast. When the stage loop applies the
- * frame to the velocities (reset_frame) each block's bound is recomputed by a pass over it. Measured at
- * N = 1e6: docs/shear-viscosity.md, "Cost".
+ * **Mixtures in blocks.** Block j holds a slice of every species: species k's particles are dealt round K slices inside
+ * k's range, ceil((N_k - j)/K) in block j, when N_k >= min_slice K (min_slice = 64). A rarer species is *scattered*: at
+ * every remix its particles are shuffled and cut into K slices of multinomial counts (the first step draws the counts
+ * only), each to a uniformly random block, so E[1/(N_b - 1) | both in b] = K/(N - 1) and the expected pair rate is the
+ * gas's. A block runs `majorant` with B_b = max_kj pi sigma_kj^2 chi_kj (vmax_bk + vmax_bj) over its species and R_b =
+ * N_b n B_b / 2, or its own `lowrank` A_ik = pi sigma_ik^2 chi_ik w_i N_i N_k / V (chi_ik itself, the slices' counts
+ * and speeds, V = (N_b - 1)/n) accepted with |g| / (w_i + w_k), its species pair from an alias table of the P^2 pairs
+ * present, then a particle of each slice: each pair collides at pi sigma_ik^2 chi_ik |g| n/(N_b - 1). With constant
+ * restitution `run_block_mixture` samples the same process with the one-species kernel's techniques (species from the
+ * block's 32-bit edges, species_at; pair constants in PairKernel; a binary `majorant` kernel `Two`); a `lowrank`
+ * candidate is one 64-bit word (set_block_lowrank: 2^m >= max(P^2, 2) alias cells, the coin exact, the particles by
+ * 24-bit multiply-shift with rejection). *The cheaper sampler*: both are exact majorants of one pair law, so at each
+ * step the master gives all blocks `lowrank` when lowrank_candidate_cost (1.15) times sum_ik pi sigma_ik^2 chi_ik
+ * vmax_i N_i N_k n/(N - 1) is below N n B/2, else `majorant`, whatever the scheme (part of the State; a step after a
+ * change of sampler judges its events from the last step's events per unit time and is 5 mean free times long);
+ * set_block_sampler() forces one. Viscoelastic mixtures, whole-gas steps and unblocked runs keep the scheme's loops.
+ * Checked by Collide.BlockedMixtureMatchesUnblocked, Collide.BlockedThreeSpeciesLowrankMatchesUnblocked,
+ * Collide.BlocksRunTheCheaperSampler and the mixture validations.
  *
- * **Mixtures in blocks** (issue 11). Block j holds a slice of every species: species k's particles
- * are dealt round K slices inside species k's own range (so the species layout of the System never
- * changes), ceil((N_k - j)/K) of them in block j, when N_k >= min_slice K (min_slice = 64). A rarer
- * species is *scattered* instead: at every remix its particles are put in a uniformly random order
- * (Fisher-Yates) and cut into K slices of multinomial counts, i.e. each particle goes to a uniformly
- * random block independently of all others (the first step draws the counts only: the initial order
- * is independent of the velocities). Dealing a species with fewer than K particles would put them in
- * the first blocks and never two of them together, and one with a few per block would meet itself at
- * n (N_kb - 1)/(N_b - 1), a relative error 1/N_kb; scattered, any two particles share a block with
- * probability 1/K, and E[1/(N_b - 1) | both in b] = K/(N - 1) for independent placements, so the
- * expected pair rate is the gas's. The counts are part of the State. A block is then a mixture of N_b
- * particles in the gas's proportions, run exactly as the unblocked `majorant` scheme with its own bound
- * B_b = max_kj pi sigma_kj^2 chi_kj (vmax_bk + vmax_bj) over the species present in it and rate
- * R_b = N_b n B_b / 2: a candidate is a uniform pair of the block's particles (an index into the
- * block's slices). Each species-k particle meets species-j partners at n N_jb/(N_b - 1) instead of
- * n N_j/(N - 1): the finite-N effect of the one-species blocks, of relative order 1/N_b on average
- * (dealt slices differ from N_j/K by less than one particle; scattered ones are unbiased). With `lowrank` each block samples its own majorant A_ik of its slices, in the form
- * of segment_tree.hpp (A_ik = pi sigma_ik^2 chi_ik w_i N_i N_k / V, accepted with |g| / (w_i + w_k)), but
- * with each of the at most 128^2 entries computed exactly and chi_ik itself in place of chi_max: N_k the
- * slice's count, V = (N_b - 1)/n and w_k = vmax_k the block's, so that again each pair's rate is
- * pi sigma_ik^2 chi_ik |g| n/(N_b - 1) (the two orders (a, b) and (b, a) add w_i + w_k). The species
- * pair (i, k) of a candidate is drawn with probability A_ik / R_b from an alias table of the P^2
- * entries of the P species present in the block (rebuilt when a bound is raised), then a particle of slice i and one of slice k; the
- * whole-gas steps near event targets run the unblocked `lowrank` loop.
- * With constant restitution a mixture's block runs a kernel of its own (issue 11; `run_block_mixture`,
- * for `majorant` and `lowrank`), which samples exactly the process just described (the same R_b, the
- * same pair law, the same acceptance, bounds raised when exceeded, `lowrank`'s drawn-ahead pairs
- * redrawn when A_ik changes) with the techniques of the one-species kernel: the two indices of a pair
- * from one draw (below_pair: two block indices in `majorant`), the drawn-ahead pairs in locals with
- * their species, which the slice of an index gives (no read of the species array), each species pair's
- * constants in one record (PairKernel), the block's generator in a local copy (its state in registers,
- * not stored and reloaded at every draw), no viscoelastic branch (a frame: a template parameter), and the impulse from
- * hemisphere_projection. A `lowrank` candidate is one 64-bit word too (set_block_lowrank lays the
- * block's alias table over 2^m >= max(P^2, 2) cells, zero weights after the P^2 pairs, each pair's two
- * slices, Lemire thresholds and w_i + w_k in one record): the cell from the top m bits, its coin from
- * the next 16 - m (a further uniform only when they tie with the threshold's leading bits, so the coin
- * is exact), the two particles from two 24-bit fields by multiply-shift with rejection (below_pair's,
- * in 24 bits; a block with a slice of 2^24 or more has every rejection threshold at 2^24, so that
- * below_pair draws each of its candidates). Viscoelastic mixtures run the general loops in their blocks.
- * *The cheaper sampler* (issue 11, 2026-11-28). In a block both samplers are exact for the same pair law
- * (each pair at pi sigma_ik^2 chi_ik |g| n/(N_b - 1)): a majorant sets only how many candidates a
- * collision takes, not the process. So a mixture's blocks run whichever costs less, whatever the
- * scheme: at each step, from the gas's bounds vmax_k, `lowrank` when lowrank_candidate_cost (1.15, a
- * `lowrank` candidate's cost over a `majorant` one's in the kernel) times its candidate rate
- * sum_ik pi sigma_ik^2 chi_ik vmax_i N_i N_k n/(N - 1) is less than the `majorant` rate N n B/2
- * (block_candidate_rate). The master chooses once per step for all blocks (so that R, the last step's
- * acceptance and the output do not depend on the threads); the choice is part of the State. A step
- * whose sampler differs from the one the last step ran (a change of choice, or after a whole-gas step,
- * which runs the scheme's) judges its events near an event target from the last step's events per unit
- * time (the last step's acceptance was another majorant's) and is 5 mean free times long. Masses 1 and 4 with diameters 1 and 1.5 (bench_paths' binary gases) take `majorant`,
- * diameters 1 and 2 and many species of unlike sizes `lowrank`. Viscoelastic mixtures and whole-gas
- * steps keep the scheme's own loops, as does every unblocked run; set_block_sampler() forces one sampler
- * (the kernel tests, bench_collide's `scheme`). Tested in Collide.BlocksRunTheCheaperSampler (the rates
- * by hand, the choice, samplers changed step by step against the unblocked gas, restore).
- * What a mixture candidate costs beyond a one-species one was cut further on 2026-11-27 without
- * changing a single draw (the output of 16 runs byte for byte the same): a `majorant` candidate's
- * species from 32-bit edges held in locals (species_at: one compare for two species, a search without
- * mispredictions above 8) and its system index by one add; a drawn-ahead candidate carries its pair's
- * index (its species looked up only after a collision); `lowrank`'s alias coin selects the outcome by a
- * mask, since a branch on it went either way at random; (pi sigma^2 chi)^2 kept per pair. On
- * 2026-11-28, again without changing a draw: the drawn-ahead candidates in three arrays of 32-bit words
- * (a record of 12 bytes took extra instructions to address), the acceptance's constants in arrays of
- * their own (pair_cross_section2_, pair_limit_; PairKernel is read only for a collision), and a kernel
- * for a binary `majorant` mixture (`Two`) with its edge and offsets in registers: 10 % fewer
- * instructions in that kernel, 5 % in `lowrank`'s. Measured in docs/schemes.md ("Cache blocks") and
- * README ("Performance").
- * Why a `lowrank` candidate cost more than a `majorant` one (issue 11: 40 against 23 ns in a loaded
- * session, 23.7 against 17.9 in the session below; perf on bench_collide, binary lowrank): its pair
- * draw was half of the kernel's samples (49 %, `majorant`'s 25 %), a dependent chain before the
- * particles could be prefetched: a 53-bit uniform converted to double, scaled, truncated and clamped,
- * the alias threshold read and compared (a branch), the alias read, the pair's species read, the four
- * slice bounds read and subtracted (spilled to the stack), then a second draw for below_pair. The
- * one-word draw above cut that share to 33 % (about 9.5 -> 5 ns); the rest of a candidate (the
- * velocities, the acceptance, whose branch goes either way, and a collision's two roots) is
- * `majorant`'s. Measured at N = 1e6 (bench_collide 1000000 0.9 10 32768, the binary gases of
- * bench_paths, CPU time, commit 8531ce2 and this code alternately three times, load about 5 on 2
- * cores, medians): `lowrank` 23.7 -> 18.7 ns per candidate (1.00e7 -> 1.26e7 collisions/s, 0.62 ->
- * 0.78 of the one-species rate; Enskog 23.4 -> 18.9, 0.63 -> 0.79), `majorant` 17.9 -> 17.2 ns (1.26e7
- * -> 1.30e7, 0.77 -> 0.82; Enskog 0.77 -> 0.82), one species 14 ns; candidates per collision 4.23
- * (`lowrank`) and 4.45 (`majorant`), unchanged. So in blocks the two schemes now cost within 4 % the
- * same per collision (79 and 77 ns: `lowrank`'s 5 % fewer candidates for its 9 % dearer candidate, the
- * record reads and the wider draw). End to end (bench_paths 1000000, medians of three, each over the
- * one-species `t_end` run of the same process): the collision loop's rate (wall clock) `lowrank` 0.63 ->
- * 0.85 (Enskog 0.64 -> 0.86), `majorant` 0.76 -> 0.84 (Enskog 0.76 -> 0.78); collisions per CPU second
- * of the whole run `lowrank` 0.70 -> 0.81 (Enskog 0.69 -> 0.80), `majorant` 0.83 -> 0.83 (Enskog 0.79 -> 0.80). Tried and left out: a look-ahead of 16 instead of 8 (no gain: a block's
- * velocities are in L2; in a frame they are not, and 32 are drawn ahead: "Look-ahead").
- * Checked by Collide.BlockedMixtureMatchesUnblocked (T_k, the share of unlike-pair events, the time at
- * an event target, over 16 replicas, both schemes), Collide.BlockedThreeSpeciesLowrankMatchesUnblocked
- * (three species: 16 alias cells for 9 pairs; T_k and each pair's share of events) and by every
- * mixture validation, which runs blocked at N >= 2 block_size. Measured at N = 1e6 (binary, masses 1
- * and 4, diameters 1 and 1.5, one replica) before the kernels: 5.5e6 collisions/s blocked against 2.1e6
- * unblocked.
+ * **Threads inside one replica** (`use_threads`). The blocks of a step are independent gases over the same interval and
+ * run on OpenMP threads, each on a copy of the pair tables (a "worker"). At the start of each pass a 64-bit key is
+ * drawn from the replica's collision stream, and block j draws from its own xoshiro256++ stream seeded by a hash of
+ * (key, j) (rng::Xoshiro256pp::substream): keyed by (seed, replica, pass, block). Each block's counts and sums are
+ * added in block order after the pass, so the output is the same bits for any thread count. Whole-gas steps run on one
+ * thread; two stages of the remix are split over the threads (deal.hpp, "Threads"). Streams of distinct (key, j), drawn
+ * about 1e5 times each per pass from a period of 2^256 - 1, overlap with probability below 1e-60.
  *
- * **Threads inside one replica** (issue 11; `use_threads`). Within a blocked step the blocks are
- * independent gases over the same time interval: block j reads and writes only its own particles, its
- * own bound vmax_jk and its own carried credit. They therefore run on OpenMP threads, each thread on a
- * copy of this collider's pair tables (a "worker"). For the output not to depend on the thread count,
- * nothing a block draws comes from a shared stream: at the start of each pass over the blocks (a step,
- * or the part of one up to a time target) a 64-bit key is drawn from the replica's collision stream,
- * and block j draws from its own xoshiro256++ stream seeded by a hash of (key, j)
- * (rng::Xoshiro256pp::substream), i.e. keyed by (seed, replica, pass, block). Each block's counts and
- * sums (events, candidates, pair events, dissipated energy, overshoots) are kept apart and added to
- * the replica's in block order after the pass, so that every floating-point sum is the same for one
- * thread or many. Only the whole-gas steps near event targets run on one thread; the remix between
- * steps is a fixed permutation, and two of its four in-place stages are split over the threads
- * (deal.hpp, "Threads"): whichever thread moves a particle, it ends in the same place. The streams
- * of distinct (key, j) are distinct seeds of a generator of period 2^256 - 1 drawn about 1e5 times
- * each per pass: they overlap with a probability below 1e-60 in any run that could be executed.
- *
- * Units: the user's; time in the user's time unit, e.g. sigma sqrt(m/T0).
- * Checked by tests/collide_test.cpp and validation/ (haff_cooling, collision_rate, schemes_agree).
+ * Units: the user's (time e.g. in sigma sqrt(m/T0)). Namelist group `&dsmc` (scheme, step_fraction, block_size). A new
+ * collision rule is a type of rules.hpp (\ref ext_rule "docs/extending.md"). Measurements and what was tried:
+ * \ref perf_one_species "docs/performance.md", \ref perf_mixtures "docs/performance.md". Checked by
+ * tests/collide_test.cpp and validation/ (haff_cooling, collision_rate, schemes_agree, the `*_blocks_quick` cases).
  */
 #pragma once
 

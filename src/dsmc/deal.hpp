@@ -6,9 +6,10 @@
  * slot i div k, where block j starts at first(j) = j q + min(j, r), q = n div k, r = n mod k (the
  * first r blocks hold q + 1 particles, the others q). Written out of place this is
  *   out[first(i mod k) + i div k] = in[(offset + i) mod n],   i = 0 .. n - 1,
- * which is what the collider did until issue 11, with a second copy of the particle arrays (24 bytes a
- * particle for the velocities, 32 more for tracked displacements). deal_in_place() computes the same
- * permutation in place: the same bytes end in the same places (only copies, no arithmetic on them).
+ * which needs a second copy of the particle arrays (24 bytes a particle for the velocities, 32 more for
+ * tracked displacements). deal_in_place() computes the same permutation in place: the same bytes end in
+ * the same places (only copies, no arithmetic on them). Its cost and memory, measured against the
+ * out-of-place dealing it replaced: \ref perf_remix "docs/performance.md".
  *
  * **Four stages.** Let y be the array read from offset round (y[i] = in[(offset + i) mod n]) and view
  * y as q rows of k (row a, column j holding y[a k + j]) and a last partial row of r: the dealing puts
@@ -41,8 +42,8 @@
  * can land on, and then proceeds as above within its run. Stage 3 deals out whole cycles, which are
  * disjoint; a cycle longer than slots / (4 threads) places is cut into pieces of at most that length,
  * whose first segments are saved before any piece moves (the piece before ends by taking it), so that
- * the long cycle a random shift usually leaves (at N = 1e6 in 30 blocks, typically 65-80 % of the
- * 15600 places in one cycle) does not run on one thread. Stages 1 and 4 (m elements) and the search
+ * the long cycle a random shift usually leaves (\ref perf_remix "docs/performance.md") does not run on
+ * one thread. Stages 1 and 4 (m elements) and the search
  * for the cycles run on one thread. Whichever
  * thread moves an element, it ends in the same place: the result does not depend on the thread count.
  *

@@ -14,7 +14,8 @@
  * Layout: each particle's three velocity components are stored together (Vec3, 24 bytes), beside a
  * parallel species array (4 bytes): a collision reads and writes all three components of two random
  * particles, so this is one memory access per particle where three separate component arrays would
- * be three, which is what limits the collision loop at N = 1e6 (bench/bench_collide.cpp).
+ * be three, which is what limits the collision loop at N = 1e6 (bench/bench_collide.cpp; measured:
+ * \ref perf_lookahead "docs/performance.md").
  * Tracked displacements keep R and t_last together (32 bytes) for the same reason.
  *
  * Initial velocities (`&initial distribution`): 'maxwell' (Gaussian, Montanero and Garzo 2002, eq. (25), \ref cm_initial "docs/collision-model.md"), 'shell' (all

@@ -2,9 +2,8 @@
  * \file rng.hpp
  * \brief Reproducible random streams: xoshiro256++ with jump-ahead, one stream per (seed, replica, purpose).
  *
- * The generator is xoshiro256++ (Blackman and Vigna 2019): 256 bits of state, period 2^256 - 1,
- * about 1 ns per 64-bit output. The state of the root stream is filled from the user's `seed` with
- * splitmix64. Stream (replica r, purpose p) is the root stream advanced by p long jumps (2^192 draws
+ * The generator is xoshiro256++ (Blackman and Vigna 2019): 256 bits of state, period 2^256 - 1.
+ * The state of the root stream is filled from the user's `seed` with splitmix64. Stream (replica r, purpose p) is the root stream advanced by p long jumps (2^192 draws
  * each) and r jumps (2^128 draws each), so streams never overlap in any run that could be executed,
  * and a replica's numbers do not depend on how many replicas run, or on which thread or rank runs
  * it. Same seed, same output, always (the generator uses only integer arithmetic, and the

@@ -39,11 +39,8 @@
  * X* lambda/(1 - e^-lambda) = X* (1 + lambda/2 + ...), and their mean X* (1 + lambda^2/12 + ...). The
  * streaming is linear, so the value before the jump follows exactly from the one after it:
  * P_xy(before) = P_xy(after) + a dt P_yy. The viscosity therefore uses the midpoint
- * P_xy + a dt P_yy/2, which is second order in the stage length. This replaces the
- * sampling-point factor 1/(1 - mean zeta dt) (first order, and it does not remove the streaming jump:
- * measured at alpha = 0.7, 2e4 particles x 16 replicas, the value after the jump alone rose from
- * 1.302 to 1.366 when the stage grew from 0.1 to 0.5 majorant mean free times, the midpoint stayed at
- * 1.288-1.296, within 1.2 standard errors).
+ * P_xy + a dt P_yy/2, which is second order in the stage length (the first-order factor
+ * 1/(1 - mean zeta dt) it replaced, measured against it: \ref perf_frames "docs/performance.md").
  *
  * **Cost: the frame.** The rescaling about the mean flow m, V -> m + s (V - m), and the streaming act
  * on every velocity alike, so a stage does not touch the particles: the System holds velocities u in a
@@ -60,11 +57,8 @@
  * particles (`materialise`: V = G u + b, with the energy, the mean flow, the moments and the largest
  * speeds) brings the frame back to the identity at every sample and whenever |c| > frame_shear_limit,
  * which keeps the collider's bounds within 2 % of exact (collide.hpp) and the u well conditioned, or
- * S leaves [1/2, 2]. Measured (validation/shear_viscosity/usf.nml, 2e4 particles, one replica,
- * t = 8000; farm-bench, CPU seconds, median of 5 runs alternated with the plain elastic loop of the
- * same gas): collisions per CPU second of the stage loop over those of the plain loop 0.45 with a
- * pass per stage (60 % of the time in the pass), 0.96 with the frame; bench/bench_usf.cpp measures
- * the same ratio in one process.
+ * S leaves [1/2, 2]. bench/bench_usf.cpp measures the stage loop against the plain loop of the same
+ * gas (\ref perf_frames "docs/performance.md").
  *
  * Units: the user's. Namelist groups `&thermostat`, `&shear`. Checked by tests/thermostat_test.cpp and
  * validation/shear_viscosity.

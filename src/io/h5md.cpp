@@ -241,7 +241,7 @@ Handle ensure_group(hid_t file, const std::string& path) {
     if (check(H5Lexists(group.get(), name, H5P_DEFAULT), "H5Lexists", where) > 0)
       group = make(H5Gopen2(group.get(), name, H5P_DEFAULT), H5Gclose, "H5Gopen2", where);
     else {
-      // No modification times in object headers: the same run gives the same bytes (issue 5).
+      // No modification times in object headers: the same run gives the same bytes.
       Handle gcpl = make(H5Pcreate(H5P_GROUP_CREATE), H5Pclose, "H5Pcreate(H5P_GROUP_CREATE)", where);
       check(H5Pset_obj_track_times(gcpl.get(), false), "H5Pset_obj_track_times", where);
       group = make(H5Gcreate2(group.get(), name, H5P_DEFAULT, gcpl.get(), H5P_DEFAULT), H5Gclose,

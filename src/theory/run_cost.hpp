@@ -1,6 +1,6 @@
 /**
  * \file run_cost.hpp
- * \brief The work of a DSMC run estimated from kinetic theory before it starts (issue 12), so that an
+ * \brief The work of a DSMC run estimated from kinetic theory before it starts, so that an
  *        astronomically long run is refused with the estimate instead of running for ever.
  *
  * With nu_0 the collisions suffered per particle per unit time at the initial temperatures

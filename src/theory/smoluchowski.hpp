@@ -69,13 +69,11 @@
  * absolute tolerance (at most ~1e-20 events per collision time against 1e-15 on any n_k), and each pair
  * conserves mass on its own.
  * BDF with a dense Newton solver, the other theory modules' choice, would cost (2K)^3 per
- * factorisation (bench/bench_smoluchowski.cpp, sticking gas to a mean cluster size of 10 at K = 512: BDF + dense
- * 33 s, BDF + matrix-free GMRES 4.1 s, Adams 1.9 s; 0.8 s with the skip).
+ * factorisation (bench/bench_smoluchowski.cpp compares them: \ref perf_theory "docs/performance.md").
  * The lost mass is checked 16 times per output interval (interpolated points, no extra steps).
- * Growing K during the integration instead of restarting from t = 0 (issue 17, "--compare adds no
- * measurable cost"): examples/agg_frag.nml 2.95 s -> 0.2 s of CPU, results within 1e-8 relative for
+ * Growing K during the integration gives results within 1e-8 relative of a restart from t = 0 for
  * every size the run holds at least one cluster of (1e-9 for the totals), the tolerance of the
- * integration; docs/agg-frag.md "Numerical integration".
+ * integration (\ref af_numerics "docs/agg-frag.md"; its cost: \ref perf_theory "docs/performance.md").
  * Partial temperatures for the right-hand side are regularised, T_k = (E_k + (3/2) n_floor T) /
  * ((3/2)(n_k + n_floor)) with T the mean temperature and n_floor = 1e-18 n_1(0) far below the
  * absolute tolerance, so that sizes with no clusters (or integration noise) have a finite T_k near

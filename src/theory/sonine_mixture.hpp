@@ -55,10 +55,8 @@
  *
  * \section sonmix_limits Limits and cost
  * Pair terms O(s^2) per evaluation, the c system and the Newton Jacobian O(s^3) per iteration;
- * 4 first-Sonine iterations are typical. Measured (Release, one core of the shared machine,
- * bench/bench_theory.cpp, polydisperse laws of examples/03): s = 3 in 1 ms, s = 100 in 0.01 s,
- * s = 300 in 0.2 s, s = 1000 in 2.3 s (8-17 s before issue 17's Maxwellian start by the fast fixed
- * point and Eigen on one thread). Above max_hcs_species = 1200
+ * 4 first-Sonine iterations are typical (timings of bench/bench_theory.cpp:
+ * \ref perf_theory "docs/performance.md"). Above max_hcs_species = 1200
  * species std::invalid_argument is thrown (the Maxwellian ratios of asymptotic_temperature_ratios
  * are what remains available; granular-theory says so).
  * Input checks as sonine.hpp, for any s >= 1: std::invalid_argument.
