@@ -27,14 +27,14 @@ Scheme parse_scheme(const std::string& name) {
   throw std::invalid_argument("unknown scheme '" + name + "'");
 }
 
-Collider::Collider(Scheme scheme, const species::Mixture& mix, particles::System& sys,
-                   rng::Xoshiro256pp gen, double step_fraction,
-                   const species::PairMatrix* viscoelastic_beta)
+Collider::Collider(Scheme scheme, const species::Mixture& mix, particles::System& sys, rng::Xoshiro256pp gen,
+                   double step_fraction, rules::Rule rule)
     : scheme_(scheme), mix_(mix), sys_(sys), gen_(gen), step_fraction_(step_fraction),
       s_(mix.size()), tables_(!(scheme == Scheme::lowrank && s_ > species::dense_pair_limit)),
-      rule_(rules::make_rule(mix, viscoelastic_beta)),
+      rule_(std::move(rule)),
       kernels_(std::visit([](const auto& r) { return std::decay_t<decltype(r)>::has_projection; }, rule_)) {
   if (sys.size() > UINT32_MAX) throw std::invalid_argument("collide: more than 2^32 - 1 particles in one replica");
+  std::visit([&](auto& r) { r.attach(sys); }, rule_);
   // The S x S cross sections make the majorant and pairs loops table lookups; the lowrank scheme with
   // thousands of species computes the few pair quantities it needs per accepted collision instead.
   if (tables_) {

@@ -198,7 +198,12 @@ class Collider {
   /// for the constant alpha_kj of the mixture.
   Collider(Scheme scheme, const species::Mixture& mix, particles::System& sys,
            rng::Xoshiro256pp gen, double step_fraction,
-           const species::PairMatrix* viscoelastic_beta = nullptr);
+           const species::PairMatrix* viscoelastic_beta = nullptr)
+      : Collider(scheme, mix, sys, gen, step_fraction, rules::make_rule(mix, viscoelastic_beta)) {}
+  /// The same with the collision rule given (rules.hpp; run/model.cpp builds it from the input), which
+  /// attaches its per-particle arrays to `sys`.
+  Collider(Scheme scheme, const species::Mixture& mix, particles::System& sys, rng::Xoshiro256pp gen,
+           double step_fraction, rules::Rule rule);
 
   /// Cache blocks of about `block_size` particles (header, "Blocks"), for one species or a mixture of
   /// at most block_species_limit (128) species with the `majorant` or `lowrank` scheme and N >= 2 block_size; otherwise (or
@@ -490,11 +495,11 @@ class Collider {
       // The moments change by m (u'u'^T - u u^T) for each partner.
       add_moments(moments_, ua, -ma);
       add_moments(moments_, ub, -mb);
-      out = rule.collide(ua, ub, rule.pair(k, j), contact);
+      out = rule.collide(sys_, a, b, rule.pair(k, j), contact);
       add_moments(moments_, ua, ma);
       add_moments(moments_, ub, mb);
     } else {
-      out = rule.collide(ua, ub, rule.pair(k, j), contact);
+      out = rule.collide(sys_, a, b, rule.pair(k, j), contact);
     }
     counters_.dissipated += out.loss;
     count_event(k, j);

@@ -29,11 +29,11 @@
  * constant restitution).
  *
  * **Adding a rule** (docs/extending.md, \ref ext_rule "a new collision rule"): a type with `Pair`, `pair(k, j)`,
- * `collide(va, vb, pair, contact)` returning an Outcome, the flags `has_projection` and `frames`, and
- * `largest_loss_fraction()`; one more alternative in `Rule` below; the namelist fields that choose it
- * (io/config) and the line of run/model.cpp that builds it. Per-particle arrays a rule needs beyond the
- * velocity (an angular velocity, say) are arrays of particles::System, which every loop, remix,
- * checkpoint and MPI transfer handles without naming them.
+ * `attach(sys)` (its per-particle arrays beyond the velocity, an angular velocity say: arrays of
+ * particles::System, which every loop, remix and checkpoint handles without naming them),
+ * `collide(sys, a, b, pair, contact)` returning an Outcome, the flags `has_projection` and `frames`,
+ * and `largest_loss_fraction()`; one more alternative in `Rule` below; the namelist fields that choose
+ * it (io/config) and the line of run/model.cpp that builds it.
  *
  * Units: the user's. Checked by tests/collide_test.cpp (Rules.*: momentum, the normal velocity
  * reversed with alpha, the energy loss against hand-computed values, the projected form against the
@@ -161,6 +161,14 @@ class SmoothRule {
   /// max over the pairs of (1 - alpha^2)/3, the fraction of the kinetic energy one collision per
   /// particle dissipates at most (collide.hpp "Blocks", "Step length").
   std::optional<double> largest_loss_fraction() const;
+  /// Adds to `sys` the per-particle arrays the rule needs beyond the velocity (System::add_array), and
+  /// sets them for the start: none.
+  void attach(particles::System&) {}
+  /// The rule on particles a and b of `sys`: the form the loops call (a rule with arrays of its own
+  /// reads and writes them here).
+  Outcome collide(particles::System& sys, std::size_t a, std::size_t b, const Pair& p, const Contact& c) const {
+    return collide(sys.v[a], sys.v[b], p, c);
+  }
 
  private:
   const species::Mixture* mix_;
@@ -205,6 +213,12 @@ class ViscoelasticRule {
   }
   /// None: alpha depends on the impact speed (blocked steps keep their shortest length).
   std::optional<double> largest_loss_fraction() const { return std::nullopt; }
+  /// No arrays beyond the velocity.
+  void attach(particles::System&) {}
+  /// The rule on particles a and b of `sys` (the loops' form).
+  Outcome collide(particles::System& sys, std::size_t a, std::size_t b, const Pair& p, const Contact& c) const {
+    return collide(sys.v[a], sys.v[b], p, c);
+  }
 
  private:
   const species::Mixture* mix_;

@@ -220,4 +220,122 @@ void ShearFlow::restore(const state::Record& r) {
   window_samples_ = r.real("shear/window_samples");
 }
 
+Stages::Stages(const species::Mixture& mix, particles::System& sys, collide::Collider& collider,
+               std::vector<std::unique_ptr<Forcing>> forcings, double stage_step, double shear_rate, bool collisional,
+               rng::Xoshiro256pp gen)
+    : mix_(mix), sys_(sys), collider_(collider), forcings_(std::move(forcings)), stage_step_(stage_step),
+      stage_cap_(std::numeric_limits<double>::infinity()), shear_rate_(shear_rate), collisional_(collisional),
+      acts_(false), gen_(gen) {
+  for (const auto& f : forcings_) {
+    stage_cap_ = std::min(stage_cap_, f->longest_stage());
+    acts_ = acts_ || f->acts_on_particles();
+  }
+  for (std::size_t k = 0; k < sys.n_species(); ++k) total_mass_ += mix.mass[k] * static_cast<double>(sys.count[k]);
+}
+
+double Stages::stage_end(double limit) const {
+  const double free_time = static_cast<double>(sys_.size()) / (2.0 * collider_.candidate_rate());
+  const double end = collider_.time() + std::min(stage_step_ * free_time, stage_cap_);
+  return end < limit ? end : limit;
+}
+
+void Stages::begin(double dt, bool sample) {
+  // The forcings' maps of this stage (the thermostat's rescaling decided at the end of the last stage,
+  // then the shear's streaming), composed into the frame (header, "Cost: the frame").
+  Rescaling rescaling;
+  double shear_rate = 0.0;
+  for (const auto& f : forcings_) f->compose(rescaling, shear_rate);
+  frame_ = advance_frame(frame_, rescaling.scale, rescaling.mean_flow, shear_rate, dt);
+  if (!sample && !acts_ && collider_.framed() && std::abs(frame_.shear) <= frame_shear_limit && frame_.scale >= 0.5 &&
+      frame_.scale <= 2.0) {
+    collider_.set_frame(frame_.scale, frame_.shear);
+    start_ = frame_energy(collider_.frame_moments(), momentum_, total_mass_, frame_);
+    return;
+  }
+  // One pass: V = G u + b for every particle, the energy, the moments and the largest speeds (the
+  // collider's bounds, exact again); the frame is the identity afterwards. A forcing acting on each
+  // particle acts then, and a second pass measures what it left.
+  StageStart pass = materialise(mix_, sys_, frame_);
+  frame_ = Frame{};
+  if (acts_) {
+    for (const auto& f : forcings_)
+      if (f->acts_on_particles()) f->act(sys_, dt, gen_);
+    pass = materialise(mix_, sys_, Frame{});
+  }
+  momentum_ = {pass.mean_flow.x * total_mass_, pass.mean_flow.y * total_mass_, pass.mean_flow.z * total_mass_};
+  collider_.reset_frame(pass.moments, pass.max_speed2);
+  start_ = {pass.kinetic, pass.mean_flow};
+}
+
+void Stages::end(double end) {
+  const double dissipated_before = collider_.counters().dissipated;
+  collider_.advance(end);
+  const Forcing::StageEnd stage_end{
+      start_, collider_.counters().dissipated - dissipated_before,
+      [&] { return frame_energy(collider_.frame_moments(), momentum_, total_mass_, frame_).kinetic; }};
+  for (const auto& f : forcings_) f->end_stage(stage_end);
+  count_ += 1.0;
+}
+
+void Stages::measure(const sample::Moments& m, double dt, bool averaged, sample::Rows& rows) {
+  // P at the middle of this stage's streaming jump (header, "Sampling point").
+  const auto kinetic = midpoint_pressure(sample::kinetic_pressure_tensor(mix_, sys_, m), shear_rate_ * dt);
+  // Collisional transfer since the previous sample (\ref eta_pressure "docs/shear-viscosity.md"): P^c = sum m sigma (1 + alpha)(g.e) e e
+  // / (V dt), V = N/n the simulated volume; 0 in the dilute gas.
+  std::array<double, 6> collisional{};
+  const double now = collider_.time();
+  if (collisional_ && now > last_sample_time_) {
+    const auto& transfer = collider_.counters().transfer;
+    const double volume = static_cast<double>(sys_.size()) / mix_.total_density();
+    for (std::size_t q = 0; q < 6; ++q) collisional[q] = (transfer[q] - last_transfer_[q]) / (volume * (now - last_sample_time_));
+    last_transfer_ = transfer;
+  }
+  last_sample_time_ = now;
+  std::array<double, 6> total;
+  for (std::size_t q = 0; q < 6; ++q) total[q] = kinetic[q] + collisional[q];
+  rows.add("pressure_tensor_kinetic", 6, std::vector<double>(kinetic.begin(), kinetic.end()));
+  rows.add("pressure_tensor_collisional", 6, std::vector<double>(collisional.begin(), collisional.end()));
+  rows.add("pressure_tensor", 6, std::vector<double>(total.begin(), total.end()));
+  const Forcing::Sample sample{now, m.total_temperature, total, kinetic, averaged};
+  for (const auto& f : forcings_) f->measure(sample, rows);
+}
+
+void Stages::finish(sample::Rows& rows) const {
+  for (const auto& f : forcings_) f->finish(rows);
+}
+
+void Stages::save(state::Record& r) const {
+  r.put("stages/count", count_);
+  r.put("stages/last_sample_time", last_sample_time_);
+  r.put("stages/last_transfer", std::vector<double>(last_transfer_.begin(), last_transfer_.end()));
+  r.put("stages/frame_offset", std::vector<double>{frame_.offset.x, frame_.offset.y, frame_.offset.z});
+  r.put("stages/momentum", std::vector<double>{momentum_.x, momentum_.y, momentum_.z});
+  const auto g = gen_.state();
+  r.put("stages/generator", std::vector<std::uint64_t>(std::begin(g.s), std::end(g.s)));
+  r.put("stages/generator_spare", g.spare);
+  r.put_integer("stages/generator_has_spare", g.has_spare);
+  for (const auto& f : forcings_) f->save(r);
+}
+
+void Stages::restore(const state::Record& r) {
+  count_ = r.real("stages/count");
+  last_sample_time_ = r.real("stages/last_sample_time");
+  const auto& transfer = r.array("stages/last_transfer", 6);
+  std::copy(transfer.begin(), transfer.end(), last_transfer_.begin());
+  const auto& offset = r.array("stages/frame_offset", 3);
+  const auto& momentum = r.array("stages/momentum", 3);
+  frame_ = {collider_.frame_scale(), collider_.frame_shear(), {offset[0], offset[1], offset[2]}};
+  momentum_ = {momentum[0], momentum[1], momentum[2]};
+  // (a checkpoint of layout 1 has no forcings' stream: none of its forcings drew from it)
+  if (r.has_integers("stages/generator")) {
+    rng::Xoshiro256pp::State g{};
+    const auto& s = r.integer_array("stages/generator", 4);
+    std::copy(s.begin(), s.end(), std::begin(g.s));
+    g.spare = r.real("stages/generator_spare");
+    g.has_spare = r.flag("stages/generator_has_spare");
+    gen_.set_state(g);
+  }
+  for (const auto& f : forcings_) f->restore(r);
+}
+
 }  // namespace gdsmc::thermostat

@@ -68,9 +68,12 @@
 #include <array>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <vector>
 
+#include "dsmc/collide.hpp"
 #include "dsmc/particles.hpp"
+#include "dsmc/rng.hpp"
 #include "dsmc/sample.hpp"
 #include "dsmc/state.hpp"
 #include "model/species.hpp"
@@ -175,6 +178,12 @@ class Forcing {
   /// Composes the linear map it applies at the start of the stage about to begin into `rescaling`
   /// (V -> m + s (V - m), first) and `shear_rate` (V_x -> V_x - a V_y dt, then).
   virtual void compose(Rescaling& rescaling, double& shear_rate) = 0;
+  /// Whether it also acts on each particle apart at the start of a stage (random kicks, say): then the
+  /// stage's frame is applied to the velocities first (one pass), and act() follows the linear maps.
+  virtual bool acts_on_particles() const { return false; }
+  /// Its action on every particle at the start of a stage of length dt (after the linear maps),
+  /// drawing from `gen`, the replica's stream of forcings (rng Purpose::forcing).
+  virtual void act(particles::System& /*sys*/, double /*dt*/, rng::Xoshiro256pp& /*gen*/) {}
   /// What the end of a stage tells it: the kinetic energy and mean flow at the stage's start (after
   /// its streaming), the inelastic loss of its collisions, and the kinetic energy after them (a
   /// function: computed only when asked for).
@@ -252,6 +261,57 @@ class ShearFlow final : public Forcing {
   bool collisional_;
   std::function<double(double)> elastic_viscosity_;
   double window_sum_ = 0.0, window_kinetic_sum_ = 0.0, window_samples_ = 0.0;  ///< the time average's sums
+};
+
+/// The stages of a replica with forcings (header, "Stages" and "Cost: the frame"): per stage of length
+/// dt, the forcings' linear maps composed into the frame of the stored velocities (V = G u + b; G in
+/// the collider, b here), one pass over the particles when the frame strays (|c| > frame_shear_limit,
+/// S outside [1/2, 2]), at a sample, or when a forcing acts on each particle, then the collisions of the
+/// stage (collide.hpp, continuous time) and the forcings' ends. A sample is taken at a stage's start,
+/// after its streaming (header, "Sampling point"): the pressure tensor (kinetic, at the middle of the
+/// streaming jump, and collisional in the Enskog gas in shear flow) and the forcings' observables.
+class Stages {
+ public:
+  /// The stages of the gas `mix` in `sys` with `collider`, under `forcings` (in the order they act),
+  /// of `stage_step` majorant mean free times at most; `shear_rate` a and `collisional` (the Enskog
+  /// gas in shear flow, collide.hpp set_shear) for the pressure tensor; `gen`: the forcings' stream.
+  Stages(const species::Mixture& mix, particles::System& sys, collide::Collider& collider,
+         std::vector<std::unique_ptr<Forcing>> forcings, double stage_step, double shear_rate, bool collisional,
+         rng::Xoshiro256pp gen);
+  /// The end of a stage of the default length from now, not beyond `limit` (then exactly `limit`).
+  double stage_end(double limit) const;
+  /// The start of a stage of length `dt` (header): the forcings' maps and actions; with `sample`, the
+  /// velocities are the actual ones afterwards (a pass), ready to be measured.
+  void begin(double dt, bool sample);
+  /// The collisions of the stage up to `end`, then the forcings' ends.
+  void end(double end);
+  /// A sample at the start of a stage of length `dt` (after begin(dt, true)): the pressure tensors of
+  /// the moments `m`, then each forcing's observables (`averaged`: the sample enters time averages).
+  void measure(const sample::Moments& m, double dt, bool averaged, sample::Rows& rows);
+  /// The end of the replica: the forcings' time averages.
+  void finish(sample::Rows& rows) const;
+  /// Stages run so far.
+  double count() const { return count_; }
+  /// Its state and the forcings' under "stages/...", "<forcing>/...".
+  void save(state::Record& record) const;
+  /// Continues from save()'s record (after the collider's restore: the frame's G is the collider's).
+  void restore(const state::Record& record);
+
+ private:
+  const species::Mixture& mix_;
+  particles::System& sys_;
+  collide::Collider& collider_;
+  std::vector<std::unique_ptr<Forcing>> forcings_;
+  double stage_step_, stage_cap_, shear_rate_;
+  bool collisional_, acts_;  ///< the Enskog gas in shear flow; a forcing acts on each particle
+  rng::Xoshiro256pp gen_;
+  double total_mass_ = 0.0;
+  Frame frame_;
+  particles::Vec3 momentum_{0.0, 0.0, 0.0};  ///< sum m u of the stored u
+  Energy start_;                             ///< the energy and mean flow at the stage's start
+  double count_ = 0.0;
+  double last_sample_time_ = 0.0;
+  std::array<double, 6> last_transfer_{};  ///< collide.hpp Counters::transfer at the previous sample
 };
 
 }  // namespace gdsmc::thermostat

@@ -7,6 +7,11 @@
 
 namespace gdsmc::simulation {
 
+rules::Rule make_rule(const io::config::Config& config, const species::Mixture& mix) {
+  const auto beta = config.viscoelastic_beta();
+  return rules::make_rule(mix, beta ? &*beta : nullptr);
+}
+
 particles::InitialDistribution initial_distribution(const io::config::Config& config) {
   const std::string& name = config.initial.distribution;
   if (name == "shell") return particles::InitialDistribution::shell;

@@ -14,12 +14,16 @@
 
 #include "dsmc/agg_frag.hpp"
 #include "dsmc/particles.hpp"
+#include "dsmc/rules.hpp"
 #include "dsmc/thermostat.hpp"
 #include "io/config.hpp"
 #include "model/species.hpp"
 
 namespace gdsmc::simulation {
 
+/// The collision rule of &system (dsmc/rules.hpp): viscoelastic with `restitution_model = 'viscoelastic'`,
+/// else constant alpha_kj. `mix` is the Config's mixture, which the rule refers to.
+rules::Rule make_rule(const io::config::Config& config, const species::Mixture& mix);
 /// The initial velocity distribution of `&initial distribution`.
 particles::InitialDistribution initial_distribution(const io::config::Config& config);
 /// The monomer of &system and the thresholds of &agg_frag (\ref af_outcome "docs/agg-frag.md").

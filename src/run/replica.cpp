@@ -75,14 +75,13 @@ class Gas : public Engine {
   std::uint64_t events() const override { return collider_.counters().events; }
 
  protected:
-  /// `viscoelastic_beta`: the viscoelastic rule's beta_kj (rules.hpp), or none for constant restitution.
-  Gas(const io::config::Config& config, std::size_t r, const std::optional<species::PairMatrix>& viscoelastic_beta)
+  Gas(const io::config::Config& config, std::size_t r)
       : config_(config), mix_(config.mixture()), s_(mix_.size()),
         counts_(species::particle_counts(static_cast<std::size_t>(config.dsmc.n_particles), mix_)),
         sys_(initial_system(config, mix_, counts_, r)),
         collider_(collide::parse_scheme(config.dsmc.scheme), mix_, sys_,
                   rng::make_stream(static_cast<std::uint64_t>(config.dsmc.seed), r, rng::Purpose::collisions),
-                  config.dsmc.step_fraction, viscoelastic_beta ? &*viscoelastic_beta : nullptr),
+                  config.dsmc.step_fraction, make_rule(config, mix_)),
         targets_(config.dsmc.t_end ? config.sample_times() : config.sample_collisions()),
         c_sum_(s_, 0.0), share_sum_(s_, 0.0) {}
 
@@ -215,7 +214,7 @@ class FreeGas final : public Gas {
 };
 
 FreeGas::FreeGas(const io::config::Config& config, std::size_t r, const ReplicaContext& ctx)
-    : Gas(config, r, config.viscoelastic_beta()), time_driven_(config.dsmc.t_end.has_value()),
+    : Gas(config, r), time_driven_(config.dsmc.t_end.has_value()),
       track_(config.output.track_displacements),
       // v0 and Phi_i(v*) are defined for one or two species (Montanero and Garzo 2002, \ref son_reduced_distributions "docs/sonine.md")
       reduced_(s_ <= 2) {
@@ -367,40 +366,38 @@ class ForcedGas final : public Gas {
   void sample(std::size_t i, ReplicaResult& result) override;
   void finish(ReplicaResult& result) override;
   double fraction_done() const override { return std::min(collider_.time() / targets_.back(), 1.0); }
-  void save(state::Record& r) const override;
-  void restore(const state::Record& r) override;
+  void save(state::Record& r) const override {
+    save_gas(r);
+    stages_.save(r);
+  }
+  void restore(const state::Record& r) override {
+    restore_gas(r);
+    stages_.restore(r);
+  }
 
  private:
-  /// The end of a stage of the default length from now, not beyond `limit` (then exactly `limit`).
-  double stage_end(double limit) const;
-  /// One stage from the collider's time to `end` (header of replica.hpp): the forcings' maps, the
-  /// sample `i` into `result` when given, the collisions (none for the last sample), the forcings' ends.
+  /// One stage from the collider's time to `end` (thermostat.hpp Stages): with `result`, sample `i` is
+  /// taken at its start; the last sample's stage stops there (only its streaming).
   void stage(double end, std::size_t i, ReplicaResult* result, bool last);
-  /// The rows of a stage's sample: the common ones, the scaling state, the pressure tensor, the forcings'.
-  void measure(std::size_t i, double dt, ReplicaResult& result);
 
-  std::vector<std::unique_ptr<thermostat::Forcing>> forcings_;
-  double stage_step_, stage_cap_, shear_rate_;
-  bool collisional_;  ///< the Enskog gas in shear flow: collisional transfer (collide.hpp set_shear)
-  double total_mass_ = 0.0;
-  // The stored velocities are u in a frame, V = G u + b (thermostat.hpp, "Cost: the frame"): the frame
-  // (G in the collider, the offset b here), and the momentum sum m u of the stored u.
-  thermostat::Frame frame_;
-  particles::Vec3 momentum_{0.0, 0.0, 0.0};
-  double stages_ = 0.0;                  ///< stages run
-  double last_sample_time_ = 0.0;
-  std::array<double, 6> last_transfer_{};  ///< Counters::transfer at the previous sample
+  thermostat::Stages stages_;
 };
 
+/// The stages of a replica with forcings: the forcings of the input (run/model.cpp), the Enskog gas in
+/// shear flow's shifted relative velocity set on the collider (collide.hpp set_shear) first.
+thermostat::Stages make_stages(const io::config::Config& config, const species::Mixture& mix, particles::System& sys,
+                               collide::Collider& collider, std::size_t r) {
+  const double shear = config.shear.rate.value_or(0.0);
+  const bool collisional = shear > 0.0 && mix.enskog;
+  if (collisional) collider.set_shear(shear);
+  return thermostat::Stages(mix, sys, collider, make_forcings(config, mix), config.dsmc.stage_step, shear, collisional,
+                            rng::make_stream(static_cast<std::uint64_t>(config.dsmc.seed), r, rng::Purpose::forcing));
+}
+
 ForcedGas::ForcedGas(const io::config::Config& config, std::size_t r, const ReplicaContext& ctx)
-    : Gas(config, r, std::nullopt), forcings_(make_forcings(config, mix_)), stage_step_(config.dsmc.stage_step),
-      stage_cap_(std::numeric_limits<double>::infinity()), shear_rate_(config.shear.rate.value_or(0.0)),
-      collisional_(shear_rate_ > 0.0 && mix_.enskog) {
-  // The centre-of-mass velocity sum m V / sum m removed (\ref eta_thermostat "docs/shear-viscosity.md").
-  thermostat::remove_mean_flow(mix_, sys_);
-  for (const auto& f : forcings_) stage_cap_ = std::min(stage_cap_, f->longest_stage());
-  // Enskog in shear flow: the shifted relative velocity and the collisional transfer (collide.hpp).
-  if (collisional_) collider_.set_shear(shear_rate_);
+    : Gas(config, r),
+      // (the centre-of-mass velocity sum m V / sum m removed first: \ref eta_thermostat "docs/shear-viscosity.md")
+      stages_((thermostat::remove_mean_flow(mix_, sys_), make_stages(config, mix_, sys_, collider_, r))) {
   // Cache blocks with `majorant` or `lowrank` (collide.hpp, "Frame": frames in blocks): a pass over the
   // blocks per stage, on the block threads.
   if (staged_blocks(config)) {
@@ -410,77 +407,23 @@ ForcedGas::ForcedGas(const io::config::Config& config, std::size_t r, const Repl
     note_idle_threads(ctx, "a thermostat or shear flow has cache blocks only with 'majorant' or 'lowrank' (the "
                            "Enskog gas in shear flow needs 'pairs') and N >= 2 block_size");
   }
-  for (std::size_t k = 0; k < s_; ++k) total_mass_ += mix_.mass[k] * static_cast<double>(counts_[k]);
-}
-
-double ForcedGas::stage_end(double limit) const {
-  const double free_time = static_cast<double>(sys_.size()) / (2.0 * collider_.candidate_rate());
-  const double end = collider_.time() + std::min(stage_step_ * free_time, stage_cap_);
-  return end < limit ? end : limit;
 }
 
 void ForcedGas::stage(double end, std::size_t i, ReplicaResult* result, bool last) {
   const double dt = end - collider_.time();
-  // The forcings' maps of this stage (the thermostat's rescaling decided at the end of the last stage,
-  // then the shear's streaming), composed into the frame (thermostat.hpp, "Cost: the frame").
-  thermostat::Rescaling rescaling;
-  double shear_rate = 0.0;
-  for (const auto& f : forcings_) f->compose(rescaling, shear_rate);
-  frame_ = thermostat::advance_frame(frame_, rescaling.scale, rescaling.mean_flow, shear_rate, dt);
-  thermostat::Energy start;
-  if (result || !collider_.framed() || std::abs(frame_.shear) > thermostat::frame_shear_limit || frame_.scale < 0.5 ||
-      frame_.scale > 2.0) {
-    // One pass: V = G u + b for every particle, the energy, the moments and the largest speeds (the
-    // collider's bounds, exact again); the frame is the identity afterwards.
-    const thermostat::StageStart pass = thermostat::materialise(mix_, sys_, frame_);
-    frame_ = thermostat::Frame{};
-    momentum_ = {pass.mean_flow.x * total_mass_, pass.mean_flow.y * total_mass_, pass.mean_flow.z * total_mass_};
-    collider_.reset_frame(pass.moments, pass.max_speed2);
-    start = {pass.kinetic, pass.mean_flow};
-  } else {
-    collider_.set_frame(frame_.scale, frame_.shear);
-    start = thermostat::frame_energy(collider_.frame_moments(), momentum_, total_mass_, frame_);
+  stages_.begin(dt, result != nullptr);
+  if (result) {  // the sample of this instant: after the streaming of the stage that starts now
+    const sample::Moments m = measure_common(*result);
+    if (i > 0 && collisions_per_particle() >= config_.output.scaling_start) add_scaling_sample(m, collider_.time());
+    stages_.measure(m, dt, i > 0, *result);
   }
-  if (result) measure(i, dt, *result);
   if (last) return;
-  const double dissipated_before = collider_.counters().dissipated;
-  collider_.advance(end);
-  const thermostat::Forcing::StageEnd stage_end{
-      start, collider_.counters().dissipated - dissipated_before,
-      [&] { return thermostat::frame_energy(collider_.frame_moments(), momentum_, total_mass_, frame_).kinetic; }};
-  for (const auto& f : forcings_) f->end_stage(stage_end);
-  stages_ += 1.0;
-}
-
-void ForcedGas::measure(std::size_t i, double dt, ReplicaResult& result) {
-  // The sample of this instant: after the streaming of the stage that starts now.
-  const sample::Moments m = measure_common(result);
-  if (i > 0 && collisions_per_particle() >= config_.output.scaling_start) add_scaling_sample(m, collider_.time());
-  // P at the middle of this stage's streaming jump (thermostat.hpp, "Sampling point").
-  const auto kinetic = thermostat::midpoint_pressure(sample::kinetic_pressure_tensor(mix_, sys_, m), shear_rate_ * dt);
-  // Collisional transfer since the previous sample (\ref eta_pressure "docs/shear-viscosity.md"): P^c = sum m sigma (1 + alpha)(g.e) e e
-  // / (V dt), V = N/n the simulated volume; 0 in the dilute gas.
-  std::array<double, 6> collisional{};
-  const double now = collider_.time();
-  if (collisional_ && now > last_sample_time_) {
-    const auto& transfer = collider_.counters().transfer;
-    const double volume = static_cast<double>(sys_.size()) / mix_.total_density();
-    for (std::size_t q = 0; q < 6; ++q) collisional[q] = (transfer[q] - last_transfer_[q]) / (volume * (now - last_sample_time_));
-    last_transfer_ = transfer;
-  }
-  last_sample_time_ = now;
-  std::array<double, 6> total;
-  for (std::size_t q = 0; q < 6; ++q) total[q] = kinetic[q] + collisional[q];
-  result.add("pressure_tensor_kinetic", 6, std::vector<double>(kinetic.begin(), kinetic.end()));
-  result.add("pressure_tensor_collisional", 6, std::vector<double>(collisional.begin(), collisional.end()));
-  result.add("pressure_tensor", 6, std::vector<double>(total.begin(), total.end()));
-  const thermostat::Forcing::Sample sample{now, m.total_temperature, total, kinetic, i > 0};
-  for (const auto& f : forcings_) f->measure(sample, result);
+  stages_.end(end);
 }
 
 void ForcedGas::advance_to_sample(std::size_t i, const Between& between) {
   while (collider_.time() < targets_[i]) {  // stages up to the sample time, which the last one hits exactly
-    stage(stage_end(targets_[i]), i, nullptr, false);
+    stage(stages_.stage_end(targets_[i]), i, nullptr, false);
     between();
   }
 }
@@ -488,37 +431,15 @@ void ForcedGas::advance_to_sample(std::size_t i, const Between& between) {
 void ForcedGas::sample(std::size_t i, ReplicaResult& result) {
   // The stage that samples (the last one: only its streaming, of the length the next would have).
   const bool last = i + 1 == targets_.size();
-  stage(last ? stage_end(std::numeric_limits<double>::infinity()) : stage_end(targets_[i + 1]), i, &result, last);
+  stage(last ? stages_.stage_end(std::numeric_limits<double>::infinity()) : stages_.stage_end(targets_[i + 1]), i,
+        &result, last);
 }
 
 void ForcedGas::finish(ReplicaResult& result) {
   result.events = collider_.counters().events;
-  result.mean_step = collider_.time() > 0.0 && stages_ > 0.0 ? collider_.time() / stages_ : 0.0;
+  result.mean_step = collider_.time() > 0.0 && stages_.count() > 0.0 ? collider_.time() / stages_.count() : 0.0;
   add_scaling_averages(result);
-  for (const auto& f : forcings_) f->finish(result);
-}
-
-void ForcedGas::save(state::Record& r) const {
-  save_gas(r);
-  r.put("stages/count", stages_);
-  r.put("stages/last_sample_time", last_sample_time_);
-  r.put("stages/last_transfer", std::vector<double>(last_transfer_.begin(), last_transfer_.end()));
-  r.put("stages/frame_offset", std::vector<double>{frame_.offset.x, frame_.offset.y, frame_.offset.z});
-  r.put("stages/momentum", std::vector<double>{momentum_.x, momentum_.y, momentum_.z});
-  for (const auto& f : forcings_) f->save(r);
-}
-
-void ForcedGas::restore(const state::Record& r) {
-  restore_gas(r);
-  stages_ = r.real("stages/count");
-  last_sample_time_ = r.real("stages/last_sample_time");
-  const auto& transfer = r.array("stages/last_transfer", 6);
-  std::copy(transfer.begin(), transfer.end(), last_transfer_.begin());
-  const auto& offset = r.array("stages/frame_offset", 3);
-  const auto& momentum = r.array("stages/momentum", 3);
-  frame_ = {collider_.frame_scale(), collider_.frame_shear(), {offset[0], offset[1], offset[2]}};
-  momentum_ = {momentum[0], momentum[1], momentum[2]};
-  for (const auto& f : forcings_) f->restore(r);
+  stages_.finish(result);
 }
 
 // ---------------------------------------------------------------------------------------------
