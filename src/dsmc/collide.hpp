@@ -298,6 +298,10 @@ class Collider {
 
   double time() const { return time_; }
   const Counters& counters() const { return counters_; }
+  /// The collision rule's own observables of a sample (rules.hpp measure), added to `rows`.
+  void measure_rule(sample::Rows& rows) const {
+    std::visit([&](const auto& rule) { rule.measure(sys_, rows); }, rule_);
+  }
   /// Mean length of the time steps so far (0 before the first step).
   double mean_step() const { return counters_.steps ? counters_.step_sum / counters_.steps : 0.0; }
   double candidate_rate() const { return rate_; }

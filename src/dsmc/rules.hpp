@@ -31,8 +31,8 @@
  * **Adding a rule** (docs/extending.md, \ref ext_rule "a new collision rule"): a type with `Pair`, `pair(k, j)`,
  * `attach(sys)` (its per-particle arrays beyond the velocity, an angular velocity say: arrays of
  * particles::System, which every loop, remix and checkpoint handles without naming them),
- * `collide(sys, a, b, pair, contact)` returning an Outcome, the flags `has_projection` and `frames`,
- * and `largest_loss_fraction()`; one more alternative in `Rule` below; the namelist fields that choose
+ * `collide(sys, a, b, pair, contact)` returning an Outcome, `measure(sys, rows)` (its observables, a
+ * rotational temperature say), the flags `has_projection` and `frames`, and `largest_loss_fraction()`; one more alternative in `Rule` below; the namelist fields that choose
  * it (io/config) and the line of run/model.cpp that builds it.
  *
  * Units: the user's. Checked by tests/collide_test.cpp (Rules.*: momentum, the normal velocity
@@ -49,6 +49,7 @@
 
 #include "dsmc/particles.hpp"
 #include "dsmc/rng.hpp"
+#include "dsmc/sample.hpp"
 #include "model/restitution.hpp"
 #include "model/species.hpp"
 
@@ -164,6 +165,8 @@ class SmoothRule {
   /// Adds to `sys` the per-particle arrays the rule needs beyond the velocity (System::add_array), and
   /// sets them for the start: none.
   void attach(particles::System&) {}
+  /// Adds its own observables of a sample (model/observables.hpp names) to `rows`: none.
+  void measure(const particles::System&, sample::Rows&) const {}
   /// The rule on particles a and b of `sys`: the form the loops call (a rule with arrays of its own
   /// reads and writes them here).
   Outcome collide(particles::System& sys, std::size_t a, std::size_t b, const Pair& p, const Contact& c) const {
@@ -215,6 +218,8 @@ class ViscoelasticRule {
   std::optional<double> largest_loss_fraction() const { return std::nullopt; }
   /// No arrays beyond the velocity.
   void attach(particles::System&) {}
+  /// No observables of its own.
+  void measure(const particles::System&, sample::Rows&) const {}
   /// The rule on particles a and b of `sys` (the loops' form).
   Outcome collide(particles::System& sys, std::size_t a, std::size_t b, const Pair& p, const Contact& c) const {
     return collide(sys.v[a], sys.v[b], p, c);

@@ -26,7 +26,6 @@
 #include <utility>
 #include <vector>
 
-#include "dsmc/collide.hpp"
 #include "dsmc/particles.hpp"
 #include "model/observables.hpp"
 #include "model/species.hpp"

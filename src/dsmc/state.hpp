@@ -39,14 +39,18 @@ struct Record {
   std::map<std::string, std::vector<double>> reals;           ///< name -> values
   std::map<std::string, std::vector<std::uint64_t>> integers;  ///< name -> values
 
-  /// Stores one real / one integer / an array under `name`.
+  /// Stores one real under `name`.
   void put(const std::string& name, double x) { reals[name] = {x}; }
+  /// Stores one integer under `name`.
   void put_integer(const std::string& name, std::uint64_t x) { integers[name] = {x}; }
+  /// Stores an array of reals under `name`.
   void put(const std::string& name, std::vector<double> x) { reals[name] = std::move(x); }
+  /// Stores an array of integers under `name`.
   void put(const std::string& name, std::vector<std::uint64_t> x) { integers[name] = std::move(x); }
 
-  /// Whether `name` holds reals / integers.
+  /// Whether `name` holds reals.
   bool has(const std::string& name) const { return reals.count(name) > 0; }
+  /// Whether `name` holds integers.
   bool has_integers(const std::string& name) const { return integers.count(name) > 0; }
 
   /// The array of reals `name`; with `size`, it must have exactly that many. Throws StateError.

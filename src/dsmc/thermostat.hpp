@@ -197,9 +197,11 @@ class Forcing {
   /// What a sample shows it: the time, the temperature, the total pressure tensor (xx, yy, zz, xy, xz, yz;
   /// shear-viscosity.md's midpoint), its kinetic part, and whether the sample enters time averages.
   struct Sample {
-    double time = 0.0, total_temperature = 0.0;
-    std::array<double, 6> pressure{}, kinetic{};
-    bool averaged = false;  ///< not the first sample
+    double time = 0.0;               ///< the sample's time
+    double total_temperature = 0.0;  ///< T
+    std::array<double, 6> pressure{};  ///< P = P^k + P^c: xx, yy, zz, xy, xz, yz
+    std::array<double, 6> kinetic{};   ///< P^k, at the middle of the streaming jump
+    bool averaged = false;             ///< not the first sample: it enters time averages
   };
   /// Adds its observables of a sample to `rows` (rows.add(name, columns, row), names of model/observables.hpp).
   virtual void measure(const Sample& sample, sample::Rows& rows) = 0;

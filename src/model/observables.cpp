@@ -85,8 +85,8 @@ const std::vector<Observable>& table() {
        R::series, kShear},
       {"shear_viscosity_kinetic", "1", "1", "the kinetic part of eta/eta_0 (Enskog gas), with the same correction", R::series, kShear},
       {"shear_viscosity_average", "1", "1",
-       "a replica's time average of eta/eta_0 from &shear average_from on: /observables/shear_viscosity@time_average", R::per_replica, kShear},
-      {"shear_viscosity_kinetic_average", "1", "1", "the same of the kinetic part: /observables/shear_viscosity@time_average_kinetic",
+       "a replica's time average of eta/eta_0 from &shear average_from on: the attribute time_average of /observables/shear_viscosity", R::per_replica, kShear},
+      {"shear_viscosity_kinetic_average", "1", "1", "the same of the kinetic part: the attribute time_average_kinetic of /observables/shear_viscosity",
        R::per_replica, kShear},
       // &agg_frag (docs/agg-frag.md)
       {"size_energy", "energy", "sizes", "kinetic energy about the mean flow of the clusters of each size (for temperature)", R::internal, kAggFrag},
@@ -106,12 +106,28 @@ const Observable& find(std::string_view name) {
   throw std::out_of_range("observables: '" + std::string(name) + "' is not in the table of observables");
 }
 
+/// Text for a cell of a Markdown table read by Doxygen: no bar (the cell's end), no angle bracket (a tag).
+static std::string cell(std::string_view text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '|') out += "&#124;";
+    else if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else out += c;
+  }
+  return out;
+}
+
 std::string markdown() {
   std::ostringstream s;
   s << "| name | unit | columns | definition | replicas | defined in |\n|---|---|---|---|---|---|\n";
-  for (const Observable& o : table())
-    s << "| `" << o.name << "` | " << o.unit << " | " << o.shape << " | " << o.description << " | "
-      << reduction_name(o.reduction) << " | " << o.anchor << " |\n";
+  for (const Observable& o : table()) {
+    const std::string_view anchor = o.anchor;
+    const auto hash = anchor.find('#');  // "docs/PAGE.md#anchor": a link to the section
+    s << "| `" << o.name << "` | " << o.unit << " | " << cell(o.shape) << " | " << cell(o.description) << " | "
+      << reduction_name(o.reduction) << " | \\ref " << anchor.substr(hash + 1) << " \"" << anchor.substr(0, hash)
+      << "\" |\n";
+  }
   return s.str();
 }
 

@@ -25,7 +25,7 @@ namespace gdsmc::observables {
 
 /// How the replicas of a point are reduced, and how the observable is written.
 enum class Reduction {
-  series,       ///< a row per sample: mean and standard error over the replicas, /observables/<name> (H5MD time series)
+  series,       ///< a row per sample: mean and standard error over the replicas, /observables/\<name\> (H5MD time series)
   per_replica,  ///< one row per replica (a time average, a start time): written by its own writer beside the series
   ratio,        ///< &agg_frag per-size temperature: ratio of the replicas' sums (delta-method error)
   internal      ///< a replica's working sum, turned into another observable before writing
@@ -33,12 +33,12 @@ enum class Reduction {
 
 /// One observable.
 struct Observable {
-  const char* name;         ///< its name: the row name, and /observables/<name> for a series
+  const char* name;         ///< its name: the row name, and /observables/\<name\> for a series
   const char* unit;         ///< unit in the unit system "namelist" (\ref output_units "docs/output.md")
   const char* shape;        ///< its columns per sample: "1", "species", "6: xx yy zz xy xz yz", ...
   const char* description;  ///< its definition (the `description` attribute of the written observable)
   Reduction reduction;      ///< how replicas are reduced
-  const char* anchor;       ///< the docs section that defines it: "docs/PAGE.md#anchor"
+  const char* anchor;       ///< the docs section that defines it: page and anchor, e.g. "docs/output.md#output_observables"
 };
 
 /// Every observable, in the order of the docs page.
@@ -63,13 +63,21 @@ struct ReducedDistributions {
   std::vector<double> edges;  ///< bins + 1 edges of v* over [0, range)
   /// One species' distributions (bins each; the errors empty with one replica).
   struct Species {
-    std::vector<double> value, error, delta, delta_error, g, g_error;
-    double sonine_c = 0.0, lambda = 0.0, tail_beta = 0.0;  ///< the measured c_i, lambda_i, beta_i of eq 20
+    std::vector<double> value;        ///< Phi_i(v*) in each bin
+    std::vector<double> error;        ///< its standard error
+    std::vector<double> delta;        ///< Delta_i(v*) of eq 27 (0 where the Maxwellian underflows)
+    std::vector<double> delta_error;  ///< its standard error
+    std::vector<double> g;            ///< G_i(v*) of eq 30
+    std::vector<double> g_error;      ///< its standard error
+    double sonine_c = 0.0;            ///< the measured c_i
+    double lambda = 0.0;              ///< lambda_i = T/(T_i mu_ji)
+    double tail_beta = 0.0;           ///< beta_i of eq 20
   };
   std::vector<Species> species;  ///< one or two
 };
 /// The per-size temperatures of an &agg_frag point, as dsmc/sample.hpp cluster_temperature() derives them.
 struct ClusterTemperature {
-  std::vector<double> value, error;  ///< samples x width
+  std::vector<double> value;  ///< T_k, samples x width
+  std::vector<double> error;  ///< its standard error (empty with one replica)
 };
 }  // namespace gdsmc::observables

@@ -125,6 +125,7 @@ sample::Moments Gas::measure_common(ReplicaResult& result) const {
   result.add("acceptance_overshoots", 1, {static_cast<double>(counters.overshoots)});
   result.add("collisions_per_particle", 1, {collisions_per_particle()});
   result.add("time", 1, {collider_.time()});
+  collider_.measure_rule(result);  // (the rule's own observables: none for smooth or viscoelastic spheres)
   return m;
 }
 
