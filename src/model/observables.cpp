@@ -123,7 +123,7 @@ std::string markdown() {
   s << "| name | unit | columns | definition | replicas | defined in |\n|---|---|---|---|---|---|\n";
   for (const Observable& o : table()) {
     const std::string_view anchor = o.anchor;
-    const auto hash = anchor.find('#');  // "docs/PAGE.md#anchor": a link to the section
+    const auto hash = anchor.find('#');  // the page and its anchor: a link to the section
     s << "| `" << o.name << "` | " << o.unit << " | " << cell(o.shape) << " | " << cell(o.description) << " | "
       << reduction_name(o.reduction) << " | \\ref " << anchor.substr(hash + 1) << " \"" << anchor.substr(0, hash)
       << "\" |\n";
