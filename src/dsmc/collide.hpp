@@ -350,12 +350,15 @@ class Collider {
   bool raise_max_speed(std::size_t particle);
   template <class TryCandidate>
   int run_substep(double t_stop, std::uint64_t event_target, TryCandidate&& try_candidate);
+  /// How a stretch of candidates ended (the loops return it as an int).
+  enum class Stop { reached_time, bound_raised, reached_events };
   /// The unblocked loop `loop` (the scheme's, or a whole-gas step's) with the collider's rule, up to
   /// t_stop or the event target (returns a Stop, collide.cpp): the rule_ and the frame dispatched here,
   /// once per sub-step, to the loops that take them as template parameters.
   int run_loop(Scheme loop, double t_stop, std::uint64_t event_target);
-  /// On a worker: the current block in the block kernel of `rule` (one species or a mixture,
-  /// `lowrank`'s sampler or `majorant`'s), for a rule with the projection (rules.hpp).
+  /// On a worker: the current block in the block kernel of the collider's rule (one species or a
+  /// mixture, `lowrank`'s sampler or `majorant`'s), for a rule with the projection (rules.hpp).
+  void run_block_kernels(bool lowrank, double t_stop);
   template <class Rule>
   void run_block_kernel(const Rule& rule, bool lowrank, double t_stop);
   template <class Rule, bool Framed>

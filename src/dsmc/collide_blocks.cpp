@@ -1,0 +1,576 @@
+// The cache blocks of the collider (collide.hpp "Blocks", "Mixtures in blocks", "Threads inside one replica"): the
+// blocks, their remix, their steps and their bounds, the workers that run them on threads.
+#include "dsmc/collide.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace gdsmc::collide {
+
+namespace {
+/// Near an exact event target with blocks (header "Blocks"): whether a step expected to bring mu
+/// events could reach the `remaining` ones, with 10 % and 8 standard deviations and 16 to spare.
+bool may_reach(double mu, double remaining) { return 1.1 * mu + 8.0 * std::sqrt(mu) + 16.0 > remaining; }
+}  // namespace
+
+void Collider::use_blocks(std::size_t block_size) {
+  block_first_.clear();
+  scattered_.assign(s_, 0);
+  scattered_any_ = false;
+  const std::size_t n = sys_.size();
+  const bool one = s_ == 1 && scheme_ != Scheme::pairs;
+  const bool mixture = s_ > 1 && scheme_ != Scheme::pairs && s_ <= block_species_limit && tables_;
+  if (block_size == 0 || !(one || mixture) || n < 2 * block_size) return;
+  if (counters_.steps > 0) throw std::logic_error("collide: use_blocks() after the run has started");
+  const std::size_t blocks = n / block_size;
+  // A mixture's species with at least min_slice particles a block is dealt in equal slices, a rarer
+  // one scattered, each particle to a uniformly random block (header "Mixtures in blocks").
+  for (std::size_t k = 0; k < s_ && mixture; ++k) {
+    scattered_[k] = sys_.count[k] < min_slice * blocks;
+    scattered_any_ = scattered_any_ || scattered_[k];
+  }
+  // Collisions per particle a blocked step aims at (header "Blocks", "Step length"): sqrt(2 / gamma),
+  // gamma = max (1 - alpha_kj^2)/3 the fraction of the energy that one collision per particle
+  // dissipates at most (docs/schemes.md, "Cache blocks"), at most block_step_collisions_max.
+  // (a rule whose alpha depends on the impact speed has no such bound: block_steps mean free times)
+  const std::optional<double> loss = std::visit([](const auto& r) { return r.largest_loss_fraction(); }, rule_);
+  const double cooling = loss.value_or(0.0);
+  block_step_collisions_ = !loss ? 0.0
+                           : cooling > 2.0 / (block_step_collisions_max * block_step_collisions_max)
+                               ? std::sqrt(2.0 / cooling)
+                               : block_step_collisions_max;
+  // Block j holds the particles dealt to it by remix(): ceil((N_k - j)/blocks) of a dealt species k;
+  // a scattered species' counts are drawn here for the first step (its particles' order is the
+  // initial one, independent of their velocities) and at every remix.
+  block_first_.assign(blocks + 1, 0);
+  slice_first_.assign(blocks * s_, 0);
+  slice_cum_.assign(blocks * (s_ + 1), 0);
+  slice_count_.assign(blocks * s_, 0);
+  for (std::size_t k = 0; k < s_; ++k)
+    for (std::size_t j = 0; j < blocks && !scattered_[k]; ++j)
+      slice_count_[j * s_ + k] = (sys_.count[k] - j + blocks - 1) / blocks;
+  for (std::size_t k = 0; k < s_; ++k)
+    if (scattered_[k]) {
+      for (std::size_t i = 0; i < sys_.count[k]; ++i) ++slice_count_[gen_.below(blocks) * s_ + k];
+    }
+  set_slices();
+  block_max_speed2_.assign(blocks * s_, 0.0);
+  block_credit_.assign(blocks, 0.0);
+  // The remix's scratch memory (deal.hpp), for the largest species and the largest particle array.
+  remix_workspace_ = {};
+  std::size_t element = 0;  // (the largest element of the arrays a particle carries; deal_in_place grows it)
+  sys_.for_each_array([&](const char*, const auto& a) { element = std::max(element, sizeof(a[0])); });
+  for (std::size_t k = 0; k < s_; ++k)
+    if (!scattered_[k]) remix_workspace_.reserve(sys_.count[k], blocks, element, threads_);
+}
+
+void Collider::set_slices() {
+  // Species k's slices lie in its own range in block order: slice j starts after the counts of blocks < j.
+  const std::size_t blocks = block_first_.size() - 1;
+  for (std::size_t k = 0; k < s_; ++k) {
+    std::size_t first = sys_.first[k];
+    for (std::size_t j = 0; j < blocks; ++j) {
+      slice_first_[j * s_ + k] = first;
+      slice_cum_[j * (s_ + 1) + k + 1] = slice_cum_[j * (s_ + 1) + k] + slice_count_[j * s_ + k];
+      first += slice_count_[j * s_ + k];
+    }
+  }
+  for (std::size_t j = 0; j < blocks; ++j) block_first_[j + 1] = block_first_[j] + slice_cum_[j * (s_ + 1) + s_];
+}
+
+void Collider::scatter(std::size_t k) {
+  // Each particle of species k to a uniformly random block, independently (header "Mixtures in blocks"):
+  // the particles in a uniformly random order, then cut into slices of multinomial counts (deal.hpp).
+  // (every array a particle carries, the same transpositions: particles.hpp System::for_each_array)
+  const std::size_t first = sys_.first[k];
+  deal::scatter(gen_, sys_.count[k], block_first_.size() - 1, slice_count_.data() + k, s_,
+                [&](std::size_t i, std::size_t q) {
+                  sys_.for_each_array([&](const char*, auto& a) { std::swap(a[first + i], a[first + q]); });
+                });
+}
+
+void Collider::remix() {
+  // Deal the particles, from a random starting point, round the blocks like cards: old index
+  // (offset + i) mod N goes to block i mod K, slot i div K. Each new block takes every K-th particle
+  // of every old block, so no two particles stay together unless K divides their distance (header).
+  // In place (deal.hpp: the same permutation as dealing into a second array, for any thread count).
+  const std::size_t n = sys_.size(), blocks = block_first_.size() - 1;
+  if (s_ == 1) {
+    const std::size_t offset = gen_.below(n);
+    // (every array a particle carries: particles.hpp System::for_each_array)
+    sys_.for_each_array(
+        [&](const char*, auto& a) { deal::deal_in_place(a.data(), n, blocks, offset, remix_workspace_, threads_); });
+    return;  // one species: the species array is all zeros and does not move
+  }
+  // A mixture: each species is dealt round its own slices, within its own range, so the species
+  // array never changes and every block keeps its share of every species (slice j of species k
+  // starts at first_k + j q_k + min(j, r_k), q_k = N_k div K, r_k = N_k mod K: deal.hpp's blocks).
+  // A scattered species is shuffled and cut anew (scatter).
+  std::vector<std::size_t> offset(s_);
+  for (std::size_t k = 0; k < s_; ++k)
+    if (!scattered_[k]) offset[k] = gen_.below(sys_.count[k]);
+  sys_.for_each_array([&](const char*, auto& a) {
+    for (std::size_t k = 0; k < s_; ++k)
+      if (!scattered_[k])
+        deal::deal_in_place(a.data() + sys_.first[k], sys_.count[k], blocks, offset[k], remix_workspace_, threads_);
+  });
+  if (!scattered_any_) return;
+  for (std::size_t k = 0; k < s_; ++k)
+    if (scattered_[k]) scatter(k);
+  set_slices();
+}
+
+void Collider::set_block_max_speed2(std::size_t j, double* out) {
+  for (std::size_t k = 0; k < s_; ++k) {
+    double max2 = 0.0;
+    const std::size_t first = slice_first_[j * s_ + k];
+    const std::size_t end = first + slice_cum_[j * (s_ + 1) + k + 1] - slice_cum_[j * (s_ + 1) + k];
+    for (std::size_t i = first; i < end; ++i) {
+      const particles::Vec3& v = sys_.v[i];
+      max2 = std::max(max2, v.x * v.x + v.y * v.y + v.z * v.z);
+    }
+    out[k] = max2;
+  }
+}
+
+double Collider::mixture_bound(const double* max_speed2, const std::size_t* cum) const {
+  // B = max_kj pi sigma_kj^2 chi_kj (vmax_k + vmax_j) (as rebuild_bounds, over the given speeds), over
+  // the pairs a block can draw when its counts are given
+  if (s_ > block_species_limit) throw std::logic_error("collide: mixture_bound() beyond block_species_limit species");
+  std::array<std::uint32_t, block_species_limit> present;
+  std::array<double, block_species_limit> speed;
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < s_; ++k)
+    if (cum == nullptr || cum[k + 1] > cum[k]) {
+      present[count] = static_cast<std::uint32_t>(k);
+      speed[count++] = std::sqrt(max_speed2[k]);
+    }
+  double bound = 0.0;
+  for (std::size_t a = 0; a < count; ++a)
+    for (std::size_t b = a; b < count; ++b)
+      bound = std::max(bound, cross_section_[present[a] * s_ + present[b]] * (speed[a] + speed[b]));
+  return bound;
+}
+
+bool Collider::choose_block_lowrank() const {
+  // Both samplers are exact in a block (header "Mixtures in blocks"): a majorant sets only how many
+  // candidates a collision takes, not the process. The one whose candidates cost less in all: R (the
+  // same speed bounds, the same frame factor on both sides) times the cost of a candidate, a `lowrank`
+  // one lowrank_candidate_cost times a `majorant` one (docs/schemes.md, "The cheaper sampler").
+  // Viscoelastic mixtures run the general loops, which follow the scheme.
+  if (block_first_.empty() || s_ == 1) return false;
+  if (!kernels_) return lowrank_blocks();
+  if (block_sampler_ != BlockSampler::cheaper) return block_sampler_ == BlockSampler::lowrank;
+  return lowrank_candidate_cost * block_candidate_rate(true) < block_candidate_rate(false);
+}
+
+double Collider::lowrank_block_rate(const double* max_speed2) const {
+  // set_block_lowrank's R_b = sum_ik pi sigma_ik^2 chi_ik w_i N_bi N_bk n/(N_b - 1) with the gas's counts:
+  // one species gives N n pi sigma^2 chi w, the majorant's N n B/2 with B = 2 pi sigma^2 chi w.
+  const double n_total = static_cast<double>(sys_.size());
+  const double per_volume = mix_.total_density() / (n_total - 1.0);
+  double rate = 0.0;
+  for (std::size_t i = 0; i < s_; ++i) {
+    const double row = std::sqrt(max_speed2[i]) * static_cast<double>(sys_.count[i]) * per_volume;
+    for (std::size_t k = 0; k < s_; ++k) rate += cross_section_[i * s_ + k] * row * static_cast<double>(sys_.count[k]);
+  }
+  return rate;
+}
+
+void Collider::set_whole_gas_bound() {
+  // The whole gas as one block (a step near an exact event target, header "Blocks"): B = 2 pi sigma^2
+  // chi vmax over all particles, R = N n B / 2.
+  range_first_ = 0;
+  range_count_ = sys_.size();
+  if (s_ > 1) {  // a mixture (majorant): the bound of rebuild_bounds over the species' vmax
+    rebuild_bounds();
+    return;
+  }
+  bound_ = 2.0 * cross_section_[0] * max_speed_[0] * speed_factor_;  // speed_factor_: 1 without a frame
+  rate_ = 0.5 * static_cast<double>(sys_.size()) * mix_.total_density() * bound_;
+}
+
+double Collider::block_step_length(double rate, bool acceptance_unknown) const {
+  // Header "Blocks", "Step length": block_steps majorant mean free times N/(2R), or as many as make
+  // block_step_collisions_ collisions per particle at the last step's acceptance (one mean free time
+  // brings `acceptance` collisions per particle), at most max_block_step_candidates candidates, when
+  // that is more; times step_fraction.
+  // The first step, which the simulation's chunks cannot bound yet (they take the last step's rate),
+  // is at most max_block_step_candidates as well.
+  const double n_total = static_cast<double>(sys_.size());
+  const double short_step = block_steps * step_fraction_ * n_total / (2.0 * rate);
+  if (counters_.steps == 0) return std::min(short_step, max_block_step_candidates / rate);
+  if (framed_ || acceptance_unknown || block_step_collisions_ <= 0.0 || step_acceptance_ <= 0.0) return short_step;
+  const double long_step = block_step_collisions_ / step_acceptance_ * step_fraction_ * n_total / (2.0 * rate);
+  return std::max(short_step, std::min(long_step, max_block_step_candidates / rate));
+}
+
+bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool exact_events,
+                              std::uint64_t event_limit, bool to_step_end) {
+  const double entry_time = time_;
+  // The target met exactly: the exact one, else the hard limit beyond a soft one.
+  const std::uint64_t exact_target = exact_events ? std::min(event_target, event_limit) : event_limit;
+  const std::uint64_t any_target = std::min(event_target, event_limit);
+  const std::size_t blocks = block_first_.size() - 1;
+  const double n_total = static_cast<double>(sys_.size());
+  const double n = mix_.total_density();
+  const double cross_section = cross_section_[0];  // one species: the tables always exist
+  // An exact target given inside a blocked step (which was sized without it): the step ends here,
+  // where every block is at time_, unless the rest of it surely stays below the target: its events at
+  // the step's rate so far (which only falls within a step), that rate taken from the events so far
+  // plus 8 standard deviations and 16 (few events bound it loosely, so that a step only begun ends),
+  // plus the margins below. The next step then takes acceptance 1 (its last step was short).
+  if (exact_target != UINT64_MAX && counters_.steps > 0 && !whole_step_ && time_ > step_start_ &&
+      time_ < next_step_time_ && counters_.events < exact_target) {
+    const double remaining = static_cast<double>(exact_target - counters_.events);
+    const double so_far = static_cast<double>(counters_.events - step_events_start_);
+    const double rest = (so_far + 8.0 * std::sqrt(so_far) + 16.0) / (time_ - step_start_) * (next_step_time_ - time_);
+    if (may_reach(rest, remaining)) {
+      counters_.step_sum -= next_step_time_ - time_;  // (the step is as long as it ran: mean_step())
+      next_step_time_ = time_;
+    }
+  }
+  while (time_ < t_target) {
+    if (time_ >= next_step_time_) {
+      // Events are checked between steps only: all blocks are then at the same time.
+      if (counters_.events >= any_target) return true;
+      if (to_step_end && time_ > entry_time) return false;  // one step (or the rest of one) done
+      if (counters_.steps > 0) {  // the acceptance of the step that ended, for the next decision
+        const auto candidates = counters_.candidates - step_candidates_start_;
+        if (candidates > 0)
+          step_acceptance_ = static_cast<double>(counters_.events - step_events_start_) / static_cast<double>(candidates);
+      }
+      if (whole_step_)  // the whole gas's bound covers every block until their first visit
+        for (std::size_t j = 0; j < blocks; ++j)
+          for (std::size_t k = 0; k < s_; ++k) block_max_speed2_[j * s_ + k] = max_speed2_[k];
+      if (counters_.steps == 0)
+        for (std::size_t j = 0; j < blocks; ++j) set_block_max_speed2(j, block_max_speed2_.data() + j * s_);
+      // The step from the largest block bounds so far, an upper bound of the gas's vmax_k (the blocks'
+      // bounds are recomputed when visited): dt = block_step_length().
+      for (std::size_t k = 0; k < s_; ++k) {
+        double global = 0.0;
+        for (std::size_t j = 0; j < blocks; ++j) global = std::max(global, block_max_speed2_[j * s_ + k]);
+        max_speed2_[k] = global;
+        max_speed_[k] = std::sqrt(global);
+      }
+      // In a frame the stage loop sizes its stages by candidate_rate(): R of these bounds, as a
+      // restored collider computes it (restore()).
+      if (framed_) rebuild_bounds();
+      double rate = (s_ == 1 ? 0.5 * n_total * n * 2.0 * cross_section * max_speed_[0]
+                             : 0.5 * n_total * n * mixture_bound(max_speed2_.data())) *
+                    speed_factor_;  // 1 without a frame
+      if (lowrank_blocks()) rebuild_bounds();  // the low-rank majorant's own total over these vmax_k (rate_)
+      // The blocks' sampler for this step (header "Mixtures in blocks", "The cheaper sampler"), chosen
+      // here once for all blocks, so that R, the last step's acceptance and the output do not depend on
+      // the threads. The last step's acceptance is that of the sampler it ran: a whole-gas step runs the
+      // scheme's own; when this step's differs, the acceptance belongs to another majorant (with R
+      // several times another's: 1.8 for 20 species), so that this step judges its events near a target
+      // from the last step's events per unit time (below) and is block_steps long
+      // (Collide.CheaperSamplerMeetsEventTargetsExactly).
+      const bool was_lowrank = whole_step_ ? lowrank_blocks() : block_lowrank_;
+      block_lowrank_ = choose_block_lowrank();
+      const bool sampler_changed = counters_.steps > 0 && block_lowrank_ != was_lowrank;
+      if (block_lowrank_)  // the unblocked `lowrank` total (chi_max >= chi_ik) bounds the blocks' own
+        rate = lowrank_blocks() ? rate_ : lowrank_block_rate(max_speed2_.data()) * speed_factor_;
+      if (rate <= 0.0) {
+        time_ = t_target;
+        return false;
+      }
+      double step = block_step_length(rate, sampler_changed);
+      // Near an exact event target (header "Blocks"): a blocked step is shortened so that its events
+      // (its candidates R dt times the last step's acceptance, plus 10 % and 8 standard deviations)
+      // stay below those left; the first step, with no acceptance measured yet, takes acceptance 1,
+      // which bounds it (every candidate an event). When that leaves less than N/64 events for it (or
+      // 4 blocks' worth, N 4/K, when that is less), the step runs instead on the whole gas, which stops at
+      // the target itself, and is made about 1.5 times as long as the events left need. N/64: a
+      // shortened blocked step costs a remix and a pass for the bounds (about 5 ns a particle), a
+      // whole-gas event about 0.15 us more than a blocked one (the velocities out of the cache), which
+      // break even near N/30 events; the shortened steps bring the events left down about tenfold each.
+      // A step longer than block_steps mean free times (block_step_length) is taken only while an
+      // exact target is out of its reach: within a long step the acceptance falls (the gas cools, bounds
+      // are raised), so its mean underestimates the next step's, and a step after a long one takes
+      // acceptance 1 (a bound) instead; the approach runs steps of block_steps as before.
+      whole_step_ = false;
+      if (exact_target != UINT64_MAX) {
+        const double remaining = static_cast<double>(exact_target - counters_.events);
+        // (and a step after one of fewer than min(N/64, 4 N/K) candidates, e.g. one ended early by a
+        // target given inside it, whose acceptance is too uncertain: also acceptance 1)
+        const double short_candidates = block_steps * step_fraction_ * n_total / 2.0;
+        const auto last_candidates = static_cast<double>(counters_.candidates - step_candidates_start_);
+        const bool after_long = last_candidates > 1.01 * short_candidates;
+        const double fewest = std::min(n_total / 64.0, 4.0 * n_total / static_cast<double>(blocks));
+        const bool too_few = last_candidates < fewest;
+        // After a change of sampler (or a whole-gas step of the other one) the last step's acceptance is
+        // another majorant's: its events per unit time instead, which do not depend on the majorant (and
+        // only fall as the gas cools), over this step's R. (Acceptance 1 there made the whole-gas steps
+        // before a target cover a third of the events left each: a collision-driven binary `lowrank` run
+        // whose blocks run `majorant` took 1.5-2 times as long.)
+        const double last_elapsed = time_ - step_start_;
+        const double changed_acceptance =
+            last_elapsed > 0.0
+                ? std::min(1.0, static_cast<double>(counters_.events - step_events_start_) / last_elapsed / rate)
+                : 1.0;
+        const double acceptance = step_acceptance_ > 0.0 && !after_long && !too_few
+                                      ? (sampler_changed ? changed_acceptance : step_acceptance_)
+                                      : 1.0;
+        if (may_reach(acceptance * rate * step, remaining)) step = std::min(step, short_candidates / rate);  // (never longer)
+        const double expected = acceptance * rate * step;
+        if (may_reach(expected, remaining)) {
+          // the largest mu with 1.1 mu + 8 sqrt(mu) + 16 <= remaining (a quadratic in sqrt(mu))
+          const double root = (-8.0 + std::sqrt(std::max(0.0, 64.0 - 4.4 * (16.0 - remaining)))) / 2.2;
+          const double fits = root > 0.0 ? root * root : 0.0;
+          if (fits >= fewest) {
+            step *= fits / expected;
+          } else {
+            whole_step_ = true;
+            step *= std::min(1.0, 1.5 * remaining / expected);
+          }
+        }
+      }
+      if (whole_step_) {
+        recompute_max_speeds();  // exact, O(N): the bound of the whole gas
+        set_whole_gas_bound();
+        credit_ = 0.0;
+        pending_filled_ = false;
+      } else if (counters_.steps > 0) {
+        remix();
+      }
+      step_events_start_ = counters_.events;
+      step_candidates_start_ = counters_.candidates;
+      step_start_ = time_;
+      next_step_time_ = time_ + step;
+      ++counters_.steps;
+      counters_.step_sum += step;
+    }
+    if (whole_step_) {
+      const double t_stop = std::min(t_target, next_step_time_);
+      const bool lowrank = lowrank_blocks();
+      const int stop = run_loop(lowrank ? Scheme::lowrank : Scheme::majorant, t_stop, any_target);
+      if (stop == static_cast<int>(Stop::bound_raised)) {
+        raised_.clear();
+        set_whole_gas_bound();
+      }
+      if (stop == static_cast<int>(Stop::reached_events)) return true;
+      continue;
+    }
+    const double t_stop = std::min(t_target, next_step_time_);
+    run_blocks_pass(time_, t_stop);
+    time_ = t_stop;
+  }
+  range_first_ = 0;
+  range_count_ = sys_.size();
+  return false;
+}
+
+void Collider::use_threads(int threads) {
+  threads_ = std::max(1, threads);
+  workers_.clear();  // made again, as many as threads, at the next pass
+}
+
+void Collider::make_workers() {
+  // A worker is a copy of this collider's tables and blocks, without the remix's scratch memory (which
+  // only the master uses) and without workers of its own (workers_ is empty while the copies are made).
+  workers_.clear();
+  auto remix_workspace = std::move(remix_workspace_);
+  remix_workspace_ = {};
+  std::vector<Collider> made;
+  made.reserve(static_cast<std::size_t>(threads_));
+  for (int t = 0; t < threads_; ++t) made.push_back(*this);
+  remix_workspace_ = std::move(remix_workspace);
+  workers_ = std::move(made);
+  block_counters_.assign(block_first_.size() - 1, counters_);
+}
+
+void Collider::run_block(Collider& master, std::size_t j, double t_start, double t_stop, bool first_visit,
+                         std::uint64_t key) {
+  gen_ = rng::Xoshiro256pp::substream(key, j);  // keyed by (seed, replica, pass, block): header "Threads"
+  counters_.events = counters_.candidates = counters_.overshoots = 0;
+  counters_.largest_acceptance = counters_.dissipated = 0.0;
+  std::fill(counters_.pair_events.begin(), counters_.pair_events.end(), 0);
+  whole_step_ = false;
+  current_block_ = j;
+  range_first_ = block_first_[j];
+  range_count_ = block_first_[j + 1] - block_first_[j];
+  pending_filled_ = false;  // the drawn-ahead pairs belong to another block
+  block_speed2_ = master.block_max_speed2_.data() + j * s_;
+  // The whole gas's frame (header, "Frame"): G from the master; this block's change of Q kept apart.
+  framed_ = master.framed_;
+  frame_scale_ = master.frame_scale_;
+  frame_inverse_scale_ = master.frame_inverse_scale_;
+  frame_shear_ = master.frame_shear_;
+  speed_factor_ = master.speed_factor_;
+  if (framed_) moments_ = {};
+  // First visit in this step: the block's exact bound, read in order (which also brings the block
+  // into the cache before its random reads).
+  if (first_visit) set_block_max_speed2(j, block_speed2_);
+  time_ = t_start;
+  credit_ = master.block_credit_[j];
+  const double n = mix_.total_density();
+  const bool lowrank = master.block_lowrank_;  // the step's sampler (advance_blocks: choose_block_lowrank)
+  for (;;) {
+    if (lowrank) {
+      set_block_lowrank(n);
+    } else {
+      // A block of N_b particles at the gas's density n: R_b = N_b n B_b / 2 (as R, header "Blocks").
+      // (a mixture: B_b = max_kj pi sigma_kj^2 chi_kj (vmax_bk + vmax_bj) over the block's slices)
+      // (in a frame every relative speed bound times ||G||: header "Frame")
+      bound_ = (s_ == 1 ? 2.0 * cross_section_[0] * std::sqrt(block_speed2_[0])
+                        : mixture_bound(block_speed2_, slice_cum_.data() + j * (s_ + 1))) *
+               speed_factor_;
+      rate_ = 0.5 * static_cast<double>(range_count_) * n * bound_;
+    }
+    if (rate_ <= 0.0) break;
+    if (kernels_) {  // the block kernels of a rule with the projection (rules.hpp): raised bounds handled inside
+      run_block_kernels(lowrank, t_stop);
+      break;
+    }
+    const int stop = run_loop(lowrank ? Scheme::lowrank : Scheme::majorant, t_stop, UINT64_MAX);
+    if (stop != static_cast<int>(Stop::bound_raised)) break;
+  }
+  master.block_credit_[j] = rate_ > 0.0 ? credit_ : 0.0;
+  if (framed_) master.block_moments_[j] = moments_;
+  Counters& out = master.block_counters_[j];
+  out.events = counters_.events;
+  out.candidates = counters_.candidates;
+  out.overshoots = counters_.overshoots;
+  out.largest_acceptance = counters_.largest_acceptance;
+  out.dissipated = counters_.dissipated;
+  std::copy(counters_.pair_events.begin(), counters_.pair_events.end(), out.pair_events.begin());
+}
+
+void Collider::set_block_lowrank(double n) {
+  // The block's own A_ik (header "Mixtures in blocks"): the rank-3 hard-sphere majorant of its slices,
+  // N_k the slice's count and V = (N_b - 1)/n, so that each pair's rate is pi sigma_ik^2 chi_ik |g|
+  // n/(N_b - 1) as in the majorant blocks; vmax_k the block's. Columns as well as rows: the slices'
+  // counts differ between blocks.
+  // With at most block_species_limit species the entries are few: each is computed exactly, with
+  // chi_ik itself instead of chi_max (the rank-3 form needs one chi for all pairs), A_ik = pi
+  // sigma_ik^2 chi_ik w_i N_i N_k / V (the form of segment_tree.hpp's hard_sphere_factors with chi_ik),
+  // a candidate then accepted with |g| / (w_i + w_k) (run_lowrank); a pair is drawn from their alias
+  // table (one uniform) rather than by the trees' descents. Only the P species present in the block
+  // (a scattered species may have no particle there) enter the kernel's table: P^2 pairs.
+  const std::size_t* cum = slice_cum_.data() + current_block_ * (s_ + 1);
+  lowrank_volume_ = static_cast<double>(range_count_ - 1) / n;
+  for (std::size_t k = 0; k < s_; ++k) max_speed_[k] = std::sqrt(block_speed2_[k]);
+  pending_filled_ = false;  // drawn from the old A_ik: redraw (header, "Look-ahead")
+  if (!kernels_) {  // run_lowrank's draw, over all S^2 pairs
+    pair_weights_.resize(s_ * s_);
+    rate_ = 0.0;
+    for (std::size_t i = 0; i < s_; ++i)
+      for (std::size_t k = 0; k < s_; ++k) {
+        const auto count_i = static_cast<double>(cum[i + 1] - cum[i]), count_k = static_cast<double>(cum[k + 1] - cum[k]);
+        pair_weights_[i * s_ + k] = cross_section_[i * s_ + k] * max_speed_[i] * count_i * count_k / lowrank_volume_;
+        rate_ += pair_weights_[i * s_ + k];
+      }
+    if (rate_ > 0.0) pair_alias_.build(pair_weights_);
+    return;
+  }
+  // The mixture kernel's one-word draw (header "Mixtures in blocks"): an alias table over P = 2^m
+  // cells, the pairs of the present species followed by zero weights (never drawn: Vose's construction
+  // sends them to their alias), so that the cell is m uniform bits of the word.
+  std::array<std::uint32_t, block_species_limit> present;
+  std::size_t p = 0;
+  for (std::size_t k = 0; k < s_; ++k)
+    if (cum[k + 1] > cum[k]) present[p++] = static_cast<std::uint32_t>(k);
+  const std::size_t pairs = p * p;
+  pair_weights_.resize(pairs);
+  rate_ = 0.0;
+  for (std::size_t a = 0; a < p; ++a)
+    for (std::size_t b = 0; b < p; ++b) {
+      const std::size_t i = present[a], k = present[b];
+      const auto count_i = static_cast<double>(cum[i + 1] - cum[i]), count_k = static_cast<double>(cum[k + 1] - cum[k]);
+      // (in a frame every w_i times ||G||: header "Frame"; speed_factor_ is 1 without one)
+      pair_weights_[a * p + b] =
+          cross_section_[i * s_ + k] * (max_speed_[i] * speed_factor_) * count_i * count_k / lowrank_volume_;
+      rate_ += pair_weights_[a * p + b];
+    }
+  if (!(rate_ > 0.0)) return;
+  unsigned bits = 1;  // at least two cells (one species present: its pair and a zero weight), r >> 64 being undefined
+  while ((std::size_t{1} << bits) < pairs) ++bits;
+  lowrank_cell_bits_ = bits;
+  pair_weights_.resize(std::size_t{1} << bits, 0.0);
+  pair_alias_.build(pair_weights_);
+  pair_weights_.resize(pairs);
+  const double coin_scale = std::ldexp(1.0, 16 - static_cast<int>(bits));  // 2^c, c = 16 - m coin bits
+  lowrank_cells_.resize(std::size_t{1} << bits);
+  for (std::size_t c = 0; c < lowrank_cells_.size(); ++c) {
+    // Keep cell c with probability t: with U = (q + V)/2^c (q the c coin bits, V uniform), U < t iff
+    // q < floor(t 2^c), or q = floor(t 2^c) and V < t 2^c - floor(t 2^c) (both exact in doubles).
+    const double scaled = pair_alias_.threshold[c] * coin_scale;
+    const double whole = std::floor(scaled);
+    const auto other = static_cast<std::uint32_t>(pair_alias_.alias[c]);
+    lowrank_cells_[c] = {scaled - whole, static_cast<std::uint32_t>(whole),
+                         c < pairs ? static_cast<std::uint32_t>(c) : other, other};
+  }
+  lowrank_outcomes_.resize(pairs);
+  const std::size_t* slice = slice_first_.data() + current_block_ * s_;
+  // Every slice of the block below 2^24 (the one-word draw); else every candidate's reject is 2^24.
+  bool narrow = true;
+  for (std::size_t i = 0; i < s_; ++i) narrow = narrow && cum[i + 1] - cum[i] < (std::size_t{1} << 24);
+  for (std::size_t a = 0; a < p; ++a)
+    for (std::size_t b = 0; b < p; ++b) {
+      const std::size_t i = present[a], k = present[b];
+      const auto count_i = static_cast<std::uint32_t>(cum[i + 1] - cum[i]);
+      const auto count_k = static_cast<std::uint32_t>(cum[k + 1] - cum[k]);
+      // Lemire's multiply-shift in 24 bits (Lemire 2019, as rng::Xoshiro256pp::below_pair): x n >> 24 is
+      // uniform on [0, n) once the x with x n mod 2^24 < 2^24 mod n are rejected.
+      lowrank_outcomes_[a * p + b] = {static_cast<std::uint32_t>(slice[i]), count_i, static_cast<std::uint32_t>(slice[k]),
+                                      count_k, narrow ? (1u << 24) % count_i : 1u << 24,
+                                      narrow ? (1u << 24) % count_k : 1u << 24, static_cast<std::uint32_t>(i * s_ + k)};
+      pair_limit_[i * s_ + k] = (max_speed_[i] + max_speed_[k]) * speed_factor_;  // (pairs of absent species: never drawn)
+    }
+}
+
+void Collider::run_blocks_pass(double t_start, double t_stop) {
+  if (workers_.size() != static_cast<std::size_t>(threads_)) make_workers();
+  const std::size_t blocks = block_first_.size() - 1;
+  if (scattered_any_)  // the slices of this step's remix (the workers are copies made earlier)
+    for (Collider& w : workers_) {
+      w.slice_first_ = slice_first_;
+      w.slice_cum_ = slice_cum_;
+      w.block_first_ = block_first_;
+    }
+  const std::uint64_t key = gen_();  // this pass's key (header "Threads")
+  if (framed_) block_moments_.assign(blocks, std::array<double, 4>{});
+  const bool first_visit = t_start == step_start_;
+  std::vector<std::exception_ptr> failure(blocks);  // exceptions must not leave an OpenMP region
+  const auto n_blocks = static_cast<std::ptrdiff_t>(blocks);
+#pragma omp parallel for num_threads(threads_) schedule(dynamic, 1) if (threads_ > 1)
+  for (std::ptrdiff_t j = 0; j < n_blocks; ++j) {
+#ifdef _OPENMP
+    const auto t = static_cast<std::size_t>(omp_get_thread_num());
+#else
+    const std::size_t t = 0;
+#endif
+    try {
+      workers_[t].run_block(*this, static_cast<std::size_t>(j), t_start, t_stop, first_visit, key);
+    } catch (...) {
+      failure[static_cast<std::size_t>(j)] = std::current_exception();
+    }
+  }
+  for (const auto& f : failure)
+    if (f) std::rethrow_exception(f);
+  // The blocks' counts in block order: the same sums for any number of threads.
+  for (std::size_t j = 0; j < blocks; ++j) {
+    const Counters& c = block_counters_[j];
+    counters_.events += c.events;
+    counters_.candidates += c.candidates;
+    counters_.overshoots += c.overshoots;
+    counters_.largest_acceptance = std::max(counters_.largest_acceptance, c.largest_acceptance);
+    counters_.dissipated += c.dissipated;
+    for (std::size_t p = 0; p < c.pair_events.size(); ++p) counters_.pair_events[p] += c.pair_events[p];
+    if (framed_)
+      for (std::size_t q = 0; q < 4; ++q) moments_[q] += block_moments_[j][q];
+  }
+  time_ = t_stop;
+}
+
+}  // namespace gdsmc::collide
