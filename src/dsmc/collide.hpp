@@ -369,6 +369,16 @@ class Collider {
   /// `acceptance_unknown`: the last step's acceptance is another sampler's (block_steps mean free times).
   double block_step_length(double rate, bool acceptance_unknown = false) const;
   void set_whole_gas_bound();       ///< bound_, rate_ and range of a whole-gas step (with blocks)
+  /// With blocks: an exact target given inside a step ends the step here when its rest could pass it.
+  void end_step_at_target(std::uint64_t exact_target);
+  /// With blocks, at a step's start: the last step's acceptance, the gas's bounds from the blocks', the
+  /// step's sampler (`sampler_changed`: not the last step's) and its candidate rate R.
+  double blocked_step_rate(bool& sampler_changed);
+  /// With blocks: the step of length `step` at rate R shortened near an exact event target, or run on the
+  /// whole gas (whole_step_) when too few events are left for a blocked one (header "Blocks").
+  double approach_target(double step, double rate, std::uint64_t exact_target, bool sampler_changed);
+  /// With blocks: starts the step of length `step` (a remix, or the whole gas's exact bound).
+  void begin_blocked_step(double step);
   bool whole_step_ = false;         ///< with blocks: this step runs on the whole gas (near an event target)
   double step_acceptance_ = 0.0;    ///< with blocks: events per candidate in the last step
   std::uint64_t step_events_start_ = 0, step_candidates_start_ = 0;  ///< counters at this step's start

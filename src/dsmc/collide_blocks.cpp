@@ -213,147 +213,151 @@ double Collider::block_step_length(double rate, bool acceptance_unknown) const {
   return std::max(short_step, std::min(long_step, max_block_step_candidates / rate));
 }
 
+void Collider::end_step_at_target(std::uint64_t exact_target) {
+  // An exact target given inside a blocked step (which was sized without it): the step ends here,
+  // where every block is at time_, unless the rest of it surely stays below the target: its events at
+  // the step's rate so far (which only falls within a step), that rate taken from the events so far
+  // plus 8 standard deviations and 16 (few events bound it loosely, so that a step only begun ends),
+  // plus the margins below. The next step then takes acceptance 1 (its last step was short).
+  if (exact_target == UINT64_MAX || counters_.steps == 0 || whole_step_ || !(time_ > step_start_) ||
+      !(time_ < next_step_time_) || counters_.events >= exact_target)
+    return;
+  const double remaining = static_cast<double>(exact_target - counters_.events);
+  const double so_far = static_cast<double>(counters_.events - step_events_start_);
+  const double rest = (so_far + 8.0 * std::sqrt(so_far) + 16.0) / (time_ - step_start_) * (next_step_time_ - time_);
+  if (may_reach(rest, remaining)) {
+    counters_.step_sum -= next_step_time_ - time_;  // (the step is as long as it ran: mean_step())
+    next_step_time_ = time_;
+  }
+}
+
+double Collider::blocked_step_rate(bool& sampler_changed) {
+  const std::size_t blocks = block_first_.size() - 1;
+  const double n_total = static_cast<double>(sys_.size());
+  const double n = mix_.total_density();
+  if (counters_.steps > 0) {  // the acceptance of the step that ended, for the next decision
+    const auto candidates = counters_.candidates - step_candidates_start_;
+    if (candidates > 0)
+      step_acceptance_ = static_cast<double>(counters_.events - step_events_start_) / static_cast<double>(candidates);
+  }
+  if (whole_step_)  // the whole gas's bound covers every block until their first visit
+    for (std::size_t j = 0; j < blocks; ++j)
+      for (std::size_t k = 0; k < s_; ++k) block_max_speed2_[j * s_ + k] = max_speed2_[k];
+  if (counters_.steps == 0)
+    for (std::size_t j = 0; j < blocks; ++j) set_block_max_speed2(j, block_max_speed2_.data() + j * s_);
+  // The step from the largest block bounds so far, an upper bound of the gas's vmax_k (the blocks'
+  // bounds are recomputed when visited): dt = block_step_length().
+  for (std::size_t k = 0; k < s_; ++k) {
+    double global = 0.0;
+    for (std::size_t j = 0; j < blocks; ++j) global = std::max(global, block_max_speed2_[j * s_ + k]);
+    max_speed2_[k] = global;
+    max_speed_[k] = std::sqrt(global);
+  }
+  // In a frame the stage loop sizes its stages by candidate_rate(): R of these bounds, as a
+  // restored collider computes it (restore()).
+  if (framed_) rebuild_bounds();
+  double rate = (s_ == 1 ? 0.5 * n_total * n * 2.0 * cross_section_[0] * max_speed_[0]  // (one species: the tables always exist)
+                         : 0.5 * n_total * n * mixture_bound(max_speed2_.data())) *
+                speed_factor_;  // 1 without a frame
+  if (lowrank_blocks()) rebuild_bounds();  // the low-rank majorant's own total over these vmax_k (rate_)
+  // The blocks' sampler for this step (header "Mixtures in blocks", "The cheaper sampler"), chosen
+  // here once for all blocks, so that R, the last step's acceptance and the output do not depend on
+  // the threads. The last step's acceptance is that of the sampler it ran: a whole-gas step runs the
+  // scheme's own; when this step's differs, the acceptance belongs to another majorant (with R
+  // several times another's: 1.8 for 20 species), so that this step judges its events near a target
+  // from the last step's events per unit time (approach_target) and is block_steps long
+  // (Collide.CheaperSamplerMeetsEventTargetsExactly).
+  const bool was_lowrank = whole_step_ ? lowrank_blocks() : block_lowrank_;
+  block_lowrank_ = choose_block_lowrank();
+  sampler_changed = counters_.steps > 0 && block_lowrank_ != was_lowrank;
+  if (block_lowrank_)  // the unblocked `lowrank` total (chi_max >= chi_ik) bounds the blocks' own
+    rate = lowrank_blocks() ? rate_ : lowrank_block_rate(max_speed2_.data()) * speed_factor_;
+  return rate;
+}
+
+double Collider::approach_target(double step, double rate, std::uint64_t exact_target, bool sampler_changed) {
+  // Near an exact event target (header "Blocks"): a blocked step is shortened so that its events
+  // (its candidates R dt times the last step's acceptance, plus 10 % and 8 standard deviations)
+  // stay below those left; the first step, with no acceptance measured yet, takes acceptance 1,
+  // which bounds it (every candidate an event). When that leaves less than N/64 events for it (or
+  // 4 blocks' worth, N 4/K, when that is less), the step runs instead on the whole gas, which stops at
+  // the target itself, and is made about 1.5 times as long as the events left need (\ref sch_blocks "docs/schemes.md").
+  // A step longer than block_steps mean free times (block_step_length) is taken only while an exact
+  // target is out of its reach: within a long step the acceptance falls (the gas cools, bounds are
+  // raised), so its mean underestimates the next step's, and a step after a long one takes acceptance
+  // 1 (a bound) instead; the approach runs steps of block_steps.
+  whole_step_ = false;
+  if (exact_target == UINT64_MAX) return step;
+  const double n_total = static_cast<double>(sys_.size());
+  const double remaining = static_cast<double>(exact_target - counters_.events);
+  // (and a step after one of fewer than min(N/64, 4 N/K) candidates, e.g. one ended early by a
+  // target given inside it, whose acceptance is too uncertain: also acceptance 1)
+  const double short_candidates = block_steps * step_fraction_ * n_total / 2.0;
+  const auto last_candidates = static_cast<double>(counters_.candidates - step_candidates_start_);
+  const bool after_long = last_candidates > 1.01 * short_candidates;
+  const double fewest = std::min(n_total / 64.0, 4.0 * n_total / static_cast<double>(block_first_.size() - 1));
+  const bool too_few = last_candidates < fewest;
+  // After a change of sampler (or a whole-gas step of the other one) the last step's acceptance is
+  // another majorant's: its events per unit time instead, which do not depend on the majorant (and
+  // only fall as the gas cools), over this step's R (\ref sch_blocks "docs/schemes.md", "The cheaper sampler").
+  const double last_elapsed = time_ - step_start_;
+  const double changed_acceptance =
+      last_elapsed > 0.0 ? std::min(1.0, static_cast<double>(counters_.events - step_events_start_) / last_elapsed / rate)
+                         : 1.0;
+  const double acceptance = step_acceptance_ > 0.0 && !after_long && !too_few
+                                ? (sampler_changed ? changed_acceptance : step_acceptance_)
+                                : 1.0;
+  if (may_reach(acceptance * rate * step, remaining)) step = std::min(step, short_candidates / rate);  // (never longer)
+  const double expected = acceptance * rate * step;
+  if (!may_reach(expected, remaining)) return step;
+  // the largest mu with 1.1 mu + 8 sqrt(mu) + 16 <= remaining (a quadratic in sqrt(mu))
+  const double root = (-8.0 + std::sqrt(std::max(0.0, 64.0 - 4.4 * (16.0 - remaining)))) / 2.2;
+  const double fits = root > 0.0 ? root * root : 0.0;
+  if (fits >= fewest) return step * (fits / expected);
+  whole_step_ = true;
+  return step * std::min(1.0, 1.5 * remaining / expected);
+}
+
+void Collider::begin_blocked_step(double step) {
+  if (whole_step_) {
+    recompute_max_speeds();  // exact, O(N): the bound of the whole gas
+    set_whole_gas_bound();
+    credit_ = 0.0;
+    pending_filled_ = false;
+  } else if (counters_.steps > 0) {
+    remix();
+  }
+  step_events_start_ = counters_.events;
+  step_candidates_start_ = counters_.candidates;
+  step_start_ = time_;
+  next_step_time_ = time_ + step;
+  ++counters_.steps;
+  counters_.step_sum += step;
+}
+
 bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool exact_events,
                               std::uint64_t event_limit, bool to_step_end) {
   const double entry_time = time_;
   // The target met exactly: the exact one, else the hard limit beyond a soft one.
   const std::uint64_t exact_target = exact_events ? std::min(event_target, event_limit) : event_limit;
   const std::uint64_t any_target = std::min(event_target, event_limit);
-  const std::size_t blocks = block_first_.size() - 1;
-  const double n_total = static_cast<double>(sys_.size());
-  const double n = mix_.total_density();
-  const double cross_section = cross_section_[0];  // one species: the tables always exist
-  // An exact target given inside a blocked step (which was sized without it): the step ends here,
-  // where every block is at time_, unless the rest of it surely stays below the target: its events at
-  // the step's rate so far (which only falls within a step), that rate taken from the events so far
-  // plus 8 standard deviations and 16 (few events bound it loosely, so that a step only begun ends),
-  // plus the margins below. The next step then takes acceptance 1 (its last step was short).
-  if (exact_target != UINT64_MAX && counters_.steps > 0 && !whole_step_ && time_ > step_start_ &&
-      time_ < next_step_time_ && counters_.events < exact_target) {
-    const double remaining = static_cast<double>(exact_target - counters_.events);
-    const double so_far = static_cast<double>(counters_.events - step_events_start_);
-    const double rest = (so_far + 8.0 * std::sqrt(so_far) + 16.0) / (time_ - step_start_) * (next_step_time_ - time_);
-    if (may_reach(rest, remaining)) {
-      counters_.step_sum -= next_step_time_ - time_;  // (the step is as long as it ran: mean_step())
-      next_step_time_ = time_;
-    }
-  }
+  end_step_at_target(exact_target);
   while (time_ < t_target) {
     if (time_ >= next_step_time_) {
       // Events are checked between steps only: all blocks are then at the same time.
       if (counters_.events >= any_target) return true;
       if (to_step_end && time_ > entry_time) return false;  // one step (or the rest of one) done
-      if (counters_.steps > 0) {  // the acceptance of the step that ended, for the next decision
-        const auto candidates = counters_.candidates - step_candidates_start_;
-        if (candidates > 0)
-          step_acceptance_ = static_cast<double>(counters_.events - step_events_start_) / static_cast<double>(candidates);
-      }
-      if (whole_step_)  // the whole gas's bound covers every block until their first visit
-        for (std::size_t j = 0; j < blocks; ++j)
-          for (std::size_t k = 0; k < s_; ++k) block_max_speed2_[j * s_ + k] = max_speed2_[k];
-      if (counters_.steps == 0)
-        for (std::size_t j = 0; j < blocks; ++j) set_block_max_speed2(j, block_max_speed2_.data() + j * s_);
-      // The step from the largest block bounds so far, an upper bound of the gas's vmax_k (the blocks'
-      // bounds are recomputed when visited): dt = block_step_length().
-      for (std::size_t k = 0; k < s_; ++k) {
-        double global = 0.0;
-        for (std::size_t j = 0; j < blocks; ++j) global = std::max(global, block_max_speed2_[j * s_ + k]);
-        max_speed2_[k] = global;
-        max_speed_[k] = std::sqrt(global);
-      }
-      // In a frame the stage loop sizes its stages by candidate_rate(): R of these bounds, as a
-      // restored collider computes it (restore()).
-      if (framed_) rebuild_bounds();
-      double rate = (s_ == 1 ? 0.5 * n_total * n * 2.0 * cross_section * max_speed_[0]
-                             : 0.5 * n_total * n * mixture_bound(max_speed2_.data())) *
-                    speed_factor_;  // 1 without a frame
-      if (lowrank_blocks()) rebuild_bounds();  // the low-rank majorant's own total over these vmax_k (rate_)
-      // The blocks' sampler for this step (header "Mixtures in blocks", "The cheaper sampler"), chosen
-      // here once for all blocks, so that R, the last step's acceptance and the output do not depend on
-      // the threads. The last step's acceptance is that of the sampler it ran: a whole-gas step runs the
-      // scheme's own; when this step's differs, the acceptance belongs to another majorant (with R
-      // several times another's: 1.8 for 20 species), so that this step judges its events near a target
-      // from the last step's events per unit time (below) and is block_steps long
-      // (Collide.CheaperSamplerMeetsEventTargetsExactly).
-      const bool was_lowrank = whole_step_ ? lowrank_blocks() : block_lowrank_;
-      block_lowrank_ = choose_block_lowrank();
-      const bool sampler_changed = counters_.steps > 0 && block_lowrank_ != was_lowrank;
-      if (block_lowrank_)  // the unblocked `lowrank` total (chi_max >= chi_ik) bounds the blocks' own
-        rate = lowrank_blocks() ? rate_ : lowrank_block_rate(max_speed2_.data()) * speed_factor_;
+      bool sampler_changed = false;
+      const double rate = blocked_step_rate(sampler_changed);
       if (rate <= 0.0) {
         time_ = t_target;
         return false;
       }
-      double step = block_step_length(rate, sampler_changed);
-      // Near an exact event target (header "Blocks"): a blocked step is shortened so that its events
-      // (its candidates R dt times the last step's acceptance, plus 10 % and 8 standard deviations)
-      // stay below those left; the first step, with no acceptance measured yet, takes acceptance 1,
-      // which bounds it (every candidate an event). When that leaves less than N/64 events for it (or
-      // 4 blocks' worth, N 4/K, when that is less), the step runs instead on the whole gas, which stops at
-      // the target itself, and is made about 1.5 times as long as the events left need. N/64: a
-      // shortened blocked step costs a remix and a pass for the bounds (about 5 ns a particle), a
-      // whole-gas event about 0.15 us more than a blocked one (the velocities out of the cache), which
-      // break even near N/30 events; the shortened steps bring the events left down about tenfold each.
-      // A step longer than block_steps mean free times (block_step_length) is taken only while an
-      // exact target is out of its reach: within a long step the acceptance falls (the gas cools, bounds
-      // are raised), so its mean underestimates the next step's, and a step after a long one takes
-      // acceptance 1 (a bound) instead; the approach runs steps of block_steps as before.
-      whole_step_ = false;
-      if (exact_target != UINT64_MAX) {
-        const double remaining = static_cast<double>(exact_target - counters_.events);
-        // (and a step after one of fewer than min(N/64, 4 N/K) candidates, e.g. one ended early by a
-        // target given inside it, whose acceptance is too uncertain: also acceptance 1)
-        const double short_candidates = block_steps * step_fraction_ * n_total / 2.0;
-        const auto last_candidates = static_cast<double>(counters_.candidates - step_candidates_start_);
-        const bool after_long = last_candidates > 1.01 * short_candidates;
-        const double fewest = std::min(n_total / 64.0, 4.0 * n_total / static_cast<double>(blocks));
-        const bool too_few = last_candidates < fewest;
-        // After a change of sampler (or a whole-gas step of the other one) the last step's acceptance is
-        // another majorant's: its events per unit time instead, which do not depend on the majorant (and
-        // only fall as the gas cools), over this step's R. (Acceptance 1 there made the whole-gas steps
-        // before a target cover a third of the events left each: a collision-driven binary `lowrank` run
-        // whose blocks run `majorant` took 1.5-2 times as long.)
-        const double last_elapsed = time_ - step_start_;
-        const double changed_acceptance =
-            last_elapsed > 0.0
-                ? std::min(1.0, static_cast<double>(counters_.events - step_events_start_) / last_elapsed / rate)
-                : 1.0;
-        const double acceptance = step_acceptance_ > 0.0 && !after_long && !too_few
-                                      ? (sampler_changed ? changed_acceptance : step_acceptance_)
-                                      : 1.0;
-        if (may_reach(acceptance * rate * step, remaining)) step = std::min(step, short_candidates / rate);  // (never longer)
-        const double expected = acceptance * rate * step;
-        if (may_reach(expected, remaining)) {
-          // the largest mu with 1.1 mu + 8 sqrt(mu) + 16 <= remaining (a quadratic in sqrt(mu))
-          const double root = (-8.0 + std::sqrt(std::max(0.0, 64.0 - 4.4 * (16.0 - remaining)))) / 2.2;
-          const double fits = root > 0.0 ? root * root : 0.0;
-          if (fits >= fewest) {
-            step *= fits / expected;
-          } else {
-            whole_step_ = true;
-            step *= std::min(1.0, 1.5 * remaining / expected);
-          }
-        }
-      }
-      if (whole_step_) {
-        recompute_max_speeds();  // exact, O(N): the bound of the whole gas
-        set_whole_gas_bound();
-        credit_ = 0.0;
-        pending_filled_ = false;
-      } else if (counters_.steps > 0) {
-        remix();
-      }
-      step_events_start_ = counters_.events;
-      step_candidates_start_ = counters_.candidates;
-      step_start_ = time_;
-      next_step_time_ = time_ + step;
-      ++counters_.steps;
-      counters_.step_sum += step;
+      begin_blocked_step(approach_target(block_step_length(rate, sampler_changed), rate, exact_target, sampler_changed));
     }
+    const double t_stop = std::min(t_target, next_step_time_);
     if (whole_step_) {
-      const double t_stop = std::min(t_target, next_step_time_);
-      const bool lowrank = lowrank_blocks();
-      const int stop = run_loop(lowrank ? Scheme::lowrank : Scheme::majorant, t_stop, any_target);
+      const int stop = run_loop(lowrank_blocks() ? Scheme::lowrank : Scheme::majorant, t_stop, any_target);
       if (stop == static_cast<int>(Stop::bound_raised)) {
         raised_.clear();
         set_whole_gas_bound();
@@ -361,7 +365,6 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
       if (stop == static_cast<int>(Stop::reached_events)) return true;
       continue;
     }
-    const double t_stop = std::min(t_target, next_step_time_);
     run_blocks_pass(time_, t_stop);
     time_ = t_stop;
   }

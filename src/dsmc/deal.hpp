@@ -151,59 +151,76 @@ struct Workspace {
   }
 };
 
-/// Deals `data[0 .. n)` round `k` blocks from `offset` (< n), in place: afterwards
-/// data[j q + min(j, r) + i div k] holds what data[(offset + i) mod n] held, j = i mod k, q = n div k,
-/// r = n mod k (header, "The permutation"). `T` is trivially copyable; k >= 1. Stages 2 and 3 run on
-/// up to `threads` OpenMP threads; the result is the same for any number.
+namespace detail {
+
+/// One call of deal_in_place(): its sizes and the four stages (header, "Four stages").
 template <class T>
-void deal_in_place(T* data, std::size_t n, std::size_t k, std::size_t offset, Workspace& workspace, int threads = 1) {
-  if (n < 2 || k < 1) return;
-  const Workspace::Layout l = Workspace::layout(n, k);
-  if (k == 1 || l.seg == 0) {  // y itself is the dealing (one block, or at most one element a block)
-    if (offset != 0) std::rotate(data, data + offset, data + n);
-    return;
-  }
-#ifdef _OPENMP
-  threads = std::max(1, threads);
-#else
-  threads = 1;
-#endif
-  workspace.reserve(n, k, sizeof(T), threads);
-  const std::size_t q = l.q, r = l.r, seg = l.seg, rows = l.rows, slots = l.slots, tile = l.tile, m = l.aside;
-  // The grid places are shifted by offset div seg, so that each segment lands near where it lies (at
-  // most seg before it, less than 2 aside after it); an offset in the last aside elements needs no shift.
-  const std::size_t ahead = l.ahead, shift = std::min(offset / seg, slots) % slots;
-  T* const aside = reinterpret_cast<T*>(workspace.buffer.data());
-  auto first = [q, r](std::size_t j) { return j * q + std::min(j, r); };
-  auto place = [&](std::size_t t) {  // grid place t: block t div rows, row group t mod rows
-    const std::size_t j = t / rows;
-    return data + first(j) + (t - j * rows) * seg;
-  };
-  auto read_y = [&](T* to, std::size_t i, std::size_t count) {  // y[i .. i + count), y[i] = data[(offset + i) mod n]
-    std::size_t at = offset + i;
-    if (at >= n) at -= n;
-    const std::size_t part = std::min(count, n - at);
-    std::memcpy(static_cast<void*>(to), data + at, part * sizeof(T));
-    std::memcpy(static_cast<void*>(to + part), data, (count - part) * sizeof(T));
-  };
-  // Stage 1: the elements after the last whole tile of y aside.
-  read_y(aside, l.whole, m);
-  // Stage 2: segment s of y (column s mod k of tile s div k) to grid place (s + shift) mod slots, near
-  // where it lies in y. Each thread takes a run of tiles in order, having saved the first `ahead` and
-  // the last tile of its run (the only ones other runs' segments can land on), and reads the next
-  // `ahead` tiles of its run before a tile's segments are written.
-  const int threads2 = Workspace::stage2_threads(l, threads);
+class Dealer {
+ public:
+  Dealer(T* data, std::size_t n, std::size_t k, std::size_t offset, Workspace& workspace, int threads)
+      : data_(data), n_(n), k_(k), offset_(offset), l_(Workspace::layout(n, k)), workspace_(workspace), threads_(threads),
+        // The grid places are shifted by offset div seg, so that each segment lands near where it lies (at
+        // most seg before it, less than 2 aside after it); an offset in the last aside elements needs no shift.
+        shift_(std::min(offset / l_.seg, l_.slots) % l_.slots),
+        aside_(reinterpret_cast<T*>(workspace.buffer.data())) {}
+
+  /// Stage 1: the elements after the last whole tile of y aside.
+  void set_aside() { read_y(aside_, l_.whole, l_.aside); }
+  /// Stage 2: segment s of y (column s mod k of tile s div k) to grid place (s + shift) mod slots, near
+  /// where it lies in y. Each thread takes a run of tiles in order, having saved the first `ahead` and
+  /// the last tile of its run (the only ones other runs' segments can land on), and reads the next
+  /// `ahead` tiles of its run before a tile's segments are written.
+  void transpose_tiles() {
+    const int threads2 = Workspace::stage2_threads(l_, threads_);
 #pragma omp parallel num_threads(threads2) if (threads2 > 1)
-  {
-    int p = 0;
+    {
+      int p = 0;
 #ifdef _OPENMP
-    p = omp_get_thread_num();
+      p = omp_get_thread_num();
 #endif
-    const std::size_t g_begin = rows * static_cast<std::size_t>(p) / static_cast<std::size_t>(threads2);
-    const std::size_t g_end = rows * static_cast<std::size_t>(p + 1) / static_cast<std::size_t>(threads2);
-    T* const saved = aside + m + static_cast<std::size_t>(p) * l.per_thread;  // ahead + 1 tiles
-    T* const ring = saved + (ahead + 1) * tile;                                  // ahead + 1 tiles
-    T* const columns = ring + (ahead + 1) * tile;                                // one tile
+      transpose_run(l_.rows * static_cast<std::size_t>(p) / static_cast<std::size_t>(threads2),
+                    l_.rows * static_cast<std::size_t>(p + 1) / static_cast<std::size_t>(threads2), p);
+    }
+  }
+  /// Stage 3: place t = j rows + g takes segment s = g k + j, now at place (s + shift) mod slots, cycle
+  /// by cycle (cycles are disjoint: any thread may follow any of them); long cycles in pieces.
+  void follow_cycles() {
+    find_cycles();
+    move_cycles();
+    move_pieces();
+  }
+  /// Stage 4: element whole + i of y is in row whole/k + i div k, column i mod k (whole is a multiple of k).
+  void place_aside() {
+    for (std::size_t i = 0; i < l_.aside; ++i) data_[first(i % k_) + l_.rows * l_.seg + i / k_] = aside_[i];
+  }
+
+ private:
+  std::size_t first(std::size_t j) const { return j * l_.q + std::min(j, l_.r); }
+  /// Grid place t: block t div rows, row group t mod rows.
+  T* place(std::size_t t) const {
+    const std::size_t j = t / l_.rows;
+    return data_ + first(j) + (t - j * l_.rows) * l_.seg;
+  }
+  /// y[i .. i + count) into `to`, y[i] = data[(offset + i) mod n].
+  void read_y(T* to, std::size_t i, std::size_t count) const {
+    std::size_t at = offset_ + i;
+    if (at >= n_) at -= n_;
+    const std::size_t part = std::min(count, n_ - at);
+    std::memcpy(static_cast<void*>(to), data_ + at, part * sizeof(T));
+    std::memcpy(static_cast<void*>(to + part), data_, (count - part) * sizeof(T));
+  }
+  /// The place whose segment moves to place t in stage 3.
+  std::size_t source(std::size_t t) const {
+    const std::size_t j = t / l_.rows;
+    const std::size_t from = (t - j * l_.rows) * k_ + j + shift_;
+    return from >= l_.slots ? from - l_.slots : from;
+  }
+  /// Stage 2 on tiles [g_begin, g_end), thread p's.
+  void transpose_run(std::size_t g_begin, std::size_t g_end, int p) {
+    const std::size_t ahead = l_.ahead, tile = l_.tile, seg = l_.seg;
+    T* const saved = aside_ + l_.aside + static_cast<std::size_t>(p) * l_.per_thread;  // ahead + 1 tiles
+    T* const ring = saved + (ahead + 1) * tile;                                          // ahead + 1 tiles
+    T* const columns = ring + (ahead + 1) * tile;                                        // one tile
     const std::size_t n_first = std::min(ahead, g_end - g_begin);
     const bool last_apart = g_end - 1 >= g_begin + n_first;
     auto kept = [&](std::size_t g) -> T* {  // the saved copy of tile g, or nullptr
@@ -221,84 +238,86 @@ void deal_in_place(T* data, std::size_t n, std::size_t k, std::size_t offset, Wo
       if (next < g_end && !kept(next)) read_y(ring + next % (ahead + 1) * tile, next * tile, tile);
       const T* const from = kept(g) ? kept(g) : ring + g % (ahead + 1) * tile;
       for (std::size_t a = 0; a < seg; ++a)
-        for (std::size_t j = 0; j < k; ++j) columns[j * seg + a] = from[a * k + j];
-      for (std::size_t j = 0; j < k; ++j) {
-        std::size_t t = g * k + j + shift;
-        if (t >= slots) t -= slots;
+        for (std::size_t j = 0; j < k_; ++j) columns[j * seg + a] = from[a * k_ + j];
+      for (std::size_t j = 0; j < k_; ++j) {
+        std::size_t t = g * k_ + j + shift_;
+        if (t >= l_.slots) t -= l_.slots;
         std::memcpy(static_cast<void*>(place(t)), columns + j * seg, seg * sizeof(T));
       }
     }
   }
-  // Stage 3: place t = j rows + g takes segment s = g k + j, now at place (s + shift) mod slots, cycle
-  // by cycle (cycles are disjoint: any thread may follow any of them).
-  auto source = [&](std::size_t t) {
-    const std::size_t j = t / rows;
-    const std::size_t from = (t - j * rows) * k + j + shift;
-    return from >= slots ? from - slots : from;
-  };
-  // The cycles are found by one pass of index arithmetic. With more than one thread a cycle longer
-  // than `piece` places (slots / (4 threads)) is cut into pieces of at most `piece`, so that one long
-  // cycle (a random shift often leaves one holding most places) does not run on one thread.
-  const std::size_t piece = threads > 1 ? (slots + 4 * static_cast<std::size_t>(threads) - 1) /
-                                              (4 * static_cast<std::size_t>(threads))
-                                        : slots;
-  workspace.done.assign((slots + 63) / 64, 0);
-  workspace.leaders.clear();
-  workspace.pieces.clear();
-  std::uint64_t* const done = workspace.done.data();
-  for (std::size_t start = 0; start < slots; ++start) {
-    if (done[start >> 6] >> (start & 63) & 1) continue;
-    std::size_t t = start, length = 0;
-    do {
-      done[t >> 6] |= std::uint64_t{1} << (t & 63);
-      t = source(t);
-      ++length;
-    } while (t != start);
-    if (length == 1) continue;
-    if (length <= piece) {
-      workspace.leaders.push_back(static_cast<std::uint32_t>(start));
-      continue;
-    }
-    // A long cycle: its pieces' first places and lengths, in the order of the cycle.
-    const std::size_t first_piece = workspace.pieces.size();
-    for (std::size_t at = 0; at < length; at += piece) {
-      workspace.pieces.push_back({static_cast<std::uint32_t>(t), static_cast<std::uint32_t>(std::min(piece, length - at)),
-                                  static_cast<std::uint32_t>(first_piece)});
-      for (std::size_t step = 0; step < piece && step + at < length; ++step) t = source(t);
-    }
-  }
-  const std::uint32_t* const leaders = workspace.leaders.data();
-  const auto n_cycles = static_cast<std::ptrdiff_t>(workspace.leaders.size());
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (threads > 1 && n_cycles > 1)
-  for (std::ptrdiff_t c = 0; c < n_cycles; ++c) {
-    int p = 0;
-#ifdef _OPENMP
-    p = omp_get_thread_num();
-#endif
-    T* const buffer = aside + m + static_cast<std::size_t>(p) * l.per_thread;
-    const std::size_t start = leaders[c];
-    std::memcpy(static_cast<void*>(buffer), place(start), seg * sizeof(T));
-    for (std::size_t t = start;;) {
-      const std::size_t from = source(t);
-      if (from == start) {
-        std::memcpy(static_cast<void*>(place(t)), buffer, seg * sizeof(T));
-        break;
+  /// The cycles of stage 3, by one pass of index arithmetic. With more than one thread a cycle longer
+  /// than `piece` places (slots / (4 threads)) is cut into pieces of at most `piece`, so that one long
+  /// cycle (a random shift often leaves one holding most places) does not run on one thread.
+  void find_cycles() {
+    const std::size_t slots = l_.slots;
+    const std::size_t piece = threads_ > 1 ? (slots + 4 * static_cast<std::size_t>(threads_) - 1) /
+                                                 (4 * static_cast<std::size_t>(threads_))
+                                           : slots;
+    workspace_.done.assign((slots + 63) / 64, 0);
+    workspace_.leaders.clear();
+    workspace_.pieces.clear();
+    std::uint64_t* const done = workspace_.done.data();
+    for (std::size_t start = 0; start < slots; ++start) {
+      if (done[start >> 6] >> (start & 63) & 1) continue;
+      std::size_t t = start, length = 0;
+      do {
+        done[t >> 6] |= std::uint64_t{1} << (t & 63);
+        t = source(t);
+        ++length;
+      } while (t != start);
+      if (length == 1) continue;
+      if (length <= piece) {
+        workspace_.leaders.push_back(static_cast<std::uint32_t>(start));
+        continue;
       }
-      std::memcpy(static_cast<void*>(place(t)), place(from), seg * sizeof(T));
-      t = from;
+      // A long cycle: its pieces' first places and lengths, in the order of the cycle.
+      const std::size_t first_piece = workspace_.pieces.size();
+      for (std::size_t at = 0; at < length; at += piece) {
+        workspace_.pieces.push_back({static_cast<std::uint32_t>(t), static_cast<std::uint32_t>(std::min(piece, length - at)),
+                                     static_cast<std::uint32_t>(first_piece)});
+        for (std::size_t step = 0; step < piece && step + at < length; ++step) t = source(t);
+      }
     }
   }
-  // The pieces of the long cycles: each first place is saved (the piece before it in the cycle ends by
-  // taking it), then every piece moves its segments along the cycle, its last place taking the saved
-  // first segment of the next piece (of the first piece, for the cycle's last).
-  const auto n_pieces = static_cast<std::ptrdiff_t>(workspace.pieces.size());
-  if (n_pieces > 0) {
-    T* const saved = aside + m + static_cast<std::size_t>(threads) * l.per_thread;
-    const Workspace::Piece* const pieces = workspace.pieces.data();
-#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1)
+  /// The short cycles, each whole on one thread.
+  void move_cycles() {
+    const std::size_t seg = l_.seg;
+    const std::uint32_t* const leaders = workspace_.leaders.data();
+    const auto n_cycles = static_cast<std::ptrdiff_t>(workspace_.leaders.size());
+#pragma omp parallel for num_threads(threads_) schedule(dynamic, 1) if (threads_ > 1 && n_cycles > 1)
+    for (std::ptrdiff_t c = 0; c < n_cycles; ++c) {
+      int p = 0;
+#ifdef _OPENMP
+      p = omp_get_thread_num();
+#endif
+      T* const buffer = aside_ + l_.aside + static_cast<std::size_t>(p) * l_.per_thread;
+      const std::size_t start = leaders[c];
+      std::memcpy(static_cast<void*>(buffer), place(start), seg * sizeof(T));
+      for (std::size_t t = start;;) {
+        const std::size_t from = source(t);
+        if (from == start) {
+          std::memcpy(static_cast<void*>(place(t)), buffer, seg * sizeof(T));
+          break;
+        }
+        std::memcpy(static_cast<void*>(place(t)), place(from), seg * sizeof(T));
+        t = from;
+      }
+    }
+  }
+  /// The pieces of the long cycles: each first place is saved (the piece before it in the cycle ends by
+  /// taking it), then every piece moves its segments along the cycle, its last place taking the saved
+  /// first segment of the next piece (of the first piece, for the cycle's last).
+  void move_pieces() {
+    const std::size_t seg = l_.seg;
+    const auto n_pieces = static_cast<std::ptrdiff_t>(workspace_.pieces.size());
+    if (n_pieces == 0) return;
+    T* const saved = aside_ + l_.aside + static_cast<std::size_t>(threads_) * l_.per_thread;
+    const Workspace::Piece* const pieces = workspace_.pieces.data();
+#pragma omp parallel for num_threads(threads_) schedule(static) if (threads_ > 1)
     for (std::ptrdiff_t c = 0; c < n_pieces; ++c)
       std::memcpy(static_cast<void*>(saved + static_cast<std::size_t>(c) * seg), place(pieces[c].first), seg * sizeof(T));
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (threads > 1)
+#pragma omp parallel for num_threads(threads_) schedule(dynamic, 1) if (threads_ > 1)
     for (std::ptrdiff_t c = 0; c < n_pieces; ++c) {
       const Workspace::Piece& here = pieces[c];
       const bool last = c + 1 == n_pieces || pieces[c + 1].cycle != here.cycle;
@@ -312,8 +331,41 @@ void deal_in_place(T* data, std::size_t n, std::size_t k, std::size_t offset, Wo
       std::memcpy(static_cast<void*>(place(t)), saved + next * seg, seg * sizeof(T));
     }
   }
-  // Stage 4: element whole + i of y is in row whole/k + i div k, column i mod k (whole is a multiple of k).
-  for (std::size_t i = 0; i < m; ++i) data[first(i % k) + rows * seg + i / k] = aside[i];
+
+  T* data_;
+  std::size_t n_, k_, offset_;
+  Workspace::Layout l_;
+  Workspace& workspace_;
+  int threads_;
+  std::size_t shift_;
+  T* aside_;
+};
+
+}  // namespace detail
+
+/// Deals `data[0 .. n)` round `k` blocks from `offset` (< n), in place: afterwards
+/// data[j q + min(j, r) + i div k] holds what data[(offset + i) mod n] held, j = i mod k, q = n div k,
+/// r = n mod k (header, "The permutation"). `T` is trivially copyable; k >= 1. Stages 2 and 3 run on
+/// up to `threads` OpenMP threads; the result is the same for any number.
+template <class T>
+void deal_in_place(T* data, std::size_t n, std::size_t k, std::size_t offset, Workspace& workspace, int threads = 1) {
+  if (n < 2 || k < 1) return;
+  const Workspace::Layout l = Workspace::layout(n, k);
+  if (k == 1 || l.seg == 0) {  // y itself is the dealing (one block, or at most one element a block)
+    if (offset != 0) std::rotate(data, data + offset, data + n);
+    return;
+  }
+#ifdef _OPENMP
+  threads = std::max(1, threads);
+#else
+  threads = 1;
+#endif
+  workspace.reserve(n, k, sizeof(T), threads);  // (before the Dealer takes the buffer's address)
+  detail::Dealer<T> dealer(data, n, k, offset, workspace, threads);
+  dealer.set_aside();
+  dealer.transpose_tiles();
+  dealer.follow_cycles();
+  dealer.place_aside();
 }
 
 /// Scatters n elements over k blocks (header, "Scattering"): permutes them uniformly at random, each
