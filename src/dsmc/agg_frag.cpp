@@ -316,19 +316,16 @@ void Gas::reset_as_block(const Gas& whole) {
   touched_.clear();
 }
 
-void Gas::blocked_step(double end) {
+void Gas::deal_blocks() {
   const std::size_t n = clusters_, k_blocks = blocks();
   // The partition: labels of K - N mod K blocks of N div K and N mod K of one more, shuffled
   // (Fisher-Yates with the gas's own stream): every partition with these block sizes equally likely.
   labels_.resize(n);
-  {
-    const std::size_t q = n / k_blocks, r = n % k_blocks;
-    std::size_t at = 0;
-    for (std::size_t b = 0; b < k_blocks; ++b)
-      for (std::size_t i = 0, size = q + (b < r ? 1 : 0); i < size; ++i) labels_[at++] = static_cast<std::uint32_t>(b);
-    for (std::size_t i = n - 1; i > 0; --i) std::swap(labels_[i], labels_[gen_.below(i + 1)]);
-  }
-  const std::uint64_t key = gen_();  // the blocks' streams for this step: substream(key, b)
+  const std::size_t q = n / k_blocks, r = n % k_blocks;
+  std::size_t at = 0;
+  for (std::size_t b = 0; b < k_blocks; ++b)
+    for (std::size_t i = 0, size = q + (b < r ? 1 : 0); i < size; ++i) labels_[at++] = static_cast<std::uint32_t>(b);
+  for (std::size_t i = n - 1; i > 0; --i) std::swap(labels_[i], labels_[gen_.below(i + 1)]);
   if (blocks_.size() < k_blocks) blocks_.resize(k_blocks, Gas(model_));
   for (std::size_t b = 0; b < k_blocks; ++b) blocks_[b].reset_as_block(*this);
   // Deal: the clusters size by size, each list in order, to the block of their label. The clusters
@@ -336,7 +333,7 @@ void Gas::blocked_step(double end) {
   // plus an eighth (room for the step's new clusters), and the pages of the whole gas's list already
   // dealt are returned to the system as the deal goes (every 64 KiB, or every 2 MiB in a list of 2
   // MiB or more, which allocate_bytes gives huge pages: not split), the list freed at its end.
-  std::size_t at = 0;
+  at = 0;
   std::vector<std::size_t> count(k_blocks);
   for (std::size_t k = 1; k <= capacity_; ++k) {
     auto& list = lists_[k];
@@ -358,39 +355,29 @@ void Gas::blocked_step(double end) {
     }
     particles::ParticleArray<Vec3>().swap(list);
   }
-  // V_b = V (n_b - 1)/(N - 1): every pair's expected rate is the whole gas's (header).
-  const double volume_per_partner = volume_ / static_cast<double>(n - 1);
-  const auto run_block = [&](std::size_t b) {
-    Gas& block = blocks_[b];
-    std::size_t members = 0;
-    for (std::size_t k = 1; k <= block.capacity_; ++k) {
-      members += block.lists_[k].size();
-      if (!block.lists_[k].empty()) block.largest_reached_ = k;
-    }
-    block.clusters_ = members;
-    block.volume_ = volume_per_partner * static_cast<double>(members - 1);
-    block.gen_ = rng::Xoshiro256pp::substream(key, b);
-    block.recompute_bounds();
-    block.rebuild_sampler();
-    const double rate = block.sampler_.total();
-    if (rate > 0.0) block.credit_ = block.gen_.uniform() / rate;  // a uniformly random phase (header)
-    block.start_step();
-    block.advance(end);
-  };
-  std::vector<std::exception_ptr> failure(k_blocks);  // exceptions must not leave an OpenMP region
-#ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 1) num_threads(block_threads_) if (block_threads_ > 1)
-#endif
-  for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(k_blocks); ++b) {
-    try {
-      run_block(static_cast<std::size_t>(b));
-    } catch (...) {
-      failure[static_cast<std::size_t>(b)] = std::current_exception();
-    }
+}
+
+void Gas::run_block(std::size_t b, double end, std::uint64_t key, double volume_per_partner) {
+  Gas& block = blocks_[b];
+  std::size_t members = 0;
+  for (std::size_t k = 1; k <= block.capacity_; ++k) {
+    members += block.lists_[k].size();
+    if (!block.lists_[k].empty()) block.largest_reached_ = k;
   }
-  for (const auto& f : failure)
-    if (f) std::rethrow_exception(f);
-  // Gather in block order: the lists, the counters, the largest size.
+  block.clusters_ = members;
+  block.volume_ = volume_per_partner * static_cast<double>(members - 1);
+  block.gen_ = rng::Xoshiro256pp::substream(key, b);
+  block.recompute_bounds();
+  block.rebuild_sampler();
+  const double rate = block.sampler_.total();
+  if (rate > 0.0) block.credit_ = block.gen_.uniform() / rate;  // a uniformly random phase (header)
+  block.start_step();
+  block.advance(end);
+}
+
+void Gas::gather_blocks() {
+  // In block order: the lists, the counters, the largest size.
+  const std::size_t k_blocks = blocks();
   std::size_t largest = 1;
   for (std::size_t b = 0; b < k_blocks; ++b) largest = std::max(largest, blocks_[b].capacity_);
   grow_to(largest);
@@ -425,6 +412,28 @@ void Gas::blocked_step(double end) {
     counters_.dissipated += c.dissipated;
     largest_reached_ = std::max(largest_reached_, blocks_[b].largest_reached_);
   }
+}
+
+void Gas::blocked_step(double end) {
+  const std::size_t n = clusters_, k_blocks = blocks();
+  deal_blocks();
+  const std::uint64_t key = gen_();  // the blocks' streams for this step: substream(key, b)
+  // V_b = V (n_b - 1)/(N - 1): every pair's expected rate is the whole gas's (header).
+  const double volume_per_partner = volume_ / static_cast<double>(n - 1);
+  std::vector<std::exception_ptr> failure(k_blocks);  // exceptions must not leave an OpenMP region
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(block_threads_) if (block_threads_ > 1)
+#endif
+  for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(k_blocks); ++b) {
+    try {
+      run_block(static_cast<std::size_t>(b), end, key, volume_per_partner);
+    } catch (...) {
+      failure[static_cast<std::size_t>(b)] = std::current_exception();
+    }
+  }
+  for (const auto& f : failure)
+    if (f) std::rethrow_exception(f);
+  gather_blocks();
   counters_.steps += 1;
   counters_.step_sum += end - time_;
   blocked_steps_ += 1;

@@ -280,6 +280,12 @@ class Gas {
   double blocked_step_end(double t_target, std::uint64_t event_target) const;
   /// One blocked step from time_ to `end`: deal, run the blocks, gather.
   void blocked_step(double end);
+  /// The deal of a blocked step: the clusters to the blocks of a uniformly random partition.
+  void deal_blocks();
+  /// Block b of a blocked step up to `end`, with the stream substream(key, b) and the volume of its members.
+  void run_block(std::size_t b, double end, std::uint64_t key, double volume_per_partner);
+  /// The gather of a blocked step: the blocks' lists and counters back into the gas, in block order.
+  void gather_blocks();
   /// This gas as block `index` of `whole` for one step: empty lists of whole's capacity, its model.
   void reset_as_block(const Gas& whole);
 

@@ -272,114 +272,112 @@ struct GroupReader {
   }
 };
 
+/// One assignment of the namelist to a field, by the field's type (assign() below).
+struct Assigner {
+  const std::string& name;
+  const Range& range;
+  const std::vector<std::string>& choices;
+  const namelist::Assignment& a;
+  const GroupReader& r;
+  Provenance& prov;
+
+  const namelist::Value& one_value() const {
+    if (!a.index.empty()) throw r.error(a.line, name, name + " is a scalar and takes no index");
+    if (a.values.size() != 1) throw r.error(a.line, name, "expected one value, got " + std::to_string(a.values.size()));
+    return a.values.front();
+  }
+  void operator()(long long& out) const {
+    const auto& v = one_value();
+    if (v.kind != namelist::Value::Kind::Integer)
+      throw r.error(v.line, name, "expected an integer, got " + std::string(kind_name(v.kind)) + " '" + v.text + "'");
+    if (!range.contains(static_cast<double>(v.integer)))
+      throw r.error(v.line, name, name + " = " + v.text + " is outside " + range.text());
+    out = v.integer;
+  }
+  void operator()(double& out) const { out = r.number(one_value(), name, range); }
+  void operator()(std::optional<double>& out) const { out = r.number(one_value(), name, range); }
+  void operator()(bool& out) const {
+    const auto& v = one_value();
+    if (v.kind != namelist::Value::Kind::Logical)
+      throw r.error(v.line, name, "expected a logical (.true. or .false.), got " + std::string(kind_name(v.kind)) + " '" +
+                                      v.text + "'");
+    out = v.logical;
+  }
+  void operator()(std::string& out) const {
+    const auto& v = one_value();
+    if (v.kind != namelist::Value::Kind::String)
+      throw r.error(v.line, name, "expected a quoted string, got " + std::string(kind_name(v.kind)) + " '" + v.text + "'");
+    if (choices.empty()) {
+      if (v.string.empty()) throw r.error(v.line, name, name + " must not be empty");
+      out = v.string;
+      return;
+    }
+    const std::string choice = lower(v.string);
+    if (std::find(choices.begin(), choices.end(), choice) == choices.end()) {
+      std::string list;
+      for (const auto& c : choices) list += (list.empty() ? "'" : ", '") + c + "'";
+      throw r.error(v.line, name, "'" + v.string + "' is not one of " + list);
+    }
+    out = choice;
+  }
+  void operator()(std::vector<double>& vec) const {
+    if (a.index.size() > 1) throw r.error(a.line, name, name + " is one-dimensional: use " + name + "(k)");
+    if (a.index.empty()) vec.clear();
+    const std::size_t start = a.index.empty() ? 0 : static_cast<std::size_t>(a.index[0] - 1);
+    if (vec.size() < start + a.values.size()) vec.resize(start + a.values.size(), std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t i = 0; i < a.values.size(); ++i) vec[start + i] = r.number(a.values[i], name, range);
+  }
+  void operator()(std::vector<std::string>& list) const {
+    // A list of quoted strings (the names of &sweep variable), kept without their quotes.
+    if (!a.index.empty()) throw r.error(a.line, name, name + " takes no index");
+    list.clear();
+    for (const auto& v : a.values) {
+      if (v.kind != namelist::Value::Kind::String)
+        throw r.error(v.line, name, "expected a quoted string, got " + std::string(kind_name(v.kind)) + " '" + v.text + "'");
+      if (v.string.empty()) throw r.error(v.line, name, name + " must not be empty");
+      list.push_back(v.string);
+    }
+  }
+  void operator()(SweepValues& sv) const {
+    // Kept as namelist text, to be applied later as `group:variable=value`: `values = ...` point by
+    // point, or `values(1,v) = ...` the list of variable v.
+    std::vector<std::string> list;
+    for (const auto& v : a.values) {
+      if (v.kind != namelist::Value::Kind::String) {
+        list.push_back(v.text);
+        continue;
+      }
+      std::string quoted = "'";
+      for (char ch : v.string) quoted += ch == '\'' ? std::string("''") : std::string(1, ch);
+      list.push_back(quoted + "'");
+    }
+    if (a.index.empty()) {
+      sv.points = std::move(list);
+      return;
+    }
+    if (a.index.size() != 2 || a.index[0] != 1)
+      throw r.error(a.line, name,
+                    "one list per variable is written values(1,v) = ... (v = 1, 2, ... in the order of variable)");
+    const auto v = static_cast<std::size_t>(a.index[1]);
+    if (sv.lists.size() < v) sv.lists.resize(v);
+    sv.lists[v - 1] = std::move(list);
+  }
+  void operator()(species::PairMatrix&) const {
+    // Resolved once n_species is known (check stage); the values are checked now.
+    if (a.index.size() == 1 || a.index.size() > 2) throw r.error(a.line, name, name + " is a matrix: use " + name + "(i,j)");
+    for (const auto& v : a.values) r.number(v, name, range);
+    if (a.index.empty()) prov.pair_assignments[name].clear();
+    prov.pair_assignments[name].emplace_back(&a, r.file);
+  }
+};
+
 template <class G>
 void assign(G& target, const Field<G>& field, const namelist::Assignment& a, const GroupReader& r,
             Provenance& prov) {
-  const std::string& name = field.name;
-  auto one_value = [&]() -> const namelist::Value& {
-    if (!a.index.empty()) throw r.error(a.line, name, name + " is a scalar and takes no index");
-    if (a.values.size() != 1)
-      throw r.error(a.line, name,
-                    "expected one value, got " + std::to_string(a.values.size()));
-    return a.values.front();
-  };
-  std::visit(
-      [&](auto member) {
-        using T = std::remove_reference_t<decltype(target.*member)>;
-        if constexpr (std::is_same_v<T, long long>) {
-          const auto& v = one_value();
-          if (v.kind != namelist::Value::Kind::Integer)
-            throw r.error(v.line, name, "expected an integer, got " +
-                                            std::string(kind_name(v.kind)) + " '" + v.text + "'");
-          if (!field.range.contains(static_cast<double>(v.integer)))
-            throw r.error(v.line, name, name + " = " + v.text + " is outside " + field.range.text());
-          target.*member = v.integer;
-        } else if constexpr (std::is_same_v<T, double>) {
-          target.*member = r.number(one_value(), name, field.range);
-        } else if constexpr (std::is_same_v<T, std::optional<double>>) {
-          target.*member = r.number(one_value(), name, field.range);
-        } else if constexpr (std::is_same_v<T, bool>) {
-          const auto& v = one_value();
-          if (v.kind != namelist::Value::Kind::Logical)
-            throw r.error(v.line, name, "expected a logical (.true. or .false.), got " +
-                                            std::string(kind_name(v.kind)) + " '" + v.text + "'");
-          target.*member = v.logical;
-        } else if constexpr (std::is_same_v<T, std::string>) {
-          const auto& v = one_value();
-          if (v.kind != namelist::Value::Kind::String)
-            throw r.error(v.line, name, "expected a quoted string, got " +
-                                            std::string(kind_name(v.kind)) + " '" + v.text + "'");
-          if (!field.choices.empty()) {
-            const std::string choice = lower(v.string);
-            if (std::find(field.choices.begin(), field.choices.end(), choice) == field.choices.end()) {
-              std::string list;
-              for (const auto& c : field.choices) list += (list.empty() ? "'" : ", '") + c + "'";
-              throw r.error(v.line, name, "'" + v.string + "' is not one of " + list);
-            }
-            target.*member = choice;
-          } else {
-            if (v.string.empty()) throw r.error(v.line, name, name + " must not be empty");
-            target.*member = v.string;
-          }
-        } else if constexpr (std::is_same_v<T, std::vector<double>>) {
-          std::vector<double>& vec = target.*member;
-          if (a.index.size() > 1)
-            throw r.error(a.line, name, name + " is one-dimensional: use " + name + "(k)");
-          if (a.index.empty()) vec.clear();
-          const std::size_t start = a.index.empty() ? 0 : static_cast<std::size_t>(a.index[0] - 1);
-          if (vec.size() < start + a.values.size())
-            vec.resize(start + a.values.size(), std::numeric_limits<double>::quiet_NaN());
-          for (std::size_t i = 0; i < a.values.size(); ++i)
-            vec[start + i] = r.number(a.values[i], name, field.range);
-        } else if constexpr (std::is_same_v<T, std::vector<std::string>>) {
-          // A list of quoted strings (the names of &sweep variable), kept without their quotes.
-          if (!a.index.empty()) throw r.error(a.line, name, name + " takes no index");
-          std::vector<std::string>& list = target.*member;
-          list.clear();
-          for (const auto& v : a.values) {
-            if (v.kind != namelist::Value::Kind::String)
-              throw r.error(v.line, name, "expected a quoted string, got " + std::string(kind_name(v.kind)) + " '" +
-                                              v.text + "'");
-            if (v.string.empty()) throw r.error(v.line, name, name + " must not be empty");
-            list.push_back(v.string);
-          }
-        } else if constexpr (std::is_same_v<T, SweepValues>) {
-          // Kept as namelist text, to be applied later as `group:variable=value`: `values = ...`
-          // point by point, or `values(1,v) = ...` the list of variable v.
-          SweepValues& sv = target.*member;
-          std::vector<std::string> list;
-          for (const auto& v : a.values) {
-            if (v.kind != namelist::Value::Kind::String) {
-              list.push_back(v.text);
-              continue;
-            }
-            std::string quoted = "'";
-            for (char ch : v.string) quoted += ch == '\'' ? std::string("''") : std::string(1, ch);
-            list.push_back(quoted + "'");
-          }
-          if (a.index.empty()) {
-            sv.points = std::move(list);
-          } else {
-            if (a.index.size() != 2 || a.index[0] != 1)
-              throw r.error(a.line, name,
-                            "one list per variable is written values(1,v) = ... (v = 1, 2, ... in the order of "
-                            "variable)");
-            const auto v = static_cast<std::size_t>(a.index[1]);
-            if (sv.lists.size() < v) sv.lists.resize(v);
-            sv.lists[v - 1] = std::move(list);
-          }
-        } else if constexpr (std::is_same_v<T, species::PairMatrix>) {
-          // Resolved once n_species is known (check stage); the values are checked now.
-          if (a.index.size() == 1 || a.index.size() > 2)
-            throw r.error(a.line, name, name + " is a matrix: use " + name + "(i,j)");
-          for (const auto& v : a.values) r.number(v, name, field.range);
-          if (a.index.empty()) prov.pair_assignments[name].clear();
-          prov.pair_assignments[name].emplace_back(&a, r.file);
-        }
-      },
-      field.member);
-  prov.line[name] = a.line;
-  prov.set_in[name] = r.file;
+  const Assigner assigner{field.name, field.range, field.choices, a, r, prov};
+  std::visit([&](auto member) { assigner(target.*member); }, field.member);
+  prov.line[field.name] = a.line;
+  prov.set_in[field.name] = r.file;
 }
 
 /// The group a variable belongs to, if it belongs to another one (for "did you mean" hints).
