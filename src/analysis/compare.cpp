@@ -58,14 +58,9 @@ void add_scaling_state(Point& pt, const io::config::Config& config, const analys
       pt.notes.push_back(std::string("scaling state not compared: the file has no observable ") + name);
       return;
     }
-  const auto& temperature = m.observables.at("temperature");
-  const auto& total = m.observables.at("total_temperature");
-  const auto& sonine = m.observables.at("sonine_c");
   const auto& per_particle = m.observables.at("collisions_per_particle").value;
-  const std::size_t nt = total.value.size();
   const double start = config.output.scaling_start;
   const auto& fs = *p.hcs_first_sonine;
-  const auto te = errors_or_nan(temperature), tte = errors_or_nan(total), ce = errors_or_nan(sonine);
   Quantity ratio{"temperature_over_mean", "T_{k}/T", "first_sonine",
                  s == 2 ? "docs/sonine.md: 0.1 % against exact DSMC at mu = 10; allowance 0.2 %"
                         : "issue 17: independent work, ternary HCS, 0.1-0.4 %; allowance 0.4 %",
@@ -75,36 +70,16 @@ void add_scaling_state(Point& pt, const io::config::Config& config, const analys
   // /scaling_state (docs/output.md): each replica's own average over its scaling samples, so that the SE
   // over the replicas is that of the time average; files without it: the samples' average, with the mean
   // of their SE (as if fully correlated: an upper bound).
-  auto array = [&](const char* name) -> const std::vector<double>* {
-    const auto it = m.arrays.find(std::string("scaling_state/") + name);
-    return it != m.arrays.end() && it->second.size() == s ? &it->second : nullptr;
-  };
-  const auto *replica_c = array("sonine_c"), *replica_c_error = array("sonine_c_error");
-  const auto *replica_ratio = array("temperature_over_mean"), *replica_ratio_error = array("temperature_over_mean_error");
-  const bool per_replica = replica_c && replica_c_error && replica_ratio && replica_ratio_error;
-  std::size_t count = 0;
+  const ScalingState state = *scaling_state(m, start, true);
+  const bool per_replica = state.per_replica;
+  const std::size_t count = state.samples;
   for (std::size_t k = 0; k < s; ++k) {
-    std::vector<double> r(nt), re(nt), c(nt), cerr(nt);
-    for (std::size_t i = 0; i < nt; ++i) {
-      const double tk = temperature.value[i * s + k], t = total.value[i];
-      r[i] = tk / t;  // ratio of the replica means (sample.hpp)
-      re[i] = r[i] * std::hypot(te[i * s + k] / tk, tte[i] / t);
-      c[i] = sonine.value[i * s + k];
-      cerr[i] = ce[i * s + k];
-    }
-    Average ar = scaling_average(r, re, per_particle, start);
-    Average ac = scaling_average(c, cerr, per_particle, start);
-    count = ar.count;
-    if (per_replica) {  // the averages per replica, and the SE over the replicas (/scaling_state)
-      ar.value = replica_ratio->at(k), ar.error = replica_ratio_error->at(k);
-      ac.value = replica_c->at(k), ac.error = replica_c_error->at(k);
-    }
-    ratio.value.push_back(ar.value);
-    ratio.error.push_back(ar.error);
+    ratio.value.push_back(state.ratio[k]);
+    ratio.error.push_back(state.ratio_error[k]);
     ratio.theory.push_back(fs.temperature_over_mean[k]);
     ratio.known_error.push_back((s == 2 ? kRatioErrorBinary : kRatioErrorMany) * fs.temperature_over_mean[k]);
-    cumulant.value.push_back(ac.value);
-    cumulant.error.push_back(ac.error);
+    cumulant.value.push_back(state.cumulant[k]);
+    cumulant.error.push_back(state.cumulant_error[k]);
     cumulant.theory.push_back(fs.sonine_c[k]);
     cumulant.known_error.push_back(kFirstSonineShare * std::abs(fs.sonine_c[k]));
   }
@@ -326,6 +301,47 @@ const char* mark_name(Mark mark) {
     case Mark::beyond_no_estimate: return "?";
   }
   return "?";
+}
+
+std::optional<ScalingState> scaling_state(const Measured& m, double from, bool replica_averages) {
+  for (const char* name : {"temperature", "total_temperature", "sonine_c", "collisions_per_particle"})
+    if (!m.has(name)) return std::nullopt;
+  const auto& temperature = m.observables.at("temperature");
+  const auto& total = m.observables.at("total_temperature");
+  const auto& sonine = m.observables.at("sonine_c");
+  const auto& per_particle = m.observables.at("collisions_per_particle").value;
+  const std::size_t s = columns_of(temperature), nt = total.value.size();
+  const auto te = errors_or_nan(temperature), tte = errors_or_nan(total), ce = errors_or_nan(sonine);
+  const auto array = [&](const char* name) -> const std::vector<double>* {
+    const auto it = m.arrays.find(std::string("scaling_state/") + name);
+    return replica_averages && it != m.arrays.end() && it->second.size() == s ? &it->second : nullptr;
+  };
+  const auto *replica_c = array("sonine_c"), *replica_c_error = array("sonine_c_error");
+  const auto *replica_ratio = array("temperature_over_mean"), *replica_ratio_error = array("temperature_over_mean_error");
+  ScalingState state;
+  state.per_replica = replica_c && replica_c_error && replica_ratio && replica_ratio_error;
+  for (std::size_t k = 0; k < s; ++k) {
+    std::vector<double> r(nt), re(nt), c(nt), cerr(nt);
+    for (std::size_t i = 0; i < nt; ++i) {
+      const double tk = temperature.value[i * s + k], t = total.value[i];
+      r[i] = tk / t;  // ratio of the replica means (sample.hpp)
+      re[i] = r[i] * std::hypot(te[i * s + k] / tk, tte[i] / t);
+      c[i] = sonine.value[i * s + k];
+      cerr[i] = ce[i * s + k];
+    }
+    Average ar = scaling_average(r, re, per_particle, from);
+    Average ac = scaling_average(c, cerr, per_particle, from);
+    state.samples = ar.count;
+    if (state.per_replica) {  // the averages per replica, and the SE over the replicas (/scaling_state)
+      ar.value = replica_ratio->at(k), ar.error = replica_ratio_error->at(k);
+      ac.value = replica_c->at(k), ac.error = replica_c_error->at(k);
+    }
+    state.ratio.push_back(ar.value);
+    state.ratio_error.push_back(ar.error);
+    state.cumulant.push_back(ac.value);
+    state.cumulant_error.push_back(ac.error);
+  }
+  return state;
 }
 
 Average scaling_average(const std::vector<double>& value, const std::vector<double>& error,

@@ -153,6 +153,20 @@ struct Average {
 Average scaling_average(const std::vector<double>& value, const std::vector<double>& error,
                         const std::vector<double>& collisions_per_particle, double start);
 
+/// The scaling state of a point's observables: per species T_k/T (the ratio of the replica means at
+/// each sample, its error propagated) and c_k averaged over the samples past `from` collisions per
+/// particle (scaling_average), or, with `replica_averages` and when the file has /scaling_state, each
+/// replica's own average averaged over the replicas with the SE over the replicas (docs/output.md): the
+/// one computation of --compare and the sweep tables. Empty when an observable is missing.
+struct ScalingState {
+  std::vector<double> ratio, ratio_error;        ///< T_k/T and its error, per species
+  std::vector<double> cumulant, cumulant_error;  ///< c_k and its error, per species
+  std::size_t samples = 0;                       ///< samples past `from`
+  bool per_replica = false;                      ///< the values are /scaling_state's
+};
+/// The ScalingState of `measured` (above).
+std::optional<ScalingState> scaling_state(const Measured& measured, double from, bool replica_averages);
+
 /// eps = (3/16) max(max_ij |a2(alpha_ij)|, max_k |c_k|/2) with the first-Sonine c_k when known
 /// (\ref compare_known).
 double sonine_rate_error(const species::Mixture& mix, const std::vector<double>& sonine_c = {});

@@ -110,27 +110,16 @@ theory::smoluchowski::Parameters smoluchowski_parameters(const io::config::Confi
   return p;
 }
 
-Predictions predict(const io::config::Config& config) {
-  Predictions out;
-  if (config.has_agg_frag) {
-    out.agg_frag = agg_frag_prediction(config);
-    out.approximations.emplace_back("initial_rates", "exact");
-    for (const char* key : {"number", "temperature", "total_temperature", "kinetic_energy", "mean_size",
-                            "monomer_fraction", "collisions", "aggregations", "fragmentations", "collisions_per_particle"})
-      out.approximations.emplace_back(key, "maxwellian");
-    return out;
-  }
-  const auto mix = config.mixture();
-  const std::size_t s = mix.size();
-  out.n_species = s;
-  const auto& t0 = config.initial.temperature;
-  const double n = mix.total_density();
+namespace {
 
+/// The Maxwellian collision frequencies and cooling rates at t = 0 (\ref cm_mixture_rate "docs/collision-model.md", \ref haff_mixture_odes "docs/haff-and-mixtures.md").
+void add_rates(Predictions& out, const species::Mixture& mix, const std::vector<double>& t0,
+               const std::optional<species::PairMatrix>& beta) {
+  const std::size_t s = mix.size();
   // Collisions suffered by species k per unit volume: 2 P_kk + sum_{j != k} P_kj (\ref cm_mixture_rate "docs/collision-model.md").
   const auto pair = pair_collision_rate(mix, t0);
   out.collision_frequency.resize(s);
   out.cooling_rate.resize(s);
-  const auto beta = config.viscoelastic_beta();  // viscoelastic restitution: A3, A4 (\ref visco_averaged "docs/viscoelastic.md")
   const auto xi = beta ? cooling_rate_matrix_viscoelastic(mix, *beta, t0) : cooling_rate_matrix(mix, t0);
   for (std::size_t k = 0; k < s; ++k) {
     double suffered = 0.0, z = 0.0;
@@ -143,6 +132,15 @@ Predictions predict(const io::config::Config& config) {
   }
   out.approximations = {{"collision_frequency", "maxwellian"}, {"cooling_rate", "maxwellian"}};
 
+}
+
+/// The free-cooling history on the run's sample points (the partial-temperature ODEs); returned for the
+/// diffusion's end temperatures.
+theory::TemperatureHistory add_history(Predictions& out, const io::config::Config& config, const species::Mixture& mix,
+                                       const std::optional<species::PairMatrix>& beta) {
+  const std::size_t s = mix.size();
+  const auto& t0 = config.initial.temperature;
+  const double n = mix.total_density();
   std::vector<double> times = config.sample_times();
   if (times.empty())
     times = over_the_run(config, [&] { return times_for_collisions(mix, t0, config.sample_collisions()); });
@@ -153,8 +151,11 @@ Predictions predict(const io::config::Config& config) {
   out.final_temperature = history.temperature.back();
   if (config.staged()) {
     // The free-cooling history does not describe a run with a thermostat or a shear flow.
-    out.notes.push_back("temperature, total_temperature, collisions_per_particle left out: the run has &thermostat "
-                        "or &shear (T is held or heated; see shear_viscosity_ratio, temperature_ratio)");
+    // (a copy of a named string: GCC 12 warns falsely (-Warray-bounds) on the move of a temporary here)
+    static const std::string staged_note =
+        "temperature, total_temperature, collisions_per_particle left out: the run has &thermostat "
+        "or &shear (T is held or heated; see shear_viscosity_ratio, temperature_ratio)";
+    out.notes.push_back(staged_note);
   } else {
     out.has_history = true;
     out.time = history.time;
@@ -168,7 +169,14 @@ Predictions predict(const io::config::Config& config) {
     for (const char* key : {"temperature", "total_temperature", "collisions_per_particle"})
       out.approximations.emplace_back(key, "maxwellian");
   }
-  // Diffusion (Bodrova and Osinsky 2024, eqs. (16)-(21), \ref dif_coefficients "docs/diffusion-msd.md"): D_k/D_1 at long times (constant alpha) or at the end
+  return history;
+}
+
+/// D_k/D_1 and the MSD (Bodrova and Osinsky 2024, eqs. (16)-(21), \ref dif_coefficients "docs/diffusion-msd.md").
+void add_diffusion(Predictions& out, const io::config::Config& config, const species::Mixture& mix,
+                   const std::optional<species::PairMatrix>& beta, const theory::TemperatureHistory& history) {
+  const auto& t0 = config.initial.temperature;
+  // D_k/D_1 at long times (constant alpha) or at the end
   // of the run (viscoelastic, where the ratios drift), and eq 17's MSD when displacements are tracked.
   out.diffusion_coefficient_ratio = beta ? diffusion_coefficient_ratio(mix, history.temperature.back(), &*beta)
                                          : diffusion_coefficient_ratio(mix);
@@ -196,6 +204,12 @@ Predictions predict(const io::config::Config& config) {
       out.approximations.emplace_back("msd", "maxwellian");
     }
   }
+}
+
+/// The Sonine theory of the HCS: a2 of one species, the asymptotic ratios, first Sonine of any number
+/// of species, the binary HCS with tails (\ref son_binary "docs/sonine.md", \ref haff_sonine "docs/haff-and-mixtures.md").
+void add_sonine(Predictions& out, const species::Mixture& mix, const std::optional<species::PairMatrix>& beta) {
+  const std::size_t s = mix.size();
   std::optional<std::vector<double>> maxwellian_ratios;  // asymptotic T_k/T_1 (constant alpha)
   if (beta) {
     // Constant-alpha keys (Sonine HCS, asymptotic ratios) do not apply to viscoelastic spheres.
@@ -262,6 +276,11 @@ Predictions predict(const io::config::Config& config) {
     if (hcs.cooling_rate > 0.0)
       out.approximations.emplace_back("tail_decay_rate", "high_velocity_asymptotics_first_sonine");
   }
+}
+
+/// The shear viscosity (below).
+void add_viscosity(Predictions& out, const species::Mixture& mix, const std::optional<species::PairMatrix>& beta) {
+  const std::size_t s = mix.size();
   // Shear viscosity eta/eta_0 in first Sonine (Montanero 2003, \ref eta_one_species "docs/shear-viscosity.md", \ref eta_measured "docs/shear-viscosity.md"; theory/viscosity.hpp): one
   // species, dilute or Enskog; binary mixtures, dilute or Enskog, over the elastic mixture value. In
   // the Enskog gas also the kinetic part alone (Montanero 2003, Fig. 10, \ref eta_mixture "docs/shear-viscosity.md").
@@ -296,7 +315,31 @@ Predictions predict(const io::config::Config& config) {
       out.notes.push_back(std::string("shear_viscosity_ratio left out: ") + e.what());
     }
   }
+}
+
+}  // namespace
+
+Predictions predict(const io::config::Config& config) {
+  Predictions out;
+  if (config.has_agg_frag) {
+    out.agg_frag = agg_frag_prediction(config);
+    out.approximations.emplace_back("initial_rates", "exact");
+    for (const char* key : {"number", "temperature", "total_temperature", "kinetic_energy", "mean_size",
+                            "monomer_fraction", "collisions", "aggregations", "fragmentations", "collisions_per_particle"})
+      out.approximations.emplace_back(key, "maxwellian");
+    return out;
+  }
+  const auto mix = config.mixture();
+  const std::size_t s = mix.size();
+  out.n_species = s;
+  const auto beta = config.viscoelastic_beta();  // viscoelastic restitution: A3, A4 (\ref visco_averaged "docs/viscoelastic.md")
+  add_rates(out, mix, config.initial.temperature, beta);
+  const auto history = add_history(out, config, mix, beta);
+  add_diffusion(out, config, mix, beta, history);
+  add_sonine(out, mix, beta);
+  add_viscosity(out, mix, beta);
   return out;
 }
+
 
 }  // namespace gdsmc::analysis

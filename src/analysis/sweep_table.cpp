@@ -99,49 +99,18 @@ Table build(const io::config::Config& config, const std::string& file) {
     if (const auto* o = get("temperature")) per[0][k] = last(*o);
     if (const auto* o = get("total_temperature")) per[1][k] = last(*o);
     if (const auto* o = get("collisions_per_particle")) per[6][k] = last(*o);
-    const auto* temperature = get("temperature");
-    const auto* total = get("total_temperature");
-    const auto* sonine = get("sonine_c");
-    const auto* cpp = get("collisions_per_particle");
-    if (!points[k].has_agg_frag && temperature && total && sonine && cpp) {
-      const std::size_t s = columns_of(*temperature), nt = total->value.size();
-      const auto te = errors_or_nan(*temperature), tte = errors_or_nan(*total), ce = errors_or_nan(*sonine);
+    if (!points[k].has_agg_frag && get("temperature") && get("total_temperature") && get("collisions_per_particle")) {
+      // The scaling state (compare.hpp scaling_state): past scaling_start, else the last sample.
+      const auto& cpp = get("collisions_per_particle")->value;
       const double start = points[k].output.scaling_start;
-      bool any = false;
-      for (std::size_t i = 0; i < nt; ++i) any = any || cpp->value[i] >= start;
-      const double from = any ? start : (nt ? cpp->value[nt - 1] : 0.0);  // else: the last sample
-      PointValues ratio, cumulant;
-      for (std::size_t c = 0; c < s; ++c) {
-        std::vector<double> r(nt), re(nt), cv(nt), cerr(nt);
-        for (std::size_t i = 0; i < nt; ++i) {
-          const double tk = temperature->value[i * s + c], tt = total->value[i];
-          r[i] = tk / tt;
-          re[i] = r[i] * std::hypot(te[i * s + c] / tk, tte[i] / tt);
-          cv[i] = sonine->value[i * s + c];
-          cerr[i] = ce[i * s + c];
-        }
-        const auto ar = compare::scaling_average(r, re, cpp->value, from);
-        const auto ac = compare::scaling_average(cv, cerr, cpp->value, from);
-        ratio.value.push_back(ar.value);
-        ratio.error.push_back(ar.error);
-        cumulant.value.push_back(ac.value);
-        cumulant.error.push_back(ac.error);
-        t.scaling_samples[k] = any ? static_cast<double>(ar.count) : 0.0;
-        // The file's scaling_state (docs/output.md): each replica's average, SE over the replicas.
-        const auto array = [&](const char* name) -> const std::vector<double>* {
-          const auto it = m.arrays.find(std::string("scaling_state/") + name);
-          return any && it != m.arrays.end() && it->second.size() == s ? &it->second : nullptr;
-        };
-        const auto *rv = array("temperature_over_mean"), *rerr = array("temperature_over_mean_error");
-        const auto *cvs = array("sonine_c"), *cerrs = array("sonine_c_error");
-        if (rv && rerr && cvs && cerrs) {
-          ratio.value.back() = (*rv)[c], ratio.error.back() = (*rerr)[c];
-          cumulant.value.back() = (*cvs)[c], cumulant.error.back() = (*cerrs)[c];
-        }
+      const bool any = std::any_of(cpp.begin(), cpp.end(), [&](double x) { return x >= start; });
+      const double from = any ? start : (cpp.empty() ? 0.0 : cpp.back());
+      if (const auto state = compare::scaling_state(m, from, any)) {
+        t.scaling_samples[k] = any ? static_cast<double>(state->samples) : 0.0;
+        const bool present = !state->ratio.empty() && !get("total_temperature")->value.empty();
+        per[2][k] = {state->ratio, state->ratio_error, present};
+        per[3][k] = {state->cumulant, state->cumulant_error, present};
       }
-      ratio.present = cumulant.present = s > 0 && nt > 0;
-      per[2][k] = ratio;
-      per[3][k] = cumulant;
     }
     const auto attribute = [&](const char* key) {
       const auto it = m.attributes.find(key);

@@ -38,98 +38,117 @@ double require_positive_viscosity(double value, const char* caller) {
 /// reference at equal temperatures (eta_0 of the mixture).
 enum class Variant { state, elastic_reference };
 
+/// The tau system of \ref eta_mixture "docs/shear-viscosity.md" for one state: the pair quantities, in GHD 2007's
+/// reduced variables (mbar the plain mean mass, v0 = sqrt(2 T/mbar), theta_i = m_i T/(mbar T_i)).
+struct TauSystem {
+  const species::Mixture& mix;
+  const std::vector<double>& temperature;  ///< T_i
+  Variant variant;
+  bool dense;                  ///< the Enskog gas (chi and the collisional transfer)
+  double thermal_speed = 0.0;  ///< v0
+  std::vector<double> theta;
+
+  TauSystem(const species::Mixture& m, const std::vector<double>& t, double mixture_temperature, Variant v)
+      : mix(m), temperature(t), variant(v), dense(m.enskog && v == Variant::state), theta(m.size()) {
+    double mass_mean = 0.0;
+    for (double mass : mix.mass) mass_mean += mass;
+    mass_mean /= static_cast<double>(mix.size());
+    thermal_speed = std::sqrt(2.0 * mixture_temperature / mass_mean);
+    for (std::size_t i = 0; i < mix.size(); ++i) theta[i] = mix.mass[i] * mixture_temperature / (mass_mean * temperature[i]);
+  }
+  double alpha(std::size_t i, std::size_t j) const {
+    return variant == Variant::elastic_reference ? 1.0 : mix.restitution(i, j);
+  }
+  double chi(std::size_t i, std::size_t j) const {
+    return dense ? mix.pair_correlation(i, j) : 1.0;  // \ref cm_chi "docs/collision-model.md": chi only in the Enskog gas
+  }
+  double mu(std::size_t i, std::size_t j) const { return mix.mass_fraction(i, j); }
+  double sigma(std::size_t i, std::size_t j) const { return mix.contact_distance(i, j); }
+  double beta(std::size_t i, std::size_t j) const { return mu(i, j) * theta[j] - mu(j, i) * theta[i]; }
+
+  /// zeta_0 = (1/T) sum_i x_i T_i zeta_i, zeta_i = sum_j xi_ij (\ref haff_mixture_odes "docs/haff-and-mixtures.md"); the
+  /// elastic reference does not cool.
+  double cooling_rate(double mixture_temperature) const {
+    if (variant != Variant::state) return 0.0;
+    double rate = 0.0;
+    const species::PairMatrix xi = cooling_rate_matrix(mix, temperature);
+    for (std::size_t i = 0; i < mix.size(); ++i) {
+      double zeta_i = 0.0;
+      for (std::size_t j = 0; j < mix.size(); ++j) zeta_i += xi(i, j);
+      rate += mix.mole_fraction(i) * temperature[i] * zeta_i;
+    }
+    return rate / mixture_temperature;
+  }
+  /// tau_ij without the cooling term (\ref eta_mixture "docs/shear-viscosity.md").
+  double tau(std::size_t i, std::size_t j) const {
+    if (j == i) {
+      // S_i: the unlike-pair part of tau_ii.
+      double unlike_sum = 0.0;
+      for (std::size_t l = 0; l < mix.size(); ++l) {
+        if (l == i) continue;
+        const double r_il = std::sqrt(theta[i] + theta[l]);
+        unlike_sum += mix.number_density[l] * chi(i, l) * sigma(i, l) * sigma(i, l) * mu(l, i) * (1.0 + alpha(i, l)) *
+                      std::pow(theta[i], 1.5) / std::sqrt(theta[l]) *
+                      (6.0 * beta(i, l) / (theta[i] * theta[i] * r_il) +
+                       0.5 * (9.0 - 3.0 * alpha(i, l)) * mu(l, i) * r_il / (theta[i] * theta[i]) + 5.0 / (theta[i] * r_il));
+      }
+      const double sigma_i = mix.diameter[i];
+      return 4.0 * std::sqrt(pi) / 15.0 * thermal_speed *
+             (mix.number_density[i] * chi(i, i) * sigma_i * sigma_i / std::sqrt(2.0 * theta[i]) *
+                  (9.0 - 3.0 * alpha(i, i)) * (1.0 + alpha(i, i)) +
+              2.0 * unlike_sum);
+    }
+    const double r_ij = std::sqrt(theta[i] + theta[j]);
+    return 8.0 * std::sqrt(pi) / 15.0 * thermal_speed * mix.number_density[i] * chi(i, j) * sigma(i, j) * sigma(i, j) *
+           mu(i, j) * std::pow(theta[j], 1.5) / std::sqrt(theta[i]) * (1.0 + alpha(i, j)) *
+           (6.0 * beta(i, j) / (theta[j] * theta[j] * r_ij) +
+            0.5 * (9.0 - 3.0 * alpha(i, j)) * mu(j, i) * r_ij / (theta[j] * theta[j]) - 5.0 / (theta[j] * r_ij));
+  }
+  /// Source n_i T_i, plus in the Enskog gas the collisional transfer b_i (GHD 2007 II).
+  double source(std::size_t i) const {
+    double source_i = mix.number_density[i] * temperature[i];
+    if (!dense) return source_i;
+    for (std::size_t j = 0; j < mix.size(); ++j) {
+      const double sigma_ij = sigma(i, j);
+      source_i += 2.0 * pi / 15.0 * mix.mass[i] * mix.number_density[i] * mix.number_density[j] * mu(j, i) * sigma_ij *
+                  sigma_ij * sigma_ij * chi(i, j) * (1.0 + alpha(i, j)) *
+                  (mu(j, i) * (3.0 * alpha(i, j) - 1.0) * (temperature[i] / mix.mass[i] + temperature[j] / mix.mass[j]) -
+                   4.0 * (temperature[i] - temperature[j]) / (mix.mass[i] + mix.mass[j]));
+    }
+    return source_i;
+  }
+  /// The Enskog gas's bulk viscosity and collisional part of eta from the partial eta_i (GHD 2007 II).
+  void add_collisional(MixtureViscosity& result) const {
+    for (std::size_t i = 0; i < mix.size(); ++i)
+      for (std::size_t j = 0; j < mix.size(); ++j) {
+        const double sigma_ij = sigma(i, j);
+        // bulk viscosity kappa (GHD 2007 II)
+        result.bulk += 2.0 * std::sqrt(pi) / 9.0 * thermal_speed * mu(i, j) * mix.mass[j] * mix.number_density[i] *
+                       mix.number_density[j] * std::pow(sigma_ij, 4) * chi(i, j) * (1.0 + alpha(i, j)) *
+                       std::sqrt((theta[i] + theta[j]) / (theta[i] * theta[j]));
+        result.collisional += 4.0 * pi / 15.0 * mix.number_density[j] * sigma_ij * sigma_ij * sigma_ij * chi(i, j) *
+                              mu(j, i) * (1.0 + alpha(i, j)) * result.partial[i];
+      }
+    result.collisional += 0.6 * result.bulk;
+  }
+};
+
 /// Solution of sum_j (tau_ij - c zeta_0 delta_ij) eta_j = n_i T_i + b_i and the collisional parts
 /// (viscosity.hpp, "Mixture"). `temperature` holds T_i, `mixture_temperature` T.
 MixtureViscosity solve_mixture(const species::Mixture& mix, const std::vector<double>& temperature,
                                double mixture_temperature, double cooling_coefficient_c,
                                Variant variant) {
   const std::size_t species_count = mix.size();
-  const bool dense = mix.enskog && variant == Variant::state;
-  const auto alpha = [&](std::size_t i, std::size_t j) {
-    return variant == Variant::elastic_reference ? 1.0 : mix.restitution(i, j);
-  };
-  const auto chi = [&](std::size_t i, std::size_t j) {
-    return dense ? mix.pair_correlation(i, j) : 1.0;  // \ref cm_chi "docs/collision-model.md": chi only in the Enskog gas
-  };
-  const auto mu = [&](std::size_t i, std::size_t j) { return mix.mass_fraction(i, j); };
-  const auto sigma = [&](std::size_t i, std::size_t j) { return mix.contact_distance(i, j); };
-
-  // GHD 2007 reduced variables: mbar the plain mean mass, v0 = sqrt(2 T/mbar),
-  // theta_i = m_i T/(mbar T_i).
-  double mass_mean = 0.0;
-  for (double m : mix.mass) mass_mean += m;
-  mass_mean /= static_cast<double>(species_count);
-  const double thermal_speed = std::sqrt(2.0 * mixture_temperature / mass_mean);
-  std::vector<double> theta(species_count);
-  for (std::size_t i = 0; i < species_count; ++i)
-    theta[i] = mix.mass[i] * mixture_temperature / (mass_mean * temperature[i]);
-  const auto beta = [&](std::size_t i, std::size_t j) {
-    return mu(i, j) * theta[j] - mu(j, i) * theta[i];
-  };
-
-  // zeta_0 = (1/T) sum_i x_i T_i zeta_i, zeta_i = sum_j xi_ij (\ref haff_mixture_odes "docs/haff-and-mixtures.md"); the elastic reference
-  // does not cool.
-  double cooling_rate = 0.0;
-  if (variant == Variant::state) {
-    const species::PairMatrix xi = cooling_rate_matrix(mix, temperature);
-    for (std::size_t i = 0; i < species_count; ++i) {
-      double zeta_i = 0.0;
-      for (std::size_t j = 0; j < species_count; ++j) zeta_i += xi(i, j);
-      cooling_rate += mix.mole_fraction(i) * temperature[i] * zeta_i;
-    }
-    cooling_rate /= mixture_temperature;
-  }
-
+  const TauSystem tau(mix, temperature, mixture_temperature, variant);
+  const double cooling_rate = tau.cooling_rate(mixture_temperature);
   Eigen::MatrixXd system(species_count, species_count);
   Eigen::VectorXd source(species_count);
   for (std::size_t i = 0; i < species_count; ++i) {
-    // S_i of \ref eta_mixture "docs/shear-viscosity.md": the unlike-pair part of tau_ii.
-    double unlike_sum = 0.0;
-    for (std::size_t j = 0; j < species_count; ++j) {
-      if (j == i) continue;
-      const double r_ij = std::sqrt(theta[i] + theta[j]);
-      unlike_sum += mix.number_density[j] * chi(i, j) * sigma(i, j) * sigma(i, j) * mu(j, i) *
-                    (1.0 + alpha(i, j)) * std::pow(theta[i], 1.5) / std::sqrt(theta[j]) *
-                    (6.0 * beta(i, j) / (theta[i] * theta[i] * r_ij) +
-                     0.5 * (9.0 - 3.0 * alpha(i, j)) * mu(j, i) * r_ij / (theta[i] * theta[i]) +
-                     5.0 / (theta[i] * r_ij));
-    }
-    for (std::size_t j = 0; j < species_count; ++j) {
-      double tau_ij;
-      if (j == i) {
-        const double sigma_i = mix.diameter[i];
-        tau_ij = 4.0 * std::sqrt(pi) / 15.0 * thermal_speed *
-                 (mix.number_density[i] * chi(i, i) * sigma_i * sigma_i /
-                      std::sqrt(2.0 * theta[i]) * (9.0 - 3.0 * alpha(i, i)) * (1.0 + alpha(i, i)) +
-                  2.0 * unlike_sum);
-        tau_ij -= cooling_coefficient_c * cooling_rate;
-      } else {
-        const double r_ij = std::sqrt(theta[i] + theta[j]);
-        tau_ij = 8.0 * std::sqrt(pi) / 15.0 * thermal_speed * mix.number_density[i] * chi(i, j) *
-                 sigma(i, j) * sigma(i, j) * mu(i, j) * std::pow(theta[j], 1.5) /
-                 std::sqrt(theta[i]) * (1.0 + alpha(i, j)) *
-                 (6.0 * beta(i, j) / (theta[j] * theta[j] * r_ij) +
-                  0.5 * (9.0 - 3.0 * alpha(i, j)) * mu(j, i) * r_ij / (theta[j] * theta[j]) -
-                  5.0 / (theta[j] * r_ij));
-      }
-      system(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = tau_ij;
-    }
-    // Source n_i T_i, plus in the Enskog gas the collisional transfer b_i (GHD 2007 II).
-    double source_i = mix.number_density[i] * temperature[i];
-    if (dense) {
-      for (std::size_t j = 0; j < species_count; ++j) {
-        const double sigma_ij = sigma(i, j);
-        source_i += 2.0 * pi / 15.0 * mix.mass[i] * mix.number_density[i] *
-                    mix.number_density[j] * mu(j, i) * sigma_ij * sigma_ij * sigma_ij * chi(i, j) *
-                    (1.0 + alpha(i, j)) *
-                    (mu(j, i) * (3.0 * alpha(i, j) - 1.0) *
-                         (temperature[i] / mix.mass[i] + temperature[j] / mix.mass[j]) -
-                     4.0 * (temperature[i] - temperature[j]) / (mix.mass[i] + mix.mass[j]));
-      }
-    }
-    source(static_cast<Eigen::Index>(i)) = source_i;
+    for (std::size_t j = 0; j < species_count; ++j)
+      system(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
+          j == i ? tau.tau(i, j) - cooling_coefficient_c * cooling_rate : tau.tau(i, j);
+    source(static_cast<Eigen::Index>(i)) = tau.source(i);
   }
-
   const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> solver(system);
   if (!solver.isInvertible())
     throw std::runtime_error("viscosity::mixture_viscosity: the tau system is singular");
@@ -139,22 +158,7 @@ MixtureViscosity solve_mixture(const species::Mixture& mix, const std::vector<do
   result.cooling_rate = cooling_rate;
   result.partial.assign(partial.data(), partial.data() + partial.size());
   for (double eta_i : result.partial) result.kinetic += eta_i;
-
-  if (dense) {
-    for (std::size_t i = 0; i < species_count; ++i)
-      for (std::size_t j = 0; j < species_count; ++j) {
-        const double sigma_ij = sigma(i, j);
-        // bulk viscosity kappa (GHD 2007 II)
-        result.bulk += 2.0 * std::sqrt(pi) / 9.0 * thermal_speed * mu(i, j) * mix.mass[j] *
-                       mix.number_density[i] * mix.number_density[j] * std::pow(sigma_ij, 4) *
-                       chi(i, j) * (1.0 + alpha(i, j)) *
-                       std::sqrt((theta[i] + theta[j]) / (theta[i] * theta[j]));
-        result.collisional += 4.0 * pi / 15.0 * mix.number_density[j] * sigma_ij * sigma_ij *
-                              sigma_ij * chi(i, j) * mu(j, i) * (1.0 + alpha(i, j)) *
-                              result.partial[i];
-      }
-    result.collisional += 0.6 * result.bulk;
-  }
+  if (tau.dense) tau.add_collisional(result);
   result.total = result.kinetic + result.collisional;
   return result;
 }
