@@ -10,6 +10,7 @@
 #include <fstream>
 #include <future>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -120,24 +121,22 @@ const char* kUsage =
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  // Under mpirun every rank runs this main: all read the input (each reports a bad input the same
-  // way) and run their share of the work; rank 0 alone writes the file and the summary (parallel.hpp).
-  gdsmc::io::h5md::skip_library_shutdown();  // before any HDF5 call (h5md.hpp)
-  // A file size limit (ulimit -f) makes a write fail with EFBIG, reported like a full disk, instead
-  // of killing the process and leaving its temporary file.
-  std::signal(SIGXFSZ, SIG_IGN);
-  gdsmc::parallel::Session mpi(argc, argv);
-  const bool root = gdsmc::parallel::rank() == 0;
+namespace {
+
+/// The command line of a run.
+struct Arguments {
   std::string input;
   std::vector<std::string> overrides;
-  bool quiet = false;
-  bool force = false;
+  bool quiet = false, force = false, compare = false;
   std::string restart;
-  bool compare = false;
-  std::string compare_json;  // --compare=FILE.json
-  std::string output_option;  // the --output argument and the override it became, for messages
-  std::string output_override;
+  std::string compare_json;     ///< --compare=FILE.json
+  std::string output_option;    ///< the --output argument, for messages
+  std::string output_override;  ///< the override --output became
+};
+
+/// Reads the command line into `a`; an exit status when the program is done (an option that prints and
+/// exits, or a bad command line), nothing when a run follows.
+std::optional<int> parse_arguments(int argc, char** argv, Arguments& a) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto next = [&]() -> std::string {
@@ -172,112 +171,123 @@ int main(int argc, char** argv) {
       }
       return 0;
     } else if (arg == "--quiet" || arg == "-q") {
-      quiet = true;
+      a.quiet = true;
     } else if (arg == "--force") {
-      force = true;
+      a.force = true;
     } else if (arg == "--output" || arg == "-o") {
       std::string path = next();
       std::string quoted;
       for (char c : path) quoted += (c == '\'') ? std::string("''") : std::string(1, c);
-      overrides.push_back("output:file='" + quoted + "'");
-      output_option = "--output " + path;
-      output_override = "--set " + overrides.back();
+      a.overrides.push_back("output:file='" + quoted + "'");
+      a.output_option = "--output " + path;
+      a.output_override = "--set " + a.overrides.back();
     } else if (arg == "--compare") {
-      compare = true;
+      a.compare = true;
     } else if (arg.rfind("--compare=", 0) == 0) {
-      compare = true;
-      compare_json = arg.substr(std::strlen("--compare="));
-      if (compare_json.empty()) {
+      a.compare = true;
+      a.compare_json = arg.substr(std::strlen("--compare="));
+      if (a.compare_json.empty()) {
         std::cerr << "granular-dsmc: --compare=: no JSON file named (give --compare alone for the table only)\n";
         return 2;
       }
     } else if (arg == "--restart") {
-      restart = next();
+      a.restart = next();
     } else if (arg == "--set") {
-      overrides.push_back(next());
+      a.overrides.push_back(next());
     } else if (!arg.empty() && arg[0] == '-') {
       std::cerr << "granular-dsmc: unknown option " << arg << "\n" << kUsage;
       return 2;
-    } else if (input.empty()) {
-      input = arg;
+    } else if (a.input.empty()) {
+      a.input = arg;
     } else {
-      std::cerr << "granular-dsmc: one input file only (got '" << input << "' and '" << arg << "')\n";
+      std::cerr << "granular-dsmc: one input file only (got '" << a.input << "' and '" << arg << "')\n";
       return 2;
     }
   }
-  if (input.empty()) {
+  if (a.input.empty()) {
     std::cerr << kUsage;
     return 2;
   }
+  return std::nullopt;
+}
 
-  gdsmc::io::config::Config config;
-  try {
-    config = gdsmc::io::config::read_file(input, overrides, gdsmc::analysis::check_run_cost);
-  } catch (const gdsmc::io::namelist::Error& e) {
-    if (root) std::cerr << "granular-dsmc: " << e.what() << "\n";
+/// An output path that cannot be written is an input error: named where it was set (the namelist
+/// line, --set or --output; the namelist file itself for the default). Exit status 2.
+int output_error(const Arguments& a, const gdsmc::io::config::Config& config, bool root, const std::string& message) {
+  const auto it = config.origin.find("output:file");
+  const bool set = it != config.origin.end();
+  const std::string where = !set ? a.input : it->second.first == a.output_override ? a.output_option : it->second.first;
+  if (root)
+    std::cerr << "granular-dsmc: "
+              << gdsmc::io::namelist::Error(where, set ? it->second.second : 0, "output", "file", message).what() << "\n";
+  return 2;
+}
+
+/// The files a run writes, checked before it: never the input, the checkpoint being resumed, or a file
+/// this program did not write; the JSON of --compare writable. An exit status when one is refused.
+std::optional<int> check_paths(const Arguments& a, const gdsmc::io::config::Config& config, bool root) {
+  const std::string& path = config.output.file;
+  if (std::error_code ec; !a.restart.empty() && std::filesystem::is_directory(a.restart, ec)) {
+    if (root) std::cerr << "granular-dsmc: --restart: '" << a.restart << "' is a directory, not a checkpoint file\n";
     return 2;
   }
-
-  if (std::error_code ec; !restart.empty() && std::filesystem::is_directory(restart, ec)) {
-    if (root) std::cerr << "granular-dsmc: --restart: '" << restart << "' is a directory, not a checkpoint file\n";
+  // A directory would only be found when the finished run is renamed into place.
+  if (std::error_code ec; std::filesystem::is_directory(path, ec))
+    return output_error(a, config, root, "cannot write output file '" + path + "': it is a directory");
+  std::error_code ec;
+  if (std::filesystem::equivalent(path, a.input, ec))
+    return output_error(a, config, root, "the output file '" + path + "' is the input namelist: it would be overwritten");
+  if (!a.restart.empty() && std::filesystem::equivalent(path, a.restart, ec))
+    return output_error(a, config, root, "the output file '" + path + "' is the checkpoint given to --restart");
+  if (!a.force && std::filesystem::exists(path, ec) && !is_earlier_output(path))
+    return output_error(a, config, root,
+                        "'" + path + "' exists and is not an output of granular-dsmc: choose another file, or "
+                        "give --force to replace it");
+  if (a.compare_json.empty()) return std::nullopt;
+  // The JSON of --compare: never the input, the output or the checkpoint; writable before the run.
+  const auto json_error = [&](const std::string& message) {
+    if (root) std::cerr << "granular-dsmc: --compare=" << a.compare_json << ": " << message << "\n";
     return 2;
-  }
+  };
+  if (same_file(a.compare_json, a.input)) return json_error("it is the input namelist: it would be overwritten");
+  if (same_file(a.compare_json, path)) return json_error("it is the output file of the run (&output file)");
+  if (!a.restart.empty() && same_file(a.compare_json, a.restart)) return json_error("it is the checkpoint given to --restart");
+  if (root)
+    if (const std::string reason = unwritable_reason(a.compare_json); !reason.empty())
+      return json_error("cannot write the JSON file: " + reason);
+  return std::nullopt;
+}
+
+/// The line after a run, and its warning when a bound was not a majorant.
+void print_summary(const std::string& path, const gdsmc::simulation::Summary& summary, bool quiet, bool root) {
+  if (!quiet && root)
+    std::fprintf(stderr,
+                 "granular-dsmc: wrote %s: t = %.6g, T = %.6g, %.4g collisions per particle, "
+                 "%.3g collisions/s, %.1f s\n",
+                 path.c_str(), summary.final_time, summary.final_total_temperature, summary.collisions_per_particle,
+                 summary.events_per_second, summary.wall_seconds);
+  if (root && summary.acceptance_overshoots > 0.0)
+    std::fprintf(stderr,
+                 "granular-dsmc: warning: %.0f candidates had an acceptance probability above 1 (the bound was "
+                 "not a majorant; see /observables/acceptance_overshoots): please report this input\n",
+                 summary.acceptance_overshoots);
+}
+
+/// Runs the input, with --compare's theory in a thread of its own (the theory depends on the input
+/// only: computed while the DSMC runs, so that --compare adds almost nothing to the wall time); the
+/// program's exit status.
+int run(const Arguments& a, const gdsmc::io::config::Config& config, bool root) {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   gdsmc::simulation::Options options;
-  options.progress = !quiet && root;
+  options.progress = !a.quiet && root;
   options.progress_terminal = isatty(STDERR_FILENO) != 0;
   options.interrupt = &g_interrupted;
-  options.restart_path = restart;
+  options.restart_path = a.restart;
   const std::string& path = config.output.file;
-  // An output path that cannot be written is an input error: name where it was set (the namelist
-  // line, --set or --output; the namelist file itself for the default).
-  const auto output_error = [&](const std::string& message) {
-    const auto it = config.origin.find("output:file");
-    const bool set = it != config.origin.end();
-    const std::string where =
-        !set ? input : it->second.first == output_override ? output_option : it->second.first;
-    if (root)
-      std::cerr << "granular-dsmc: "
-              << gdsmc::io::namelist::Error(where, set ? it->second.second : 0, "output", "file",
-                                            message)
-                     .what()
-              << "\n";
-    return 2;
-  };
-  // A directory would only be found when the finished run is renamed into place.
-  if (std::error_code ec; std::filesystem::is_directory(path, ec))
-    return output_error("cannot write output file '" + path + "': it is a directory");
-  // Never write over the input, the checkpoint being resumed, or a file this program did not write.
-  {
-    std::error_code ec;
-    if (std::filesystem::equivalent(path, input, ec))
-      return output_error("the output file '" + path + "' is the input namelist: it would be overwritten");
-    if (!restart.empty() && std::filesystem::equivalent(path, restart, ec))
-      return output_error("the output file '" + path + "' is the checkpoint given to --restart");
-    if (!force && std::filesystem::exists(path, ec) && !is_earlier_output(path))
-      return output_error("'" + path + "' exists and is not an output of granular-dsmc: choose another file, or "
-                          "give --force to replace it");
-  }
-  // The JSON of --compare: never the input, the output or the checkpoint; writable before the run.
-  if (!compare_json.empty()) {
-    const auto json_error = [&](const std::string& message) {
-      if (root) std::cerr << "granular-dsmc: --compare=" << compare_json << ": " << message << "\n";
-      return 2;
-    };
-    if (same_file(compare_json, input)) return json_error("it is the input namelist: it would be overwritten");
-    if (same_file(compare_json, path)) return json_error("it is the output file of the run (&output file)");
-    if (!restart.empty() && same_file(compare_json, restart)) return json_error("it is the checkpoint given to --restart");
-    if (root)
-      if (const std::string reason = unwritable_reason(compare_json); !reason.empty())
-        return json_error("cannot write the JSON file: " + reason);
-  }
-  // The theory depends on the input only: computed in a thread of its own while the DSMC runs, so
-  // that --compare adds (almost) nothing to the wall time (the ODEs take milliseconds; the Smoluchowski
-  // equations of an &agg_frag run seconds).
   gdsmc::analysis::compare::Comparison comparison;
   std::future<std::vector<gdsmc::analysis::compare::PointTheory>> theory;
-  if (compare && root) {
+  if (a.compare && root) {
     theory = std::async(std::launch::async, [&config] { return gdsmc::analysis::compare::predict_points(config); });
     options.before_commit = [&](gdsmc::io::h5md::Writer& writer) {
       comparison = gdsmc::analysis::compare::compare_file(config, writer.temporary_path(), theory.get());
@@ -286,27 +296,17 @@ int main(int argc, char** argv) {
   }
   try {
     const auto summary = gdsmc::simulation::run(config, path, options);
-    if (compare && root) {
+    if (a.compare && root) {
       std::cout << gdsmc::analysis::compare::table(comparison) << std::flush;
-      if (!compare_json.empty())
-        if (const std::string reason = write_atomically(compare_json, gdsmc::analysis::compare::json(comparison));
+      if (!a.compare_json.empty())
+        if (const std::string reason = write_atomically(a.compare_json, gdsmc::analysis::compare::json(comparison));
             !reason.empty()) {
-          std::cerr << "granular-dsmc: --compare=" << compare_json << ": cannot write the JSON file: " << reason
+          std::cerr << "granular-dsmc: --compare=" << a.compare_json << ": cannot write the JSON file: " << reason
                     << " (the run's output " << path << " is complete)\n";
           return 1;
         }
     }
-    if (!quiet && root)
-      std::fprintf(stderr,
-                   "granular-dsmc: wrote %s: t = %.6g, T = %.6g, %.4g collisions per particle, "
-                   "%.3g collisions/s, %.1f s\n",
-                   path.c_str(), summary.final_time, summary.final_total_temperature,
-                   summary.collisions_per_particle, summary.events_per_second, summary.wall_seconds);
-    if (root && summary.acceptance_overshoots > 0.0)
-      std::fprintf(stderr,
-                   "granular-dsmc: warning: %.0f candidates had an acceptance probability above 1 (the bound was "
-                   "not a majorant; see /observables/acceptance_overshoots): please report this input\n",
-                   summary.acceptance_overshoots);
+    print_summary(path, summary, a.quiet, root);
   } catch (const gdsmc::simulation::Interrupted& e) {
     if (!root) return 130;
     std::cerr << (options.progress ? "\n" : "") << "granular-dsmc: " << e.what();
@@ -321,10 +321,34 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const gdsmc::simulation::OutputPathError& e) {
     if (!root) return 2;
-    return output_error(e.what());
+    return output_error(a, config, root, e.what());
   } catch (const std::exception& e) {
     std::cerr << "granular-dsmc: " << e.what() << "\n";
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Under mpirun every rank runs this main: all read the input (each reports a bad input the same
+  // way) and run their share of the work; rank 0 alone writes the file and the summary (parallel.hpp).
+  gdsmc::io::h5md::skip_library_shutdown();  // before any HDF5 call (h5md.hpp)
+  // A file size limit (ulimit -f) makes a write fail with EFBIG, reported like a full disk, instead
+  // of killing the process and leaving its temporary file.
+  std::signal(SIGXFSZ, SIG_IGN);
+  gdsmc::parallel::Session mpi(argc, argv);
+  const bool root = gdsmc::parallel::rank() == 0;
+  Arguments arguments;
+  if (const auto done = parse_arguments(argc, argv, arguments)) return *done;
+  gdsmc::io::config::Config config;
+  try {
+    config = gdsmc::io::config::read_file(arguments.input, arguments.overrides, gdsmc::analysis::check_run_cost);
+  } catch (const gdsmc::io::namelist::Error& e) {
+    if (root) std::cerr << "granular-dsmc: " << e.what() << "\n";
+    return 2;
+  }
+  if (const auto refused = check_paths(arguments, config, root)) return *refused;
+  return run(arguments, config, root);
 }
