@@ -456,6 +456,19 @@ class Collider {
     std::uint32_t other;    ///< its alias's outcome
   };
   std::vector<LowrankCell> lowrank_cells_;        ///< P cells (set_block_lowrank)
+  /// `lowrank`'s candidate in a block from one 64-bit word (header "Mixtures in blocks"): particles a,
+  /// b and the pair i S + k, by the block's cells and outcomes (collide_kernels.cpp).
+  template <class Gen>
+  static void lowrank_candidate(Gen& gen, const LowrankCell* cells, const LowrankOutcome* outcomes, unsigned cell_bits,
+                                std::uint32_t& a, std::uint32_t& b, std::uint32_t& pair);
+  /// The mixture kernel's collision of a (species i) and b (species k): the rule's projected form with
+  /// p = (g.e) e (in a frame along G^-1 p, the moments following); the energy lost.
+  template <class Rule, bool Framed>
+  double kernel_collision(const PairKernel& pk, std::uint32_t i, std::uint32_t k, particles::Vec3& va, particles::Vec3& vb,
+                          double g_dot_e2, const particles::Vec3& p, std::array<double, 4>& moments) const;
+  /// The mixture kernel after a raised bound: the block's A_ik (`lowrank`) or B_b and R_b anew.
+  template <bool Lowrank, bool Framed>
+  void after_raise(const std::size_t* cum, std::uint32_t n, double* speed2);
   std::vector<LowrankOutcome> lowrank_outcomes_;  ///< P^2 outcomes, the pairs of the P species present in the block
   unsigned lowrank_cell_bits_ = 0;                ///< m
   double step_start_ = 0.0;

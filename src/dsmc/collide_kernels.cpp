@@ -51,24 +51,144 @@ void Collider::run_block_kernel(const Rule& rule, bool lowrank, double t_stop) {
   }
 }
 
+namespace {
+
+/// Prefetches the velocities (a Vec3 may straddle two cache lines: its first and last byte) and, when
+/// tracked, the displacements of particles a and b of a drawn-ahead candidate (header "Look-ahead").
+template <bool Track>
+[[gnu::always_inline]] inline void prefetch_pair(const particles::Vec3* v, const particles::Displacement* r,
+                                                 std::uint32_t a, std::uint32_t b) {
+  const auto* base = reinterpret_cast<const char*>(v);
+  for (std::uint32_t q : {a, b}) {
+    __builtin_prefetch(base + q * sizeof(particles::Vec3), 1);
+    __builtin_prefetch(base + (q + 1) * sizeof(particles::Vec3) - 1, 1);
+    if constexpr (Track) __builtin_prefetch(r + q, 1);
+  }
+}
+
+/// Where a block's i-th particle is (the `majorant` mixture kernel): of species k for edge[k] <= i <
+/// edge[k + 1], at system index i + offset[k] (its slice's first index less cum_k), in 32-bit words, so
+/// that a candidate's species and index take a compare and an add (a binary gas's edge and offsets in
+/// registers: edge1, offset0, offset1).
+struct BlockIndex {
+  std::array<std::uint32_t, block_species_limit + 1> edge;
+  std::array<std::uint32_t, block_species_limit> offset;
+  std::uint32_t edge1 = 0, offset0 = 0, offset1 = 0;
+};
+BlockIndex block_index(const std::size_t* cum, const std::size_t* slice, std::size_t s) {
+  BlockIndex x;
+  for (std::size_t k = 0; k < s; ++k) {
+    x.edge[k] = static_cast<std::uint32_t>(cum[k]);
+    x.offset[k] = static_cast<std::uint32_t>(slice[k] - cum[k]);  // (modulo 2^32: i + offset is exact)
+  }
+  x.edge[s] = static_cast<std::uint32_t>(cum[s]);
+  if (s >= 2) x.edge1 = x.edge[1], x.offset0 = x.offset[0], x.offset1 = x.offset[1];
+  return x;
+}
+
+/// `majorant`'s candidate in a mixture's block: a uniform pair of its N_b particles (one draw), their
+/// system indices and the pair i S + k of their species (`Two`: a binary gas's one compare).
+template <bool Two>
+[[gnu::always_inline]] inline void majorant_candidate(rng::Xoshiro256pp& gen, std::uint32_t n, std::size_t s,
+                                                      const BlockIndex& index, std::uint32_t edge1, std::uint32_t offset0,
+                                                      std::uint32_t offset1, std::uint32_t& a, std::uint32_t& b,
+                                                      std::uint32_t& pair) {
+  std::uint32_t x, y;
+  gen.below_pair(n, n - 1, x, y);
+  y += y >= x;
+  const std::uint32_t i = Two ? x >= edge1 : species_at(index.edge.data(), s, x);
+  const std::uint32_t k = Two ? y >= edge1 : species_at(index.edge.data(), s, y);
+  a = x + (Two ? (i ? offset1 : offset0) : index.offset[i]);
+  b = y + (Two ? (k ? offset1 : offset0) : index.offset[k]);
+  pair = Two ? 2 * i + k : static_cast<std::uint32_t>(i * s + k);
+}
+
+/// "(sigma g)_max raised when exceeded" (collide.hpp header) for both partners of a collision: true when
+/// either speed^2 passed its species' bound, which then rises.
+[[gnu::always_inline]] inline bool raised_by(const particles::Vec3& va, const particles::Vec3& vb, double* speed2,
+                                             std::uint32_t i, std::uint32_t k) {
+  const double speed2_a = va.x * va.x + va.y * va.y + va.z * va.z;
+  const double speed2_b = vb.x * vb.x + vb.y * vb.y + vb.z * vb.z;
+  if (!(speed2_a > speed2[i] || speed2_b > speed2[k])) [[likely]]
+    return false;
+  speed2[i] = std::max(speed2[i], speed2_a);
+  speed2[k] = std::max(speed2[k], speed2_b);
+  return true;
+}
+
+}  // namespace
+
+template <class Gen>
+[[gnu::always_inline]] inline void Collider::lowrank_candidate(Gen& gen, const LowrankCell* cells,
+                                                               const LowrankOutcome* outcomes, unsigned cell_bits,
+                                                               std::uint32_t& a, std::uint32_t& b, std::uint32_t& pair) {
+  // From one word (set_block_lowrank, header "Mixtures in blocks"): the alias cell from the top m bits, its
+  // coin from the next 16 - m (a further uniform only when they tie with the threshold), the particles
+  // from the low two 24-bit fields by below_pair's multiply-shift and rejection in 24 bits (Lemire 2019;
+  // either field rejected: below_pair draws both particles of this pair again).
+  const std::uint64_t r = gen();
+  const LowrankCell& cell = cells[r >> (64 - cell_bits)];
+  const auto q = static_cast<std::uint32_t>(r >> 48) & ((1u << (16 - cell_bits)) - 1);
+  // Without a branch on q < whole (taken at random, its mispredictions cost about as much as the
+  // rest of the draw): a mask selects the outcome; the tie q = whole (one in 2^(16-m)) branches.
+  const std::uint32_t keep_mask = 0u - static_cast<std::uint32_t>(q < cell.whole);
+  std::uint32_t outcome = (cell.keep & keep_mask) | (cell.other & ~keep_mask);
+  if (q == cell.whole) [[unlikely]]
+    outcome = gen.uniform() < cell.fraction ? cell.keep : cell.other;
+  const LowrankOutcome& o = outcomes[outcome];
+  const std::uint64_t m1 = (r & 0xffffffULL) * o.count_i, m2 = ((r >> 24) & 0xffffffULL) * o.count_k;
+  std::uint32_t x = static_cast<std::uint32_t>(m1 >> 24), y = static_cast<std::uint32_t>(m2 >> 24);
+  if ((static_cast<std::uint32_t>(m1) & 0xffffffu) < o.reject_i || (static_cast<std::uint32_t>(m2) & 0xffffffu) < o.reject_k)
+      [[unlikely]] {
+    // On a copy of the stream: the stream itself then never has its address taken and stays in
+    // registers (below_pair, out of line here, would otherwise make it live in memory throughout).
+    rng::Xoshiro256pp rare = gen;
+    rare.below_pair(o.count_i, o.count_k, x, y);
+    gen = rare;
+  }
+  a = o.first_i + x, b = o.first_k + y, pair = o.pair;
+}
+
+template <class Rule, bool Framed>
+[[gnu::always_inline]] inline double Collider::kernel_collision(const PairKernel& pk, std::uint32_t i, std::uint32_t k,
+                                                                particles::Vec3& va, particles::Vec3& vb, double g_dot_e2,
+                                                                const particles::Vec3& p, std::array<double, 4>& moments) const {
+  if constexpr (Framed) {  // the stored u move along G^-1 (g.e) e; the moments follow them (header "Frame")
+    const double ma = mix_.mass[i], mb = mix_.mass[k];
+    add_moments(moments, va, -ma);
+    add_moments(moments, vb, -mb);
+    const double lost = Rule::collide_projected(va, vb, pk.constants, g_dot_e2, to_stored(p.x, p.y, p.z));
+    add_moments(moments, va, ma);
+    add_moments(moments, vb, mb);
+    return lost;
+  } else {
+    (void)i, (void)k, (void)moments;
+    return Rule::collide_projected(va, vb, pk.constants, g_dot_e2, p);
+  }
+}
+
+template <bool Lowrank, bool Framed>
+void Collider::after_raise(const std::size_t* cum, std::uint32_t n, double* speed2) {
+  if constexpr (Lowrank) {
+    set_block_lowrank(mix_.total_density());  // the block's A_ik over the raised bounds
+  } else {
+    bound_ = mixture_bound(speed2, cum);
+    if constexpr (Framed) bound_ *= speed_factor_;
+    rate_ = 0.5 * static_cast<double>(n) * mix_.total_density() * bound_;
+  }
+}
+
 template <class Rule, bool Track, bool Framed>
 void Collider::run_block_one_species(const Rule& rule, double t_stop) {
-  // The process of run_majorant on the block's N_b particles (header "Blocks"): candidates at
-  // R_b = N_b n B_b / 2, B_b = 2 pi sigma^2 chi vmax_b, candidate c of a sub-step at t0 + (c + 1)/R_b,
-  // a uniform pair accepted with |g| / (2 vmax_b). Only the work per candidate is less: the pair from
-  // one draw (rng::Xoshiro256pp::below_pair), the drawn-ahead pairs in locals, no species,
-  // and (g.e) e without e (hemisphere_projection), the same collision as hemisphere_normal's e gives.
-  // Framed (header, "Frame"): g = G (u_a - u_b), the bound times ||G||, the impulse mapped back with
-  // G^-1 (linear, so applied to (g.e) e itself), the change of Q summed here and added at the end.
-  // The block's stream in a local copy, written back at the end (as run_block_mixture): its state
-  // then stays in registers instead of being stored at every draw. The same draws.
+  // The process of run_majorant on the block's N_b particles (header "Blocks", "The one-species kernel"):
+  // candidates at R_b = N_b n B_b / 2, B_b = 2 pi sigma^2 chi vmax_b, a uniform pair accepted with
+  // |g| / (2 vmax_b), with less work per candidate; the stream in a local copy (its state in registers).
   rng::Xoshiro256pp gen = gen_;
   const auto first = static_cast<std::uint32_t>(range_first_);
   const auto n = static_cast<std::uint32_t>(range_count_);
   particles::Vec3* v = sys_.v.data() + first;
   const double n_density = mix_.total_density();
-  // One species: both partners take half the impulse, share_a = share_b. (The constants as scalars,
-  // which stay in registers; a record of them was read from the stack in the loop.)
+  // One species: both partners take half the impulse, share_a = share_b (scalars, kept in registers).
   const typename Rule::Pair both = rule.pair(0, 0);
   const double share = both.share_a, loss = both.loss;
   double max_speed2 = block_speed2_[0];
@@ -80,12 +200,7 @@ void Collider::run_block_one_species(const Rule& rule, double t_stop) {
     b += b >= a;
     ahead[2 * slot] = a;
     ahead[2 * slot + 1] = b;
-    const auto* base = reinterpret_cast<const char*>(v);
-    for (std::uint32_t i : {a, b}) {
-      __builtin_prefetch(base + i * sizeof(particles::Vec3), 1);
-      __builtin_prefetch(base + (i + 1) * sizeof(particles::Vec3) - 1, 1);
-      if constexpr (Track) __builtin_prefetch(sys_.r.data() + first + i, 1);
-    }
+    prefetch_pair<Track>(v, sys_.r.data() + first, a, b);
   };
   for (std::size_t slot = 0; slot < block_lookahead<Framed>; ++slot) draw(slot);
   std::size_t next = 0;
@@ -146,14 +261,9 @@ void Collider::run_block_one_species(const Rule& rule, double t_stop) {
       }
     }
     candidates += c;
-    if (raised) {
-      time_ = t0 + static_cast<double>(c) * dt_candidate;
-      credit_ = 0.0;
-      continue;
-    }
-    credit_ = available - static_cast<double>(n_candidates) * dt_candidate;
-    time_ = t_stop;
-    break;
+    credit_ = raised ? 0.0 : available - static_cast<double>(n_candidates) * dt_candidate;
+    time_ = raised ? t0 + static_cast<double>(c) * dt_candidate : t_stop;
+    if (!raised) break;
   }
   gen_ = gen;
   block_speed2_[0] = max_speed2;
@@ -167,114 +277,37 @@ void Collider::run_block_one_species(const Rule& rule, double t_stop) {
 
 template <class Rule, bool Track, bool Lowrank, bool Framed, bool Two>
 void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_stop) {
-  // The process of run_majorant (or run_lowrank) on the block's slices (header "Mixtures in blocks"):
-  // candidates at R_b, candidate c of a sub-step at t0 + (c + 1)/R_b; `majorant`: a uniform pair of the
-  // block's N_b particles accepted with pi sigma_kj^2 chi_kj |g| / B_b; `lowrank`: (i, k) from the block's
-  // alias table, a particle of each slice, accepted with |g| / (w_i + w_k). Only the work per candidate
-  // is less, as in run_block_one_species: a pair of indices from one draw, the drawn-ahead pairs (with
-  // their species, known from the slice, so no read of the species array) in locals, no viscoelastic
-  // branch, the pair's constants in one record, and (g.e) e without e (hemisphere_projection).
-  // Framed: as run_block_one_species (g = G (u_a - u_b), bounds times ||G||, the impulse mapped back with
-  // G^-1, the change of Q summed here with each partner's mass).
-  // The block's stream in a local copy (written back at the end): its state then stays in registers
-  // instead of being stored and loaded again at every draw (the same draws, 2-5 % less time per candidate).
+  // The process of run_majorant (or run_lowrank) on the block's slices, with less work per candidate
+  // (header "Mixtures in blocks"); the stream in a local copy (its state in registers).
   rng::Xoshiro256pp gen = gen_;
   const std::size_t s = s_;
   const std::size_t* cum = slice_cum_.data() + current_block_ * (s + 1);
   const std::size_t* slice = slice_first_.data() + current_block_ * s;
   const auto n = static_cast<std::uint32_t>(range_count_);
   particles::Vec3* v = sys_.v.data();
-  const double n_density = mix_.total_density();
   static_assert(std::is_same_v<typename Rule::Projected, rules::SmoothRule::Projected>,
                 "the kernels' table (PairKernel) holds SmoothRule's projected constants");
   const PairKernel* kernel = pair_kernel_.data();
-  // The acceptance's constant of each pair, apart from PairKernel so that a candidate reads 8 bytes at
-  // 8 pair: `majorant` (pi sigma^2 chi)^2, `lowrank` w_i + w_k (set_block_lowrank).
+  // (the acceptance's constant of each pair apart: `majorant` (pi sigma^2 chi)^2, `lowrank` w_i + w_k)
   const double* acceptance = Lowrank ? pair_limit_.data() : pair_cross_section2_.data();
   double* speed2 = block_speed2_;
-  // Per-pair event counts (up to pair_event_limit species; above, every pair's slot 0 of a sink).
-  std::uint64_t sink = 0;
-  std::uint64_t* pair_events = counters_.pair_events.empty() ? &sink : counters_.pair_events.data();
-  // The block's i-th particle (0 <= i < N_b) is of species k for edge[k] <= i < edge[k + 1], at system
-  // index i + offset[k] (its slice's first index less cum_k): 32-bit locals, so that a candidate's
-  // species and indices take a compare and an add each instead of loads of the size_t slice tables.
-  std::array<std::uint32_t, block_species_limit + 1> edge;
-  std::array<std::uint32_t, block_species_limit> offset;
-  if constexpr (!Lowrank) {
-    for (std::size_t k = 0; k < s; ++k) {
-      edge[k] = static_cast<std::uint32_t>(cum[k]);
-      offset[k] = static_cast<std::uint32_t>(slice[k] - cum[k]);  // (modulo 2^32: x + offset is exact)
-    }
-    edge[s] = static_cast<std::uint32_t>(cum[s]);
-  }
-  // (species_at: a binary mixture's species by one compare; the general loop cost it a dozen instructions.)
-  const auto species_of = [&](std::uint32_t i) { return species_at(edge.data(), s, i); };
-  [[maybe_unused]] const std::uint32_t edge1 = Two ? edge[1] : 0, offset0 = Two ? offset[0] : 0,
-                                       offset1 = Two ? offset[1] : 0;
-  // `lowrank`'s one-word draw (set_block_lowrank), rebuilt with A_ik.
+  std::uint64_t sink = 0, *pair_events = counters_.pair_events.empty() ? &sink : counters_.pair_events.data();
+  const BlockIndex index = Lowrank ? BlockIndex{} : block_index(cum, slice, s);
+  [[maybe_unused]] const std::uint32_t edge1 = index.edge1, offset0 = index.offset0, offset1 = index.offset1;
   const LowrankCell* cells = lowrank_cells_.data();
   const LowrankOutcome* outcomes = lowrank_outcomes_.data();
   const unsigned cell_bits = lowrank_cell_bits_;
-  const std::uint32_t coin_mask = (1u << (16 - cell_bits)) - 1;
-  // A drawn-ahead candidate: its particles' system indices and the pair i S + k (its PairKernel; its
-  // species i and k, whose bounds are read only after a collision, from pair_species_).
-  // In three arrays of 32-bit words rather than one of 12-byte records: a slot's words are then at
-  // 4 slot, which an x86 address scales by itself (a record's 12 slot took extra instructions).
-  struct Candidate {
-    std::uint32_t a, b, pair;
-  };
+  // The drawn-ahead candidates: particles a, b and the pair i S + k, in three arrays of 32-bit words.
   const std::uint32_t* pair_species = pair_species_.data();
   std::array<std::uint32_t, block_lookahead<Framed>> ahead_a, ahead_b, ahead_pair;
   const auto draw = [&](std::size_t slot) {
-    Candidate p;
-    if constexpr (Lowrank) {  // (i, k) with probability A_ik / R_b, then a particle of each slice
-      // From one word (set_block_lowrank): the alias cell from the top m bits, its coin from the next
-      // 16 - m (a further uniform only when they tie with the threshold), the particles from the low two
-      // 24-bit fields by below_pair's multiply-shift and rejection in 24 bits (Lemire 2019; either field
-      // rejected: below_pair draws both particles of this pair again). A block with a slice of 2^24 or
-      // more has every reject at 2^24: below_pair draws each of its candidates.
-      const std::uint64_t r = gen();
-      const LowrankCell& cell = cells[r >> (64 - cell_bits)];
-      const auto q = static_cast<std::uint32_t>(r >> 48) & coin_mask;
-      // Without a branch on q < whole (taken at random, its mispredictions cost about as much as the
-      // rest of the draw): a mask selects the outcome; the tie q = whole (one in 2^(16-m)) branches.
-      const std::uint32_t keep_mask = 0u - static_cast<std::uint32_t>(q < cell.whole);
-      std::uint32_t outcome = (cell.keep & keep_mask) | (cell.other & ~keep_mask);
-      if (q == cell.whole) [[unlikely]]
-        outcome = gen.uniform() < cell.fraction ? cell.keep : cell.other;
-      const LowrankOutcome& o = outcomes[outcome];
-      const std::uint64_t m1 = (r & 0xffffffULL) * o.count_i, m2 = ((r >> 24) & 0xffffffULL) * o.count_k;
-      std::uint32_t x = static_cast<std::uint32_t>(m1 >> 24), y = static_cast<std::uint32_t>(m2 >> 24);
-      if ((static_cast<std::uint32_t>(m1) & 0xffffffu) < o.reject_i ||
-          (static_cast<std::uint32_t>(m2) & 0xffffffu) < o.reject_k) [[unlikely]] {
-        // On a copy of the stream: the stream itself then never has its address taken and stays in
-        // registers (below_pair, out of line here, would otherwise make it live in memory throughout).
-        rng::Xoshiro256pp rare = gen;
-        rare.below_pair(o.count_i, o.count_k, x, y);
-        gen = rare;
-      }
-      p = {o.first_i + x, o.first_k + y, o.pair};
-    } else {  // a uniform pair of the block's particles
-      std::uint32_t x, y;
-      gen.below_pair(n, n - 1, x, y);
-      y += y >= x;
-      if constexpr (Two) {  // species_at's one compare, with edge[1] and the offsets in registers
-        const std::uint32_t i = x >= edge1, k = y >= edge1;
-        p = {x + (i ? offset1 : offset0), y + (k ? offset1 : offset0), 2 * i + k};
-      } else {
-        const std::uint32_t i = species_of(x), k = species_of(y);
-        p = {x + offset[i], y + offset[k], static_cast<std::uint32_t>(i * s + k)};
-      }
-    }
-    ahead_a[slot] = p.a;
-    ahead_b[slot] = p.b;
-    ahead_pair[slot] = p.pair;
-    const auto* base = reinterpret_cast<const char*>(v);
-    for (std::uint32_t q : {p.a, p.b}) {
-      __builtin_prefetch(base + q * sizeof(particles::Vec3), 1);
-      __builtin_prefetch(base + (q + 1) * sizeof(particles::Vec3) - 1, 1);
-      if constexpr (Track) __builtin_prefetch(sys_.r.data() + q, 1);
-    }
+    std::uint32_t a, b, pair;
+    if constexpr (Lowrank)
+      lowrank_candidate(gen, cells, outcomes, cell_bits, a, b, pair);
+    else
+      majorant_candidate<Two>(gen, n, s, index, edge1, offset0, offset1, a, b, pair);
+    ahead_a[slot] = a, ahead_b[slot] = b, ahead_pair[slot] = pair;
+    prefetch_pair<Track>(v, sys_.r.data(), a, b);
   };
   for (std::size_t slot = 0; slot < block_lookahead<Framed>; ++slot) draw(slot);
   std::size_t next = 0;
@@ -282,10 +315,8 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
   double dissipated = 0.0;
   [[maybe_unused]] std::array<double, 4> moments{};  // the change of sum m u u^T (xx, yy, zz, xy)
   for (;;) {
-    // rate_ (and bound_, or the alias table and w_k = max_speed_) are those of the block's current bounds.
-    const double bound = bound_;
-    const double dt_candidate = 1.0 / rate_;
-    const double available = credit_ + (t_stop - time_);
+    // rate_ (and bound_, or the alias table and w_k) are those of the block's current bounds.
+    const double bound = bound_, dt_candidate = 1.0 / rate_, available = credit_ + (t_stop - time_);
     const auto n_candidates = static_cast<std::uint64_t>(available * rate_);
     const double t0 = time_ - credit_;
     bool raised = false;
@@ -294,24 +325,15 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
       const std::uint32_t a = ahead_a[next], b = ahead_b[next], pair = ahead_pair[next];
       draw(next);
       next = (next + 1) % block_lookahead<Framed>;
-      if constexpr (Lowrank)
-        if (a == b) continue;  // the self pair is part of the majorant's sum, never a collision
+      if (Lowrank && a == b) continue;  // the self pair is part of the majorant's sum, never a collision
       double gx = v[a].x - v[b].x, gy = v[a].y - v[b].y, gz = v[a].z - v[b].z;
       to_actual<Framed>(gx, gy, gz);
       const double g2 = gx * gx + gy * gy + gz * gz;
-      if constexpr (Lowrank) {
-        // Accept with |g| / (w_i + w_k) (run_lowrank in a block: chi_ik cancels), compared squared.
-        const double limit = acceptance[pair];  // w_i + w_k
-        const double threshold = gen.uniform() * limit;
-        if (threshold * threshold >= g2) continue;
-        if (g2 > limit * limit) [[unlikely]] note_overshoot(std::sqrt(g2) / limit);
-      } else {
-        // Accept with pi sigma_kj^2 chi_kj |g| / B_b (\ref sch_majorant "docs/schemes.md"), compared squared.
-        const double rate2 = acceptance[pair] * g2;  // (pi sigma^2 chi)^2 g^2: the same product as (cs cs) g2
-        const double threshold = gen.uniform() * bound;
-        if (threshold * threshold >= rate2) continue;
-        if (rate2 > bound * bound) [[unlikely]] note_overshoot(std::sqrt(rate2) / bound);
-      }
+      // Accept with |g| / (w_i + w_k) (`lowrank`) or pi sigma_kj^2 chi_kj |g| / B_b (\ref sch_majorant "docs/schemes.md"), squared.
+      const double limit = Lowrank ? acceptance[pair] : bound, rate2 = Lowrank ? g2 : acceptance[pair] * g2;
+      const double threshold = gen.uniform() * limit;
+      if (threshold * threshold >= rate2) continue;
+      if (rate2 > limit * limit) [[unlikely]] note_overshoot(std::sqrt(rate2) / limit);
       double px, py, pz;
       const double g_dot_e2 = rules::hemisphere_projection(gen, gx, gy, gz, std::sqrt(g2), px, py, pz);
       if (g_dot_e2 == 0.0) continue;
@@ -324,52 +346,27 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
       particles::Vec3& vb = v[b];
       const PairKernel& pk = kernel[pair];  // (read only for a collision)
       const std::uint32_t i = pair_species[2 * pair], k = pair_species[2 * pair + 1];
-      if constexpr (Framed) {
-        const double ma = mix_.mass[i], mb = mix_.mass[k];
-        add_moments(moments, va, -ma);
-        add_moments(moments, vb, -mb);
-        dissipated += Rule::collide_projected(va, vb, pk.constants, g_dot_e2, to_stored(px, py, pz));  // G^-1 (g.e) e
-        add_moments(moments, va, ma);
-        add_moments(moments, vb, mb);
-      } else {
-        dissipated += Rule::collide_projected(va, vb, pk.constants, g_dot_e2, {px, py, pz});
-      }
+      dissipated += kernel_collision<Rule, Framed>(pk, i, k, va, vb, g_dot_e2, {px, py, pz}, moments);
       ++events;
       ++pair_events[pk.event];
-      // "(sigma g)_max raised when exceeded" (header), for both partners: a new sub-step from here.
-      const double speed2_a = va.x * va.x + va.y * va.y + va.z * va.z;
-      const double speed2_b = vb.x * vb.x + vb.y * vb.y + vb.z * vb.z;
-      if (speed2_a > speed2[i] || speed2_b > speed2[k]) [[unlikely]] {
-        speed2[i] = std::max(speed2[i], speed2_a);
-        speed2[k] = std::max(speed2[k], speed2_b);
+      if (raised_by(va, vb, speed2, i, k)) [[unlikely]] {  // a new sub-step from here
         raised = true;
         ++c;
         break;
       }
     }
     candidates += c;
-    if (raised) {
-      time_ = t0 + static_cast<double>(c) * dt_candidate;
-      credit_ = 0.0;
-      if constexpr (Lowrank) {
-        set_block_lowrank(n_density);
-        cells = lowrank_cells_.data();  // (their sizes do not change: the same data)
-        for (std::size_t slot = 0; slot < block_lookahead<Framed>; ++slot) draw(slot);  // drawn from the old A_ik: redraw
-        next = 0;
-      } else {
-        bound_ = mixture_bound(speed2, cum);
-        if constexpr (Framed) bound_ *= speed_factor_;
-        rate_ = 0.5 * static_cast<double>(n) * n_density * bound_;
-      }
-      continue;
+    credit_ = raised ? 0.0 : available - static_cast<double>(n_candidates) * dt_candidate;
+    time_ = raised ? t0 + static_cast<double>(c) * dt_candidate : t_stop;
+    if (!raised) break;
+    after_raise<Lowrank, Framed>(cum, n, speed2);
+    if constexpr (Lowrank) {  // the drawn-ahead pairs came from the old A_ik: redrawn
+      cells = lowrank_cells_.data();  // (their sizes do not change: the same data)
+      for (std::size_t slot = 0; slot < block_lookahead<Framed>; ++slot) draw(slot);
+      next = 0;
     }
-    credit_ = available - static_cast<double>(n_candidates) * dt_candidate;
-    time_ = t_stop;
-    break;
   }
-  counters_.events += events;
-  counters_.candidates += candidates;
-  counters_.dissipated += dissipated;
+  counters_.events += events, counters_.candidates += candidates, counters_.dissipated += dissipated;
   if constexpr (Framed)
     for (std::size_t q = 0; q < 4; ++q) moments_[q] += moments[q];
   gen_ = gen;
