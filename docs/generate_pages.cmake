@@ -7,7 +7,7 @@ string(REPLACE "<" "&lt;" tables "${tables}")
 string(REPLACE ">" "&gt;" tables "${tables}")
 execute_process(COMMAND ${TEMPLATE_CMD} --print-defaults OUTPUT_VARIABLE template)
 file(WRITE ${OUT}/input.md "# Input reference {#input}\n\n"
-  "Generated from the parameter tables of `src/io/config.cpp` (the same tables the reader uses).\n\n"
+  "Generated from the parameter tables of `src/io/config_fields.cpp` (the same tables the reader uses).\n\n"
   "${tables}\n## Template (`granular-dsmc --print-defaults`)\n\n```\n${template}```\n")
 execute_process(COMMAND ${TEMPLATE_CMD} --print-observables OUTPUT_VARIABLE observables)
 file(WRITE ${OUT}/observables.md "# Observables {#observables_page}\n\n"

@@ -159,8 +159,10 @@ Average scaling_average(const std::vector<double>& value, const std::vector<doub
 /// replica's own average averaged over the replicas with the SE over the replicas (docs/output.md): the
 /// one computation of --compare and the sweep tables. Empty when an observable is missing.
 struct ScalingState {
-  std::vector<double> ratio, ratio_error;        ///< T_k/T and its error, per species
-  std::vector<double> cumulant, cumulant_error;  ///< c_k and its error, per species
+  std::vector<double> ratio;           ///< T_k/T, per species
+  std::vector<double> ratio_error;     ///< its error
+  std::vector<double> cumulant;        ///< c_k, per species
+  std::vector<double> cumulant_error;  ///< its error
   std::size_t samples = 0;                       ///< samples past `from`
   bool per_replica = false;                      ///< the values are /scaling_state's
 };

@@ -1,0 +1,395 @@
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "io/config.hpp"
+#include "io/config_detail.hpp"
+#include "model/restitution.hpp"
+
+namespace gdsmc::io::config {
+namespace detail {
+
+// ---------------------------------------------------------------------------------------------
+// Checking and deriving, group by group
+// ---------------------------------------------------------------------------------------------
+namespace {
+void resolve_restitution(System& sys, const Provenance& prov, const std::string& group) {
+  const std::size_t s = static_cast<std::size_t>(sys.n_species);
+  {  // one value for all pairs: a uniform matrix, stored densely only for a few species
+    const auto& only = prov.pair_assignments.at("restitution");
+    if (only.size() == 1 && only[0].first->index.empty() && only[0].first->values.size() == 1) {
+      sys.restitution = species::PairMatrix::uniform(s, only[0].first->values[0].real);
+      if (s <= species::dense_pair_limit) sys.restitution.densify();
+      return;
+    }
+  }
+  species::PairMatrix m(s, std::numeric_limits<double>::quiet_NaN());
+  const auto& list = prov.pair_assignments.at("restitution");
+  // (i <= j) -> value and line of its element assignment in the current source (the namelist, or
+  // one --set): within one source (i,j) and (j,i) must agree; a later --set may replace the value.
+  std::map<std::pair<std::size_t, std::size_t>, std::pair<double, int>> element_values;
+  std::string element_source;
+  for (const auto& [a, file] : list) {
+    if (a->index.empty()) {
+      if (a->values.size() == 1) {
+        std::fill(m.values.begin(), m.values.end(), a->values[0].real);
+      } else if (a->values.size() == s * s) {
+        for (std::size_t c = 0; c < s * s; ++c) m(c % s, c / s) = a->values[c].real;  // column-major
+        for (std::size_t i = 0; i < s; ++i)  // alpha_ij = alpha_ji: one event, whichever is "first"
+          for (std::size_t j = i + 1; j < s; ++j)
+            if (m(i, j) != m(j, i))
+              throw Error(file, a->line, group, "restitution",
+                          "the matrix is not symmetric: restitution(" + std::to_string(i + 1) + "," +
+                              std::to_string(j + 1) + ") = " + a->values[i + j * s].text +
+                              " but restitution(" + std::to_string(j + 1) + "," +
+                              std::to_string(i + 1) + ") = " + a->values[j + i * s].text);
+      } else {
+        throw Error(file, a->line, group, "restitution",
+                    "expected 1 or n_species^2 = " + std::to_string(s * s) + " values, got " +
+                        std::to_string(a->values.size()));
+      }
+      continue;
+    }
+    std::size_t i = static_cast<std::size_t>(a->index[0] - 1);
+    std::size_t j = static_cast<std::size_t>(a->index[1] - 1);
+    if (file != element_source) {
+      element_values.clear();
+      element_source = file;
+    }
+    for (const auto& v : a->values) {  // consecutive elements in column-major order
+      if (i >= s || j >= s)
+        throw Error(file, v.line, group, "restitution",
+                    "element (" + std::to_string(i + 1) + "," + std::to_string(j + 1) +
+                        ") is outside the " + std::to_string(s) + " x " + std::to_string(s) +
+                        " matrix");
+      // alpha_ij = alpha_ji is one pair's value: (i,j) and (j,i) given differently is a conflict.
+      const auto key = std::make_pair(std::min(i, j), std::max(i, j));
+      if (const auto it = element_values.find(key); it != element_values.end() && it->second.first != v.real)
+        throw Error(file, v.line, group, "restitution",
+                    "restitution(" + std::to_string(i + 1) + "," + std::to_string(j + 1) + ") = " + v.text +
+                        " conflicts with line " + std::to_string(it->second.second) + ": the matrix is symmetric, "
+                        "alpha_ij = alpha_ji");
+      element_values[key] = {v.real, v.line};
+      m(i, j) = v.real;
+      m(j, i) = v.real;
+      if (++i == s) {
+        i = 0;
+        ++j;
+      }
+    }
+  }
+  for (std::size_t i = 0; i < s; ++i)
+    for (std::size_t j = 0; j < s; ++j)
+      if (std::isnan(m(i, j)))
+        throw Error(prov.file_of("restitution"), prov.line.at("restitution"), group, "restitution",
+                    "restitution(" + std::to_string(i + 1) + "," + std::to_string(j + 1) +
+                        ") is not given");
+  sys.restitution = m;
+}
+
+void check_species_list(std::vector<double>& values, const std::string& name, const std::string& law,
+                        std::size_t s, const Provenance& prov, const std::string& group) {
+  const int line = prov.line.count(name) ? prov.line.at(name) : 0;
+  const std::size_t expected = law == "list" ? s : 1;
+  if (values.size() != expected)
+    throw Error(prov.file_of(name), line, group, name,
+                "expected " + std::to_string(expected) + " value(s) (" +
+                    (law == "list" ? "n_species = " + std::to_string(s)
+                                   : "species 1 only, with the law '" + law + "'") +
+                    "), got " + std::to_string(values.size()));
+  for (std::size_t k = 0; k < values.size(); ++k)
+    if (std::isnan(values[k]))
+      throw Error(prov.file_of(name), line, group, name,
+                  name + "(" + std::to_string(k + 1) + ") is not given");
+}
+
+}  // namespace
+
+void check_system(System& sys, const Provenance& prov) {
+  const std::string group = "system";
+  const auto s = static_cast<std::size_t>(sys.n_species);
+  if (sys.restitution_model == "viscoelastic") {
+    if (!sys.visco_a_kappa)
+      throw Error(prov.file_of("restitution_model"), prov.line.at("restitution_model"), group, "visco_a_kappa",
+                  "required with restitution_model = 'viscoelastic'");
+    if (prov.line.count("restitution"))
+      throw Error(prov.file_of("restitution"), prov.line.at("restitution"), group, "restitution",
+                  "not used with restitution_model = 'viscoelastic' (alpha follows from visco_a_kappa)");
+  } else {
+    if (!prov.line.count("restitution"))
+      throw Error(prov.file, prov.group_line, group, "restitution", "required variable is missing");
+    if (prov.line.count("visco_a_kappa"))
+      throw Error(prov.file_of("visco_a_kappa"), prov.line.at("visco_a_kappa"), group, "visco_a_kappa",
+                  "only used with restitution_model = 'viscoelastic'");
+  }
+  check_species_list(sys.mass, "mass", sys.mass_law, s, prov, group);
+  check_species_list(sys.diameter, "diameter", sys.diameter_law, s, prov, group);
+  check_species_list(sys.number_density, "number_density", sys.density_law, s, prov, group);
+  // The default value is accepted, so that the --print-defaults template reads back.
+  if (sys.density_law != "power" && prov.line.count("density_exponent") &&
+      sys.density_exponent != System{}.density_exponent)
+    throw Error(prov.file_of("density_exponent"), prov.line.at("density_exponent"), group,
+                "density_exponent",
+                "only used with density_law = 'power'");
+  // derive: the species laws (Bodrova and Osinsky 2024, sec. II, \ref sch_lowrank "docs/schemes.md": m_k = k m_1, sigma_k = k^(1/3) sigma_1, n_k = n_1 k^-theta)
+  for (std::size_t k = 2; k <= s; ++k) {
+    const double kk = static_cast<double>(k);
+    if (sys.mass_law == "linear") sys.mass.push_back(kk * sys.mass[0]);
+    if (sys.diameter_law == "cube_root") sys.diameter.push_back(std::cbrt(kk) * sys.diameter[0]);
+    if (sys.density_law == "power")
+      sys.number_density.push_back(sys.number_density[0] * std::pow(kk, -sys.density_exponent));
+  }
+  if (sys.restitution_model == "constant") resolve_restitution(sys, prov, group);
+  else {  // placeholder: alpha comes from the impact speed
+    sys.restitution = species::PairMatrix::uniform(s, 1.0);
+    if (s <= species::dense_pair_limit) sys.restitution.densify();
+  }
+  if (sys.enskog) {
+    double phi = 0.0;
+    for (std::size_t k = 0; k < s; ++k) phi += sys.number_density[k] * std::pow(sys.diameter[k], 3);
+    phi *= std::acos(-1.0) / 6.0;
+    if (phi >= 0.5)
+      throw Error(prov.file_of("number_density"),
+                  prov.line.count("number_density") ? prov.line.at("number_density") : 0,
+                  group, "number_density",
+                  "packing fraction " + std::to_string(phi) +
+                      " is beyond the Carnahan-Starling fluid range (phi < 0.5)");
+  }
+}
+
+void check_initial(Initial& ini, std::size_t s, const Provenance& prov) {
+  const int line = prov.line.count("temperature") ? prov.line.at("temperature") : 0;
+  for (std::size_t k = 0; k < ini.temperature.size(); ++k)
+    if (std::isnan(ini.temperature[k]))
+      throw Error(prov.file_of("temperature"), line, "initial", "temperature",
+                  "temperature(" + std::to_string(k + 1) + ") is not given");
+  if (ini.temperature.size() == 1 && s > 1) ini.temperature.assign(s, ini.temperature[0]);
+  if (ini.temperature.size() != s)
+    throw Error(prov.file_of("temperature"), line, "initial", "temperature",
+                "expected 1 or n_species = " + std::to_string(s) + " values, got " +
+                    std::to_string(ini.temperature.size()));
+}
+
+void check_dsmc(const Dsmc& d, const species::Mixture& mix, const Provenance& prov, int group_line) {
+  const std::string group = "dsmc";
+  if (d.t_end.has_value() == d.collisions_per_particle.has_value())
+    throw Error(d.t_end ? prov.file_of("collisions_per_particle") : prov.file,
+                d.t_end ? prov.line.at("collisions_per_particle") : group_line, group,
+                d.t_end ? "collisions_per_particle" : "t_end",
+                "give exactly one of t_end and collisions_per_particle");
+  // The event targets are integers: 2 x events / N = collisions_per_particle must stay far inside
+  // 64 bits (1e30 would wrap round to a run of no collisions and a file of zeros).
+  if (d.collisions_per_particle && *d.collisions_per_particle * static_cast<double>(d.n_particles) / 2.0 > 1e18)
+    throw Error(prov.file_of("collisions_per_particle"), prov.line.at("collisions_per_particle"), group,
+                "collisions_per_particle",
+                "collisions_per_particle x n_particles / 2 = " +
+                    std::to_string(*d.collisions_per_particle * static_cast<double>(d.n_particles) / 2.0) +
+                    " collision events: beyond 1e18, far more than any run can do");
+  // 'majorant' and 'pairs' recompute their bounds over all S^2 species pairs at every time step
+  // (collide.cpp rebuild_bounds), which has about N/2 candidates: with thousands of species the
+  // rebuilds are the whole run (3000 species: minutes per collision per particle). 'lowrank' updates
+  // its rank-3 majorant in O(S log S) (collide.hpp).
+  constexpr std::size_t kMaxPairSchemeSpecies = 256;
+  if (d.scheme != "lowrank" && mix.size() > kMaxPairSchemeSpecies)
+    throw Error(prov.file_of("scheme"), prov.line.count("scheme") ? prov.line.at("scheme") : group_line, group,
+                "scheme",
+                "scheme = '" + d.scheme + "' recomputes its bounds over all n_species^2 = " +
+                    std::to_string(mix.size() * mix.size()) +
+                    " species pairs at every time step: with more than 256 species use scheme = 'lowrank' "
+                    "(O(S log S), Bodrova and Osinsky 2024, docs/schemes.md)");
+  // A block is a gas of its own for a step: it needs partners (and a block of a few particles gains
+  // nothing from the cache); 64 is the mixtures' smallest slice (collide.hpp, "Mixtures in blocks").
+  if (d.block_size > 0 && d.block_size < 64)
+    throw Error(prov.file_of("block_size"), prov.line.count("block_size") ? prov.line.at("block_size") : group_line,
+                group, "block_size",
+                "a cache block needs at least 64 particles (got " + std::to_string(d.block_size) +
+                    "); 0 turns the blocks off");
+  const auto counts = species::particle_counts(static_cast<std::size_t>(d.n_particles), mix);
+  for (std::size_t k = 0; k < counts.size(); ++k)
+    if (counts[k] < 2)
+      throw Error(prov.file_of("n_particles"),
+                  prov.line.count("n_particles") ? prov.line.at("n_particles") : group_line,
+                  group, "n_particles",
+                  "n_particles = " + std::to_string(d.n_particles) + " gives " +
+                      std::to_string(counts[k]) + " particle(s) of species " + std::to_string(k + 1) +
+                      "; at least 2 per species are needed");
+}
+
+void check_output(Output& out, const Dsmc& d, const Provenance& prov) {
+  for (const char* v : {"msd_start_time", "msd_start_temperature"})
+    if (prov.line.count(v) && !out.track_displacements)
+      throw Error(prov.file, prov.line.at(v), "output", v, "only used with track_displacements = .true.");
+  if (out.msd_start_time && out.msd_start_temperature)
+    throw Error(prov.file, prov.line.at("msd_start_temperature"), "output", "msd_start_temperature",
+                "give at most one of msd_start_time and msd_start_temperature");
+  if (out.msd_start_time && d.t_end && *out.msd_start_time >= *d.t_end)
+    throw Error(prov.file, prov.line.at("msd_start_time"), "output", "msd_start_time",
+                "msd_start_time must be below t_end");
+  const double end = d.t_end ? *d.t_end : *d.collisions_per_particle;
+  if (!out.sample_times.empty()) {
+    const std::string file = prov.file_of("sample_times");
+    const int line = prov.line.at("sample_times");
+    for (const char* v : {"n_samples", "spacing", "first_sample"})
+      if (prov.line.count(v))
+        throw Error(prov.file_of(v), prov.line.at(v), "output", v,
+                    "not used with sample_times (the explicit list sets every sample point)");
+    for (std::size_t k = 0; k < out.sample_times.size(); ++k) {
+      if (std::isnan(out.sample_times[k]))
+        throw Error(file, line, "output", "sample_times", "sample_times(" + std::to_string(k + 1) + ") is not given");
+      if (k > 0 && !(out.sample_times[k] > out.sample_times[k - 1]))
+        throw Error(file, line, "output", "sample_times",
+                    "sample_times must increase: element " + std::to_string(k + 1) + " is not above element " +
+                        std::to_string(k));
+    }
+    if (out.sample_times.back() > end)
+      throw Error(file, line, "output", "sample_times",
+                  "the last sample point is beyond the end of the run (" + std::to_string(end) + ")");
+    return;
+  }
+  if (out.spacing == "log") {
+    if (!out.first_sample) out.first_sample = end / 1000.0;  // derive
+    if (*out.first_sample >= end)
+      throw Error(prov.file_of("first_sample"), prov.line.at("first_sample"), "output", "first_sample",
+                  "first_sample must be below the end of the run (" + std::to_string(end) + ")");
+  } else if (prov.line.count("first_sample")) {
+    throw Error(prov.file_of("first_sample"), prov.line.at("first_sample"), "output", "first_sample",
+                "only used with spacing = 'log'");
+  }
+}
+
+/// &agg_frag (\ref af_outcome "docs/agg-frag.md"): the run starts from monomers of one constant-restitution, dilute
+/// species, and the model runs in dsmc/agg_frag.hpp's own loop; every combination it cannot run is
+/// refused here, naming the variable that asks for it.
+void check_agg_frag(const Config& c, std::map<std::string, Provenance>& prov) {
+  const std::string group = "agg_frag";
+  Provenance& p = prov[group];
+  const AggFrag& a = c.agg_frag;
+  const auto where = [&](const std::string& g, const char* v) {
+    const Provenance& q = prov[g];
+    return std::make_pair(q.file_of(v), q.line.count(v) ? q.line.at(v) : q.group_line);
+  };
+  const auto refuse = [&](const std::string& g, const char* v, const std::string& message) {
+    const auto [file, line] = where(g, v);
+    throw Error(file, line, g, v, message);
+  };
+  if (!a.aggregation_energy && !a.fragmentation_energy)
+    throw Error(p.file, p.group_line, group, "aggregation_energy",
+                "&agg_frag needs aggregation_energy, fragmentation_energy or both");
+  if (a.fragmentation_energy && !a.fragment_restitution)
+    throw Error(p.file_of("fragmentation_energy"), p.line.at("fragmentation_energy"), group, "fragment_restitution",
+                "required with fragmentation_energy");
+  if (!a.fragmentation_energy && a.fragment_restitution)
+    refuse(group, "fragment_restitution", "only used with fragmentation_energy");
+  if (c.system.n_species != 1)
+    refuse("system", "n_species",
+           "&agg_frag starts from monomers: n_species must be 1 (cluster sizes become the species)");
+  if (c.system.restitution_model != "constant")
+    refuse("system", "restitution_model", "&agg_frag runs with restitution_model = 'constant' only");
+  if (c.system.enskog) refuse("system", "enskog", "&agg_frag runs in the dilute gas only (enskog = .false.)");
+  if (c.dsmc.scheme != "lowrank")
+    refuse("dsmc", "scheme",
+           "&agg_frag runs with scheme = 'lowrank' only (cluster sizes as species, Bodrova and Osinsky 2024, docs/schemes.md); set scheme = "
+           "'lowrank'");
+  if (c.output.track_displacements)
+    refuse("output", "track_displacements", "displacements are not tracked with &agg_frag");
+}
+
+/// &thermostat and &shear (\ref eta_thermostat "docs/shear-viscosity.md"): what the staged loop of simulation.cpp can run, and a shear
+/// rate that keeps the finite-shear correction small. Refusals name the variable that asks for the
+/// combination.
+void check_staged(const Config& c, std::map<std::string, Provenance>& prov) {
+  const auto refuse = [&](const std::string& g, const char* v, const std::string& message) {
+    const Provenance& q = prov[g];
+    throw Error(q.file_of(v), q.line.count(v) ? q.line.at(v) : q.group_line, g, v, message);
+  };
+  if (!c.staged()) {
+    if (prov["shear"].line.count("average_from"))
+      refuse("shear", "average_from", "only used with a shear rate");
+    return;
+  }
+  const std::string what = c.shear.rate ? "&shear" : "&thermostat";
+  if (c.has_agg_frag)
+    refuse(c.shear.rate ? "shear" : "thermostat", c.shear.rate ? "rate" : "kind",
+           what + " cannot run with &agg_frag (the thermostat would feed the clusters' energy back)");
+  if (c.system.enskog && c.shear.rate && c.dsmc.scheme != "pairs")
+    refuse("dsmc", "scheme",
+           "shear flow in the Enskog gas runs with scheme = 'pairs' only: its relative velocity "
+           "g - a sigma e_y x depends on the direction e, which 'majorant' and 'lowrank' draw from g "
+           "(docs/physics.md, shear flow)");
+  if (c.system.restitution_model != "constant")
+    refuse("system", "restitution_model", what + " runs with restitution_model = 'constant' only");
+  if (c.dsmc.scheme == "lowrank" && c.system.n_species > 64)
+    refuse("dsmc", "scheme", what + " runs with at most 64 species");
+  if (!c.dsmc.t_end)
+    refuse("dsmc", "collisions_per_particle", what + " runs are driven by t_end (stages end at times)");
+  if (c.output.track_displacements)
+    refuse("output", "track_displacements", "displacements are not tracked with " + what);
+  if (c.shear.rate) {
+    // a* = a / nu_0(T_0) with nu_0 = n T / eta_0, eta_0 = (5/(16 sigma^2)) sqrt(m T/pi) (\ref eta_thermostat "docs/shear-viscosity.md"),
+    // species 1's size and mass for a mixture. Above a* = 1 at T_0 the start is far from the
+    // Navier-Stokes regime the viscosity protocol measures.
+    const double m = c.system.mass[0], sigma = c.system.diameter[0], t0 = c.initial.temperature[0];
+    double n = 0.0;
+    for (double x : c.system.number_density) n += x;
+    const double eta0 = 5.0 / (16.0 * sigma * sigma) * std::sqrt(m * t0 / std::acos(-1.0));
+    const double reduced = *c.shear.rate * eta0 / (n * t0);
+    if (reduced > 1.0)
+      refuse("shear", "rate",
+             "a* = a/nu_0(T_0) = " + std::to_string(reduced) +
+                 " > 1: far from the Navier-Stokes regime; lower rate or raise T_0 (a* <= 0.1 for the viscosity)");
+    if (*c.shear.rate == 0.0) refuse("shear", "rate", "rate = 0: leave &shear out for no shear");
+    if (c.shear.average_from && *c.shear.average_from >= *c.dsmc.t_end)
+      refuse("shear", "average_from", "average_from must be below t_end");
+  } else if (prov["shear"].line.count("average_from")) {
+    refuse("shear", "average_from", "only used with a shear rate");
+  }
+}
+
+std::vector<double> spaced(const Output& out, double end) {
+  if (!out.sample_times.empty()) {  // 0, the list, and the end of the run
+    std::vector<double> t{0.0};
+    t.insert(t.end(), out.sample_times.begin(), out.sample_times.end());
+    if (t.back() < end) t.push_back(end);
+    return t;
+  }
+  const auto n = static_cast<std::size_t>(out.n_samples);
+  std::vector<double> t(n, 0.0);
+  if (out.spacing == "linear") {
+    for (std::size_t i = 1; i < n; ++i) t[i] = end * static_cast<double>(i) / static_cast<double>(n - 1);
+  } else {
+    const double first = *out.first_sample;
+    for (std::size_t i = 1; i < n; ++i)
+      t[i] = n == 2 ? end
+                    : first * std::pow(end / first, static_cast<double>(i - 1) / static_cast<double>(n - 2));
+  }
+  t.back() = end;
+  return t;
+}
+
+}  // namespace detail
+
+using namespace detail;  // the tables and steps of config_detail.hpp
+
+std::optional<species::PairMatrix> Config::viscoelastic_beta() const {
+  if (system.restitution_model != "viscoelastic") return std::nullopt;
+  return restitution::one_material_beta(mixture(), *system.visco_a_kappa);
+}
+
+species::Mixture Config::mixture() const {
+  return species::make_mixture(system.mass, system.diameter, system.number_density,
+                               system.restitution, system.enskog);
+}
+
+std::vector<double> Config::sample_times() const {
+  return dsmc.t_end ? spaced(output, *dsmc.t_end) : std::vector<double>{};
+}
+
+std::vector<double> Config::sample_collisions() const {
+  return dsmc.collisions_per_particle ? spaced(output, *dsmc.collisions_per_particle)
+                                      : std::vector<double>{};
+}
+
+}  // namespace gdsmc::io::config

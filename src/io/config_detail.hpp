@@ -1,0 +1,126 @@
+/**
+ * \file config_detail.hpp
+ * \brief Inside io::config, not its interface: the field tables and the steps that config.cpp
+ * (reading), config_fields.cpp (the tables and what is written from them), config_checks.cpp (the
+ * checks group by group) and config_sweep.cpp (&sweep) share.
+ *
+ * Reading a namelist is read_point(): every group through its table (read_group), then the checks
+ * of config_checks.cpp in the order of the groups, then the run check, then every &sweep point read
+ * and checked the same way (check_sweep). A new variable is one line of its group's table
+ * (config_fields.cpp) and, if it depends on others, a few lines of its group's check; see
+ * docs/extending.md, \ref ext_rule "adding a collision rule".
+ */
+#pragma once
+
+#include <cstddef>
+#include <limits>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "io/config.hpp"
+#include "io/namelist.hpp"
+#include "model/species.hpp"
+
+namespace gdsmc::io::config::detail {
+
+using namelist::Error;
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Where a value may lie: [lo, hi] with optionally open ends; only for numbers.
+struct Range {
+  double lo = -kInf, hi = kInf;
+  bool lo_open = false, hi_open = false;
+  bool contains(double x) const {
+    return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
+  }
+  std::string text() const {
+    std::ostringstream s;
+    s << (lo_open ? "(" : "[") << lo << ", " << hi << (hi_open ? ")" : "]");
+    return s.str();
+  }
+};
+
+/// One variable of a group: declared once, used by the reader, the checks and the writers.
+template <class G>
+struct Field {
+  using Member = std::variant<long long G::*, double G::*, bool G::*, std::string G::*,
+                              std::optional<double> G::*, std::vector<double> G::*,
+                              std::vector<std::string> G::*, SweepValues G::*,
+                              species::PairMatrix G::*>;
+  std::string name;
+  Member member;
+  std::string units;
+  std::string help;
+  Range range{};
+  std::vector<std::string> choices{};
+  bool required = false;
+};
+
+// The tables, one per group (config_fields.cpp). Defaults are the member initialisers in
+// config.hpp, nowhere else.
+const std::vector<Field<System>>& system_fields();
+const std::vector<Field<Initial>>& initial_fields();
+const std::vector<Field<Dsmc>>& dsmc_fields();
+const std::vector<Field<Thermostat>>& thermostat_fields();
+const std::vector<Field<Shear>>& shear_fields();
+const std::vector<Field<Output>>& output_fields();
+const std::vector<Field<AggFrag>>& agg_frag_fields();
+const std::vector<Field<Sweep>>& sweep_fields();
+
+/// `s` in lower case (namelist names and choices are case-insensitive).
+std::string lower(std::string s);
+
+/// Where each variable was last assigned, and the raw element assignments of pair matrices.
+struct Provenance {
+  std::string file;                             ///< the namelist file (for group-level errors)
+  int group_line = 0;                           ///< line of '&group' (0 if absent)
+  std::map<std::string, int> line;              ///< variable -> line of its last assignment
+  std::map<std::string, std::string> set_in;    ///< variable -> file (or override) of that line
+  /// Pair-matrix assignments in order, each with the file (or override) it came from.
+  std::map<std::string, std::vector<std::pair<const namelist::Assignment*, std::string>>>
+      pair_assignments;
+  /// The file where `variable` was last set; the namelist file if it was not set.
+  const std::string& file_of(const std::string& variable) const {
+    const auto it = set_in.find(variable);
+    return it == set_in.end() ? file : it->second;
+  }
+};
+
+// What the tables answer about a variable by name (config_fields.cpp).
+/// The group a variable belongs to, if it belongs to another one (for "did you mean" hints).
+std::string owning_group(const std::string& name);
+/// Whether `group:name` is a string variable.
+bool is_string_variable(const std::string& group, const std::string& name);
+/// Rank of variable `name` of `group`: 0 scalar, 1 list, 2 pair matrix; -1 unknown.
+int variable_rank(const std::string& group, const std::string& name);
+
+// The checks and derivations, group by group, in the order read_point() calls them
+// (config_checks.cpp). Each throws namelist::Error naming file, line, group and variable.
+void check_system(System& sys, const Provenance& prov);
+void check_initial(Initial& ini, std::size_t s, const Provenance& prov);
+void check_dsmc(const Dsmc& d, const species::Mixture& mix, const Provenance& prov, int group_line);
+void check_output(Output& out, const Dsmc& d, const Provenance& prov);
+void check_agg_frag(const Config& c, std::map<std::string, Provenance>& prov);
+void check_staged(const Config& c, std::map<std::string, Provenance>& prov);
+/// The sample grid of &output up to `end` (a time or collisions per particle).
+std::vector<double> spaced(const Output& out, double end);
+
+// &sweep (config_sweep.cpp).
+/// The override that sets sweep point `value` of `variable` ("group:name", or "group:name(i,j)").
+std::string sweep_override(const std::string& variable, const std::string& value);
+/// &sweep checked: every variable names one of another group, the values make points, and every
+/// point reads and checks as a Config of its own.
+void check_sweep(const Config& c, const Provenance& prov, const namelist::Document& document,
+                 const std::vector<std::string>& overrides, const RunCheck& run_check);
+
+/// One Config from the document and overrides (config.cpp); with expand_sweep, &sweep is read and
+/// every point checked too.
+Config read_point(const namelist::Document& document, const std::vector<std::string>& overrides,
+                  bool expand_sweep, const RunCheck& run_check);
+
+}  // namespace gdsmc::io::config::detail
