@@ -19,6 +19,7 @@
 #include "dsmc/rng.hpp"
 #include "dsmc/rules.hpp"
 #include "model/restitution.hpp"
+#include "run/model.hpp"
 #include "model/species.hpp"
 #include "sanitizer_scale.hpp"
 
@@ -185,11 +186,16 @@ TEST(Collide, HemisphereProjectionIsTheHemisphereImpulse) {
   EXPECT_NEAR(sperp / n, 0.0, 5.0 * se_perp);
 }
 
-TEST(Collide, ParseScheme) {
-  EXPECT_EQ(collide::parse_scheme("majorant"), Scheme::majorant);
-  EXPECT_EQ(collide::parse_scheme("pairs"), Scheme::pairs);
-  EXPECT_EQ(collide::parse_scheme("lowrank"), Scheme::lowrank);
-  EXPECT_THROW(collide::parse_scheme("bird"), std::invalid_argument);
+// &dsmc scheme of the Config as the Collider's scheme (run/model.cpp).
+TEST(Collide, SchemeOfTheConfig) {
+  namespace config = gdsmc::io::config;
+  config::Config c;
+  c.dsmc.scheme = config::Scheme::majorant;
+  EXPECT_EQ(gdsmc::simulation::scheme(c), Scheme::majorant);
+  c.dsmc.scheme = config::Scheme::pairs;
+  EXPECT_EQ(gdsmc::simulation::scheme(c), Scheme::pairs);
+  c.dsmc.scheme = config::Scheme::lowrank;
+  EXPECT_EQ(gdsmc::simulation::scheme(c), Scheme::lowrank);
 }
 
 // \ref cm_rule "docs/collision-model.md" for random velocities, unequal masses (m_b/m_a in {1, 3, 1/7}), random e and several

@@ -422,12 +422,12 @@ Point compare_point(const io::config::Config& config, const analysis::Prediction
     add_agg_frag(pt, p, m);
   } else {
     if (p.has_history) add_free_cooling(pt, config, p, m);
-    const bool hss = config.thermostat.kind == "gaussian" && !config.shear.rate;
+    const bool hss = config.thermostat.kind == io::config::ThermostatKind::gaussian && !config.shear.rate;
     if ((!config.staged() || hss) && p.hcs_first_sonine) add_scaling_state(pt, config, p, m);
     if (config.output.track_displacements) add_diffusion(pt, config, p, m);
     if (config.shear.rate) {
       const auto eta = m.attributes.find("shear_viscosity@time_average");
-      if (config.thermostat.kind != "gaussian") {
+      if (config.thermostat.kind != io::config::ThermostatKind::gaussian) {
         pt.notes.push_back("shear_viscosity not compared: the theory is that of the thermostatted state (HSS); "
                            "this &shear run has no Gaussian thermostat");
       } else if (!p.shear_viscosity_hss) {

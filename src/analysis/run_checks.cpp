@@ -11,7 +11,7 @@ void check_run_cost(const io::config::Config& c) {
   constexpr double kMaxEvents = 1e12, kMinTemperatureRatio = 1e-40;
   if (c.dsmc.allow_long_run) return;
   const theory::Cooling cooling = c.staged() ? theory::Cooling::held
-                                  : c.system.restitution_model == "viscoelastic" ? theory::Cooling::viscoelastic
+                                  : c.system.restitution_model == io::config::RestitutionModel::viscoelastic ? theory::Cooling::viscoelastic
                                                                                  : theory::Cooling::haff;
   const theory::RunCost cost = theory::estimate_run_cost(c.mixture(), c.initial.temperature, c.dsmc.t_end,
                                                          c.dsmc.collisions_per_particle, cooling);

@@ -14,13 +14,6 @@
 namespace gdsmc::collide {
 
 
-Scheme parse_scheme(const std::string& name) {
-  if (name == "majorant") return Scheme::majorant;
-  if (name == "pairs") return Scheme::pairs;
-  if (name == "lowrank") return Scheme::lowrank;
-  throw std::invalid_argument("unknown scheme '" + name + "'");
-}
-
 Collider::Collider(Scheme scheme, const species::Mixture& mix, particles::System& sys, rng::Xoshiro256pp gen,
                    double step_fraction, rules::Rule rule)
     : scheme_(scheme), mix_(mix), sys_(sys), gen_(gen), step_fraction_(step_fraction),

@@ -614,6 +614,5 @@ class Collider {
   Counters counters_;
 };
 
-Scheme parse_scheme(const std::string& name);  ///< throws std::invalid_argument
 
 }  // namespace gdsmc::collide

@@ -55,7 +55,6 @@ struct GroupReader {
 struct Assigner {
   const std::string& name;
   const Range& range;
-  const std::vector<std::string>& choices;
   const namelist::Assignment& a;
   const GroupReader& r;
   Provenance& prov;
@@ -82,22 +81,28 @@ struct Assigner {
                                       v.text + "'");
     out = v.logical;
   }
-  void operator()(std::string& out) const {
+  const namelist::Value& one_string() const {
     const auto& v = one_value();
     if (v.kind != namelist::Value::Kind::String)
       throw r.error(v.line, name, "expected a quoted string, got " + std::string(kind_name(v.kind)) + " '" + v.text + "'");
-    if (choices.empty()) {
-      if (v.string.empty()) throw r.error(v.line, name, name + " must not be empty");
-      out = v.string;
-      return;
-    }
-    const std::string choice = lower(v.string);
-    if (std::find(choices.begin(), choices.end(), choice) == choices.end()) {
+    return v;
+  }
+  void operator()(std::string& out) const {
+    const auto& v = one_string();
+    if (v.string.empty()) throw r.error(v.line, name, name + " must not be empty");
+    out = v.string;
+  }
+  template <Choice E>
+  void operator()(E& out) const {
+    const auto& v = one_string();
+    const auto& names = Choices<E>::names;
+    const auto it = std::find(names.begin(), names.end(), lower(v.string));
+    if (it == names.end()) {
       std::string list;
-      for (const auto& c : choices) list += (list.empty() ? "'" : ", '") + c + "'";
+      for (const auto c : names) list += (list.empty() ? "'" : ", '") + std::string(c) + "'";
       throw r.error(v.line, name, "'" + v.string + "' is not one of " + list);
     }
-    out = choice;
+    out = static_cast<E>(it - names.begin());
   }
   void operator()(std::vector<double>& vec) const {
     if (a.index.size() > 1) throw r.error(a.line, name, name + " is one-dimensional: use " + name + "(k)");
@@ -153,7 +158,7 @@ struct Assigner {
 template <class G>
 void assign(G& target, const Field<G>& field, const namelist::Assignment& a, const GroupReader& r,
             Provenance& prov) {
-  const Assigner assigner{field.name, field.range, field.choices, a, r, prov};
+  const Assigner assigner{field.name, field.range, a, r, prov};
   std::visit([&](auto member) { assigner(target.*member); }, field.member);
   prov.line[field.name] = a.line;
   prov.set_in[field.name] = r.file;
@@ -292,7 +297,7 @@ Config read_point(const namelist::Document& document, const std::vector<std::str
       c.origin[group + ":" + variable] = {p.file_of(variable), line};
   // restitution is required by the constant model only (the viscoelastic one derives alpha).
   check_required(system_fields(), prov["system"], document.file, "system", document.find("system")->line,
-                 c.system.restitution_model == "viscoelastic" ? "restitution" : "");
+                 c.system.restitution_model == RestitutionModel::viscoelastic ? "restitution" : "");
   prov["system"].group_line = document.find("system")->line;
   check_system(c.system, prov["system"]);
   check_initial(c.initial, static_cast<std::size_t>(c.system.n_species), prov["initial"]);

@@ -22,12 +22,15 @@
  */
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <map>
 #include <utility>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "model/species.hpp"
@@ -36,6 +39,46 @@
 
 namespace gdsmc::io::config {
 
+// The choices of the namelist's string variables: each is read from its name in the namelist
+// (case-insensitive) and written back by name (name()); the names are Choices<E>::names, in the
+// order of the enumerators.
+/// &dsmc scheme (\ref schemes "docs/schemes.md").
+enum class Scheme { majorant, pairs, lowrank };
+/// &system restitution_model.
+enum class RestitutionModel { constant, viscoelastic };
+/// &system mass_law.
+enum class MassLaw { list, linear };
+/// &system diameter_law.
+enum class DiameterLaw { list, cube_root };
+/// &system density_law.
+enum class DensityLaw { list, power };
+/// &initial distribution.
+enum class VelocityDistribution { maxwell, shell, cube };
+/// &output spacing.
+enum class Spacing { linear, log };
+/// &thermostat kind.
+enum class ThermostatKind { none, gaussian };
+
+/// The namelist names of the values of a choice E, in the order of its enumerators.
+template <class E>
+struct Choices;
+/// \cond
+template <> struct Choices<Scheme> { static constexpr std::array<std::string_view, 3> names{"majorant", "pairs", "lowrank"}; };
+template <> struct Choices<RestitutionModel> { static constexpr std::array<std::string_view, 2> names{"constant", "viscoelastic"}; };
+template <> struct Choices<MassLaw> { static constexpr std::array<std::string_view, 2> names{"list", "linear"}; };
+template <> struct Choices<DiameterLaw> { static constexpr std::array<std::string_view, 2> names{"list", "cube_root"}; };
+template <> struct Choices<DensityLaw> { static constexpr std::array<std::string_view, 2> names{"list", "power"}; };
+template <> struct Choices<VelocityDistribution> { static constexpr std::array<std::string_view, 3> names{"maxwell", "shell", "cube"}; };
+template <> struct Choices<Spacing> { static constexpr std::array<std::string_view, 2> names{"linear", "log"}; };
+template <> struct Choices<ThermostatKind> { static constexpr std::array<std::string_view, 2> names{"none", "gaussian"}; };
+/// \endcond
+
+/// The namelist name of a choice: name(Scheme::pairs) = "pairs".
+template <class E>
+std::string name(E value) {
+  return std::string(Choices<E>::names[static_cast<std::size_t>(value)]);
+}
+
 /// &system: the mixture (the "polydisperse system" of the DSMC notes, \ref haff_mixture_odes "docs/haff-and-mixtures.md"; Montanero and Garzo 2002, sec. 2, \ref son_binary "docs/sonine.md").
 struct System {
   long long n_species = 1;            ///< S, the number of species
@@ -43,24 +86,24 @@ struct System {
   std::vector<double> diameter;        ///< sigma_k (required)
   std::vector<double> number_density;  ///< n_k (required)
   species::PairMatrix restitution;     ///< alpha_kj (required with the constant model; one value fills all pairs)
-  std::string restitution_model = "constant";  ///< 'constant' (alpha_kj) or 'viscoelastic' (\ref visco_series "docs/viscoelastic.md")
+  RestitutionModel restitution_model = RestitutionModel::constant;  ///< 'constant' (alpha_kj) or 'viscoelastic' (\ref visco_series "docs/viscoelastic.md")
   std::optional<double> visco_a_kappa;  ///< beta_11 = A kappa_11^(2/5) of the viscoelastic model
   bool enskog = false;                  ///< Carnahan-Starling chi_kj multiplies the rates (\ref cm_chi "docs/collision-model.md")
-  std::string mass_law = "list";        ///< 'list' or 'linear': m_k = k m_1
-  std::string diameter_law = "list";    ///< 'list' or 'cube_root': sigma_k = k^(1/3) sigma_1
-  std::string density_law = "list";     ///< 'list' or 'power': n_k = n_1 k^-theta
+  MassLaw mass_law = MassLaw::list;                ///< 'list' or 'linear': m_k = k m_1
+  DiameterLaw diameter_law = DiameterLaw::list;    ///< 'list' or 'cube_root': sigma_k = k^(1/3) sigma_1
+  DensityLaw density_law = DensityLaw::list;       ///< 'list' or 'power': n_k = n_1 k^-theta
   double density_exponent = 0.0;        ///< theta of density_law = 'power'
 };
 
 /// &initial: the state at t = 0.
 struct Initial {
   std::vector<double> temperature{1.0};  ///< T_k(0); one value applies to every species
-  std::string distribution = "maxwell";  ///< initial velocities: 'maxwell', 'shell' (equal speeds) or 'cube'
+  VelocityDistribution distribution = VelocityDistribution::maxwell;  ///< initial velocities: 'maxwell', 'shell' (equal speeds) or 'cube'
 };
 
 /// &dsmc: the scheme and the size and length of the run.
 struct Dsmc {
-  std::string scheme = "majorant";  ///< 'majorant', 'pairs' or 'lowrank' (\ref schemes "docs/schemes.md")
+  Scheme scheme = Scheme::majorant;  ///< 'majorant', 'pairs' or 'lowrank' (\ref schemes "docs/schemes.md")
   long long n_particles = 20000;    ///< N, simulated particles, split in proportion to n_k
   std::optional<double> t_end;                   ///< exactly one of t_end and
   std::optional<double> collisions_per_particle; ///< collisions_per_particle (2 x events / N)
@@ -77,7 +120,7 @@ struct Output {
   std::string file = "run.h5";  ///< the H5MD output file
   std::string author;  ///< /h5md/author name (unset: author_name() finds one)
   long long n_samples = 100;        ///< sample times, t = 0 included
-  std::string spacing = "linear";   ///< 'linear' or 'log' spacing of the sample times
+  Spacing spacing = Spacing::linear;   ///< 'linear' or 'log' spacing of the sample times
   std::optional<double> first_sample;  ///< log spacing: first sample after 0 (default end / 1000)
   long long histogram_bins = 50;   ///< bins of the velocity histograms
   double histogram_range = 5.0;    ///< the histograms cover [-range, range] in units of sqrt(T_k/m_k)
@@ -133,7 +176,7 @@ struct Sweep {
 /// &thermostat: a Gaussian thermostat holds the temperature of the homogeneous steady state (HSS)
 /// against the inelastic loss (Montanero 2003, \ref eta_measured "docs/shear-viscosity.md"; dsmc/thermostat.hpp).
 struct Thermostat {
-  std::string kind = "none";  ///< 'none' or 'gaussian'
+  ThermostatKind kind = ThermostatKind::none;  ///< 'none' or 'gaussian'
 };
 
 /// &shear: uniform shear flow u_x = a y in the Lagrangian frame (Montanero 2003, \ref eta_enskog_shear "docs/shear-viscosity.md").
@@ -156,7 +199,7 @@ struct Config {
   Thermostat thermostat;  ///< &thermostat
   Shear shear;            ///< &shear
   /// A thermostat or a shear rate: the run advances in stages (streaming, collisions, thermostat).
-  bool staged() const { return thermostat.kind != "none" || shear.rate.has_value(); }
+  bool staged() const { return thermostat.kind != ThermostatKind::none || shear.rate.has_value(); }
   Sweep sweep;                           ///< &sweep
   std::string source_file;               ///< name of the namelist file
   std::string namelist_text;             ///< its text, verbatim

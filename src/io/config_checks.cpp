@@ -111,7 +111,7 @@ void check_species_list(std::vector<double>& values, const std::string& name, co
 void check_system(System& sys, const Provenance& prov) {
   const std::string group = "system";
   const auto s = static_cast<std::size_t>(sys.n_species);
-  if (sys.restitution_model == "viscoelastic") {
+  if (sys.restitution_model == RestitutionModel::viscoelastic) {
     if (!sys.visco_a_kappa)
       throw Error(prov.file_of("restitution_model"), prov.line.at("restitution_model"), group, "visco_a_kappa",
                   "required with restitution_model = 'viscoelastic'");
@@ -125,11 +125,11 @@ void check_system(System& sys, const Provenance& prov) {
       throw Error(prov.file_of("visco_a_kappa"), prov.line.at("visco_a_kappa"), group, "visco_a_kappa",
                   "only used with restitution_model = 'viscoelastic'");
   }
-  check_species_list(sys.mass, "mass", sys.mass_law, s, prov, group);
-  check_species_list(sys.diameter, "diameter", sys.diameter_law, s, prov, group);
-  check_species_list(sys.number_density, "number_density", sys.density_law, s, prov, group);
+  check_species_list(sys.mass, "mass", name(sys.mass_law), s, prov, group);
+  check_species_list(sys.diameter, "diameter", name(sys.diameter_law), s, prov, group);
+  check_species_list(sys.number_density, "number_density", name(sys.density_law), s, prov, group);
   // The default value is accepted, so that the --print-defaults template reads back.
-  if (sys.density_law != "power" && prov.line.count("density_exponent") &&
+  if (sys.density_law != DensityLaw::power && prov.line.count("density_exponent") &&
       sys.density_exponent != System{}.density_exponent)
     throw Error(prov.file_of("density_exponent"), prov.line.at("density_exponent"), group,
                 "density_exponent",
@@ -137,12 +137,12 @@ void check_system(System& sys, const Provenance& prov) {
   // derive: the species laws (Bodrova and Osinsky 2024, sec. II, \ref sch_lowrank "docs/schemes.md": m_k = k m_1, sigma_k = k^(1/3) sigma_1, n_k = n_1 k^-theta)
   for (std::size_t k = 2; k <= s; ++k) {
     const double kk = static_cast<double>(k);
-    if (sys.mass_law == "linear") sys.mass.push_back(kk * sys.mass[0]);
-    if (sys.diameter_law == "cube_root") sys.diameter.push_back(std::cbrt(kk) * sys.diameter[0]);
-    if (sys.density_law == "power")
+    if (sys.mass_law == MassLaw::linear) sys.mass.push_back(kk * sys.mass[0]);
+    if (sys.diameter_law == DiameterLaw::cube_root) sys.diameter.push_back(std::cbrt(kk) * sys.diameter[0]);
+    if (sys.density_law == DensityLaw::power)
       sys.number_density.push_back(sys.number_density[0] * std::pow(kk, -sys.density_exponent));
   }
-  if (sys.restitution_model == "constant") resolve_restitution(sys, prov, group);
+  if (sys.restitution_model == RestitutionModel::constant) resolve_restitution(sys, prov, group);
   else {  // placeholder: alpha comes from the impact speed
     sys.restitution = species::PairMatrix::uniform(s, 1.0);
     if (s <= species::dense_pair_limit) sys.restitution.densify();
@@ -193,10 +193,10 @@ void check_dsmc(const Dsmc& d, const species::Mixture& mix, const Provenance& pr
   // rebuilds are the whole run (3000 species: minutes per collision per particle). 'lowrank' updates
   // its rank-3 majorant in O(S log S) (collide.hpp).
   constexpr std::size_t kMaxPairSchemeSpecies = 256;
-  if (d.scheme != "lowrank" && mix.size() > kMaxPairSchemeSpecies)
+  if (d.scheme != Scheme::lowrank && mix.size() > kMaxPairSchemeSpecies)
     throw Error(prov.file_of("scheme"), prov.line.count("scheme") ? prov.line.at("scheme") : group_line, group,
                 "scheme",
-                "scheme = '" + d.scheme + "' recomputes its bounds over all n_species^2 = " +
+                "scheme = '" + name(d.scheme) + "' recomputes its bounds over all n_species^2 = " +
                     std::to_string(mix.size() * mix.size()) +
                     " species pairs at every time step: with more than 256 species use scheme = 'lowrank' "
                     "(O(S log S), Bodrova and Osinsky 2024, docs/schemes.md)");
@@ -249,7 +249,7 @@ void check_output(Output& out, const Dsmc& d, const Provenance& prov) {
                   "the last sample point is beyond the end of the run (" + std::to_string(end) + ")");
     return;
   }
-  if (out.spacing == "log") {
+  if (out.spacing == Spacing::log) {
     if (!out.first_sample) out.first_sample = end / 1000.0;  // derive
     if (*out.first_sample >= end)
       throw Error(prov.file_of("first_sample"), prov.line.at("first_sample"), "output", "first_sample",
@@ -286,10 +286,10 @@ void check_agg_frag(const Config& c, std::map<std::string, Provenance>& prov) {
   if (c.system.n_species != 1)
     refuse("system", "n_species",
            "&agg_frag starts from monomers: n_species must be 1 (cluster sizes become the species)");
-  if (c.system.restitution_model != "constant")
+  if (c.system.restitution_model != RestitutionModel::constant)
     refuse("system", "restitution_model", "&agg_frag runs with restitution_model = 'constant' only");
   if (c.system.enskog) refuse("system", "enskog", "&agg_frag runs in the dilute gas only (enskog = .false.)");
-  if (c.dsmc.scheme != "lowrank")
+  if (c.dsmc.scheme != Scheme::lowrank)
     refuse("dsmc", "scheme",
            "&agg_frag runs with scheme = 'lowrank' only (cluster sizes as species, Bodrova and Osinsky 2024, docs/schemes.md); set scheme = "
            "'lowrank'");
@@ -314,14 +314,14 @@ void check_staged(const Config& c, std::map<std::string, Provenance>& prov) {
   if (c.has_agg_frag)
     refuse(c.shear.rate ? "shear" : "thermostat", c.shear.rate ? "rate" : "kind",
            what + " cannot run with &agg_frag (the thermostat would feed the clusters' energy back)");
-  if (c.system.enskog && c.shear.rate && c.dsmc.scheme != "pairs")
+  if (c.system.enskog && c.shear.rate && c.dsmc.scheme != Scheme::pairs)
     refuse("dsmc", "scheme",
            "shear flow in the Enskog gas runs with scheme = 'pairs' only: its relative velocity "
            "g - a sigma e_y x depends on the direction e, which 'majorant' and 'lowrank' draw from g "
            "(docs/physics.md, shear flow)");
-  if (c.system.restitution_model != "constant")
+  if (c.system.restitution_model != RestitutionModel::constant)
     refuse("system", "restitution_model", what + " runs with restitution_model = 'constant' only");
-  if (c.dsmc.scheme == "lowrank" && c.system.n_species > 64)
+  if (c.dsmc.scheme == Scheme::lowrank && c.system.n_species > 64)
     refuse("dsmc", "scheme", what + " runs with at most 64 species");
   if (!c.dsmc.t_end)
     refuse("dsmc", "collisions_per_particle", what + " runs are driven by t_end (stages end at times)");
@@ -357,7 +357,7 @@ std::vector<double> spaced(const Output& out, double end) {
   }
   const auto n = static_cast<std::size_t>(out.n_samples);
   std::vector<double> t(n, 0.0);
-  if (out.spacing == "linear") {
+  if (out.spacing == Spacing::linear) {
     for (std::size_t i = 1; i < n; ++i) t[i] = end * static_cast<double>(i) / static_cast<double>(n - 1);
   } else {
     const double first = *out.first_sample;
@@ -374,7 +374,7 @@ std::vector<double> spaced(const Output& out, double end) {
 using namespace detail;  // the tables and steps of config_detail.hpp
 
 std::optional<species::PairMatrix> Config::viscoelastic_beta() const {
-  if (system.restitution_model != "viscoelastic") return std::nullopt;
+  if (system.restitution_model != RestitutionModel::viscoelastic) return std::nullopt;
   return restitution::one_material_beta(mixture(), *system.visco_a_kappa);
 }
 

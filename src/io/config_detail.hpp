@@ -18,6 +18,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -51,15 +52,34 @@ struct Field {
   using Member = std::variant<long long G::*, double G::*, bool G::*, std::string G::*,
                               std::optional<double> G::*, std::vector<double> G::*,
                               std::vector<std::string> G::*, SweepValues G::*,
-                              species::PairMatrix G::*>;
+                              species::PairMatrix G::*, Scheme G::*, RestitutionModel G::*,
+                              MassLaw G::*, DiameterLaw G::*, DensityLaw G::*,
+                              VelocityDistribution G::*, Spacing G::*, ThermostatKind G::*>;
   std::string name;
   Member member;
   std::string units;
   std::string help;
   Range range{};
-  std::vector<std::string> choices{};
   bool required = false;
 };
+
+/// Whether T is one of the choices (the enums of config.hpp, read and written by name).
+template <class T>
+concept Choice = std::is_enum_v<T> && requires { Choices<T>::names; };
+
+/// The names a field may take: its choices, or none for a field that is not a choice.
+template <class G>
+std::vector<std::string> choices(const Field<G>& field) {
+  return std::visit(
+      [](auto member) {
+        using T = std::remove_cv_t<std::remove_reference_t<decltype(std::declval<G&>().*member)>>;
+        std::vector<std::string> names;
+        if constexpr (Choice<T>)
+          for (const auto name : Choices<T>::names) names.emplace_back(name);
+        return names;
+      },
+      field.member);
+}
 
 // The tables, one per group (config_fields.cpp). Defaults are the member initialisers in
 // config.hpp, nowhere else.

@@ -22,28 +22,24 @@ const std::vector<Field<System>>& system_fields() {
   static const std::vector<Field<System>> fields = {
       {"n_species", &System::n_species, "", "number of species S", Range{1, 1e7}},
       {"mass", &System::mass, "mass", "m_k, one per species (or species 1 with mass_law)",
-       kPositive, {}, true},
+       kPositive, true},
       {"diameter", &System::diameter, "length",
-       "sigma_k, one per species (or species 1 with diameter_law)", kPositive, {}, true},
+       "sigma_k, one per species (or species 1 with diameter_law)", kPositive, true},
       {"number_density", &System::number_density, "1/length^3",
-       "n_k, one per species (or species 1 with density_law)", kPositive, {}, true},
+       "n_k, one per species (or species 1 with density_law)", kPositive, true},
       {"restitution", &System::restitution, "",
        "alpha_kj: one value for all pairs, or restitution(i,j) = ... (symmetric; required when constant)",
-       kUnit, {}, true},
+       kUnit, true},
       {"restitution_model", &System::restitution_model, "",
-       "'constant' (alpha_kj), or 'viscoelastic' (alpha from the impact speed, Bodrova and Osinsky 2024, eqs. (5)-(8), docs/viscoelastic.md)", {},
-       {"constant", "viscoelastic"}},
+       "'constant' (alpha_kj), or 'viscoelastic' (alpha from the impact speed, Bodrova and Osinsky 2024, eqs. (5)-(8), docs/viscoelastic.md)"},
       {"visco_a_kappa", &System::visco_a_kappa, "velocity^(-1/5)",
        "beta_11 = A kappa_11^(2/5) of the viscoelastic model; other pairs by the one-material scaling "
        "of docs/viscoelastic.md", at_least(0)},
       {"enskog", &System::enskog, "",
        ".true.: Carnahan-Starling chi_ij multiplies the collision rates (Montanero and Garzo 2002, eq. (26), docs/collision-model.md)"},
-      {"mass_law", &System::mass_law, "", "'list', or 'linear': m_k = k m_1", {},
-       {"list", "linear"}},
-      {"diameter_law", &System::diameter_law, "", "'list', or 'cube_root': sigma_k = k^(1/3) sigma_1",
-       {}, {"list", "cube_root"}},
-      {"density_law", &System::density_law, "", "'list', or 'power': n_k = n_1 k^-theta", {},
-       {"list", "power"}},
+      {"mass_law", &System::mass_law, "", "'list', or 'linear': m_k = k m_1"},
+      {"diameter_law", &System::diameter_law, "", "'list', or 'cube_root': sigma_k = k^(1/3) sigma_1"},
+      {"density_law", &System::density_law, "", "'list', or 'power': n_k = n_1 k^-theta"},
       {"density_exponent", &System::density_exponent, "", "theta of density_law = 'power'"},
   };
   return fields;
@@ -54,8 +50,7 @@ const std::vector<Field<Initial>>& initial_fields() {
       {"temperature", &Initial::temperature, "energy",
        "T_k(0), one per species or one for all (k_B = 1)", kPositive},
       {"distribution", &Initial::distribution, "",
-       "initial velocities: 'maxwell', 'shell' (equal speeds) or 'cube' (uniform in a cube)", {},
-       {"maxwell", "shell", "cube"}},
+       "initial velocities: 'maxwell', 'shell' (equal speeds) or 'cube' (uniform in a cube)"},
   };
   return fields;
 }
@@ -63,8 +58,7 @@ const std::vector<Field<Initial>>& initial_fields() {
 const std::vector<Field<Dsmc>>& dsmc_fields() {
   static const std::vector<Field<Dsmc>> fields = {
       {"scheme", &Dsmc::scheme, "",
-       "'majorant' (DSMC notes, docs/schemes.md), 'pairs' (Montanero and Garzo 2002) or 'lowrank' (Bodrova and Osinsky 2024, docs/schemes.md)", {},
-       {"majorant", "pairs", "lowrank"}},
+       "'majorant' (DSMC notes, docs/schemes.md), 'pairs' (Montanero and Garzo 2002) or 'lowrank' (Bodrova and Osinsky 2024, docs/schemes.md)"},
       {"n_particles", &Dsmc::n_particles, "", "simulated particles, split in proportion to n_k",
        Range{2, 2e9}},
       {"t_end", &Dsmc::t_end, "time", "end of the run (or give collisions_per_particle)",
@@ -94,8 +88,7 @@ const std::vector<Field<Thermostat>>& thermostat_fields() {
   static const std::vector<Field<Thermostat>> fields = {
       {"kind", &Thermostat::kind, "",
        "'none', or 'gaussian': rescale the velocities after each collision stage so that the inelastic loss "
-       "is restored (homogeneous steady state, docs/shear-viscosity.md)",
-       {}, {"none", "gaussian"}},
+       "is restored (homogeneous steady state, docs/shear-viscosity.md)"},
   };
   return fields;
 }
@@ -117,8 +110,7 @@ const std::vector<Field<Output>>& output_fields() {
       {"n_samples", &Output::n_samples, "",
        "sample times, t = 0 included (at most 1e5: every sample keeps every observable of every replica in memory)",
        Range{2, 1e5}},
-      {"spacing", &Output::spacing, "", "'linear' or 'log' spacing of the sample times", {},
-       {"linear", "log"}},
+      {"spacing", &Output::spacing, "", "'linear' or 'log' spacing of the sample times"},
       {"first_sample", &Output::first_sample, "time (or collisions per particle)",
        "first sample after 0 with spacing = 'log' (default: end / 1000)", kPositive},
       {"histogram_bins", &Output::histogram_bins, "", "bins of the velocity histograms",
@@ -201,7 +193,8 @@ namespace {
 template <class G>
 bool is_string_field(const std::vector<Field<G>>& fields, const std::string& name) {
   for (const auto& f : fields)
-    if (f.name == name) return std::holds_alternative<std::string G::*>(f.member);
+    if (f.name == name)
+      return std::holds_alternative<std::string G::*>(f.member) || !choices(f).empty();
   return false;
 }
 
@@ -268,6 +261,8 @@ void append_resolved(std::vector<h5md::Parameter>& out, const std::string& group
               for (const auto& row : target.table()) flat.insert(flat.end(), row.begin(), row.end());
               out.push_back({group, f.name, flat});
             }
+          } else if constexpr (Choice<T>) {
+            out.push_back({group, f.name, name(v)});
           } else if constexpr (std::is_same_v<T, species::PairMatrix>) {
             // A uniform matrix of very many species (not stored densely) is written as its value.
             out.push_back({group, f.name, v.is_dense() ? v.values : std::vector<double>{v(0, 0)}});
@@ -291,6 +286,7 @@ std::string default_text(const G& defaults, const Field<G>& f) {
         else if constexpr (std::is_same_v<T, std::string>) {
           if (!v.empty()) s << "'" << v << "'";  // empty: unset, shown commented out
         }
+        else if constexpr (Choice<T>) s << "'" << name(v) << "'";
         else if constexpr (std::is_same_v<T, std::vector<double>> ||
                            std::is_same_v<T, std::vector<std::string>>) {
           for (std::size_t i = 0; i < v.size(); ++i) s << (i ? ", " : "") << v[i];
@@ -332,8 +328,8 @@ void reference_group(std::ostringstream& s, const std::string& group, const std:
   s << "### &" << group << "\n\n| variable | default | allowed | units | meaning |\n|---|---|---|---|---|\n";
   for (const auto& f : fields) {
     std::string allowed;
-    if (!f.choices.empty())
-      for (const auto& c : f.choices) allowed += (allowed.empty() ? "'" : ", '") + c + "'";
+    if (const auto names = choices(f); !names.empty())
+      for (const auto& c : names) allowed += (allowed.empty() ? "'" : ", '") + c + "'";
     else if (std::isfinite(f.range.lo) || std::isfinite(f.range.hi))
       allowed = f.range.text();
     std::string def = f.required ? "(required)" : default_text(defaults, f);

@@ -12,10 +12,21 @@ rules::Rule make_rule(const io::config::Config& config, const species::Mixture& 
   return rules::make_rule(mix, beta ? &*beta : nullptr);
 }
 
+collide::Scheme scheme(const io::config::Config& config) {
+  switch (config.dsmc.scheme) {
+    case io::config::Scheme::pairs: return collide::Scheme::pairs;
+    case io::config::Scheme::lowrank: return collide::Scheme::lowrank;
+    case io::config::Scheme::majorant: break;
+  }
+  return collide::Scheme::majorant;
+}
+
 particles::InitialDistribution initial_distribution(const io::config::Config& config) {
-  const std::string& name = config.initial.distribution;
-  if (name == "shell") return particles::InitialDistribution::shell;
-  if (name == "cube") return particles::InitialDistribution::cube;
+  switch (config.initial.distribution) {
+    case io::config::VelocityDistribution::shell: return particles::InitialDistribution::shell;
+    case io::config::VelocityDistribution::cube: return particles::InitialDistribution::cube;
+    case io::config::VelocityDistribution::maxwell: break;
+  }
   return particles::InitialDistribution::maxwell;
 }
 
@@ -32,7 +43,7 @@ agg_frag::Model agg_frag_model(const io::config::Config& c) {
 }
 
 bool staged_blocks(const io::config::Config& config) {
-  return config.dsmc.scheme != "pairs" && config.dsmc.block_size > 0 &&
+  return config.dsmc.scheme != io::config::Scheme::pairs && config.dsmc.block_size > 0 &&
          config.dsmc.n_particles >= 2 * config.dsmc.block_size;
 }
 
@@ -42,7 +53,7 @@ std::vector<std::unique_ptr<thermostat::Forcing>> make_forcings(const io::config
   const double shear = config.shear.rate.value_or(0.0);
   // Enskog in shear flow: the collisions do viscous work and transfer momentum (collide.hpp set_shear).
   const bool enskog_shear = shear > 0.0 && mix.enskog;
-  if (config.thermostat.kind == "gaussian") forcings.push_back(std::make_unique<thermostat::GaussianThermostat>(enskog_shear));
+  if (config.thermostat.kind == io::config::ThermostatKind::gaussian) forcings.push_back(std::make_unique<thermostat::GaussianThermostat>(enskog_shear));
   if (shear > 0.0) {
     // eta_0(T) of one species (\ref eta_one_species "docs/shear-viscosity.md"), or of the elastic mixture at the same T
     // (Chapman and Cowling's first approximation; theory/viscosity.hpp).

@@ -24,6 +24,8 @@ namespace gdsmc::simulation {
 /// The collision rule of &system (dsmc/rules.hpp): viscoelastic with `restitution_model = 'viscoelastic'`,
 /// else constant alpha_kj. `mix` is the Config's mixture, which the rule refers to.
 rules::Rule make_rule(const io::config::Config& config, const species::Mixture& mix);
+/// The collision scheme of `&dsmc scheme` (dsmc/collide.hpp).
+collide::Scheme scheme(const io::config::Config& config);
 /// The initial velocity distribution of `&initial distribution`.
 particles::InitialDistribution initial_distribution(const io::config::Config& config);
 /// The monomer of &system and the thresholds of &agg_frag (\ref af_outcome "docs/agg-frag.md").

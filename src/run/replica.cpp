@@ -79,7 +79,7 @@ class Gas : public Engine {
       : config_(config), mix_(config.mixture()), s_(mix_.size()),
         counts_(species::particle_counts(static_cast<std::size_t>(config.dsmc.n_particles), mix_)),
         sys_(initial_system(config, mix_, counts_, r)),
-        collider_(collide::parse_scheme(config.dsmc.scheme), mix_, sys_,
+        collider_(scheme(config), mix_, sys_,
                   rng::make_stream(static_cast<std::uint64_t>(config.dsmc.seed), r, rng::Purpose::collisions),
                   config.dsmc.step_fraction, make_rule(config, mix_)),
         targets_(config.dsmc.t_end ? config.sample_times() : config.sample_collisions()),

@@ -51,7 +51,7 @@ int check_elastic(int argc, char** argv) {
   while (a > 1 && msd.time[a] > msd.time[e] / 10.0) --a;
   char text[400];
   std::snprintf(text, sizeof text, "ensemble: %lld replicas x %lld particles, %s scheme; slope over t = %g..%g",
-                run.config.dsmc.replicas, run.config.dsmc.n_particles, run.config.dsmc.scheme.c_str(), msd.time[a],
+                run.config.dsmc.replicas, run.config.dsmc.n_particles, name(run.config.dsmc.scheme).c_str(), msd.time[a],
                 msd.time[e]);
   report.note(text);
   for (std::size_t k = 0; k < s; ++k) {
@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
   const auto points = run.config.sweep_points();
   char text[400];
   std::snprintf(text, sizeof text, "ensemble: %lld replicas x %lld particles per point, %s scheme",
-                run.config.dsmc.replicas, run.config.dsmc.n_particles, run.config.dsmc.scheme.c_str());
+                run.config.dsmc.replicas, run.config.dsmc.n_particles, name(run.config.dsmc.scheme).c_str());
   report.note(text);
   for (std::size_t p = 0; p < points.size(); ++p) {
     const auto mix = points[p].mixture();

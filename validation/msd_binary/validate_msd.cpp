@@ -30,17 +30,17 @@ int main(int argc, char** argv) {
   const auto mix = run.config.mixture();
   const std::size_t s = mix.size();
   validation::Report report("partial MSDs against eq 17, " + std::to_string(s) + " species, " +
-                                run.config.system.restitution_model + " restitution",
+                                name(run.config.system.restitution_model) + " restitution",
                             run.report_file());
   if (!report.require("--measured-gap gives one allowance per species", gap.size() == s)) return report.exit_code();
   {
     char text[300];
     std::snprintf(text, sizeof text, "ensemble: %lld replicas x %lld particles, %s scheme", run.config.dsmc.replicas,
-                  run.config.dsmc.n_particles, run.config.dsmc.scheme.c_str());
+                  run.config.dsmc.n_particles, name(run.config.dsmc.scheme).c_str());
     report.note(text);
     // The inelastic Sonine estimate of the first approximation's error (\ref dif_second_sonine_inelastic
     // "docs/diffusion-msd.md"), at the initial temperatures and, for constant restitution, in the HCS.
-    const bool constant = run.config.system.restitution_model == "constant";
+    const bool constant = run.config.system.restitution_model == gdsmc::io::config::RestitutionModel::constant;
     std::vector<std::vector<double>> at;  // viscoelastic restitution: no Sonine estimate is implemented
     if (constant) at = {run.config.initial.temperature, theory::asymptotic_temperature_ratios(mix)};
     for (std::size_t w = 0; w < at.size(); ++w) {
@@ -153,7 +153,7 @@ int main(int argc, char** argv) {
     const std::vector<Row> large = {{10.0, 3.2005, 0.024, 0.3845, 0.002}, {100.0, 7.059, 0.026, 1.3285, 0.0069},
                                     {1000.0, 11.469, 0.043, 2.448, 0.013}};
     auto near = [](double a, double b) { return std::abs(a - b) <= 1e-6 * std::abs(b); };
-    const bool binary = s == 2 && start == 0.0 && run.config.system.restitution_model == "constant" &&
+    const bool binary = s == 2 && start == 0.0 && run.config.system.restitution_model == gdsmc::io::config::RestitutionModel::constant &&
                         near(mix.mass[0], 1.0) && near(mix.mass[1], 100.0) && near(mix.number_density[0], 0.1) &&
                         near(mix.number_density[1], 0.1) && near(mix.restitution(0, 0), 0.5) &&
                         near(mix.restitution(0, 1), 0.5) && near(mix.restitution(1, 1), 0.5) &&

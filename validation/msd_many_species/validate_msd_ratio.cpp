@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
   {
     char text[200];
     std::snprintf(text, sizeof text, "ensemble: %lld replicas x %lld particles, %s scheme; t = %g",
-                  run.config.dsmc.replicas, run.config.dsmc.n_particles, run.config.dsmc.scheme.c_str(), msd.time[e]);
+                  run.config.dsmc.replicas, run.config.dsmc.n_particles, name(run.config.dsmc.scheme).c_str(), msd.time[e]);
     report.note(text);
   }
   // The second method (validation/independent_reference, issue 13): <R_k^2> at t_end from a program that

@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
   const double n_particles = static_cast<double>(run.config.dsmc.n_particles);
   const double replicas = static_cast<double>(run.config.dsmc.replicas);
   validation::Report report("velocity distribution, alpha = " + std::to_string(alpha) +
-                            ", initial '" + run.config.initial.distribution + "'",
+                            ", initial '" + name(run.config.initial.distribution) + "'",
                             run.report_file());
 
   const auto sonine = validation::observable(run, "sonine_c");
@@ -80,7 +80,7 @@ int main(int argc, char** argv) {
     char text[160];
     std::snprintf(text, sizeof text, "t = 0: chi2 = %.4g, dof = %d, p = %.3g < 1e-10 (not Maxwellian yet)",
                   start.chi2, start.dof, start.p);
-    if (run.config.initial.distribution != "maxwell") report.require(text, start.p < 1e-10);
+    if (run.config.initial.distribution != gdsmc::io::config::VelocityDistribution::maxwell) report.require(text, start.p < 1e-10);
     std::snprintf(text, sizeof text, "after %.3g collisions per particle: chi2 = %.4g, dof = %d, p = %.3g > 1e-3 (Maxwellian)",
                   run.config.dsmc.collisions_per_particle.value_or(0.0), end.chi2, end.dof, end.p);
     report.require(text, end.p > 1e-3);
