@@ -13,7 +13,6 @@
 
 namespace gdsmc::collide {
 
-
 Collider::Collider(Scheme scheme, const species::Mixture& mix, particles::System& sys, rng::Xoshiro256pp gen,
                    double step_fraction, rules::Rule rule)
     : scheme_(scheme), mix_(mix), sys_(sys), gen_(gen), step_fraction_(step_fraction),

@@ -80,10 +80,8 @@ class SumTree {
   /// Sets weight `index` and recomputes the log2(P) sums above it from their children.
   /// Throws std::out_of_range for index >= size(), std::invalid_argument for a negative or
   /// non-finite weight.
-  void set(std::size_t index, double weight) {
-    if (index >= size_)
-      throw std::out_of_range("segment_tree::SumTree::set: index " + std::to_string(index) +
-                              " >= size " + std::to_string(size_));
+  [[gnu::always_inline]] void set(std::size_t index, double weight) {
+    if (index >= size_) throw_out_of_range(index);
     if (!valid(weight)) throw_invalid(index, weight);
     std::size_t n = leaves_ + index;
     tree_[n] = weight;
@@ -101,9 +99,8 @@ class SumTree {
   /// [0, total()). Never returns an index of zero weight: u < 0 (or NaN) is read as 0, and u >= total()
   /// (a boundary, or round-off) gives the last index of positive weight. Throws std::domain_error if
   /// total() is not positive. O(log M), no allocation.
-  std::size_t find(double u) const {
-    if (!(tree_[1] > 0.0))
-      throw std::domain_error("segment_tree::SumTree::find: all weights are zero");
+  [[gnu::always_inline]] std::size_t find(double u) const {
+    if (!(tree_[1] > 0.0)) throw_all_zero();
     if (!(u >= 0.0)) u = 0.0;
     // Leaf 0 without the descent (agg_frag's monomers, its most frequent draw): every left sum on the
     // path to leaf 0 is a floating-point sum of non-negative terms that include w_0, so never below
@@ -128,6 +125,14 @@ class SumTree {
 
  private:
   static bool valid(double w) { return w >= 0.0 && std::isfinite(w); }
+  // (The throws out of line: set() and find() are inlined into the samplers' loops.)
+  [[noreturn]] void throw_out_of_range(std::size_t index) const {
+    throw std::out_of_range("segment_tree::SumTree::set: index " + std::to_string(index) + " >= size " +
+                            std::to_string(size_));
+  }
+  [[noreturn]] static void throw_all_zero() {
+    throw std::domain_error("segment_tree::SumTree::find: all weights are zero");
+  }
   [[noreturn]] static void throw_invalid(std::size_t index, double w) {
     throw std::invalid_argument("segment_tree::SumTree: weight " + std::to_string(index) + " = " +
                                 std::to_string(w) + " must be finite and >= 0");

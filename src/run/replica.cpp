@@ -34,7 +34,8 @@ class Engine {
   virtual void start() {}
   /// Steps up to sample i (its time, or its event target), calling `between` between steps.
   virtual void advance_to_sample(std::size_t i, const Between& between) = 0;
-  /// Measures sample i into `result`.
+  /// Measures sample i into `result` (an engine whose sampling also collides adds that time to
+  /// result.collide_seconds, as the loop adds advance_to_sample's).
   virtual void sample(std::size_t i, ReplicaResult& result) = 0;
   /// The end of the replica: the observables of the whole replica, its events and mean step.
   virtual void finish(ReplicaResult& result) = 0;
@@ -432,8 +433,10 @@ void ForcedGas::advance_to_sample(std::size_t i, const Between& between) {
 void ForcedGas::sample(std::size_t i, ReplicaResult& result) {
   // The stage that samples (the last one: only its streaming, of the length the next would have).
   const bool last = i + 1 == targets_.size();
+  const auto t0 = Clock::now();
   stage(last ? stages_.stage_end(std::numeric_limits<double>::infinity()) : stages_.stage_end(targets_[i + 1]), i,
         &result, last);
+  result.collide_seconds += std::chrono::duration<double>(Clock::now() - t0).count();  // its collisions count
 }
 
 void ForcedGas::finish(ReplicaResult& result) {
@@ -594,8 +597,8 @@ ReplicaResult run_replica(const io::config::Config& config, std::size_t replica,
     if (interrupted()) throw Interrupted();
     const auto t0 = Clock::now();
     engine->advance_to_sample(next_sample, between);
-    engine->sample(next_sample, result);
     result.collide_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+    engine->sample(next_sample, result);
     report(next_sample + 1 == n_samples ? 1.0 : std::min(engine->fraction_done(), 0.999));
   }
   engine->finish(result);
