@@ -200,7 +200,7 @@ void Collider::run_block_one_species(const Rule& rule, double t_stop) {
     b += b >= a;
     ahead[2 * slot] = a;
     ahead[2 * slot + 1] = b;
-    prefetch_pair<Track>(v, sys_.r.data() + first, a, b);
+    prefetch_pair<Track>(v, Track ? sys_.r.data() + first : nullptr, a, b);  // (no arithmetic on an empty array's null)
   };
   for (std::size_t slot = 0; slot < block_lookahead<Framed>; ++slot) draw(slot);
   std::size_t next = 0;

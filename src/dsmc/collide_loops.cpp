@@ -39,23 +39,6 @@ void Collider::count_event(std::uint32_t k, std::uint32_t j) {
   ++counters_.pair_events[std::min(k, j) * s_ + std::max(k, j)];
 }
 
-int Collider::run_loop(Scheme loop, double t_stop, std::uint64_t event_target) {
-  return std::visit(
-      [&](const auto& rule) -> int {
-        using Rule = std::decay_t<decltype(rule)>;
-        if constexpr (Rule::frames) {
-          if (framed_)
-            return loop == Scheme::majorant ? run_majorant<Rule, true>(rule, t_stop, event_target)
-                   : loop == Scheme::pairs  ? run_pairs<Rule, true>(rule, t_stop, event_target)
-                                            : run_lowrank<Rule, true>(rule, t_stop, event_target);
-        }
-        return loop == Scheme::majorant ? run_majorant<Rule, false>(rule, t_stop, event_target)
-               : loop == Scheme::pairs  ? run_pairs<Rule, false>(rule, t_stop, event_target)
-                                        : run_lowrank<Rule, false>(rule, t_stop, event_target);
-      },
-      rule_);
-}
-
 // Candidates of one sub-step at a fixed rate: candidate c (0-based) happens at
 // time_ - credit_ + (c + 1)/R; what is left of the sub-step is carried in credit_.
 // `try_candidate(a, b, t)` draws one candidate at time t and, when it is accepted, collides and counts it,
@@ -270,6 +253,25 @@ int Collider::run_lowrank(const Rule& rule, double t_stop, std::uint64_t event_t
                                gx * ex + gy * ey + gz * ez);
     return true;
   });
+}
+
+// After the loops' definitions: clang instantiates the templates a generic lambda names only where they are
+// defined before it (the clang build of scripts/clang-fuzz.sh failed to link otherwise).
+int Collider::run_loop(Scheme loop, double t_stop, std::uint64_t event_target) {
+  return std::visit(
+      [&](const auto& rule) -> int {
+        using Rule = std::decay_t<decltype(rule)>;
+        if constexpr (Rule::frames) {
+          if (framed_)
+            return loop == Scheme::majorant ? run_majorant<Rule, true>(rule, t_stop, event_target)
+                   : loop == Scheme::pairs  ? run_pairs<Rule, true>(rule, t_stop, event_target)
+                                            : run_lowrank<Rule, true>(rule, t_stop, event_target);
+        }
+        return loop == Scheme::majorant ? run_majorant<Rule, false>(rule, t_stop, event_target)
+               : loop == Scheme::pairs  ? run_pairs<Rule, false>(rule, t_stop, event_target)
+                                        : run_lowrank<Rule, false>(rule, t_stop, event_target);
+      },
+      rule_);
 }
 
 }  // namespace gdsmc::collide
