@@ -144,6 +144,8 @@ int main(int argc, char** argv) {
       {"the same, 2 threads", kOne, "majorant", true, 2, kShear},
       {"aggregation/fragmentation", kOne, "lowrank", true, 1, kAggFrag},
       {"the same, 2 threads", kOne, "lowrank", true, 2, kAggFrag},
+      {"rough, one species (beta = 0)", kOne + " roughness = 0.0\n", "majorant", true, 1},
+      {"rough, binary mixture (beta = 0.5)", kBinary + " roughness = 0.5\n", "majorant", true, 1},
   };
   constexpr double per_particle = 10.0;
   struct Measured {

@@ -846,6 +846,22 @@ TEST_F(CliTheory, EnskogMixtureShearViscosity) {
     EXPECT_NE(r.out.find(key), std::string::npos) << key << " in " << r.out;
 }
 
+// Rough spheres (\ref rough_maxwellian "docs/rough-spheres.md"): the INTERFACE keys rough_hcs.maxwellian {theta,
+// zeta_star} (alpha = 0.9, beta = 0, kappa = 0.4: 0.57379, 0.18757, by hand in tests/rough_test.cpp), the
+// Sonine entry as a string, rotational_temperature on the sample times, and no smooth-sphere key (sonine_a2).
+TEST_F(CliTheory, RoughSpheresGiveThetaAndTheRotationalTemperature) {
+  write("t.nml",
+        "&system mass = 1.0, diameter = 1.0, number_density = 0.01, restitution = 0.9, roughness = 0.0 /\n"
+        "&dsmc n_particles = 1000, collisions_per_particle = 10.0 /\n&output n_samples = 3 /\n");
+  const Result r = run("granular-theory", "t.nml");
+  EXPECT_EQ(r.status, 0) << r.err;
+  for (const char* key : {"\"rough_hcs\": {\"maxwellian\": {\"theta\": 0.57379", "\"zeta_star\": 0.18756",
+                          "\"sonine\": \"not computed", "\"rotational_temperature\": {\"time\"",
+                          "\"rough_hcs.maxwellian\": \"maxwellian\""})
+    EXPECT_NE(r.out.find(key), std::string::npos) << key << " in " << r.out;
+  EXPECT_EQ(r.out.find("sonine_a2"), std::string::npos) << r.out;
+}
+
 TEST_F(CliTheory, AFailedIntegrationNamesTheEndOfTheRun) {
   // CVODE gives up long before t_end = 1e300: an input error naming t_end and its line.
   auto lines = base_lines;

@@ -360,6 +360,8 @@ TEST(ConfigResolved, ContainsEveryFieldOfEveryGroup) {
     expected.erase(std::string("agg_frag:") + v);  // written only with &agg_frag
   for (const char* v : {"thermostat:kind", "shear:rate", "shear:average_from"})
     expected.erase(v);  // written only with a thermostat or a shear rate
+  for (const char* v : {"system:roughness", "system:moment_of_inertia", "initial:rotational_temperature"})
+    expected.erase(v);  // written only for rough spheres
   EXPECT_EQ(names, expected);
   for (const char* n : {"system:n_species", "system:mass", "system:diameter", "system:number_density",
                         "system:restitution", "system:restitution_model", "system:enskog",
@@ -435,6 +437,11 @@ TEST(ConfigReference, MentionsEveryVariable) {
   for (const char* v : {"aggregation_energy", "fragmentation_energy", "fragment_restitution"})
     all.insert(std::string("agg_frag:") + v);
   for (const char* v : {"thermostat:kind", "shear:rate", "shear:average_from"}) all.insert(v);
+  const auto rough = resolved_names(read_text(with_line(6, "  restitution = 0.5, roughness = 0.2")));
+  EXPECT_EQ(rough.count("system:roughness") + rough.count("system:moment_of_inertia") +
+                rough.count("initial:rotational_temperature"),
+            3u);
+  all.insert(rough.begin(), rough.end());
   for (const auto& name : all) {
     const std::string variable = name.substr(name.find(':') + 1);
     EXPECT_NE(md.find("`" + variable + "`"), std::string::npos) << variable;
@@ -1194,4 +1201,54 @@ TEST(ConfigSweep, ResolvedKeepsTheOneVariableTypes) {
   }
   EXPECT_TRUE(seen_variable);
   EXPECT_TRUE(seen_values);
+}
+
+// Rough spheres (\ref rough_rule "docs/rough-spheres.md")
+// ---------------------------------------------------------------------------------------------
+TEST(ConfigRough, RoughnessFillsKappaAndRotationalTemperature) {
+  const auto c = read_text(with_line(6, "  restitution = 0.5, roughness = 0.2, moment_of_inertia = 0.3"));
+  EXPECT_TRUE(c.rough());
+  EXPECT_EQ(c.system.roughness(0, 1), 0.2);
+  EXPECT_EQ(c.system.moment_of_inertia, (std::vector<double>{0.3, 0.3}));
+  EXPECT_EQ(c.initial.rotational_temperature, (std::vector<double>{1.0, 1.0}));  // = temperature
+  const auto mix = c.mixture();
+  EXPECT_TRUE(mix.rough());
+  EXPECT_NEAR(mix.inertia(1), 0.25 * 0.3 * 10.0, 1e-15);
+  const auto defaults = read_text(with_line(6, "  restitution = 0.5, roughness(1,1) = 0.1, roughness(2,2) = 0.4, "
+                                               "roughness(1,2) = -0.5"));
+  EXPECT_EQ(defaults.system.moment_of_inertia, (std::vector<double>{0.4, 0.4}));
+  EXPECT_EQ(defaults.system.roughness(1, 0), -0.5);
+  // every beta = -1: the smooth gas (no rotation), though the variables were given
+  const auto smooth = read_text(with_line(6, "  restitution = 0.5, roughness = -1.0, moment_of_inertia = 0.3"));
+  EXPECT_FALSE(smooth.rough());
+  EXPECT_FALSE(smooth.mixture().rough());
+  EXPECT_FALSE(read_text(base()).rough());
+}
+
+TEST(ConfigError, RoughnessOutOfRangeOrWithoutItsModel) {
+  expect_error(error_of(with_line(6, "  restitution = 0.5, roughness = 1.5")), 6, "system", "roughness",
+               {"roughness = 1.5 is outside [-1, 1]"});
+  expect_error(error_of(with_line(6, "  restitution = 0.5, roughness = 0.0, moment_of_inertia = 0.7")), 6, "system",
+               "moment_of_inertia", {"outside (0, 0.666"});
+  expect_error(error_of(with_line(6, "  restitution = 0.5, roughness = 0.0, moment_of_inertia = 0.0")), 6, "system",
+               "moment_of_inertia", {"outside (0"});
+  expect_error(error_of(with_line(6, "  restitution = 0.5, moment_of_inertia = 0.3")), 6, "system", "moment_of_inertia",
+               {"only used with roughness"});
+  expect_error(error_of(with_line(9, "  temperature = 1.0, rotational_temperature = 2.0")), 9, "initial",
+               "rotational_temperature", {"only used with &system roughness"});
+  expect_error(error_of(with_line(6, "  restitution = 0.5, roughness = 0.1, moment_of_inertia = 0.3, 0.2, 0.1")), 6,
+               "system", "moment_of_inertia", {"expected 1 or n_species = 2 values, got 3"});
+  expect_error(error_of(with_line(6, "  restitution = 0.5, roughness(1,2) = 0.1")), 6, "system", "roughness",
+               {"roughness(1,1) is not given"});
+  expect_error(error_of(with_line(6, "  restitution = 0.5, roughness(1,2) = 0.1, roughness(2,1) = 0.2, "
+                                     "roughness(1,1) = 0.0, roughness(2,2) = 0.0")),
+               6, "system", "roughness", {"conflicts with line 6", "beta_ij = beta_ji"});
+  expect_error(error_of(with_line(6, "  restitution_model = 'viscoelastic', visco_a_kappa = 0.1, roughness = 0.2")), 6,
+               "system", "roughness", {"restitution_model = 'constant' only"});
+  expect_error(error_of(monomers("&agg_frag aggregation_energy = 100.0 /", "&dsmc scheme = 'lowrank', n_particles = 100, t_end = 5.0 /",
+                                 "&system mass = 1.0, diameter = 1.0, number_density = 0.1, restitution = 0.8, roughness = 0.5 /")),
+               1, "system", "roughness", {"&agg_frag"});
+  expect_error(error_of(sheared("&thermostat kind = 'gaussian' /", "&dsmc n_particles = 100, t_end = 5.0 /",
+                                "&system mass = 1.0, diameter = 1.0, number_density = 0.01, restitution = 0.9, roughness = 0.0 /")),
+               1, "system", "roughness", {"&thermostat or &shear"});
 }

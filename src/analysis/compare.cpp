@@ -184,6 +184,40 @@ void add_free_cooling(Point& pt, const io::config::Config& config, const analysi
   }
 }
 
+/// Rough spheres of one species (\ref rough_maxwellian "docs/rough-spheres.md"): T_tr(t) and T_rot(t) of the
+/// Maxwellian two-temperature equations, the collision count (or times), and theta = T_rot/T_tr at the last
+/// sample beside the Maxwellian HCS value. No allowance is stated: the Maxwellian theory omits the cumulants
+/// a20, a02, a11 (validation/rough_spheres measures its gap; no independent estimate of it is in the code).
+void add_rough(Point& pt, const analysis::Predictions& p, const Measured& m, bool time_driven) {
+  const std::size_t nt = p.time.size();
+  const std::string source = std::string(kNone) + " (the Maxwellian two-temperature theory omits a20, a02, a11; "
+                                                  "docs/rough-spheres.md)";
+  const auto series = [&](const char* name, const char* label, const std::vector<double>& theory) {
+    if (!m.has(name)) return pt.notes.push_back(std::string(name) + " not compared: not in the file");
+    const auto& o = m.observables.at(name);
+    if (o.time.size() != nt || o.value.size() != nt)
+      return pt.notes.push_back(std::string(name) + " not compared: the file's samples differ from the theory's");
+    pt.quantities.push_back(Quantity{name, label, "maxwellian", source, o.time, 1, o.value, errors_or_nan(o), theory,
+                                     std::vector<double>(nt, kNaN)});
+  };
+  series("total_temperature", "T_tr", p.total_temperature);
+  series("rotational_temperature", "T_rot", p.rotational_temperature);
+  if (time_driven) series("collisions_per_particle", "collisions/particle", p.collisions_per_particle);
+  else series("time", "t", p.time);
+  if (!p.rough_hcs_maxwellian || !m.has("rotational_temperature") || !m.has("total_temperature")) return;
+  const auto& rot = m.observables.at("rotational_temperature");
+  const auto& tr = m.observables.at("total_temperature");
+  if (rot.value.empty() || tr.value.size() != rot.value.size()) return;
+  const double r = rot.value.back(), t = tr.value.back(), theta = r / t;
+  // delta method, the two errors taken as independent (an approximation: they are correlated)
+  const double er = rot.error.empty() ? kNaN : rot.error.back(), et = tr.error.empty() ? kNaN : tr.error.back();
+  const double error = theta * std::sqrt((er / r) * (er / r) + (et / t) * (et / t));
+  Quantity q{"theta", "T_rot/T_tr", "maxwellian", source + "; the HCS value, reached only after the relaxation", {}, 1,
+             {theta}, {error}, {p.rough_hcs_maxwellian->theta}, {kNaN}};
+  q.at = "last sample";
+  pt.quantities.push_back(std::move(q));
+}
+
 /// The MSD (Bodrova and Osinsky 2024, eq. (17), \ref dif_msd "docs/diffusion-msd.md") and D_k/D_1 over the last decade of time (validation/diffusion_ratio).
 void add_diffusion(Point& pt, const io::config::Config& config, const analysis::Predictions& p, const Measured& m) {
   if (!p.msd) {
@@ -387,7 +421,7 @@ double shear_viscosity_known_error(const species::Mixture& mix) {
 Measured read_measured(const std::string& file, const std::string& root) {
   Measured m;
   for (const char* name : {"total_temperature", "temperature", "sonine_c", "collisions_per_particle", "time", "msd",
-                           "number", "mean_size"}) {
+                           "number", "mean_size", "rotational_temperature"}) {
     try {
       m.observables.emplace(name, io::h5md::read_observable(file, root + "/" + name));
     } catch (const std::runtime_error&) {
@@ -421,7 +455,8 @@ Point compare_point(const io::config::Config& config, const analysis::Prediction
   if (p.agg_frag) {
     add_agg_frag(pt, p, m);
   } else {
-    if (p.has_history) add_free_cooling(pt, config, p, m);
+    if (p.has_history && config.rough()) add_rough(pt, p, m, config.dsmc.t_end.has_value());
+    else if (p.has_history) add_free_cooling(pt, config, p, m);
     const bool hss = config.thermostat.kind == io::config::ThermostatKind::gaussian && !config.shear.rate;
     if ((!config.staged() || hss) && p.hcs_first_sonine) add_scaling_state(pt, config, p, m);
     if (config.output.track_displacements) add_diffusion(pt, config, p, m);

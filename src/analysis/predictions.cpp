@@ -319,7 +319,52 @@ void add_viscosity(Predictions& out, const species::Mixture& mix, const std::opt
 
 }  // namespace
 
+namespace {
+
+/// Rough spheres (\ref rough_maxwellian "docs/rough-spheres.md"): the collision frequency (the centres'
+/// relative velocities only: as for smooth spheres) and, for one species, the Maxwellian two-temperature
+/// history and HCS; nothing of the smooth-sphere theory.
+Predictions predict_rough(const io::config::Config& config) {
+  Predictions out;
+  const auto mix = config.mixture();
+  const std::size_t s = mix.size();
+  out.n_species = s;
+  add_rates(out, mix, config.initial.temperature, std::nullopt);
+  out.cooling_rate.clear();
+  out.approximations = {{"collision_frequency", "maxwellian"}};
+  out.notes.push_back("rough spheres: the smooth-sphere theory (Sonine a2, temperature ratios, diffusion, viscosity) "
+                      "is left out");
+  if (s != 1) {
+    out.notes.push_back("rough mixtures: no temperature theory here yet (Santos, Kremer and Garzo 2010)");
+    return out;
+  }
+  const double t_tr = config.initial.temperature[0], t_rot = config.initial.rotational_temperature[0];
+  const auto k = rough::coefficients(mix.restitution(0, 0), mix.roughness(0, 0), mix.moment_of_inertia[0]);
+  out.cooling_rate = {out.collision_frequency[0] * 4.0 / 3.0 * (k.a - k.b * t_rot / t_tr)};  // zeta_tr at t = 0
+  out.approximations.emplace_back("cooling_rate", "maxwellian");
+  const bool by_collisions = !config.dsmc.t_end;
+  const auto h = over_the_run(config, [&] {
+    return rough::integrate(mix, t_tr, t_rot, by_collisions ? config.sample_collisions() : config.sample_times(), by_collisions);
+  });
+  out.final_temperature = {h.translational.back()};
+  out.rough_hcs_maxwellian = rough::cooling_state(mix.restitution(0, 0), mix.roughness(0, 0), mix.moment_of_inertia[0]);
+  out.rough_zeta_star = mix.pair_correlation(0, 0) * out.rough_hcs_maxwellian->cooling_rate_reduced;
+  out.has_history = true;
+  out.time = h.time;
+  for (std::size_t i = 0; i < h.time.size(); ++i) out.temperature.push_back({h.translational[i]});
+  out.total_temperature = h.translational;
+  out.collisions_per_particle = h.collisions_per_particle;
+  out.rotational_temperature = h.rotational;
+  for (const char* key : {"temperature", "total_temperature", "collisions_per_particle", "rotational_temperature",
+                          "rough_hcs.maxwellian"})
+    out.approximations.emplace_back(key, "maxwellian");
+  return out;
+}
+
+}  // namespace
+
 Predictions predict(const io::config::Config& config) {
+  if (config.rough()) return predict_rough(config);
   Predictions out;
   if (config.has_agg_frag) {
     out.agg_frag = agg_frag_prediction(config);

@@ -14,6 +14,9 @@
  *   (\ref haff_mixture_odes "docs/haff-and-mixtures.md"), hcs.first_sonine / hcs.maxwellian (sonine_mixture.hpp, any number of species),
  *   the binary first-Sonine HCS with tails (sonine.hpp; Montanero and Garzo 2002, \ref son_tails "docs/sonine.md").
  * - shear_viscosity_ratio (viscosity.hpp; Montanero 2003, \ref eta_one_species "docs/shear-viscosity.md", \ref eta_thermostat "docs/shear-viscosity.md").
+ * - rough spheres (&system roughness): one species, the Maxwellian two-temperature equations and the
+ *   HCS theta, zeta* (theory/rough.hpp, \ref rough_maxwellian "docs/rough-spheres.md"); the smooth-sphere entries
+ *   are left out (they do not describe rough spheres), and so is everything for rough mixtures.
  * - &agg_frag runs: the Smoluchowski equations with Maxwellian kernels (smoluchowski.hpp, \ref af_smoluchowski "docs/agg-frag.md").
  * `approximations` names the approximation behind every key, in the order granular-theory prints
  * them; an entry that cannot be evaluated is left out with a note saying why (never an exception).
@@ -28,6 +31,7 @@
 #include <vector>
 
 #include "io/config.hpp"
+#include "theory/rough.hpp"
 #include "theory/smoluchowski.hpp"
 #include "theory/sonine.hpp"
 #include "theory/sonine_mixture.hpp"
@@ -78,6 +82,12 @@ struct Predictions {
   std::optional<double> shear_viscosity_kinetic_hcs;  ///< its kinetic part (Enskog), HCS
   std::optional<double> shear_viscosity_kinetic_hss;  ///< its kinetic part (Enskog), HSS
   std::optional<AggFragPrediction> agg_frag;          ///< &agg_frag runs: the Smoluchowski solution
+  /// Rough spheres of one species: the Maxwellian HCS theta = T_rot/T_tr and zeta_tr/nu (theory/rough.hpp).
+  std::optional<theory::rough::CoolingState> rough_hcs_maxwellian;
+  /// zeta_tr/nu_M of that state, nu_M = 4 sqrt(pi) n sigma^2 sqrt(T_tr/m) without chi (INTERFACE's zeta_star):
+  /// chi times its cooling_rate_reduced.
+  double rough_zeta_star = 0.0;
+  std::vector<double> rotational_temperature;  ///< rough, one species: T_rot on the sample times (has_history)
   /// key -> "maxwellian", "first_sonine", "exact", ... for every key present, in print order.
   std::vector<std::pair<std::string, std::string>> approximations;
   std::vector<std::string> notes;  ///< what was left out and why, in order

@@ -42,6 +42,10 @@ const char* kUsage =
     "  shear_viscosity_kinetic_ratio {hcs, hss} its kinetic part, Enskog gases (Montanero 2003, Fig. 10, docs/shear-viscosity.md)\n"
     "  diffusion_coefficient_ratio  [D_k/D_1] (Bodrova and Osinsky 2024, eq. (19), docs/diffusion-msd.md); msd {time, value[t][k]} (eq 17)\n"
     "                       when &output track_displacements = .true. (not with msd_start_temperature)\n"
+    "With &system roughness (rough spheres, docs/rough-spheres.md), one species: temperature is T_tr, and\n"
+    "  rotational_temperature {time, value} T_rot of the Maxwellian two-temperature equations; rough_hcs\n"
+    "                       {maxwellian: {theta, zeta_star}, sonine: why not} theta = T_rot/T_tr and\n"
+    "                       zeta_tr/nu_M (nu_M = 4 sqrt(pi) n sigma^2 sqrt(T_tr/m)) of the HCS\n"
     "With &agg_frag (docs/agg-frag.md), the Smoluchowski rate equations with Maxwellian kernels instead:\n"
     "  number, temperature  {time, value[t][k]} per cluster size k (number: N_k for the run's n_particles)\n"
     "  total_temperature, kinetic_energy, mean_size, monomer_fraction, collisions, aggregations,\n"
@@ -154,7 +158,15 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
          << array(p.total_temperature) << "},\n";
     json << in << "\"collisions_per_particle\": {\"time\": " << array(p.time)
          << ", \"value\": " << array(p.collisions_per_particle) << "}";
+    if (!p.rotational_temperature.empty())
+      json << ",\n" << in << "\"rotational_temperature\": {\"time\": " << array(p.time) << ", \"value\": "
+           << array(p.rotational_temperature) << "}";
   }
+  if (p.rough_hcs_maxwellian)
+    json << ",\n" << in << "\"rough_hcs\": {\"maxwellian\": {\"theta\": " << number(p.rough_hcs_maxwellian->theta)
+         << ", \"zeta_star\": " << number(p.rough_zeta_star)
+         << "}, \"sonine\": \"not computed: the Sonine theory of rough spheres (Santos, Kremer and dos Santos 2011) is "
+            "not implemented in this version\"}";
   json << ",\n" << in << "\"diffusion_coefficient_ratio\": " << array(p.diffusion_coefficient_ratio);
   if (p.msd) {
     json << ",\n" << in << "\"msd\": {\"time\": " << array(p.msd->time) << ", \"value\": [";

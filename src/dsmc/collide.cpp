@@ -33,12 +33,13 @@ Collider::Collider(Scheme scheme, const species::Mixture& mix, particles::System
   }
   if (tables_ && s_ > 1 && s_ <= block_species_limit) {  // the mixture block kernel's pair constants
     pair_limit_.assign(s_ * s_, 0.0);
-    if (const auto* smooth = std::get_if<rules::SmoothRule>(&rule_))
-      for (std::size_t k = 0; k < s_; ++k)
-        for (std::size_t j = 0; j < s_; ++j)
-          pair_kernel_.push_back({smooth->pair(k, j), s_ <= pair_event_limit
-                                                         ? static_cast<std::uint32_t>(std::min(k, j) * s_ + std::max(k, j))
-                                                         : 0u});
+    // (the projected constants for SmoothRule; a rule whose kernels call collide_at uses only the slot)
+    const auto* smooth = std::get_if<rules::SmoothRule>(&rule_);
+    for (std::size_t k = 0; k < s_; ++k)
+      for (std::size_t j = 0; j < s_; ++j)
+        pair_kernel_.push_back({smooth ? smooth->pair(k, j) : rules::SmoothRule::Projected{},
+                                s_ <= pair_event_limit ? static_cast<std::uint32_t>(std::min(k, j) * s_ + std::max(k, j))
+                                                       : 0u});
     for (std::size_t k = 0; k < s_; ++k)
       for (std::size_t j = 0; j < s_; ++j) {
         pair_cross_section2_.push_back(cross_section_[k * s_ + j] * cross_section_[k * s_ + j]);

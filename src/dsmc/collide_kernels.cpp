@@ -24,9 +24,10 @@ void Collider::run_block_kernel(const Rule& rule, bool lowrank, double t_stop) {
   if constexpr (Rule::has_projection) {
     const bool track = sys_.tracks_displacements();
     if (s_ == 1) {  // the one-species kernel
-      if (framed_)
-        run_block_one_species<Rule, false, true>(rule, t_stop);  // a frame tracks no displacements (set_frame)
-      else if (track)
+      if (framed_) {
+        if constexpr (Rule::frames) run_block_one_species<Rule, false, true>(rule, t_stop);  // a frame tracks no displacements (set_frame)
+        else throw std::logic_error("collide: a frame with a rule that has none");
+      } else if (track)
         run_block_one_species<Rule, true, false>(rule, t_stop);
       else
         run_block_one_species<Rule, false, false>(rule, t_stop);
@@ -34,11 +35,13 @@ void Collider::run_block_kernel(const Rule& rule, bool lowrank, double t_stop) {
     }
     // The mixture kernel (header "Mixtures in blocks"); `majorant` with two species: a kernel of its
     // own, whose species and offsets are two locals.
-    if (framed_)  // (a frame tracks no displacements: set_frame)
-      lowrank    ? run_block_mixture<Rule, false, true, true>(rule, t_stop)
-      : s_ == 2  ? run_block_mixture<Rule, false, false, true, true>(rule, t_stop)
-                 : run_block_mixture<Rule, false, false, true>(rule, t_stop);
-    else if (lowrank)
+    if (framed_) {  // (a frame tracks no displacements: set_frame)
+      if constexpr (Rule::frames)
+        lowrank    ? run_block_mixture<Rule, false, true, true>(rule, t_stop)
+        : s_ == 2  ? run_block_mixture<Rule, false, false, true, true>(rule, t_stop)
+                   : run_block_mixture<Rule, false, false, true>(rule, t_stop);
+      else throw std::logic_error("collide: a frame with a rule that has none");
+    } else if (lowrank)
       track ? run_block_mixture<Rule, true, true, false>(rule, t_stop) : run_block_mixture<Rule, false, true, false>(rule, t_stop);
     else if (s_ == 2)
       track ? run_block_mixture<Rule, true, false, false, true>(rule, t_stop)
@@ -187,10 +190,15 @@ void Collider::run_block_one_species(const Rule& rule, double t_stop) {
   const auto first = static_cast<std::uint32_t>(range_first_);
   const auto n = static_cast<std::uint32_t>(range_count_);
   particles::Vec3* v = sys_.v.data() + first;
+  [[maybe_unused]] particles::Vec3* spin = nullptr;  // (from the block's first particle)
+  if constexpr (Rule::kernel_needs_particles) spin = rule.spins(sys_) + first;
   const double n_density = mix_.total_density();
   // One species: both partners take half the impulse, share_a = share_b (scalars, kept in registers).
-  const typename Rule::Pair both = rule.pair(0, 0);
-  const double share = both.share_a, loss = both.loss;
+  [[maybe_unused]] double share = 0.0, loss = 0.0;
+  if constexpr (!Rule::kernel_needs_particles) {
+    const typename Rule::Pair both = rule.pair(0, 0);
+    share = both.share_a, loss = both.loss;
+  }
   double max_speed2 = block_speed2_[0];
   // The drawn-ahead pairs (header "Look-ahead"): uniform, independent of the state, prefetched.
   std::array<std::uint32_t, 2 * block_lookahead<Framed>> ahead;
@@ -201,6 +209,7 @@ void Collider::run_block_one_species(const Rule& rule, double t_stop) {
     ahead[2 * slot] = a;
     ahead[2 * slot + 1] = b;
     prefetch_pair<Track>(v, Track ? sys_.r.data() + first : nullptr, a, b);  // (no arithmetic on an empty array's null)
+    if constexpr (Rule::kernel_needs_particles) prefetch_pair<false>(spin, nullptr, a, b);  // the rule's own array
   };
   for (std::size_t slot = 0; slot < block_lookahead<Framed>; ++slot) draw(slot);
   std::size_t next = 0;
@@ -247,6 +256,8 @@ void Collider::run_block_one_species(const Rule& rule, double t_stop) {
         dissipated += Rule::collide_projected(va, vb, {share, share, loss}, g_dot_e2, to_stored(px, py, pz));  // G^-1 (g.e) e
         add_moments(moments, va, 1.0);
         add_moments(moments, vb, 1.0);
+      } else if constexpr (Rule::kernel_needs_particles) {
+        dissipated += rule.collide_at(sys_, spin - first, first + a, first + b, 0, 0, g_dot_e2, {px, py, pz}).loss;
       } else {
         dissipated += Rule::collide_projected(va, vb, {share, share, loss}, g_dot_e2, {px, py, pz});
       }
@@ -285,8 +296,11 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
   const std::size_t* slice = slice_first_.data() + current_block_ * s;
   const auto n = static_cast<std::uint32_t>(range_count_);
   particles::Vec3* v = sys_.v.data();
-  static_assert(std::is_same_v<typename Rule::Projected, rules::SmoothRule::Projected>,
-                "the kernels' table (PairKernel) holds SmoothRule's projected constants");
+  [[maybe_unused]] particles::Vec3* spin = nullptr;
+  if constexpr (Rule::kernel_needs_particles) spin = rule.spins(sys_);
+  if constexpr (!Rule::kernel_needs_particles)
+    static_assert(std::is_same_v<typename Rule::Projected, rules::SmoothRule::Projected>,
+                  "the kernels' table (PairKernel) holds SmoothRule's projected constants");
   const PairKernel* kernel = pair_kernel_.data();
   // (the acceptance's constant of each pair apart: `majorant` (pi sigma^2 chi)^2, `lowrank` w_i + w_k)
   const double* acceptance = Lowrank ? pair_limit_.data() : pair_cross_section2_.data();
@@ -308,6 +322,7 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
       majorant_candidate<Two>(gen, n, s, index, edge1, offset0, offset1, a, b, pair);
     ahead_a[slot] = a, ahead_b[slot] = b, ahead_pair[slot] = pair;
     prefetch_pair<Track>(v, sys_.r.data(), a, b);
+    if constexpr (Rule::kernel_needs_particles) prefetch_pair<false>(spin, nullptr, a, b);  // the rule's own array
   };
   for (std::size_t slot = 0; slot < block_lookahead<Framed>; ++slot) draw(slot);
   std::size_t next = 0;
@@ -346,7 +361,10 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
       particles::Vec3& vb = v[b];
       const PairKernel& pk = kernel[pair];  // (read only for a collision)
       const std::uint32_t i = pair_species[2 * pair], k = pair_species[2 * pair + 1];
-      dissipated += kernel_collision<Rule, Framed>(pk, i, k, va, vb, g_dot_e2, {px, py, pz}, moments);
+      if constexpr (Rule::kernel_needs_particles)
+        dissipated += rule.collide_at(sys_, spin, a, b, i, k, g_dot_e2, {px, py, pz}).loss;
+      else
+        dissipated += kernel_collision<Rule, Framed>(pk, i, k, va, vb, g_dot_e2, {px, py, pz}, moments);
       ++events;
       ++pair_events[pk.event];
       if (raised_by(va, vb, speed2, i, k)) [[unlikely]] {  // a new sub-step from here

@@ -106,6 +106,23 @@ System make_system(const species::Mixture& mix, const std::vector<std::size_t>& 
   return sys;
 }
 
+void add_angular_velocities(System& sys, const species::Mixture& mix, const std::vector<double>& rotational_temperature,
+                            const std::string& name, rng::Xoshiro256pp& gen) {
+  auto& w = sys.add_array<Vec3>(name);
+  for (std::size_t k = 0; k < sys.n_species(); ++k) {
+    const std::size_t begin = sys.first[k], end = begin + sys.count[k];
+    double sum_sq = 0.0;
+    for (std::size_t i = begin; i < end; ++i) {
+      w[i] = {gen.normal(), gen.normal(), gen.normal()};
+      sum_sq += w[i].x * w[i].x + w[i].y * w[i].y + w[i].z * w[i].z;
+    }
+    // T_rot,k = I_k <|w|^2>/3 (\ref rough_observables "docs/rough-spheres.md")
+    const double current = mix.inertia(k) * sum_sq / (3.0 * static_cast<double>(sys.count[k]));
+    const double scale = std::sqrt(rotational_temperature[k] / current);
+    for (std::size_t i = begin; i < end; ++i) w[i] = {w[i].x * scale, w[i].y * scale, w[i].z * scale};
+  }
+}
+
 void start_tracking(System& sys, double t) {
   const std::size_t n = sys.size();
   sys.r.assign(n, Displacement{0.0, 0.0, 0.0, t});

@@ -174,6 +174,13 @@ void save(const System& sys, state::Record& record);
 /// be those the input gives); a "particles/displacement" starts the tracking. Throws state::StateError.
 void restore(System& sys, const state::Record& record);
 
+/// Adds the array `name` of angular velocities of rough spheres: Gaussian components, scaled per species
+/// so that I_k <|w|^2>/3 is exactly T_rot,k (I_k = mix.inertia(k)); the mean is not removed (angular
+/// velocities have no conserved mean). Drawn from `gen` (its own stream: the velocities' draws stay those of
+/// the smooth gas).
+void add_angular_velocities(System& sys, const species::Mixture& mix, const std::vector<double>& rotational_temperature,
+                            const std::string& name, rng::Xoshiro256pp& gen);
+
 /// Starts (or restarts) displacement tracking at time t: R = 0 and t_last = t for every particle.
 void start_tracking(System& sys, double t);
 

@@ -24,7 +24,7 @@
 namespace gdsmc::rng {
 
 /// What a stream is used for; each purpose has its own long-jump offset.
-enum class Purpose : std::uint32_t { initial_state = 0, collisions = 1, sampling = 2, forcing = 3 };
+enum class Purpose : std::uint32_t { initial_state = 0, collisions = 1, sampling = 2, forcing = 3, rotation = 4 };
 
 class Xoshiro256pp {
  public:

@@ -21,12 +21,21 @@
  * (g'.e) = -alpha (g.e), and the energy lost is (1 - alpha^2) m_kj (g.e)^2 / 2 (\ref cm_energy "docs/collision-model.md").
  * This is the one place the code states it. Its option `collide_projected` takes p = (g.e) e instead
  * of e (collide.hpp's hemisphere_projection forms p without a root or a division): the block kernels
- * use it. A rule without the option (`has_projection` false) runs the kernels' general path instead.
+ * use it. A rule without the option (`has_projection` false) runs the kernels' general path instead; a
+ * rule with arrays of its own (`kernel_needs_particles`) offers `spins(sys)` and
+ * `collide_at(sys, spins, a, b, k, j, (g.e)^2, p)`.
  *
  * **ViscoelasticRule**: the same update with alpha_kj(|g.e|) of viscoelastic spheres
  * (Bodrova and Osinsky 2024, eqs. (5)-(8); \ref visco_series "docs/viscoelastic.md"; model/restitution.hpp), from
  * beta_kj. It has no projection (alpha needs |g.e|) and no frame (the thermostat and shear flow run
  * constant restitution).
+ *
+ * **RoughRule**: rough spheres, normal restitution alpha_kj, tangential restitution beta_kj, reduced
+ * moments of inertia kappa_k (\ref rough_rule "docs/rough-spheres.md"): the impulse acts on the relative
+ * velocity of the contact points, so the rule reads and writes an angular velocity per particle (the
+ * System array `angular_velocity`, which the loops, blocks and checkpoints carry without naming it), and
+ * reports rotational_temperature, the cumulants a20, a02, a11 and total_energy. In the block kernels it
+ * takes the kernels' p = (g.e) e and forms e = p/(g.e) (`collide_at`); no frame.
  *
  * **Adding a rule** (docs/extending.md, \ref ext_rule "a new collision rule"): a type with `Pair`, `pair(k, j)`,
  * `attach(sys)` (its per-particle arrays beyond the velocity, an angular velocity say: arrays of
@@ -128,6 +137,9 @@ class SmoothRule {
   };
   static constexpr bool has_projection = true;  ///< offers collide_projected (the block kernels)
   static constexpr bool frames = true;          ///< may run on velocities stored in a frame
+  /// The kernels call the static collide_projected on two velocities with the Projected constants of
+  /// their own table (a rule with arrays of its own sets this and offers collide_at instead).
+  static constexpr bool kernel_needs_particles = false;
 
   /// The pair constants of `mix` (a table up to species::dense_pair_limit species, else computed per call).
   explicit SmoothRule(const species::Mixture& mix);
@@ -232,8 +244,111 @@ class ViscoelasticRule {
   species::PairMatrix beta_;                        ///< beta_kj (above the limit)
 };
 
+/// Rough inelastic hard spheres: normal restitution alpha_kj, tangential restitution beta_kj, reduced
+/// moments of inertia kappa_k (header; \ref rough_rule "docs/rough-spheres.md").
+class RoughRule {
+ public:
+  /// The constants of the ordered species pair (k, j): a of species k, b of species j.
+  struct Pair {
+    double alpha;          ///< alpha_kj
+    double tangential;     ///< (1 + beta_kj) K_kj, K_kj = 1/(1 + m_kj/(kappa_k m_k) + m_kj/(kappa_j m_j))
+    double mass_fraction;  ///< mu_jk = m_j/(m_k + m_j) = m_kj/m_k
+    double reduced_mass;   ///< m_kj
+    double half_a;         ///< sigma_k/2
+    double half_b;         ///< sigma_j/2
+    double spin_a;         ///< 2 m_kj/(kappa_k m_k sigma_k): w_a += spin_a e x J
+    double spin_b;         ///< 2 m_kj/(kappa_j m_j sigma_j): w_b += spin_b e x J
+    double tangential_loss;  ///< K_kj (1 - beta_kj^2): the energy lost per (m_kj/2)|g_c,t|^2
+  };
+  static constexpr bool has_projection = true;   ///< the block kernels' p = (g.e) e gives e = p/(g.e): collide_at
+  static constexpr bool frames = false;          ///< the frames hold no angular velocity
+  static constexpr bool kernel_needs_particles = true;  ///< the kernels call collide_at (spins, pair constants)
+  /// The name of the angular velocities among the System's arrays (particles/angular_velocity in checkpoints).
+  static constexpr const char* angular_velocity = "angular_velocity";
+
+  /// The pair constants of `mix` (mix.rough(): roughness and moment_of_inertia given).
+  explicit RoughRule(const species::Mixture& mix);
+  /// The constants of pair (k, j).
+  Pair pair(std::size_t k, std::size_t j) const {
+    if (!table_.empty()) return table_[k * s_ + j];
+    return make_pair(*mix_, k, j);
+  }
+  /// The pair (k, j) of `mix`.
+  static Pair make_pair(const species::Mixture& mix, std::size_t k, std::size_t j);
+
+  /// The rule (\ref rough_rule "docs/rough-spheres.md", derived there; the model of Huthmann and Zippelius
+  /// 1997, for mixtures Santos, Kremer and Garzo 2010):
+  /// with g_c = g - (sigma_k w_a + sigma_j w_b)/2 x e the relative velocity of the contact points and
+  /// J = (1 + alpha)(g.e) e + (1 + beta) K g_c,t (g_c,t its part normal to e),
+  ///   v_a -= mu_jk J,  v_b += mu_kj J,  w_a += spin_a e x J,  w_b += spin_b e x J,
+  /// so that (g_c'.e) = -alpha (g_c.e) and g_c,t' = -beta g_c,t; linear momentum and the angular
+  /// momentum about the contact point are conserved, and the energy lost is
+  /// (m_kj/2)[(1 - alpha^2)(g.e)^2 + K (1 - beta^2)|g_c,t|^2].
+  static Outcome collide(particles::Vec3& va, particles::Vec3& vb, particles::Vec3& wa, particles::Vec3& wb,
+                         const Pair& p, const Contact& c) {
+    const double ex = c.ex, ey = c.ey, ez = c.ez;
+    // s = (sigma_k w_a + sigma_j w_b)/2; g_c = g - s x e
+    const double sx = p.half_a * wa.x + p.half_b * wb.x, sy = p.half_a * wa.y + p.half_b * wb.y,
+                 sz = p.half_a * wa.z + p.half_b * wb.z;
+    const double gcx = (va.x - vb.x) - (sy * ez - sz * ey);
+    const double gcy = (va.y - vb.y) - (sz * ex - sx * ez);
+    const double gcz = (va.z - vb.z) - (sx * ey - sy * ex);
+    const double normal = gcx * ex + gcy * ey + gcz * ez;  // g_c.e = g.e (s x e is normal to e)
+    const double tx = gcx - normal * ex, ty = gcy - normal * ey, tz = gcz - normal * ez;
+    const double jn = (1.0 + p.alpha) * c.g_dot_e;
+    const double jx = jn * ex + p.tangential * tx, jy = jn * ey + p.tangential * ty, jz = jn * ez + p.tangential * tz;
+    const double fa = p.mass_fraction, fb = 1.0 - p.mass_fraction;
+    va = {va.x - fa * jx, va.y - fa * jy, va.z - fa * jz};
+    vb = {vb.x + fb * jx, vb.y + fb * jy, vb.z + fb * jz};
+    // e x J = (1 + beta) K e x g_c,t (e x e = 0, formed so that beta = -1 leaves the spins exactly alone)
+    const double cx = p.tangential * (ey * tz - ez * ty), cy = p.tangential * (ez * tx - ex * tz),
+                 cz = p.tangential * (ex * ty - ey * tx);
+    wa = {wa.x + p.spin_a * cx, wa.y + p.spin_a * cy, wa.z + p.spin_a * cz};
+    wb = {wb.x + p.spin_b * cx, wb.y + p.spin_b * cy, wb.z + p.spin_b * cz};
+    const double t2 = tx * tx + ty * ty + tz * tz;
+    return {0.5 * p.reduced_mass * ((1.0 - p.alpha * p.alpha) * c.g_dot_e * c.g_dot_e + p.tangential_loss * t2),
+            p.reduced_mass * jn};
+  }
+  /// max over the pairs of [(1 - alpha^2) + t (2 - t)]/3, t = (1 + beta) K: the fraction of the
+  /// translational energy one collision per particle removes in the mean when the spins are still (the
+  /// most: spins only give energy back; \ref rough_maxwellian "docs/rough-spheres.md", 4A/3), for the
+  /// blocks' step length (collide.hpp "Blocks", "Step length"), which the speed bounds follow.
+  std::optional<double> largest_loss_fraction() const;
+  /// Adds the angular velocities (`angular_velocity`, zero) unless the initial state has them.
+  void attach(particles::System& sys);
+  /// rotational_temperature, cumulant_a20, cumulant_a02, cumulant_a11 and total_energy (model/observables.hpp).
+  void measure(const particles::System& sys, sample::Rows& rows) const;
+  /// The rule on particles a and b of `sys`.
+  Outcome collide(particles::System& sys, std::size_t a, std::size_t b, const Pair& p, const Contact& c) const {
+    auto& w = std::get<particles::ParticleArray<particles::Vec3>>(sys.extra[spin_index_].values);
+    return collide(sys.v[a], sys.v[b], w[a], w[b], p, c);
+  }
+  /// The angular velocities of `sys` (the kernels prefetch them for their drawn-ahead candidates).
+  particles::Vec3* spins(particles::System& sys) const {
+    return std::get<particles::ParticleArray<particles::Vec3>>(sys.extra[spin_index_].values).data();
+  }
+  /// The block kernels' form: particles a (species k) and b (species j) given q = (g.e) e and (g.e)^2,
+  /// with e = q/(g.e) (g.e > 0).
+  /// Out of line: the kernels' candidate loop keeps its registers (only a fraction of candidates collide).
+  /// `spin` is spins(sys), which the kernels hold.
+  [[gnu::noinline]] Outcome collide_at(particles::System& sys, particles::Vec3* spin, std::size_t a, std::size_t b,
+                                       std::size_t k, std::size_t j, double g_dot_e2, const particles::Vec3& q) const {
+    const double g_dot_e = std::sqrt(g_dot_e2), inv = 1.0 / g_dot_e;
+    const double ex = q.x * inv, ey = q.y * inv, ez = q.z * inv;
+    const Contact c{ex, ey, ez, g_dot_e, ex, ey, ez};
+    if (!table_.empty()) return collide(sys.v[a], sys.v[b], spin[a], spin[b], table_[k * s_ + j], c);
+    return collide(sys.v[a], sys.v[b], spin[a], spin[b], make_pair(*mix_, k, j), c);
+  }
+
+ private:
+  const species::Mixture* mix_;
+  std::size_t s_;
+  std::vector<Pair> table_;     ///< S x S (empty above species::dense_pair_limit species)
+  std::size_t spin_index_ = 0;  ///< the angular velocities' place in System::extra
+};
+
 /// Every collision rule; the collider dispatches on it once per stretch of candidates.
-using Rule = std::variant<SmoothRule, ViscoelasticRule>;
+using Rule = std::variant<SmoothRule, ViscoelasticRule, RoughRule>;
 
 /// The rule of `mix`: viscoelastic with `viscoelastic_beta` (beta_kj), else constant alpha_kj.
 Rule make_rule(const species::Mixture& mix, const species::PairMatrix* viscoelastic_beta);

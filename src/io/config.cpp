@@ -301,6 +301,8 @@ Config read_point(const namelist::Document& document, const std::vector<std::str
   prov["system"].group_line = document.find("system")->line;
   check_system(c.system, prov["system"]);
   check_initial(c.initial, static_cast<std::size_t>(c.system.n_species), prov["initial"]);
+  prov["initial"].group_line = document.find("initial") ? document.find("initial")->line : 0;
+  check_rough(c, prov);
   check_dsmc(c.dsmc, c.mixture(), prov["dsmc"], document.find("dsmc")->line);
   check_output(c.output, c.dsmc, prov["output"]);
   if (c.has_agg_frag) check_agg_frag(c, prov);

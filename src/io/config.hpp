@@ -93,12 +93,17 @@ struct System {
   DiameterLaw diameter_law = DiameterLaw::list;    ///< 'list' or 'cube_root': sigma_k = k^(1/3) sigma_1
   DensityLaw density_law = DensityLaw::list;       ///< 'list' or 'power': n_k = n_1 k^-theta
   double density_exponent = 0.0;        ///< theta of density_law = 'power'
+  /// beta_kj, tangential restitution of rough spheres (\ref rough_rule "docs/rough-spheres.md"); unset:
+  /// smooth spheres. Every beta_kj = -1 is the smooth gas (no rotation stored).
+  species::PairMatrix roughness;
+  std::vector<double> moment_of_inertia;  ///< kappa_k of rough spheres, one per species or one for all (unset: 0.4)
 };
 
 /// &initial: the state at t = 0.
 struct Initial {
   std::vector<double> temperature{1.0};  ///< T_k(0); one value applies to every species
   VelocityDistribution distribution = VelocityDistribution::maxwell;  ///< initial velocities: 'maxwell', 'shell' (equal speeds) or 'cube'
+  std::vector<double> rotational_temperature;  ///< T_rot,k(0) of rough spheres (unset: T_k(0)); one value applies to every species
 };
 
 /// &dsmc: the scheme and the size and length of the run.
@@ -209,6 +214,9 @@ struct Config {
 
   /// The mixture of &system with its pair data.
   species::Mixture mixture() const;
+  /// Rough spheres: roughness given and some beta_kj != -1 (\ref rough_rule "docs/rough-spheres.md"); the
+  /// mixture then carries beta_kj and kappa_k, and the particles an angular velocity.
+  bool rough() const;
   /// beta_ki of the viscoelastic restitution (\ref visco_one_material "docs/viscoelastic.md"), empty when the model is constant.
   std::optional<species::PairMatrix> viscoelastic_beta() const;
   /// Sample times, including t = 0, when the run is time-driven (empty otherwise).

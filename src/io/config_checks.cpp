@@ -16,18 +16,20 @@ namespace detail {
 // Checking and deriving, group by group
 // ---------------------------------------------------------------------------------------------
 namespace {
-void resolve_restitution(System& sys, const Provenance& prov, const std::string& group) {
-  const std::size_t s = static_cast<std::size_t>(sys.n_species);
+/// The symmetric S x S matrix `name` (restitution, roughness) from its assignments: one value for all
+/// pairs, the whole matrix, or elements (i,j); `symbol` names its entries in the messages (alpha, beta).
+species::PairMatrix resolve_pair_matrix(const std::string& name, const std::string& symbol, std::size_t s,
+                                        const Provenance& prov, const std::string& group) {
   {  // one value for all pairs: a uniform matrix, stored densely only for a few species
-    const auto& only = prov.pair_assignments.at("restitution");
+    const auto& only = prov.pair_assignments.at(name);
     if (only.size() == 1 && only[0].first->index.empty() && only[0].first->values.size() == 1) {
-      sys.restitution = species::PairMatrix::uniform(s, only[0].first->values[0].real);
-      if (s <= species::dense_pair_limit) sys.restitution.densify();
-      return;
+      auto uniform = species::PairMatrix::uniform(s, only[0].first->values[0].real);
+      if (s <= species::dense_pair_limit) uniform.densify();
+      return uniform;
     }
   }
   species::PairMatrix m(s, std::numeric_limits<double>::quiet_NaN());
-  const auto& list = prov.pair_assignments.at("restitution");
+  const auto& list = prov.pair_assignments.at(name);
   // (i <= j) -> value and line of its element assignment in the current source (the namelist, or
   // one --set): within one source (i,j) and (j,i) must agree; a later --set may replace the value.
   std::map<std::pair<std::size_t, std::size_t>, std::pair<double, int>> element_values;
@@ -41,13 +43,13 @@ void resolve_restitution(System& sys, const Provenance& prov, const std::string&
         for (std::size_t i = 0; i < s; ++i)  // alpha_ij = alpha_ji: one event, whichever is "first"
           for (std::size_t j = i + 1; j < s; ++j)
             if (m(i, j) != m(j, i))
-              throw Error(file, a->line, group, "restitution",
-                          "the matrix is not symmetric: restitution(" + std::to_string(i + 1) + "," +
+              throw Error(file, a->line, group, name,
+                          "the matrix is not symmetric: " + name + "(" + std::to_string(i + 1) + "," +
                               std::to_string(j + 1) + ") = " + a->values[i + j * s].text +
-                              " but restitution(" + std::to_string(j + 1) + "," +
+                              " but " + name + "(" + std::to_string(j + 1) + "," +
                               std::to_string(i + 1) + ") = " + a->values[j + i * s].text);
       } else {
-        throw Error(file, a->line, group, "restitution",
+        throw Error(file, a->line, group, name,
                     "expected 1 or n_species^2 = " + std::to_string(s * s) + " values, got " +
                         std::to_string(a->values.size()));
       }
@@ -61,17 +63,17 @@ void resolve_restitution(System& sys, const Provenance& prov, const std::string&
     }
     for (const auto& v : a->values) {  // consecutive elements in column-major order
       if (i >= s || j >= s)
-        throw Error(file, v.line, group, "restitution",
+        throw Error(file, v.line, group, name,
                     "element (" + std::to_string(i + 1) + "," + std::to_string(j + 1) +
                         ") is outside the " + std::to_string(s) + " x " + std::to_string(s) +
                         " matrix");
       // alpha_ij = alpha_ji is one pair's value: (i,j) and (j,i) given differently is a conflict.
       const auto key = std::make_pair(std::min(i, j), std::max(i, j));
       if (const auto it = element_values.find(key); it != element_values.end() && it->second.first != v.real)
-        throw Error(file, v.line, group, "restitution",
-                    "restitution(" + std::to_string(i + 1) + "," + std::to_string(j + 1) + ") = " + v.text +
-                        " conflicts with line " + std::to_string(it->second.second) + ": the matrix is symmetric, "
-                        "alpha_ij = alpha_ji");
+        throw Error(file, v.line, group, name,
+                    name + "(" + std::to_string(i + 1) + "," + std::to_string(j + 1) + ") = " + v.text +
+                        " conflicts with line " + std::to_string(it->second.second) + ": the matrix is symmetric, " +
+                        symbol + "_ij = " + symbol + "_ji");
       element_values[key] = {v.real, v.line};
       m(i, j) = v.real;
       m(j, i) = v.real;
@@ -84,10 +86,10 @@ void resolve_restitution(System& sys, const Provenance& prov, const std::string&
   for (std::size_t i = 0; i < s; ++i)
     for (std::size_t j = 0; j < s; ++j)
       if (std::isnan(m(i, j)))
-        throw Error(prov.file_of("restitution"), prov.line.at("restitution"), group, "restitution",
-                    "restitution(" + std::to_string(i + 1) + "," + std::to_string(j + 1) +
+        throw Error(prov.file_of(name), prov.line.at(name), group, name,
+                    name + "(" + std::to_string(i + 1) + "," + std::to_string(j + 1) +
                         ") is not given");
-  sys.restitution = m;
+  return m;
 }
 
 void check_species_list(std::vector<double>& values, const std::string& name, const std::string& law,
@@ -142,7 +144,7 @@ void check_system(System& sys, const Provenance& prov) {
     if (sys.density_law == DensityLaw::power)
       sys.number_density.push_back(sys.number_density[0] * std::pow(kk, -sys.density_exponent));
   }
-  if (sys.restitution_model == RestitutionModel::constant) resolve_restitution(sys, prov, group);
+  if (sys.restitution_model == RestitutionModel::constant) sys.restitution = resolve_pair_matrix("restitution", "alpha", s, prov, group);
   else {  // placeholder: alpha comes from the impact speed
     sys.restitution = species::PairMatrix::uniform(s, 1.0);
     if (s <= species::dense_pair_limit) sys.restitution.densify();
@@ -258,6 +260,48 @@ void check_output(Output& out, const Dsmc& d, const Provenance& prov) {
     throw Error(prov.file_of("first_sample"), prov.line.at("first_sample"), "output", "first_sample",
                 "only used with spacing = 'log'");
   }
+}
+
+/// Rough spheres (\ref rough_rule "docs/rough-spheres.md"): beta_kj resolved as restitution is, kappa_k and
+/// T_rot,k(0) filled per species; refused where the loops have no rough rule (clusters, frames,
+/// viscoelastic restitution), naming the variable that asks for it.
+void check_rough(Config& c, std::map<std::string, Provenance>& prov) {
+  Provenance& p = prov["system"];
+  Provenance& q = prov["initial"];
+  const auto s = static_cast<std::size_t>(c.system.n_species);
+  const bool given = p.pair_assignments.count("roughness") != 0;
+  const auto refuse = [&](Provenance& where, const std::string& group, const char* v, const std::string& message) {
+    throw Error(where.file_of(v), where.line.count(v) ? where.line.at(v) : where.group_line, group, v, message);
+  };
+  if (!given) {
+    if (p.line.count("moment_of_inertia"))
+      refuse(p, "system", "moment_of_inertia", "only used with roughness (rough spheres)");
+    if (q.line.count("rotational_temperature"))
+      refuse(q, "initial", "rotational_temperature", "only used with &system roughness (rough spheres)");
+    return;
+  }
+  c.system.roughness = resolve_pair_matrix("roughness", "beta", s, p, "system");
+  auto per_species = [&](std::vector<double>& values, Provenance& where, const std::string& group, const char* v,
+                         const std::vector<double>& fill) {
+    if (values.empty()) values = fill;
+    if (values.size() == 1 && s > 1) values.assign(s, values[0]);
+    for (std::size_t k = 0; k < values.size(); ++k)
+      if (std::isnan(values[k]))
+        refuse(where, group, v, std::string(v) + "(" + std::to_string(k + 1) + ") is not given");
+    if (values.size() != s)
+      refuse(where, group, v,
+             "expected 1 or n_species = " + std::to_string(s) + " values, got " + std::to_string(values.size()));
+  };
+  per_species(c.system.moment_of_inertia, p, "system", "moment_of_inertia", {0.4});
+  per_species(c.initial.rotational_temperature, q, "initial", "rotational_temperature", c.initial.temperature);
+  if (!c.rough()) return;  // every beta_kj = -1: the smooth gas
+  if (c.system.restitution_model != RestitutionModel::constant)
+    refuse(p, "system", "roughness", "rough spheres run with restitution_model = 'constant' only");
+  if (c.has_agg_frag)
+    refuse(p, "system", "roughness", "rough spheres cannot run with &agg_frag (clusters have no moment of inertia here)");
+  if (c.staged())
+    refuse(p, "system", "roughness",
+           "rough spheres cannot run with &thermostat or &shear yet (the frame holds no angular velocity)");
 }
 
 /// &agg_frag (\ref af_outcome "docs/agg-frag.md"): the run starts from monomers of one constant-restitution, dilute
@@ -379,8 +423,23 @@ std::optional<species::PairMatrix> Config::viscoelastic_beta() const {
 }
 
 species::Mixture Config::mixture() const {
-  return species::make_mixture(system.mass, system.diameter, system.number_density,
-                               system.restitution, system.enskog);
+  species::Mixture mix = species::make_mixture(system.mass, system.diameter, system.number_density,
+                                               system.restitution, system.enskog);
+  if (rough()) {
+    mix.roughness = system.roughness;
+    mix.moment_of_inertia = system.moment_of_inertia;
+  }
+  return mix;
+}
+
+bool Config::rough() const {
+  if (system.roughness.size == 0) return false;
+  const std::size_t s = system.roughness.size;
+  if (!system.roughness.is_dense()) return system.roughness(0, 0) != -1.0;  // uniform
+  for (std::size_t k = 0; k < s; ++k)
+    for (std::size_t j = 0; j < s; ++j)
+      if (system.roughness(k, j) != -1.0) return true;
+  return false;
 }
 
 std::vector<double> Config::sample_times() const {

@@ -126,6 +126,7 @@ void check_initial(Initial& ini, std::size_t s, const Provenance& prov);
 void check_dsmc(const Dsmc& d, const species::Mixture& mix, const Provenance& prov, int group_line);
 void check_output(Output& out, const Dsmc& d, const Provenance& prov);
 void check_agg_frag(const Config& c, std::map<std::string, Provenance>& prov);
+void check_rough(Config& c, std::map<std::string, Provenance>& prov);
 void check_staged(const Config& c, std::map<std::string, Provenance>& prov);
 /// The sample grid of &output up to `end` (a time or collisions per particle).
 std::vector<double> spaced(const Output& out, double end);

@@ -41,6 +41,14 @@ const std::vector<Field<System>>& system_fields() {
       {"diameter_law", &System::diameter_law, "", "'list', or 'cube_root': sigma_k = k^(1/3) sigma_1"},
       {"density_law", &System::density_law, "", "'list', or 'power': n_k = n_1 k^-theta"},
       {"density_exponent", &System::density_exponent, "", "theta of density_law = 'power'"},
+      {"roughness", &System::roughness, "",
+       "beta_kj, tangential restitution of rough spheres: -1 smooth (the default), +1 perfectly rough; one "
+       "value for all pairs, or roughness(i,j) = ... (symmetric; docs/rough-spheres.md)",
+       Range{-1, 1, false, false}},
+      {"moment_of_inertia", &System::moment_of_inertia, "",
+       "kappa_k = 4 I_k/(m_k sigma_k^2) of rough spheres, one per species or one for all (default 0.4, a "
+       "uniform sphere)",
+       Range{0, 2.0 / 3.0, true, false}},
   };
   return fields;
 }
@@ -51,6 +59,10 @@ const std::vector<Field<Initial>>& initial_fields() {
        "T_k(0), one per species or one for all (k_B = 1)", kPositive},
       {"distribution", &Initial::distribution, "",
        "initial velocities: 'maxwell', 'shell' (equal speeds) or 'cube' (uniform in a cube)"},
+      {"rotational_temperature", &Initial::rotational_temperature, "energy",
+       "T_rot,k(0) = I_k <w^2>/3 of rough spheres (Maxwellian angular velocities), one per species or one "
+       "for all (default: temperature)",
+       kPositive},
   };
   return fields;
 }
@@ -348,6 +360,10 @@ std::vector<h5md::Parameter> Config::resolved() const {
   std::vector<h5md::Parameter> out;
   append_resolved(out, "system", system, system_fields());
   append_resolved(out, "initial", initial, initial_fields());
+  if (system.roughness.size == 0)  // unset: the smooth gas, whose parameters are those of before
+    std::erase_if(out, [](const h5md::Parameter& p) {
+      return p.name == "roughness" || p.name == "moment_of_inertia" || p.name == "rotational_temperature";
+    });
   append_resolved(out, "dsmc", dsmc, dsmc_fields());
   append_resolved(out, "output", output, output_fields());
   if (has_agg_frag) append_resolved(out, "agg_frag", agg_frag, agg_frag_fields());

@@ -13,6 +13,7 @@ const char* kOutput = "docs/output.md#output_observables";
 const char* kSonine = "docs/sonine.md#son_reduced_distributions";
 const char* kShear = "docs/shear-viscosity.md#eta_measured";
 const char* kAggFrag = "docs/agg-frag.md#af_observables";
+const char* kRough = "docs/rough-spheres.md#rough_observables";
 
 const char* reduction_name(Reduction r) {
   switch (r) {
@@ -51,6 +52,13 @@ const std::vector<Observable>& table() {
        "docs/diffusion-msd.md#dif_displacements"},
       {"msd_start", "time", "1", "each replica's start of the displacements (-1: never started): /observables/msd/start_time",
        R::per_replica, "docs/diffusion-msd.md#dif_displacements"},
+      // Rough spheres (docs/rough-spheres.md): written when &system roughness makes them rough
+      {"rotational_temperature", "energy", "species", "T_rot,k = I_k <|w|^2>/3, I_k = kappa_k m_k sigma_k^2/4 (temperature stays translational)",
+       R::series, kRough},
+      {"cumulant_a20", "1", "species", "a20 = (3/5)<c^4>/<c^2>^2 - 1 of the peculiar velocities c (= sonine_c/2)", R::series, kRough},
+      {"cumulant_a02", "1", "species", "a02 = (3/5)<w^4>/<w^2>^2 - 1 of the angular velocities w", R::series, kRough},
+      {"cumulant_a11", "1", "species", "a11 = <c^2 w^2>/(<c^2><w^2>) - 1", R::series, kRough},
+      {"total_energy", "energy", "1", "sum_k x_k (m_k <c^2> + I_k <w^2>)/2, the energy per particle with rotation", R::series, kRough},
       // The scaling state and the reduced distributions (docs/sonine.md)
       {"scaling_sonine_c", "1", "species", "c_k of a replica averaged over its samples past scaling_start: /observables/scaling_state/sonine_c",
        R::per_replica, kOutput},

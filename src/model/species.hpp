@@ -66,6 +66,12 @@ struct Mixture {
   PairMatrix reduced_mass;             ///< m_kj = m_k m_j/(m_k + m_j)
   PairMatrix pair_correlation;         ///< chi_kj (1 when not Enskog)
   bool enskog = false;                 ///< chi_kj from Carnahan-Starling (else 1)
+  /// beta_kj, the tangential restitution of rough spheres (\ref rough_rule "docs/rough-spheres.md"):
+  /// -1 smooth, +1 perfectly rough; empty (size 0) for smooth spheres, which have no rotation.
+  PairMatrix roughness;
+  /// kappa_k = 4 I_k/(m_k sigma_k^2), the reduced moment of inertia (2/5 for a uniform sphere);
+  /// empty for smooth spheres.
+  std::vector<double> moment_of_inertia;
 
   /// S, the number of species.
   std::size_t size() const { return mass.size(); }
@@ -74,6 +80,10 @@ struct Mixture {
   /// mu_kj = m_k / (m_k + m_j) (\ref cm_notation "docs/collision-model.md"; mu_kj + mu_jk = 1)
   double mass_fraction(std::size_t k, std::size_t j) const { return mass[k] / (mass[k] + mass[j]); }
   double packing_fraction() const;                               ///< phi = (pi/6) sum_k n_k sigma_k^3
+  /// The spheres are rough (roughness and moment_of_inertia given): particles carry an angular velocity.
+  bool rough() const { return roughness.size != 0; }
+  /// I_k = kappa_k m_k sigma_k^2 / 4 of rough spheres.
+  double inertia(std::size_t k) const { return 0.25 * moment_of_inertia[k] * mass[k] * diameter[k] * diameter[k]; }
 };
 
 /// Carnahan-Starling chi_kj for all pairs (Montanero and Garzo 2002, eq. (26); \ref cm_chi "docs/collision-model.md").

@@ -64,7 +64,12 @@ void note_idle_threads(const ReplicaContext& ctx, const std::string& why) {
 particles::System initial_system(const io::config::Config& config, const species::Mixture& mix,
                                  const std::vector<std::size_t>& counts, std::size_t r) {
   auto stream = rng::make_stream(static_cast<std::uint64_t>(config.dsmc.seed), r, rng::Purpose::initial_state);
-  return particles::make_system(mix, counts, config.initial.temperature, initial_distribution(config), stream);
+  particles::System sys = particles::make_system(mix, counts, config.initial.temperature, initial_distribution(config), stream);
+  if (mix.rough()) {  // the angular velocities from a stream of their own (the smooth gas's draws unchanged)
+    auto spin = rng::make_stream(static_cast<std::uint64_t>(config.dsmc.seed), r, rng::Purpose::rotation);
+    particles::add_angular_velocities(sys, mix, config.initial.rotational_temperature, rules::RoughRule::angular_velocity, spin);
+  }
+  return sys;
 }
 
 /// The particles of a replica and their collider, with the samples of its scaling state: what the free
