@@ -67,6 +67,7 @@ const std::string kMany = "n_species = 20\n mass = 1.0\n diameter = 1.0\n number
 // Uniform shear flow with the Gaussian thermostat (validation/shear_viscosity's rate), and the full
 // aggregation/fragmentation model of validation/aggregation_fragmentation.
 const std::string kShear = "&thermostat\n kind = 'gaussian'\n/\n&shear\n rate = 0.00284\n/\n";
+const std::string kWhiteNoise = "&thermostat\n kind = 'white_noise'\n noise_strength = 0.001\n/\n";
 const std::string kAggFrag =
     "&agg_frag\n aggregation_energy = 0.5\n fragmentation_energy = 1.5\n fragment_restitution = 0.5\n/\n";
 
@@ -146,6 +147,7 @@ int main(int argc, char** argv) {
       {"the same, 2 threads", kOne, "lowrank", true, 2, kAggFrag},
       {"rough, one species (beta = 0)", kOne + " roughness = 0.0\n", "majorant", true, 1},
       {"rough, binary mixture (beta = 0.5)", kBinary + " roughness = 0.5\n", "majorant", true, 1},
+      {"one species, white noise", kOne, "majorant", true, 1, kWhiteNoise},
   };
   constexpr double per_particle = 10.0;
   struct Measured {
@@ -158,7 +160,7 @@ int main(int argc, char** argv) {
       if (paths[q].time_driven) {
         Path pilot = paths[q];
         if (pilot.extra != kAggFrag) pilot.scheme = "majorant";  // a staged run takes only t_end: its plain gas
-        if (pilot.extra == kShear) pilot.extra.clear();
+        if (pilot.extra == kShear || pilot.extra == kWhiteNoise) pilot.extra.clear();
         t_end[q] = run(namelist(pilot, pilot.system == kMany ? 100000 : 20000, 0.0, per_particle), 1).final_time;
       }
     const auto measure = [&](std::size_t q) {

@@ -358,8 +358,8 @@ TEST(ConfigResolved, ContainsEveryFieldOfEveryGroup) {
   expected.erase("sweep:grid");
   for (const char* v : {"aggregation_energy", "fragmentation_energy", "fragment_restitution"})
     expected.erase(std::string("agg_frag:") + v);  // written only with &agg_frag
-  for (const char* v : {"thermostat:kind", "shear:rate", "shear:average_from"})
-    expected.erase(v);  // written only with a thermostat or a shear rate
+  for (const char* v : {"thermostat:kind", "thermostat:noise_strength", "shear:rate", "shear:average_from"})
+    expected.erase(v);  // written only with a thermostat or a shear rate (noise_strength: white noise)
   for (const char* v : {"system:roughness", "system:moment_of_inertia", "initial:rotational_temperature"})
     expected.erase(v);  // written only for rough spheres
   EXPECT_EQ(names, expected);
@@ -436,7 +436,7 @@ TEST(ConfigReference, MentionsEveryVariable) {
   all.insert(checkpointed.begin(), checkpointed.end());
   for (const char* v : {"aggregation_energy", "fragmentation_energy", "fragment_restitution"})
     all.insert(std::string("agg_frag:") + v);
-  for (const char* v : {"thermostat:kind", "shear:rate", "shear:average_from"}) all.insert(v);
+  for (const char* v : {"thermostat:kind", "thermostat:noise_strength", "shear:rate", "shear:average_from"}) all.insert(v);
   const auto rough = resolved_names(read_text(with_line(6, "  restitution = 0.5, roughness = 0.2")));
   EXPECT_EQ(rough.count("system:roughness") + rough.count("system:moment_of_inertia") +
                 rough.count("initial:rotational_temperature"),
@@ -1250,5 +1250,42 @@ TEST(ConfigError, RoughnessOutOfRangeOrWithoutItsModel) {
                1, "system", "roughness", {"&agg_frag"});
   expect_error(error_of(sheared("&thermostat kind = 'gaussian' /", "&dsmc n_particles = 100, t_end = 5.0 /",
                                 "&system mass = 1.0, diameter = 1.0, number_density = 0.01, restitution = 0.9, roughness = 0.0 /")),
-               1, "system", "roughness", {"&thermostat or &shear"});
+               1, "system", "roughness", {"Gaussian thermostat or &shear"});
+}
+
+// The white-noise thermostat (\ref wn_forcing "docs/white-noise.md")
+// ---------------------------------------------------------------------------------------------
+TEST(ConfigWhiteNoise, OneStrengthFillsTheSpeciesByEqualForces) {
+  const auto c = read_text(with_line(17, "/\n&thermostat kind = 'white_noise', noise_strength = 0.2 /"));
+  EXPECT_TRUE(c.staged());
+  ASSERT_EQ(c.thermostat.noise_strength.size(), 2u);
+  EXPECT_EQ(c.thermostat.noise_strength[0], 0.2);
+  EXPECT_NEAR(c.thermostat.noise_strength[1], 0.2 / 100.0, 1e-18);  // m = 1, 10
+  EXPECT_TRUE(resolved_names(c).count("thermostat:noise_strength"));
+  const auto two = read_text(with_line(17, "/\n&thermostat kind = 'white_noise', noise_strength = 0.2, 0.1 /"));
+  EXPECT_EQ(two.thermostat.noise_strength, (std::vector<double>{0.2, 0.1}));
+  // rough spheres under white noise run (the Gaussian thermostat is refused for them)
+  EXPECT_TRUE(read_text(with_line(6, "  restitution = 0.5, roughness = 0.0") + "&thermostat kind = 'white_noise', noise_strength = 0.2 /\n")
+                  .rough());
+}
+
+TEST(ConfigError, WhiteNoiseStrengthAndCombinations) {
+  expect_error(error_of(sheared("&thermostat kind = 'white_noise' /")), 4, "thermostat", "kind",
+               {"noise_strength is required"});
+  expect_error(error_of(sheared("&thermostat kind = 'white_noise', noise_strength = 0.0 /")), 4, "thermostat",
+               "noise_strength", {"outside (0"});
+  expect_error(error_of(sheared("&thermostat kind = 'white_noise', noise_strength = -1.0 /")), 4, "thermostat",
+               "noise_strength", {"outside (0"});
+  expect_error(error_of(sheared("&thermostat kind = 'gaussian', noise_strength = 0.1 /")), 4, "thermostat",
+               "noise_strength", {"only used with kind = 'white_noise'"});
+  expect_error(error_of(sheared("&thermostat kind = 'white_noise', noise_strength = 0.1 / &shear rate = 0.01 /")), 4,
+               "thermostat", "kind", {"cannot run with &shear"});
+  expect_error(error_of(sheared("&thermostat kind = 'white_noise', noise_strength = 0.1, 0.2 /")), 4, "thermostat",
+               "noise_strength", {"expected 1 or n_species = 1 values, got 2"});
+  expect_error(error_of(sheared("&thermostat kind = 'white_noise', noise_strength = 0.1 /",
+                                "&dsmc n_particles = 100, collisions_per_particle = 5.0 /")),
+               3, "dsmc", "collisions_per_particle", {"driven by t_end"});
+  expect_error(error_of(sheared("&thermostat kind = 'gaussian' /", "&dsmc n_particles = 100, t_end = 5.0 /",
+                                "&system mass = 1.0, diameter = 1.0, number_density = 0.01, restitution = 0.9, roughness = 0.0 /")),
+               1, "system", "roughness", {"Gaussian thermostat or &shear"});
 }

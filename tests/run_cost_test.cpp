@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "theory/rough.hpp"
 #include "theory/theory.hpp"
 
 namespace theory = gdsmc::theory;
@@ -65,4 +66,18 @@ TEST(RunCost, ManySpeciesBoundsTheExactEstimate) {
   const auto huge = theory::estimate_run_cost(big, t0, 1e300, std::nullopt, theory::Cooling::haff);
   EXPECT_TRUE(std::isfinite(huge.collisions_per_particle));
   EXPECT_EQ(huge.temperature_ratio, 0.0);
+}
+
+// Rough spheres cool by their rotation even at alpha = 1: alpha = 1, beta = 0, kappa = 0.4 has zeta* =
+// (4/3)(A - B theta) = 0.1361 per collision per particle (theory/rough.hpp), so 2000 collisions per
+// particle end at exp(-272) of T_0 (refused by the run-cost check) where the smooth estimate saw no cooling.
+TEST(RunCost, RoughSpheresCoolByTheirRotation) {
+  auto mix = gdsmc::species::make_mixture({1.0}, {1.0}, {0.01}, gdsmc::species::PairMatrix(1, 1.0), false);
+  mix.roughness = gdsmc::species::PairMatrix(1, 0.0);
+  mix.moment_of_inertia = {0.4};
+  const double r = gdsmc::theory::rough::cooling_state(1.0, 0.0, 0.4).cooling_rate_reduced;
+  EXPECT_NEAR(r, 0.1361, 1e-4);
+  const auto cost = gdsmc::theory::estimate_run_cost(mix, {1.0}, std::nullopt, 2000.0, gdsmc::theory::Cooling::haff);
+  EXPECT_NEAR(std::log(cost.temperature_ratio), -r * 2000.0, 1e-9 * r * 2000.0);
+  EXPECT_LT(cost.temperature_ratio, 1e-40);
 }

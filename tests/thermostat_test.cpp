@@ -32,6 +32,37 @@ species::Mixture one_species(double m, double n) {
   return species::make_mixture({m}, {1.0}, {n}, species::PairMatrix(1, 0.9), false);
 }
 
+// The white-noise kicks (docs/white-noise.md): a binary gas at rest, one stage of dt = 0.5 with chi^2 =
+// 0.2 for species 1 and, by equal forces, 0.2/4 for species 2 (m = 1, 2): the total momentum stays 0 to
+// round-off, each species' mean |dv|^2 is 3 chi^2_k dt (1 - m_k/M) -- 0.3 and 0.075 less the centre-of-mass
+// share -- within 4 standard errors (2e5 particles each: the SE of a mean of chi^2 variables with 3 degrees
+// of freedom is sqrt(2/3)/sqrt(N) of it, 0.18 %).
+TEST(Thermostat, WhiteNoiseKicksKeepTheMomentumAndHaveTheirVariance) {
+  const auto mix = species::make_mixture({1.0, 2.0}, {1.0, 1.0}, {0.1, 0.1}, species::PairMatrix(2, 0.9), false);
+  const std::size_t n = 200000;
+  System sys = gas(std::vector<Vec3>(2 * n, Vec3{0.0, 0.0, 0.0}));
+  for (std::size_t i = n; i < 2 * n; ++i) sys.species[i] = 1;
+  sys.first = {0, n};
+  sys.count = {n, n};
+  gdsmc::thermostat::WhiteNoise noise(mix, {0.2, 0.05});
+  auto gen = gdsmc::rng::make_stream(4, 0, gdsmc::rng::Purpose::forcing);
+  noise.act(sys, 0.5, gen);
+  double px = 0.0, py = 0.0, pz = 0.0, scale = 0.0;
+  double mean2[2] = {0.0, 0.0};
+  for (std::size_t i = 0; i < 2 * n; ++i) {
+    const double m = mix.mass[sys.species[i]];
+    px += m * sys.v[i].x, py += m * sys.v[i].y, pz += m * sys.v[i].z;
+    scale += m * std::sqrt(sys.v[i].x * sys.v[i].x + sys.v[i].y * sys.v[i].y + sys.v[i].z * sys.v[i].z);
+    mean2[sys.species[i]] += (sys.v[i].x * sys.v[i].x + sys.v[i].y * sys.v[i].y + sys.v[i].z * sys.v[i].z) / n;
+  }
+  EXPECT_LT(std::abs(px) + std::abs(py) + std::abs(pz), 1e-12 * scale);
+  const double total_mass = 3.0 * n;
+  for (std::size_t k = 0; k < 2; ++k) {
+    const double chi2 = k == 0 ? 0.2 : 0.05, expected = 3.0 * chi2 * 0.5 * (1.0 - mix.mass[k] / total_mass);
+    EXPECT_NEAR(mean2[k], expected, 4.0 * std::sqrt(2.0 / 3.0 / n) * expected) << "species " << k + 1;
+  }
+}
+
 TEST(Thermostat, RescaleRestoresTheLossAboutTheMeanFlow) {
   // u = (1, 0, 0); peculiar velocities +-1 along x: E_after = 2 (1/2)(1)^2 = 1. With E_before = 1.5 the
   // loss is 0.5, s^2 = 1.5/1 = 1.5: velocities u +- sqrt(1.5), momentum 2 kept, zeta dt = 0.5/1.5 = 1/3.
@@ -301,6 +332,8 @@ TEST(Stages, AForcingActsOnEveryParticleOncePerStage) {
   gdsmc::sample::Rows rows;
   c.stages.begin(0.1, true);
   c.stages.measure(gdsmc::sample::measure(c.mix, c.sys), 0.1, true, rows);
-  EXPECT_EQ(rows.rows.at("kicks").second, std::vector<double>{11.0});
+  // A sampled stage: the sample first (10 kicks so far), the stage's kick after it.
+  EXPECT_EQ(rows.rows.at("kicks").second, std::vector<double>{10.0});
+  EXPECT_EQ(c.kick->acts, 11u);
   EXPECT_EQ(rows.rows.count("pressure_tensor"), 1u);
 }

@@ -63,7 +63,7 @@ void add_scaling_state(Point& pt, const io::config::Config& config, const analys
   const auto& fs = *p.hcs_first_sonine;
   Quantity ratio{"temperature_over_mean", "T_{k}/T", "first_sonine",
                  s == 2 ? "docs/sonine.md: 0.1 % against exact DSMC at mu = 10; allowance 0.2 %"
-                        : "issue 17: independent work, ternary HCS, 0.1-0.4 %; allowance 0.4 %",
+                        : "docs/physics.md#physics_compare: independent work, ternary HCS, 0.1-0.4 %; allowance 0.4 %",
                  {}, s, {}, {}, {}, {}};
   Quantity cumulant{"sonine_c", "c_{k}", "first_sonine", "docs/sonine.md: first Sonine 9-14 % high; allowance 15 %",
                     {}, s, {}, {}, {}, {}};
@@ -460,6 +460,15 @@ Point compare_point(const io::config::Config& config, const analysis::Prediction
     const bool hss = config.thermostat.kind == io::config::ThermostatKind::gaussian && !config.shear.rate;
     if ((!config.staged() || hss) && p.hcs_first_sonine) add_scaling_state(pt, config, p, m);
     if (config.output.track_displacements) add_diffusion(pt, config, p, m);
+    if (p.white_noise && m.has("total_temperature")) {  // \ref wn_theory "docs/white-noise.md": the steady T_tr
+      const auto& o = m.observables.at("total_temperature");
+      Quantity q{"white_noise_temperature", "T_tr", "maxwellian",
+                 std::string(kNone) + " (the Maxwellian energy balance omits a2; docs/white-noise.md)", {}, 1,
+                 {o.value.back()}, {o.error.empty() ? kNaN : o.error.back()}, {p.white_noise->translational_temperature},
+                 {kNaN}};
+      q.at = "last sample";
+      pt.quantities.push_back(std::move(q));
+    }
     if (config.shear.rate) {
       const auto eta = m.attributes.find("shear_viscosity@time_average");
       if (config.thermostat.kind != io::config::ThermostatKind::gaussian) {

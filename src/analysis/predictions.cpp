@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <exception>
 #include <limits>
+#include <numbers>
 #include <string>
 
 #include "io/namelist.hpp"
@@ -361,10 +362,39 @@ Predictions predict_rough(const io::config::Config& config) {
   return out;
 }
 
+/// The white-noise steady state of one species (\ref wn_theory "docs/white-noise.md"): T_tr^(3/2) =
+/// m chi^2 / ((4/3)(A - B theta) nu_1), nu = nu_1 sqrt(T_tr), nu_1 = 4 n sigma^2 chi sqrt(pi/m).
+void add_white_noise(Predictions& out, const io::config::Config& config, const species::Mixture& mix) {
+  if (mix.size() != 1) {
+    out.notes.push_back("white noise: no theory for mixtures yet");
+    return;
+  }
+  const bool rough_gas = mix.rough();
+  const auto state = rough::driven_state(mix.restitution(0, 0), rough_gas ? mix.roughness(0, 0) : -1.0,
+                                         rough_gas ? mix.moment_of_inertia[0] : 0.4);
+  const double sigma = mix.diameter[0], m = mix.mass[0];
+  const double nu_1 = 4.0 * mix.number_density[0] * sigma * sigma * mix.pair_correlation(0, 0) * std::sqrt(std::numbers::pi / m);
+  Predictions::WhiteNoise w;
+  w.translational_temperature = std::pow(m * config.thermostat.noise_strength[0] / (state.cooling_rate_reduced * nu_1), 2.0 / 3.0);
+  if (rough_gas) w.theta = state.theta;
+  out.white_noise = w;
+  out.approximations.emplace_back("white_noise.maxwellian", "maxwellian");
+  if (out.sonine_a2 || out.hcs_first_sonine)
+    out.notes.push_back("white noise: the hcs and sonine keys describe the free cooling of the same gas, not this driven state");
+}
+
 }  // namespace
 
 Predictions predict(const io::config::Config& config) {
-  if (config.rough()) return predict_rough(config);
+  if (config.rough()) {
+    Predictions out = predict_rough(config);
+    if (config.thermostat.kind == io::config::ThermostatKind::white_noise) {
+      out.has_history = false;  // the free-cooling history does not describe a driven run
+      out.notes.push_back("temperature, rotational_temperature left out: the run is driven by white noise");
+      add_white_noise(out, config, config.mixture());
+    }
+    return out;
+  }
   Predictions out;
   if (config.has_agg_frag) {
     out.agg_frag = agg_frag_prediction(config);
@@ -383,6 +413,7 @@ Predictions predict(const io::config::Config& config) {
   add_diffusion(out, config, mix, beta, history);
   add_sonine(out, mix, beta);
   add_viscosity(out, mix, beta);
+  if (config.thermostat.kind == io::config::ThermostatKind::white_noise) add_white_noise(out, config, mix);
   return out;
 }
 

@@ -88,6 +88,12 @@ struct Predictions {
   /// chi times its cooling_rate_reduced.
   double rough_zeta_star = 0.0;
   std::vector<double> rotational_temperature;  ///< rough, one species: T_rot on the sample times (has_history)
+  /// &thermostat kind = 'white_noise', one species: the Maxwellian steady T_tr (and theta for rough spheres).
+  struct WhiteNoise {
+    double translational_temperature = 0.0;  ///< m chi^2 = nu(T) (4/3)(A - B theta) T
+    std::optional<double> theta;             ///< rough spheres: B/C
+  };
+  std::optional<WhiteNoise> white_noise;     ///< (theory/rough.hpp driven_state)
   /// key -> "maxwellian", "first_sonine", "exact", ... for every key present, in print order.
   std::vector<std::pair<std::string, std::string>> approximations;
   std::vector<std::string> notes;  ///< what was left out and why, in order

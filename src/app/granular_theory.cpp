@@ -46,6 +46,8 @@ const char* kUsage =
     "  rotational_temperature {time, value} T_rot of the Maxwellian two-temperature equations; rough_hcs\n"
     "                       {maxwellian: {theta, zeta_star}, sonine: why not} theta = T_rot/T_tr and\n"
     "                       zeta_tr/nu_M (nu_M = 4 sqrt(pi) n sigma^2 sqrt(T_tr/m)) of the HCS\n"
+    "With &thermostat kind = 'white_noise' (docs/white-noise.md), one species: white_noise {maxwellian:\n"
+    "                       {translational_temperature[, theta]}, sonine: why not, translational_temperature}\n"
     "With &agg_frag (docs/agg-frag.md), the Smoluchowski rate equations with Maxwellian kernels instead:\n"
     "  number, temperature  {time, value[t][k]} per cluster size k (number: N_k for the run's n_particles)\n"
     "  total_temperature, kinetic_energy, mean_size, monomer_fraction, collisions, aggregations,\n"
@@ -161,6 +163,14 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
     if (!p.rotational_temperature.empty())
       json << ",\n" << in << "\"rotational_temperature\": {\"time\": " << array(p.time) << ", \"value\": "
            << array(p.rotational_temperature) << "}";
+  }
+  if (p.white_noise) {
+    json << ",\n" << in << "\"white_noise\": {\"maxwellian\": {\"translational_temperature\": "
+         << number(p.white_noise->translational_temperature);
+    if (p.white_noise->theta) json << ", \"theta\": " << number(*p.white_noise->theta);
+    json << "}, \"sonine\": \"not computed: the first-Sonine theory of the driven gas is not implemented in this "
+            "version\", \"translational_temperature\": "
+         << number(p.white_noise->translational_temperature) << "}";
   }
   if (p.rough_hcs_maxwellian)
     json << ",\n" << in << "\"rough_hcs\": {\"maxwellian\": {\"theta\": " << number(p.rough_hcs_maxwellian->theta)

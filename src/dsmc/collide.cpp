@@ -317,7 +317,7 @@ void Collider::set_frame(double scale, double shear) {
 }
 
 void Collider::reset_frame(const std::array<double, 4>& moments, const std::vector<double>& max_speed2) {
-  framed_ = true;
+  framed_ = true;  // (a rule without frames runs its unframed loops in this identity frame: collide_kernels.cpp)
   frame_scale_ = 1.0;
   frame_inverse_scale_ = 1.0;
   frame_shear_ = 0.0;

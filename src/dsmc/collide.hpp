@@ -414,6 +414,9 @@ class Collider {
   /// offsets in locals).
   template <class Rule, bool Track, bool Lowrank, bool Framed, bool Two = false>
   void run_block_mixture(const Rule& rule, double t_stop);
+  /// A rule without frames runs framed only in the identity frame (reset_frame: white noise); throws
+  /// std::logic_error otherwise.
+  void require_identity_frame() const;
   /// The constants of species pair (k, j) in the mixture block kernel, row-major S x S (at most
   /// block_species_limit species): the rule's projected constants (rules.hpp; the kernels run only a
   /// rule with the projection, SmoothRule) and the pair's slot in the event counts, in one record of

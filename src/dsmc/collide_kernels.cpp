@@ -26,7 +26,7 @@ void Collider::run_block_kernel(const Rule& rule, bool lowrank, double t_stop) {
     if (s_ == 1) {  // the one-species kernel
       if (framed_) {
         if constexpr (Rule::frames) run_block_one_species<Rule, false, true>(rule, t_stop);  // a frame tracks no displacements (set_frame)
-        else throw std::logic_error("collide: a frame with a rule that has none");
+        else run_block_one_species<Rule, false, false>(rule, (require_identity_frame(), t_stop));
       } else if (track)
         run_block_one_species<Rule, true, false>(rule, t_stop);
       else
@@ -40,7 +40,12 @@ void Collider::run_block_kernel(const Rule& rule, bool lowrank, double t_stop) {
         lowrank    ? run_block_mixture<Rule, false, true, true>(rule, t_stop)
         : s_ == 2  ? run_block_mixture<Rule, false, false, true, true>(rule, t_stop)
                    : run_block_mixture<Rule, false, false, true>(rule, t_stop);
-      else throw std::logic_error("collide: a frame with a rule that has none");
+      else {  // a rule without frames: only the identity frame of reset_frame (white noise), run unframed
+        require_identity_frame();
+        lowrank ? run_block_mixture<Rule, false, true, false>(rule, t_stop)
+        : s_ == 2 ? run_block_mixture<Rule, false, false, false, true>(rule, t_stop)
+                  : run_block_mixture<Rule, false, false, false>(rule, t_stop);
+      }
     } else if (lowrank)
       track ? run_block_mixture<Rule, true, true, false>(rule, t_stop) : run_block_mixture<Rule, false, true, false>(rule, t_stop);
     else if (s_ == 2)
@@ -52,6 +57,10 @@ void Collider::run_block_kernel(const Rule& rule, bool lowrank, double t_stop) {
     (void)rule, (void)lowrank, (void)t_stop;
     throw std::logic_error("collide: the block kernels need a rule with the projection");
   }
+}
+
+void Collider::require_identity_frame() const {
+  if (frame_scale_ != 1.0 || frame_shear_ != 0.0) throw std::logic_error("collide: a frame with a rule that has none");
 }
 
 namespace {

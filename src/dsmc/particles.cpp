@@ -118,7 +118,7 @@ void add_angular_velocities(System& sys, const species::Mixture& mix, const std:
     }
     // T_rot,k = I_k <|w|^2>/3 (\ref rough_observables "docs/rough-spheres.md")
     const double current = mix.inertia(k) * sum_sq / (3.0 * static_cast<double>(sys.count[k]));
-    const double scale = std::sqrt(rotational_temperature[k] / current);
+    const double scale = rotational_temperature[k] > 0.0 ? std::sqrt(rotational_temperature[k] / current) : 0.0;
     for (std::size_t i = begin; i < end; ++i) w[i] = {w[i].x * scale, w[i].y * scale, w[i].z * scale};
   }
 }

@@ -104,9 +104,10 @@ void RoughRule::measure(const particles::System& sys, sample::Rows& rows) const 
     const auto n = static_cast<double>(sys.count[k]);
     c2 /= n, c4 /= n, w2 /= n, w4 /= n, c2w2 /= n;
     t_rot[k] = mix_->inertia(k) * w2 / 3.0;
-    a20[k] = 0.6 * c4 / (c2 * c2) - 1.0;
-    a02[k] = 0.6 * w4 / (w2 * w2) - 1.0;
-    a11[k] = c2w2 / (c2 * w2) - 1.0;
+    a20[k] = c2 > 0.0 ? 0.6 * c4 / (c2 * c2) - 1.0 : 0.0;
+    // (a gas without rotation, T_rot = 0: a02 and a11 undefined, written as 0, never NaN)
+    a02[k] = w2 > 0.0 ? 0.6 * w4 / (w2 * w2) - 1.0 : 0.0;
+    a11[k] = w2 > 0.0 && c2 > 0.0 ? c2w2 / (c2 * w2) - 1.0 : 0.0;
     energy += mix_->mole_fraction(k) * 0.5 * (mix_->mass[k] * c2 + mix_->inertia(k) * w2);
   }
   rows.add("rotational_temperature", s_, t_rot);

@@ -66,7 +66,7 @@ namespace gdsmc::rules {
 
 /// The line of centres of an accepted candidate, as a loop hands it to a rule (header, "The contact").
 struct Contact {
-  double ex;       ///< e, the unit vector from b to a at contact (actual velocities' frame): x
+  double ex;       ///< e, the unit vector from a to b at contact (g.e > 0: approaching; actual velocities' frame): x
   double ey;       ///< e: y
   double ez;       ///< e: z
   double g_dot_e;  ///< g.e > 0 of the actual relative velocity g = v_a - v_b
@@ -256,8 +256,8 @@ class RoughRule {
     double reduced_mass;   ///< m_kj
     double half_a;         ///< sigma_k/2
     double half_b;         ///< sigma_j/2
-    double spin_a;         ///< 2 m_kj/(kappa_k m_k sigma_k): w_a += spin_a e x J
-    double spin_b;         ///< 2 m_kj/(kappa_j m_j sigma_j): w_b += spin_b e x J
+    double spin_a;         ///< 2 m_kj/(kappa_k m_k sigma_k): w_a -= spin_a e x J
+    double spin_b;         ///< 2 m_kj/(kappa_j m_j sigma_j): w_b -= spin_b e x J
     double tangential_loss;  ///< K_kj (1 - beta_kj^2): the energy lost per (m_kj/2)|g_c,t|^2
   };
   static constexpr bool has_projection = true;   ///< the block kernels' p = (g.e) e gives e = p/(g.e): collide_at
@@ -278,21 +278,22 @@ class RoughRule {
 
   /// The rule (\ref rough_rule "docs/rough-spheres.md", derived there; the model of Huthmann and Zippelius
   /// 1997, for mixtures Santos, Kremer and Garzo 2010):
-  /// with g_c = g - (sigma_k w_a + sigma_j w_b)/2 x e the relative velocity of the contact points and
-  /// J = (1 + alpha)(g.e) e + (1 + beta) K g_c,t (g_c,t its part normal to e),
-  ///   v_a -= mu_jk J,  v_b += mu_kj J,  w_a += spin_a e x J,  w_b += spin_b e x J,
+  /// with e the unit vector from a to b (g.e > 0: approaching), g_c = g + (sigma_k w_a + sigma_j w_b)/2 x e
+  /// the relative velocity of the contact points and J = (1 + alpha)(g.e) e + (1 + beta) K g_c,t (g_c,t
+  /// its part normal to e),
+  ///   v_a -= mu_jk J,  v_b += mu_kj J,  w_a -= spin_a e x J,  w_b -= spin_b e x J,
   /// so that (g_c'.e) = -alpha (g_c.e) and g_c,t' = -beta g_c,t; linear momentum and the angular
   /// momentum about the contact point are conserved, and the energy lost is
   /// (m_kj/2)[(1 - alpha^2)(g.e)^2 + K (1 - beta^2)|g_c,t|^2].
   static Outcome collide(particles::Vec3& va, particles::Vec3& vb, particles::Vec3& wa, particles::Vec3& wb,
                          const Pair& p, const Contact& c) {
     const double ex = c.ex, ey = c.ey, ez = c.ez;
-    // s = (sigma_k w_a + sigma_j w_b)/2; g_c = g - s x e
+    // s = (sigma_k w_a + sigma_j w_b)/2; g_c = g + s x e (e from a to b: a touches at +sigma_k/2 e)
     const double sx = p.half_a * wa.x + p.half_b * wb.x, sy = p.half_a * wa.y + p.half_b * wb.y,
                  sz = p.half_a * wa.z + p.half_b * wb.z;
-    const double gcx = (va.x - vb.x) - (sy * ez - sz * ey);
-    const double gcy = (va.y - vb.y) - (sz * ex - sx * ez);
-    const double gcz = (va.z - vb.z) - (sx * ey - sy * ex);
+    const double gcx = (va.x - vb.x) + (sy * ez - sz * ey);
+    const double gcy = (va.y - vb.y) + (sz * ex - sx * ez);
+    const double gcz = (va.z - vb.z) + (sx * ey - sy * ex);
     const double normal = gcx * ex + gcy * ey + gcz * ez;  // g_c.e = g.e (s x e is normal to e)
     const double tx = gcx - normal * ex, ty = gcy - normal * ey, tz = gcz - normal * ez;
     const double jn = (1.0 + p.alpha) * c.g_dot_e;
@@ -303,8 +304,8 @@ class RoughRule {
     // e x J = (1 + beta) K e x g_c,t (e x e = 0, formed so that beta = -1 leaves the spins exactly alone)
     const double cx = p.tangential * (ey * tz - ez * ty), cy = p.tangential * (ez * tx - ex * tz),
                  cz = p.tangential * (ex * ty - ey * tx);
-    wa = {wa.x + p.spin_a * cx, wa.y + p.spin_a * cy, wa.z + p.spin_a * cz};
-    wb = {wb.x + p.spin_b * cx, wb.y + p.spin_b * cy, wb.z + p.spin_b * cz};
+    wa = {wa.x - p.spin_a * cx, wa.y - p.spin_a * cy, wa.z - p.spin_a * cz};
+    wb = {wb.x - p.spin_b * cx, wb.y - p.spin_b * cy, wb.z - p.spin_b * cz};
     const double t2 = tx * tx + ty * ty + tz * tz;
     return {0.5 * p.reduced_mass * ((1.0 - p.alpha * p.alpha) * c.g_dot_e * c.g_dot_e + p.tangential_loss * t2),
             p.reduced_mass * jn};

@@ -166,6 +166,24 @@ void GaussianThermostat::measure(const Sample&, sample::Rows& rows) {
   zeta_sum_ = zeta_stages_ = 0.0;
 }
 
+void WhiteNoise::act(particles::System& sys, double dt, rng::Xoshiro256pp& gen) {
+  // dv = sqrt(chi^2_k dt) xi (\ref wn_forcing "docs/white-noise.md"), then the kicks' centre-of-mass velocity removed
+  double px = 0.0, py = 0.0, pz = 0.0, total_mass = 0.0;
+  for (std::size_t k = 0; k < sys.n_species(); ++k) {
+    const double sd = std::sqrt(strength_[k] * dt), m = mix_.mass[k];
+    double kx = 0.0, ky = 0.0, kz = 0.0;
+    for (std::size_t i = sys.first[k]; i < sys.first[k] + sys.count[k]; ++i) {
+      const double dx = sd * gen.normal(), dy = sd * gen.normal(), dz = sd * gen.normal();
+      sys.v[i] = {sys.v[i].x + dx, sys.v[i].y + dy, sys.v[i].z + dz};
+      kx += dx, ky += dy, kz += dz;
+    }
+    px += m * kx, py += m * ky, pz += m * kz;
+    total_mass += m * static_cast<double>(sys.count[k]);
+  }
+  const double ux = px / total_mass, uy = py / total_mass, uz = pz / total_mass;
+  for (auto& v : sys.v) v = {v.x - ux, v.y - uy, v.z - uz};
+}
+
 void GaussianThermostat::save(state::Record& r) const {
   r.put("thermostat/pending_scale", pending_.scale);
   r.put("thermostat/pending_mean_flow", std::vector<double>{pending_.mean_flow.x, pending_.mean_flow.y, pending_.mean_flow.z});
@@ -257,11 +275,22 @@ void Stages::begin(double dt, bool sample) {
   // particle acts then, and a second pass measures what it left.
   StageStart pass = materialise(mix_, sys_, frame_);
   frame_ = Frame{};
-  if (acts_) {
-    for (const auto& f : forcings_)
-      if (f->acts_on_particles()) f->act(sys_, dt, gen_);
-    pass = materialise(mix_, sys_, Frame{});
+  if (acts_ && sample) {  // the sample first: the kicks of this stage follow it (measure())
+    deferred_act_ = dt;
+  } else if (acts_) {
+    act(dt);
+    return;
   }
+  start_from(pass);
+}
+
+void Stages::act(double dt) {
+  for (const auto& f : forcings_)
+    if (f->acts_on_particles()) f->act(sys_, dt, gen_);
+  start_from(materialise(mix_, sys_, Frame{}));
+}
+
+void Stages::start_from(const StageStart& pass) {
   momentum_ = {pass.mean_flow.x * total_mass_, pass.mean_flow.y * total_mass_, pass.mean_flow.z * total_mass_};
   collider_.reset_frame(pass.moments, pass.max_speed2);
   start_ = {pass.kinetic, pass.mean_flow};
@@ -298,6 +327,10 @@ void Stages::measure(const sample::Moments& m, double dt, bool averaged, sample:
   rows.add("pressure_tensor", 6, std::vector<double>(total.begin(), total.end()));
   const Forcing::Sample sample{now, m.total_temperature, total, kinetic, averaged};
   for (const auto& f : forcings_) f->measure(sample, rows);
+  if (deferred_act_ > 0.0) {  // the stage's kicks, after its sample (header "Stages")
+    act(deferred_act_);
+    deferred_act_ = 0.0;
+  }
 }
 
 void Stages::finish(sample::Rows& rows) const {

@@ -179,7 +179,8 @@ class Forcing {
   /// (V -> m + s (V - m), first) and `shear_rate` (V_x -> V_x - a V_y dt, then).
   virtual void compose(Rescaling& rescaling, double& shear_rate) = 0;
   /// Whether it also acts on each particle apart at the start of a stage (random kicks, say): then the
-  /// stage's frame is applied to the velocities first (one pass), and act() follows the linear maps.
+  /// stage's frame is applied to the velocities first (one pass), and act() follows the linear maps; at
+  /// a sampled stage after the sample, so that a sample at t holds the kicks of [0, t) exactly.
   virtual bool acts_on_particles() const { return false; }
   /// Its action on every particle at the start of a stage of length dt (after the linear maps),
   /// drawing from `gen`, the replica's stream of forcings (rng Purpose::forcing).
@@ -265,6 +266,31 @@ class ShearFlow final : public Forcing {
   double window_sum_ = 0.0, window_kinetic_sum_ = 0.0, window_samples_ = 0.0;  ///< the time average's sums
 };
 
+/// The white-noise thermostat (\ref wn_forcing "docs/white-noise.md"; van Noije and Ernst 1998; mixtures: Barrat
+/// and Trizac 2002): at the start of each stage of length dt every particle of species k receives an
+/// independent Gaussian kick, dv = sqrt(chi^2_k dt) xi per component, and then the kicks' centre-of-mass
+/// velocity sum m dv / sum m is taken from every particle, so the total momentum stays zero (the energy
+/// input per stage is (3/2) sum_k N_k m_k chi^2_k dt (1 - m_k/M) in the mean). Angular velocities are not
+/// kicked. No state of its own (the stream is the stages'); no observables.
+class WhiteNoise final : public Forcing {
+ public:
+  /// chi^2_k per species of `mix`.
+  WhiteNoise(const species::Mixture& mix, std::vector<double> strength) : mix_(mix), strength_(std::move(strength)) {}
+  const char* name() const override { return "white_noise"; }
+  void compose(Rescaling&, double&) override {}
+  bool acts_on_particles() const override { return true; }
+  void act(particles::System& sys, double dt, rng::Xoshiro256pp& gen) override;
+  void end_stage(const StageEnd&) override {}
+  void measure(const Sample&, sample::Rows&) override {}
+  void finish(sample::Rows&) const override {}
+  void save(state::Record&) const override {}
+  void restore(const state::Record&) override {}
+
+ private:
+  const species::Mixture& mix_;
+  std::vector<double> strength_;
+};
+
 /// The stages of a replica with forcings (header, "Stages" and "Cost: the frame"): per stage of length
 /// dt, the forcings' linear maps composed into the frame of the stored velocities (V = G u + b; G in
 /// the collider, b here), one pass over the particles when the frame strays (|c| > frame_shear_limit,
@@ -306,6 +332,11 @@ class Stages {
   std::vector<std::unique_ptr<Forcing>> forcings_;
   double stage_step_, stage_cap_, shear_rate_;
   bool collisional_, acts_;  ///< the Enskog gas in shear flow; a forcing acts on each particle
+  double deferred_act_ = 0.0;  ///< a sampled stage's length: its forcings act on the particles after the sample
+  /// The forcings' actions on each particle over dt, then a pass (the stage's start values).
+  void act(double dt);
+  /// The stage's start values from a pass: momentum, the collider's exact bounds, energy and mean flow.
+  void start_from(const StageStart& pass);
   rng::Xoshiro256pp gen_;
   double total_mass_ = 0.0;
   Frame frame_;

@@ -57,7 +57,7 @@ enum class VelocityDistribution { maxwell, shell, cube };
 /// &output spacing.
 enum class Spacing { linear, log };
 /// &thermostat kind.
-enum class ThermostatKind { none, gaussian };
+enum class ThermostatKind { none, gaussian, white_noise };
 
 /// The namelist names of the values of a choice E, in the order of its enumerators.
 template <class E>
@@ -70,7 +70,7 @@ template <> struct Choices<DiameterLaw> { static constexpr std::array<std::strin
 template <> struct Choices<DensityLaw> { static constexpr std::array<std::string_view, 2> names{"list", "power"}; };
 template <> struct Choices<VelocityDistribution> { static constexpr std::array<std::string_view, 3> names{"maxwell", "shell", "cube"}; };
 template <> struct Choices<Spacing> { static constexpr std::array<std::string_view, 2> names{"linear", "log"}; };
-template <> struct Choices<ThermostatKind> { static constexpr std::array<std::string_view, 2> names{"none", "gaussian"}; };
+template <> struct Choices<ThermostatKind> { static constexpr std::array<std::string_view, 3> names{"none", "gaussian", "white_noise"}; };
 /// \endcond
 
 /// The namelist name of a choice: name(Scheme::pairs) = "pairs".
@@ -181,7 +181,10 @@ struct Sweep {
 /// &thermostat: a Gaussian thermostat holds the temperature of the homogeneous steady state (HSS)
 /// against the inelastic loss (Montanero 2003, \ref eta_measured "docs/shear-viscosity.md"; dsmc/thermostat.hpp).
 struct Thermostat {
-  ThermostatKind kind = ThermostatKind::none;  ///< 'none' or 'gaussian'
+  ThermostatKind kind = ThermostatKind::none;  ///< 'none', 'gaussian' or 'white_noise' (\ref wn_forcing "docs/white-noise.md")
+  /// chi^2_k of the white noise, \<dv dv\> = chi^2_k dt per component: one value (species 1; the others by
+  /// equal forces, chi^2_k = chi^2_1 (m_1/m_k)^2) or one per species; filled per species by the checks.
+  std::vector<double> noise_strength;
 };
 
 /// &shear: uniform shear flow u_x = a y in the Lagrangian frame (Montanero 2003, \ref eta_enskog_shear "docs/shear-viscosity.md").

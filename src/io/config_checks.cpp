@@ -281,13 +281,14 @@ void check_rough(Config& c, std::map<std::string, Provenance>& prov) {
     return;
   }
   c.system.roughness = resolve_pair_matrix("roughness", "beta", s, p, "system");
+  // One value for all species; or per species, the species an element assignment left out (NaN) taking
+  // the default.
   auto per_species = [&](std::vector<double>& values, Provenance& where, const std::string& group, const char* v,
                          const std::vector<double>& fill) {
     if (values.empty()) values = fill;
     if (values.size() == 1 && s > 1) values.assign(s, values[0]);
-    for (std::size_t k = 0; k < values.size(); ++k)
-      if (std::isnan(values[k]))
-        refuse(where, group, v, std::string(v) + "(" + std::to_string(k + 1) + ") is not given");
+    for (std::size_t k = 0; k < values.size() && k < fill.size(); ++k)
+      if (std::isnan(values[k])) values[k] = fill.size() == 1 ? fill[0] : fill[k];
     if (values.size() != s)
       refuse(where, group, v,
              "expected 1 or n_species = " + std::to_string(s) + " values, got " + std::to_string(values.size()));
@@ -299,9 +300,34 @@ void check_rough(Config& c, std::map<std::string, Provenance>& prov) {
     refuse(p, "system", "roughness", "rough spheres run with restitution_model = 'constant' only");
   if (c.has_agg_frag)
     refuse(p, "system", "roughness", "rough spheres cannot run with &agg_frag (clusters have no moment of inertia here)");
-  if (c.staged())
+  if (c.shear.rate || c.thermostat.kind == ThermostatKind::gaussian)
     refuse(p, "system", "roughness",
-           "rough spheres cannot run with &thermostat or &shear yet (the frame holds no angular velocity)");
+           "rough spheres cannot run with the Gaussian thermostat or &shear yet (the frame holds no angular velocity)");
+}
+
+/// &thermostat kind = 'white_noise' (\ref wn_forcing "docs/white-noise.md"): noise_strength chi^2_k filled per
+/// species (one value: species 1, the others by equal forces chi^2_k = chi^2_1 (m_1/m_k)^2), finite; not
+/// with &shear; noise_strength only with this kind.
+void check_white_noise(Config& c, std::map<std::string, Provenance>& prov) {
+  Provenance& p = prov["thermostat"];
+  const auto refuse = [&](const char* v, const std::string& message) {
+    throw Error(p.file_of(v), p.line.count(v) ? p.line.at(v) : p.group_line, "thermostat", v, message);
+  };
+  auto& chi2 = c.thermostat.noise_strength;
+  if (c.thermostat.kind != ThermostatKind::white_noise) {
+    if (!chi2.empty()) refuse("noise_strength", "only used with kind = 'white_noise'");
+    return;
+  }
+  if (chi2.empty()) refuse("kind", "noise_strength is required with kind = 'white_noise'");
+  if (c.shear.rate) refuse("kind", "white noise cannot run with &shear (the steady state of either alone is the one described)");
+  const auto s = static_cast<std::size_t>(c.system.n_species);
+  for (std::size_t k = 0; k < chi2.size(); ++k)
+    if (!std::isfinite(chi2[k])) refuse("noise_strength", "noise_strength(" + std::to_string(k + 1) + ") is not finite");
+  if (chi2.size() == 1)  // equal forces: m_k^2 chi^2_k the same for every species
+    for (std::size_t k = 1; k < s; ++k)
+      chi2.push_back(chi2[0] * (c.system.mass[0] / c.system.mass[k]) * (c.system.mass[0] / c.system.mass[k]));
+  if (chi2.size() != s)
+    refuse("noise_strength", "expected 1 or n_species = " + std::to_string(s) + " values, got " + std::to_string(chi2.size()));
 }
 
 /// &agg_frag (\ref af_outcome "docs/agg-frag.md"): the run starts from monomers of one constant-restitution, dilute

@@ -127,6 +127,7 @@ void check_dsmc(const Dsmc& d, const species::Mixture& mix, const Provenance& pr
 void check_output(Output& out, const Dsmc& d, const Provenance& prov);
 void check_agg_frag(const Config& c, std::map<std::string, Provenance>& prov);
 void check_rough(Config& c, std::map<std::string, Provenance>& prov);
+void check_white_noise(Config& c, std::map<std::string, Provenance>& prov);
 void check_staged(const Config& c, std::map<std::string, Provenance>& prov);
 /// The sample grid of &output up to `end` (a time or collisions per particle).
 std::vector<double> spaced(const Output& out, double end);

@@ -61,8 +61,8 @@ const std::vector<Field<Initial>>& initial_fields() {
        "initial velocities: 'maxwell', 'shell' (equal speeds) or 'cube' (uniform in a cube)"},
       {"rotational_temperature", &Initial::rotational_temperature, "energy",
        "T_rot,k(0) = I_k <w^2>/3 of rough spheres (Maxwellian angular velocities), one per species or one "
-       "for all (default: temperature)",
-       kPositive},
+       "for all (default: temperature; 0: no rotation)",
+       Range{0, kInf, false, false}},
   };
   return fields;
 }
@@ -99,8 +99,13 @@ const std::vector<Field<Dsmc>>& dsmc_fields() {
 const std::vector<Field<Thermostat>>& thermostat_fields() {
   static const std::vector<Field<Thermostat>> fields = {
       {"kind", &Thermostat::kind, "",
-       "'none', or 'gaussian': rescale the velocities after each collision stage so that the inelastic loss "
-       "is restored (homogeneous steady state, docs/shear-viscosity.md)"},
+       "'none', 'gaussian': rescale the velocities after each collision stage so that the inelastic loss "
+       "is restored (homogeneous steady state, docs/shear-viscosity.md), or 'white_noise': random Gaussian "
+       "kicks at each stage (docs/white-noise.md)"},
+      {"noise_strength", &Thermostat::noise_strength, "velocity^2/time",
+       "chi^2 of kind = 'white_noise': <dv dv> = chi^2 dt per component; one value (species 1, the others by "
+       "equal forces chi^2_k = chi^2_1 (m_1/m_k)^2) or one per species",
+       kPositive},
   };
   return fields;
 }
@@ -372,6 +377,10 @@ std::vector<h5md::Parameter> Config::resolved() const {
     append_resolved(out, "shear", shear, shear_fields());
   }
   if (is_sweep()) append_resolved(out, "sweep", sweep, sweep_fields());
+  std::erase_if(out, [](const h5md::Parameter& p) {  // unset (not white noise): not written
+    return p.name == "noise_strength" && std::holds_alternative<std::vector<double>>(p.value) &&
+           std::get<std::vector<double>>(p.value).empty();
+  });
   return out;
 }
 

@@ -54,6 +54,8 @@ std::vector<std::unique_ptr<thermostat::Forcing>> make_forcings(const io::config
   // Enskog in shear flow: the collisions do viscous work and transfer momentum (collide.hpp set_shear).
   const bool enskog_shear = shear > 0.0 && mix.enskog;
   if (config.thermostat.kind == io::config::ThermostatKind::gaussian) forcings.push_back(std::make_unique<thermostat::GaussianThermostat>(enskog_shear));
+  if (config.thermostat.kind == io::config::ThermostatKind::white_noise)
+    forcings.push_back(std::make_unique<thermostat::WhiteNoise>(mix, config.thermostat.noise_strength));
   if (shear > 0.0) {
     // eta_0(T) of one species (\ref eta_one_species "docs/shear-viscosity.md"), or of the elastic mixture at the same T
     // (Chapman and Cowling's first approximation; theory/viscosity.hpp).

@@ -23,6 +23,13 @@ CoolingState cooling_state(double alpha, double beta, double kappa) {
   return {theta, 4.0 / 3.0 * (k.a - k.b * theta)};
 }
 
+CoolingState driven_state(double alpha, double beta, double kappa) {
+  const Coefficients k = coefficients(alpha, beta, kappa);
+  if (k.b == 0.0) return {0.0, 4.0 / 3.0 * k.a};  // smooth: (1 - alpha^2)/3
+  const double theta = k.b / k.c;
+  return {theta, 4.0 / 3.0 * (k.a - k.b * theta)};
+}
+
 namespace {
 
 /// (T_tr, T_rot, the other variable: c or t) and one RK4 step of length h in t (collision_driven false)

@@ -44,6 +44,13 @@ struct CoolingState {
 /// theta and zeta_tr/nu of one species (header).
 CoolingState cooling_state(double alpha, double beta, double kappa);
 
+/// The steady state under white noise on the translational velocities (\ref wn_theory "docs/white-noise.md"):
+/// the spins are not kicked, so dT_rot/dc = 0 gives theta = B/C (0 for smooth spheres), and the
+/// translational loss per collision per particle is (4/3)(A - B theta) T_tr, which the noise's
+/// m chi^2 per unit time balances: m chi^2 = nu (4/3)(A - B theta) T_tr. `cooling_rate_reduced` is that
+/// (4/3)(A - B theta).
+CoolingState driven_state(double alpha, double beta, double kappa);
+
 /// T_tr and T_rot at a run's sample points, with the collisions per particle and the times.
 struct History {
   std::vector<double> time;                     ///< sample times

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
+#include "theory/rough.hpp"
 #include "theory/theory.hpp"
 
 namespace gdsmc::theory {
@@ -14,6 +16,16 @@ namespace {
 std::pair<double, double> rates(const species::Mixture& mix, const std::vector<double>& t0, Cooling cooling) {
   const std::size_t s = mix.size();
   const double n = mix.total_density();
+  if (mix.rough() && cooling == Cooling::haff && s <= exact_species) {
+    // Rough spheres cool their translation at zeta* = (4/3)(A - B theta) per collision per particle in
+    // the HCS (rough.hpp; \ref rough_maxwellian "docs/rough-spheres.md"), the least over the pairs.
+    double r = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < s; ++k)
+      for (std::size_t j = 0; j < s; ++j)
+        r = std::min(r, rough::cooling_state(mix.restitution(k, j), mix.roughness(k, j), mix.moment_of_inertia[k])
+                            .cooling_rate_reduced);
+    return {2.0 * total_collision_rate(mix, t0) / n, std::max(0.0, r)};
+  }
   if (s <= exact_species) {
     const double nu0 = 2.0 * total_collision_rate(mix, t0) / n;  // \ref cm_mixture_rate "docs/collision-model.md"
     if (cooling != Cooling::haff) return {nu0, 0.0};
