@@ -145,8 +145,9 @@ std::string row_label(const Sweep& sweep, const std::vector<std::string>& row) {
 /// The species-indexed variables, whose indices run to n_species.
 bool per_species(const std::string& group, const std::string& name) {
   return (group == "system" && (name == "mass" || name == "diameter" || name == "number_density" ||
-                                name == "restitution")) ||
-         (group == "initial" && name == "temperature");
+                                name == "restitution" || name == "roughness" || name == "moment_of_inertia")) ||
+         (group == "initial" && (name == "temperature" || name == "rotational_temperature")) ||
+         (group == "thermostat" && name == "noise_strength");
 }
 }  // namespace
 
