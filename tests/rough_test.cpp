@@ -224,3 +224,33 @@ TEST(Rough, TwoTemperatureEquationsAgreeWithTheClosedForm) {
   const auto timed = theory::rough::integrate(mix, 1.0, 3.0, h.time, false);
   for (std::size_t i = 0; i < c.size(); ++i) EXPECT_NEAR(timed.collisions_per_particle[i], c[i], 1e-8 * c[i]);
 }
+
+// The rule's observables by hand (docs/rough-spheres.md, "Observables"): two particles, m = 1, sigma = 1,
+// kappa = 0.4 (I = 0.1), v = (+-1, 0, 0), w = (0, 0, 2) and 0: <c^2> = <c^4> = 1, <w^2> = 2, <w^4> = 8,
+// <c^2 w^2> = 2, so T_rot = 0.1 x 2/3 = 1/15, a20 = 0.6 - 1 = -0.4, a02 = 0.6 x 8/4 - 1 = 0.2, a11 = 0,
+// total_energy = (1 + 0.1 x 2)/2 = 0.6; a gas without rotation writes a02 = a11 = 0.
+TEST(Rough, ObservablesByHand) {
+  const auto mix = rough_mixture({1.0}, {1.0}, 0.9, 0.0, {0.4});
+  particles::System sys;
+  sys.v = {{1.0, 0.0, 0.0}, {-1.0, 0.0, 0.0}};
+  sys.species = {0, 0};
+  sys.first = {0};
+  sys.count = {2};
+  rules::RoughRule rule(mix);
+  rule.attach(sys);
+  auto& w = std::get<particles::ParticleArray<Vec3>>(sys.find_array(rules::RoughRule::angular_velocity)->values);
+  w[0] = {0.0, 0.0, 2.0};
+  sample::Rows rows;
+  rule.measure(sys, rows);
+  const auto at = [&](const char* name) { return rows.rows.at(name).second.at(0); };
+  EXPECT_NEAR(at("rotational_temperature"), 1.0 / 15.0, 1e-15);
+  EXPECT_NEAR(at("cumulant_a20"), -0.4, 1e-15);
+  EXPECT_NEAR(at("cumulant_a02"), 0.2, 1e-15);
+  EXPECT_NEAR(at("cumulant_a11"), 0.0, 1e-15);
+  EXPECT_NEAR(at("total_energy"), 0.6, 1e-15);
+  w[0] = {0.0, 0.0, 0.0};
+  sample::Rows still;
+  rule.measure(sys, still);
+  EXPECT_EQ(still.rows.at("cumulant_a02").second.at(0), 0.0);
+  EXPECT_EQ(still.rows.at("cumulant_a11").second.at(0), 0.0);
+}
