@@ -372,10 +372,10 @@ void add_white_noise(Predictions& out, const io::config::Config& config, const s
   const bool rough_gas = mix.rough();
   const auto state = rough::driven_state(mix.restitution(0, 0), rough_gas ? mix.roughness(0, 0) : -1.0,
                                          rough_gas ? mix.moment_of_inertia[0] : 0.4);
-  const double sigma = mix.diameter[0], m = mix.mass[0];
-  const double nu_1 = 4.0 * mix.number_density[0] * sigma * sigma * mix.pair_correlation(0, 0) * std::sqrt(std::numbers::pi / m);
+  const double m = mix.mass[0];
   Predictions::WhiteNoise w;
-  w.translational_temperature = std::pow(m * config.thermostat.noise_strength[0] / (state.cooling_rate_reduced * nu_1), 2.0 / 3.0);
+  w.translational_temperature =
+      std::pow(m * config.thermostat.noise_strength[0] / (state.cooling_rate_reduced * rough::frequency_unit(mix)), 2.0 / 3.0);
   if (rough_gas) w.theta = state.theta;
   out.white_noise = w;
   out.approximations.emplace_back("white_noise.maxwellian", "maxwellian");

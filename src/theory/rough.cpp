@@ -15,6 +15,12 @@ Coefficients coefficients(double alpha, double beta, double kappa) {
   return {0.25 * (1.0 - alpha * alpha) + eta * (1.0 - eta), eta * eta / kappa, eta / kappa * (1.0 - eta / kappa)};
 }
 
+double frequency_unit(const species::Mixture& mix) {
+  // nu = 4 n sigma^2 chi sqrt(pi T_tr/m) (\ref cm_pair_rate "docs/collision-model.md"), over sqrt(T_tr)
+  const double sigma = mix.diameter[0];
+  return 4.0 * mix.number_density[0] * sigma * sigma * mix.pair_correlation(0, 0) * std::sqrt(std::numbers::pi / mix.mass[0]);
+}
+
 CoolingState cooling_state(double alpha, double beta, double kappa) {
   const Coefficients k = coefficients(alpha, beta, kappa);
   if (k.b == 0.0) return {0.0, 4.0 / 3.0 * k.a};  // beta = -1: smooth, no energy reaches the rotation
@@ -60,10 +66,7 @@ History integrate(const species::Mixture& mix, double translational, double rota
                   bool collision_driven) {
   if (mix.size() != 1 || !mix.rough()) throw std::invalid_argument("theory::rough::integrate: one species of rough spheres");
   const Coefficients k = coefficients(mix.restitution(0, 0), mix.roughness(0, 0), mix.moment_of_inertia[0]);
-  // nu = 4 n sigma^2 chi sqrt(pi T_tr/m) (\ref cm_pair_rate "docs/collision-model.md"), here over sqrt(T_tr)
-  const double sigma = mix.diameter[0];
-  const double nu_unit = 4.0 * mix.number_density[0] * sigma * sigma * mix.pair_correlation(0, 0) *
-                         std::sqrt(std::numbers::pi / mix.mass[0]);
+  const double nu_unit = frequency_unit(mix);
   History h;
   State y{translational, rotational, 0.0};  // (T_tr, T_rot, c or t)
   double x = 0.0;                           // t or c

@@ -36,6 +36,10 @@ struct Coefficients {
 /// The coefficients of one species (header).
 Coefficients coefficients(double alpha, double beta, double kappa);
 
+/// nu_1 = 4 n sigma^2 chi sqrt(pi/m) of one species: the Maxwellian collision frequency is nu_1 sqrt(T_tr)
+/// (\ref cm_pair_rate "docs/collision-model.md").
+double frequency_unit(const species::Mixture& mix);
+
 /// The homogeneous cooling state, Maxwellian approximation (header).
 struct CoolingState {
   double theta;                 ///< T_rot/T_tr

@@ -2,7 +2,6 @@
 // README.md in this folder.
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 
 #include "theory/rough.hpp"
 #include "validation.hpp"
@@ -35,9 +34,7 @@ int main(int argc, char** argv) {
   const bool rough_gas = mix.rough();
   const auto state = theory::rough::driven_state(alpha, rough_gas ? mix.roughness(0, 0) : -1.0,
                                                  rough_gas ? mix.moment_of_inertia[0] : 0.4);
-  const double sigma = mix.diameter[0];
-  const double nu_1 = 4.0 * mix.number_density[0] * sigma * sigma * mix.pair_correlation(0, 0) * std::sqrt(std::numbers::pi / m);
-  const double steady = std::pow(m * chi2 / (state.cooling_rate_reduced * nu_1), 2.0 / 3.0);
+  const double steady = std::pow(m * chi2 / (state.cooling_rate_reduced * theory::rough::frequency_unit(mix)), 2.0 / 3.0);
   const auto c = validation::observable(run, "sonine_c");
   char text[240];
   std::snprintf(text, sizeof text, "T_tr at t = %g: %.5f +- %.5f; Maxwellian energy balance %.5f (not asserted); a2 = c/2 = %.5f +- %.5f",
