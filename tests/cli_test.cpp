@@ -848,7 +848,9 @@ TEST_F(CliTheory, EnskogMixtureShearViscosity) {
 
 // Rough spheres (\ref rough_maxwellian "docs/rough-spheres.md"): the INTERFACE keys rough_hcs.maxwellian {theta,
 // zeta_star} (alpha = 0.9, beta = 0, kappa = 0.4: 0.57379, 0.18757, by hand in tests/rough_test.cpp), the
-// Sonine entry as a string, rotational_temperature on the sample times, and no smooth-sphere key (sonine_a2).
+// Sonine entry {theta, a20, a02, a11, zeta_star} (theory::rough, checked in tests/rough_test.cpp; the values
+// of docs/rough-spheres.md's table), rotational_temperature on the sample times, and no smooth-sphere key
+// (sonine_a2). Where the Sonine state breaks down (alpha = 0.5, beta = -0.5) the entry is a sentence.
 TEST_F(CliTheory, RoughSpheresGiveThetaAndTheRotationalTemperature) {
   write("t.nml",
         "&system mass = 1.0, diameter = 1.0, number_density = 0.01, restitution = 0.9, roughness = 0.0 /\n"
@@ -856,10 +858,58 @@ TEST_F(CliTheory, RoughSpheresGiveThetaAndTheRotationalTemperature) {
   const Result r = run("granular-theory", "t.nml");
   EXPECT_EQ(r.status, 0) << r.err;
   for (const char* key : {"\"rough_hcs\": {\"maxwellian\": {\"theta\": 0.57379", "\"zeta_star\": 0.18756",
-                          "\"sonine\": \"not computed", "\"rotational_temperature\": {\"time\"",
-                          "\"rough_hcs.maxwellian\": \"maxwellian\""})
+                          "\"sonine\": {\"theta\": 0.5528", "\"a20\": -0.0040", "\"a02\": 0.1855", "\"a11\": 0.0647",
+                          "\"zeta_star\": 0.1882", "\"rotational_temperature\": {\"time\"",
+                          "\"rough_hcs.maxwellian\": \"maxwellian\"", "\"rough_hcs.sonine\": \"first_sonine\""})
     EXPECT_NE(r.out.find(key), std::string::npos) << key << " in " << r.out;
   EXPECT_EQ(r.out.find("sonine_a2"), std::string::npos) << r.out;
+  write("t.nml",
+        "&system mass = 1.0, diameter = 1.0, number_density = 0.01, restitution = 0.5, roughness = -0.5 /\n"
+        "&dsmc n_particles = 1000, collisions_per_particle = 10.0 /\n&output n_samples = 3 /\n");
+  const Result broken = run("granular-theory", "t.nml");
+  EXPECT_EQ(broken.status, 0) << broken.err;
+  EXPECT_NE(broken.out.find("\"sonine\": \"the Sonine approximation breaks down here"), std::string::npos) << broken.out;
+  // a binary (validation/rough_spheres/rough_binary.nml's gas): the Maxwellian HCS ratios of theory::rough
+  // (checked in tests/rough_test.cpp), the Sonine entry a sentence
+  write("t.nml",
+        "&system n_species = 2, mass = 1.0, 4.0, diameter = 1.0, 1.5, number_density = 0.006, 0.004, restitution = 0.8,\n"
+        "  roughness = 0.2, moment_of_inertia = 0.4, 0.3 /\n"
+        "&dsmc n_particles = 1000, collisions_per_particle = 10.0 /\n&output n_samples = 3 /\n");
+  const Result binary = run("granular-theory", "t.nml");
+  EXPECT_EQ(binary.status, 0) << binary.err;
+  for (const char* key : {"\"rough_hcs\": {\"maxwellian\": {\"theta\": [0.80597", ", 0.94532",
+                          "\"translational_temperature_over_mean\": [0.87542", "\"sonine\": \"not computed"})
+    EXPECT_NE(binary.out.find(key), std::string::npos) << key << " in " << binary.out;
+}
+
+// White noise (\ref wn_theory "docs/white-noise.md"), alpha = 0.9, n = 0.01, chi^2 = 0.001: the Maxwellian
+// T_tr^(3/2) = 3 m chi^2/((1 - alpha^2) 4 n sigma^2 sqrt(pi/m)) = 0.0157895.../0.0708982... -> T = 0.367413,
+// the Sonine a20 = van Noije and Ernst's -0.0117913 (by hand in tests/rough_test.cpp) and its T_tr (zeta* times
+// 1 + 3 a2/16: T = 0.367413 (1 + 3 a2/16)^(-2/3) = 0.367956), which is the top-level translational_temperature;
+// rough spheres (beta = 0, kappa = 0.4) add theta (Maxwellian B/C = 2/9, Sonine 0.21875).
+TEST_F(CliTheory, WhiteNoiseGivesTheMaxwellianAndSonineStates) {
+  const std::string system = "&system mass = 1.0, diameter = 1.0, number_density = 0.01, restitution = 0.9";
+  const std::string rest = " /\n&thermostat kind = 'white_noise', noise_strength = 0.001 /\n"
+                           "&dsmc n_particles = 1000, t_end = 10.0 /\n&output n_samples = 3 /\n";
+  write("t.nml", system + rest);
+  const Result smooth = run("granular-theory", "t.nml");
+  EXPECT_EQ(smooth.status, 0) << smooth.err;
+  for (const char* key : {"\"white_noise\": {\"maxwellian\": {\"translational_temperature\": 0.36741",
+                          "\"sonine\": {\"translational_temperature\": 0.36795", "\"a20\": -0.011791",
+                          "}, \"translational_temperature\": 0.36795", "\"white_noise.translational_temperature\": \"first_sonine\""})
+    EXPECT_NE(smooth.out.find(key), std::string::npos) << key << " in " << smooth.out;
+  write("t.nml", system + ", roughness = 0.0" + rest);
+  const Result rough = run("granular-theory", "t.nml");
+  EXPECT_EQ(rough.status, 0) << rough.err;
+  for (const char* key : {"\"theta\": 0.22222", "\"theta\": 0.21875", "\"a02\": 0.0218", "\"a11\": 0.0644"})
+    EXPECT_NE(rough.out.find(key), std::string::npos) << key << " in " << rough.out;
+  // elastic: no steady state, said so, and no inf in the JSON
+  write("t.nml", "&system mass = 1.0, diameter = 1.0, number_density = 0.01, restitution = 1.0" + rest);
+  const Result elastic = run("granular-theory", "t.nml");
+  EXPECT_EQ(elastic.status, 0) << elastic.err;
+  EXPECT_EQ(elastic.out.find("white_noise\""), std::string::npos) << elastic.out;
+  EXPECT_EQ(elastic.out.find("inf"), std::string::npos) << elastic.out;
+  EXPECT_NE(elastic.err.find("white noise: no steady state"), std::string::npos) << elastic.err;
 }
 
 TEST_F(CliTheory, AFailedIntegrationNamesTheEndOfTheRun) {

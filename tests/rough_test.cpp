@@ -2,7 +2,9 @@
 // laws, the limits, the input, and a run of the collider on the rule.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "dsmc/collide.hpp"
@@ -253,4 +255,192 @@ TEST(Rough, ObservablesByHand) {
   rule.measure(sys, still);
   EXPECT_EQ(still.rows.at("cumulant_a02").second.at(0), 0.0);
   EXPECT_EQ(still.rows.at("cumulant_a11").second.at(0), 0.0);
+}
+
+// The Sonine collisional moments (theory::rough::collisional_moments; docs/rough-spheres.md#rough_sonine)
+// at alpha = 0.9, beta = 0, kappa = 0.4, theta = 0.5 (h = 2/7, q = 5/2), Maxwellian parts by hand from the
+// Luding coefficients: eta = 1/7, A = 0.0475 + 6/49, B = (1/49)/0.4, C = (1/7)/0.4 (1 - (1/7)/0.4);
+// d<v^2>/dc = 3 dT_tr/dc = 4(-A + B theta) and, with T_tr = 1, T_rot = theta, I = kappa/4,
+// d<w^2>/dc = (3/I) dT_rot/dc = 16 q (B - C theta).
+TEST(Rough, SonineMomentsMaxwellianPartsByHand) {
+  const double a = 0.0475 + 6.0 / 49.0, b = 1.0 / 49.0 / 0.4, c = (1.0 / 7.0) / 0.4 * (1.0 - (1.0 / 7.0) / 0.4);
+  const auto m = theory::rough::collisional_moments(0.9, 0.0, 0.4, 0.5);
+  EXPECT_NEAR(m.v2.zero, 4.0 * (-a + b * 0.5), 1e-13);
+  EXPECT_NEAR(m.w2.zero, 16.0 * 2.5 * (b - c * 0.5), 1e-13);
+  // only the translational cumulants change <v^2> and <w^2> to this order: a02 does not enter
+  EXPECT_EQ(m.v2.a02, 0.0);
+  EXPECT_EQ(m.w2.a02, 0.0);
+}
+
+// beta = -1 (smooth): the rates of <v^2> and <v^4> are the smooth ones, by hand (d<v^2>/dc =
+// -(1 - alpha^2)(1 + 3 a2/16); R_v4 = 2 alpha^4 + 7 alpha^2 - 9 + a2 (30 alpha^4 + 177 alpha^2 - 64 alpha
+// - 271)/16, whose HCS balance R_v4 = 10 R_v2 (1 + a2) gives van Noije and Ernst's a2), the spins are
+// untouched, and the white-noise a2 is van Noije and Ernst's 16(1 - alpha)(1 - 2 alpha^2)/(241 - 177 alpha
+// + 30 alpha^2 - 30 alpha^3) = -0.0117913... at alpha = 0.9 (1.6 (-0.62)/84.13).
+TEST(Rough, SonineSmoothLimitByHand) {
+  for (double alpha : {0.3, 0.7, 0.9}) {
+    const auto m = theory::rough::collisional_moments(alpha, -1.0, 0.4, 0.7);
+    const double a2 = alpha * alpha, a4 = a2 * a2;
+    EXPECT_NEAR(m.v2.zero, -(1.0 - a2), 1e-14);
+    EXPECT_NEAR(m.v2.a20, -3.0 * (1.0 - a2) / 16.0, 1e-14);
+    EXPECT_NEAR(m.v4.zero, 2.0 * a4 + 7.0 * a2 - 9.0, 1e-13);
+    EXPECT_NEAR(m.v4.a20, (30.0 * a4 + 177.0 * a2 - 64.0 * alpha - 271.0) / 16.0, 1e-13);
+    for (const auto* r : {&m.w2, &m.w4}) EXPECT_EQ(r->zero + std::abs(r->a20) + std::abs(r->a02) + std::abs(r->a11), 0.0);
+    // the HCS balance with these rates is van Noije and Ernst's a2
+    const double hcs = -(m.v4.zero - 10.0 * m.v2.zero) / (m.v4.a20 - 10.0 * m.v2.a20 - 10.0 * m.v2.zero);
+    EXPECT_NEAR(hcs, 16.0 * (1.0 - alpha) * (1.0 - 2.0 * a2) / (81.0 - 17.0 * alpha + 30.0 * a2 * (1.0 - alpha)), 1e-13);
+  }
+  const auto wn = theory::rough::sonine_driven_state(0.9, -1.0, 0.4);
+  ASSERT_TRUE(wn.state);
+  EXPECT_NEAR(wn.state->cumulants.a20, 1.6 * (-0.62) / 84.13, 1e-12);
+  EXPECT_NEAR(wn.state->cooling_rate_reduced, 0.19 / 3.0 * (1.0 + 3.0 / 16.0 * 1.6 * (-0.62) / 84.13), 1e-12);
+}
+
+// A second method: the 20 coefficients by Monte Carlo integration of the collision rule written out here
+// (not the generated polynomials): E[Theta(g.e)(g.e) dpsi w_k] (sqrt(pi)/2) with V, g, Omega, delta
+// Gaussian, e = z, the Sonine weights w_k of the header, at alpha = 0.7, beta = 0.3, kappa = 0.4,
+// theta = 0.8. Ensemble 400000 pairs (half of them approach), seed 12; each coefficient within 4.5 of its
+// standard errors (20 comparisons: a false alarm has probability below 1e-4).
+TEST(Rough, SonineMomentsAgreeWithMonteCarlo) {
+  const double alpha = 0.7, beta = 0.3, kappa = 0.4, theta = 0.8, k = kappa / (1.0 + kappa), r2 = 4.0 * theta / kappa;
+  const auto exact = theory::rough::collisional_moments(alpha, beta, kappa, theta);
+  const std::array<const theory::rough::MomentRate*, 5> rates{&exact.v2, &exact.w2, &exact.v4, &exact.w4, &exact.v2w2};
+  std::mt19937_64 gen(12);
+  std::normal_distribution<double> normal;
+  const auto gauss = [&](double variance) { return Vec3{std::sqrt(variance) * normal(gen), std::sqrt(variance) * normal(gen), std::sqrt(variance) * normal(gen)}; };
+  const auto s1 = [](double x) { return 1.5 - x; };
+  const auto s2 = [](double x) { return 15.0 / 8.0 - 2.5 * x + 0.5 * x * x; };
+  const auto psi = [](const Vec3& v1, const Vec3& v2, const Vec3& w1, const Vec3& w2) {
+    const double a = dot(v1, v1), b = dot(v2, v2), c = dot(w1, w1), d = dot(w2, w2);
+    return std::array<double, 5>{a + b, c + d, a * a + b * b, c * c + d * d, a * c + b * d};
+  };
+  constexpr int kSamples = 400000;
+  std::array<std::array<double, 4>, 5> sum{}, sum2{};
+  const Vec3 e{0.0, 0.0, 1.0};
+  for (int i = 0; i < kSamples; ++i) {
+    const Vec3 cm = gauss(0.5), g = gauss(2.0), om = gauss(r2 / 2.0), dl = gauss(2.0 * r2);
+    if (g.z <= 0.0) continue;
+    const Vec3 gc = add(g, cross(e, om), -1.0);  // g - e x (w1 + w2)/2
+    const Vec3 gct = add(gc, e, -gc.z);
+    const Vec3 j = add(Vec3{0.0, 0.0, (1.0 + alpha) * g.z}, gct, (1.0 + beta) * k);
+    const Vec3 ej = cross(e, j);
+    const Vec3 v1 = add(cm, g, 0.5), v2 = add(cm, g, -0.5), w1 = add(om, dl, 0.5), w2 = add(om, dl, -0.5);
+    const auto before = psi(v1, v2, w1, w2);
+    const auto after = psi(add(v1, j, -0.5), add(v2, j, 0.5), add(w1, ej, -1.0 / kappa), add(w2, ej, -1.0 / kappa));
+    const double c1 = dot(v1, v1) / 2.0, c2 = dot(v2, v2) / 2.0, x1 = dot(w1, w1) / (2.0 * r2), x2 = dot(w2, w2) / (2.0 * r2);
+    const std::array<double, 4> weight{1.0, s2(c1) + s2(c2), s2(x1) + s2(x2), s1(c1) * s1(x1) + s1(c2) * s1(x2)};
+    for (std::size_t p = 0; p < 5; ++p)
+      for (std::size_t w = 0; w < 4; ++w) {
+        const double y = std::sqrt(M_PI) / 2.0 * g.z * (after[p] - before[p]) * weight[w];
+        sum[p][w] += y;
+        sum2[p][w] += y * y;
+      }
+  }
+  for (std::size_t p = 0; p < 5; ++p) {
+    const std::array<double, 4> value{rates[p]->zero, rates[p]->a20, rates[p]->a02, rates[p]->a11};
+    for (std::size_t w = 0; w < 4; ++w) {
+      const double mean = sum[p][w] / kSamples, se = std::sqrt((sum2[p][w] / kSamples - mean * mean) / kSamples);
+      EXPECT_LE(std::abs(mean - value[w]), 4.5 * se + 1e-12) << "moment " << p << " weight " << w << ": exact " << value[w]
+                                                             << ", Monte Carlo " << mean << " +- " << se;
+    }
+  }
+}
+
+// The elastic perfectly rough gas (alpha = beta = 1) is in equilibrium: the Sonine HCS is theta = 1 with
+// every cumulant 0 and no cooling. Where the cumulants would exceed 1 (HCS alpha = 0.5, beta = -0.5,
+// kappa = 0.4: a02 about 20) the theory gives a reason, not numbers.
+TEST(Rough, SonineEquilibriumAndBreakdown) {
+  const auto eq = theory::rough::sonine_cooling_state(1.0, 1.0, 0.4);
+  ASSERT_TRUE(eq.state) << eq.why_not;
+  EXPECT_NEAR(eq.state->theta, 1.0, 1e-12);
+  EXPECT_NEAR(eq.state->cumulants.a20, 0.0, 1e-12);
+  EXPECT_NEAR(eq.state->cumulants.a02, 0.0, 1e-12);
+  EXPECT_NEAR(eq.state->cumulants.a11, 0.0, 1e-12);
+  EXPECT_NEAR(eq.state->cooling_rate_reduced, 0.0, 1e-12);
+  const auto broken = theory::rough::sonine_cooling_state(0.5, -0.5, 0.4);
+  EXPECT_FALSE(broken.state);
+  EXPECT_NE(broken.why_not.find("breaks down"), std::string::npos) << broken.why_not;
+  EXPECT_FALSE(theory::rough::sonine_cooling_state(0.9, -1.0, 0.4).state);  // smooth: not this theory
+}
+
+// Mixtures, Maxwellian (theory::rough::pair_energy_rates; docs/rough-spheres.md#rough_mixtures): the closed
+// form against a Monte Carlo average of the DSMC's own rule (RoughRule::collide) over Maxwellian pairs at
+// unequal temperatures, masses 1 and 3, diameters 1 and 2, kappa 0.4 and 0.25, alpha 0.8, beta 0.3:
+// 4 pi E[Theta(g.e)(g.e) dE] with e = z, for both orders of every pair (8 values). Ensemble 400000 pairs,
+// seed 13; each within 4.5 standard errors.
+TEST(Rough, MixtureEnergyRatesAgreeWithMonteCarloOfTheRule) {
+  const auto mix = rough_mixture({1.0, 3.0}, {1.0, 2.0}, 0.8, 0.3, {0.4, 0.25});
+  const rules::RoughRule rule(mix);
+  const std::vector<double> t{1.0, 1.7}, r{0.6, 1.2};
+  auto gen = rng::make_stream(13, 0, rng::Purpose::sampling);
+  const auto maxwell = [&](double variance) {
+    const double s = std::sqrt(variance);
+    return Vec3{s * gen.normal(), s * gen.normal(), s * gen.normal()};
+  };
+  for (std::size_t a = 0; a < 2; ++a)
+    for (std::size_t b = 0; b < 2; ++b) {
+      const auto exact = theory::rough::pair_energy_rates(mix, a, b, t, r);
+      constexpr int kSamples = 400000;
+      double sum_t = 0.0, sum2_t = 0.0, sum_r = 0.0, sum2_r = 0.0;
+      for (int i = 0; i < kSamples; ++i) {
+        Vec3 va = maxwell(t[a] / mix.mass[a]), vb = maxwell(t[b] / mix.mass[b]);
+        Vec3 wa = maxwell(r[a] / mix.inertia(a)), wb = maxwell(r[b] / mix.inertia(b));
+        const double g_e = va.z - vb.z;
+        if (g_e <= 0.0) continue;
+        const double ta = 0.5 * mix.mass[a] * dot(va, va), ra = 0.5 * mix.inertia(a) * dot(wa, wa);
+        rules::RoughRule::collide(va, vb, wa, wb, rule.pair(a, b), {0.0, 0.0, 1.0, g_e, 0.0, 0.0, 1.0});
+        const double dt = 4.0 * M_PI * g_e * (0.5 * mix.mass[a] * dot(va, va) - ta);
+        const double dr = 4.0 * M_PI * g_e * (0.5 * mix.inertia(a) * dot(wa, wa) - ra);
+        sum_t += dt, sum2_t += dt * dt, sum_r += dr, sum2_r += dr * dr;
+      }
+      const auto compare = [&](double sum, double sum2, double value, const char* what) {
+        const double mean = sum / kSamples, se = std::sqrt((sum2 / kSamples - mean * mean) / kSamples);
+        EXPECT_LE(std::abs(mean - value), 4.5 * se) << what << " of " << a << " with " << b << ": closed form " << value
+                                                    << ", Monte Carlo " << mean << " +- " << se;
+      };
+      compare(sum_t, sum2_t, exact.translational, "translational");
+      compare(sum_r, sum2_r, exact.rotational, "rotational");
+    }
+}
+
+// One species is the closed form of cooling_state (theta), and two equal species split from it keep
+// T_1 = T_2 and the same theta: the mixture solver by hand against the one-species closed form.
+TEST(Rough, MixtureCoolingStateReducesToOneSpecies) {
+  for (const double beta : {-0.5, 0.0, 0.9}) {
+    const auto one = theory::rough::cooling_state(0.7, beta, 0.4);
+    const auto single = theory::rough::mixture_cooling_state(rough_mixture({1.0}, {1.0}, 0.7, beta, {0.4}));
+    ASSERT_EQ(single.theta.size(), 1u);
+    EXPECT_NEAR(single.theta[0], one.theta, 1e-8 * one.theta);
+    EXPECT_NEAR(single.translational_over_mean[0], 1.0, 1e-12);
+    const auto split = theory::rough::mixture_cooling_state(rough_mixture({1.0, 1.0}, {1.0, 1.0}, 0.7, beta, {0.4, 0.4}));
+    ASSERT_EQ(split.theta.size(), 2u);
+    for (std::size_t k = 0; k < 2; ++k) {
+      EXPECT_NEAR(split.theta[k], one.theta, 1e-8 * one.theta);
+      EXPECT_NEAR(split.translational_over_mean[k], 1.0, 1e-10);
+    }
+  }
+}
+
+// The Maxwellian equations of a mixture (integrate_mixture) are those of one species for one species, and
+// for two equal species split from it (the same sums, another order of the terms).
+TEST(Rough, MixtureHistoryReducesToOneSpecies) {
+  const auto mix = rough_mixture({1.0}, {1.0}, 0.8, 0.2, {0.4});
+  const std::vector<double> times{0.1, 1.0, 5.0};
+  for (const bool by_collisions : {true, false}) {
+    const auto one = theory::rough::integrate(mix, 1.0, 2.0, times, by_collisions);
+    const auto many = theory::rough::integrate_mixture(mix, {1.0}, {2.0}, times, by_collisions);
+    const auto split = theory::rough::integrate_mixture(rough_mixture({1.0, 1.0}, {1.0, 1.0}, 0.8, 0.2, {0.4, 0.4}), {1.0, 1.0},
+                                                        {2.0, 2.0}, times, by_collisions);
+    for (std::size_t i = 0; i < times.size(); ++i) {
+      EXPECT_NEAR(many.translational[i][0], one.translational[i], 1e-12);
+      EXPECT_NEAR(many.rotational[i][0], one.rotational[i], 1e-12);
+      EXPECT_NEAR(many.time[i], one.time[i], 1e-9 * one.time[i]);
+      EXPECT_NEAR(many.collisions_per_particle[i], one.collisions_per_particle[i], 1e-9 * one.collisions_per_particle[i]);
+      // two species of density 0.01 each: twice the collision rate per unit time, the same per collision
+      if (by_collisions) {
+        EXPECT_NEAR(split.translational[i][1], one.translational[i], 1e-12);
+        EXPECT_NEAR(split.rotational[i][0], one.rotational[i], 1e-12);
+      }
+    }
+  }
 }

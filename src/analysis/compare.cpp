@@ -184,10 +184,26 @@ void add_free_cooling(Point& pt, const io::config::Config& config, const analysi
   }
 }
 
+/// zeta* = zeta/nu_M of the last two samples of T(t), as the HCS has it: dT/dt = -zeta* nu_unit T^(3/2), so
+/// zeta* = 2 (T_b^(-1/2) - T_a^(-1/2))/(nu_unit (t_b - t_a)) (\ref rough_observables "docs/rough-spheres.md"),
+/// with its error from the two temperatures' errors taken as independent (the times' errors neglected).
+std::optional<std::pair<double, double>> measured_zeta_star(const io::h5md::ObservableData& tr, double nu_unit) {
+  const std::size_t n = tr.value.size();
+  if (n < 2 || tr.time.size() != n || !(nu_unit > 0.0)) return std::nullopt;
+  const double ta = tr.value[n - 2], tb = tr.value[n - 1], dt = tr.time[n - 1] - tr.time[n - 2];
+  if (!(ta > 0.0) || !(tb > 0.0) || !(dt > 0.0)) return std::nullopt;
+  const double zeta = 2.0 * (1.0 / std::sqrt(tb) - 1.0 / std::sqrt(ta)) / (nu_unit * dt);
+  if (tr.error.size() != n) return std::pair{zeta, kNaN};
+  const double da = 0.5 * std::pow(ta, -1.5) * tr.error[n - 2], db = 0.5 * std::pow(tb, -1.5) * tr.error[n - 1];
+  return std::pair{zeta, 2.0 * std::sqrt(da * da + db * db) / (nu_unit * dt)};
+}
+
 /// Rough spheres of one species (\ref rough_maxwellian "docs/rough-spheres.md"): T_tr(t) and T_rot(t) of the
 /// Maxwellian two-temperature equations, the collision count (or times), and theta = T_rot/T_tr at the last
-/// sample beside the Maxwellian HCS value. No allowance is stated: the Maxwellian theory omits the cumulants
-/// a20, a02, a11 (validation/rough_spheres measures its gap; no independent estimate of it is in the code).
+/// sample beside the Maxwellian HCS value, and (where the Sonine state exists) theta, zeta*, a20, a02, a11
+/// beside the Sonine HCS (theory/rough.hpp). No allowance is stated: the Maxwellian theory omits the
+/// cumulants, the Sonine theory the higher ones (validation/rough_spheres measures the gaps; no independent
+/// estimate of them is in the code).
 void add_rough(Point& pt, const analysis::Predictions& p, const Measured& m, bool time_driven) {
   const std::size_t nt = p.time.size();
   const std::string source = std::string(kNone) + " (the Maxwellian two-temperature theory omits a20, a02, a11; "
@@ -212,10 +228,102 @@ void add_rough(Point& pt, const analysis::Predictions& p, const Measured& m, boo
   // delta method, the two errors taken as independent (an approximation: they are correlated)
   const double er = rot.error.empty() ? kNaN : rot.error.back(), et = tr.error.empty() ? kNaN : tr.error.back();
   const double error = theta * std::sqrt((er / r) * (er / r) + (et / t) * (et / t));
-  Quantity q{"theta", "T_rot/T_tr", "maxwellian", source + "; the HCS value, reached only after the relaxation", {}, 1,
-             {theta}, {error}, {p.rough_hcs_maxwellian->theta}, {kNaN}};
-  q.at = "last sample";
-  pt.quantities.push_back(std::move(q));
+  const auto last = [&](const char* name, const char* label, const char* approximation, const std::string& known,
+                        double value, double value_error, double theory, double known_error = kNaN) {
+    Quantity q{name, label, approximation, known + "; the HCS value, reached only after the relaxation", {}, 1,
+               {value}, {value_error}, {theory}, {known_error}};
+    q.at = "last sample";
+    pt.quantities.push_back(std::move(q));
+  };
+  last("theta", "T_rot/T_tr", "maxwellian", source, theta, error, p.rough_hcs_maxwellian->theta);
+  const auto zeta = measured_zeta_star(tr, p.rough_unit_frequency);
+  if (zeta) last("zeta_star", "zeta/nu_M", "maxwellian", source, zeta->first, zeta->second, p.rough_zeta_star);
+  const auto& sonine = p.rough_hcs_sonine;
+  if (!sonine || !sonine->state)
+    return pt.notes.push_back("theta_sonine, cumulants, zeta_star_sonine not compared: " +
+                              (sonine ? sonine->why_not : std::string("no Sonine theory")));
+  const std::string sonine_source = std::string(kNone) + " (the first Sonine theory: its gap grows with a02, "
+                                                         "docs/rough-spheres.md)";
+  const std::string bound_source = "|Sonine - Maxwellian|: the size of the Sonine correction bounds the neglected terms "
+                                   "(docs/rough-spheres.md, validation/rough_spheres)";
+  const auto& st = *sonine->state;
+  last("theta_sonine", "T_rot/T_tr", "first_sonine", bound_source, theta, error, st.theta,
+       std::abs(st.theta - p.rough_hcs_maxwellian->theta));
+  if (zeta)
+    last("zeta_star_sonine", "zeta/nu_M", "first_sonine", bound_source, zeta->first, zeta->second, st.cooling_rate_reduced,
+         std::abs(st.cooling_rate_reduced - p.rough_zeta_star));
+  for (const auto& [name, value] : {std::pair{"cumulant_a20", st.cumulants.a20}, std::pair{"cumulant_a02", st.cumulants.a02},
+                                    std::pair{"cumulant_a11", st.cumulants.a11}}) {
+    if (!m.has(name)) continue;
+    const auto& o = m.observables.at(name);
+    if (o.value.empty()) continue;
+    last(name, name + 9, "first_sonine", sonine_source, o.value.back(), o.error.empty() ? kNaN : o.error.back(), value);
+  }
+}
+
+/// Rough mixtures (\ref rough_mixtures "docs/rough-spheres.md"): T_k/T (translational) and theta_k = T_rot,k/T_k at
+/// the last sample beside the Maxwellian HCS; errors by the delta method with the errors taken as independent.
+void add_rough_mixture(Point& pt, const theory::rough::MixtureCoolingState& hcs, const Measured& m) {
+  if (!m.has("temperature") || !m.has("rotational_temperature") || !m.has("total_temperature"))
+    return pt.notes.push_back("rough mixture HCS not compared: temperatures missing from the file");
+  const auto& t = m.observables.at("temperature");
+  const auto& r = m.observables.at("rotational_temperature");
+  const auto& total = m.observables.at("total_temperature");
+  const std::size_t s = hcs.theta.size();
+  if (t.value.size() < s || r.value.size() != t.value.size() || total.value.empty()) return;
+  const std::size_t row = t.value.size() - s;  // the last sample
+  const double mean = total.value.back(), mean_error = total.error.empty() ? kNaN : total.error.back();
+  Quantity share{"rough_temperature_over_mean", "T_k/T", "maxwellian", std::string(kNone) + " (the Maxwellian HCS of rough mixtures)",
+                 {}, s, {}, {}, hcs.translational_over_mean, std::vector<double>(s, kNaN)};
+  Quantity theta{"rough_theta", "T_rot,k/T_k", "maxwellian", std::string(kNone) + " (the Maxwellian HCS of rough mixtures)",
+                 {}, s, {}, {}, hcs.theta, std::vector<double>(s, kNaN)};
+  for (std::size_t k = 0; k < s; ++k) {
+    const double tk = t.value[row + k], rk = r.value[row + k];
+    const double et = t.error.empty() ? kNaN : t.error[row + k], er = r.error.empty() ? kNaN : r.error[row + k];
+    share.value.push_back(tk / mean);
+    share.error.push_back(tk / mean * std::hypot(et / tk, mean_error / mean));
+    theta.value.push_back(rk / tk);
+    theta.error.push_back(rk / tk * std::hypot(er / rk, et / tk));
+  }
+  share.at = theta.at = "last sample";
+  pt.quantities.push_back(std::move(share));
+  pt.quantities.push_back(std::move(theta));
+}
+
+/// The white-noise steady state of one species (\ref wn_theory "docs/white-noise.md"): T_tr beside the Sonine
+/// value (the Maxwellian one where there is none) and the Sonine theta and cumulants (smooth spheres: a20 =
+/// sonine_c/2), at the last sample.
+void add_white_noise(Point& pt, const analysis::Predictions::WhiteNoise& w, const Measured& m) {
+  const auto last = [&](const std::string& name, const std::string& label, const char* approximation, double value,
+                        double error, double theory) {
+    Quantity q{name, label, approximation,
+               std::string(kNone) + " (the " + approximation + " theory of the driven gas; docs/white-noise.md)", {}, 1,
+               {value}, {error}, {theory}, {kNaN}};
+    q.at = "last sample";
+    pt.quantities.push_back(std::move(q));
+  };
+  const auto final_value = [&](const char* name, double scale) -> std::optional<std::pair<double, double>> {
+    if (!m.has(name) || m.observables.at(name).value.empty()) return std::nullopt;
+    const auto& o = m.observables.at(name);
+    return std::pair{scale * o.value.back(), o.error.empty() ? kNaN : scale * o.error.back()};
+  };
+  const auto* st = w.sonine.state ? &*w.sonine.state : nullptr;
+  if (const auto t = final_value("total_temperature", 1.0))
+    last("white_noise_temperature", "T_tr", st ? "first_sonine" : "maxwellian", t->first, t->second,
+         st ? *w.sonine_temperature : w.translational_temperature);
+  if (!st) return pt.notes.push_back("white noise cumulants not compared: " + w.sonine.why_not);
+  const auto rough = m.has("cumulant_a20");
+  if (const auto a = rough ? final_value("cumulant_a20", 1.0) : final_value("sonine_c", 0.5))
+    last("white_noise_a20", "a20", "first_sonine", a->first, a->second, st->cumulants.a20);
+  if (!rough || !w.theta) return;
+  const auto tr = final_value("total_temperature", 1.0), rot = final_value("rotational_temperature", 1.0);
+  if (tr && rot) {
+    const double theta = rot->first / tr->first;
+    const double error = theta * std::hypot(rot->second / rot->first, tr->second / tr->first);  // independent errors
+    last("white_noise_theta", "T_rot/T_tr", "first_sonine", theta, error, st->theta);
+  }
+  if (const auto a = final_value("cumulant_a02", 1.0)) last("white_noise_a02", "a02", "first_sonine", a->first, a->second, st->cumulants.a02);
+  if (const auto a = final_value("cumulant_a11", 1.0)) last("white_noise_a11", "a11", "first_sonine", a->first, a->second, st->cumulants.a11);
 }
 
 /// The MSD (Bodrova and Osinsky 2024, eq. (17), \ref dif_msd "docs/diffusion-msd.md") and D_k/D_1 over the last decade of time (validation/diffusion_ratio).
@@ -421,7 +529,7 @@ double shear_viscosity_known_error(const species::Mixture& mix) {
 Measured read_measured(const std::string& file, const std::string& root) {
   Measured m;
   for (const char* name : {"total_temperature", "temperature", "sonine_c", "collisions_per_particle", "time", "msd",
-                           "number", "mean_size", "rotational_temperature"}) {
+                           "number", "mean_size", "rotational_temperature", "cumulant_a20", "cumulant_a02", "cumulant_a11"}) {
     try {
       m.observables.emplace(name, io::h5md::read_observable(file, root + "/" + name));
     } catch (const std::runtime_error&) {
@@ -457,18 +565,12 @@ Point compare_point(const io::config::Config& config, const analysis::Prediction
   } else {
     if (p.has_history && config.rough()) add_rough(pt, p, m, config.dsmc.t_end.has_value());
     else if (p.has_history) add_free_cooling(pt, config, p, m);
+    if (p.rough_mixture_hcs && config.thermostat.kind == io::config::ThermostatKind::none)  // the free-cooling state
+      add_rough_mixture(pt, *p.rough_mixture_hcs, m);
     const bool hss = config.thermostat.kind == io::config::ThermostatKind::gaussian && !config.shear.rate;
     if ((!config.staged() || hss) && p.hcs_first_sonine) add_scaling_state(pt, config, p, m);
     if (config.output.track_displacements) add_diffusion(pt, config, p, m);
-    if (p.white_noise && m.has("total_temperature")) {  // \ref wn_theory "docs/white-noise.md": the steady T_tr
-      const auto& o = m.observables.at("total_temperature");
-      Quantity q{"white_noise_temperature", "T_tr", "maxwellian",
-                 std::string(kNone) + " (the Maxwellian energy balance omits a2; docs/white-noise.md)", {}, 1,
-                 {o.value.back()}, {o.error.empty() ? kNaN : o.error.back()}, {p.white_noise->translational_temperature},
-                 {kNaN}};
-      q.at = "last sample";
-      pt.quantities.push_back(std::move(q));
-    }
+    if (p.white_noise) add_white_noise(pt, *p.white_noise, m);
     if (config.shear.rate) {
       const auto eta = m.attributes.find("shear_viscosity@time_average");
       if (config.thermostat.kind != io::config::ThermostatKind::gaussian) {

@@ -336,7 +336,13 @@ Predictions predict_rough(const io::config::Config& config) {
   out.notes.push_back("rough spheres: the smooth-sphere theory (Sonine a2, temperature ratios, diffusion, viscosity) "
                       "is left out");
   if (s != 1) {
-    out.notes.push_back("rough mixtures: no temperature theory here yet (Santos, Kremer and Garzo 2010)");
+    out.notes.push_back("rough mixtures: the Maxwellian HCS only (T_k/T, theta_k); no history, no Sonine theory");
+    auto hcs = rough::mixture_cooling_state(mix);
+    if (hcs.theta.empty()) out.notes.push_back("rough mixtures: the Maxwellian HCS did not settle");
+    else {
+      out.rough_mixture_hcs = std::move(hcs);
+      out.approximations.emplace_back("rough_hcs.maxwellian", "maxwellian");
+    }
     return out;
   }
   const double t_tr = config.initial.temperature[0], t_rot = config.initial.rotational_temperature[0];
@@ -350,6 +356,9 @@ Predictions predict_rough(const io::config::Config& config) {
   out.final_temperature = {h.translational.back()};
   out.rough_hcs_maxwellian = rough::cooling_state(mix.restitution(0, 0), mix.roughness(0, 0), mix.moment_of_inertia[0]);
   out.rough_zeta_star = mix.pair_correlation(0, 0) * out.rough_hcs_maxwellian->cooling_rate_reduced;
+  out.rough_unit_frequency = rough::frequency_unit(mix) / mix.pair_correlation(0, 0);
+  out.rough_hcs_sonine = rough::sonine_cooling_state(mix.restitution(0, 0), mix.roughness(0, 0), mix.moment_of_inertia[0]);
+  if (auto& st = out.rough_hcs_sonine->state) st->cooling_rate_reduced *= mix.pair_correlation(0, 0);
   out.has_history = true;
   out.time = h.time;
   for (std::size_t i = 0; i < h.time.size(); ++i) out.temperature.push_back({h.translational[i]});
@@ -359,11 +368,13 @@ Predictions predict_rough(const io::config::Config& config) {
   for (const char* key : {"temperature", "total_temperature", "collisions_per_particle", "rotational_temperature",
                           "rough_hcs.maxwellian"})
     out.approximations.emplace_back(key, "maxwellian");
+  out.approximations.emplace_back("rough_hcs.sonine", "first_sonine");
   return out;
 }
 
 /// The white-noise steady state of one species (\ref wn_theory "docs/white-noise.md"): T_tr^(3/2) =
-/// m chi^2 / ((4/3)(A - B theta) nu_1), nu = nu_1 sqrt(T_tr), nu_1 = 4 n sigma^2 chi sqrt(pi/m).
+/// m chi^2 / (zeta* nu_1), nu = nu_1 sqrt(T_tr), nu_1 = 4 n sigma^2 chi sqrt(pi/m), zeta* = (4/3)(A - B theta)
+/// (Maxwellian) or the Sonine state's (theory/rough.hpp).
 void add_white_noise(Predictions& out, const io::config::Config& config, const species::Mixture& mix) {
   if (mix.size() != 1) {
     out.notes.push_back("white noise: no theory for mixtures yet");
@@ -372,13 +383,24 @@ void add_white_noise(Predictions& out, const io::config::Config& config, const s
   const bool rough_gas = mix.rough();
   const auto state = rough::driven_state(mix.restitution(0, 0), rough_gas ? mix.roughness(0, 0) : -1.0,
                                          rough_gas ? mix.moment_of_inertia[0] : 0.4);
+  if (!(state.cooling_rate_reduced > 0.0)) {  // alpha = 1 and beta = +-1: nothing balances the kicks
+    out.notes.push_back("white noise: no steady state (the collisions lose no energy: T_tr grows as T(0) + m chi^2 t)");
+    return;
+  }
   const double m = mix.mass[0];
+  const auto steady_temperature = [&](double cooling_rate_reduced) {
+    return std::pow(m * config.thermostat.noise_strength[0] / (cooling_rate_reduced * rough::frequency_unit(mix)), 2.0 / 3.0);
+  };
   Predictions::WhiteNoise w;
-  w.translational_temperature =
-      std::pow(m * config.thermostat.noise_strength[0] / (state.cooling_rate_reduced * rough::frequency_unit(mix)), 2.0 / 3.0);
+  w.translational_temperature = steady_temperature(state.cooling_rate_reduced);
   if (rough_gas) w.theta = state.theta;
+  w.sonine = rough::sonine_driven_state(mix.restitution(0, 0), rough_gas ? mix.roughness(0, 0) : -1.0,
+                                        rough_gas ? mix.moment_of_inertia[0] : 0.4);
+  if (w.sonine.state) w.sonine_temperature = steady_temperature(w.sonine.state->cooling_rate_reduced);
   out.white_noise = w;
   out.approximations.emplace_back("white_noise.maxwellian", "maxwellian");
+  out.approximations.emplace_back("white_noise.sonine", "first_sonine");
+  out.approximations.emplace_back("white_noise.translational_temperature", w.sonine_temperature ? "first_sonine" : "maxwellian");
   if (out.sonine_a2 || out.hcs_first_sonine)
     out.notes.push_back("white noise: the hcs and sonine keys describe the free cooling of the same gas, not this driven state");
 }

@@ -87,11 +87,22 @@ struct Predictions {
   /// zeta_tr/nu_M of that state, nu_M = 4 sqrt(pi) n sigma^2 sqrt(T_tr/m) without chi (INTERFACE's zeta_star):
   /// chi times its cooling_rate_reduced.
   double rough_zeta_star = 0.0;
+  double rough_unit_frequency = 0.0;  ///< nu_M/sqrt(T_tr) = 4 sqrt(pi) n sigma^2/sqrt(m), one rough species
+  /// Rough spheres of one species: the Sonine HCS (theta, a20, a02, a11, zeta_tr/nu_M without chi), or why
+  /// it does not exist (theory/rough.hpp sonine_cooling_state).
+  std::optional<theory::rough::SonineResult> rough_hcs_sonine;
+  /// Rough mixtures: the Maxwellian HCS, T_k/T (translational) and theta_k = T_rot,k/T_k
+  /// (theory/rough.hpp mixture_cooling_state).
+  std::optional<theory::rough::MixtureCoolingState> rough_mixture_hcs;
   std::vector<double> rotational_temperature;  ///< rough, one species: T_rot on the sample times (has_history)
   /// &thermostat kind = 'white_noise', one species: the Maxwellian steady T_tr (and theta for rough spheres).
   struct WhiteNoise {
     double translational_temperature = 0.0;  ///< m chi^2 = nu(T) (4/3)(A - B theta) T
     std::optional<double> theta;             ///< rough spheres: B/C
+    /// The Sonine state (theory/rough.hpp sonine_driven_state; smooth spheres: a20 = a2 of van Noije and
+    /// Ernst) and its T_tr from m chi^2 = nu(T) zeta* T, or why there is none.
+    theory::rough::SonineResult sonine;
+    std::optional<double> sonine_temperature;  ///< T_tr of the Sonine state
   };
   std::optional<WhiteNoise> white_noise;     ///< (theory/rough.hpp driven_state)
   /// key -> "maxwellian", "first_sonine", "exact", ... for every key present, in print order.

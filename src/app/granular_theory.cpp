@@ -44,10 +44,13 @@ const char* kUsage =
     "                       when &output track_displacements = .true. (not with msd_start_temperature)\n"
     "With &system roughness (rough spheres, docs/rough-spheres.md), one species: temperature is T_tr, and\n"
     "  rotational_temperature {time, value} T_rot of the Maxwellian two-temperature equations; rough_hcs\n"
-    "                       {maxwellian: {theta, zeta_star}, sonine: why not} theta = T_rot/T_tr and\n"
-    "                       zeta_tr/nu_M (nu_M = 4 sqrt(pi) n sigma^2 sqrt(T_tr/m)) of the HCS\n"
+    "                       {maxwellian: {theta, zeta_star}, sonine: {theta, a20, a02, a11, zeta_star} or why\n"
+    "                       not} theta = T_rot/T_tr, zeta_tr/nu_M (nu_M = 4 sqrt(pi) n sigma^2 sqrt(T_tr/m)), cumulants\n"
+    "                       of the HCS (Sonine: Santos, Kremer and dos Santos 2011); mixtures: rough_hcs {maxwellian:\n"
+    "                       {theta: [T_rot,k/T_k], translational_temperature_over_mean: [T_k/T]}, sonine: why not}\n"
     "With &thermostat kind = 'white_noise' (docs/white-noise.md), one species: white_noise {maxwellian:\n"
-    "                       {translational_temperature[, theta]}, sonine: why not, translational_temperature}\n"
+    "                       {translational_temperature[, theta]}, sonine: {translational_temperature[, theta],\n"
+    "                       a20[, a02, a11]} or why not, translational_temperature (Sonine where it exists)}\n"
     "With &agg_frag (docs/agg-frag.md), the Smoluchowski rate equations with Maxwellian kernels instead:\n"
     "  number, temperature  {time, value[t][k]} per cluster size k (number: N_k for the run's n_particles)\n"
     "  total_temperature, kinetic_energy, mean_size, monomer_fraction, collisions, aggregations,\n"
@@ -165,18 +168,37 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
            << array(p.rotational_temperature) << "}";
   }
   if (p.white_noise) {
+    const auto& w = *p.white_noise;
     json << ",\n" << in << "\"white_noise\": {\"maxwellian\": {\"translational_temperature\": "
-         << number(p.white_noise->translational_temperature);
-    if (p.white_noise->theta) json << ", \"theta\": " << number(*p.white_noise->theta);
-    json << "}, \"sonine\": \"not computed: the first-Sonine theory of the driven gas is not implemented in this "
-            "version\", \"translational_temperature\": "
-         << number(p.white_noise->translational_temperature) << "}";
+         << number(w.translational_temperature);
+    if (w.theta) json << ", \"theta\": " << number(*w.theta);
+    json << "}, \"sonine\": ";
+    if (const auto& st = w.sonine.state) {
+      json << "{\"translational_temperature\": " << number(*w.sonine_temperature);
+      if (w.theta) json << ", \"theta\": " << number(st->theta);
+      json << ", \"a20\": " << number(st->cumulants.a20);
+      if (w.theta) json << ", \"a02\": " << number(st->cumulants.a02) << ", \"a11\": " << number(st->cumulants.a11);
+      json << "}";
+    } else {
+      json << "\"" << escape(w.sonine.why_not) << "\"";
+    }
+    json << ", \"translational_temperature\": " << number(w.sonine_temperature.value_or(w.translational_temperature)) << "}";
   }
-  if (p.rough_hcs_maxwellian)
+  if (p.rough_hcs_maxwellian) {
     json << ",\n" << in << "\"rough_hcs\": {\"maxwellian\": {\"theta\": " << number(p.rough_hcs_maxwellian->theta)
-         << ", \"zeta_star\": " << number(p.rough_zeta_star)
-         << "}, \"sonine\": \"not computed: the Sonine theory of rough spheres (Santos, Kremer and dos Santos 2011) is "
-            "not implemented in this version\"}";
+         << ", \"zeta_star\": " << number(p.rough_zeta_star) << "}, \"sonine\": ";
+    if (const auto& st = p.rough_hcs_sonine ? p.rough_hcs_sonine->state : std::nullopt)
+      json << "{\"theta\": " << number(st->theta) << ", \"a20\": " << number(st->cumulants.a20) << ", \"a02\": "
+           << number(st->cumulants.a02) << ", \"a11\": " << number(st->cumulants.a11) << ", \"zeta_star\": "
+           << number(st->cooling_rate_reduced) << "}";
+    else
+      json << "\"" << escape(p.rough_hcs_sonine ? p.rough_hcs_sonine->why_not : std::string("not computed")) << "\"";
+    json << "}";
+  }
+  if (p.rough_mixture_hcs)
+    json << ",\n" << in << "\"rough_hcs\": {\"maxwellian\": {\"theta\": " << array(p.rough_mixture_hcs->theta)
+         << ", \"translational_temperature_over_mean\": " << array(p.rough_mixture_hcs->translational_over_mean)
+         << "}, \"sonine\": \"not computed: the Sonine theory of rough mixtures is not implemented\"}";
   json << ",\n" << in << "\"diffusion_coefficient_ratio\": " << array(p.diffusion_coefficient_ratio);
   if (p.msd) {
     json << ",\n" << in << "\"msd\": {\"time\": " << array(p.msd->time) << ", \"value\": [";
