@@ -910,6 +910,25 @@ TEST_F(CliTheory, WhiteNoiseGivesTheMaxwellianAndSonineStates) {
   EXPECT_EQ(elastic.out.find("white_noise\""), std::string::npos) << elastic.out;
   EXPECT_EQ(elastic.out.find("inf"), std::string::npos) << elastic.out;
   EXPECT_NE(elastic.err.find("white noise: no steady state"), std::string::npos) << elastic.err;
+  // a binary (docs/white-noise.md's measured mixture): the Maxwellian T_k of theory::rough::mixture_driven_state
+  // (checked in tests/rough_test.cpp), arrays, the Sonine entry a sentence
+  write("t.nml", "&system n_species = 2, mass = 1.0, 4.0, diameter = 1.0, 1.5, number_density = 0.006, 0.004, "
+                 "restitution = 0.8" + rest);
+  const Result binary = run("granular-theory", "t.nml");
+  EXPECT_EQ(binary.status, 0) << binary.err;
+  for (const char* key : {"\"white_noise\": {\"maxwellian\": {\"translational_temperature\": [0.17951", ", 0.15857",
+                          "\"sonine\": \"not computed"})
+    EXPECT_NE(binary.out.find(key), std::string::npos) << key << " in " << binary.out;
+  // elastic and perfectly rough: no loss either, whatever kappa (round-off must not make a steady state)
+  for (const char* kappa : {"0.1", "0.4", "0.6666666666666666"}) {
+    write("t.nml", "&system mass = 1.0, diameter = 1.0, number_density = 0.01, restitution = 1.0, roughness = 1.0, "
+                   "moment_of_inertia = " + std::string(kappa) + rest);
+    const Result rough_elastic = run("granular-theory", "t.nml");
+    EXPECT_EQ(rough_elastic.status, 0) << rough_elastic.err;
+    EXPECT_EQ(rough_elastic.out.find("white_noise\""), std::string::npos) << kappa << ": " << rough_elastic.out;
+    EXPECT_EQ(rough_elastic.out.find("nan"), std::string::npos) << kappa << ": " << rough_elastic.out;
+    EXPECT_EQ(rough_elastic.out.find("inf"), std::string::npos) << kappa << ": " << rough_elastic.out;
+  }
 }
 
 TEST_F(CliTheory, AFailedIntegrationNamesTheEndOfTheRun) {

@@ -444,3 +444,95 @@ TEST(Rough, MixtureHistoryReducesToOneSpecies) {
     }
   }
 }
+
+// The mixture HCS where it is not a plain fixed point: elastic and perfectly rough (equipartition, exactly),
+// a species whose spins touch nothing (beta = -1 with every species: a reason, no NaN), and a hard case for
+// the solver (20 species, masses 1..2, quasi-smooth beta = -0.99), whose solution must make every
+// temperature cool at one rate.
+TEST(Rough, MixtureCoolingStateEdgeCases) {
+  const auto elastic = theory::rough::mixture_cooling_state(rough_mixture({1.0, 3.0}, {1.0, 1.0}, 1.0, 1.0, {0.4, 0.2}));
+  ASSERT_TRUE(elastic.why_not.empty()) << elastic.why_not;
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(elastic.theta[k], 1.0);
+    EXPECT_EQ(elastic.translational_over_mean[k], 1.0);
+  }
+  auto decoupled = rough_mixture({1.0, 2.0}, {1.0, 1.0}, 0.9, -1.0, {0.4, 0.4});
+  decoupled.roughness(1, 1) = 0.5;
+  const auto none = theory::rough::mixture_cooling_state(decoupled);
+  EXPECT_TRUE(none.theta.empty());
+  EXPECT_NE(none.why_not.find("species 1 has beta = -1 with every species"), std::string::npos) << none.why_not;
+  std::vector<double> mass, sigma;
+  for (int k = 0; k < 20; ++k) mass.push_back(1.0 + k / 19.0), sigma.push_back(1.0);
+  const auto many = rough_mixture(mass, sigma, 0.9, -0.99, std::vector<double>(20, 0.4));
+  const auto hcs = theory::rough::mixture_cooling_state(many);
+  ASSERT_EQ(hcs.theta.size(), 20u) << hcs.why_not;
+  std::vector<double> t(20), r(20);
+  for (std::size_t k = 0; k < 20; ++k) t[k] = hcs.translational_over_mean[k], r[k] = hcs.theta[k] * t[k];
+  const auto history = theory::rough::integrate_mixture(many, t, r, {0.01}, true);  // one short step of the equations
+  for (std::size_t k = 0; k < 20; ++k) {  // every ratio to T_1 stays put
+    EXPECT_NEAR(history.translational[0][k] / history.translational[0][0], t[k] / t[0], 1e-9);
+    EXPECT_NEAR(history.rotational[0][k] / history.translational[0][0], r[k] / t[0], 1e-9 * r[k] / t[0]);
+  }
+}
+
+// The Sonine HCS balances written out here from the docs (rough-spheres.md#rough_sonine), independently of
+// the solver's rows: at its solution for alpha = 0.7, beta = 0.5 (and 0.9, 0) the linearised
+// d ln<v^4> = 2 d ln T_tr, d ln<w^4> = 2 d ln T_rot, d ln<v^2 w^2> = d ln T_tr + d ln T_rot and
+// d ln T_rot = d ln T_tr hold to round-off; the white-noise balances likewise.
+TEST(Rough, SonineSolutionsSatisfyTheBalancesOfTheDocs) {
+  for (const auto& [alpha, beta] : {std::pair{0.7, 0.5}, std::pair{0.9, 0.0}}) {
+    const double kappa = 0.4;
+    const auto hcs = theory::rough::sonine_cooling_state(alpha, beta, kappa);
+    ASSERT_TRUE(hcs.state) << hcs.why_not;
+    const auto& st = *hcs.state;
+    const auto m = theory::rough::collisional_moments(alpha, beta, kappa, st.theta);
+    const double r2 = 4.0 * st.theta / kappa;  // <w_x^2> with T_tr = 1
+    const double v2 = 3.0, w2 = 3.0 * r2, v4 = 15.0, w4 = 15.0 * r2 * r2, v2w2 = 9.0 * r2;  // Maxwellian moments
+    const auto& x = st.cumulants;
+    const double lam = m.v2.at(x) / v2, mu = m.w2.at(x) / w2, lam0 = m.v2.zero / v2, mu0 = m.w2.zero / w2;
+    // R_psi/<psi> with <psi> = Maxwellian (1 + a): linearised, (R0 + R1.a)/M - 2 lam (1 + a) -> drop lam1 a
+    EXPECT_NEAR(m.v4.at(x) / v4 - 2.0 * lam - 2.0 * lam0 * x.a20, 0.0, 1e-12);
+    EXPECT_NEAR(m.w4.at(x) / w4 - 2.0 * mu - 2.0 * mu0 * x.a02, 0.0, 1e-12);
+    EXPECT_NEAR(m.v2w2.at(x) / v2w2 - (lam + mu) - (lam0 + mu0) * x.a11, 0.0, 1e-12);
+    EXPECT_NEAR(mu - lam, 0.0, 1e-12);
+    EXPECT_NEAR(st.cooling_rate_reduced, -m.v2.at(x) / 3.0, 1e-14);
+
+    const auto driven = theory::rough::sonine_driven_state(alpha, beta, kappa);
+    ASSERT_TRUE(driven.state) << driven.why_not;
+    const auto& d = *driven.state;
+    const auto md = theory::rough::collisional_moments(alpha, beta, kappa, d.theta);
+    const double chi2 = -md.v2.at(d.cumulants) / 3.0, rd = 4.0 * d.theta / kappa;
+    // d<v^4>/dt: + 10 chi^2 <v^2>; d<v^2 w^2>/dt: + 3 chi^2 <w^2>; spins: nothing
+    EXPECT_NEAR(md.v4.at(d.cumulants) + 10.0 * chi2 * 3.0, 0.0, 1e-12);
+    EXPECT_NEAR(md.w4.at(d.cumulants) / (rd * rd), 0.0, 1e-12);
+    EXPECT_NEAR(md.v2w2.at(d.cumulants) / rd + 3.0 * chi2 * 3.0, 0.0, 1e-12);
+    EXPECT_NEAR(md.w2.at(d.cumulants) / rd, 0.0, 1e-12);
+  }
+}
+
+// The white-noise state of a mixture (mixture_driven_state) is the one-species balance for one species, by
+// hand: T^(3/2) = m chi^2/(zeta* nu_1), zeta* = (1 - alpha^2)/3 (smooth) or (4/3)(A - B^2/C) with theta = B/C
+// (rough; rough.hpp driven_state), nu_1 = 4 n sigma^2 sqrt(pi/m); and two equal species split from one
+// share its temperature (the noise strength is per particle).
+TEST(Rough, MixtureWhiteNoiseReducesToOneSpecies) {
+  const double chi2 = 0.001, nu1 = 4.0 * 0.01 * std::sqrt(M_PI);
+  auto smooth = species::make_mixture({1.0}, {1.0}, {0.01}, species::PairMatrix(1, 0.9), false);
+  const auto one = theory::rough::mixture_driven_state(smooth, {chi2});
+  ASSERT_EQ(one.translational.size(), 1u) << one.why_not;
+  EXPECT_TRUE(one.theta.empty());
+  EXPECT_NEAR(one.translational[0], std::pow(chi2 / (0.19 / 3.0 * nu1), 2.0 / 3.0), 1e-9);
+  const auto rough = theory::rough::mixture_driven_state(rough_mixture({1.0}, {1.0}, 0.9, 0.0, {0.4}), {chi2});
+  const auto state = theory::rough::driven_state(0.9, 0.0, 0.4);
+  ASSERT_EQ(rough.theta.size(), 1u) << rough.why_not;
+  EXPECT_NEAR(rough.theta[0], state.theta, 1e-9);
+  EXPECT_NEAR(rough.translational[0], std::pow(chi2 / (state.cooling_rate_reduced * nu1), 2.0 / 3.0), 1e-9);
+  // split: two species of density 0.005 each
+  auto split = species::make_mixture({1.0, 1.0}, {1.0, 1.0}, {0.005, 0.005}, species::PairMatrix(2, 0.9), false);
+  const auto two = theory::rough::mixture_driven_state(split, {chi2, chi2});
+  ASSERT_EQ(two.translational.size(), 2u) << two.why_not;
+  for (double t : two.translational) EXPECT_NEAR(t, one.translational[0], 1e-9);
+  // elastic and smooth: no steady state
+  EXPECT_FALSE(theory::rough::mixture_driven_state(species::make_mixture({1.0, 2.0}, {1.0, 1.0}, {0.005, 0.005},
+                                                                         species::PairMatrix(2, 1.0), false), {chi2, chi2})
+                   .why_not.empty());
+}

@@ -186,7 +186,8 @@ void add_free_cooling(Point& pt, const io::config::Config& config, const analysi
 
 /// zeta* = zeta/nu_M of the last two samples of T(t), as the HCS has it: dT/dt = -zeta* nu_unit T^(3/2), so
 /// zeta* = 2 (T_b^(-1/2) - T_a^(-1/2))/(nu_unit (t_b - t_a)) (\ref rough_observables "docs/rough-spheres.md"),
-/// with its error from the two temperatures' errors taken as independent (the times' errors neglected).
+/// with its error from the two temperatures' errors taken as independent (they are positively correlated, so
+/// this overstates the error; the times' errors are neglected).
 std::optional<std::pair<double, double>> measured_zeta_star(const io::h5md::ObservableData& tr, double nu_unit) {
   const std::size_t n = tr.value.size();
   if (n < 2 || tr.time.size() != n || !(nu_unit > 0.0)) return std::nullopt;
@@ -201,9 +202,9 @@ std::optional<std::pair<double, double>> measured_zeta_star(const io::h5md::Obse
 /// Rough spheres of one species (\ref rough_maxwellian "docs/rough-spheres.md"): T_tr(t) and T_rot(t) of the
 /// Maxwellian two-temperature equations, the collision count (or times), and theta = T_rot/T_tr at the last
 /// sample beside the Maxwellian HCS value, and (where the Sonine state exists) theta, zeta*, a20, a02, a11
-/// beside the Sonine HCS (theory/rough.hpp). No allowance is stated: the Maxwellian theory omits the
-/// cumulants, the Sonine theory the higher ones (validation/rough_spheres measures the gaps; no independent
-/// estimate of them is in the code).
+/// beside the Sonine HCS (theory/rough.hpp). theta_sonine and zeta_star_sonine carry |Sonine - Maxwellian| as
+/// their known error (the size of the Sonine correction); the Maxwellian rows and the cumulants none (no
+/// independent estimate; validation/rough_spheres measures the gaps).
 void add_rough(Point& pt, const analysis::Predictions& p, const Measured& m, bool time_driven) {
   const std::size_t nt = p.time.size();
   const std::string source = std::string(kNone) + " (the Maxwellian two-temperature theory omits a20, a02, a11; "
@@ -324,6 +325,36 @@ void add_white_noise(Point& pt, const analysis::Predictions::WhiteNoise& w, cons
   }
   if (const auto a = final_value("cumulant_a02", 1.0)) last("white_noise_a02", "a02", "first_sonine", a->first, a->second, st->cumulants.a02);
   if (const auto a = final_value("cumulant_a11", 1.0)) last("white_noise_a11", "a11", "first_sonine", a->first, a->second, st->cumulants.a11);
+}
+
+/// The white-noise steady state of a mixture (\ref wn_theory "docs/white-noise.md"): T_k and, for rough spheres,
+/// theta_k at the last sample beside the Maxwellian state (no stated allowance).
+void add_white_noise_mixture(Point& pt, const theory::rough::MixtureDrivenState& w, const Measured& m) {
+  const std::size_t s = w.translational.size();
+  if (!m.has("temperature")) return;
+  const auto& t = m.observables.at("temperature");
+  if (t.value.size() < s) return;
+  const std::size_t row = t.value.size() - s;
+  const std::string source = std::string(kNone) + " (the Maxwellian theory of the driven mixture; docs/white-noise.md)";
+  Quantity q{"white_noise_temperature", "T_k", "maxwellian", source, {}, s, {}, {}, w.translational, std::vector<double>(s, kNaN)};
+  for (std::size_t k = 0; k < s; ++k) {
+    q.value.push_back(t.value[row + k]);
+    q.error.push_back(t.error.empty() ? kNaN : t.error[row + k]);
+  }
+  q.at = "last sample";
+  pt.quantities.push_back(std::move(q));
+  if (w.theta.empty() || !m.has("rotational_temperature")) return;
+  const auto& r = m.observables.at("rotational_temperature");
+  if (r.value.size() != t.value.size()) return;
+  Quantity theta{"white_noise_theta", "T_rot,k/T_k", "maxwellian", source, {}, s, {}, {}, w.theta, std::vector<double>(s, kNaN)};
+  for (std::size_t k = 0; k < s; ++k) {
+    const double tk = t.value[row + k], rk = r.value[row + k];
+    const double et = t.error.empty() ? kNaN : t.error[row + k], er = r.error.empty() ? kNaN : r.error[row + k];
+    theta.value.push_back(rk / tk);
+    theta.error.push_back(rk / tk * std::hypot(er / rk, et / tk));
+  }
+  theta.at = "last sample";
+  pt.quantities.push_back(std::move(theta));
 }
 
 /// The MSD (Bodrova and Osinsky 2024, eq. (17), \ref dif_msd "docs/diffusion-msd.md") and D_k/D_1 over the last decade of time (validation/diffusion_ratio).
@@ -571,6 +602,7 @@ Point compare_point(const io::config::Config& config, const analysis::Prediction
     if ((!config.staged() || hss) && p.hcs_first_sonine) add_scaling_state(pt, config, p, m);
     if (config.output.track_displacements) add_diffusion(pt, config, p, m);
     if (p.white_noise) add_white_noise(pt, *p.white_noise, m);
+    if (p.white_noise_mixture) add_white_noise_mixture(pt, *p.white_noise_mixture, m);
     if (config.shear.rate) {
       const auto eta = m.attributes.find("shear_viscosity@time_average");
       if (config.thermostat.kind != io::config::ThermostatKind::gaussian) {

@@ -338,7 +338,7 @@ Predictions predict_rough(const io::config::Config& config) {
   if (s != 1) {
     out.notes.push_back("rough mixtures: the Maxwellian HCS only (T_k/T, theta_k); no history, no Sonine theory");
     auto hcs = rough::mixture_cooling_state(mix);
-    if (hcs.theta.empty()) out.notes.push_back("rough mixtures: the Maxwellian HCS did not settle");
+    if (hcs.theta.empty()) out.notes.push_back("rough mixtures: no Maxwellian HCS: " + hcs.why_not);
     else {
       out.rough_mixture_hcs = std::move(hcs);
       out.approximations.emplace_back("rough_hcs.maxwellian", "maxwellian");
@@ -368,7 +368,7 @@ Predictions predict_rough(const io::config::Config& config) {
   for (const char* key : {"temperature", "total_temperature", "collisions_per_particle", "rotational_temperature",
                           "rough_hcs.maxwellian"})
     out.approximations.emplace_back(key, "maxwellian");
-  out.approximations.emplace_back("rough_hcs.sonine", "first_sonine");
+  if (out.rough_hcs_sonine->state) out.approximations.emplace_back("rough_hcs.sonine", "first_sonine");
   return out;
 }
 
@@ -377,13 +377,18 @@ Predictions predict_rough(const io::config::Config& config) {
 /// (Maxwellian) or the Sonine state's (theory/rough.hpp).
 void add_white_noise(Predictions& out, const io::config::Config& config, const species::Mixture& mix) {
   if (mix.size() != 1) {
-    out.notes.push_back("white noise: no theory for mixtures yet");
+    auto state = rough::mixture_driven_state(mix, config.thermostat.noise_strength);
+    if (state.translational.empty()) return out.notes.push_back("white noise: " + state.why_not);
+    out.white_noise_mixture = std::move(state);
+    out.approximations.emplace_back("white_noise.maxwellian", "maxwellian");
+    out.notes.push_back("white noise, mixtures: the Maxwellian steady state only (no Sonine theory)");
     return;
   }
   const bool rough_gas = mix.rough();
   const auto state = rough::driven_state(mix.restitution(0, 0), rough_gas ? mix.roughness(0, 0) : -1.0,
                                          rough_gas ? mix.moment_of_inertia[0] : 0.4);
-  if (!(state.cooling_rate_reduced > 0.0)) {  // alpha = 1 and beta = +-1: nothing balances the kicks
+  const double alpha = mix.restitution(0, 0), beta = rough_gas ? mix.roughness(0, 0) : -1.0;
+  if ((alpha == 1.0 && std::abs(beta) == 1.0) || !(state.cooling_rate_reduced > 1e-12)) {  // nothing balances the kicks
     out.notes.push_back("white noise: no steady state (the collisions lose no energy: T_tr grows as T(0) + m chi^2 t)");
     return;
   }
@@ -396,10 +401,13 @@ void add_white_noise(Predictions& out, const io::config::Config& config, const s
   if (rough_gas) w.theta = state.theta;
   w.sonine = rough::sonine_driven_state(mix.restitution(0, 0), rough_gas ? mix.roughness(0, 0) : -1.0,
                                         rough_gas ? mix.moment_of_inertia[0] : 0.4);
-  if (w.sonine.state) w.sonine_temperature = steady_temperature(w.sonine.state->cooling_rate_reduced);
+  if (w.sonine.state && w.sonine.state->cooling_rate_reduced > 1e-12)
+    w.sonine_temperature = steady_temperature(w.sonine.state->cooling_rate_reduced);
+  else if (w.sonine.state)
+    w.sonine = {std::nullopt, "no Sonine steady state (the Sonine cooling rate is not positive)"};
   out.white_noise = w;
   out.approximations.emplace_back("white_noise.maxwellian", "maxwellian");
-  out.approximations.emplace_back("white_noise.sonine", "first_sonine");
+  if (w.sonine.state) out.approximations.emplace_back("white_noise.sonine", "first_sonine");
   out.approximations.emplace_back("white_noise.translational_temperature", w.sonine_temperature ? "first_sonine" : "maxwellian");
   if (out.sonine_a2 || out.hcs_first_sonine)
     out.notes.push_back("white noise: the hcs and sonine keys describe the free cooling of the same gas, not this driven state");

@@ -105,6 +105,9 @@ struct Predictions {
     std::optional<double> sonine_temperature;  ///< T_tr of the Sonine state
   };
   std::optional<WhiteNoise> white_noise;     ///< (theory/rough.hpp driven_state)
+  /// &thermostat kind = 'white_noise', mixtures: the Maxwellian steady T_k (and theta_k for rough spheres)
+  /// (theory/rough.hpp mixture_driven_state).
+  std::optional<theory::rough::MixtureDrivenState> white_noise_mixture;
   /// key -> "maxwellian", "first_sonine", "exact", ... for every key present, in print order.
   std::vector<std::pair<std::string, std::string>> approximations;
   std::vector<std::string> notes;  ///< what was left out and why, in order

@@ -136,6 +136,51 @@ void announce_large_mixture(const gdsmc::io::config::Config& config) {
             << " s of one core\n";
 }
 
+/// The rough-sphere and white-noise keys of one point (rough_hcs, white_noise), each starting with ",\n".
+std::string rough_json(const gdsmc::analysis::Predictions& p, const std::string& in) {
+  std::ostringstream json;
+  if (p.white_noise) {
+    const auto& w = *p.white_noise;
+    json << ",\n" << in << "\"white_noise\": {\"maxwellian\": {\"translational_temperature\": "
+         << number(w.translational_temperature);
+    if (w.theta) json << ", \"theta\": " << number(*w.theta);
+    json << "}, \"sonine\": ";
+    if (const auto& st = w.sonine.state) {
+      json << "{\"translational_temperature\": " << number(*w.sonine_temperature);
+      if (w.theta) json << ", \"theta\": " << number(st->theta);
+      json << ", \"a20\": " << number(st->cumulants.a20);
+      if (w.theta) json << ", \"a02\": " << number(st->cumulants.a02) << ", \"a11\": " << number(st->cumulants.a11);
+      json << "}";
+    } else {
+      json << "\"" << escape(w.sonine.why_not) << "\"";
+    }
+    json << ", \"translational_temperature\": " << number(w.sonine_temperature.value_or(w.translational_temperature)) << "}";
+  }
+  if (const auto& w = p.white_noise_mixture) {
+    json << ",\n" << in << "\"white_noise\": {\"maxwellian\": {\"translational_temperature\": " << array(w->translational);
+    if (!w->theta.empty()) json << ", \"theta\": " << array(w->theta);
+    json << "}, \"sonine\": \"not computed: the Sonine theory of driven mixtures is not implemented\", "
+            "\"translational_temperature\": "
+         << array(w->translational) << "}";
+  }
+  if (p.rough_hcs_maxwellian) {
+    json << ",\n" << in << "\"rough_hcs\": {\"maxwellian\": {\"theta\": " << number(p.rough_hcs_maxwellian->theta)
+         << ", \"zeta_star\": " << number(p.rough_zeta_star) << "}, \"sonine\": ";
+    if (const auto& st = p.rough_hcs_sonine ? p.rough_hcs_sonine->state : std::nullopt)
+      json << "{\"theta\": " << number(st->theta) << ", \"a20\": " << number(st->cumulants.a20) << ", \"a02\": "
+           << number(st->cumulants.a02) << ", \"a11\": " << number(st->cumulants.a11) << ", \"zeta_star\": "
+           << number(st->cooling_rate_reduced) << "}";
+    else
+      json << "\"" << escape(p.rough_hcs_sonine ? p.rough_hcs_sonine->why_not : std::string("not computed")) << "\"";
+    json << "}";
+  }
+  if (p.rough_mixture_hcs)
+    json << ",\n" << in << "\"rough_hcs\": {\"maxwellian\": {\"theta\": " << array(p.rough_mixture_hcs->theta)
+         << ", \"translational_temperature_over_mean\": " << array(p.rough_mixture_hcs->translational_over_mean)
+         << "}, \"sonine\": \"not computed: the Sonine theory of rough mixtures is not implemented\"}";
+  return json.str();
+}
+
 /// The theory of one system (analysis::predict) as a JSON object; `indent` prefixes every line. The
 /// notes of what was left out go to stderr.
 std::string point_json(const gdsmc::io::config::Config& config, const std::string& indent) {
@@ -167,38 +212,7 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
       json << ",\n" << in << "\"rotational_temperature\": {\"time\": " << array(p.time) << ", \"value\": "
            << array(p.rotational_temperature) << "}";
   }
-  if (p.white_noise) {
-    const auto& w = *p.white_noise;
-    json << ",\n" << in << "\"white_noise\": {\"maxwellian\": {\"translational_temperature\": "
-         << number(w.translational_temperature);
-    if (w.theta) json << ", \"theta\": " << number(*w.theta);
-    json << "}, \"sonine\": ";
-    if (const auto& st = w.sonine.state) {
-      json << "{\"translational_temperature\": " << number(*w.sonine_temperature);
-      if (w.theta) json << ", \"theta\": " << number(st->theta);
-      json << ", \"a20\": " << number(st->cumulants.a20);
-      if (w.theta) json << ", \"a02\": " << number(st->cumulants.a02) << ", \"a11\": " << number(st->cumulants.a11);
-      json << "}";
-    } else {
-      json << "\"" << escape(w.sonine.why_not) << "\"";
-    }
-    json << ", \"translational_temperature\": " << number(w.sonine_temperature.value_or(w.translational_temperature)) << "}";
-  }
-  if (p.rough_hcs_maxwellian) {
-    json << ",\n" << in << "\"rough_hcs\": {\"maxwellian\": {\"theta\": " << number(p.rough_hcs_maxwellian->theta)
-         << ", \"zeta_star\": " << number(p.rough_zeta_star) << "}, \"sonine\": ";
-    if (const auto& st = p.rough_hcs_sonine ? p.rough_hcs_sonine->state : std::nullopt)
-      json << "{\"theta\": " << number(st->theta) << ", \"a20\": " << number(st->cumulants.a20) << ", \"a02\": "
-           << number(st->cumulants.a02) << ", \"a11\": " << number(st->cumulants.a11) << ", \"zeta_star\": "
-           << number(st->cooling_rate_reduced) << "}";
-    else
-      json << "\"" << escape(p.rough_hcs_sonine ? p.rough_hcs_sonine->why_not : std::string("not computed")) << "\"";
-    json << "}";
-  }
-  if (p.rough_mixture_hcs)
-    json << ",\n" << in << "\"rough_hcs\": {\"maxwellian\": {\"theta\": " << array(p.rough_mixture_hcs->theta)
-         << ", \"translational_temperature_over_mean\": " << array(p.rough_mixture_hcs->translational_over_mean)
-         << "}, \"sonine\": \"not computed: the Sonine theory of rough mixtures is not implemented\"}";
+  json << rough_json(p, in);
   json << ",\n" << in << "\"diffusion_coefficient_ratio\": " << array(p.diffusion_coefficient_ratio);
   if (p.msd) {
     json << ",\n" << in << "\"msd\": {\"time\": " << array(p.msd->time) << ", \"value\": [";

@@ -9,7 +9,10 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <utility>
+
+#include <Eigen/Dense>
 
 namespace gdsmc::theory::rough {
 
@@ -262,7 +265,8 @@ std::vector<double> mixture_derivative(const species::Mixture& mix, const std::v
 
 MixtureHistory integrate_mixture(const species::Mixture& mix, const std::vector<double>& translational,
                                  const std::vector<double>& rotational, const std::vector<double>& times, bool collision_driven) {
-  if (!mix.rough()) throw std::invalid_argument("theory::rough::integrate_mixture: rough spheres");
+  if (!mix.rough() || translational.size() != mix.size() || rotational.size() != mix.size())
+    throw std::invalid_argument("theory::rough::integrate_mixture: rough spheres, one temperature of each kind per species");
   const std::size_t n = mix.size(), m = 2 * n + 1;
   std::vector<double> y(translational);
   y.insert(y.end(), rotational.begin(), rotational.end());
@@ -294,46 +298,181 @@ MixtureHistory integrate_mixture(const species::Mixture& mix, const std::vector<
   return h;
 }
 
+namespace {
+
+/// The reduced rates g_i = d ln y_i/dt of y = (T_1..T_n, R_1..R_n), each over the mean rate scale, and the
+/// residuals g_i - g_1 (i = 2..2n) of the HCS (every temperature cools at one rate).
+Eigen::VectorXd hcs_residuals(const species::Mixture& mix, const Eigen::VectorXd& log_y) {
+  const std::size_t n = mix.size();
+  std::vector<double> t(n), r(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    t[k] = std::exp(log_y[static_cast<Eigen::Index>(k)]);
+    r[k] = std::exp(log_y[static_cast<Eigen::Index>(n + k)]);
+  }
+  const auto [dt, dr] = mixture_rates(mix, t, r);
+  const double scale = collision_rate(mix, t);  // the rates' natural unit
+  Eigen::VectorXd g(static_cast<Eigen::Index>(2 * n - 1));
+  const double g1 = dt[0] / (1.5 * t[0] * scale);
+  for (std::size_t i = 1; i < 2 * n; ++i) {
+    const double gi = i < n ? dt[i] / (1.5 * t[i] * scale) : dr[i - n] / (1.5 * r[i - n] * scale);
+    g[static_cast<Eigen::Index>(i - 1)] = gi - g1;
+  }
+  return g;
+}
+
+/// Newton's method on `residuals` from u (a step that does not reduce the largest residual is halved): the
+/// root, or nothing.
+template <class Residuals>
+std::optional<Eigen::VectorXd> newton(const Residuals& residuals, Eigen::VectorXd u) {
+  const Eigen::Index m = u.size();
+  Eigen::VectorXd f = residuals(u);
+  for (int iteration = 0; iteration < 50 && f.lpNorm<Eigen::Infinity>() > 1e-13; ++iteration) {
+    Eigen::MatrixXd jacobian(m, m);
+    for (Eigen::Index j = 0; j < m; ++j) {
+      Eigen::VectorXd v = u;
+      v[j] += 1e-7;
+      jacobian.col(j) = (residuals(v) - f) / 1e-7;
+    }
+    const Eigen::VectorXd step = jacobian.fullPivLu().solve(-f);
+    double length = 1.0;
+    Eigen::VectorXd next = u + step, next_f = residuals(next);
+    while (!(next_f.lpNorm<Eigen::Infinity>() < f.lpNorm<Eigen::Infinity>()) && length > 1e-4) {
+      length *= 0.5;
+      next = u + length * step;
+      next_f = residuals(next);
+    }
+    if (!(next_f.lpNorm<Eigen::Infinity>() < f.lpNorm<Eigen::Infinity>())) return std::nullopt;
+    u = next;
+    f = next_f;
+  }
+  if (!(f.lpNorm<Eigen::Infinity>() <= 1e-10)) return std::nullopt;
+  return u;
+}
+
+/// The HCS in the unknowns u = (log T_2..T_n, log R_1..R_n), T_1 = 1.
+std::optional<Eigen::VectorXd> hcs_newton(const species::Mixture& mix, const Eigen::VectorXd& u) {
+  return newton(
+      [&](const Eigen::VectorXd& v) {
+        Eigen::VectorXd y(v.size() + 1);
+        y << 0.0, v;
+        return hcs_residuals(mix, y);
+      },
+      u);
+}
+
+/// Roughness lambda beta of `mix` (the continuation path from beta = 0 of the steady-state solvers).
+species::Mixture scaled_roughness(const species::Mixture& mix, double lambda) {
+  species::Mixture out = mix;
+  for (std::size_t a = 0; a < mix.size(); ++a)
+    for (std::size_t b = 0; b < mix.size(); ++b) out.roughness(a, b) = lambda * mix.roughness(a, b);
+  return out;
+}
+
+/// Continues `solve(mix at lambda, u)` from lambda = 0 (u0) to 1, halving the step where it fails.
+template <class Solve>
+std::optional<Eigen::VectorXd> continued(const species::Mixture& mix, const Solve& solve, const Eigen::VectorXd& u0) {
+  std::optional<Eigen::VectorXd> u = solve(scaled_roughness(mix, 0.0), u0);
+  double lambda = 0.0, step = 0.25;
+  while (u && lambda < 1.0) {
+    const double next = std::min(1.0, lambda + step);
+    if (auto v = solve(scaled_roughness(mix, next), *u)) {
+      u = std::move(v);
+      lambda = next;
+      step = std::min(0.5, 1.5 * step);
+    } else if ((step *= 0.5) < 1e-6) {
+      u.reset();
+    }
+  }
+  return u;
+}
+
+}  // namespace
+
 MixtureCoolingState mixture_cooling_state(const species::Mixture& mix) {
   const std::size_t n = mix.size();
-  double total = 0.0;
-  for (double x : mix.number_density) total += x;
-  // y = (T_1..T_n, R_1..R_n), renormalised to sum x_k T_k = 1 after every step; explicit Euler in a time
-  // unit that makes the fastest rate of change per step at most 1e-3 (the fixed point does not depend on it)
-  std::vector<double> t(n, 1.0), r(n, 1.0);
-  std::vector<double> last(2 * n, 0.0);
-  bool settled = false;
-  for (int step = 0; step < 2000000 && !settled; ++step) {
-    const auto [dt, dr] = mixture_rates(mix, t, r);
-    double fastest = 0.0;
-    for (std::size_t k = 0; k < n; ++k) fastest = std::max({fastest, std::abs(dt[k]) / t[k], r[k] > 0.0 ? std::abs(dr[k]) / r[k] : 0.0});
-    if (!(fastest > 0.0)) {  // nothing changes: elastic and perfectly smooth or rough
-      settled = true;
-      break;
+  constexpr std::size_t kLargest = 64;  // Newton with a dense Jacobian: O(n^3) pair rates per step
+  if (n > kLargest) return {{}, {}, "not computed for more than 64 species"};
+  bool lossless = true;  // alpha = beta = 1 everywhere: energy is conserved, equipartition is the state
+  for (std::size_t a = 0; a < n; ++a) {
+    bool coupled = false;  // some pair of a has beta > -1: its spins exchange energy
+    for (std::size_t b = 0; b < n; ++b) {
+      coupled = coupled || mix.roughness(a, b) > -1.0;
+      lossless = lossless && mix.restitution(a, b) == 1.0 && mix.roughness(a, b) == 1.0;
     }
-    const double h = 1e-3 / fastest;
-    double mean = 0.0;
-    for (std::size_t k = 0; k < n; ++k) {
-      t[k] += h * dt[k] / 1.5;
-      r[k] += h * dr[k] / 1.5;
-      mean += mix.number_density[k] / total * t[k];
-    }
-    double change = 0.0;
-    for (std::size_t k = 0; k < n; ++k) {
-      t[k] /= mean;
-      r[k] /= mean;
-      change = std::max({change, std::abs(t[k] - last[k]), std::abs(r[k] - last[n + k])});
-      last[k] = t[k];
-      last[n + k] = r[k];
-    }
-    if (!std::isfinite(change)) return {};
-    settled = change < 1e-13 && step > 10;  // ratios to about 1e-10 (a step moves them by 1e-3 of their distance)
+    if (!coupled)
+      return {{}, {}, "species " + std::to_string(a + 1) + " has beta = -1 with every species: its spins keep their "
+                      "energy and its T_rot/T_tr grows without bound"};
   }
-  if (!settled) return {};
+  if (lossless) return {std::vector<double>(n, 1.0), std::vector<double>(n, 1.0), {}};
+  // Newton from T_k = R_k = 1 at beta = 0, then continued along beta(lambda) = lambda beta (lambda 0 -> 1):
+  // the quasi-smooth states (theta ~ 1/(1 + beta)^2) are far from any simple first guess
+  const auto u = continued(mix, hcs_newton, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(2 * n - 1)));
+  if (!u) return {{}, {}, "the Maxwellian HCS equations of this mixture did not converge (Newton)"};
+  Eigen::VectorXd y(static_cast<Eigen::Index>(2 * n));
+  y << 0.0, *u;
+  double total = 0.0, mean = 0.0;
+  for (double x : mix.number_density) total += x;
+  for (std::size_t k = 0; k < n; ++k) mean += mix.number_density[k] / total * std::exp(y[static_cast<Eigen::Index>(k)]);
   MixtureCoolingState out;
   for (std::size_t k = 0; k < n; ++k) {
-    out.translational_over_mean.push_back(t[k]);
-    out.theta.push_back(r[k] / t[k]);
+    const double t = std::exp(y[static_cast<Eigen::Index>(k)]), r = std::exp(y[static_cast<Eigen::Index>(n + k)]);
+    out.translational_over_mean.push_back(t / mean);
+    out.theta.push_back(r / t);
+  }
+  return out;
+}
+
+MixtureDrivenState mixture_driven_state(const species::Mixture& mix, const std::vector<double>& strength) {
+  const std::size_t n = mix.size();
+  if (n > 64) return {{}, {}, "not computed for more than 64 species"};
+  if (strength.size() != n) throw std::invalid_argument("theory::rough::mixture_driven_state: one strength per species");
+  const bool rough_gas = mix.rough();
+  species::Mixture work = mix;  // smooth spheres: beta = -1 everywhere, no rotation enters the rates
+  if (!rough_gas) {
+    work.roughness = species::PairMatrix(n, -1.0);
+    work.moment_of_inertia.assign(n, 0.4);
+  }
+  bool lossless = true;
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = 0; b < n; ++b)
+      lossless = lossless && work.restitution(a, b) == 1.0 && std::abs(work.roughness(a, b)) == 1.0;
+  if (lossless) return {{}, {}, "no steady state (the collisions lose no energy)"};
+  const std::size_t unknowns = rough_gas ? 2 * n : n;
+  const auto residuals = [&](const species::Mixture& at, const Eigen::VectorXd& u) {
+    std::vector<double> t(n), r(n, 0.0);
+    for (std::size_t k = 0; k < n; ++k) {
+      t[k] = std::exp(u[static_cast<Eigen::Index>(k)]);
+      if (rough_gas) r[k] = std::exp(u[static_cast<Eigen::Index>(n + k)]);
+    }
+    const auto [dt, dr] = mixture_rates(at, t, r);
+    const double scale = collision_rate(at, t);
+    Eigen::VectorXd f(static_cast<Eigen::Index>(unknowns));
+    for (std::size_t k = 0; k < n; ++k) {
+      const double input = 1.5 * mix.mass[k] * strength[k];  // d(3 T_k/2)/dt of the kicks
+      f[static_cast<Eigen::Index>(k)] = dt[k] / input + 1.0;
+      if (rough_gas) f[static_cast<Eigen::Index>(n + k)] = dr[k] / (1.5 * r[k] * scale);
+    }
+    return f;
+  };
+  Eigen::VectorXd u0(static_cast<Eigen::Index>(unknowns));
+  double density = 0.0;
+  for (double x : mix.number_density) density += x;
+  for (std::size_t k = 0; k < n; ++k) {  // one species' balance with its own alpha, the whole density
+    const double alpha = mix.restitution(k, k), sigma = mix.diameter[k];
+    const double nu_unit = 4.0 * density * sigma * sigma * std::sqrt(std::numbers::pi / mix.mass[k]);
+    const double zeta = std::max((1.0 - alpha * alpha) / 3.0, 0.01);
+    u0[static_cast<Eigen::Index>(k)] = 2.0 / 3.0 * std::log(mix.mass[k] * strength[k] / (zeta * nu_unit));
+    if (rough_gas) u0[static_cast<Eigen::Index>(n + k)] = u0[static_cast<Eigen::Index>(k)] + std::log(0.2);
+  }
+  const auto solve = [&](const species::Mixture& at, const Eigen::VectorXd& u) {
+    return newton([&](const Eigen::VectorXd& v) { return residuals(at, v); }, u);
+  };
+  const auto u = rough_gas ? continued(work, solve, u0) : solve(work, u0);
+  if (!u) return {{}, {}, "the Maxwellian white-noise equations of this mixture did not converge (Newton)"};
+  MixtureDrivenState out;
+  for (std::size_t k = 0; k < n; ++k) {
+    out.translational.push_back(std::exp((*u)[static_cast<Eigen::Index>(k)]));
+    if (rough_gas) out.theta.push_back(std::exp((*u)[static_cast<Eigen::Index>(n + k)]) / out.translational.back());
   }
   return out;
 }

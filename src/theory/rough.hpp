@@ -32,7 +32,7 @@
  * For fixed theta the cumulant equations are linear; theta is the root of its equation nearest the
  * Maxwellian theta. The solution does not exist where there is no root, and is refused (a reason instead
  * of numbers) where a cumulant exceeds 1 in magnitude: the first Sonine correction is then as large as the
- * Maxwellian it corrects (HCS, kappa = 0.4: small alpha with beta below about 0; docs page).
+ * Maxwellian it corrects (where that happens: \ref rough_sonine "docs/rough-spheres.md").
  *
  * Units: temperatures in energy, times in the user's time. Checked by tests/rough_test.cpp (by hand,
  * the smooth limit, the elastic perfectly rough gas, the Sonine coefficients against their limits and a
@@ -139,13 +139,15 @@ EnergyRates pair_energy_rates(const species::Mixture& mix, std::size_t a, std::s
                               const std::vector<double>& r);
 
 /// The homogeneous cooling state of a rough mixture, Maxwellian approximation: every T_k and R_k cools at one
-/// rate. Found by integrating the Maxwellian equations with the temperatures rescaled to sum_k x_k T_k = 1
-/// until the ratios stop changing.
+/// rate. Newton's method on those 2s - 1 conditions (log temperatures, T_1 = 1), from T_k = 1 and the
+/// one-species theta of each species; at most 64 species.
 struct MixtureCoolingState {
   std::vector<double> translational_over_mean;  ///< T_k/T, T = sum_k x_k T_k (translational)
   std::vector<double> theta;                    ///< R_k/T_k
+  std::string why_not;                          ///< set (and the vectors empty) when there is no state
 };
-/// The state of `mix` (rough, any number of species; empty vectors when the ratios do not settle).
+/// The state of `mix` (rough), or why not: more than 64 species, a species whose spins are coupled to
+/// nothing (beta = -1 with every species: its theta grows without bound), no convergence.
 MixtureCoolingState mixture_cooling_state(const species::Mixture& mix);
 
 /// The Maxwellian equations of a rough mixture from T_k(0), R_k(0) (rough.hpp: the rates above summed over
@@ -160,6 +162,19 @@ struct MixtureHistory {
 /// (above)
 MixtureHistory integrate_mixture(const species::Mixture& mix, const std::vector<double>& translational,
                                  const std::vector<double>& rotational, const std::vector<double>& times, bool collision_driven);
+
+/// The white-noise steady state of a mixture, Maxwellian approximation (\ref wn_theory "docs/white-noise.md"):
+/// the kicks bring (3/2) m_k chi^2_k per particle and unit time to species k (strength = chi^2_k, the
+/// resolved &thermostat noise_strength), the collisions take what the rates above say; the spins are not
+/// kicked. Smooth mixtures (not mix.rough()) have no rotation (theta empty). Newton in the log
+/// temperatures (rough: continued from beta = 0); at most 64 species.
+struct MixtureDrivenState {
+  std::vector<double> translational;  ///< T_k
+  std::vector<double> theta;          ///< T_rot,k/T_k (rough spheres)
+  std::string why_not;                ///< set (and the vectors empty) when there is no state
+};
+/// (above)
+MixtureDrivenState mixture_driven_state(const species::Mixture& mix, const std::vector<double>& strength);
 
 /// T_tr and T_rot at a run's sample points, with the collisions per particle and the times.
 struct History {

@@ -12,7 +12,7 @@ using namespace gdsmc;
 
 namespace {
 
-constexpr double kSteadyFrom = 600.0;  // the samples averaged: t >= 600 (20 collisions per particle and more)
+constexpr double kSteadyFrom = 600.0;  // the samples averaged: t >= 600 (16-26 collisions per particle and more)
 
 /// Mean over the steady samples and the mean of their standard errors (an upper bound of the mean's SE: the
 /// samples are correlated).
