@@ -956,8 +956,8 @@ TEST(ConfigAggFrag, CombinationsItCannotRunAreRefused) {
                "scheme", {"'lowrank' only"});
   expect_error(error_of(monomers(af, "&dsmc scheme = 'pairs', n_particles = 100, t_end = 5.0 /")), 3, "dsmc",
                "scheme", {"'lowrank' only"});
-  expect_error(error_of(monomers(af, "&dsmc n_particles = 100, t_end = 5.0 /")), 3, "dsmc", "scheme",
-               {"set scheme = 'lowrank'"});
+  // no scheme named: the low-rank scheme is taken (the only one that runs &agg_frag)
+  EXPECT_EQ(read_text(monomers(af, "&dsmc n_particles = 100, t_end = 5.0 /")).dsmc.scheme, config::Scheme::lowrank);
   expect_error(error_of(monomers(af, "&dsmc scheme = 'lowrank', n_particles = 100, t_end = 5.0 /",
                                  "&system n_species = 2, mass = 1.0, 2.0, diameter = 1.0, 1.0, "
                                  "number_density = 0.1, 0.1, restitution = 0.8 /")),

@@ -291,6 +291,9 @@ Config read_point(const namelist::Document& document, const std::vector<std::str
   if (expand_sweep) read_all("sweep", c.sweep, sweep_fields());
   c.has_agg_frag = document.find("agg_frag") != nullptr;
   for (const auto& doc : extra) c.has_agg_frag = c.has_agg_frag || doc.find("agg_frag") != nullptr;
+  // &agg_frag runs with the low-rank scheme only: an input that names no scheme gets it (a named other
+  // scheme is refused by check_agg_frag)
+  if (c.has_agg_frag && !prov["dsmc"].line.count("scheme")) c.dsmc.scheme = Scheme::lowrank;
 
   for (const auto& [group, p] : prov)
     for (const auto& [variable, line] : p.line)

@@ -70,7 +70,8 @@ const std::vector<Field<Initial>>& initial_fields() {
 const std::vector<Field<Dsmc>>& dsmc_fields() {
   static const std::vector<Field<Dsmc>> fields = {
       {"scheme", &Dsmc::scheme, "",
-       "'majorant' (DSMC notes, docs/schemes.md), 'pairs' (Montanero and Garzo 2002) or 'lowrank' (Bodrova and Osinsky 2024, docs/schemes.md)"},
+       "'majorant' (DSMC notes, docs/schemes.md), 'pairs' (Montanero and Garzo 2002) or 'lowrank' (Bodrova and Osinsky 2024, docs/schemes.md); "
+       "&agg_frag: 'lowrank' when not given"},
       {"n_particles", &Dsmc::n_particles, "", "simulated particles, split in proportion to n_k",
        Range{2, 2e9}},
       {"t_end", &Dsmc::t_end, "time", "end of the run (or give collisions_per_particle)",
@@ -395,7 +396,7 @@ std::string defaults_template() {
   template_group(s, "dsmc", dsmc_fields(), {{"t_end", "100.0"}, {"collisions_per_particle", "50.0"}});
   template_group(s, "output", output_fields(), {{"first_sample", "0.1"}, {"sample_times", "1.0, 2.0, 5.0"}});
   s << "! Aggregation and fragmentation: uncomment the group to switch it on (one species = the monomer,\n"
-       "! scheme = 'lowrank').\n";
+       "! the scheme is then 'lowrank').\n";
   {
     std::ostringstream g;
     template_group(g, "agg_frag", agg_frag_fields(),
