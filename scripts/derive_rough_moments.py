@@ -16,6 +16,9 @@ polynomials in alpha, h = K (1 + beta) (= 2 eta), q = 1/kappa and theta. The exp
 velocities in centre-of-mass form (V, g, Omega = (w1 + w2)/2, delta = w1 - w2 are independent Gaussians),
 e = z, and every monomial integrated in closed form (half-space moments for g_z).
 
+Needs python3-sympy, which scripts/install-deps.sh does not install: the script is a derivation kept with the
+code, not part of the build, the tests or the figures.
+
 Usage: scripts/derive_rough_moments.py   (about 4 minutes). tests/rough_test.cpp checks the printed
 coefficients against their smooth and Maxwellian limits (by hand) and against a Monte Carlo estimate.
 """

@@ -184,19 +184,14 @@ void add_free_cooling(Point& pt, const io::config::Config& config, const analysi
   }
 }
 
-/// zeta* = zeta/nu_M of the last two samples of T(t), as the HCS has it: dT/dt = -zeta* nu_unit T^(3/2), so
-/// zeta* = 2 (T_b^(-1/2) - T_a^(-1/2))/(nu_unit (t_b - t_a)) (\ref rough_observables "docs/rough-spheres.md"),
-/// with its error from the two temperatures' errors taken as independent (they are positively correlated, so
-/// this overstates the error; the times' errors are neglected).
+/// hcs_zeta_star of the last two samples of T(t), if there are two with positive T and time between them.
 std::optional<std::pair<double, double>> measured_zeta_star(const io::h5md::ObservableData& tr, double nu_unit) {
   const std::size_t n = tr.value.size();
   if (n < 2 || tr.time.size() != n || !(nu_unit > 0.0)) return std::nullopt;
   const double ta = tr.value[n - 2], tb = tr.value[n - 1], dt = tr.time[n - 1] - tr.time[n - 2];
   if (!(ta > 0.0) || !(tb > 0.0) || !(dt > 0.0)) return std::nullopt;
-  const double zeta = 2.0 * (1.0 / std::sqrt(tb) - 1.0 / std::sqrt(ta)) / (nu_unit * dt);
-  if (tr.error.size() != n) return std::pair{zeta, kNaN};
-  const double da = 0.5 * std::pow(ta, -1.5) * tr.error[n - 2], db = 0.5 * std::pow(tb, -1.5) * tr.error[n - 1];
-  return std::pair{zeta, 2.0 * std::sqrt(da * da + db * db) / (nu_unit * dt)};
+  const bool errors = tr.error.size() == n;
+  return hcs_zeta_star(ta, errors ? tr.error[n - 2] : kNaN, tb, errors ? tr.error[n - 1] : kNaN, dt, nu_unit);
 }
 
 /// Rough spheres of one species (\ref rough_maxwellian "docs/rough-spheres.md"): T_tr(t) and T_rot(t) of the
@@ -455,6 +450,12 @@ void add_agg_frag(Point& pt, const analysis::Predictions& p, const Measured& m) 
 }
 
 }  // namespace
+
+std::pair<double, double> hcs_zeta_star(double t_a, double error_a, double t_b, double error_b, double dt, double nu_unit) {
+  const double zeta = 2.0 * (1.0 / std::sqrt(t_b) - 1.0 / std::sqrt(t_a)) / (nu_unit * dt);
+  const double da = 0.5 * std::pow(t_a, -1.5) * error_a, db = 0.5 * std::pow(t_b, -1.5) * error_b;
+  return {zeta, 2.0 * std::sqrt(da * da + db * db) / (nu_unit * dt)};
+}
 
 Mark classify(double difference, double standard_error, double known_error, double scale) {
   const double d = std::abs(difference);

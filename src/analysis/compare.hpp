@@ -133,6 +133,12 @@ struct Measured {
 /// "/sweep/point_K/observables") of `file`. Throws std::runtime_error if the file cannot be read.
 Measured read_measured(const std::string& file, const std::string& root);
 
+/// zeta* = zeta/nu_M from two samples (T_a, T_b, their standard errors, t_b - t_a) of an HCS, where
+/// dT/dt = -zeta* nu_unit T^(3/2): zeta* = 2 (T_b^(-1/2) - T_a^(-1/2))/(nu_unit (t_b - t_a)), nu_unit =
+/// nu_M/sqrt(T) (\ref rough_sonine "docs/rough-spheres.md"). The error takes the two temperatures' errors as
+/// independent (they are positively correlated, so it is overstated). {value, standard error}.
+std::pair<double, double> hcs_zeta_star(double t_a, double error_a, double t_b, double error_b, double dt, double nu_unit);
+
 /// Within statistics, within the approximation's known error, beyond both (\ref compare_marks).
 enum class Mark { statistics, approximation, beyond, beyond_no_estimate };
 /// `scale` (the theory value): a difference below kRoundOff |scale| is round-off (e.g. T(0)), never a

@@ -477,52 +477,15 @@ MixtureDrivenState mixture_driven_state(const species::Mixture& mix, const std::
   return out;
 }
 
-namespace {
-
-/// (T_tr, T_rot, the other variable: c or t) and one RK4 step of length h in t (collision_driven false)
-/// or in c.
-using State = std::array<double, 3>;
-
-State derivative(const State& y, const Coefficients& k, double nu_unit, bool collision_driven) {
-  const double nu = nu_unit * std::sqrt(std::max(y[0], 0.0));
-  const double dtr = 4.0 / 3.0 * (-k.a * y[0] + k.b * y[1]), drot = 4.0 / 3.0 * (k.b * y[0] - k.c * y[1]);
-  if (collision_driven) return {dtr, drot, 1.0 / nu};  // d/dc; the third variable is t
-  return {nu * dtr, nu * drot, nu};                      // d/dt; the third variable is c
-}
-
-State rk4(const State& y, double h, const Coefficients& k, double nu_unit, bool collision_driven) {
-  const auto at = [&](const State& d, double f) { return State{y[0] + f * d[0], y[1] + f * d[1], y[2] + f * d[2]}; };
-  const State k1 = derivative(y, k, nu_unit, collision_driven);
-  const State k2 = derivative(at(k1, 0.5 * h), k, nu_unit, collision_driven);
-  const State k3 = derivative(at(k2, 0.5 * h), k, nu_unit, collision_driven);
-  const State k4 = derivative(at(k3, h), k, nu_unit, collision_driven);
-  State out;
-  for (std::size_t i = 0; i < 3; ++i) out[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
-  return out;
-}
-
-}  // namespace
-
 History integrate(const species::Mixture& mix, double translational, double rotational, const std::vector<double>& times,
                   bool collision_driven) {
   if (mix.size() != 1 || !mix.rough()) throw std::invalid_argument("theory::rough::integrate: one species of rough spheres");
-  const Coefficients k = coefficients(mix.restitution(0, 0), mix.roughness(0, 0), mix.moment_of_inertia[0]);
-  const double nu_unit = frequency_unit(mix);
-  History h;
-  State y{translational, rotational, 0.0};  // (T_tr, T_rot, c or t)
-  double x = 0.0;                           // t or c
-  constexpr double kStep = 0.01;            // collisions per particle per step: RK4 error ~ 1e-10 relative
-  for (double target : times) {
-    while (x < target) {
-      const double nu = nu_unit * std::sqrt(y[0]);
-      const double step = std::min(collision_driven ? kStep : kStep / nu, target - x);
-      y = rk4(y, step, k, nu_unit, collision_driven);
-      x = std::min(x + step, target);
-    }
-    h.time.push_back(collision_driven ? y[2] : x);
-    h.collisions_per_particle.push_back(collision_driven ? x : y[2]);
-    h.translational.push_back(y[0]);
-    h.rotational.push_back(y[1]);
+  // the mixture equations for one species are the A, B, C equations (Rough.TwoTemperatureEquationsAgreeWithTheClosedForm)
+  const MixtureHistory m = integrate_mixture(mix, {translational}, {rotational}, times, collision_driven);
+  History h{m.time, {}, {}, m.collisions_per_particle};
+  for (std::size_t i = 0; i < m.time.size(); ++i) {
+    h.translational.push_back(m.translational[i][0]);
+    h.rotational.push_back(m.rotational[i][0]);
   }
   return h;
 }

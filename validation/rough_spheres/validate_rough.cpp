@@ -5,6 +5,7 @@
 #include <string>
 #include <cstdio>
 
+#include "analysis/compare.hpp"
 #include "theory/rough.hpp"
 #include "validation.hpp"
 
@@ -55,9 +56,8 @@ int main(int argc, char** argv) {
                  st.theta, 4.0, std::abs(st.theta - hcs.theta));
     const auto t = validation::observable(run, "time");
     const double nu_unit = theory::rough::frequency_unit(mix) / mix.pair_correlation(0, 0);
-    const double ta = tr.value[last - 1], tb = tr.value[last], dt = t.value[last] - t.value[last - 1];
-    const double zeta = 2.0 * (1.0 / std::sqrt(tb) - 1.0 / std::sqrt(ta)) / (nu_unit * dt);
-    const double zeta_error = std::hypot(std::pow(ta, -1.5) * tr.error[last - 1], std::pow(tb, -1.5) * tr.error[last]) / (nu_unit * dt);
+    const auto [zeta, zeta_error] = analysis::compare::hcs_zeta_star(tr.value[last - 1], tr.error[last - 1], tr.value[last],
+                                                                     tr.error[last], t.value[last] - t.value[last - 1], nu_unit);
     report.check("zeta* = zeta/nu_M over the last two samples vs Sonine HCS (allowance |Sonine - Maxwellian|)", zeta,
                  zeta_error, mix.pair_correlation(0, 0) * st.cooling_rate_reduced, 4.0,
                  mix.pair_correlation(0, 0) * std::abs(st.cooling_rate_reduced - hcs.cooling_rate_reduced));

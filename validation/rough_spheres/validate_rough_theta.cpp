@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 
+#include "analysis/compare.hpp"
 #include "theory/rough.hpp"
 #include "validation.hpp"
 
@@ -40,11 +41,9 @@ int main(int argc, char** argv) {
     const Value ta = at(tr, i - 1), tb = at(tr, i), r = at(rot, i);
     const double theta = r.value / tb.value, theta_error = theta * std::hypot(r.error / r.value, tb.error / tb.value);
     const double nu_unit = theory::rough::frequency_unit(mix) / mix.pair_correlation(0, 0);
-    const double dt = time.value[i] - time.value[i - 1];
     // zeta* from T_tr(t) of the HCS (README): T^(-1/2) grows as zeta* nu_unit t/2
-    const double zeta = 2.0 * (1.0 / std::sqrt(tb.value) - 1.0 / std::sqrt(ta.value)) / (nu_unit * dt);
-    const double zeta_error =
-        std::hypot(std::pow(ta.value, -1.5) * ta.error, std::pow(tb.value, -1.5) * tb.error) / (nu_unit * dt);
+    const auto [zeta, zeta_error] =
+        analysis::compare::hcs_zeta_star(ta.value, ta.error, tb.value, tb.error, time.value[i] - time.value[i - 1], nu_unit);
     const auto maxwell = theory::rough::cooling_state(alpha, beta, kappa);
     const auto sonine = theory::rough::sonine_cooling_state(alpha, beta, kappa);
     char name[220];
