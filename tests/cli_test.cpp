@@ -676,13 +676,106 @@ TEST_F(CliTable, ElementSweepGivesANumericTableAndCsv) {
       << "the quoted name holds one comma";
 }
 
-TEST_F(CliTable, TableOfAFileWithoutASweep) {
-  ASSERT_EQ(dsmc(base()).status, 0);
+/// The lines of `text`.
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+/// The fields of one CSV line without quoted commas.
+std::vector<std::string> fields_of(const std::string& line) {
+  std::vector<std::string> fields;
+  std::istringstream in(line);
+  for (std::string field; std::getline(in, field, ',');) fields.push_back(field);
+  return fields;
+}
+
+TEST_F(CliTable, TableOfARunPrintsEveryTrajectoryWithSpeciesFromOne) {
+  ASSERT_EQ(dsmc(base(), "--set dsmc:replicas=2").status, 0);
   const Result r = run("granular-dsmc", "--table out.h5");
-  expect_input_error(r, "granular-dsmc", "--table out.h5: ", {"no sweep table", "not the output of a &sweep run"},
-                     {"out.h5", "t.nml"});
-  const Result missing = run("granular-dsmc", "--table absent.h5");
-  expect_input_error(missing, "granular-dsmc", "--table absent.h5: ", {"absent.h5"}, {"out.h5", "t.nml"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  const auto lines = lines_of(r.out);
+  const auto temperature = gdsmc::io::h5md::read_observable((dir / "out.h5").string(), "temperature");
+  ASSERT_EQ(lines.size(), temperature.time.size() + 1);  // the header, one row per sample
+  const auto header = fields_of(lines[0]);
+  EXPECT_EQ(header.at(0), "time");
+  const auto column = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+  };
+  for (const char* name : {"temperature_1", "temperature_1_error", "temperature_2", "temperature_2_error",
+                           "total_temperature", "sonine_c_2_error", "collisions_pair_1_2", "collisions_per_particle"})
+    EXPECT_LT(column(name), header.size()) << name << " missing from " << lines[0];
+  EXPECT_EQ(column("temperature_0"), header.size()) << "species count from 1";
+  for (std::size_t row = 1; row < lines.size(); ++row) {
+    const auto fields = fields_of(lines[row]);
+    ASSERT_EQ(fields.size(), header.size()) << lines[row];
+    EXPECT_DOUBLE_EQ(std::stod(fields[0]), temperature.time[row - 1]);
+    EXPECT_NEAR(std::stod(fields[column("temperature_2")]), temperature.value[(row - 1) * 2 + 1],
+                1e-11 * temperature.value[(row - 1) * 2 + 1]);
+    EXPECT_NEAR(std::stod(fields[column("temperature_2_error")]), temperature.error[(row - 1) * 2 + 1],
+                1e-11 * temperature.error[(row - 1) * 2 + 1] + 1e-300);
+  }
+}
+
+TEST_F(CliTable, NamedQuantitiesWithTheTheoryOfCompare) {
+  ASSERT_EQ(dsmc(base()).status, 0);
+  const Result r = run("granular-dsmc", "--table out.h5 total_temperature sonine_c --theory");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto lines = lines_of(r.out);
+  ASSERT_GE(lines.size(), 3u);
+  EXPECT_EQ(lines[0], "time,total_temperature,total_temperature_error,total_temperature_theory,sonine_c_1,"
+                      "sonine_c_1_error,sonine_c_2,sonine_c_2_error");
+  EXPECT_EQ(lines[1].rfind("0,1,nan,1,", 0), 0u) << lines[1];  // T(0) = 1, one replica: no error
+  EXPECT_NE(r.err.find("theory: none for 'sonine_c'"), std::string::npos) << r.err;
+  const Result summary = run("granular-dsmc", "--table out.h5 summary");
+  ASSERT_EQ(summary.status, 0) << summary.err;
+  const auto rows = lines_of(summary.out);
+  ASSERT_EQ(rows.size(), 2u) << summary.out;
+  EXPECT_EQ(rows[0].rfind("temperature_1,temperature_1_error,temperature_2,", 0), 0u) << rows[0];
+  EXPECT_NE(rows[0].find("temperature_over_mean_2,"), std::string::npos) << rows[0];
+}
+
+TEST_F(CliTable, RequestsThatCannotBeAnsweredAreRefusedInOneLine) {
+  ASSERT_EQ(dsmc(base()).status, 0);
+  const std::vector<std::string> both{"out.h5", "t.nml"};
+  expect_input_error(run("granular-dsmc", "--table out.h5 bogus"), "granular-dsmc", "--table out.h5: ",
+                     {"'bogus' is neither an observable nor a column", "--print-observables"}, both);
+  expect_input_error(run("granular-dsmc", "--table out.h5 msd"), "granular-dsmc", "--table out.h5: ",
+                     {"'msd' was not measured"}, both);
+  expect_input_error(run("granular-dsmc", "--table out.h5 scaling_sonine_c"), "granular-dsmc", "--table out.h5: ",
+                     {"not a time series", "summary"}, both);
+  expect_input_error(run("granular-dsmc", "--table out.h5 --point 1"), "granular-dsmc", "--table out.h5: ",
+                     {"not a sweep"}, both);
+  expect_input_error(run("granular-dsmc", "--table out.h5 --point x"), "granular-dsmc", "--table: ",
+                     {"--point x"}, both);
+  expect_input_error(run("granular-dsmc", "--table out.h5 --bogus"), "granular-dsmc", "--table: ",
+                     {"unknown option --bogus"}, both);
+  expect_input_error(run("granular-dsmc", "--table out.h5 summary temperature"), "granular-dsmc", "--table out.h5: ",
+                     {"alone"}, both);
+  expect_input_error(run("granular-dsmc", "--table absent.h5"), "granular-dsmc", "--table absent.h5: ", {"absent.h5"},
+                     both);
+  expect_input_error(run("granular-dsmc", "--table"), "granular-dsmc", "--table: ", {"no output file"}, both);
+}
+
+TEST_F(CliTable, SweepPointsHaveTrajectoriesOfTheirOwn) {
+  ASSERT_EQ(dsmc(base() + "&sweep variable = 'system:restitution(1,2)', values = 0.6, 0.9 /\n").status, 0);
+  const Result point = run("granular-dsmc", "--table out.h5 --point 2 temperature --theory");
+  ASSERT_EQ(point.status, 0) << point.err;
+  const auto lines = lines_of(point.out);
+  const auto t = gdsmc::io::h5md::read_observable((dir / "out.h5").string(), "/sweep/point_2/observables/temperature");
+  ASSERT_EQ(lines.size(), t.time.size() + 1);
+  EXPECT_EQ(lines[0], "time,temperature_1,temperature_1_error,temperature_1_theory,temperature_2,temperature_2_error,"
+                      "temperature_2_theory");
+  EXPECT_NEAR(std::stod(fields_of(lines.back()).at(1)), t.value[t.value.size() - 2], 1e-11 * t.value[t.value.size() - 2]);
+  const std::vector<std::string> both{"out.h5", "t.nml"};
+  expect_input_error(run("granular-dsmc", "--table out.h5 --point 3"), "granular-dsmc", "--table out.h5: ",
+                     {"--point 3", "sweep of 2 points"}, both);
+  expect_input_error(run("granular-dsmc", "--table out.h5 temperature"), "granular-dsmc", "--table out.h5: ",
+                     {"give --point K"}, both);
+  EXPECT_EQ(lines_of(run("granular-dsmc", "--table out.h5 summary").out).size(), 3u);  // the sweep table
 }
 
 TEST_F(CliTable, SweepVariableThatDoesNotExist) {

@@ -448,4 +448,46 @@ Predictions predict(const io::config::Config& config) {
 }
 
 
+std::map<std::string, Trajectory> trajectories(const Predictions& p) {
+  std::map<std::string, Trajectory> out;
+  const auto scalar = [](const std::vector<double>& time, const std::vector<double>& values, double scale) {
+    Trajectory t{time, {}};
+    for (double v : values) t.value.push_back({v * scale});
+    return t;
+  };
+  if (p.agg_frag) {
+    const auto& af = *p.agg_frag;
+    const auto& sol = af.solution;
+    const double n0 = af.initial_monomers;
+    const auto sizes = [&](const std::vector<double>& values, double scale) {  // [time][size] of [time * max_size + size]
+      Trajectory t{sol.time, {}};
+      for (std::size_t i = 0; i < sol.time.size(); ++i) {
+        std::vector<double> row;
+        for (std::size_t k = 0; k < af.width; ++k) row.push_back(values[i * sol.max_size + k] * scale);
+        t.value.push_back(std::move(row));
+      }
+      return t;
+    };
+    out["number"] = sizes(sol.number_fraction, n0);
+    out["temperature"] = sizes(sol.temperature, 1.0);
+    out["total_temperature"] = scalar(sol.time, sol.total_temperature, 1.0);
+    out["kinetic_energy"] = scalar(sol.time, sol.kinetic_energy, 1.0);
+    out["mean_size"] = scalar(sol.time, af.mean_size, 1.0);
+    out["monomer_fraction"] = scalar(sol.time, af.monomer_fraction, 1.0);
+    out["collisions"] = scalar(sol.time, sol.collisions, n0);
+    out["aggregations"] = scalar(sol.time, sol.aggregations, n0);
+    out["fragmentations"] = scalar(sol.time, sol.fragmentations, n0);
+    out["collisions_per_particle"] = scalar(sol.time, af.collisions_per_particle, 1.0);
+    return out;
+  }
+  if (p.has_history) {
+    out["temperature"] = Trajectory{p.time, p.temperature};
+    out["total_temperature"] = scalar(p.time, p.total_temperature, 1.0);
+    out["collisions_per_particle"] = scalar(p.time, p.collisions_per_particle, 1.0);
+    if (!p.rotational_temperature.empty()) out["rotational_temperature"] = scalar(p.time, p.rotational_temperature, 1.0);
+  }
+  if (p.msd) out["msd"] = *p.msd;
+  return out;
+}
+
 }  // namespace gdsmc::analysis

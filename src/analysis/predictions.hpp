@@ -25,6 +25,7 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -116,6 +117,13 @@ struct Predictions {
 /// The predictions for one point (not a sweep: call it per Config::sweep_points()). Throws
 /// std::runtime_error only when the ODEs themselves fail.
 Predictions predict(const io::config::Config& config);
+
+/// Every trajectory of `p` by the name of the observable it predicts (value[time][column], columns as the
+/// observable's: species, or cluster sizes 1..width of &agg_frag), as granular-theory prints them:
+/// temperature, total_temperature, collisions_per_particle, rotational_temperature, msd; &agg_frag:
+/// number, temperature, total_temperature, kinetic_energy, mean_size, monomer_fraction, collisions,
+/// aggregations, fragmentations, collisions_per_particle (`granular-dsmc --table --theory`).
+std::map<std::string, Trajectory> trajectories(const Predictions& p);
 
 /// The monomer of &system and the thresholds of &agg_frag of a validated Config, for the Smoluchowski
 /// equations (theory/smoluchowski.hpp).

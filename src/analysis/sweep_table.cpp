@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "analysis/compare.hpp"
+#include "analysis/csv.hpp"
 #include "io/units.hpp"
 #include "model/observables.hpp"
 
@@ -64,19 +65,11 @@ double numeric_value(const std::string& written) {
   return end && *end == '\0' && std::isfinite(x) ? x : kNaN;
 }
 
-Table build(const io::config::Config& config, const std::string& file) {
-  Table t;
-  t.variables = config.sweep.variable;
-  const auto rows = config.sweep.table();
-  const auto points = config.sweep_points();
-  t.points = rows.size();
-  for (const auto& row : rows)
-    for (const auto& v : row) {
-      t.values.push_back(numeric_value(v));
-      t.texts.push_back(v);
-    }
+namespace {
 
-  const std::vector<std::pair<std::string, std::string>> names = {
+/// The quantities of the table and where each is taken.
+const std::vector<std::pair<std::string, std::string>>& quantities() {
+  static const std::vector<std::pair<std::string, std::string>> names = {
       {"temperature", "last sample (final temperature; steady with a thermostat)"},
       {"total_temperature", "last sample (final temperature; steady with a thermostat)"},
       {"temperature_over_mean", "scaling state: samples past &output scaling_start averaged per replica, SE over the replicas (else the last sample)"},
@@ -84,51 +77,65 @@ Table build(const io::config::Config& config, const std::string& file) {
       {"cooling_rate_reduced", "scaling state (reduced_distribution@cooling_rate_reduced)"},
       {"shear_viscosity", "time average from &shear average_from (shear_viscosity@time_average)"},
       {"collisions_per_particle", "last sample"}};
-  // What each quantity is: the table of observables' definition (model/observables.hpp).
-  std::vector<std::string> descriptions;
-  for (const auto& [name, how] : names) descriptions.emplace_back(observables::find(name).description);
+  return names;
+}
+
+/// The results of one run or sweep point (`root`: its observables group), in the order of quantities();
+/// `scaling_samples` = the samples averaged for the scaling state (0: the last sample is used).
+std::vector<PointValues> point_results(const io::config::Config& point, const std::string& file,
+                                       const std::string& root, double& scaling_samples) {
+  std::vector<PointValues> per(quantities().size());
+  const compare::Measured m = compare::read_measured(file, root);
+  const auto get = [&](const char* name) -> const io::h5md::ObservableData* {
+    const auto it = m.observables.find(name);
+    return it == m.observables.end() ? nullptr : &it->second;
+  };
+  if (const auto* o = get("temperature")) per[0] = last(*o);
+  if (const auto* o = get("total_temperature")) per[1] = last(*o);
+  if (const auto* o = get("collisions_per_particle")) per[6] = last(*o);
+  scaling_samples = 0.0;
+  if (!point.has_agg_frag && get("temperature") && get("total_temperature") && get("collisions_per_particle")) {
+    // The scaling state (compare.hpp scaling_state): past scaling_start, else the last sample.
+    const auto& cpp = get("collisions_per_particle")->value;
+    const double start = point.output.scaling_start;
+    const bool any = std::any_of(cpp.begin(), cpp.end(), [&](double x) { return x >= start; });
+    const double from = any ? start : (cpp.empty() ? 0.0 : cpp.back());
+    if (const auto state = compare::scaling_state(m, from, any)) {
+      scaling_samples = any ? static_cast<double>(state->samples) : 0.0;
+      const bool present = !state->ratio.empty() && !get("total_temperature")->value.empty();
+      per[2] = {state->ratio, state->ratio_error, present};
+      per[3] = {state->cumulant, state->cumulant_error, present};
+    }
+  }
+  const auto attribute = [&](const char* key) {
+    const auto it = m.attributes.find(key);
+    return it == m.attributes.end() ? kNaN : it->second;
+  };
+  if (m.attributes.count("reduced_distribution@cooling_rate_reduced"))
+    per[4] = {{attribute("reduced_distribution@cooling_rate_reduced")},
+              {attribute("reduced_distribution@cooling_rate_reduced_error")}, true};
+  if (m.attributes.count("shear_viscosity@time_average"))
+    per[5] = {{attribute("shear_viscosity@time_average")}, {attribute("shear_viscosity@time_average_error")}, true};
+  return per;
+}
+
+/// The table of `points` (configs) whose observables are under `roots` of `file`.
+Table tabulate(Table t, const std::vector<io::config::Config>& points, const std::vector<std::string>& roots,
+               const std::string& file) {
+  const auto& names = quantities();
   std::vector<std::vector<PointValues>> per(names.size(), std::vector<PointValues>(t.points));
   t.scaling_samples.assign(t.points, 0.0);
   for (std::size_t k = 0; k < t.points; ++k) {
-    const std::string root = "/sweep/point_" + std::to_string(k + 1) + "/observables";
-    const compare::Measured m = compare::read_measured(file, root);
-    const auto get = [&](const char* name) -> const io::h5md::ObservableData* {
-      const auto it = m.observables.find(name);
-      return it == m.observables.end() ? nullptr : &it->second;
-    };
-    if (const auto* o = get("temperature")) per[0][k] = last(*o);
-    if (const auto* o = get("total_temperature")) per[1][k] = last(*o);
-    if (const auto* o = get("collisions_per_particle")) per[6][k] = last(*o);
-    if (!points[k].has_agg_frag && get("temperature") && get("total_temperature") && get("collisions_per_particle")) {
-      // The scaling state (compare.hpp scaling_state): past scaling_start, else the last sample.
-      const auto& cpp = get("collisions_per_particle")->value;
-      const double start = points[k].output.scaling_start;
-      const bool any = std::any_of(cpp.begin(), cpp.end(), [&](double x) { return x >= start; });
-      const double from = any ? start : (cpp.empty() ? 0.0 : cpp.back());
-      if (const auto state = compare::scaling_state(m, from, any)) {
-        t.scaling_samples[k] = any ? static_cast<double>(state->samples) : 0.0;
-        const bool present = !state->ratio.empty() && !get("total_temperature")->value.empty();
-        per[2][k] = {state->ratio, state->ratio_error, present};
-        per[3][k] = {state->cumulant, state->cumulant_error, present};
-      }
-    }
-    const auto attribute = [&](const char* key) {
-      const auto it = m.attributes.find(key);
-      return it == m.attributes.end() ? kNaN : it->second;
-    };
-    if (m.attributes.count("reduced_distribution@cooling_rate_reduced"))
-      per[4][k] = {{attribute("reduced_distribution@cooling_rate_reduced")},
-                   {attribute("reduced_distribution@cooling_rate_reduced_error")}, true};
-    if (m.attributes.count("shear_viscosity@time_average"))
-      per[5][k] = {{attribute("shear_viscosity@time_average")}, {attribute("shear_viscosity@time_average_error")},
-                   true};
+    const auto results = point_results(points[k], file, roots[k], t.scaling_samples[k]);
+    for (std::size_t q = 0; q < names.size(); ++q) per[q][k] = results[q];
   }
   for (std::size_t q = 0; q < names.size(); ++q) {
     std::size_t width = 0;
     for (const auto& p : per[q])
       if (p.present) width = std::max(width, p.value.size());
     if (width == 0) continue;  // no point has this result
-    Result r{names[q].first, names[q].second, descriptions[q], width, {}, {}};
+    // What each quantity is: the table of observables' definition (model/observables.hpp).
+    Result r{names[q].first, names[q].second, observables::find(names[q].first).description, width, {}, {}};
     for (const auto& p : per[q])
       for (std::size_t c = 0; c < width; ++c) {
         r.value.push_back(p.present && c < p.value.size() ? p.value[c] : kNaN);
@@ -137,6 +144,29 @@ Table build(const io::config::Config& config, const std::string& file) {
     t.results.push_back(std::move(r));
   }
   return t;
+}
+
+}  // namespace
+
+Table build(const io::config::Config& config, const std::string& file) {
+  Table t;
+  t.variables = config.sweep.variable;
+  const auto rows = config.sweep.table();
+  t.points = rows.size();
+  for (const auto& row : rows)
+    for (const auto& v : row) {
+      t.values.push_back(numeric_value(v));
+      t.texts.push_back(v);
+    }
+  std::vector<std::string> roots;
+  for (std::size_t k = 0; k < t.points; ++k) roots.push_back("/sweep/point_" + std::to_string(k + 1) + "/observables");
+  return tabulate(std::move(t), config.sweep_points(), roots, file);
+}
+
+Table summary(const io::config::Config& config, const std::string& file) {
+  Table t;
+  t.points = 1;
+  return tabulate(std::move(t), {config}, {"/observables"}, file);
 }
 
 void write(io::h5md::Writer& writer, const Table& t) {
@@ -212,61 +242,34 @@ Table read(const std::string& file) {
 }
 
 std::string csv(const Table& t) {
-  const auto field = [](const std::string& text) {
-    if (text.find_first_of(",\"\n") == std::string::npos) return text;
-    std::string quoted = "\"";
-    for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return quoted + "\"";
-  };
-  const auto number = [](double x) {
-    if (std::isnan(x)) return std::string("nan");
-    char text[40];
-    std::snprintf(text, sizeof text, "%.12g", x);
-    return std::string(text);
-  };
-  std::string out;
-  std::vector<std::string> header;
-  for (const auto& v : t.variables) header.push_back(field(v));
+  std::vector<csv::Column> columns;
+  const std::size_t nv = t.variables.size();
+  for (std::size_t v = 0; v < nv; ++v) {
+    csv::Column column{t.variables[v], {}, {}};
+    for (std::size_t k = 0; k < t.points; ++k) {
+      const std::size_t i = k * nv + v;
+      column.values.push_back(t.values[i]);
+      std::string text;
+      if (std::isnan(t.values[i]) && i < t.texts.size()) {  // a string or an array: its text, unquoted
+        text = t.texts[i];
+        if (text.size() >= 2 && text.front() == '\'' && text.back() == '\'') text = text.substr(1, text.size() - 2);
+      }
+      column.texts.push_back(text);
+    }
+    columns.push_back(std::move(column));
+  }
   for (const auto& r : t.results)
     for (std::size_t c = 0; c < r.columns; ++c) {
-      std::string name = r.name;
-      if (r.columns > 1) {
-        name += '_';
-        name += std::to_string(c + 1);
+      const std::string name = r.columns > 1 ? r.name + "_" + std::to_string(c + 1) : r.name;
+      csv::Column value{name, {}, {}}, error{name + "_error", {}, {}};
+      for (std::size_t k = 0; k < t.points; ++k) {
+        value.values.push_back(r.value[k * r.columns + c]);
+        error.values.push_back(r.error[k * r.columns + c]);
       }
-      header.push_back(name);
-      header.push_back(name + "_error");
+      columns.push_back(std::move(value));
+      columns.push_back(std::move(error));
     }
-  for (std::size_t i = 0; i < header.size(); ++i) {
-    if (i) out += ',';
-    out += header[i];
-  }
-  out += '\n';
-  const std::size_t nv = t.variables.size();
-  for (std::size_t k = 0; k < t.points; ++k) {
-    std::string line;
-    for (std::size_t v = 0; v < nv; ++v) {
-      if (v) line += ',';
-      const std::size_t i = k * nv + v;
-      if (std::isnan(t.values[i]) && i < t.texts.size()) {  // a string or an array: its text
-        std::string text = t.texts[i];
-        if (text.size() >= 2 && text.front() == '\'' && text.back() == '\'') text = text.substr(1, text.size() - 2);
-        line += field(text);
-      } else {
-        line += number(t.values[i]);
-      }
-    }
-    for (const auto& r : t.results)
-      for (std::size_t c = 0; c < r.columns; ++c) {
-        line += ',';
-        line += number(r.value[k * r.columns + c]);
-        line += ',';
-        line += number(r.error[k * r.columns + c]);
-      }
-    out += line;
-    out += '\n';
-  }
-  return out;
+  return csv::write(columns, t.points);
 }
 
 }  // namespace gdsmc::analysis::sweep_table

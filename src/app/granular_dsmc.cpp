@@ -22,7 +22,7 @@
 #include "io/config.hpp"
 #include "io/h5md.hpp"
 #include "io/namelist.hpp"
-#include "analysis/sweep_table.hpp"
+#include "analysis/run_table.hpp"
 #include "io/version.hpp"
 #include "model/observables.hpp"
 
@@ -98,7 +98,7 @@ const char* kUsage =
     "usage: granular-dsmc FILE.nml [--output PATH] [--quiet] [--compare[=FILE.json]] [--restart CHECKPOINT]\n"
     "                     [--set group:variable=value]...\n"
     "       granular-dsmc --print-defaults\n"
-    "       granular-dsmc --table OUTPUT.h5\n"
+    "       granular-dsmc --table OUTPUT.h5 [QUANTITY...] [--point K] [--theory]\n"
     "  --output PATH     write the result to PATH (overrides &output file)\n"
     "  --quiet           no progress line (on a terminal one line rewritten in place; otherwise a\n"
     "                    line every 10 s) and no summary line\n"
@@ -115,8 +115,12 @@ const char* kUsage =
     "  --force           write the output over an existing file that is not an earlier output of granular-dsmc\n"
     "  --print-defaults  print a commented namelist with every variable and its default\n"
     "  --print-observables  print the table of observables (name, unit, columns, definition) as Markdown\n"
-    "  --table FILE.h5   print the table of a sweep's output (/sweep/values, /sweep/results) as CSV:\n"
-    "                    a header line, one row per point (docs/output.md \"Sweeps\")\n"
+    "  --table FILE.h5   print an output file as CSV (docs/output.md \"granular-dsmc --table\"): every time\n"
+    "                    series of a run (time, then each column and its _error; species from 1), or the\n"
+    "                    QUANTITY... named (see --print-observables); 'summary': the final and scaling-\n"
+    "                    state values in one row; 'reduced_distribution': Phi, Delta, G per bin of v*;\n"
+    "                    a sweep: its table (one row per point), --point K: the trajectories of point K;\n"
+    "                    --theory: the theory of --compare beside each trajectory it has\n"
     "Exit status: 0 success, 2 bad input, 1 run-time failure, 130 interrupted.\n";
 
 }  // namespace
@@ -133,6 +137,44 @@ struct Arguments {
   std::string output_option;    ///< the --output argument, for messages
   std::string output_override;  ///< the override --output became
 };
+
+/// `--table FILE.h5 [QUANTITY...] [--point K] [--theory]` from argv[first] on: the CSV on stdout, notes
+/// on stderr; exit status 2 with one line for a request that cannot be answered.
+int print_table(int argc, char** argv, int first) {
+  gdsmc::analysis::run_table::Request request;
+  const auto refuse = [](const std::string& message) {
+    std::cerr << "granular-dsmc: --table: " << message << "\n";
+    return 2;
+  };
+  for (int i = first; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--theory") {
+      request.theory = true;
+    } else if (arg == "--point") {
+      if (i + 1 >= argc) return refuse("--point needs a sweep point (1, 2, ...)");
+      const std::string k = argv[++i];
+      if (k.empty() || k.size() > 9 || k.find_first_not_of("0123456789") != std::string::npos || std::stoul(k) == 0)
+        return refuse("--point " + k + ": a sweep point is a number from 1");
+      request.point = std::stoul(k);
+    } else if (!arg.empty() && arg[0] == '-') {
+      return refuse("unknown option " + arg + " (--table takes QUANTITY..., --point K and --theory)");
+    } else if (request.file.empty()) {
+      request.file = arg;
+    } else {
+      request.quantities.push_back(arg);
+    }
+  }
+  if (request.file.empty()) return refuse("no output file named");
+  try {
+    const auto printed = gdsmc::analysis::run_table::print(request);
+    std::cout << printed.csv << std::flush;
+    for (const auto& note : printed.notes) std::cerr << "granular-dsmc: --table " << request.file << ": " << note << "\n";
+  } catch (const std::exception& e) {
+    std::cerr << "granular-dsmc: --table " << request.file << ": " << e.what() << "\n";
+    return 2;
+  }
+  return 0;
+}
 
 /// Reads the command line into `a`; an exit status when the program is done (an option that prints and
 /// exits, or a bad command line), nothing when a run follows.
@@ -161,15 +203,8 @@ std::optional<int> parse_arguments(int argc, char** argv, Arguments& a) {
     } else if (arg == "--print-observables") {  // the table of observables (model/observables.hpp), for docs/
       std::cout << gdsmc::observables::markdown();
       return 0;
-    } else if (arg == "--table") {  // the sweep table of an output file as CSV (analysis/sweep_table.hpp)
-      const std::string file = next();
-      try {
-        std::cout << gdsmc::analysis::sweep_table::csv(gdsmc::analysis::sweep_table::read(file)) << std::flush;
-      } catch (const std::exception& e) {
-        std::cerr << "granular-dsmc: --table " << file << ": " << e.what() << "\n";
-        return 2;
-      }
-      return 0;
+    } else if (arg == "--table") {  // any output file as CSV (analysis/run_table.hpp)
+      return print_table(argc, argv, i + 1);
     } else if (arg == "--quiet" || arg == "-q") {
       a.quiet = true;
     } else if (arg == "--force") {
