@@ -1,23 +1,20 @@
 #!/usr/bin/python3
-"""Aggregation and fragmentation (DSMC notes, eqs. (8)-(14); docs/agg-frag.md) from the validation outputs: DSMC
-points (replica mean +- standard error) over the Smoluchowski rate equations of `granular-theory` for
-the same input, for pure sticking, rare reactions in a nearly elastic gas, and the full model, with the
-residuals (DSMC/theory - 1, in percent) below: the closure's drift is visible there.
+"""Aggregation and fragmentation (DSMC notes, eqs. (8)-(14); docs/agg-frag.md): DSMC points (replica
+mean +- standard error) over the Smoluchowski rate equations of `granular-theory` for the same input,
+for pure sticking, rare reactions in a nearly elastic gas, and the full model, with the residuals
+(DSMC/theory - 1, in percent) below: the closure's drift is visible there. Each figure shows N_k(t) for
+k = 1..4, the monomer fraction, the mean cluster size <k> and the temperature per cluster T(t).
 
-usage: /usr/bin/python3 paper-figures/agg_frag.py [BUILD_DIR] [OUT_DIR]
-Reads BUILD_DIR/validation-output/agg_frag_{sticking,rare,full}*.h5 (ctest -L validation; paper tier
-preferred, quick otherwise) and writes OUT_DIR/agg_frag_<case>.pdf and .png: N_k(t) for k = 1..4, the
-monomer fraction, the mean cluster size <k> and the temperature per cluster T(t).
+figures (OUT_DIR/<figure>.pdf and .png) and the validation cases they draw:
+  agg_frag_sticking  agg_frag_sticking
+  agg_frag_rare      agg_frag_rare
+  agg_frag_full      agg_frag_full
 """
-
+import figures_common as fc  # first: it answers --help before matplotlib is loaded
 import h5py
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import figures_common as fc  # noqa: E402
-from figures_common import PAGE, figure, pick, observable, theory, save, residuals  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+from figures_common import PAGE, figure, pick, observable, theory, save, residuals
 
 CASES = (("sticking", "pure sticking"), ("rare", r"rare reactions, $\alpha = 0.99$"), ("full", "full model"))
 

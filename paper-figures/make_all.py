@@ -1,24 +1,12 @@
 #!/usr/bin/python3
-"""Regenerates every paper figure from the validation runs in a build tree, and checks the scripts.
+"""Regenerates every paper figure from the validation runs of a build tree (or from your own runs), and
+checks the scripts.
 
-usage: /usr/bin/python3 paper-figures/make_all.py [BUILD_DIR] [OUT_DIR] [--docs [DIR]]
-       /usr/bin/python3 paper-figures/make_all.py --check
-       (or: cmake --build build --target figures)
-
-Runs every figure of every script in paper-figures/ (each *.py but this file and figures_common.py)
-over BUILD_DIR/validation-output/ (default build/; paper tier preferred, quick tier otherwise) and writes
-OUT_DIR/<figure>.pdf and .png (default paper-figures/out/). At the end it lists each figure: made (from
-which tier), partial (drawn without some of its runs) or NOT MADE (its validation runs are missing),
-with the ctest command that runs the missing ones. The exit status is 1 only on real errors (a script
-that fails on the data it has); missing runs are reported, not errors.
-
---docs [DIR]  also writes the figures the docs page shows (DOCS_STEMS) as small PNGs to DIR (default
-              docs/figures/) with DIR/sources.txt: the runs each was drawn from.
---check       the smoke test of ctest `figures.scripts` (no validation outputs needed): every script
-              imports figures_common (the one style, gdsmc.mplstyle), saves only through it (PDF and
-              PNG), overrides no style setting, and each of its figures runs up to its first missing
-              input without any other error; save() writes both formats and refuses internal words.
-              Exit status 77 (ctest: skipped) when matplotlib, numpy or h5py cannot be imported.
+Runs every figure of every script in paper-figures/ (each *.py but this file and figures_common.py; each
+script's --help lists its figures and the validation cases they draw) and writes OUT_DIR/<figure>.pdf
+and .png. `cmake --build BUILD_DIR --target figures` runs `make_all.py BUILD_DIR BUILD_DIR/figures`.
+At the end it lists each figure: made (from which tier or file), partial (drawn without some of its
+runs) or NOT MADE, with the ctest command that runs the missing validation cases.
 """
 import ast
 import datetime
@@ -54,35 +42,45 @@ def load_scripts():
     return [importlib.import_module(os.path.basename(p)[:-3]) for p in scripts()]
 
 
-def generate(argv):
-    args = [a for a in argv if not a.startswith("--")]
-    docs = "--docs" in argv
-    docs_dir = None
-    if docs:
-        i = argv.index("--docs")
-        nxt = argv[i + 1] if i + 1 < len(argv) else None
-        if nxt and not nxt.startswith("--"):
-            docs_dir = nxt
-            args.remove(nxt)
-        else:
-            docs_dir = os.path.join(ROOT, "docs", "figures")
+def add_arguments(parser):
+    """The options of make_all.py besides those of every figure script (figures_common.command_line)."""
+    parser.add_argument("--docs", nargs="?", const=os.path.join(ROOT, "docs", "figures"), metavar="DIR",
+                        help="also write the figures the docs show (DOCS_STEMS) as small PNGs to DIR "
+                             "(default docs/figures/), with DIR/sources.txt: the runs each was drawn from")
+    parser.add_argument("--check", action="store_true",
+                        help="the smoke test of ctest figures.scripts (needs no runs; writes only to a "
+                             "temporary directory): every script imports figures_common first and saves "
+                             "only through it, overrides no style setting, lists the cases it draws in its "
+                             "--help, and each figure runs up to its first missing input without any other "
+                             "error; save() writes PDF and PNG, refuses internal words and marks a figure "
+                             "without DSMC data. Exit status 77 (ctest: skipped) when matplotlib, numpy "
+                             "or h5py cannot be imported")
+
+
+def generate(args):
     import figures_common as fc
-    build = args[0] if args else os.path.join(ROOT, "build")
-    fc.configure(build, args[1] if len(args) > 1 else None, docs_dir, DOCS_STEMS if docs else ())
+    fc.configure_from(args, docs_dir=args.docs, docs_stems=DOCS_STEMS if args.docs else ())
     load_scripts()
-    print(f"figures from {fc.RUNS} into {fc.OUT}" + (f" (docs PNGs: {fc.DOCS_DIR})" if docs else ""))
+    print(f"figures from {fc.runs_dir()} into {fc.shown(fc.OUT)}"
+          + (f" (docs PNGs: {fc.shown(fc.DOCS_DIR)})" if args.docs else ""))
     results = fc.run_figures(fc.REGISTRY)
-    errors = fc.report(results, fc.BUILD)
-    if docs:
-        with open(os.path.join(fc.DOCS_DIR, "sources.txt"), "w") as out:
-            out.write("Written by `paper-figures/make_all.py --docs` on "
-                      f"{datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC from the validation "
-                      "outputs below (build/validation-output/).\n\n")
-            for fig, status, d in results:
-                for stem in fig.stems:
-                    if stem in DOCS_STEMS and status in ("made", "partial"):
-                        out.write(f"{stem}.png: {', '.join(os.path.basename(p) for p in d['used'])}\n")
-    return 1 if errors else 0
+    status = fc.finish(results)
+    if args.docs:
+        write_docs_sources(fc.DOCS_DIR, results)
+    return status
+
+
+def write_docs_sources(docs_dir, results):
+    """DIR/sources.txt: the runs each docs figure was drawn from."""
+    os.makedirs(docs_dir, exist_ok=True)
+    with open(os.path.join(docs_dir, "sources.txt"), "w") as out:
+        out.write("Written by `paper-figures/make_all.py --docs` on "
+                  f"{datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC from the validation "
+                  "outputs below (build/validation-output/).\n\n")
+        for fig, status, d in results:
+            for stem in fig.stems:
+                if stem in DOCS_STEMS and status in ("made", "partial"):
+                    out.write(f"{stem}.png: {', '.join(os.path.basename(p) for p in d['used'])}\n")
 
 
 # -------------------------------------------------------------------------------------------------
@@ -128,17 +126,45 @@ def static_problems(path):
                     problems.append(f"line {node.lineno}: rcParams[...] = ...: no style overrides")
     if not imports_common:
         problems.append("does not import figures_common (the style, save() for PDF and PNG)")
+    problems += import_order_problems(tree)
     return problems
 
 
+HEAVY = ("matplotlib", "h5py", "numpy")
+
+
+def import_order_problems(tree):
+    """figures_common must come before matplotlib, h5py, numpy: it answers --help before they load
+    (importing matplotlib writes ~/.config/matplotlib and a font cache)."""
+    for node in tree.body:
+        names = [a.name for a in node.names] if isinstance(node, ast.Import) else \
+            [node.module or ""] if isinstance(node, ast.ImportFrom) else []
+        if "figures_common" in names:
+            return []
+        heavy = [n for n in names if n.split(".")[0] in HEAVY]
+        if heavy:
+            return [f"line {node.lineno}: imports {heavy[0]} before figures_common (--help must not load it)"]
+    return []
+
+
+def documented_cases(doc):
+    """The case names a script's docstring lists, brace patterns expanded: viscosity_alpha{1.0,0.9} is
+    viscosity_alpha1.0 and viscosity_alpha0.9."""
+    import re
+    names = set()
+    for token in re.findall(r"[\w.{},]+", doc or ""):
+        todo = [token]
+        while todo:
+            t = todo.pop()
+            m = re.search(r"\{([^{}]*)\}", t)
+            if m:
+                todo += [t[:m.start()] + alt + t[m.end():] for alt in m.group(1).split(",")]
+            else:
+                names.add(t.strip(".,"))
+    return names
+
+
 def check():
-    try:
-        import h5py  # noqa: F401
-        import matplotlib  # noqa: F401
-        import numpy  # noqa: F401
-    except ImportError as e:
-        print(f"SKIP: {e} (install python3-matplotlib, python3-h5py, python3-numpy)")
-        return SKIP
     failures = []
     paths = scripts()
     if not paths:
@@ -147,6 +173,7 @@ def check():
         for msg in static_problems(p):
             failures.append(f"{os.path.basename(p)}: {msg}")
 
+    import matplotlib
     import matplotlib.pyplot as plt
     import numpy as np
     import figures_common as fc
@@ -198,6 +225,15 @@ def check():
                 pass
         if glob.glob(os.path.join(out, "refused.*")):
             failures.append("save() wrote a refused figure")
+        # a figure drawn from no run is marked so as a whole; a panel marked by no_dsmc() may name its runs
+        if "synthetic" not in fc._current["no_dsmc"]:
+            failures.append("save() did not mark a figure drawn from no run as without DSMC data")
+        fig, ax = plt.subplots()
+        fc.no_dsmc(ax, ["haff_cooling_alpha0.9", "velocity_shell"])
+        try:
+            fc.save(fig, "marked")
+        except ValueError as e:
+            failures.append(f"save() refused the mark of a panel without DSMC data: {e}")
 
         # every script: imported without touching the style, registers figures; each figure runs up to its
         # first missing input (no outputs, no granular-theory here) and fails in no other way
@@ -222,6 +258,9 @@ def check():
         for f, status, d in fc.run_figures(fc.REGISTRY):
             if status != "missing":
                 failures.append(f"{f.name} without inputs: {status} ({d.get('message', '').strip()[-400:]})")
+            undocumented = sorted(set(d["asked"]) - documented_cases(sys.modules[f.module].__doc__))
+            if undocumented:
+                failures.append(f"{f.name} draws cases its script's --help does not list: {undocumented}")
         if style_drift():
             failures.append(f"a figure changes the style: {style_drift()}")
         print(f"checked {len(paths)} scripts, {len(fc.REGISTRY)} figure functions ({len(stems)} figures)")
@@ -249,7 +288,18 @@ def check():
     return 1 if failures else 0
 
 
-if __name__ == "__main__":
+def main():
     if HERE not in sys.path:
         sys.path.insert(0, HERE)
-    sys.exit(check() if "--check" in sys.argv[1:] else generate(sys.argv[1:]))
+    try:
+        import figures_common as fc  # answers --help itself, before it imports matplotlib
+    except ImportError as e:
+        print(f"{'SKIP' if '--check' in sys.argv else 'ERROR'}: {e} "
+              "(install python3-matplotlib, python3-h5py, python3-numpy)")
+        return SKIP if "--check" in sys.argv else 1
+    args = fc.parse_command_line(sys.modules[__name__])
+    return check() if args.check else generate(args)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

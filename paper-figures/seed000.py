@@ -1,41 +1,43 @@
 #!/usr/bin/python3
-"""Seed 000 Figs 1-6 from the validation outputs: DSMC points (replica mean +- standard error) over the
-theory lines of `granular-theory` for the same input, with residual panels (DSMC minus theory) below.
+"""Seed 000 Figs 1-6: DSMC points (replica mean +- standard error) over the theory lines of
+`granular-theory` for the same input, with residual panels (DSMC minus theory) below.
 
-usage: /usr/bin/python3 paper-figures/seed000.py [BUILD_DIR] [OUT_DIR]
-Reads BUILD_DIR/validation-output/*.h5 (written by `ctest -L validation`, paper tier preferred,
-quick tier otherwise) and writes OUT_DIR/seed000_*.pdf and .png (default OUT_DIR: paper-figures/out).
+figures (OUT_DIR/<figure>.pdf and .png) and the validation cases they draw:
+  seed000_fig1_fig3_haff        Haff cooling T(t)/T_0       haff_cooling_alpha{0.9,0.5}
+  seed000_fig2_fig4_collisions  collisions against T/T_0    haff_cooling_alpha{0.9,0.5}
+  seed000_fig5_velocity         velocity distribution       velocity_shell, velocity_cube
+  seed000_fig6_polydisperse     polydisperse T_k(t)         polydisperse
+A figure with one of its cases drawn is made (partial); e.g. one Haff run of your own at any restitution:
+  seed000.py BUILD_DIR --run haff_cooling_alpha0.9=my-haff.h5 --out OUT_DIR
 """
-
+import figures_common as fc  # first: it answers --help before matplotlib is loaded
 import h5py
-import matplotlib
-
-matplotlib.use("Agg")
-import numpy as np  # noqa: E402
-import figures_common as fc  # noqa: E402
-from figures_common import figure, pick, observable, theory, save, with_residuals, residuals  # noqa: E402
+import numpy as np
+from figures_common import figure, pick, pick_some, observable, theory, save, with_residuals, residuals
 
 
 @figure("seed000_fig1_fig3_haff", "seed000_fig2_fig4_collisions")
 def haff_figures():
     fig_t, ax_t, ar_t = with_residuals()
     fig_c, ax_c, ar_c = with_residuals()
-    for alpha, color, marker in (("0.9", "C0", "o"), ("0.5", "C1", "s")):
-        path = pick(f"haff_cooling_alpha{alpha}")
+    styles = {"haff_cooling_alpha0.9": ("C0", "o"), "haff_cooling_alpha0.5": ("C1", "s")}
+    for case, path in pick_some(list(styles)):
+        color, marker = styles[case]
         th = theory(path)
         with h5py.File(path) as f:
             t, T, dT = observable(f, "total_temperature")
             _, C, dC = observable(f, "collisions_per_particle")
+            alpha = float(np.ravel(f["parameters/system"].attrs["restitution"])[0])  # a user's run: any alpha
         tt, TT = np.array(th["temperature"]["time"]), np.array(th["temperature"]["value"])[:, 0]
         CC = np.array(th["collisions_per_particle"]["value"], float).reshape(len(tt), -1)[:, 0]
         name = fc.approximation(th, "temperature")
         s = slice(1, None)
         ax_t.errorbar(t[s], T[s], yerr=dT[s], fmt=marker, mfc="none", color=color,
-                      label=rf"DSMC, $\alpha = {alpha}$")
+                      label=rf"DSMC, $\alpha = {alpha:g}$")
         ax_t.plot(tt[s], TT[s], "-", color=color)
         residuals(ar_t, t[s], T[s], dT[s], fc.on_times(t[s], tt[s], TT[s]), kind="percent", fmt=marker,
                   mfc="none", color=color)
-        ax_c.errorbar(T, C, yerr=dC, fmt=marker, mfc="none", color=color, label=rf"DSMC, $\alpha = {alpha}$")
+        ax_c.errorbar(T, C, yerr=dC, fmt=marker, mfc="none", color=color, label=rf"DSMC, $\alpha = {alpha:g}$")
         ax_c.plot(TT, CC, "-", color=color)
         cname = fc.approximation(th, "collisions_per_particle")
         # at the same temperature: the theory line C(T) interpolated in ln T (T falls with t)
@@ -56,24 +58,26 @@ def haff_figures():
     save(fig_c, "seed000_fig2_fig4_collisions")
 
 
-START_NAMES = {"shell": "from a speed shell", "cube": "from a uniform cube"}
+# the legend names the start the file records (&initial distribution), so a user's run is named right
+START_NAMES = {"shell": "from a speed shell", "cube": "from a uniform cube", "maxwell": "from a Maxwellian"}
 
 
 @figure("seed000_fig5_velocity")
 def velocity_figure():
     fig, ax, ar = with_residuals()
-    for (case, marker), color in zip((("velocity_shell", "o"), ("velocity_cube", "s")), ("C0", "C1")):
-        path = pick(case)
+    styles = {"velocity_shell": ("C0", "o"), "velocity_cube": ("C1", "s")}
+    for case, path in pick_some(list(styles)):
+        color, marker = styles[case]
         with h5py.File(path) as f:
             g = f["observables/velocity_histogram"]
             edges = g["bin_edges"][()]
             h = g["species_1/value"][()]
             err = g["species_1/error"][()] if "error" in g["species_1"] else None
+            start = f["parameters/initial"].attrs["distribution"]
         mid = 0.5 * (edges[1:] + edges[:-1])
-        start = START_NAMES[case.split("_")[1]]
         maxwell = np.exp(-mid * mid / 2) / np.sqrt(2 * np.pi)
         ax.errorbar(mid, h[-1], yerr=None if err is None else err[-1], fmt=marker, mfc="none", color=color,
-                    label=f"DSMC, {start}")
+                    label=f"DSMC, {START_NAMES.get(start, 'from a ' + start + ' start')}")
         ax.plot(mid, h[0], ":", lw=1, color=color)
         if err is not None:
             residuals(ar, mid, h[-1], err[-1], maxwell, kind="se", fmt=marker, mfc="none", color=color)

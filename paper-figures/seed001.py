@@ -1,30 +1,34 @@
 #!/usr/bin/python3
-"""Seed 001 (Bodrova and Osinsky) Figs 1, 2, 4, 5, 6, 7, 9, 10 from the validation outputs: partial MSDs
-from DSMC (replica mean +- standard error) over eq 17 of `granular-theory` for the same input, and the
-ratios of diffusion coefficients D_k/D_1 (eq 19, long-time limit) against n_2 and the restitution.
+"""Seed 001 (Bodrova and Osinsky) Figs 1-10: partial MSDs from DSMC (replica mean +- standard error) over
+eq 17 of `granular-theory` for the same input, and the ratios of diffusion coefficients D_k/D_1 (eq 19,
+long-time limit) against n_2 and the restitution.
 
-usage: /usr/bin/python3 paper-figures/seed001.py [BUILD_DIR] [OUT_DIR]
-Reads BUILD_DIR/validation-output/msd_fig{1,2,6,9,10}.h5 (written by `ctest -L validation`, paper tier
-preferred, quick tier otherwise) and writes OUT_DIR/seed001_fig{N}_*.pdf and .png (default OUT_DIR:
-paper-figures/out). Figs 4, 5, 7 are theory lines (`granular-theory` with a `&sweep`, temporary
-namelists only) with DSMC points only when `diffusion_ratio_*` outputs exist. A figure whose DSMC output
-is missing is reported as not made (make_all.py says which ctest command runs it).
+figures (OUT_DIR/<figure>.pdf and .png) and the validation cases they draw:
+  seed001_fig1_msd_rescaled               msd_fig1
+  seed001_fig2_msd_binary                 msd_fig2
+  seed001_fig3_msd_dilute_heavy           msd_fig3
+  seed001_fig6_msd_ternary                msd_fig6
+  seed001_fig9_msd_viscoelastic           msd_fig9
+  seed001_fig10_msd_viscoelastic_ternary  msd_fig10
+  seed001_fig8_msd_ratio                  msd_ratio_theta3, msd_ratio_theta4
+  seed001_fig4_diffusion_ratio_n2         diffusion_ratio_fig4, diffusion_ratio_fig4_sigma
+  seed001_fig5_diffusion_ratio_epsilon    diffusion_ratio_fig5, diffusion_ratio_fig5_sigma
+  seed001_fig7_diffusion_ratio_4species   diffusion_ratio_fig7
+Figs 4, 5, 7 are theory lines (`granular-theory` with a `&sweep`, temporary namelists only) with the DSMC
+points of every run whose case name starts with diffusion_ratio_ and whose masses fit the figure (e.g.
+--run diffusion_ratio_mine=my-run.h5); without such runs their panel says "theory only".
 
 Eq 17 is an approximation: DSMC lies up to ~14-16 % below it for the light species (docs/diffusion-msd.md,
 validation/msd_binary/README.md), which the residual panels (DSMC/eq 17 - 1, in percent) show.
 """
-import glob
-import os
+import figures_common as fc  # first: it answers --help before matplotlib is loaded
 import re
 
 import h5py
 import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import figures_common as fc  # noqa: E402
-from figures_common import (COLUMN, figure, pick, observable, run_theory, theory, save, Missing,  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+from figures_common import (COLUMN, figure, pick, observable, run_theory, theory, save, Missing,
                             TheoryError, with_residuals, residuals)
 
 
@@ -202,13 +206,8 @@ def dsmc_ratio_points():
     """D_k/D_1 measured by the `diffusion_ratio_*` validation cases (validation/diffusion_ratio), if any:
     a list of dicts (system parameters, sweep variable, rows of (value, DSMC ratio, its SE, eq 17's ratio
     over the same decade)). The paper tier of a case is preferred to its quick variant."""
-    files = sorted(glob.glob(os.path.join(fc.runs_dir(), "diffusion_ratio_*.h5")))
-    names = {os.path.basename(p)[:-3] for p in files}
     out = []
-    for p in files:
-        name = os.path.basename(p)[:-3]
-        if name.endswith("_quick") and name[:-6] in names:
-            continue  # the paper tier exists
+    for name, p in fc.cases_starting("diffusion_ratio_"):
         try:
             with h5py.File(p) as f:
                 s = f["parameters/system"].attrs
@@ -269,10 +268,8 @@ def overlay_dsmc(fig, ax, ar, measured, want, fig_no, cases, xlabel):
         shown += 1
         fc.note_used(m["path"])
         print(f"Fig {fig_no}: DSMC points from {m['name']}")
-    if not shown:
-        for c in cases:
-            fc.note_missing(c)
-        print(f"Fig {fig_no}: no diffusion_ratio_* DSMC outputs in {fc.runs_dir()}; theory lines only")
+    if not shown:  # the theory lines alone: the panel says so
+        fc.no_dsmc(ax, cases)
     (ar if ar is not None else ax).set_xlabel(xlabel)
     h, lab = ax.get_legend_handles_labels()
     keep = dict(zip(lab, h))  # one legend entry per label

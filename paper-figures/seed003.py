@@ -1,24 +1,27 @@
 #!/usr/bin/python3
-"""Seed 003 (Montanero and Garzo 2002) Figs 1-7 from the validation outputs: DSMC points (replica mean
-+- standard error) over the first-Sonine lines of `granular-theory` for the same mixture, with residual
-panels (DSMC minus theory) below where the two overlap.
+"""Seed 003 (Montanero and Garzo 2002) Figs 1-7: DSMC points (replica mean +- standard error) over the
+first-Sonine lines of `granular-theory` for the same mixture, with residual panels (DSMC minus theory)
+below where the two overlap. The smooth theory lines come from `granular-theory` on the stored namelist
+with a dense `&sweep` of its own (temporary files only).
 
-usage: /usr/bin/python3 paper-figures/seed003.py [BUILD_DIR] [OUT_DIR]
-Reads BUILD_DIR/validation-output/*.h5 (written by `ctest -L validation`, paper tier preferred, quick tier
-otherwise) and writes OUT_DIR/seed003_fig{1..7}_*.pdf and .png (default OUT_DIR: paper-figures/out). The smooth
-theory lines come from `granular-theory` on the stored namelist with a dense `&sweep` of its own
-(temporary files only).
+figures (OUT_DIR/<figure>.pdf and .png) and the validation cases they draw:
+  seed003_fig1_gamma_time         temperature_ratio_time
+  seed003_fig2_cumulants          sonine_cumulants_fig2 (one-component points: haff_cooling_alpha{0.5,0.9})
+  seed003_fig3_delta              hcs_distribution_alpha0.5
+  seed003_fig4_gamma_alpha_mu     gamma_alpha_fig4_mu{10,2,0.1}
+  seed003_fig5_gamma_alpha_delta  gamma_alpha_fig5_delta{4,1,0.25}
+  seed003_fig6_gamma_density      gamma_density_alpha{0.6,0.8}
+  seed003_fig7_tail               hcs_distribution_alpha{0.3,0.5}
+Figs 1, 4, 5, 6 read &sweep runs (one point per sweep value).
 """
+import figures_common as fc  # first: it answers --help before matplotlib is loaded
 import re
 
 import h5py
 import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import figures_common as fc  # noqa: E402
-from figures_common import (COLUMN, PAGE, Missing, figure, pick, observable, stored_input, run_theory,  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+from figures_common import (COLUMN, PAGE, figure, pick, pick_some, observable, stored_input, run_theory,
                             theory, save, with_residuals, residuals)
 
 
@@ -91,11 +94,11 @@ def one_component_dsmc():
     """2 a2 = c of one-species HCS runs in the validation outputs (the Haff cases of validation/haff_cooling), averaged past
     SCALING_START collisions per particle: [(alpha, c, se)]. Missing runs are skipped."""
     out = []
-    for case in ("haff_cooling_alpha0.5", "haff_cooling_alpha0.9"):
-        try:
-            path = pick(case)
-        except Missing:
-            continue
+    try:
+        found = pick_some(["haff_cooling_alpha0.5", "haff_cooling_alpha0.9"])
+    except fc.Missing:
+        return out
+    for case, path in found:
         with h5py.File(path) as f:
             if "sonine_c" not in f["observables"]:
                 continue
@@ -195,8 +198,10 @@ def fig3_delta():
 
 def gamma_alpha_figure(cases, title, stem, log=False):
     fig, ax, ar = with_residuals(height=3.6)
-    for (case, label), (ls, marker), color in zip(cases, (("-", "o"), ("--", "s"), (":", "^")), ("C0", "C1", "C2")):
-        path = pick(case)
+    styles = {case: (label, ls, marker, color) for (case, label), (ls, marker), color
+              in zip(cases, (("-", "o"), ("--", "s"), (":", "^")), ("C0", "C1", "C2"))}
+    for case, path in pick_some(list(styles)):
+        label, ls, marker, color = styles[case]
         alpha_line, pts = theory_alpha_line(path)
         g_line = [p["temperature_ratio"] for p in pts]
         ax.plot(alpha_line, g_line, ls, color=color, lw=1.2, label=f"{label}, first Sonine")
@@ -239,10 +244,12 @@ def fig5_gamma_delta():
 @figure("seed003_fig6_gamma_density")
 def fig6_gamma_density():
     fig, ax, ar = with_residuals(height=3.6)
-    for alpha, ls, marker, color in (("0.6", "-", "o", "C0"), ("0.8", "--", "s", "C1")):
-        path = pick(f"gamma_density_alpha{alpha}")
+    styles = {"0.6": ("-", "o", "C0"), "0.8": ("--", "s", "C1")}
+    for case, path in pick_some([f"gamma_density_alpha{alpha}" for alpha in styles]):
+        ls, marker, color = styles[case[len("gamma_density_alpha"):]]
         with h5py.File(path) as f:
             sysp = f["parameters/system"].attrs
+            alpha = f"{float(np.ravel(sysp['restitution'])[0]):g}"  # a user's run may have another one
             sigma12 = 0.5 * (sysp["diameter"][0] + sysp["diameter"][1])
             x1 = sysp["number_density"][0] / sum(sysp["number_density"])
             rows = []
@@ -275,9 +282,11 @@ def fig6_gamma_density():
 def fig7_tail():
     # The Maxwellian lines are the contrast the flattening tail leaves: no residual panel.
     fig, ax = plt.subplots(figsize=(COLUMN, 2.8))
-    for alpha, marker, color in (("0.3", "s", "C1"), ("0.5", "o", "C0")):
-        path = pick(f"hcs_distribution_alpha{alpha}")
+    styles = {"hcs_distribution_alpha0.3": ("s", "C1"), "hcs_distribution_alpha0.5": ("o", "C0")}
+    for case, path in pick_some(list(styles)):
+        marker, color = styles[case]
         d = reduced_distribution(path)
+        alpha = f"{d['alpha']:g}"  # from the file: a user's run may have another restitution
         # bins where Phi_1 is measured (to 50 % or better): G_1 > 0 and its error bar stays above zero
         sel = (d["value"] > 0) & (d["error"] < 0.5 * d["value"])
         ax.errorbar(d["v"][sel], d["g"][sel], yerr=d["g_error"][sel], fmt=marker, mfc="none", color=color,

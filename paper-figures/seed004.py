@@ -1,28 +1,30 @@
 #!/usr/bin/python3
-"""Seed 004 (Montanero) from the validation outputs: Fig 6, the shear viscosity eta/eta_0 of a
-one-component granular gas against alpha in uniform shear flow with the Gaussian thermostat (DSMC, time
-average over replicas +- standard error) over the first-Sonine theory of `granular-theory` for the
-steady state the protocol measures (HSS) and, for contrast, the freely cooling gas (HCS); and Figs 1-5's
-check, the HSS temperature ratio and cumulants against the HCS first-Sonine values. Residual panels
-(DSMC/theory - 1 in percent, or DSMC minus theory in standard errors) below each comparison.
+"""Seed 004 (Montanero): Fig 6, the shear viscosity eta/eta_0 of a one-component granular gas against
+alpha in uniform shear flow with the Gaussian thermostat (DSMC, time average over replicas +- standard
+error) over the first-Sonine theory of `granular-theory` for the steady state the protocol measures
+(HSS) and, for contrast, the freely cooling gas (HCS); Figs 7-9, eta/eta_0 of mixtures against mass
+ratio, size ratio and concentration at alpha = 0.9, 0.8, 0.7 over the mixture theory; Figs 10-12, the
+Enskog binary mixture (kinetic and total eta/eta_0 against the solid fraction, total against the mass
+ratio; one-component Enskog points beside them); and Figs 1-5's check, the HSS temperature ratio and
+cumulants against the HCS first-Sonine values. Residual panels (DSMC/theory - 1 in percent, or DSMC
+minus theory in standard errors) below each comparison.
 
-usage: /usr/bin/python3 paper-figures/seed004.py [BUILD_DIR] [OUT_DIR]
-Reads BUILD_DIR/validation-output/viscosity_alpha*.h5 and hss_*.h5 (ctest -L validation; paper tier
-preferred, quick otherwise) and writes (PDF and PNG) OUT_DIR/seed004_fig6_viscosity, seed004_fig7_9_mixtures
-(eta/eta_0 against mass ratio, size ratio and concentration at alpha = 0.9, 0.8, 0.7, over the mixture
-theory), seed004_fig10_12_enskog (Enskog binary mixture: kinetic and total eta/eta_0 against the solid
-fraction, total against the mass ratio; one-component Enskog points beside them) and
-seed004_fig1_5_hss (the HSS gamma and c against the HCS values).
+figures (OUT_DIR/<figure>.pdf and .png) and the validation cases they draw:
+  seed004_fig6_viscosity    viscosity_alpha{1.0,0.9,0.8,0.7,0.6}
+  seed004_fig7_9_mixtures   viscosity_fig7_mu{1.5,3.0,6.0,10.0}_alpha{0.9,0.8,0.7},
+                            viscosity_fig8_w{1.5,2.0}_alpha{0.9,0.8,0.7},
+                            viscosity_fig9_x{0.25,0.75}_alpha{0.9,0.8,0.7}
+  seed004_fig10_12_enskog   viscosity_fig10_phi{0.1,0.2,0.3}_alpha{0.9,0.8,0.7},
+                            viscosity_fig12_mu{2,8}_alpha{0.9,0.8,0.7}, viscosity_enskog_phi{0.1,0.2},
+                            viscosity_enskog_phi0.2_alpha0.8
+  seed004_fig1_5_hss        hss_one, hss_binary
+Each figure is made from any of its cases; a panel left without DSMC data says so.
 """
-
+import figures_common as fc  # first: it answers --help before matplotlib is loaded
 import h5py
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import figures_common as fc  # noqa: E402
-from figures_common import COLUMN, PAGE, Missing, figure, pick, theory, save, with_residuals, residuals  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+from figures_common import COLUMN, PAGE, Missing, figure, pick, theory, save, with_residuals, residuals
 
 
 @figure("seed004_fig6_viscosity")
@@ -73,8 +75,11 @@ def fig7_9():
               ("fig9_x", (0.25, 0.75), r"concentration $x_1$"))
     fig, axes, ars = with_residuals(ncols=3, width=PAGE, height=3.2)
     drawn = False
+    empty = []  # (axes, the cases it lacks)
     for ax, ar, (stem, xs, label) in zip(axes, ars, panels):
-        for k, (alpha, marker) in enumerate(zip(("0.9", "0.8", "0.7"), "os^")):
+        alphas = ("0.9", "0.8", "0.7")
+        empty.append((ax, [f"viscosity_{stem}{x}_alpha{a}" for a in alphas for x in xs]))
+        for k, (alpha, marker) in enumerate(zip(alphas, "os^")):
             pts = []
             for x in xs:
                 try:
@@ -87,6 +92,7 @@ def fig7_9():
             if not pts:
                 continue
             drawn = True
+            empty[-1] = None
             x, eta, err, th = map(np.array, zip(*pts))
             ax.errorbar(x, eta, yerr=err, fmt=marker, mfc="none", color=f"C{k}", label=f"DSMC, $\\alpha = {alpha}$")
             ax.plot(x, th, "--x", color=f"C{k}", ms=5)
@@ -97,6 +103,8 @@ def fig7_9():
     if not drawn:
         plt.close(fig)
         raise Missing("no shear viscosity outputs of mixtures", case="viscosity_fig7_mu3.0_alpha0.9")
+    for ax, cases in filter(None, empty):
+        fc.no_dsmc(ax, cases, theory_drawn=False)
     ars[0].set_ylabel(fc.PERCENT_LABEL)
     axes[0].plot([], [], "k--x", ms=5, label="first Sonine, steady state")
     axes[0].legend()
@@ -112,6 +120,7 @@ def fig10_12():
     depend on phi), with the one-component Enskog points (alpha = 1, 0.8) in the first two panels."""
     fig, axes, ars = with_residuals(ncols=3, width=PAGE, height=3.2)
     drawn = False
+    filled = [False, False, False]  # the panels with DSMC points
     phis = (0.1, 0.2, 0.3)
     grid = np.linspace(0.02, 0.32, 16)
 
@@ -130,7 +139,7 @@ def fig10_12():
                 continue
             pts.append((phi,) + tuple(time_average(path)) + enskog_theory(path, alpha, phi))
         if pts:
-            drawn = True
+            drawn = filled[0] = filled[1] = True
             phi, eta, err, kin, kin_err, th_kin, th_tot = map(np.array, zip(*pts))
             axes[0].errorbar(phi, kin, yerr=kin_err, fmt=marker, mfc="none", color=color,
                              label=f"DSMC, $\\alpha = {alpha}$")
@@ -150,7 +159,7 @@ def fig10_12():
             th = theory(path, [f"system:restitution={alpha}", f"system:mass={float(mu):.4f},1.0"])
             pts.append((float(mu), eta, err, th["shear_viscosity_ratio"]["hss"]))
         if pts:
-            drawn = True
+            drawn = filled[2] = True
             mu, eta, err, th_tot = map(np.array, zip(*pts))
             axes[2].errorbar(mu, eta, yerr=err, fmt=marker, mfc="none", color=color)
             residuals(ars[2], mu, eta, err, th_tot, kind="percent", fmt=marker, mfc="none", color=color)
@@ -165,6 +174,7 @@ def fig10_12():
         except Missing:
             continue
         eta, err, kin, kin_err = time_average(path)
+        filled[0] = filled[1] = True
         phi = 0.1 if "phi0.1" in name else 0.2
         axes[0].errorbar([phi], [kin], yerr=[kin_err], fmt=marker, mfc="none", color="k")
         axes[1].errorbar([phi], [eta], yerr=[err], fmt=marker, mfc="none", color="k",
@@ -172,6 +182,11 @@ def fig10_12():
     if not drawn:
         plt.close(fig)
         raise Missing("no Enskog mixture viscosity outputs", case="viscosity_fig10_phi0.2_alpha0.9")
+    lacking = ([f"viscosity_fig10_phi{phi}_alpha{a}" for a in ("0.9", "0.8", "0.7") for phi in phis],) * 2 + \
+        ([f"viscosity_fig12_mu{mu}_alpha{a}" for a in ("0.9", "0.8", "0.7") for mu in ("2", "8")],)
+    for ax, has_points, cases in zip(axes, filled, lacking):
+        if not has_points:
+            fc.no_dsmc(ax, cases, theory_drawn=False)
     axes[0].set(ylabel=r"kinetic part $\eta_k/\eta_0$")
     axes[0].set_title(r"$m_1/m_2 = 4$")
     axes[1].set(ylabel=r"$\eta/\eta_0$")
@@ -218,8 +233,8 @@ def fig1_5():
         raise Missing("no steady-state outputs", case="hss_one")
     fig, axes, ars = with_residuals(ncols=2, width=COLUMN * 1.6, height=3.0, sharex=False)
     for ax, ar, rows in zip(axes, ars, (rows_c, rows_g)):
-        if not rows:
-            ax.set_visible(False)
+        if not rows:  # only the temperature ratio of the binary can be missing here
+            fc.no_dsmc(ax, "hss_binary", theory_drawn=False)
             ar.set_visible(False)
             continue
         labels, y, dy, th = zip(*rows)
