@@ -191,14 +191,30 @@ TEST_F(CliDsmc, PrintDefaults) {
   for (const char* group : {"&system", "&initial", "&dsmc", "&output"})
     EXPECT_NE(r.out.find(group), std::string::npos) << group;
   EXPECT_EQ(files(), std::vector<std::string>{});
-  // The template, with the end of the run filled in, is a valid input.
-  std::string text = r.out;
-  const auto at = text.find("! t_end");
-  ASSERT_NE(at, std::string::npos) << text;
-  text[at] = ' ';
-  write("defaults.nml", text);
+  // The template as printed is a valid input (it sets collisions_per_particle, which has no default), and
+  // its run's --compare gives statistical marks (the default 4 replicas).
+  write("defaults.nml", r.out);
   const Result t = run("granular-theory", "defaults.nml");
   EXPECT_EQ(t.status, 0) << t.err;
+  const Result d = run("granular-dsmc", "defaults.nml --quiet --compare --set dsmc:n_particles=2000");
+  ASSERT_EQ(d.status, 0) << d.err;
+  EXPECT_NE(d.out.find("4 replicas: |D-T| <= 9.22 SE"), std::string::npos) << d.out;
+  EXPECT_NE(d.out.find(" stat"), std::string::npos) << d.out;
+}
+
+TEST_F(CliDsmc, DenseGasWithoutEnskogWarns) {
+  // phi = (pi/6)(0.1 + 0.05) = 0.0785 > 0.05 without enskog (chi = (1 - phi/2)/(1 - phi)^3 = 1.228 by hand): one warning line naming where the density is
+  // set, and the run goes on; with enskog, or at the base densities (phi = 0.016), no warning.
+  const Result r = dsmc(with_line(5, "  number_density = 0.1, 0.05"));
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "granular-dsmc: warning: t.nml:5: &system: number_density: packing fraction 0.0785 without "
+                   "enskog: this runs a dilute (Boltzmann) gas, whose collision rate ignores the density (the Enskog "
+                   "gas collides 1.23 times as often); set &system enskog = .true. for a dense gas (warned above "
+                   "0.05)\n");
+  std::filesystem::remove(dir / "out.h5");
+  EXPECT_EQ(dsmc(with_line(5, "  number_density = 0.1, 0.05, enskog = .true.")).err, "");
+  std::filesystem::remove(dir / "out.h5");
+  EXPECT_EQ(dsmc(base()).err, "");
 }
 
 TEST_F(CliDsmc, AggFragRunWritesClusterObservables) {
@@ -721,7 +737,7 @@ TEST_F(CliTable, TableOfARunPrintsEveryTrajectoryWithSpeciesFromOne) {
 }
 
 TEST_F(CliTable, NamedQuantitiesWithTheTheoryOfCompare) {
-  ASSERT_EQ(dsmc(base()).status, 0);
+  ASSERT_EQ(dsmc(base(), "--set dsmc:replicas=1").status, 0);
   const Result r = run("granular-dsmc", "--table out.h5 total_temperature sonine_c --theory");
   ASSERT_EQ(r.status, 0) << r.err;
   const auto lines = lines_of(r.out);
@@ -902,6 +918,35 @@ TEST_F(CliDsmc, CompareJsonUnwritable) {
 // ---------------------------------------------------------------------------------------------
 // granular-theory
 // ---------------------------------------------------------------------------------------------
+
+// Issue "Nothing lost, nothing hangs, no NaN": unclear messages, reproduced as reported, then fixed.
+TEST_F(CliDsmc, RestartOfAMissingFileSaysItIsMissing) {
+  // It said "is damaged or is not a checkpoint of granular-dsmc".
+  expect_input_error(dsmc(base(), "--restart absent.checkpoint.h5"), "granular-dsmc",
+                     "--restart: checkpoint 'absent.checkpoint.h5': no such file", {});
+}
+
+TEST_F(CliDsmc, OutputWithALineBreakNamesTheOutputOption) {
+  // It was reported as a `--set output:file=...` the user never typed.
+  expect_input_error(dsmc(base(), "--output \"$(printf 'a\\nb.h5')\""), "granular-dsmc",
+                     "--output: a file name with a line break is not accepted", {});
+}
+
+TEST_F(CliDsmc, NameWithANonAsciiCharacterIsNamed) {
+  // `restitución = 0.9` was reported as a bad value of number_density, the variable before it.
+  expect_input_error(dsmc(with_line(6, "  restitución = 0.5")), "granular-dsmc", "t.nml:6: &system: restitución: ",
+                     {"outside A-Z, 0-9 and _"});
+}
+
+TEST_F(CliTheory, TwoInputFilesAreRefused) {
+  // It used the last one silently.
+  write("t.nml", base());
+  write("u.nml", base());
+  const Result r = run("granular-theory", "t.nml u.nml");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err, "granular-theory: one input file only (got 't.nml' and 'u.nml')\n");
+}
 
 TEST_F(CliTheory, PrintsOneJsonObject) {
   write("t.nml", base());

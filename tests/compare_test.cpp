@@ -34,7 +34,7 @@ config::Config read_text(const std::string& text) {
 config::Config haff_config() {
   return read_text(
       "&system\n n_species = 1\n mass = 1.0\n diameter = 1.0\n number_density = 0.01\n restitution = 0.9\n/\n"
-      "&initial\n temperature = 1.0\n/\n&dsmc\n n_particles = 1000\n t_end = 1000.0\n replicas = 4\n/\n"
+      "&initial\n temperature = 1.0\n/\n&dsmc\n n_particles = 1000\n t_end = 1000.0\n replicas = 64\n/\n"
       "&output\n n_samples = 5\n/\n");
 }
 
@@ -76,6 +76,44 @@ TEST(CompareMarks, StatisticsApproximationBeyond) {
   EXPECT_EQ(cmp::classify(0.05, kNaN, 0.02), cmp::Mark::beyond_no_estimate);  // statistics unknown
   EXPECT_EQ(cmp::classify(1e-15, 0.0, 0.0, 1.0), cmp::Mark::statistics);  // round-off of T(0)
   EXPECT_STREQ(cmp::mark_name(cmp::Mark::approximation), "approx");
+}
+
+// z_R: Student's t quantile at the two-sided 3-sigma level, R - 1 degrees of freedom (reference values
+// from the t distribution's CDF by mpmath at 30 digits, betainc, solved with findroot, outside this code).
+TEST(CompareMarks, ThresholdFromTheReplicas) {
+  EXPECT_TRUE(std::isnan(cmp::statistical_threshold(1)));
+  EXPECT_TRUE(std::isnan(cmp::statistical_threshold(3)));  // fewer than 4: no statistical mark
+  EXPECT_NEAR(cmp::statistical_threshold(4), 9.2189404587002563, 1e-9);
+  EXPECT_NEAR(cmp::statistical_threshold(5), 6.6202059668158664, 1e-9);
+  EXPECT_NEAR(cmp::statistical_threshold(8), 4.5299736787334268, 1e-9);
+  EXPECT_NEAR(cmp::statistical_threshold(16), 3.5864232263449525, 1e-9);
+  EXPECT_NEAR(cmp::statistical_threshold(64), 3.1235170159668449, 1e-9);
+  EXPECT_DOUBLE_EQ(cmp::statistical_threshold(0), 3.0);  // not known: the normal level
+  const double z4 = cmp::statistical_threshold(4);
+  EXPECT_EQ(cmp::classify(0.9, 0.1, kNaN, 0.0, z4), cmp::Mark::statistics);  // 9 SE < z_4
+  EXPECT_EQ(cmp::classify(0.95, 0.1, kNaN, 0.0, z4), cmp::Mark::beyond_no_estimate);
+  EXPECT_EQ(cmp::classify(0.95, 0.1, 0.1, 0.0, z4), cmp::Mark::approximation);
+  EXPECT_EQ(cmp::classify(1.1, 0.1, 0.1, 0.0, z4), cmp::Mark::beyond);
+  // three replicas: the SE is not used; within the known error alone is approx, beyond it ?
+  EXPECT_EQ(cmp::classify(0.05, 0.1, 0.1, 0.0, kNaN), cmp::Mark::approximation);
+  EXPECT_EQ(cmp::classify(0.15, 0.1, 0.1, 0.0, kNaN), cmp::Mark::beyond_no_estimate);
+}
+
+gdsmc::species::Mixture one_species_mixture(double alpha) {
+  return gdsmc::species::make_mixture({1.0}, {1.0}, {0.01}, gdsmc::species::PairMatrix(1, alpha), false);
+}
+
+// The known error of c_k does not vanish where c changes sign: one species at alpha = 0.7, where the
+// first-Sonine c is about 0.003, keeps the second-Sonine correction.
+TEST(CompareKnownError, CumulantKeepsTheSecondSonineCorrection) {
+  for (double alpha : {0.3, 0.5, 0.7, 0.9}) {
+    const auto mix = one_species_mixture(alpha);
+    const double second = std::abs(gdsmc::theory::one_species_hcs_sonine(alpha, 2).cumulant_c -
+                                   gdsmc::theory::one_species_hcs_sonine(alpha, 3).cumulant_c);
+    EXPECT_DOUBLE_EQ(cmp::cumulant_known_error(mix), second) << alpha;
+    EXPECT_GT(second, 0.0) << alpha;
+  }
+  EXPECT_EQ(cmp::cumulant_known_error(one_species_mixture(1.0)), 0.0);  // elastic
 }
 
 TEST(CompareAverage, SamplesPastScalingStart) {
@@ -134,7 +172,7 @@ TEST(CompareRows, HaffAgainstHandComputedNumbers) {
   EXPECT_DOUBLE_EQ(r.error, error[4]);
   EXPECT_NEAR(r.z, 4.0, 1e-6);
   EXPECT_NEAR(r.percent, 0.4, 1e-5);
-  EXPECT_EQ(r.mark, cmp::Mark::approximation);  // 4 SE > 3 SE, but within 3 SE + known error (0.74 %)
+  EXPECT_EQ(r.mark, cmp::Mark::approximation);  // 4 SE > z_64 = 3.12 SE, but within that + known error (0.74 %)
   EXPECT_EQ(r.counts[0] + r.counts[1] + r.counts[2] + r.counts[3], 5u);
   EXPECT_EQ(r.counts[0], 1u);  // t = 0: within statistics; the later samples need the known error
   EXPECT_EQ(r.counts[1], 4u);
@@ -179,7 +217,20 @@ TEST(CompareRows, BinaryScalingStateAverages) {
   const auto& cumulant = find(pt, "sonine_c");
   EXPECT_DOUBLE_EQ(cumulant.value[1], -0.02);
   EXPECT_NEAR(cumulant.error[1], 0.004 * 1.3, 1e-15);
-  EXPECT_NEAR(cumulant.known_error[0], 0.15 * std::abs(fs.sonine_c[0]), 1e-15);
+  // the larger of 15 % of c_k and the second-Sonine correction of one species at alpha = 0.8
+  const double correction = std::abs(gdsmc::theory::one_species_hcs_sonine(0.8, 2).cumulant_c -
+                                     gdsmc::theory::one_species_hcs_sonine(0.8, 3).cumulant_c);
+  EXPECT_GT(correction, 0.0);
+  EXPECT_NEAR(cumulant.known_error[0], std::max(0.15 * std::abs(fs.sonine_c[0]), correction), 1e-15);
+  EXPECT_NEAR(cumulant.known_error[1], std::max(0.15 * std::abs(fs.sonine_c[1]), correction), 1e-15);
+  // T_1/T_2 (x_1 = x_2 = 1/2): the error of T_1/T carried through x_1 tau_1 + x_2 tau_2 = 1
+  const auto& gamma = find(pt, "temperature_ratio");
+  const double tau1 = t1 / total, tau2 = t2 / total;
+  EXPECT_DOUBLE_EQ(gamma.value[0], t1 / t2);
+  EXPECT_NEAR(gamma.error[0], tau1 / tau2 * e1 * (1.0 / tau1 + 1.0 / tau2), 1e-14);
+  const double th1 = fs.temperature_over_mean[0], th2 = fs.temperature_over_mean[1];
+  EXPECT_NEAR(gamma.theory[0], th1 / th2, 1e-12);
+  EXPECT_NEAR(gamma.known_error[0], th1 / th2 * 0.002 * th1 * (1.0 / th1 + 1.0 / th2), 1e-14);
   const auto table_rows = cmp::rows(cmp::Comparison{{pt}, false, ""});
   bool seen = false;
   for (const auto& r : table_rows)
@@ -187,6 +238,8 @@ TEST(CompareRows, BinaryScalingStateAverages) {
       seen = true;
       EXPECT_NEAR(r.z, (t2 / total - fs.temperature_over_mean[1]) / ratio.error[1], 1e-9);
       EXPECT_NEAR(r.percent, 100.0 * (t2 / total - fs.temperature_over_mean[1]) / fs.temperature_over_mean[1], 1e-9);
+    } else if (r.quantity == "c_2") {  // a negative theory: both differences have the sign of D - T
+      EXPECT_EQ(r.z > 0.0, r.percent > 0.0) << r.z << " " << r.percent;
     }
   EXPECT_TRUE(seen);
 }

@@ -98,7 +98,7 @@ std::set<std::string> reference_names() {
 TEST(ConfigRead, DefaultsAreResolved) {
   const auto c = read_text(base());
   EXPECT_EQ(name(c.dsmc.scheme), "majorant");
-  EXPECT_EQ(c.dsmc.replicas, 1);
+  EXPECT_EQ(c.dsmc.replicas, 4);  // the fewest that --compare marks
   EXPECT_EQ(c.dsmc.seed, 12345);
   EXPECT_EQ(c.dsmc.step_fraction, 1.0);
   EXPECT_FALSE(c.dsmc.collisions_per_particle.has_value());
@@ -375,7 +375,7 @@ TEST(ConfigResolved, ContainsEveryFieldOfEveryGroup) {
     if (key == "dsmc:scheme") {
       EXPECT_EQ(std::get<std::string>(p.value), "majorant");
     } else if (key == "dsmc:replicas") {
-      EXPECT_EQ(std::get<long long>(p.value), 1);
+      EXPECT_EQ(std::get<long long>(p.value), 4);
     } else if (key == "system:restitution") {
       EXPECT_EQ(std::get<std::vector<double>>(p.value), (std::vector<double>(4, 0.5)));
     } else if (key == "initial:temperature") {
@@ -390,23 +390,24 @@ TEST(ConfigResolved, CollisionDrivenRunListsItsEnd) {
   EXPECT_FALSE(names.count("dsmc:t_end"));
 }
 
-TEST(ConfigTemplate, ParsesBackAfterUncommentingTEnd) {
-  std::string text = config::defaults_template();
-  const auto at = text.find("! t_end");
-  ASSERT_NE(at, std::string::npos) << text;
-  text.replace(at, 1, " ");
-  const auto c = read_text(text);
-  EXPECT_EQ(c.dsmc.t_end, 100.0);
+TEST(ConfigTemplate, RunsAsPrinted) {
+  // collisions_per_particle has no default: the template sets it, so that it runs as printed.
+  const auto c = read_text(config::defaults_template());
+  EXPECT_EQ(c.dsmc.collisions_per_particle, 50.0);
+  EXPECT_FALSE(c.dsmc.t_end.has_value());
   EXPECT_EQ(name(c.dsmc.scheme), "majorant");
   EXPECT_EQ(c.dsmc.n_particles, 20000);
+  EXPECT_EQ(c.dsmc.replicas, 4);
   EXPECT_EQ(c.output.n_samples, 100);
   EXPECT_EQ(c.system.n_species, 1);
 }
 
-TEST(ConfigTemplate, AsPrintedItAsksForTheEndOfTheRun) {
-  const std::string text = config::defaults_template();
-  const std::string m = error_of(text);
-  expect_contains(m, {"t.nml:", "&dsmc: t_end: ", "exactly one of t_end and collisions_per_particle"});
+TEST(ConfigTemplate, UncommentingTEndAsksForOneEnd) {
+  std::string text = config::defaults_template();
+  const auto at = text.find("! t_end");
+  ASSERT_NE(at, std::string::npos) << text;
+  text.replace(at, 1, " ");
+  expect_contains(error_of(text), {"t.nml:", "&dsmc: collisions_per_particle: ", "exactly one of t_end and collisions_per_particle"});
 }
 
 TEST(ConfigTemplate, MentionsEveryVariable) {

@@ -1,5 +1,6 @@
-// Unit tests for gdsmc::analysis::csv and the column names of gdsmc::analysis::run_table (--table).
+// Unit tests for gdsmc::analysis::csv, gdsmc::analysis::json and the column names of gdsmc::analysis::run_table (--table).
 #include "analysis/csv.hpp"
+#include "analysis/json.hpp"
 #include "analysis/run_table.hpp"
 
 #include <gtest/gtest.h>
@@ -38,4 +39,15 @@ TEST(RunTable, ColumnNamesFromTheShapeOfEachObservable) {
   EXPECT_EQ(run_table::column_names("pressure_tensor", 6),
             (V{"pressure_tensor_xx", "pressure_tensor_yy", "pressure_tensor_zz", "pressure_tensor_xy",
                "pressure_tensor_xz", "pressure_tensor_yz"}));
+}
+
+TEST(Json, NumbersAndStringsAnyReaderTakes) {
+  EXPECT_EQ(json::number(0.1), "0.10000000000000001");
+  EXPECT_EQ(json::number(std::nan("")), "null");  // JSON has no NaN ("cooling_rate": [-nan] was not JSON)
+  EXPECT_EQ(json::number(-std::numeric_limits<double>::infinity()), "null");
+  EXPECT_EQ(json::array({1.0, std::nan("")}), "[1, null]");
+  EXPECT_EQ(json::quote("a\"b\\c"), "\"a\\\"b\\\\c\"");
+  EXPECT_EQ(json::quote("0.5,\t2.0\nx\r"), "\"0.5,\\t2.0\\nx\\r\"");  // a TAB from a sweep value
+  EXPECT_EQ(json::quote(std::string("\x01\x1f", 2)), "\"\\u0001\\u001f\"");
+  EXPECT_EQ(json::quote("restitución"), "\"restitución\"");  // UTF-8 as it is
 }

@@ -2,6 +2,9 @@
 // analysis::predict, the known errors from the estimates listed in compare.hpp \ref compare_known
 // (docs/physics.md "Comparison with theory").
 #include "analysis/compare.hpp"
+#include "analysis/json.hpp"
+
+#include <gsl/gsl_cdf.h>
 
 #include <algorithm>
 #include <cmath>
@@ -25,6 +28,8 @@ constexpr double kFirstSonineShare = 0.15;
 /// three or more species 0.4 % (\ref physics_compare "docs/physics.md": independent work, ternary, 0.1-0.4 %).
 constexpr double kRatioErrorBinary = 0.002;
 constexpr double kRatioErrorMany = 0.004;
+/// At most this many distinct alpha_ij are solved in second Sonine for the known error of c_k (0.1 s each).
+constexpr std::size_t kCumulantAlphas = 16;
 /// Stage splitting of &shear runs at the default stage_step 0.125: +0.33 % of eta (validation/shear_viscosity).
 constexpr double kStageBias = 0.0033;
 
@@ -49,6 +54,24 @@ std::vector<double> errors_or_nan(const io::h5md::ObservableData& o) {
 
 std::size_t columns_of(const io::h5md::ObservableData& o) { return o.shape.size() > 1 ? o.shape[1] : 1; }
 
+/// T_1/T_2 of a binary from its T_k/T (`ratio`): tau_1/tau_2; with x_1 tau_1 + x_2 tau_2 = 1 (x_k = n_k/n)
+/// an error e_1 of tau_1 moves tau_2 by -(x_1/x_2) e_1, so the ratio's error is exactly
+/// (tau_1/tau_2) e_1 (1/tau_1 + x_1/(x_2 tau_2)); the known error likewise (\ref compare_known).
+Quantity temperature_ratio(const Quantity& ratio, const species::Mixture& mix) {
+  double n = 0.0;
+  for (double density : mix.number_density) n += density;
+  const double x1 = mix.number_density[0] / n, x2 = mix.number_density[1] / n;
+  const auto carried = [&](const std::vector<double>& tau, double e1) {
+    return tau[0] / tau[1] * e1 * (1.0 / tau[0] + x1 / (x2 * tau[1]));
+  };
+  Quantity q{"temperature_ratio", "T_1/T_2", ratio.approximation,
+             "the allowance of T_1/T (docs/sonine.md, 0.2 %) carried through x_1 T_1/T + x_2 T_2/T = 1", {}, 1,
+             {ratio.value[0] / ratio.value[1]}, {carried(ratio.value, ratio.error[0])},
+             {ratio.theory[0] / ratio.theory[1]}, {carried(ratio.theory, ratio.known_error[0])}};
+  q.at = ratio.at;
+  return q;
+}
+
 /// The scaling-state quantities (T_k/T, c_k, zeta*) of a free-cooling or thermostatted run.
 void add_scaling_state(Point& pt, const io::config::Config& config, const analysis::Predictions& p, const Measured& m) {
   const auto mix = config.mixture();
@@ -65,8 +88,11 @@ void add_scaling_state(Point& pt, const io::config::Config& config, const analys
                  s == 2 ? "docs/sonine.md: 0.1 % against exact DSMC at mu = 10; allowance 0.2 %"
                         : "docs/physics.md#physics_compare: independent work, ternary HCS, 0.1-0.4 %; allowance 0.4 %",
                  {}, s, {}, {}, {}, {}};
-  Quantity cumulant{"sonine_c", "c_{k}", "first_sonine", "docs/sonine.md: first Sonine 9-14 % high; allowance 15 %",
+  Quantity cumulant{"sonine_c", "c_{k}", "first_sonine",
+                    "the larger of 15 % of c_k (docs/sonine.md: first Sonine 9-14 % high) and the second-Sonine "
+                    "correction |c(K=2) - c(K=3)| of one species at each alpha_ij (theory/sonine.hpp sonine_higher)",
                     {}, s, {}, {}, {}, {}};
+  const double correction = config.viscoelastic_beta() ? 0.0 : cumulant_known_error(mix);
   // /scaling_state (docs/output.md): each replica's own average over its scaling samples, so that the SE
   // over the replicas is that of the time average; files without it: the samples' average, with the mean
   // of their SE (as if fully correlated: an upper bound).
@@ -81,7 +107,7 @@ void add_scaling_state(Point& pt, const io::config::Config& config, const analys
     cumulant.value.push_back(state.cumulant[k]);
     cumulant.error.push_back(state.cumulant_error[k]);
     cumulant.theory.push_back(fs.sonine_c[k]);
-    cumulant.known_error.push_back(kFirstSonineShare * std::abs(fs.sonine_c[k]));
+    cumulant.known_error.push_back(std::max(kFirstSonineShare * std::abs(fs.sonine_c[k]), correction));
   }
   if (count == 0) {
     char text[240];
@@ -101,6 +127,7 @@ void add_scaling_state(Point& pt, const io::config::Config& config, const analys
                   "particle; SE = mean of the samples' SE (an upper bound)", count, start);
   pt.notes.push_back(text);
   ratio.at = cumulant.at = "scaling state";
+  if (s == 2) pt.quantities.push_back(temperature_ratio(ratio, mix));
   if (s > 1) pt.quantities.push_back(std::move(ratio));
   pt.quantities.push_back(std::move(cumulant));
   const auto zeta = m.attributes.find("reduced_distribution@cooling_rate_reduced");
@@ -457,14 +484,22 @@ std::pair<double, double> hcs_zeta_star(double t_a, double error_a, double t_b, 
   return {zeta, 2.0 * std::sqrt(da * da + db * db) / (nu_unit * dt)};
 }
 
-Mark classify(double difference, double standard_error, double known_error, double scale) {
+Mark classify(double difference, double standard_error, double known_error, double scale, double threshold) {
   const double d = std::abs(difference);
-  const double statistics = standard_error > 0.0 ? kStatisticalZ * standard_error : 0.0;
+  const bool usable = standard_error > 0.0 && std::isfinite(threshold);  // fewer than kMinReplicas: not
+  const double statistics = usable ? threshold * standard_error : 0.0;
   if (d <= statistics || d <= kRoundOff * std::abs(scale)) return Mark::statistics;
   if (!(known_error >= 0.0)) return Mark::beyond_no_estimate;  // NaN: none stated
   if (d <= statistics + known_error) return Mark::approximation;
-  // Without a standard error (one replica) "beyond statistics" cannot be told.
-  return std::isfinite(standard_error) ? Mark::beyond : Mark::beyond_no_estimate;
+  // Without a usable standard error (one replica, or too few) "beyond statistics" cannot be told.
+  return usable && std::isfinite(standard_error) ? Mark::beyond : Mark::beyond_no_estimate;
+}
+
+double statistical_threshold(std::size_t replicas) {
+  if (replicas == 0) return kStatisticalZ;
+  if (replicas < kMinReplicas) return kNaN;
+  // Two-sided 3 sigma of the normal distribution, 1 - 2.6998e-3, as a t quantile of R - 1 degrees of freedom.
+  return gsl_cdf_tdist_Pinv(1.0 - 0.5 * std::erfc(kStatisticalZ / std::sqrt(2.0)), static_cast<double>(replicas - 1));
 }
 
 const char* mark_name(Mark mark) {
@@ -543,6 +578,28 @@ double sonine_rate_error(const species::Mixture& mix, const std::vector<double>&
   return 3.0 / 16.0 * a2;
 }
 
+double cumulant_known_error(const species::Mixture& mix) {
+  std::vector<double> alphas;
+  const std::size_t s = mix.size(), stride = std::max<std::size_t>(1, s / 64);  // many species: a grid of pairs
+  for (std::size_t k = 0; k < s; k += stride)
+    for (std::size_t j = k; j < s; j += stride) {
+      const double alpha = mix.restitution(k, j);
+      if (alpha < 1.0 && std::none_of(alphas.begin(), alphas.end(), [&](double a) { return std::abs(a - alpha) < 1e-12; }))
+        alphas.push_back(alpha);
+    }
+  std::sort(alphas.begin(), alphas.end());
+  if (alphas.size() > kCumulantAlphas) {  // many pair values: an even spread of them, the extremes included
+    std::vector<double> spread;
+    for (std::size_t i = 0; i < kCumulantAlphas; ++i) spread.push_back(alphas[i * (alphas.size() - 1) / (kCumulantAlphas - 1)]);
+    alphas = spread;
+  }
+  double size = 0.0;
+  for (double alpha : alphas)  // \ref sonine_higher "theory/sonine.hpp": nonlinear K = 2 and K = 3
+    size = std::max(size, std::abs(theory::one_species_hcs_sonine(alpha, 2).cumulant_c -
+                                   theory::one_species_hcs_sonine(alpha, 3).cumulant_c));
+  return size;
+}
+
 double shear_viscosity_known_error(const species::Mixture& mix) {
   if (mix.enskog) return kNaN;  // no independent estimate at finite density (validation/shear_viscosity)
   double alpha_min = 1.0;
@@ -591,6 +648,7 @@ Measured read_measured(const std::string& file, const std::string& root) {
 
 Point compare_point(const io::config::Config& config, const analysis::Predictions& p, const Measured& m) {
   Point pt;
+  pt.replicas = static_cast<std::size_t>(config.dsmc.replicas);
   for (const auto& note : p.notes) pt.notes.push_back("theory: " + note);
   if (p.agg_frag) {
     add_agg_frag(pt, p, m);
@@ -697,12 +755,14 @@ std::vector<Row> rows(const Comparison& comparison) {
         r.approximation = q.approximation;
         const double d = r.value - r.theory;
         r.z = r.error > 0.0 ? d / r.error : kNaN;
-        r.percent = r.theory != 0.0 ? 100.0 * d / r.theory : kNaN;
-        r.mark = classify(d, r.error, r.known_error, r.theory);
+        r.percent = r.theory != 0.0 ? 100.0 * d / std::abs(r.theory) : kNaN;
+        r.threshold = statistical_threshold(pt.replicas);
+        r.mark = classify(d, r.error, r.known_error, r.theory, r.threshold);
         if (r.trajectory)
           for (std::size_t i = 0; i < n; ++i) {
             const std::size_t j = i * q.columns + k;
-            ++r.counts[static_cast<int>(classify(q.value[j] - q.theory[j], q.error[j], q.known_error[j], q.theory[j]))];
+            ++r.counts[static_cast<int>(
+                classify(q.value[j] - q.theory[j], q.error[j], q.known_error[j], q.theory[j], r.threshold))];
           }
         out.push_back(std::move(r));
       }
@@ -738,6 +798,36 @@ std::string aligned_table(const std::vector<std::vector<std::string>>& cells) {
     out += line + "\n";
   }
   return out;
+}
+
+}  // namespace
+
+namespace {
+
+/// The last lines of the table: what the marks mean for the replicas of these points.
+std::string legend(const Comparison& comparison) {
+  std::vector<std::size_t> replicas;
+  for (const auto& pt : comparison.points)
+    if (std::find(replicas.begin(), replicas.end(), pt.replicas) == replicas.end()) replicas.push_back(pt.replicas);
+  std::string statistics;
+  for (std::size_t r : replicas) {
+    char text[200];
+    const double z = statistical_threshold(r);
+    if (r == 0)
+      std::snprintf(text, sizeof text, "|D-T| <= %g SE", kStatisticalZ);
+    else if (std::isnan(z))
+      std::snprintf(text, sizeof text, "%zu replica(s): fewer than %zu, no statistical mark (give &dsmc replicas >= %zu)", r,
+                    kMinReplicas, kMinReplicas);
+    else
+      std::snprintf(text, sizeof text, "%zu replicas: |D-T| <= %.3g SE (Student's t, %zu degrees of freedom, at the "
+                    "level of %g normal SE)", r, z, r - 1, kStatisticalZ);
+    statistics += (statistics.empty() ? "" : "; ") + std::string(text);
+  }
+  return "mark: stat within statistics (" + statistics +
+         "); approx within that plus the approximation's known error; off beyond both; ? beyond statistics with no "
+         "known error stated, or beyond the known error with no usable SE (docs/physics.md \"Comparison with "
+         "theory\"). (D-T)/T % divides by |T|. \"at t\": the last sample of a trajectory (every sample is in "
+         "/comparison), or what a single value averages.\n";
 }
 
 }  // namespace
@@ -789,52 +879,48 @@ std::string table(const Comparison& comparison) {
   for (const auto& text : cut) out += "note: " + text + "\n";
   for (const auto& pt : comparison.points)
     for (const auto& note : pt.notes) out += "note: " + (pt.label.empty() ? "" : pt.label + ": ") + note + "\n";
-  char legend[400];
-  std::snprintf(legend, sizeof legend,
-                "mark: stat |D-T| <= %g SE; approx within %g SE + the approximation's known error; off beyond both; "
-                "? beyond statistics with no known error stated, or beyond the known error with no SE (one replica) (docs/physics.md \"Comparison with theory\"). "
-                "\"at t\": the last sample of a trajectory (every sample is in /comparison), or what a single value "
-                "averages.\n",
-                kStatisticalZ, kStatisticalZ);
-  out += legend;
+  out += legend(comparison);
   return out;
 }
 
 namespace {
 
-std::string number(double x) {
-  if (!std::isfinite(x)) return "null";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
+using json::number;
+using json::quote;
 
-std::string quote(const std::string& text) {
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (c == '\n') {
-      out += "\\n";
-      continue;
-    }
-    out += c;
-  }
-  return out + "\"";
-}
-
-/// [v, ...] or, for a trajectory with several columns, [[...], ...].
-std::string values(const Quantity& q, const std::vector<double>& v) {
+/// [e(0), ...] or, for a trajectory with several columns, [[...], ...]: an entry per value of `q`, in its shape.
+template <class Entry>
+std::string shaped(const Quantity& q, Entry entry) {
   std::string out = "[";
   const bool nested = !q.time.empty() && q.columns > 1;
   for (std::size_t i = 0; i < q.samples(); ++i) {
     if (nested) out += (i ? ", [" : "[");
     for (std::size_t k = 0; k < q.columns; ++k) {
       const std::size_t at = i * q.columns + k;
-      out += ((nested ? k : at) ? ", " : "") + number(v[at]);
+      out += ((nested ? k : at) ? ", " : "") + entry(at);
     }
     if (nested) out += "]";
   }
   return out + "]";
+}
+
+/// The numbers `v` of `q` in its shape.
+std::string values(const Quantity& q, const std::vector<double>& v) {
+  return shaped(q, [&](std::size_t at) { return number(v[at]); });
+}
+
+/// The Mark of every entry of `q`, row-major as its values.
+std::vector<std::string> marks(const Quantity& q, double threshold) {
+  std::vector<std::string> out;
+  for (std::size_t j = 0; j < q.value.size(); ++j)
+    out.emplace_back(mark_name(classify(q.value[j] - q.theory[j], q.error[j], q.known_error[j], q.theory[j], threshold)));
+  return out;
+}
+
+/// The marks of `q` in its shape.
+std::string mark_values(const Quantity& q, double threshold) {
+  const auto all = marks(q, threshold);
+  return shaped(q, [&](std::size_t at) { return quote(all[at]); });
 }
 
 std::string point_json(const Point& pt, const std::string& indent) {
@@ -842,6 +928,9 @@ std::string point_json(const Point& pt, const std::string& indent) {
   const std::string in = indent + "  ";
   j << indent << "{\n";
   if (!pt.label.empty()) j << in << "\"point\": " << quote(pt.label) << ",\n";
+  const double threshold = statistical_threshold(pt.replicas);
+  j << in << "\"replicas\": " << pt.replicas << ",\n" << in << "\"statistical_threshold\": " << number(threshold)
+    << ",\n";
   j << in << "\"quantities\": {";
   for (std::size_t n = 0; n < pt.quantities.size(); ++n) {
     const auto& q = pt.quantities[n];
@@ -856,7 +945,8 @@ std::string point_json(const Point& pt, const std::string& indent) {
       j << ", \"time\": " << t << "]";
     }
     j << ", \"value\": " << values(q, q.value) << ", \"error\": " << values(q, q.error)
-      << ", \"theory\": " << values(q, q.theory) << ", \"known_error\": " << values(q, q.known_error) << "}";
+      << ", \"theory\": " << values(q, q.theory) << ", \"known_error\": " << values(q, q.known_error)
+      << ", \"mark\": " << mark_values(q, threshold) << "}";
   }
   j << (pt.quantities.empty() ? "" : "\n" + in) << "},\n" << in << "\"notes\": [";
   for (std::size_t n = 0; n < pt.notes.size(); ++n) j << (n ? ", " : "") << quote(pt.notes[n]);
@@ -892,6 +982,9 @@ void write(io::h5md::Writer& writer, const Comparison& comparison) {
       writer.write_attribute(base, "point", pt.label);
     }
     if (!pt.notes.empty()) writer.write_attribute(base, "notes", pt.notes);
+    const double threshold = statistical_threshold(pt.replicas);
+    writer.write_attribute(base, "replicas", static_cast<long long>(pt.replicas));
+    writer.write_attribute(base, "statistical_threshold", threshold);
     for (const auto& q : pt.quantities) {
       const std::string g = base + "/" + q.name;
       std::vector<std::size_t> shape;
@@ -907,6 +1000,7 @@ void write(io::h5md::Writer& writer, const Comparison& comparison) {
       if (q.label_offset) writer.write_attribute(g, "first_column", static_cast<long long>(q.label_offset + 1));
       if (!q.at.empty()) writer.write_attribute(g, "at", q.at);
       if (!q.time.empty()) writer.write_attribute(g, "time", q.time);
+      writer.write_attribute(g, "mark", marks(q, threshold));  // row-major as value
     }
   }
 }

@@ -42,7 +42,13 @@
  *   validation/collision_rate);
  * - T_k/T, first Sonine: 0.2 % for two species (\ref son_one_species "docs/sonine.md": 0.1 % from exact DSMC at mu = 10), 0.4 %
  *   for more (\ref physics_compare "docs/physics.md": independent work puts the s-species theory within 0.1-0.4 % for a ternary);
- * - c_k, first Sonine: 15 % (\ref son_scaling "docs/sonine.md"); cooling_rate_reduced: 0.15 |zeta*_FS - zeta*_M|;
+ * - T_1/T_2 of a binary (`temperature_ratio`): the 0.2 % of T_1/T carried to the ratio through the
+ *   constraint x_1 T_1/T + x_2 T_2/T = 1: 0.2 % (1 + x_1 tau_1/(x_2 tau_2)) relative;
+ * - c_k, first Sonine: the larger of 15 % of c_k (\ref son_scaling "docs/sonine.md": first Sonine 9-14 % high) and
+ *   the size of the second-Sonine correction, max over the pairs' alpha_ij of |c^(1) - c^(2)| of one
+ *   species (Brilliantov and Poeschel 2006; \ref sonine_higher "theory/sonine.hpp", nonlinear K = 2 and 3),
+ *   an absolute estimate that does not vanish where c_k changes sign (alpha near 0.7); constant
+ *   restitution only (viscoelastic: 15 %); cooling_rate_reduced: 0.15 |zeta*_FS - zeta*_M|;
  * - shear viscosity, HSS first Sonine: one dilute species 1.6 % (alpha >= 0.75) to 2.8 % (alpha <= 0.6)
  *   (\ref eta_mixture "docs/shear-viscosity.md" and Chapman-Cowling, validation/shear_viscosity), dilute binary 1 % for alpha >= 0.85
  *   (\ref eta_stages "docs/shear-viscosity.md"); plus 0.33 % stage-splitting bias at the default stage_step;
@@ -50,18 +56,24 @@
  *   at t = 0, \ref af_outcome "docs/agg-frag.md"): none stated (NaN).
  *
  * \section compare_marks Marks
- * d = DSMC - theory, z = d/SE. `stat`: |d| <= 3 SE (within statistics; also |d| <= 1e-12 |theory|,
- * round-off); `approx`: beyond that but |d| <= 3 SE + known error (within the approximation's known
- * error); `off`: beyond both; `?`: beyond statistics and no known error is stated, or beyond the known
- * error and no standard error (one replica). A trajectory is shown at its last sample, with the count
- * of samples of each mark; the file and the JSON hold every sample.
+ * d = DSMC - theory, z = d/SE, SE the standard error over the R replicas. The statistical threshold
+ * z_R is Student's t quantile of R - 1 degrees of freedom at the two-sided level of 3 normal standard
+ * deviations (99.73 %): the SE of a few replicas is itself uncertain (z_4 = 9.22, z_8 = 4.53,
+ * z_16 = 3.59, z_64 = 3.12, tending to 3). With fewer than kMinReplicas = 4 replicas no statistical mark
+ * is given (the table says so). `stat`: |d| <= z_R SE (also |d| <= 1e-12 |theory|, round-off);
+ * `approx`: beyond that but |d| <= z_R SE + known error (within the approximation's known error); `off`:
+ * beyond both; `?`: beyond statistics and no known error is stated, or beyond the known error without a
+ * usable SE (fewer than 4 replicas). (D-T)/T % divides by |theory|, so both difference columns have the
+ * sign of D - T. A trajectory is shown at its last sample, with the count of samples of each mark; the
+ * file and the JSON (`mark`) hold every sample.
  *
  * \section compare_layout Output
  * `/comparison/<quantity>` (sweeps: `/comparison/point_K/<quantity>`, K from 1) with float64 datasets
  * `value`, `error` (NaN when the run has one replica), `theory`, `known_error` (NaN: none stated), shaped
  * [columns] or [samples][columns] (columns = species, or cluster sizes), attributes `approximation`,
- * `known_error_source`, `label`, and `time` (float64 [samples]) for a trajectory; `/comparison@notes`.
- * The JSON holds the same numbers (NaN as null).
+ * `known_error_source`, `label`, `mark` (strings, row-major as `value`) and `time` (float64 [samples])
+ * for a trajectory; `/comparison` (or `point_K`) attributes `notes`, `replicas` and
+ * `statistical_threshold`. The JSON holds the same numbers (NaN as null) and `mark`, shaped as `value`.
  * Checked by tests/compare_test.cpp and tests/cli_test.cpp (CliCompare.*, CliDsmc.Compare*).
  */
 #pragma once
@@ -78,8 +90,11 @@
 
 namespace gdsmc::analysis::compare {
 
-/// |d| <= kStatisticalZ SE counts as within statistics.
+/// |d| <= kStatisticalZ SE counts as within statistics for a normal SE (many replicas), the level of the
+/// t quantile of statistical_threshold.
 inline constexpr double kStatisticalZ = 3.0;
+/// Fewer replicas give no statistical mark (\ref compare_marks).
+inline constexpr std::size_t kMinReplicas = 4;
 /// The table shows at most this many columns of a quantity (all are in the file and the JSON).
 inline constexpr std::size_t kTableColumns = 8;
 /// Relative differences below this are round-off.
@@ -107,6 +122,7 @@ struct Quantity {
 /// The comparison of one run, or of one sweep point.
 struct Point {
   std::string label;  ///< "" or the sweep assignment, e.g. "system:restitution = 0.6"
+  std::size_t replicas = 0;  ///< replicas behind the SE (0: not known, the normal threshold kStatisticalZ)
   std::vector<Quantity> quantities;  ///< the compared quantities
   std::vector<std::string> notes;  ///< what is not compared, and why
 };
@@ -142,8 +158,13 @@ std::pair<double, double> hcs_zeta_star(double t_a, double error_a, double t_b, 
 /// Within statistics, within the approximation's known error, beyond both (\ref compare_marks).
 enum class Mark { statistics, approximation, beyond, beyond_no_estimate };
 /// `scale` (the theory value): a difference below kRoundOff |scale| is round-off (e.g. T(0)), never a
-/// deviation. NaN standard error or known error: none available.
-Mark classify(double difference, double standard_error, double known_error, double scale = 0.0);
+/// deviation. NaN standard error or known error: none available. `threshold`: statistical_threshold;
+/// NaN: no statistical mark (the SE is not used).
+Mark classify(double difference, double standard_error, double known_error, double scale = 0.0,
+              double threshold = kStatisticalZ);
+/// z_R of \ref compare_marks for `replicas` replicas: Student's t quantile of replicas - 1 degrees of
+/// freedom at 1 - 0.00135 (GSL gsl_cdf_tdist_Pinv); NaN below kMinReplicas; kStatisticalZ for 0 (unknown).
+double statistical_threshold(std::size_t replicas);
 /// The Mark's short name in tables: "stat", "approx", "off" or "?".
 const char* mark_name(Mark mark);
 
@@ -178,6 +199,9 @@ std::optional<ScalingState> scaling_state(const Measured& measured, double from,
 /// eps = (3/16) max(max_ij |a2(alpha_ij)|, max_k |c_k|/2) with the first-Sonine c_k when known
 /// (\ref compare_known).
 double sonine_rate_error(const species::Mixture& mix, const std::vector<double>& sonine_c = {});
+/// The size of the second-Sonine correction to the cumulant: max over the distinct alpha_ij < 1 (at most 16,
+/// spread over their range) of |c^(1) - c^(2)| of one species, nonlinear K = 2 and 3 (\ref compare_known).
+double cumulant_known_error(const species::Mixture& mix);
 /// Known error of the first-Sonine HSS eta/eta_0 relative to the value, NaN where none is stated.
 double shear_viscosity_known_error(const species::Mixture& mix);
 
@@ -211,7 +235,8 @@ struct Row {
   double known_error = 0.0;  ///< the approximation's known error
   std::string approximation; ///< Quantity::approximation
   double z = 0.0;        ///< (DSMC - theory)/SE (NaN without SE)
-  double percent = 0.0;  ///< 100 (DSMC - theory)/theory (NaN for theory 0)
+  double percent = 0.0;  ///< 100 (DSMC - theory)/|theory| (NaN for theory 0)
+  double threshold = kStatisticalZ;  ///< z_R of the point (NaN: no statistical mark)
   Mark mark = Mark::statistics;  ///< the classification of this row
   std::size_t counts[4] = {0, 0, 0, 0};  ///< samples of a trajectory per Mark
 };

@@ -1,5 +1,7 @@
 #include "analysis/run_checks.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -38,6 +40,28 @@ void check_run_cost(const io::config::Config& c) {
   const int line = it == c.origin.end() ? 0 : it->second.second;
   throw io::namelist::Error(file, line, "dsmc", variable,
                             reason + "; shorten the run, or set &dsmc allow_long_run = .true. to run it anyway");
+}
+
+std::vector<std::string> input_warnings(const io::config::Config& config) {
+  std::vector<std::string> out;
+  double densest = 0.0;
+  for (const auto& point : config.sweep_points()) {
+    const auto mix = point.mixture();
+    if (!mix.enskog) densest = std::max(densest, mix.packing_fraction());
+  }
+  if (densest > kDenseWarning) {
+    const double chi = (1.0 - densest / 2.0) / std::pow(1.0 - densest, 3);  // Carnahan-Starling, docs/collision-model.md
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "packing fraction %.3g without enskog: this runs a dilute (Boltzmann) gas, whose collision rate "
+                  "ignores the density (the Enskog gas collides %.3g times as often); set &system enskog = .true. "
+                  "for a dense gas (warned above %g)", densest, chi, kDenseWarning);
+    const auto it = config.origin.find("system:number_density");
+    const std::string file = it == config.origin.end() ? config.source_file : it->second.first;
+    const int line = it == config.origin.end() ? 0 : it->second.second;
+    out.emplace_back(io::namelist::Error(file, line, "system", "number_density", text).what());
+  }
+  return out;
 }
 
 }  // namespace gdsmc::analysis

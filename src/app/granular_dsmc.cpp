@@ -211,6 +211,10 @@ std::optional<int> parse_arguments(int argc, char** argv, Arguments& a) {
       a.force = true;
     } else if (arg == "--output" || arg == "-o") {
       std::string path = next();
+      if (path.find_first_of("\n\r") != std::string::npos) {
+        std::cerr << "granular-dsmc: " << arg << ": a file name with a line break is not accepted\n";
+        return 2;
+      }
       std::string quoted;
       for (char c : path) quoted += (c == '\'') ? std::string("''") : std::string(1, c);
       a.overrides.push_back("output:file='" + quoted + "'");
@@ -295,12 +299,24 @@ std::optional<int> check_paths(const Arguments& a, const gdsmc::io::config::Conf
 
 /// The line after a run, and its warning when a bound was not a majorant.
 void print_summary(const std::string& path, const gdsmc::simulation::Summary& summary, bool quiet, bool root) {
-  if (!quiet && root)
+  if (!quiet && root) {
+    // A sweep: a line per point, then the file; a run: its final state on the line of the file.
+    for (std::size_t k = 0; k < summary.points.size(); ++k) {
+      const auto& p = summary.points[k];
+      std::fprintf(stderr, "granular-dsmc: point %zu (%s): t = %.6g, T = %.6g, %.4g collisions per particle\n", k + 1,
+                   p.label.c_str(), p.final_time, p.final_total_temperature, p.collisions_per_particle);
+    }
+    char state[160] = "";
+    if (summary.points.empty())
+      std::snprintf(state, sizeof state, "t = %.6g, T = %.6g, %.4g collisions per particle, ", summary.final_time,
+                    summary.final_total_temperature, summary.collisions_per_particle);
+    // The rate of the collision loop per thread (what bench/ measures), and the overall one, the progress line's.
     std::fprintf(stderr,
-                 "granular-dsmc: wrote %s: t = %.6g, T = %.6g, %.4g collisions per particle, "
-                 "%.3g collisions/s, %.1f s\n",
-                 path.c_str(), summary.final_time, summary.final_total_temperature, summary.collisions_per_particle,
-                 summary.events_per_second, summary.wall_seconds);
+                 "granular-dsmc: wrote %s: %s%.3g collisions/s per thread in the collision loop (%.3g/s overall), "
+                 "%.1f s\n",
+                 path.c_str(), state, summary.events_per_second,
+                 summary.wall_seconds > 0 ? summary.events / summary.wall_seconds : 0.0, summary.wall_seconds);
+  }
   if (root && summary.acceptance_overshoots > 0.0)
     std::fprintf(stderr,
                  "granular-dsmc: warning: %.0f candidates had an acceptance probability above 1 (the bound was "
@@ -323,7 +339,9 @@ int run(const Arguments& a, const gdsmc::io::config::Config& config, bool root) 
   gdsmc::analysis::compare::Comparison comparison;
   std::future<std::vector<gdsmc::analysis::compare::PointTheory>> theory;
   if (a.compare && root) {
-    theory = std::async(std::launch::async, [&config] { return gdsmc::analysis::compare::predict_points(config); });
+    // With one thread the theory waits for the run (deferred): it must not take a second core.
+    const auto policy = gdsmc::parallel::threads() > 1 ? std::launch::async : std::launch::deferred;
+    theory = std::async(policy, [&config] { return gdsmc::analysis::compare::predict_points(config); });
     options.before_commit = [&](gdsmc::io::h5md::Writer& writer) {
       comparison = gdsmc::analysis::compare::compare_file(config, writer.temporary_path(), theory.get());
       gdsmc::analysis::compare::write(writer, comparison);
@@ -385,5 +403,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (const auto refused = check_paths(arguments, config, root)) return *refused;
+  if (root)
+    for (const auto& warning : gdsmc::analysis::input_warnings(config)) std::cerr << "granular-dsmc: warning: " << warning << "\n";
   return run(arguments, config, root);
 }

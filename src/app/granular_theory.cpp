@@ -13,6 +13,7 @@
 
 #include "io/config.hpp"
 #include "io/namelist.hpp"
+#include "analysis/json.hpp"
 #include "analysis/predictions.hpp"
 #include "analysis/run_checks.hpp"
 #include "theory/smoluchowski.hpp"
@@ -58,24 +59,12 @@ const char* kUsage =
     "  initial_rates        events per unit volume and time at t = 0 (exact: Maxwellian monomers)\n"
     "With &sweep: {\"sweep\": {variable, values}, \"points\": [one object as above per value]}.\n";
 
-std::string number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
-std::string array(const std::vector<double>& v) {
-  std::string s = "[";
-  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + number(v[i]);
-  return s + "]";
-}
-
+using gdsmc::analysis::json::array;
+using gdsmc::analysis::json::number;
+/// The text of a JSON string literal, without its quotes (json::quote).
 std::string escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out;
+  const std::string quoted = gdsmc::analysis::json::quote(text);
+  return quoted.substr(1, quoted.size() - 2);
 }
 
 /// The theory of an &agg_frag run (analysis/predictions.hpp) as JSON, in the units of the DSMC observables.
@@ -277,8 +266,11 @@ int main(int argc, char** argv) {
     } else if (!arg.empty() && arg[0] == '-') {
       std::cerr << "granular-theory: unknown option " << arg << "\n" << kUsage;
       return 2;
-    } else {
+    } else if (input.empty()) {
       input = arg;
+    } else {
+      std::cerr << "granular-theory: one input file only (got '" << input << "' and '" << arg << "')\n";
+      return 2;
     }
   }
   if (input.empty()) {

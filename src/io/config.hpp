@@ -112,7 +112,7 @@ struct Dsmc {
   long long n_particles = 20000;    ///< N, simulated particles, split in proportion to n_k
   std::optional<double> t_end;                   ///< exactly one of t_end and
   std::optional<double> collisions_per_particle; ///< collisions_per_particle (2 x events / N)
-  long long replicas = 1;         ///< independent realisations, averaged
+  long long replicas = 4;         ///< independent realisations, averaged (4: the fewest --compare marks)
   long long seed = 12345;         ///< seed of all random streams
   double step_fraction = 1.0;     ///< time step (bound refresh) in majorant mean free times
   long long block_size = 32768;  ///< cache blocks (collide.hpp "Blocks"); 0: none

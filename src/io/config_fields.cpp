@@ -78,7 +78,7 @@ const std::vector<Field<Dsmc>>& dsmc_fields() {
        kPositive},
       {"collisions_per_particle", &Dsmc::collisions_per_particle, "",
        "end of the run in collisions per particle, 2 x events / N (or give t_end)", kPositive},
-      {"replicas", &Dsmc::replicas, "", "independent realisations, averaged", Range{1, 1e6}},
+      {"replicas", &Dsmc::replicas, "", "independent realisations, averaged (standard errors over them; --compare marks need >= 4)", Range{1, 1e6}},
       {"seed", &Dsmc::seed, "", "seed of all random streams", at_least(0)},
       {"step_fraction", &Dsmc::step_fraction, "",
        "time step (bound refresh) in units of the majorant mean free time", Range{0, 100, true}},
@@ -314,9 +314,11 @@ std::string default_text(const G& defaults, const Field<G>& f) {
   return s.str();
 }
 
+/// One group of the template: every field with its default; a field without one commented out with an
+/// example value, except those in `set`, which the template sets so that it runs as printed.
 template <class G>
 void template_group(std::ostringstream& s, const std::string& group, const std::vector<Field<G>>& fields,
-                    const std::map<std::string, std::string>& examples) {
+                    const std::map<std::string, std::string>& examples, const std::vector<std::string>& set = {}) {
   const G defaults{};
   s << "&" << group << "\n";
   for (const auto& f : fields) {
@@ -328,6 +330,9 @@ void template_group(std::ostringstream& s, const std::string& group, const std::
       // A help that already says when the variable is required (restitution: "required when
       // constant") is not followed by a second, unconditional "(required)".
       if (f.help.find("required") == std::string::npos) note = " (required)";
+    } else if (value.empty() && std::find(set.begin(), set.end(), f.name) != set.end()) {
+      value = examples.at(f.name);
+      note = " (no default: set here so that this template runs as printed)";
     } else if (value.empty()) {
       prefix = "! ";
       value = examples.count(f.name) ? examples.at(f.name) : "...";
@@ -393,7 +398,8 @@ std::string defaults_template() {
   template_group(s, "system", system_fields(),
                  {{"mass", "1.0"}, {"diameter", "1.0"}, {"number_density", "0.01"}, {"restitution", "0.9"}});
   template_group(s, "initial", initial_fields(), {});
-  template_group(s, "dsmc", dsmc_fields(), {{"t_end", "100.0"}, {"collisions_per_particle", "50.0"}});
+  template_group(s, "dsmc", dsmc_fields(), {{"t_end", "100.0"}, {"collisions_per_particle", "50.0"}},
+                 {"collisions_per_particle"});
   template_group(s, "output", output_fields(), {{"first_sample", "0.1"}, {"sample_times", "1.0, 2.0, 5.0"}});
   s << "! Aggregation and fragmentation: uncomment the group to switch it on (one species = the monomer,\n"
        "! the scheme is then 'lowrank').\n";

@@ -203,6 +203,22 @@ class Parser {
     return p < text_.size() && (text_[p] == '=' || text_[p] == '(');
   }
 
+  // The word at pos_ when it is a variable name but for a character outside ASCII (a name typed
+  // with an accent, restitución = 0.9): else empty. Such a word would otherwise read as a bad value of
+  // the variable before it.
+  std::string foreign_name() const {
+    std::size_t p = pos_;
+    bool foreign = false;
+    while (p < text_.size() && (is_name_char(text_[p]) || static_cast<unsigned char>(text_[p]) >= 0x80)) {
+      foreign = foreign || static_cast<unsigned char>(text_[p]) >= 0x80;
+      ++p;
+    }
+    const std::size_t end = p;
+    while (p < text_.size() && is_blank(text_[p])) ++p;
+    if (!foreign || p >= text_.size() || (text_[p] != '=' && text_[p] != '(')) return "";
+    return std::string(text_.substr(pos_, end - pos_));
+  }
+
   Group parse_group(std::string name, int group_line) {
     Group g;
     g.name = std::move(name);
@@ -255,6 +271,9 @@ class Parser {
       if (c == '=')
         fail(line, g.name, current ? current->name : "",
              "value without a variable name ('=' not preceded by a name)");
+      if (const std::string word = foreign_name(); !word.empty())
+        fail(line, g.name, word,
+             "the name '" + word + "' has a character outside A-Z, 0-9 and _ (variable names are ASCII)");
       if (is_letter(c) && word_is_name()) {
         check_has_value(line);
         g.assignments.push_back(parse_assignment_head(g));

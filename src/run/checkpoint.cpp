@@ -52,6 +52,9 @@ void CheckpointStore::load(const std::string& file) {
   ContentHash hash;
   std::string fingerprint, stored_checksum;
   double ranks = 0.0, layout = 0.0;
+  if (std::error_code ec; !std::filesystem::is_regular_file(file, ec))
+    throw std::runtime_error("checkpoint '" + file + "': " +
+                             (std::filesystem::exists(file, ec) ? "not a file" : "no such file"));
   try {
     stored_checksum = h5::read_string_attribute(file, "/checkpoint", "checksum");
     for (const char* kind : {"done", "running"}) {

@@ -2,7 +2,9 @@
 #include "run/progress.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace gdsmc::simulation {
 
@@ -20,16 +22,20 @@ void ProgressLine::update(double fraction_done, const std::string& what, double 
   const auto now = Clock::now();
   last_ = now;
   const double elapsed = std::chrono::duration<double>(now - start_).count();
-  const double eta = fraction_done > 0 ? elapsed * (1.0 - fraction_done) / fraction_done : 0.0;
+  // Before the first collisions there is no rate to tell the ETA from: "-", not 0.
+  char rate[32] = "-", eta[32] = "-";
+  if (events_per_second > 0.0 && fraction_done > 0.0) {
+    std::snprintf(rate, sizeof rate, "%.3g", events_per_second);
+    std::snprintf(eta, sizeof eta, "%.0f s", elapsed * (1.0 - fraction_done) / fraction_done);
+  }
   if (terminal_) {
     const int width = 30;
     const int filled = static_cast<int>(fraction_done * width);
-    std::fprintf(stderr, "\r[%.*s%*s] %5.1f%%  %s  %.3g coll/s  ETA %.0f s  ", filled,
-                 "##############################", width - filled, "", 100.0 * fraction_done, what.c_str(),
-                 events_per_second, eta);
+    std::fprintf(stderr, "\r[%.*s%*s] %5.1f%%  %s  %s coll/s  ETA %s  ", filled, "##############################",
+                 width - filled, "", 100.0 * fraction_done, what.c_str(), rate, eta);
   } else {
-    std::fprintf(stderr, "granular-dsmc: %5.1f%% done, %s, %.3g coll/s, %.0f s elapsed, ETA %.0f s\n",
-                 100.0 * fraction_done, what.c_str(), events_per_second, elapsed, eta);
+    std::fprintf(stderr, "granular-dsmc: %5.1f%% done, %s, %s coll/s, %.0f s elapsed, ETA %s\n", 100.0 * fraction_done,
+                 what.c_str(), rate, elapsed, eta);
   }
   std::fflush(stderr);
   printed_ = true;
@@ -40,12 +46,13 @@ void ProgressLine::finish() {
 }
 
 Progress::Progress(bool enabled, bool terminal, std::vector<std::size_t> point_of, std::size_t points)
-    : line_(enabled, terminal), partial_(point_of.size(), 0.0), point_of_(std::move(point_of)), open_(points, 0) {
+    : line_(enabled, terminal), partial_(point_of.size(), 0.0), time_(point_of.size(), 0.0),
+      temperature_(point_of.size(), std::nan("")), point_of_(std::move(point_of)), open_(points, 0) {
   for (std::size_t p : point_of_) ++open_[p];
   for (std::size_t n : open_) points_ += n > 0 ? 1 : 0;
 }
 
-void Progress::update(std::size_t slot, double fraction, double time, std::uint64_t new_events) {
+void Progress::update(std::size_t slot, double fraction, double time, std::uint64_t new_events, double temperature) {
   std::lock_guard<std::mutex> lock(mutex_);
   const double before = partial_[slot];
   partial_[slot] = fraction;
@@ -55,13 +62,24 @@ void Progress::update(std::size_t slot, double fraction, double time, std::uint6
     if (--open_[point_of_[slot]] == 0) ++points_done_;
   }
   events_ += new_events;
+  time_[slot] = time;
+  if (!std::isnan(temperature)) temperature_[slot] = temperature;
   const double done = std::min(sum_ / static_cast<double>(partial_.size()), units_done_ == partial_.size() ? 1.0 : 0.999);
   if (!line_.due(done)) return;
   std::string what = std::to_string(units_done_) + "/" + std::to_string(partial_.size()) + " replicas";
   if (points_ > 1) what += ", " + std::to_string(points_done_) + "/" + std::to_string(points_) + " sweep points";
-  if (partial_.size() == 1) {
-    char t[48];
-    std::snprintf(t, sizeof t, ", t = %.4g", time);
+  if (points_ <= 1) {  // one point: where its replicas are (the slowest one's time, their mean T at the last sample)
+    double slowest = std::numeric_limits<double>::infinity(), latest = 0.0, sum = 0.0;
+    std::size_t counted = 0;
+    for (std::size_t u = 0; u < time_.size(); ++u) {
+      if (partial_[u] < 1.0) slowest = std::min(slowest, time_[u]);  // the replicas still running
+      latest = std::max(latest, time_[u]);
+      if (!std::isnan(temperature_[u])) sum += temperature_[u], ++counted;
+    }
+    if (std::isinf(slowest)) slowest = latest;
+    char t[80];
+    if (counted == 0) std::snprintf(t, sizeof t, ", t = %.4g", slowest);
+    else std::snprintf(t, sizeof t, ", t = %.4g, T = %.4g at the last sample", slowest, sum / static_cast<double>(counted));
     what += t;
   }
   const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();

@@ -6,8 +6,10 @@
  * On a terminal the line is rewritten in place (at most 5 times a second); otherwise (a log file, a
  * pipe) a full line is printed every 10 s, so that logs stay readable. It shows the fraction of the
  * work done (the mean of the units' fractions), the replicas and sweep points finished, the collision
- * rate since the start and the ETA; the simulated time when the run is a single unit. Every update
- * is O(1), and the text is composed only when a line is due. Under MPI rank 0 prints its own units.
+ * rate since the start over all threads (collisions per wall-clock second: the summary's "overall"
+ * rate) and the ETA ("-" until there is a rate to tell it from); for a run that is not a sweep the
+ * simulated time of its slowest replica and the mean T of the replicas at their last samples. Every update is O(1), and the text is composed only when a line is due.
+ * Under MPI rank 0 prints its own units.
  */
 #pragma once
 
@@ -45,8 +47,9 @@ class Progress {
  public:
   /// `point_of` gives the sweep point of each unit (slot) of this rank; `points` their number.
   Progress(bool enabled, bool terminal, std::vector<std::size_t> point_of, std::size_t points);
-  /// Unit `slot` is `fraction` done, at simulated `time`, with `new_events` since its last update.
-  void update(std::size_t slot, double fraction, double time, std::uint64_t new_events);
+  /// Unit `slot` is `fraction` done, at simulated `time`, with `new_events` since its last update and
+  /// total temperature `temperature` at its last sample (NaN: none yet).
+  void update(std::size_t slot, double fraction, double time, std::uint64_t new_events, double temperature);
   /// Ends the line.
   void finish() { line_.finish(); }
 
@@ -54,6 +57,8 @@ class Progress {
   std::mutex mutex_;
   ProgressLine line_;
   std::vector<double> partial_;
+  std::vector<double> time_;         ///< each unit's simulated time
+  std::vector<double> temperature_;  ///< each unit's T at its last sample (NaN: none yet)
   std::vector<std::size_t> point_of_;
   std::vector<std::size_t> open_;  ///< units of each point not finished
   std::size_t points_ = 0, points_done_ = 0, units_done_ = 0;

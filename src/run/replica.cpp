@@ -581,7 +581,9 @@ ReplicaResult run_replica(const io::config::Config& config, std::size_t replica,
   std::uint64_t reported = engine->events();
   const auto report = [&](double fraction) {
     const std::uint64_t events = engine->events();
-    ctx.progress.update(ctx.slot, fraction, engine->time(), events - reported);
+    const auto it = result.rows.find("total_temperature");  // T at the last sample, for the progress line
+    const double temperature = it == result.rows.end() || it->second.second.empty() ? std::nan("") : it->second.second.back();
+    ctx.progress.update(ctx.slot, fraction, engine->time(), events - reported, temperature);
     reported = events;
   };
   const std::function<state::Record()> snapshot = [&] {

@@ -94,7 +94,7 @@ std::vector<ReplicaResult> run_units(const std::vector<io::config::Config>& poin
     try {
       if (const ReplicaResult* finished = checkpoints.finished_result(u)) {
         done[slot] = *finished;
-        progress.update(slot, 1.0, 0.0, 0);
+        progress.update(slot, 1.0, 0.0, 0, std::nan(""));
         return;
       }
       ReplicaContext context{options, progress, slot, split.per_unit,
@@ -197,6 +197,9 @@ Summary write_output(io::h5md::Writer& writer, const io::config::Config& config,
     summary.final_time = acc.at("time").mean().back();
     summary.final_total_temperature = acc.at("total_temperature").mean().back();
     summary.collisions_per_particle = acc.at("collisions_per_particle").mean().back();
+    if (config.is_sweep())
+      summary.points.push_back({config.sweep.row_label(sweep_rows[k]), summary.final_time,
+                                summary.final_total_temperature, summary.collisions_per_particle});
     if (acc.count("acceptance_overshoots"))
       summary.acceptance_overshoots +=
           acc.at("acceptance_overshoots").mean().back() * static_cast<double>(points[k].dsmc.replicas);
@@ -229,6 +232,7 @@ Summary write_output(io::h5md::Writer& writer, const io::config::Config& config,
   if (options.before_commit) options.before_commit(writer);
   writer.commit();
   summary.events_per_second = collide_seconds > 0 ? static_cast<double>(events) / collide_seconds : 0.0;
+  summary.events = static_cast<double>(events);
   return summary;
 }
 

@@ -48,11 +48,20 @@ struct Options {
 
 /// What the run measured, as written to the file (for the caller's summary).
 struct Summary {
-  double final_time = 0.0;
-  double final_total_temperature = 0.0;
-  double collisions_per_particle = 0.0;
-  double wall_seconds = 0.0;
-  double events_per_second = 0.0;
+  double final_time = 0.0;               ///< the last point's mean final time
+  double final_total_temperature = 0.0;  ///< its mean final T
+  double collisions_per_particle = 0.0;  ///< its mean collisions per particle
+  double wall_seconds = 0.0;             ///< the whole run, wall clock
+  double events_per_second = 0.0;        ///< events per second of collision loop, per thread (loops' seconds summed)
+  double events = 0.0;                   ///< every replica's collision events
+  /// One sweep point's final values (the mean over its replicas).
+  struct Point {
+    std::string label;                     ///< "variable = value"
+    double final_time = 0.0;               ///< t
+    double final_total_temperature = 0.0;  ///< T
+    double collisions_per_particle = 0.0;  ///< collisions per particle
+  };
+  std::vector<Point> points;  ///< every point of a sweep (empty for a single run)
   /// Candidates of all replicas whose acceptance probability exceeded 1 (collide.hpp
   /// Counters::overshoots; also the observable `acceptance_overshoots`): 0 in a correct run.
   double acceptance_overshoots = 0.0;
