@@ -322,7 +322,7 @@ std::pair<int, double> interrupt_an_endless_run(CliFixture& f, useconds_t wait_u
   lines[4] = "  number_density = 0.01";
   lines[5] = "  restitution = 0.9";
   lines[11] = "  n_particles = 2000";
-  lines[12] = "  t_end = 1e30, allow_long_run = .true.";
+  lines[12] = "  t_end = 1e30, allow_long_run = .true., replicas = 1";  // one unit: unit_0 is the one running
   std::ofstream(f.dir / "t.nml", std::ios::binary) << gdsmc::test::join_lines(lines);
   const pid_t pid = ::fork();
   if (pid < 0) return {-2, 0.0};
@@ -919,6 +919,69 @@ TEST_F(CliDsmc, CompareJsonUnwritable) {
 // granular-theory
 // ---------------------------------------------------------------------------------------------
 
+// ---------------------------------------------------------------------------------------------
+// Particle snapshots (io/snapshot.hpp): &output snapshot_times, &initial from_file
+// ---------------------------------------------------------------------------------------------
+
+class CliSnapshot : public CliFixture {};
+
+TEST_F(CliSnapshot, EveryParticleAtTheChosenTimesAndARunStartedFromThem) {
+  // Run A: 200 particles (mass 1 and 10), 2 replicas, snapshots at 0, 4 and t_end = 10.
+  ASSERT_EQ(dsmc(with_line(16, "  file = 'a.h5', n_samples = 3, snapshot_times = 0.0, 4.0, 10.0"),
+                 "--set dsmc:replicas=2").status, 0);
+  const std::string a = (dir / "a.h5").string();
+  const auto v = gdsmc::io::h5md::read_dataset(a, "/particles/replica_2/velocity/value");
+  ASSERT_EQ(v.shape, (std::vector<std::size_t>{3, 200, 3}));
+  EXPECT_EQ(gdsmc::io::h5md::read_dataset(a, "/particles/replica_1/velocity/time").data,
+            (std::vector<double>{0.0, 4.0, 10.0}));
+  const auto species = gdsmc::io::h5md::read_integers(a, "/particles/replica_1/species");
+  EXPECT_EQ(std::count(species.begin(), species.end(), 1u), 133);  // N_k ~ N n_k/n: 0.02 : 0.01
+  EXPECT_EQ(std::count(species.begin(), species.end(), 2u), 67);
+  const auto step = gdsmc::io::h5md::read_integers(a, "/particles/replica_1/velocity/step");
+  ASSERT_EQ(step.size(), 3u);
+  EXPECT_EQ(step[0], 0u);
+  EXPECT_LT(step[1], step[2]);
+  // Run B starts from A's last snapshots (replica r from A's replica r): the same velocities, and its
+  // T_k(0) (observable and /parameters) is A's final T_k.
+  std::string b_text = with_line(9, "  from_file = 'a.h5'");
+  b_text.replace(b_text.find("  file = 'out.h5', n_samples = 3"), std::string("  file = 'out.h5', n_samples = 3").size(),
+                 "  file = 'b.h5', n_samples = 3, snapshot_times = 0.0");
+  write("b.nml", b_text);
+  const Result rb = run("granular-dsmc", "b.nml --quiet --set dsmc:replicas=2");
+  ASSERT_EQ(rb.status, 0) << rb.err;
+  const std::string b = (dir / "b.h5").string();
+  for (const char* replica : {"replica_1", "replica_2"}) {
+    const auto va = gdsmc::io::h5md::read_dataset(a, std::string("/particles/") + replica + "/velocity/value").data;
+    const auto vb = gdsmc::io::h5md::read_dataset(b, std::string("/particles/") + replica + "/velocity/value").data;
+    ASSERT_EQ(vb.size(), 600u);
+    EXPECT_TRUE(std::equal(vb.begin(), vb.end(), va.end() - 600)) << replica;
+  }
+  const auto ta = gdsmc::io::h5md::read_observable(a, "temperature");
+  const auto tb = gdsmc::io::h5md::read_observable(b, "temperature");
+  for (std::size_t k = 0; k < 2; ++k) EXPECT_NEAR(tb.value[k], ta.value[ta.value.size() - 2 + k], 1e-13) << k;
+  const auto initial = std::get<std::vector<double>>(gdsmc::io::h5md::read_attribute(b, "/parameters/initial", "temperature"));
+  for (std::size_t k = 0; k < 2; ++k) EXPECT_NEAR(initial[k], tb.value[k], 1e-13) << k;
+}
+
+TEST_F(CliSnapshot, RequestsThatCannotBeMetAreRefusedInOneLine) {
+  std::vector<std::string> lines = gdsmc::test::base_namelist_lines("  file = 'out.h5', snapshot_times = 1.0");
+  lines[12] = "  collisions_per_particle = 5.0";
+  expect_input_error(dsmc(gdsmc::test::join_lines(lines)), "granular-dsmc", "t.nml:16: &output: snapshot_times: ",
+                     {"needs t_end"});
+  expect_input_error(dsmc(with_line(16, "  file = 'out.h5', snapshot_times = 2.0, 1.0")), "granular-dsmc",
+                     "t.nml:16: &output: snapshot_times: ", {"must increase"});
+  expect_input_error(dsmc(with_line(16, "  file = 'out.h5', snapshot_times = 20.0")), "granular-dsmc",
+                     "t.nml:16: &output: snapshot_times: ", {"beyond t_end"});
+  expect_input_error(dsmc(with_line(9, "  from_file = 'absent.h5'")), "granular-dsmc", "t.nml:9: &initial: from_file: ",
+                     {"cannot start from it", "absent.h5"});
+  // A snapshot of 200 particles for a run of 300.
+  ASSERT_EQ(dsmc(with_line(16, "  file = 'a.h5', snapshot_times = 10.0")).status, 0);
+  expect_input_error(dsmc(with_line(9, "  from_file = 'a.h5'"), "--set dsmc:n_particles=300"), "granular-dsmc",
+                     "t.nml:9: &initial: from_file: ", {"has 133 particles of species 1, this run 200"}, {"a.h5", "t.nml"});
+  expect_input_error(dsmc(with_line(9, "  temperature = 2.0, from_file = 'a.h5'")), "granular-dsmc",
+                     "t.nml:9: &initial: temperature: ", {"not used with from_file"}, {"a.h5", "t.nml"});
+}
+
 // Issue "Nothing lost, nothing hangs, no NaN": unclear messages, reproduced as reported, then fixed.
 TEST_F(CliDsmc, RestartOfAMissingFileSaysItIsMissing) {
   // It said "is damaged or is not a checkpoint of granular-dsmc".
@@ -936,6 +999,33 @@ TEST_F(CliDsmc, NameWithANonAsciiCharacterIsNamed) {
   // `restitución = 0.9` was reported as a bad value of number_density, the variable before it.
   expect_input_error(dsmc(with_line(6, "  restitución = 0.5")), "granular-dsmc", "t.nml:6: &system: restitución: ",
                      {"outside A-Z, 0-9 and _"});
+}
+
+TEST_F(CliTheory, EveryKeyItPrintsIsInItsHelp) {
+  // Keys of the JSON for the inputs of every kind of theory, against --help.
+  const std::string help = run("granular-theory", "--help").out;
+  const std::vector<std::string> inputs = {
+      base(),
+      with_line(16, "  file = 'out.h5', track_displacements = .true."),
+      base() + "&sweep variable = 'system:restitution', values = 0.6, 0.9 /\n",
+      with_line(6, "  restitution = 0.5, roughness = 0.3"),
+      with_line(6, "  restitution = 0.5, roughness = 0.3") + "&thermostat kind = 'white_noise', noise_strength = 0.01 /\n",
+      "&system\n n_species = 1, mass = 1.0, diameter = 1.0, number_density = 0.01, restitution = 0.8, roughness = 0.2\n/\n"
+      "&dsmc\n n_particles = 200, t_end = 10.0\n/\n",
+      "&system\n n_species = 1, mass = 1.0, diameter = 1.0, number_density = 0.1, restitution = 0.8\n/\n"
+      "&dsmc\n n_particles = 2000, t_end = 1.0\n/\n&agg_frag\n aggregation_energy = 0.5\n/\n",
+      "&system\n n_species = 1, mass = 1.0, diameter = 1.0, number_density = 0.01, restitution = 0.8\n/\n"
+      "&dsmc\n n_particles = 200, t_end = 10.0\n/\n&thermostat\n kind = 'gaussian'\n/\n&shear\n rate = 0.01\n/\n"};
+  const std::regex key("\"([a-z_0-9]+)\":");
+  for (const auto& text : inputs) {
+    write("t.nml", text);
+    const Result r = run("granular-theory", "t.nml");
+    ASSERT_EQ(r.status, 0) << text << r.err;
+    for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), key); it != std::sregex_iterator(); ++it) {
+      const std::string name = (*it)[1];
+      EXPECT_NE(help.find(name), std::string::npos) << "'" << name << "' is printed but not in --help, for\n" << text;
+    }
+  }
 }
 
 TEST_F(CliTheory, TwoInputFilesAreRefused) {

@@ -16,6 +16,7 @@
 #include "analysis/json.hpp"
 #include "analysis/predictions.hpp"
 #include "analysis/run_checks.hpp"
+#include "analysis/sweep_table.hpp"
 #include "theory/smoluchowski.hpp"
 #include "theory/sonine_mixture.hpp"
 #include "theory/theory.hpp"
@@ -23,9 +24,18 @@
 
 namespace {
 
+/// The units of the keys (the unit system "namelist" of docs/output.md: time, energy, length, mass;
+/// "1" dimensionless); a {time, value} pair has its time in `time`.
+const char* kUnitsJson =
+    "\"units\": {\"time\": \"time\", \"collision_frequency\": \"time-1\", \"cooling_rate\": \"time-1\", "
+    "\"temperature\": \"energy\", \"total_temperature\": \"energy\", \"rotational_temperature\": \"energy\", "
+    "\"translational_temperature\": \"energy\", \"kinetic_energy\": \"energy\", \"msd\": \"length+2\", "
+    "\"cooling_rate_sonine\": \"time-1\", \"tail_decay_rate\": \"1\", \"other_keys\": \"1\"}";
+
 const char* kUsage =
     "usage: granular-theory FILE.nml [--set group:variable=value]...\n"
     "Prints the theory for the namelist's system as one JSON object on stdout:\n"
+    "  n_species            S, the number of species (&agg_frag: 1, the monomer)\n"
     "  collision_frequency  [nu_k] collisions suffered per particle of species k per unit time at t=0\n"
     "  cooling_rate         [zeta_k] = sum_j xi_kj at t = 0 (docs/haff-and-mixtures.md; one species: Haff's law)\n"
     "  temperature          {time, value[t][k]} the partial-temperature ODEs (CVODE) on the sample times\n"
@@ -38,6 +48,11 @@ const char* kUsage =
     "                       maxwellian: {temperature_over_mean, cooling_rate_reduced}} HCS for any number of\n"
     "                       species, constant restitution (T = sum_k n_k T_k/n; theory/sonine_mixture.hpp)\n"
     "  approximations       {key: \"maxwellian\" | \"first_sonine\" | ...} behind every key printed\n"
+    "  units                {key: unit} in the unit system of the namelist (time, energy, length; other_keys: 1)\n"
+    "Temperature ratios: the convention is T_k/T with T = sum_k n_k T_k/n (temperature_over_mean, as --compare);\n"
+    "  asymptotic_temperature_ratio (T_k/T_1) and temperature_ratio (T_1/T_2) are kept for existing scripts.\n"
+    "A sweep prints {\"sweep\": {variable, values (as written), variables, numbers (values as numbers, null for\n"
+    "  a string)}, \"points\": [one object as above per point]}.\n"
     "  shear_viscosity_ratio {hcs, hss} eta/eta_0 in first Sonine (Montanero 2003, docs/shear-viscosity.md): one species\n"
     "                       (dilute or Enskog), binary mixtures (over the elastic mixture value)\n"
     "  shear_viscosity_kinetic_ratio {hcs, hss} its kinetic part, Enskog gases (Montanero 2003, Fig. 10, docs/shear-viscosity.md)\n"
@@ -56,8 +71,9 @@ const char* kUsage =
     "  number, temperature  {time, value[t][k]} per cluster size k (number: N_k for the run's n_particles)\n"
     "  total_temperature, kinetic_energy, mean_size, monomer_fraction, collisions, aggregations,\n"
     "  fragmentations, collisions_per_particle   {time, value} (event counts of one replica)\n"
-    "  initial_rates        events per unit volume and time at t = 0 (exact: Maxwellian monomers)\n"
-    "With &sweep: {\"sweep\": {variable, values}, \"points\": [one object as above per value]}.\n";
+    "  initial_rates        {collisions, aggregations, fragmentations, bounces, log_monomer_rate}: events per\n"
+    "                       unit volume and time at t = 0 (exact: Maxwellian monomers)\n"
+    "  max_size, lost_mass_fraction   the largest size integrated and the mass beyond it at the last time\n";
 
 using gdsmc::analysis::json::array;
 using gdsmc::analysis::json::number;
@@ -183,7 +199,7 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
       out += (k ? ", \"" : "\"") + p.approximations[k].first + "\": \"" + p.approximations[k].second + "\"";
     return out + "}";
   };
-  if (p.agg_frag) return agg_frag_json(*p.agg_frag, indent) + approximations() + "\n" + indent + "}";
+  if (p.agg_frag) return agg_frag_json(*p.agg_frag, indent) + approximations() + ",\n" + in + kUnitsJson + "\n" + indent + "}";
   const std::size_t s = p.n_species;
   std::ostringstream json;
   json << indent << "{\n" << in << "\"n_species\": " << s << ",\n";
@@ -231,9 +247,13 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
   }
   if (p.binary_hcs) {  // binary HCS in first Sonine approximation (Montanero and Garzo 2002, App. A, \ref son_binary "docs/sonine.md")
     const auto& hcs = *p.binary_hcs;
-    json << ",\n" << in << "\"temperature_ratio\": " << number(hcs.temperature_ratio);
-    json << ",\n" << in << "\"sonine_c\": " << array({hcs.sonine_c[0], hcs.sonine_c[1]});
-    json << ",\n" << in << "\"cooling_rate_reduced\": " << number(hcs.cooling_rate);
+    // The same first-Sonine HCS as hcs.first_sonine (the s-species solution), so that both print the
+    // same digits; tail_beta is the binary theory's own.
+    const auto* fs = p.hcs_first_sonine ? &*p.hcs_first_sonine : nullptr;
+    json << ",\n" << in << "\"temperature_ratio\": "
+         << number(fs ? fs->temperature_over_mean[0] / fs->temperature_over_mean[1] : hcs.temperature_ratio);
+    json << ",\n" << in << "\"sonine_c\": " << array(fs ? fs->sonine_c : std::vector<double>{hcs.sonine_c[0], hcs.sonine_c[1]});
+    json << ",\n" << in << "\"cooling_rate_reduced\": " << number(fs ? fs->cooling_rate_reduced : hcs.cooling_rate);
     json << ",\n" << in << "\"tail_beta\": " << array({hcs.tail_beta[0], hcs.tail_beta[1]});
     if (p.binary_tail_decay_rate[0])
       json << ",\n" << in << "\"tail_decay_rate\": "
@@ -245,8 +265,9 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
   if (p.shear_viscosity_kinetic_hcs)
     json << ",\n" << in << "\"shear_viscosity_kinetic_ratio\": {\"hcs\": " << number(*p.shear_viscosity_kinetic_hcs)
          << ", \"hss\": " << number(*p.shear_viscosity_kinetic_hss) << "}";
-  // The approximation behind every key printed (\ref output_theory "docs/output.md").
+  // The approximation behind every key printed (\ref output_theory "docs/output.md"), and the units.
   json << ",\n" << approximations();
+  json << ",\n" << in << kUnitsJson;
   json << "\n" << indent << "}";
   return json.str();
 }
@@ -300,6 +321,12 @@ int main(int argc, char** argv) {
       json << "], \"variables\": [";
       for (std::size_t v = 0; v < config.sweep.variable.size(); ++v)
         json << (v ? ", " : "") << "\"" << escape(config.sweep.variable[v]) << "\"";
+      json << "], \"numbers\": [";  // each point's values as numbers (null: a string or an array)
+      for (std::size_t k = 0; k < table.size(); ++k) {
+        std::vector<double> row;
+        for (const auto& text : table[k]) row.push_back(gdsmc::analysis::sweep_table::numeric_value(text));
+        json << (k ? ", " : "") << array(row);
+      }
       json << "]},\n  \"points\": [\n";
       const auto points = config.sweep_points();
       for (std::size_t k = 0; k < points.size(); ++k)

@@ -310,6 +310,7 @@ Config read_point(const namelist::Document& document, const std::vector<std::str
   if (c.has_agg_frag) check_agg_frag(c, prov);
   check_staged(c, prov);
   check_white_noise(c, prov);
+  check_snapshots(c, prov);
   if (run_check) run_check(c);
   if (expand_sweep && !prov["sweep"].line.empty()) {
     check_sweep(c, prov["sweep"], document, overrides, run_check);

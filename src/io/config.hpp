@@ -104,6 +104,9 @@ struct Initial {
   std::vector<double> temperature{1.0};  ///< T_k(0); one value applies to every species
   VelocityDistribution distribution = VelocityDistribution::maxwell;  ///< initial velocities: 'maxwell', 'shell' (equal speeds) or 'cube'
   std::vector<double> rotational_temperature;  ///< T_rot,k(0) of rough spheres (unset: T_k(0)); one value applies to every species
+  /// An output file whose last particle snapshot the run starts from (io/snapshot.hpp); temperature and
+  /// rotational_temperature are then the snapshot's.
+  std::string from_file;
 };
 
 /// &dsmc: the scheme and the size and length of the run.
@@ -138,6 +141,7 @@ struct Output {
   std::optional<double> msd_start_temperature; ///< from the first sample with T at or below this
   std::vector<double> sample_times;  ///< explicit sample points after 0 (time, or collisions per
                                      ///< particle in collision-driven runs); overrides n_samples/spacing
+  std::vector<double> snapshot_times;  ///< every particle's velocity to /particles at these times (io/snapshot.hpp)
 };
 
 /// &agg_frag: clusters that stick and shatter (DSMC notes, eqs. (8)-(14), \ref af_outcome "docs/agg-frag.md"; dsmc/agg_frag.hpp).

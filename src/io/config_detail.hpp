@@ -129,6 +129,7 @@ void check_agg_frag(const Config& c, std::map<std::string, Provenance>& prov);
 void check_rough(Config& c, std::map<std::string, Provenance>& prov);
 void check_white_noise(Config& c, std::map<std::string, Provenance>& prov);
 void check_staged(const Config& c, std::map<std::string, Provenance>& prov);
+void check_snapshots(Config& c, std::map<std::string, Provenance>& prov);
 /// The sample grid of &output up to `end` (a time or collisions per particle).
 std::vector<double> spaced(const Output& out, double end);
 

@@ -63,6 +63,9 @@ const std::vector<Field<Initial>>& initial_fields() {
        "T_rot,k(0) = I_k <w^2>/3 of rough spheres (Maxwellian angular velocities), one per species or one "
        "for all (default: temperature; 0: no rotation)",
        Range{0, kInf, false, false}},
+      {"from_file", &Initial::from_file, "",
+       "start from the last particle snapshot (&output snapshot_times) of this output file instead of drawn "
+       "velocities; replica r takes the file's replica r (cyclically); the species counts must match"},
   };
   return fields;
 }
@@ -155,6 +158,10 @@ const std::vector<Field<Output>>& output_fields() {
        "explicit sample points after 0, increasing; overrides n_samples and spacing (t = 0 is always "
        "sampled, and the end of the run too)",
        kPositive},
+      {"snapshot_times", &Output::snapshot_times, "time",
+       "times at which every particle's velocity (angular velocity, displacement) is written to /particles "
+       "(H5MD), increasing, from 0 to t_end; runs with t_end only",
+       Range{0, kInf, false, false}},
   };
   return fields;
 }

@@ -793,6 +793,18 @@ void Writer::write_integers(const std::string& path, const std::vector<std::uint
   });
 }
 
+void Writer::write_integers(const std::string& path, const std::vector<std::int64_t>& data) {
+  const std::vector<std::string> parts = split_path(path);
+  if (parts.empty()) throw std::invalid_argument("h5md: dataset path '" + path + "' names no dataset");
+  const hid_t file = impl_->open_file();
+  with_context(impl_->context(), [&] {
+    const std::string parent = join_path(parts, parts.size() - 1);
+    const Handle group = ensure_group(file, parent);
+    const std::vector<hsize_t> dims{data.size()};
+    put_dataset(group.get(), parent, parts.back(), H5T_STD_I64LE, H5T_NATIVE_INT64, dims, false, data.data());
+  });
+}
+
 void Writer::commit() {
   Impl& d = *impl_;
   const hid_t file = d.open_file();

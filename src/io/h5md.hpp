@@ -163,6 +163,8 @@ class Writer {
 
   /// Plain uint64 dataset (exact integers: generator states, counters), as write_dataset above.
   void write_integers(const std::string& path, const std::vector<std::uint64_t>& data);
+  /// Plain int64 dataset (H5MD's species and step), as write_dataset above, 1-D.
+  void write_integers(const std::string& path, const std::vector<std::int64_t>& data);
 
   /// Flushes, closes, fsyncs and renames the temporary file onto the final path. If the rename
   /// itself fails, the complete temporary file is kept (and named in the exception), because it

@@ -14,6 +14,7 @@ const char* kSonine = "docs/sonine.md#son_reduced_distributions";
 const char* kShear = "docs/shear-viscosity.md#eta_measured";
 const char* kAggFrag = "docs/agg-frag.md#af_observables";
 const char* kRough = "docs/rough-spheres.md#rough_observables";
+const char* kSnapshots = "docs/output.md#output_snapshots";
 
 const char* reduction_name(Reduction r) {
   switch (r) {
@@ -104,6 +105,17 @@ const std::vector<Observable>& table() {
       {"monomer_fraction", "1", "1", "N_1/N_0", R::series, kAggFrag},
       {"aggregations", "1", "1", "cumulative collisions that stuck", R::series, kAggFrag},
       {"fragmentations", "1", "1", "cumulative collisions that shattered", R::series, kAggFrag},
+      // Particle snapshots (&output snapshot_times): rows of each replica, written to /particles (io/snapshot.hpp)
+      {"snapshot_time", "time", "2: time events", "a replica's snapshot: its time and collision events", R::per_replica,
+       kSnapshots},
+      {"snapshot_species", "1", "particles", "the species of each particle, from 1 (once)", R::per_replica, kSnapshots},
+      {"snapshot_velocity", "length time-1", "3 x particles", "every particle's velocity at a snapshot", R::per_replica,
+       kSnapshots},
+      {"snapshot_angular_velocity", "time-1", "3 x particles", "every particle's angular velocity at a snapshot (rough spheres)",
+       R::per_replica, kSnapshots},
+      {"snapshot_displacement", "length", "3 x particles",
+       "every particle's displacement since the start of tracking at a snapshot (track_displacements)", R::per_replica,
+       kSnapshots},
   };
   return list;
 }

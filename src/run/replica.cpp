@@ -17,6 +17,7 @@
 #include "dsmc/rng.hpp"
 #include "dsmc/sample.hpp"
 #include "dsmc/thermostat.hpp"
+#include "io/snapshot.hpp"
 #include "run/model.hpp"
 
 namespace gdsmc::simulation {
@@ -45,6 +46,13 @@ class Engine {
   virtual std::uint64_t events() const = 0;
   /// The share of the replica done: its time over the last sample time, or its events over the last target.
   virtual double fraction_done() const = 0;
+  /// The time of sample i: a time-driven run's target (infinity for a collision-driven one).
+  virtual double sample_time(std::size_t i) const = 0;
+  /// Steps up to time `t` exactly (not beyond the next sample), calling `between` between steps
+  /// (&output snapshot_times; time-driven runs of the free gas or the gas with forcings).
+  virtual void advance_to_time(double t, const Between& between) = 0;
+  /// Adds a snapshot of every particle (io/snapshot.hpp) to `result` as rows snapshot_*.
+  virtual void take_snapshot(ReplicaResult& result) const = 0;
   /// The state of the engine's modules (dsmc/state.hpp).
   virtual void save(state::Record& record) const = 0;
   /// Continues from save()'s record.
@@ -60,6 +68,25 @@ void note_idle_threads(const ReplicaContext& ctx, const std::string& why) {
                  ctx.block_threads - 1, ctx.block_threads, why.c_str());
 }
 
+/// &initial from_file: the velocities (and angular velocities) of replica r's snapshot in `file`
+/// (io/snapshot.hpp) replace the drawn ones; the species were checked against the file's (io/config).
+void start_from_snapshot(particles::System& sys, const std::string& file, std::size_t r) {
+  const io::snapshot::State state = io::snapshot::read(file, r);
+  if (state.species.size() != sys.size())
+    throw std::runtime_error("'" + file + "': its replica " + std::to_string(r + 1) + " has " +
+                             std::to_string(state.species.size()) + " particles, the run " + std::to_string(sys.size()));
+  for (std::size_t i = 0; i < sys.size(); ++i) {
+    if (state.species[i] != sys.species[i] + 1)
+      throw std::runtime_error("'" + file + "': the species of its particles are not those of the run");
+    sys.v[i] = {state.velocity[3 * i], state.velocity[3 * i + 1], state.velocity[3 * i + 2]};
+  }
+  if (auto* spin = sys.find_array(rules::RoughRule::angular_velocity); spin && !state.angular_velocity.empty()) {
+    auto& w = std::get<particles::ParticleArray<particles::Vec3>>(spin->values);
+    for (std::size_t i = 0; i < sys.size(); ++i)
+      w[i] = {state.angular_velocity[3 * i], state.angular_velocity[3 * i + 1], state.angular_velocity[3 * i + 2]};
+  }
+}
+
 /// Replica r's particles, drawn from its stream (seed, r, initial_state).
 particles::System initial_system(const io::config::Config& config, const species::Mixture& mix,
                                  const std::vector<std::size_t>& counts, std::size_t r) {
@@ -69,6 +96,7 @@ particles::System initial_system(const io::config::Config& config, const species
     auto spin = rng::make_stream(static_cast<std::uint64_t>(config.dsmc.seed), r, rng::Purpose::rotation);
     particles::add_angular_velocities(sys, mix, config.initial.rotational_temperature, rules::RoughRule::angular_velocity, spin);
   }
+  if (!config.initial.from_file.empty()) start_from_snapshot(sys, config.initial.from_file, r);
   return sys;
 }
 
@@ -79,6 +107,10 @@ class Gas : public Engine {
   std::size_t samples() const override { return targets_.size(); }
   double time() const override { return collider_.time(); }
   std::uint64_t events() const override { return collider_.counters().events; }
+  double sample_time(std::size_t i) const override {
+    return config_.dsmc.t_end ? targets_[i] : std::numeric_limits<double>::infinity();
+  }
+  void take_snapshot(ReplicaResult& result) const override;
 
  protected:
   Gas(const io::config::Config& config, std::size_t r)
@@ -159,6 +191,39 @@ void Gas::add_scaling_averages(ReplicaResult& result) const {
   result.add("scaling_temperature_share", share.size(), share);
 }
 
+void Gas::take_snapshot(ReplicaResult& result) const {
+  const std::size_t n = sys_.size();
+  const auto flat = [n](const auto& vectors) {  // [N][3], row-major
+    std::vector<double> out;
+    out.reserve(3 * n);
+    for (const auto& v : vectors) out.insert(out.end(), {v.x, v.y, v.z});
+    return out;
+  };
+  if (!result.rows.count("snapshot_species")) {  // the species never move (particles.hpp): once
+    std::vector<double> species(n);
+    for (std::size_t i = 0; i < n; ++i) species[i] = static_cast<double>(sys_.species[i]) + 1.0;
+    result.add("snapshot_species", n, species);
+  }
+  result.add("snapshot_time", 2, {time(), static_cast<double>(events())});
+  result.add("snapshot_velocity", 3 * n, flat(sys_.v));
+  for (const auto& e : sys_.extra)
+    if (e.name == rules::RoughRule::angular_velocity)
+      result.add("snapshot_angular_velocity", 3 * n, flat(std::get<particles::ParticleArray<particles::Vec3>>(e.values)));
+  if (config_.output.track_displacements) {  // R + v (t - t_last) since the start of tracking; 0 before it
+    std::vector<double> r(3 * n, 0.0);
+    if (sys_.tracks_displacements())
+      for (std::size_t i = 0; i < n; ++i) {
+        const auto& d = sys_.r[i];
+        const auto& v = sys_.v[i];
+        const double dt = time() - d.t_last;
+        r[3 * i] = d.x + v.x * dt;
+        r[3 * i + 1] = d.y + v.y * dt;
+        r[3 * i + 2] = d.z + v.z * dt;
+      }
+    result.add("snapshot_displacement", 3 * n, r);
+  }
+}
+
 void Gas::save_gas(state::Record& r) const {
   particles::save(sys_, r);
   collider_.save(r);
@@ -194,6 +259,7 @@ class FreeGas final : public Gas {
   FreeGas(const io::config::Config& config, std::size_t r, const ReplicaContext& ctx);
   void start() override;
   void advance_to_sample(std::size_t i, const Between& between) override;
+  void advance_to_time(double t, const Between& between) override;
   void sample(std::size_t i, ReplicaResult& result) override;
   void finish(ReplicaResult& result) override;
   double fraction_done() const override {
@@ -293,6 +359,17 @@ void FreeGas::advance_to_sample(std::size_t i, const Between& between) {
   }
 }
 
+void FreeGas::advance_to_time(double t, const Between& between) {
+  start_displacements(t, std::numeric_limits<std::uint64_t>::max(), between);
+  constexpr std::uint64_t kChunk = 1u << 20;  // as advance_to_sample: chunks of events, soft
+  while (collider_.time() < t) {
+    const std::uint64_t chunk_end = collider_.counters().events + kChunk;
+    collider_.advance(chunk_stop(t), chunk_end, false, std::numeric_limits<std::uint64_t>::max(), blocked_);
+    if (collider_.time() >= t) break;
+    between();
+  }
+}
+
 void FreeGas::sample(std::size_t i, ReplicaResult& result) {
   const sample::Moments m = measure_common(result);
   const auto& counters = collider_.counters();
@@ -370,6 +447,7 @@ class ForcedGas final : public Gas {
   ForcedGas(const io::config::Config& config, std::size_t r, const ReplicaContext& ctx);
   void start() override { collider_.velocities_changed(); }  // the bounds (and the rate that sizes the stages)
   void advance_to_sample(std::size_t i, const Between& between) override;
+  void advance_to_time(double t, const Between& between) override;
   void sample(std::size_t i, ReplicaResult& result) override;
   void finish(ReplicaResult& result) override;
   double fraction_done() const override { return std::min(collider_.time() / targets_.back(), 1.0); }
@@ -435,6 +513,13 @@ void ForcedGas::advance_to_sample(std::size_t i, const Between& between) {
   }
 }
 
+void ForcedGas::advance_to_time(double t, const Between& between) {
+  while (collider_.time() < t) {  // whole stages, the last one ending at t exactly
+    stage(stages_.stage_end(t), 0, nullptr, false);
+    between();
+  }
+}
+
 void ForcedGas::sample(std::size_t i, ReplicaResult& result) {
   // The stage that samples (the last one: only its streaming, of the length the next would have).
   const bool last = i + 1 == targets_.size();
@@ -471,6 +556,10 @@ class Clusters final : public Engine {
   }
   void save(state::Record& r) const override { gas_.save(r); }
   void restore(const state::Record& r) override { gas_.restore(r); }
+  // No snapshots of clusters (io/config refuses snapshot_times with &agg_frag).
+  double sample_time(std::size_t) const override { return std::numeric_limits<double>::infinity(); }
+  void advance_to_time(double, const Between&) override { throw std::logic_error("no snapshots of &agg_frag"); }
+  void take_snapshot(ReplicaResult&) const override { throw std::logic_error("no snapshots of &agg_frag"); }
 
  private:
   bool time_driven_;
@@ -600,9 +689,19 @@ ReplicaResult run_replica(const io::config::Config& config, std::size_t replica,
     ctx.safe_point(snapshot);
   };
   const std::size_t n_samples = engine->samples();
+  const auto& snapshot_times = config.output.snapshot_times;
+  // Snapshots taken so far: the rows the result holds (also after a restart from a checkpoint).
+  const auto taken = result.rows.find("snapshot_time");
+  std::size_t next_snapshot = taken == result.rows.end() ? 0 : taken->second.second.size() / 2;
   for (; next_sample < n_samples; ++next_sample, ctx.safe_point(snapshot)) {
     if (interrupted()) throw Interrupted();
     const auto t0 = Clock::now();
+    for (; next_snapshot < snapshot_times.size() && snapshot_times[next_snapshot] <= engine->sample_time(next_sample);
+         ++next_snapshot) {  // the snapshots up to this sample's time (io/snapshot.hpp)
+      engine->advance_to_time(snapshot_times[next_snapshot], between);
+      engine->take_snapshot(result);
+      ctx.safe_point(snapshot);
+    }
     engine->advance_to_sample(next_sample, between);
     result.collide_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
     engine->sample(next_sample, result);

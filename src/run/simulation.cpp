@@ -15,6 +15,7 @@
 #include "dsmc/sample.hpp"
 #include "io/h5md.hpp"
 #include "io/output.hpp"
+#include "io/snapshot.hpp"
 #include "io/units.hpp"
 #include "io/version.hpp"
 #include "run/checkpoint.hpp"
@@ -207,6 +208,9 @@ Summary write_output(io::h5md::Writer& writer, const io::config::Config& config,
     collide_seconds += results[k].collide_seconds;
     // A sweep point lives in /sweep/point_K (K from 1) with the value it applies.
     const std::string group = config.is_sweep() ? "/sweep/point_" + std::to_string(k + 1) : "";
+    // /particles (&output snapshot_times), before output_point takes the rows
+    if (const auto snapshots = io::snapshot::from_rows(results[k].observables); !snapshots.empty())
+      io::snapshot::write(writer, group, snapshots);
     io::output::write_point(writer, group + "/observables", points[k], output_point(points[k], results[k]));
     if (config.is_sweep()) {
       // One variable: its name and the value as written (as before tables); several: joined by ", ".
