@@ -792,6 +792,9 @@ TEST_F(CliTable, SweepPointsHaveTrajectoriesOfTheirOwn) {
   expect_input_error(run("granular-dsmc", "--table out.h5 temperature"), "granular-dsmc", "--table out.h5: ",
                      {"give --point K"}, both);
   EXPECT_EQ(lines_of(run("granular-dsmc", "--table out.h5 summary").out).size(), 3u);  // the sweep table
+  const auto one = lines_of(run("granular-dsmc", "--table out.h5 --point 2 summary").out);  // point 2's row
+  ASSERT_EQ(one.size(), 2u);
+  EXPECT_EQ(one[0].rfind("temperature_1,", 0), 0u) << one[0];
 }
 
 TEST_F(CliTable, SweepVariableThatDoesNotExist) {
@@ -941,6 +944,29 @@ TEST_F(CliSnapshot, EveryParticleAtTheChosenTimesAndARunStartedFromThem) {
   ASSERT_EQ(step.size(), 3u);
   EXPECT_EQ(step[0], 0u);
   EXPECT_LT(step[1], step[2]);
+  // The velocities are the gas's: T_k of the last snapshots (about the mean flow, mean over the replicas)
+  // is the observable T_k at t_end.
+  const auto observed = gdsmc::io::h5md::read_observable(a, "temperature");
+  std::vector<double> from_snapshots(2, 0.0);
+  for (const char* replica : {"replica_1", "replica_2"}) {
+    const auto all = gdsmc::io::h5md::read_dataset(a, std::string("/particles/") + replica + "/velocity/value").data;
+    const std::vector<double> u(all.end() - 600, all.end());
+    double p[3] = {0, 0, 0}, mass = 0;
+    for (std::size_t i = 0; i < 200; ++i) {
+      const double m = species[i] == 1 ? 1.0 : 10.0;
+      for (int d = 0; d < 3; ++d) p[d] += m * u[3 * i + d];
+      mass += m;
+    }
+    std::vector<double> sum(2, 0.0), count(2, 0.0);
+    for (std::size_t i = 0; i < 200; ++i) {
+      const std::size_t k = species[i] - 1;
+      for (int d = 0; d < 3; ++d) sum[k] += (u[3 * i + d] - p[d] / mass) * (u[3 * i + d] - p[d] / mass);
+      count[k] += 1.0;
+    }
+    for (std::size_t k = 0; k < 2; ++k) from_snapshots[k] += 0.5 * (k == 0 ? 1.0 : 10.0) * sum[k] / (3.0 * count[k]);
+  }
+  for (std::size_t k = 0; k < 2; ++k)
+    EXPECT_NEAR(from_snapshots[k], observed.value[observed.value.size() - 2 + k], 1e-12 * from_snapshots[k]) << k;
   // Run B starts from A's last snapshots (replica r from A's replica r): the same velocities, and its
   // T_k(0) (observable and /parameters) is A's final T_k.
   std::string b_text = with_line(9, "  from_file = 'a.h5'");
@@ -980,6 +1006,43 @@ TEST_F(CliSnapshot, RequestsThatCannotBeMetAreRefusedInOneLine) {
                      "t.nml:9: &initial: from_file: ", {"has 133 particles of species 1, this run 200"}, {"a.h5", "t.nml"});
   expect_input_error(dsmc(with_line(9, "  temperature = 2.0, from_file = 'a.h5'")), "granular-dsmc",
                      "t.nml:9: &initial: temperature: ", {"not used with from_file"}, {"a.h5", "t.nml"});
+  expect_input_error(dsmc(with_line(9, "  from_file = 'a.h5'"), "--set \"system:mass=1.0, 5.0\""), "granular-dsmc",
+                     "t.nml:9: &initial: from_file: ", {"masses", "another gas"}, {"a.h5", "t.nml"});
+  // The gas with forcings is refused, not written wrong (its velocities live in a moving frame).
+  expect_input_error(dsmc(with_line(16, "  file = 'b.h5', snapshot_times = 5.0") + "&thermostat kind = 'gaussian' /\n"),
+                     "granular-dsmc", "t.nml:16: &output: snapshot_times: ", {"not with &thermostat or &shear"},
+                     {"a.h5", "t.nml"});
+  // A sweep's output has its snapshots per point.
+  ASSERT_EQ(dsmc(with_line(16, "  file = 's.h5', snapshot_times = 10.0") +
+                 "&sweep variable = 'system:restitution', values = 0.5, 0.6 /\n").status, 0);
+  expect_input_error(dsmc(with_line(9, "  from_file = 's.h5'")), "granular-dsmc", "t.nml:9: &initial: from_file: ",
+                     {"a sweep's output", "/sweep/point_K/particles"}, {"a.h5", "s.h5", "t.nml"});
+}
+
+TEST_F(CliSnapshot, ARoughRunFromASmoothSnapshotAndTheTableOfItElsewhere) {
+  ASSERT_EQ(dsmc(with_line(16, "  file = 'a.h5', n_samples = 3, snapshot_times = 10.0")).status, 0);
+  const auto ta = gdsmc::io::h5md::read_observable((dir / "a.h5").string(), "temperature");
+  // Rough spheres from a smooth snapshot: T_rot,k(0) defaults to the snapshot's T_k, as temperature's default.
+  std::string b = with_line(9, "  from_file = 'a.h5'");
+  b.replace(b.find("  restitution = 0.5"), std::string("  restitution = 0.5").size(), "  restitution = 0.5, roughness = 0.2");
+  b.replace(b.find("  file = 'out.h5', n_samples = 3"), std::string("  file = 'out.h5', n_samples = 3").size(),
+            "  file = 'b.h5', n_samples = 3");
+  write("b.nml", b);
+  ASSERT_EQ(run("granular-dsmc", "b.nml --quiet").status, 0);
+  const std::string file = (dir / "b.h5").string();
+  const auto rotational = gdsmc::io::h5md::read_observable(file, "rotational_temperature");
+  const auto initial = std::get<std::vector<double>>(gdsmc::io::h5md::read_attribute(file, "/parameters/initial", "rotational_temperature"));
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_NEAR(initial[k], ta.value[ta.value.size() - 2 + k], 1e-12) << k;
+    EXPECT_NEAR(rotational.value[k], initial[k], 0.25 * initial[k]) << k;  // drawn at it: 4 x 67 particles at least
+  }
+  // Read later from elsewhere, the run's theory comes from its /parameters, not from a.h5 again.
+  fs::create_directories(dir / "elsewhere");
+  const std::string tool = quoted((fs::path(GDSMC_BIN_DIR) / "granular-dsmc").string());
+  const Result t = run("granular-dsmc", "--version && cd elsewhere && " + tool + " --table ../b.h5 summary && " + tool +
+                                            " --table ../b.h5 temperature --theory");
+  EXPECT_EQ(t.status, 0) << t.err;
+  EXPECT_EQ(t.err.find("not computed"), std::string::npos) << t.err;
 }
 
 // Issue "Nothing lost, nothing hangs, no NaN": unclear messages, reproduced as reported, then fixed.

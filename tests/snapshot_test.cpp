@@ -78,6 +78,7 @@ TEST(Snapshot, RowsWrittenAndReadBack) {
   const fs::path path = temporary("rows.h5");
   {
     io::h5md::Writer writer(path.string(), "test", "test", "0");
+    writer.write_parameters({{"system", "mass", std::vector<double>{1.0, 4.0}}}, "&system /");  // an output's
     io::snapshot::write(writer, "", replicas);
     writer.commit();
   }
@@ -85,7 +86,10 @@ TEST(Snapshot, RowsWrittenAndReadBack) {
   EXPECT_EQ(value.shape, (std::vector<std::size_t>{2, 4, 3}));
   EXPECT_EQ(io::h5md::read_string_attribute(path.string(), "/particles/replica_2/velocity/value", "unit"), "length time-1");
   EXPECT_EQ(io::snapshot::replicas(path.string()), 2u);
-  const auto last = io::snapshot::read(path.string(), 3);  // replica 3 of a run: the file's replica 3 mod 2 + 1 = 2
+  io::snapshot::check_masses(path.string(), {1.0, 4.0});
+  EXPECT_THROW(io::snapshot::check_masses(path.string(), {1.0, 5.0}), std::runtime_error);
+  EXPECT_THROW(io::snapshot::read(path.string(), 0, {3, 1}), std::runtime_error);  // 2 + 2, not 3 + 1
+  const auto last = io::snapshot::read(path.string(), 3, {2, 2});  // replica 3 of a run: the file's 3 mod 2 + 1 = 2
   EXPECT_EQ(last.species, (std::vector<std::uint64_t>{1, 1, 2, 2}));
   EXPECT_DOUBLE_EQ(last.time, 5.0);
   ASSERT_EQ(last.velocity.size(), 12u);
@@ -97,8 +101,10 @@ TEST(Snapshot, RowsWrittenAndReadBack) {
 
 TEST(Snapshot, AFileWithoutSnapshotsSaysSo) {
   const fs::path path = temporary("none.h5");
+  EXPECT_THROW(io::snapshot::replicas(path.string()), std::runtime_error);  // no such file
   {
     io::h5md::Writer writer(path.string(), "test", "test", "0");
+    writer.write_parameters({}, "&system /");
     writer.commit();
   }
   EXPECT_EQ(io::snapshot::replicas(path.string()), 0u);

@@ -231,14 +231,15 @@ Printed print(const Request& r) {
   if (r.point > points)
     throw std::invalid_argument("--point " + std::to_string(r.point) + ": " + r.file + " is a sweep of " +
                                 std::to_string(points) + " points (1.." + std::to_string(points) + ")");
-  if (points && (summary || (!r.point && r.quantities.empty())))
-    return {sweep_table::csv(sweep_table::read(r.file)), {}};
+  if (points && !r.point && (summary || r.quantities.empty())) return {sweep_table::csv(sweep_table::read(r.file)), {}};
   if (points && !r.point)
     throw std::invalid_argument(r.file + " is a sweep of " + std::to_string(points) + " points: give --point K (1.." +
                                 std::to_string(points) + ") for the trajectories of one, or no quantity for the sweep table");
   const std::string root = r.point ? "/sweep/point_" + std::to_string(r.point) + "/observables" : "/observables";
-  if (summary)
-    return {sweep_table::csv(sweep_table::summary(io::config::read_from_output(r.file), r.file)), {}};
+  if (summary) {
+    const auto config = io::config::read_from_output(r.file);
+    return {sweep_table::csv(sweep_table::summary(r.point ? config.sweep_points().at(r.point - 1) : config, r.file, root)), {}};
+  }
   if (reduced) return distribution(r.file, root);
   return trajectories(r, root);
 }

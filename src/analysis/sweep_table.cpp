@@ -163,10 +163,10 @@ Table build(const io::config::Config& config, const std::string& file) {
   return tabulate(std::move(t), config.sweep_points(), roots, file);
 }
 
-Table summary(const io::config::Config& config, const std::string& file) {
+Table summary(const io::config::Config& config, const std::string& file, const std::string& root) {
   Table t;
   t.points = 1;
-  return tabulate(std::move(t), {config}, {"/observables"}, file);
+  return tabulate(std::move(t), {config}, {root}, file);
 }
 
 void write(io::h5md::Writer& writer, const Table& t) {

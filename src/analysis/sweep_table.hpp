@@ -67,8 +67,9 @@ double numeric_value(const std::string& text);
 
 /// The table of the sweep run `config` whose points were written to `file` (/sweep/point_K).
 Table build(const io::config::Config& config, const std::string& file);
-/// The same quantities for a run that is not a sweep (one row, no variables): `--table FILE.h5 summary`.
-Table summary(const io::config::Config& config, const std::string& file);
+/// The same quantities for one run or sweep point (one row, no variables) whose observables are under
+/// `root` of `file`: `--table FILE.h5 summary`.
+Table summary(const io::config::Config& config, const std::string& file, const std::string& root = "/observables");
 /// Writes /sweep/values and /sweep/results.
 void write(io::h5md::Writer& writer, const Table& table);
 /// Reads the table of an output file back. Throws std::runtime_error naming the file when it has none.

@@ -10,6 +10,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <cstdio>
 #include <variant>
 #include <vector>
 
@@ -338,7 +339,34 @@ Config read_from_output(const std::string& h5_path) {
   std::istringstream lines(joined);
   for (std::string line; std::getline(lines, line);)
     if (!line.empty()) overrides.push_back(line);
-  return read(namelist::parse(text, file), overrides);
+  // A run started from a snapshot (&initial from_file) has its initial temperatures in /parameters: the
+  // snapshot file may since have moved or changed, and is not read again (its assignment is dropped).
+  namelist::Document document = namelist::parse(text, file);
+  std::string from_file;
+  try {
+    from_file = h5md::read_string_attribute(h5_path, "/parameters/initial", "from_file");
+  } catch (const std::runtime_error&) {
+    // written before from_file existed
+  }
+  if (!from_file.empty()) {
+    for (auto& group : document.groups)
+      if (group.name == "initial")
+        std::erase_if(group.assignments, [](const namelist::Assignment& a) { return a.name == "from_file"; });
+    std::erase_if(overrides, [](const std::string& o) { return o.rfind("initial:from_file", 0) == 0; });
+    for (const char* name : {"temperature", "rotational_temperature"}) {
+      const auto stored = h5md::read_attribute(h5_path, "/parameters/initial", name);
+      const auto* values = std::get_if<std::vector<double>>(&stored);
+      if (!values || values->empty()) continue;
+      std::string list;
+      for (double v : *values) {
+        char number[32];
+        std::snprintf(number, sizeof number, "%.17g", v);
+        list += (list.empty() ? "" : ", ") + std::string(number);
+      }
+      overrides.push_back(std::string("initial:") + name + "=" + list);
+    }
+  }
+  return read(document, overrides);
 }
 
 std::string author_name(const Output& output) {

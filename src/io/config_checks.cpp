@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <limits>
 #include <map>
@@ -441,76 +442,85 @@ std::vector<double> spaced(const Output& out, double end) {
   return t;
 }
 
-/// Particle snapshots and the start from one (io/snapshot.hpp): snapshot_times of a time-driven run,
-/// increasing, within [0, t_end]; from_file's last snapshot with the run's species counts, whose
-/// temperatures (and rotational temperatures) become the run's initial ones (the theory starts there).
-void check_snapshots(Config& c, std::map<std::string, Provenance>& prov) {
-  Provenance& out = prov["output"];
-  Provenance& ini = prov["initial"];
-  const auto refuse = [](Provenance& where, const std::string& group, const char* v, const std::string& message) {
-    throw Error(where.file_of(v), where.line.count(v) ? where.line.at(v) : where.group_line, group, v, message);
-  };
+/// A number as messages print it (%g: 1e-07, not 0.000000).
+std::string shown(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
+
+/// &output snapshot_times (io/snapshot.hpp): a time-driven free gas (the gas with forcings keeps its
+/// velocities in a moving frame and samples a stage ahead: refused, not written wrong), increasing times
+/// within [0, t_end], at most kSnapshotBytes in all (the run holds them in memory and gathers them).
+void check_snapshot_times(const Config& c, Provenance& out) {
   const auto& times = c.output.snapshot_times;
-  if (!times.empty()) {
-    if (!c.dsmc.t_end)
-      refuse(out, "output", "snapshot_times",
-             "snapshot_times needs t_end: the times of a collision-driven run are not known before it runs");
-    if (c.has_agg_frag)
-      refuse(out, "output", "snapshot_times", "not with &agg_frag: clusters change their species as they merge and break");
-    for (std::size_t k = 0; k < times.size(); ++k) {
-      if (std::isnan(times[k]))
-        refuse(out, "output", "snapshot_times", "snapshot_times(" + std::to_string(k + 1) + ") is not given");
-      if (k > 0 && !(times[k] > times[k - 1]))
-        refuse(out, "output", "snapshot_times",
-               "snapshot_times must increase: element " + std::to_string(k + 1) + " is not above element " + std::to_string(k));
-    }
-    if (times.back() > *c.dsmc.t_end)
-      refuse(out, "output", "snapshot_times",
-             "the last snapshot time is beyond t_end = " + std::to_string(*c.dsmc.t_end));
+  if (times.empty()) return;
+  const auto refuse = [&](const std::string& message) {
+    throw Error(out.file_of("snapshot_times"), out.line.at("snapshot_times"), "output", "snapshot_times", message);
+  };
+  if (!c.dsmc.t_end) refuse("snapshot_times needs t_end: the times of a collision-driven run are not known before it runs");
+  if (c.has_agg_frag) refuse("not with &agg_frag: clusters change their species as they merge and break");
+  if (c.staged()) refuse("not with &thermostat or &shear yet: snapshots are written for the free gas only");
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    if (std::isnan(times[k])) refuse("snapshot_times(" + std::to_string(k + 1) + ") is not given");
+    if (k > 0 && !(times[k] > times[k - 1]))
+      refuse("snapshot_times must increase: element " + std::to_string(k + 1) + " is not above element " + std::to_string(k));
   }
-  if (c.initial.from_file.empty()) return;
-  if (c.has_agg_frag) refuse(ini, "initial", "from_file", "not with &agg_frag (its particles are monomers)");
+  if (times.back() > *c.dsmc.t_end) refuse("the last snapshot time is beyond t_end = " + shown(*c.dsmc.t_end));
+  const double arrays = 1.0 + (c.rough() ? 1.0 : 0.0) + (c.output.track_displacements ? 1.0 : 0.0);
+  const double bytes = static_cast<double>(c.dsmc.replicas) * static_cast<double>(times.size()) *
+                       static_cast<double>(c.dsmc.n_particles) * 24.0 * arrays;
+  if (bytes > kSnapshotBytes)
+    refuse(shown(bytes / 1e9) + " GB of snapshots (replicas x snapshots x particles x 24 bytes per array): above " +
+           shown(kSnapshotBytes / 1e9) + " GB, which the run would hold in memory; write fewer, or use fewer replicas");
+}
+
+/// &initial from_file: every replica of the file's /particles valid, with the run's species counts and
+/// masses; the run's initial temperatures become those of the snapshots its replicas start from.
+void check_from_file(Config& c, Provenance& ini) {
+  const auto refuse = [&](const char* v, const std::string& message) {
+    throw Error(ini.file_of(v), ini.line.count(v) ? ini.line.at(v) : ini.group_line, "initial", v, message);
+  };
+  if (c.has_agg_frag) refuse("from_file", "not with &agg_frag (its particles are monomers)");
   for (const char* v : {"temperature", "distribution"})
-    if (ini.line.count(v)) refuse(ini, "initial", v, "not used with from_file (the velocities come from the file)");
-  snapshot::State state;
-  try {
-    state = snapshot::read(c.initial.from_file, 0);
-  } catch (const std::runtime_error& e) {
-    refuse(ini, "initial", "from_file", std::string("cannot start from it: ") + e.what());
-  }
-  if (!state.angular_velocity.empty() && ini.line.count("rotational_temperature"))
-    refuse(ini, "initial", "rotational_temperature", "not used with from_file (its snapshot has the angular velocities)");
+    if (ini.line.count(v)) refuse(v, "not used with from_file (the velocities come from the file)");
   const auto mix = c.mixture();
   const auto counts = species::particle_counts(static_cast<std::size_t>(c.dsmc.n_particles), mix);
-  std::vector<std::size_t> found(mix.size(), 0);
-  for (std::size_t i = 0; i < state.species.size(); ++i) {
-    const std::uint64_t k = state.species[i];
-    if (k < 1 || k > mix.size() || (i > 0 && k < state.species[i - 1]))
-      refuse(ini, "initial", "from_file",
-             "its particles are not those of this run: species " + std::to_string(k) + " at particle " +
-                 std::to_string(i + 1) + " (this run has " + std::to_string(mix.size()) + " species, in order)");
-    ++found[k - 1];
+  std::vector<snapshot::State> states;
+  try {
+    // (replica 0 always: a file without snapshots is refused by read(), saying why)
+    const std::size_t available = std::max<std::size_t>(1, snapshot::replicas(c.initial.from_file));
+    for (std::size_t j = 0; j < std::min(static_cast<std::size_t>(c.dsmc.replicas), available); ++j)
+      states.push_back(snapshot::read(c.initial.from_file, j, counts));
+    snapshot::check_masses(c.initial.from_file, mix.mass);
+  } catch (const std::runtime_error& e) {
+    refuse("from_file", std::string("cannot start from it: ") + e.what());
   }
-  for (std::size_t k = 0; k < mix.size(); ++k)
-    if (found[k] != counts[k])
-      refuse(ini, "initial", "from_file",
-             "its snapshot has " + std::to_string(found[k]) + " particles of species " + std::to_string(k + 1) +
-                 ", this run " + std::to_string(counts[k]) + " (n_particles = " + std::to_string(c.dsmc.n_particles) +
-                 " split over the species)");
-  // The run's initial temperatures: those of the snapshots its replicas start from (replica r from the
-  // file's r mod R'), averaged over its replicas, each about its mean flow (as dsmc/sample.cpp measures).
-  const auto replicas = static_cast<std::size_t>(c.dsmc.replicas), in_file = snapshot::replicas(c.initial.from_file);
+  const bool spins = !states.front().angular_velocity.empty();
+  if (spins && ini.line.count("rotational_temperature"))
+    refuse("rotational_temperature", "not used with from_file (its snapshot has the angular velocities)");
+  // Replica r starts from the file's replica r mod R': the mean over the run's replicas, each about its
+  // mean flow (as dsmc/sample.cpp measures).
+  const auto replicas = static_cast<std::size_t>(c.dsmc.replicas);
   std::vector<double> translational(mix.size(), 0.0), rotational(mix.size(), 0.0);
-  for (std::size_t j = 0; j < std::min(replicas, in_file); ++j) {
-    const double weight = static_cast<double>((replicas - 1 - j) / in_file + 1) / static_cast<double>(replicas);
-    const auto t = snapshot::temperatures(j == 0 ? state : snapshot::read(c.initial.from_file, j), mix);
+  for (std::size_t j = 0; j < states.size(); ++j) {
+    const double weight = static_cast<double>((replicas - 1 - j) / states.size() + 1) / static_cast<double>(replicas);
+    const auto t = snapshot::temperatures(states[j], mix);
     for (std::size_t k = 0; k < mix.size(); ++k) {
       translational[k] += weight * t.translational[k];
       if (!t.rotational.empty()) rotational[k] += weight * t.rotational[k];
     }
   }
   c.initial.temperature = translational;
-  if (mix.rough() && !state.angular_velocity.empty()) c.initial.rotational_temperature = rotational;
+  if (!mix.rough()) return;
+  if (spins) c.initial.rotational_temperature = rotational;
+  else if (!ini.line.count("rotational_temperature")) c.initial.rotational_temperature = translational;  // its default
+}
+
+/// Particle snapshots and the start from one (io/snapshot.hpp).
+void check_snapshots(Config& c, std::map<std::string, Provenance>& prov) {
+  check_snapshot_times(c, prov["output"]);
+  if (!c.initial.from_file.empty()) check_from_file(c, prov["initial"]);
 }
 
 }  // namespace detail

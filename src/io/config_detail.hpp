@@ -130,6 +130,9 @@ void check_rough(Config& c, std::map<std::string, Provenance>& prov);
 void check_white_noise(Config& c, std::map<std::string, Provenance>& prov);
 void check_staged(const Config& c, std::map<std::string, Provenance>& prov);
 void check_snapshots(Config& c, std::map<std::string, Provenance>& prov);
+/// The most snapshot data (bytes) a run may hold: the replicas keep them in memory until the end and
+/// MPI gathers them in one message.
+inline constexpr double kSnapshotBytes = 1e9;
 /// The sample grid of &output up to `end` (a time or collisions per particle).
 std::vector<double> spaced(const Output& out, double end);
 

@@ -781,28 +781,32 @@ void Writer::write_dataset(const std::string& path, const std::vector<double>& d
   });
 }
 
-void Writer::write_integers(const std::string& path, const std::vector<std::uint64_t>& data) {
+namespace {
+
+/// A 1-D integer dataset at absolute `path` of `file` (intermediate groups created).
+void put_integers(hid_t file, const std::string& path, hid_t file_type, hid_t memory_type, std::size_t n,
+                  const void* data) {
   const std::vector<std::string> parts = split_path(path);
-  if (parts.empty()) throw std::invalid_argument("h5md: dataset path '" + path + "' names no dataset");
+  const std::string parent = join_path(parts, parts.size() - 1);
+  const Handle group = ensure_group(file, parent);
+  const std::vector<hsize_t> dims{n};
+  put_dataset(group.get(), parent, parts.back(), file_type, memory_type, dims, false, data);
+}
+
+}  // namespace
+
+void Writer::write_integers(const std::string& path, const std::vector<std::uint64_t>& data) {
+  if (split_path(path).empty()) throw std::invalid_argument("h5md: dataset path '" + path + "' names no dataset");
   const hid_t file = impl_->open_file();
-  with_context(impl_->context(), [&] {
-    const std::string parent = join_path(parts, parts.size() - 1);
-    const Handle group = ensure_group(file, parent);
-    const std::vector<hsize_t> dims{data.size()};
-    put_dataset(group.get(), parent, parts.back(), H5T_STD_U64LE, H5T_NATIVE_UINT64, dims, false, data.data());
-  });
+  with_context(impl_->context(),
+               [&] { put_integers(file, path, H5T_STD_U64LE, H5T_NATIVE_UINT64, data.size(), data.data()); });
 }
 
 void Writer::write_integers(const std::string& path, const std::vector<std::int64_t>& data) {
-  const std::vector<std::string> parts = split_path(path);
-  if (parts.empty()) throw std::invalid_argument("h5md: dataset path '" + path + "' names no dataset");
+  if (split_path(path).empty()) throw std::invalid_argument("h5md: dataset path '" + path + "' names no dataset");
   const hid_t file = impl_->open_file();
-  with_context(impl_->context(), [&] {
-    const std::string parent = join_path(parts, parts.size() - 1);
-    const Handle group = ensure_group(file, parent);
-    const std::vector<hsize_t> dims{data.size()};
-    put_dataset(group.get(), parent, parts.back(), H5T_STD_I64LE, H5T_NATIVE_INT64, dims, false, data.data());
-  });
+  with_context(impl_->context(),
+               [&] { put_integers(file, path, H5T_STD_I64LE, H5T_NATIVE_INT64, data.size(), data.data()); });
 }
 
 void Writer::commit() {

@@ -73,10 +73,15 @@ struct Temperatures {
 /// The Temperatures of `state` for the species of `mix`.
 Temperatures temperatures(const State& state, const species::Mixture& mix);
 
-/// The number of replicas /particles of `file` holds (0 when it has none).
+/// The number of replicas /particles of `file` holds (0 when it has none). Throws std::runtime_error
+/// when `file` is missing, not a file or not an output of granular-dsmc.
 std::size_t replicas(const std::string& file);
-/// Replica `r` (from 0, taken modulo replicas(file)) of `file` at its last snapshot. Throws
-/// std::runtime_error naming the file and what is missing or inconsistent.
-State read(const std::string& file, std::size_t r);
+/// Replica `r` (from 0, taken modulo replicas(file)) of `file` at its last snapshot: its species from 1,
+/// in order, with `counts[k]` particles of species k + 1 when `counts` is given; velocities (and angular
+/// velocities) [N][3], finite. Throws std::runtime_error saying what is missing or inconsistent (a
+/// sweep's output: its snapshots are per point).
+State read(const std::string& file, std::size_t r, const std::vector<std::size_t>& counts = {});
+/// Throws std::runtime_error when the masses of `file`'s /parameters/system are not `masses`.
+void check_masses(const std::string& file, const std::vector<double>& masses);
 
 }  // namespace gdsmc::io::snapshot
