@@ -13,7 +13,8 @@ work unchanged. Only the size differs: in the copied namelists n_particles is di
 run after 3 s to show the restart), which keeps its size.
 
 Checks, per command: exit status 0 (`timeout -s KILL` lines: 137, or 0 when the run ended before the
-kill, and then the restart that follows is skipped with a note); `granular-dsmc --table` prints CSV with
+kill, and then the restart that follows is skipped with a note; a restart whose checkpoint the kill
+came too early to leave is skipped with the rest of its block, with a note); `granular-dsmc --table` prints CSV with
 a header, at least one row, the same number of fields on every line and no NaN or Inf outside `_error`
 columns; `> X.json` writes JSON; `&& echo identical` prints `identical`. Lines that need a cluster (`srun`)
 are not run; `mpirun` lines and the plotting script are skipped, with a note, when mpirun or matplotlib
@@ -110,16 +111,17 @@ def check_table(out):
 def run(tutorial, root, page_blocks, env):
     """Runs the blocks: the first from the repository root (it starts with `cd examples/NN-name`), every
     later one from the tutorial's folder, as the page's reader would. (failures, notes)"""
-    state = {"failures": [], "notes": [], "skip_restart": False,
+    state = {"failures": [], "notes": [], "skip_restart": False, "no_checkpoint": False,
              "python_ok": has_matplotlib("/usr/bin/python3"), "env": env}
     for block in page_blocks:
+        state["no_checkpoint"] = False
         cwd = root if block[0].startswith("cd examples/") else os.path.join(root, "examples", tutorial)
         for command in block:
             cwd = run_command(command, cwd, state)
     return state["failures"], state["notes"]
 
 
-def skipped(command, state):
+def skipped(command, cwd, state):
     """Why `command` is not run here, or None."""
     if command.startswith("srun"):
         return "needs a cluster"
@@ -129,13 +131,19 @@ def skipped(command, state):
         return "no matplotlib, h5py and numpy for /usr/bin/python3"
     if state["skip_restart"] and "--restart" in command:
         return "the run before it ended before the kill"
+    if state["no_checkpoint"]:
+        return "the kill came before the first checkpoint (a busy machine): nothing to resume"
+    restart = re.search(r"--restart\s+(\S+)", command)
+    if restart and not os.path.exists(os.path.join(cwd, restart.group(1))):
+        state["no_checkpoint"] = True  # and the rest of the block, which compares the resumed run
+        return "the kill came before the first checkpoint (a busy machine): nothing to resume"
     return None
 
 
 def run_command(command, cwd, state):
     """Runs one command in `cwd`, checks it (failures and notes go to `state`); the directory it ends in."""
     failures, notes = state["failures"], state["notes"]
-    why = skipped(command, state)
+    why = skipped(command, cwd, state)
     if why:
         notes.append(f"not run ({why}): {command}")
         return cwd
