@@ -79,6 +79,9 @@ ObservableData read_series(const std::string& file, const std::string& root, con
   if (name == "velocity_histogram")
     throw std::invalid_argument("'velocity_histogram' is a histogram per sample: read " + root +
                                 "/velocity_histogram/species_K with h5py (docs/output.md)");
+  if (o->reduction == observables::Reduction::particles)
+    throw std::invalid_argument("'" + name + "' is part of a particle snapshot: read /particles/replica_R with h5py "
+                                "(docs/output.md \"Particle snapshots\")");
   if (!is_trajectory(*o))
     throw std::invalid_argument("'" + name + "' is not a time series: '--table " + file +
                                 " summary' prints the scaling state and the time averages");

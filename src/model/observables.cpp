@@ -22,6 +22,7 @@ const char* reduction_name(Reduction r) {
     case Reduction::per_replica: return "one value per replica; mean +- SE over replicas";
     case Reduction::ratio: return "ratio of the replicas' sums, delta-method SE";
     case Reduction::internal: return "a replica's working sum (not written itself)";
+    case Reduction::particles: return "every replica's snapshots as they are, in /particles (not averaged)";
   }
   return "";
 }
@@ -106,15 +107,15 @@ const std::vector<Observable>& table() {
       {"aggregations", "1", "1", "cumulative collisions that stuck", R::series, kAggFrag},
       {"fragmentations", "1", "1", "cumulative collisions that shattered", R::series, kAggFrag},
       // Particle snapshots (&output snapshot_times): rows of each replica, written to /particles (io/snapshot.hpp)
-      {"snapshot_time", "time", "2: time events", "a replica's snapshot: its time and collision events", R::per_replica,
+      {"snapshot_time", "time", "2: time events", "a replica's snapshot: its time and collision events", R::particles,
        kSnapshots},
-      {"snapshot_species", "1", "particles", "the species of each particle, from 1 (once)", R::per_replica, kSnapshots},
-      {"snapshot_velocity", "length time-1", "3 x particles", "every particle's velocity at a snapshot", R::per_replica,
+      {"snapshot_species", "1", "particles", "the species of each particle, from 1 (once)", R::particles, kSnapshots},
+      {"snapshot_velocity", "length time-1", "3 x particles", "every particle's velocity at a snapshot", R::particles,
        kSnapshots},
       {"snapshot_angular_velocity", "time-1", "3 x particles", "every particle's angular velocity at a snapshot (rough spheres)",
-       R::per_replica, kSnapshots},
+       R::particles, kSnapshots},
       {"snapshot_displacement", "length", "3 x particles",
-       "every particle's displacement since the start of tracking at a snapshot (track_displacements)", R::per_replica,
+       "every particle's displacement since the start of tracking at a snapshot (track_displacements)", R::particles,
        kSnapshots},
   };
   return list;

@@ -28,7 +28,8 @@ enum class Reduction {
   series,       ///< a row per sample: mean and standard error over the replicas, /observables/\<name\> (H5MD time series)
   per_replica,  ///< one row per replica (a time average, a start time): written by its own writer beside the series
   ratio,        ///< &agg_frag per-size temperature: ratio of the replicas' sums (delta-method error)
-  internal      ///< a replica's working sum, turned into another observable before writing
+  internal,     ///< a replica's working sum, turned into another observable before writing
+  particles     ///< a particle snapshot: every replica's rows as they are, written to /particles (io/snapshot.hpp)
 };
 
 /// One observable.
