@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "dsmc/deal.hpp"
@@ -991,16 +992,21 @@ TEST(Collide, ShearedFrameCollidesTheActualVelocities) {
 }
 
 // Frames in blocks (header, "Frame"; `majorant` and `lowrank`, one species and a binary mixture, 4
-// blocks): in a
+// blocks; the binary `lowrank` also with the factored draw forced, whose rows and acceptance take ||G||):
+// in a
 // sheared frame (S = 1.3, c = 0.3) the blocked collider never overshoots, conserves the momentum of V = G u, loses exactly the dissipated
 // energy, keeps the moments Q equal to the recomputed ones (each block's change added in block order),
 // meets an event target exactly, and gives the same u, counts and Q bit for bit on 1 and 2 threads.
 TEST(Collide, ShearedFrameInBlocks) {
   const auto binary_mix = binary(0.8, 0.8, 0.8);
   const auto one = one_species(0.8);
-  for (Scheme scheme : {Scheme::majorant, Scheme::lowrank})
+  for (int sampler = 0; sampler < 3; ++sampler)  // majorant, lowrank, lowrank by the factored draw
   for (const species::Mixture* mix : {&one, &binary_mix}) {
-    SCOPED_TRACE(std::string(name(scheme)) + (mix->size() == 1 ? ", one species" : ", binary"));
+    const Scheme scheme = sampler == 0 ? Scheme::majorant : Scheme::lowrank;
+    const bool factored = sampler == 2;
+    if (factored && mix->size() == 1) continue;  // (one species runs the one-species kernel)
+    SCOPED_TRACE(std::string(name(scheme)) + (factored ? " factored" : "") +
+                 (mix->size() == 1 ? ", one species" : ", binary"));
     const std::vector<std::size_t> counts = mix->size() == 1 ? std::vector<std::size_t>{8000}
                                                               : std::vector<std::size_t>{4800, 3200};
     const std::vector<double> temperatures(mix->size(), 1.0);
@@ -1009,6 +1015,7 @@ TEST(Collide, ShearedFrameInBlocks) {
       Collider collider(scheme, *mix, u, rng::make_stream(31, 0, rng::Purpose::collisions), 0.5);
       collider.use_blocks(2000);
       follow_scheme(collider, scheme);
+      if (factored) collider.set_lowrank_factor_above(0);
       collider.use_threads(threads);
       EXPECT_EQ(collider.blocks(), 4u);
       collider.set_frame(s, c);
@@ -1039,6 +1046,7 @@ TEST(Collide, ShearedFrameInBlocks) {
       Collider collider(scheme, *mix, u_one, rng::make_stream(32, 0, rng::Purpose::collisions), 0.5);
       collider.use_blocks(2000);
       follow_scheme(collider, scheme);
+      if (factored) collider.set_lowrank_factor_above(0);
       collider.set_frame(s, c);
       collider.advance(150.0, 200000);
       EXPECT_GT(collider.counters().events, 20000u);
@@ -1629,6 +1637,183 @@ TEST(Collide, ManySpeciesBlocksMatchUnblocked) {
                   name(scheme), names[q], m0, s0, m1, s1, (m1 - m0) / std::hypot(s0, s1));
       EXPECT_LT(std::abs(m1 - m0), 4.0 * std::hypot(s0, s1));
     }
+  }
+}
+
+// The factored `lowrank` draw (collide.hpp, "Mixtures in blocks"; \ref sch_factored "docs/schemes.md"),
+// which blocks with more than 24 species present take, forced at P = 2, 3 and 20 by the test hook
+// Collider::set_lowrank_factor_above(0): it samples the process of the one-word draw and of the
+// unblocked `lowrank` loop.
+namespace {
+
+// A gas of the factored-draw tests: every species dealt into every block (N_k >= 64 K), so that each
+// block holds all P = S species.
+struct FactoredCase {
+  std::string label;
+  species::Mixture mix;
+  std::vector<std::size_t> counts;
+  double t_mid;  // the time-driven part of a run: about 6-10 collisions per particle
+  double frame_scale = 1.0, frame_shear = 0.0;  // a sheared frame (set_frame) when not 1 and 0
+};
+
+// S species of equal counts (600 each) with m_k = k, sigma_k = k^(1/3), alpha = 0.8, total density n.
+species::Mixture equal_count_mixture(std::size_t s, double n, bool enskog) {
+  std::vector<double> mass(s), diameter(s), density(s, n / static_cast<double>(s));
+  for (std::size_t k = 0; k < s; ++k) mass[k] = static_cast<double>(k + 1), diameter[k] = std::cbrt(mass[k]);
+  return species::make_mixture(mass, diameter, density, species::PairMatrix(s, 0.8), enskog);
+}
+
+std::vector<FactoredCase> factored_cases() {
+  species::PairMatrix binary_alpha(2, 0.9), three_alpha(3, 0.9);
+  binary_alpha(0, 1) = binary_alpha(1, 0) = 0.8;
+  binary_alpha(1, 1) = 0.7;
+  three_alpha(0, 2) = three_alpha(2, 0) = 0.7;
+  const auto three = [&](double scale, bool enskog) {
+    return species::make_mixture({1.0, 2.0, 4.0}, {1.0, 1.3, 1.6}, {0.006 * scale, 0.004 * scale, 0.003 * scale},
+                                 three_alpha, enskog);
+  };
+  return {
+      {"P = 2, dilute", binary(0.9, 0.8, 0.7), {8000, 4000}, 60.0},
+      // in the frame S = 1.3, c = 0.3 of Collide.ShearedFrameInBlocks: rows and acceptance take ||G|| = 1.51
+      {"P = 2, dilute, sheared frame", binary(0.9, 0.8, 0.7), {8000, 4000}, 60.0, 1.3, 0.3},
+      // packing fraction pi/6 (0.1 + 0.05 x 8) = 0.26: chi_11, chi_12, chi_22 well apart
+      {"P = 2, Enskog", species::make_mixture({1.0, 4.0}, {1.0, 2.0}, {0.1, 0.05}, binary_alpha, true), {8000, 4000},
+       6.0},
+      {"P = 3, dilute", three(1.0, false), {6000, 4000, 3000}, 60.0},
+      {"P = 3, Enskog", three(10.0, true), {6000, 4000, 3000}, 6.0},  // packing fraction 0.14
+      {"P = 20, dilute", equal_count_mixture(20, 0.01, false), std::vector<std::size_t>(20, 600), 60.0},
+      // packing fraction pi/6 x 0.0025 x 210 = 0.27
+      {"P = 20, Enskog", equal_count_mixture(20, 0.05, true), std::vector<std::size_t>(20, 600), 8.0},
+  };
+}
+
+// Species groups of the observables: each species for S <= 3; species 1, 2-10 and 11-20 for S = 20.
+std::size_t group_of(std::size_t k, std::size_t s) { return s <= 3 ? k : k == 0 ? 0 : k < 10 ? 1 : 2; }
+
+// Observables of one run: each group's temperature, each pair of groups' share of the events, the time
+// at the event target; their names in `names`.
+std::vector<double> factored_observables(const species::Mixture& mix, const particles::System& sys, const Collider& c,
+                                         std::vector<std::string>& names) {
+  const std::size_t s = mix.size(), groups = group_of(s - 1, s) + 1;
+  std::vector<double> energy(groups, 0.0), count(groups, 0.0), events(groups * groups, 0.0);
+  for (std::size_t i = 0; i < sys.size(); ++i) {
+    const auto& v = sys.v[i];
+    const std::size_t g = group_of(sys.species[i], s);
+    energy[g] += mix.mass[sys.species[i]] * (v.x * v.x + v.y * v.y + v.z * v.z);
+    count[g] += 3.0;
+  }
+  for (std::size_t k = 0; k < s; ++k)
+    for (std::size_t j = k; j < s; ++j)
+      events[group_of(k, s) * groups + group_of(j, s)] += static_cast<double>(c.counters().pair_events[k * s + j]);
+  std::vector<double> out;
+  names.clear();
+  for (std::size_t g = 0; g < groups; ++g) {
+    out.push_back(energy[g] / count[g]);
+    names.push_back("T of group " + std::to_string(g + 1));
+  }
+  for (std::size_t g = 0; g < groups; ++g)
+    for (std::size_t h = g; h < groups; ++h) {
+      out.push_back(events[g * groups + h] / static_cast<double>(c.counters().events));
+      names.push_back("share " + std::to_string(g + 1) + "-" + std::to_string(h + 1));
+    }
+  out.push_back(c.time());
+  names.push_back("time at the target");
+  return out;
+}
+
+// One replica of `gas` with `lowrank`: unblocked (draw 0), in 4 blocks by the one-word draw (1) or by
+// the factored draw forced (2); time-driven to t_mid, then 20000 events to an exact target.
+std::vector<double> run_factored_case(const FactoredCase& gas, int draw, std::uint64_t seed,
+                                      std::vector<std::string>& names) {
+  auto sys = initial(gas.mix, gas.counts, std::vector<double>(gas.mix.size(), 1.0), seed);
+  Collider c(Scheme::lowrank, gas.mix, sys, rng::make_stream(seed, 0, rng::Purpose::collisions), 1.0);
+  if (draw > 0) c.use_blocks(3000);
+  follow_scheme(c, Scheme::lowrank);
+  if (draw == 2) c.set_lowrank_factor_above(0);
+  EXPECT_EQ(c.blocks(), draw > 0 ? 4u : 1u);
+  if (gas.frame_scale != 1.0 || gas.frame_shear != 0.0) c.set_frame(gas.frame_scale, gas.frame_shear);
+  c.advance(gas.t_mid);
+  const std::uint64_t target = c.counters().events + 20000;
+  c.advance(1e12, target);
+  EXPECT_EQ(c.counters().events, target);
+  EXPECT_EQ(c.counters().overshoots, 0u);
+  return factored_observables(gas.mix, sys, c, names);
+}
+
+}  // namespace
+
+// Seven gases (P = 2, 3 and 20 species, dilute and Enskog at packing fractions 0.14-0.27, and the binary
+// one in a sheared frame, where the temperatures are those of the stored u; masses and diameters
+// unlike, so that the pair law matters), each run unblocked, in 4 blocks with the one-word
+// draw and in 4 blocks with the factored draw forced, 16 replicas each (8 under the sanitizers),
+// `lowrank`, time-driven to about 6-10 collisions per particle and then to an exact event target. Each
+// group's temperature, each pair of groups' share of the events and the time at the target, factored
+// against unblocked and factored against one-word, agree within 4 combined standard errors (printed),
+// with no acceptance overshoot. A row weight without w_i (the candidate rate kept right) moves the
+// binary gas's shares of 1-1 and 2-2 events by about 80 SE (mutant 64); rows without ||G|| move the
+// sheared frame's time at the target by about 90 SE (mutant 66).
+TEST(Collide, FactoredDrawMatchesOneWordDrawAndUnblocked) {
+  const std::size_t replicas = gdsmc::test::replicas(16);  // 8 under the sanitizers
+  const char* draw_name[] = {"unblocked", "one-word", "factored"};
+  for (const FactoredCase& gas : factored_cases()) {
+    SCOPED_TRACE(gas.label);
+    std::vector<std::string> names;
+    std::vector<std::vector<double>> observed[3];  // [draw][observable][replica]
+    for (int draw = 0; draw < 3; ++draw)
+      for (std::size_t r = 0; r < replicas; ++r) {
+        const auto x = run_factored_case(gas, draw, 600 + r, names);
+        observed[draw].resize(x.size());
+        for (std::size_t q = 0; q < x.size(); ++q) observed[draw][q].push_back(x[q]);
+      }
+    for (std::size_t q = 0; q < names.size(); ++q) {
+      const auto [m2, s2] = mean_se(observed[2][q]);
+      for (int reference : {0, 1}) {
+        const auto [m0, s0] = mean_se(observed[reference][q]);
+        std::printf("[ Blocks.Factored ] %s %s: %s %.6g +- %.2g, factored %.6g +- %.2g (%.2f SE)\n", gas.label.c_str(),
+                    names[q].c_str(), draw_name[reference], m0, s0, m2, s2, (m2 - m0) / std::hypot(s0, s2));
+        EXPECT_LT(std::abs(m2 - m0), 4.0 * std::hypot(s0, s2)) << names[q] << " against " << draw_name[reference];
+      }
+    }
+  }
+}
+
+// Which draw a block takes (collide.hpp, "Mixtures in blocks"): up to lowrank_factor_above = 24 species
+// present the one-word draw, the code before the factored draw existed, byte for byte: a 24-species gas
+// (250 particles each, 2 blocks, all species in both) gives bit for bit the velocities and counts of the
+// one-word draw forced (set_lowrank_factor_above(block_species_limit)), and not those of the factored
+// one; with 25 species the default is the factored draw. (The golden runs, tests/golden, compare the
+// output with that of the build before the change.) Also with 2 threads, and after a raised bound (the
+// rows alone rebuilt): the runs go to 20 collisions per particle.
+TEST(Collide, FactoredDrawOnlyAboveTheThreshold) {
+  ASSERT_EQ(Collider::lowrank_factor_above, 24u);
+  for (std::size_t s : {std::size_t{24}, std::size_t{25}}) {
+    SCOPED_TRACE(std::to_string(s) + " species");
+    const auto mix = equal_count_mixture(s, 0.01, false);
+    const std::vector<std::size_t> counts(s, 6000 / s);
+    const std::size_t n = 6000 / s * s;
+    auto run = [&](std::size_t factor_above, int threads) {
+      auto sys = initial(mix, counts, std::vector<double>(s, 1.0), 41);
+      Collider c(Scheme::lowrank, mix, sys, rng::make_stream(41, 0, rng::Purpose::collisions), 1.0);
+      c.use_blocks(n / 2);
+      follow_scheme(c, Scheme::lowrank);
+      c.use_threads(threads);
+      if (factor_above != Collider::lowrank_factor_above) c.set_lowrank_factor_above(factor_above);
+      EXPECT_EQ(c.blocks(), 2u);
+      c.advance(1e12, 10 * n);
+      EXPECT_EQ(c.counters().overshoots, 0u);
+      std::vector<double> flat;
+      for (const auto& v : sys.v) flat.insert(flat.end(), {v.x, v.y, v.z});
+      flat.push_back(static_cast<double>(c.counters().candidates));
+      flat.push_back(c.time());
+      return flat;
+    };
+    const auto by_default = run(Collider::lowrank_factor_above, 1);
+    const auto one_word = run(collide::block_species_limit, 1);
+    const auto factored = run(0, 1);
+    EXPECT_EQ(run(Collider::lowrank_factor_above, 2), by_default);
+    EXPECT_EQ(by_default == one_word, s <= Collider::lowrank_factor_above);
+    EXPECT_EQ(by_default == factored, s > Collider::lowrank_factor_above);
+    EXPECT_NE(one_word, factored);
   }
 }
 

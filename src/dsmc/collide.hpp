@@ -100,13 +100,25 @@
  * restitution `run_block_mixture` samples the same process with the one-species kernel's techniques (species from the
  * block's 32-bit edges, species_at; pair constants in PairKernel; a binary `majorant` kernel `Two`); a `lowrank`
  * candidate is one 64-bit word (set_block_lowrank: 2^m >= max(P^2, 2) alias cells, the coin exact, the particles by
- * 24-bit multiply-shift with rejection). *The cheaper sampler*: both are exact majorants of one pair law, so at each
+ * 24-bit multiply-shift with rejection) when at most lowrank_factor_above = 24 species are present in the block.
+ * *The factored draw* (more than 24 present; \ref sch_factored "docs/schemes.md"): A_ik = w_i rho_i q_k|i, rho_i = N_i
+ * sum_k pi sigma_ik^2 chi_ik N_k / V and q_k|i = pi sigma_ik^2 chi_ik N_k / sum_k' pi sigma_ik'^2 chi_ik' N_k'; the
+ * row i is drawn from an alias table over the P species of weights w_i rho_i (times ||G|| in a frame), then the column
+ * k from row i's own table of q_k|i: the pair (i, k) with probability w_i rho_i q_k|i / sum_j w_j rho_j = A_ik / R_b,
+ * the one-word draw's law, at the same R_b = sum_ik A_ik and with the same acceptance |g| / (w_i + w_k), so that the
+ * process is the same (the stream differs). q_k|i holds no speed (chi_ik is fixed by the densities), so a raised bound
+ * rebuilds the P rows' table alone, O(P), where the one-word table is rebuilt in O(P^2) (bounds are raised about once
+ * per slice's worth of events: above 24 species that rebuild outgrows the candidates); a factored candidate takes two
+ * words and two dependent table reads, so up to 24 species the one-word draw costs less. set_lowrank_factor_above()
+ * moves the threshold (tests). *The cheaper sampler*: both are exact majorants of one pair law, so at each
  * step the master gives all blocks `lowrank` when lowrank_candidate_cost (1.15) times sum_ik pi sigma_ik^2 chi_ik
  * vmax_i N_i N_k n/(N - 1) is below N n B/2, else `majorant`, whatever the scheme (part of the State; a step after a
  * change of sampler judges its events from the last step's events per unit time and is 5 mean free times long);
  * set_block_sampler() forces one. Viscoelastic mixtures, whole-gas steps and unblocked runs keep the scheme's loops.
  * Checked by Collide.BlockedMixtureMatchesUnblocked, Collide.BlockedThreeSpeciesLowrankMatchesUnblocked,
- * Collide.BlocksRunTheCheaperSampler and the mixture validations.
+ * Collide.BlocksRunTheCheaperSampler, Collide.ManySpeciesBlocksMatchUnblocked (the factored draw, about 95 species a
+ * block), Collide.FactoredDrawMatchesOneWordDrawAndUnblocked (the factored draw forced at P = 2, 3, 20),
+ * Collide.FactoredDrawOnlyAboveTheThreshold and the mixture validations.
  *
  * **Threads inside one replica** (`use_threads`). The blocks of a step are independent gases over the same interval and
  * run on OpenMP threads, each on a copy of the pair tables (a "worker"). At the start of each pass a 64-bit key is
@@ -232,6 +244,17 @@ class Collider {
   /// gases at N = 1e6: 1.09 on 2026-11-27, 1.06-1.20 per bench_collide round and 1.18-1.19 from whole
   /// processes on 2026-11-28; docs/schemes.md "The cheaper sampler").
   static constexpr double lowrank_candidate_cost = 1.15;
+  /// A block's `lowrank` sampler takes the factored draw when more than this many species are present
+  /// in it, the one-word draw otherwise (header "Mixtures in blocks"; the same process either way; the
+  /// measurements that set it: \ref perf_factored "docs/performance.md").
+  static constexpr std::size_t lowrank_factor_above = 24;
+  /// Tests only: blocks with more than `species` species present take the factored draw from the next
+  /// block visit on (lowrank_factor_above by default; 0: every block), so that it can be compared with
+  /// the one-word draw and the unblocked loops at few species.
+  void set_lowrank_factor_above(std::size_t species) {
+    factor_above_ = species;
+    for (Collider& worker : workers_) worker.factor_above_ = species;
+  }
   /// OpenMP threads for the blocks of a step (header, "Threads inside one replica"); 1 by default.
   /// The results do not depend on it, bit for bit. Without blocks it has no effect.
   void use_threads(int threads);
@@ -411,9 +434,12 @@ class Collider {
   /// run_majorant (`Lowrank` false) or run_lowrank (true) on the block's slices in a loop of its own
   /// (header "Mixtures in blocks", the kernel): raised bounds are handled inside. Leaves time_, credit_,
   /// bound_ and rate_ as run_substep does. `Two`: `majorant` with two species (their edge and
-  /// offsets in locals).
-  template <class Rule, bool Track, bool Lowrank, bool Framed, bool Two = false>
+  /// offsets in locals); `Factored`: `lowrank` by the factored draw (block_factored_).
+  template <class Rule, bool Track, bool Lowrank, bool Framed, bool Two = false, bool Factored = false>
   void run_block_mixture(const Rule& rule, double t_stop);
+  /// The mixture kernel's instance for the block's sampler (`lowrank` or `majorant`) and draw.
+  template <class Rule, bool Track, bool Framed>
+  void run_block_mixture_sampler(const Rule& rule, bool lowrank, double t_stop);
   /// A rule without frames runs framed only in the identity frame (reset_frame: white noise); throws
   /// std::logic_error otherwise.
   void require_identity_frame() const;
@@ -442,7 +468,10 @@ class Collider {
   /// the blocks' `lowrank` candidate rate summed over the blocks, to within the slices' rounding.
   double lowrank_block_rate(const double* max_speed2) const;
   void set_block_lowrank(double n);  ///< on a worker: the current block's A_ik, their alias table and R
-  std::vector<double> pair_weights_;   ///< a block's A_ik, S x S (set_block_lowrank)
+  /// The one-word draw's alias cells and outcomes over the P^2 pairs of the P `present_species` (running
+  /// counts `cum`), and rate_ = R_b (set_block_lowrank).
+  void set_block_one_word(const std::uint32_t* present_species, std::size_t p, const std::size_t* cum);
+  std::vector<double> pair_weights_;   ///< a block's A_ik, S x S (set_block_lowrank; factored: a table's weights)
   segment_tree::AliasTable pair_alias_;  ///< over the S^2 pairs (run_lowrank in a block: viscoelastic)
   /// The mixture kernel's draw of a `lowrank` candidate from one 64-bit word (header "Mixtures in blocks"):
   /// an alias table over 2^m >= max(P^2, 2) cells (the pairs, then zero weights), the cell from the top m
@@ -459,6 +488,64 @@ class Collider {
     std::uint32_t other;    ///< its alias's outcome
   };
   std::vector<LowrankCell> lowrank_cells_;        ///< P cells (set_block_lowrank)
+  /// The factored draw (header "Mixtures in blocks", \ref sch_factored "docs/schemes.md"), for blocks with
+  /// more than factor_above_ species present: the row i from the row table over the P present species
+  /// (weights w_i rho_i ||G||), then the column k from row i's own table (weights q_k|i); the particles
+  /// from a second word. A species present in the block, in the order of the tables:
+  struct FactoredSpecies {
+    std::uint32_t first, count;  ///< the species' slice in the block (system indices)
+    std::uint32_t reject;        ///< 2^24 mod count: a 24-bit field below it is rejected (2^24: all, below_pair draws)
+    std::uint32_t pair_row;      ///< i S: the pair (i, k)'s index (PairKernel, pair_species_) is pair_row + k
+    std::uint32_t species;       ///< i
+  };
+  /// An alias cell of the factored draw in 8 bytes (the column tables, P 2^m cells, are read at random
+  /// for every candidate): the coin's c = 32 - m bits q keep the cell if q < whole = floor(t 2^c), t the
+  /// cell's alias threshold (on a tie its fraction t 2^c - whole, in an array of its own, decides);
+  /// outcomes are indices of present species (P <= block_species_limit < 2^16).
+  struct FactoredCell {
+    std::uint32_t whole;
+    std::uint16_t keep, other;  ///< the cell's own outcome, its alias's
+  };
+  static_assert(block_species_limit < (std::size_t{1} << 16), "FactoredCell holds species in 16 bits");
+  /// The current block's factored tables (set_block_factored).
+  struct FactoredTables {
+    std::vector<FactoredSpecies> species;  ///< the P species present
+    std::vector<FactoredCell> rows;        ///< 2^m cells: w_i rho_i ||G|| (rebuilt when a bound is raised)
+    std::vector<FactoredCell> columns;     ///< P 2^m cells, row a's from a 2^m: q_k|i (built once per visit)
+    std::vector<double> row_fraction, column_fraction;  ///< the cells' fractions
+    /// w_i of each present species: the acceptance |g| / ((w_i + w_k) ||G||) from these (1 KB) rather
+    /// than from pair_limit_ (S^2 doubles read at random)
+    std::vector<double> w;
+    std::vector<double> rho;  ///< rho_i = N_i sum_k pi sigma_ik^2 chi_ik N_k / V of each present species
+    unsigned bits = 1;        ///< m: 2^m >= max(P, 2) cells per table
+  };
+  FactoredTables factored_;
+  bool block_factored_ = false;  ///< the current block's `lowrank` draw is the factored one (set_block_lowrank)
+  std::size_t factor_above_ = lowrank_factor_above;  ///< set_lowrank_factor_above (tests)
+  /// The factored tables as the kernel reads them (pointers into factored_; taken anew after a raise).
+  struct FactoredView {
+    const FactoredCell *rows, *columns;
+    const double *row_fraction, *column_fraction, *w;
+    const FactoredSpecies* species;
+    unsigned bits;
+  };
+  FactoredView factored_view() const {
+    return {factored_.rows.data(), factored_.columns.data(), factored_.row_fraction.data(),
+            factored_.column_fraction.data(), factored_.w.data(), factored_.species.data(), factored_.bits};
+  }
+  /// The factored tables of the current block over its P `present` species (running counts `cum`),
+  /// and rate_ = R_b.
+  void set_block_factored(const std::uint32_t* present, std::size_t p, const std::size_t* cum);
+  /// Alias cells of c = 32 - m coin bits from the 2^m weights `w` (zero-padded past the P = `p` present
+  /// species), built in pair_alias_: a cell's own outcome is its index, a padding cell's its alias.
+  void fill_factored_cells(const std::vector<double>& w, std::size_t p, FactoredCell* out, double* fraction);
+  void build_factored_rows();   ///< the row cells from w_i rho_i ||G||, and rate_ = R_b = sum_i w_i rho_i ||G||
+  void raise_block_factored();  ///< after a raised bound: w_i and the rows (the columns hold no speed)
+  /// `lowrank`'s factored candidate in a block from two 64-bit words: particles a, b, the pair i S + k and
+  /// the present species' indices of i and k (row_column = row | column << 16, for the acceptance).
+  template <class Gen>
+  static void factored_candidate(Gen& gen, const FactoredView& tables, std::uint32_t& a, std::uint32_t& b,
+                                 std::uint32_t& pair, std::uint32_t& row_column);
   /// `lowrank`'s candidate in a block from one 64-bit word (header "Mixtures in blocks"): particles a,
   /// b and the pair i S + k, by the block's cells and outcomes (collide_kernels.cpp).
   template <class Gen>

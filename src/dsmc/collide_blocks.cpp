@@ -459,7 +459,7 @@ void Collider::set_block_lowrank(double n) {
   // sigma_ik^2 chi_ik w_i N_i N_k / V (the form of segment_tree.hpp's hard_sphere_factors with chi_ik),
   // a candidate then accepted with |g| / (w_i + w_k) (run_lowrank); a pair is drawn from their alias
   // table (one uniform) rather than by the trees' descents. Only the P species present in the block
-  // (a scattered species may have no particle there) enter the kernel's table: P^2 pairs.
+  // (a scattered species may have no particle there) enter the kernel's tables.
   const std::size_t* cum = slice_cum_.data() + current_block_ * (s_ + 1);
   lowrank_volume_ = static_cast<double>(range_count_ - 1) / n;
   for (std::size_t k = 0; k < s_; ++k) max_speed_[k] = std::sqrt(block_speed2_[k]);
@@ -476,13 +476,27 @@ void Collider::set_block_lowrank(double n) {
     if (rate_ > 0.0) pair_alias_.build(pair_weights_);
     return;
   }
-  // The mixture kernel's one-word draw (header "Mixtures in blocks"): an alias table over P = 2^m
-  // cells, the pairs of the present species followed by zero weights (never drawn: Vose's construction
-  // sends them to their alias), so that the cell is m uniform bits of the word.
   std::array<std::uint32_t, block_species_limit> present;
   std::size_t p = 0;
   for (std::size_t k = 0; k < s_; ++k)
     if (cum[k + 1] > cum[k]) present[p++] = static_cast<std::uint32_t>(k);
+  // The mixture kernel's draw: one word over the P^2 pairs, or the factored draw above factor_above_
+  // present species (collide.hpp, "Mixtures in blocks"; \ref sch_factored "docs/schemes.md").
+  block_factored_ = p > factor_above_;
+  if (block_factored_)
+    set_block_factored(present.data(), p, cum);
+  else
+    set_block_one_word(present.data(), p, cum);
+}
+
+void Collider::set_block_one_word(const std::uint32_t* present_species, std::size_t p, const std::size_t* cum) {
+  // The mixture kernel's one-word draw (header "Mixtures in blocks"): an alias table over P = 2^m
+  // cells, the pairs of the present species followed by zero weights (never drawn: Vose's construction
+  // sends them to their alias), so that the cell is m uniform bits of the word.
+  // (present in a local array: the tables' 32-bit stores below might otherwise alias it, and the P^2
+  // loops would read it again after each store, a fifth more instructions here)
+  std::array<std::uint32_t, block_species_limit> present;
+  std::copy_n(present_species, p, present.begin());
   const std::size_t pairs = p * p;
   pair_weights_.resize(pairs);
   rate_ = 0.0;
@@ -530,6 +544,90 @@ void Collider::set_block_lowrank(double n) {
                                       narrow ? (1u << 24) % count_k : 1u << 24, static_cast<std::uint32_t>(i * s_ + k)};
       pair_limit_[i * s_ + k] = (max_speed_[i] + max_speed_[k]) * speed_factor_;  // (pairs of absent species: never drawn)
     }
+}
+
+void Collider::set_block_factored(const std::uint32_t* present, std::size_t p, const std::size_t* cum) {
+  // The factored draw (collide.hpp, "Mixtures in blocks"; \ref sch_factored "docs/schemes.md"): A_ik = w_i
+  // rho_i q_k|i over the P species present. The column tables q_k|i hold no speed: built here, once per
+  // visit; the rows, w_i rho_i, again at every raised bound (raise_block_factored).
+  const std::size_t* slice = slice_first_.data() + current_block_ * s_;
+  // Every slice of the block below 2^24 (the 24-bit fields); else every candidate's reject is 2^24.
+  bool narrow = true;
+  for (std::size_t i = 0; i < s_; ++i) narrow = narrow && cum[i + 1] - cum[i] < (std::size_t{1} << 24);
+  FactoredTables& f = factored_;
+  f.species.resize(p);
+  for (std::size_t a = 0; a < p; ++a) {
+    const std::size_t i = present[a];
+    const auto count = static_cast<std::uint32_t>(cum[i + 1] - cum[i]);
+    f.species[a] = {static_cast<std::uint32_t>(slice[i]), count, narrow ? (1u << 24) % count : 1u << 24,
+                    static_cast<std::uint32_t>(i * s_), static_cast<std::uint32_t>(i)};
+  }
+  unsigned bits = 1;  // at least two cells (one species present: it and a zero weight), r >> 64 being undefined
+  while ((std::size_t{1} << bits) < p) ++bits;
+  f.bits = bits;
+  const std::size_t cells = std::size_t{1} << bits;
+  f.columns.resize(p * cells);
+  f.column_fraction.resize(p * cells);
+  f.rho.resize(p);
+  f.w.resize(p);
+  pair_weights_.assign(cells, 0.0);
+  for (std::size_t a = 0; a < p; ++a) {
+    // Row i's columns: q_k|i proportional to pi sigma_ik^2 chi_ik N_k; rho_i = N_i sum_k (...) / V.
+    const std::size_t i = present[a];
+    double sum = 0.0;
+    for (std::size_t b = 0; b < p; ++b) {
+      const std::size_t k = present[b];
+      pair_weights_[b] = cross_section_[i * s_ + k] * static_cast<double>(cum[k + 1] - cum[k]);
+      sum += pair_weights_[b];
+    }
+    f.rho[a] = static_cast<double>(cum[i + 1] - cum[i]) * sum / lowrank_volume_;
+    f.w[a] = max_speed_[i];
+    fill_factored_cells(pair_weights_, p, f.columns.data() + a * cells, f.column_fraction.data() + a * cells);
+  }
+  build_factored_rows();
+}
+
+void Collider::fill_factored_cells(const std::vector<double>& w, std::size_t p, FactoredCell* out, double* fraction) {
+  // Keep cell c with probability t: with U = (q + V)/2^c (q the c coin bits, V uniform), U < t iff
+  // q < floor(t 2^c), or q = floor(t 2^c) and V < t 2^c - floor(t 2^c) (both exact in doubles).
+  pair_alias_.build(w);
+  const double coin_scale = std::ldexp(1.0, 32 - static_cast<int>(factored_.bits));  // 2^c, c = 32 - m coin bits
+  for (std::size_t c = 0; c < w.size(); ++c) {
+    const double scaled = pair_alias_.threshold[c] * coin_scale;
+    const double whole = std::floor(scaled);
+    const auto other = static_cast<std::uint16_t>(pair_alias_.alias[c]);
+    out[c] = {static_cast<std::uint32_t>(whole), c < p ? static_cast<std::uint16_t>(c) : other, other};
+    fraction[c] = scaled - whole;
+  }
+}
+
+void Collider::build_factored_rows() {
+  // Row weights w_i rho_i, their sum R_b = sum_ik A_ik (in a frame every w_i times ||G||: header "Frame";
+  // speed_factor_ is 1 without one).
+  FactoredTables& f = factored_;
+  const std::size_t p = f.species.size();
+  pair_weights_.assign(std::size_t{1} << f.bits, 0.0);
+  rate_ = 0.0;
+  for (std::size_t a = 0; a < p; ++a) {
+    pair_weights_[a] = f.w[a] * speed_factor_ * f.rho[a];
+    rate_ += pair_weights_[a];
+  }
+  if (!(rate_ > 0.0)) return;
+  f.rows.resize(pair_weights_.size());
+  f.row_fraction.resize(pair_weights_.size());
+  fill_factored_cells(pair_weights_, p, f.rows.data(), f.row_fraction.data());
+}
+
+void Collider::raise_block_factored() {
+  // A raised bound (run_block_mixture): w_i anew from the block's bounds, then the rows (O(P); the
+  // columns q_k|i do not depend on the speeds).
+  FactoredTables& f = factored_;
+  for (std::size_t a = 0; a < f.species.size(); ++a) {
+    const std::uint32_t i = f.species[a].species;
+    max_speed_[i] = f.w[a] = std::sqrt(block_speed2_[i]);
+  }
+  pending_filled_ = false;  // drawn from the old A_ik: redraw (header, "Look-ahead")
+  build_factored_rows();
 }
 
 void Collider::run_blocks_pass(double t_start, double t_stop) {

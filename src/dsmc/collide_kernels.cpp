@@ -33,26 +33,16 @@ void Collider::run_block_kernel(const Rule& rule, bool lowrank, double t_stop) {
         run_block_one_species<Rule, false, false>(rule, t_stop);
       return;
     }
-    // The mixture kernel (header "Mixtures in blocks"); `majorant` with two species: a kernel of its
-    // own, whose species and offsets are two locals.
+    // The mixture kernel (header "Mixtures in blocks").
     if (framed_) {  // (a frame tracks no displacements: set_frame)
       if constexpr (Rule::frames)
-        lowrank    ? run_block_mixture<Rule, false, true, true>(rule, t_stop)
-        : s_ == 2  ? run_block_mixture<Rule, false, false, true, true>(rule, t_stop)
-                   : run_block_mixture<Rule, false, false, true>(rule, t_stop);
-      else {  // a rule without frames: only the identity frame of reset_frame (white noise), run unframed
-        require_identity_frame();
-        lowrank ? run_block_mixture<Rule, false, true, false>(rule, t_stop)
-        : s_ == 2 ? run_block_mixture<Rule, false, false, false, true>(rule, t_stop)
-                  : run_block_mixture<Rule, false, false, false>(rule, t_stop);
-      }
-    } else if (lowrank)
-      track ? run_block_mixture<Rule, true, true, false>(rule, t_stop) : run_block_mixture<Rule, false, true, false>(rule, t_stop);
-    else if (s_ == 2)
-      track ? run_block_mixture<Rule, true, false, false, true>(rule, t_stop)
-            : run_block_mixture<Rule, false, false, false, true>(rule, t_stop);
+        run_block_mixture_sampler<Rule, false, true>(rule, lowrank, t_stop);
+      else  // a rule without frames: only the identity frame of reset_frame (white noise), run unframed
+        run_block_mixture_sampler<Rule, false, false>(rule, lowrank, (require_identity_frame(), t_stop));
+    } else if (track)
+      run_block_mixture_sampler<Rule, true, false>(rule, lowrank, t_stop);
     else
-      track ? run_block_mixture<Rule, true, false, false>(rule, t_stop) : run_block_mixture<Rule, false, false, false>(rule, t_stop);
+      run_block_mixture_sampler<Rule, false, false>(rule, lowrank, t_stop);
   } else {
     (void)rule, (void)lowrank, (void)t_stop;
     throw std::logic_error("collide: the block kernels need a rule with the projection");
@@ -61,6 +51,18 @@ void Collider::run_block_kernel(const Rule& rule, bool lowrank, double t_stop) {
 
 void Collider::require_identity_frame() const {
   if (frame_scale_ != 1.0 || frame_shear_ != 0.0) throw std::logic_error("collide: a frame with a rule that has none");
+}
+
+template <class Rule, bool Track, bool Framed>
+void Collider::run_block_mixture_sampler(const Rule& rule, bool lowrank, double t_stop) {
+  // `lowrank` by the one-word or the factored draw (set_block_lowrank chose it for the block's P);
+  // `majorant` with two species: a kernel of its own, whose species and offsets are two locals.
+  if (lowrank)
+    block_factored_ ? run_block_mixture<Rule, Track, true, Framed, false, true>(rule, t_stop)
+                    : run_block_mixture<Rule, Track, true, Framed>(rule, t_stop);
+  else
+    s_ == 2 ? run_block_mixture<Rule, Track, false, Framed, true>(rule, t_stop)
+            : run_block_mixture<Rule, Track, false, Framed>(rule, t_stop);
 }
 
 namespace {
@@ -161,6 +163,47 @@ template <class Gen>
   a = o.first_i + x, b = o.first_k + y, pair = o.pair;
 }
 
+template <class Gen>
+[[gnu::always_inline]] inline void Collider::factored_candidate(Gen& gen, const FactoredView& tables, std::uint32_t& a,
+                                                                std::uint32_t& b, std::uint32_t& pair,
+                                                                std::uint32_t& row_column) {
+  // The factored draw (set_block_factored; \ref sch_factored "docs/schemes.md"). Word 1: the row cell from
+  // its top m bits and its coin from bits 32..63-m, the column cell of the row's table from bits 32-m..31
+  // and its coin from bits 0..31-m (a further uniform only when a coin ties with its threshold, one in
+  // 2^(32-m)); without a branch on q < whole (taken at random): a mask selects the outcome.
+  const unsigned bits = tables.bits;
+  const std::uint64_t r = gen();
+  const std::size_t row_index = r >> (64 - bits);
+  const FactoredCell& row_cell = tables.rows[row_index];
+  const auto q = static_cast<std::uint32_t>(r >> 32) & ((1u << (32 - bits)) - 1);
+  const std::uint32_t keep_row = 0u - static_cast<std::uint32_t>(q < row_cell.whole);
+  std::uint32_t row = (row_cell.keep & keep_row) | (row_cell.other & ~keep_row);
+  if (q == row_cell.whole) [[unlikely]]
+    row = gen.uniform() < tables.row_fraction[row_index] ? row_cell.keep : row_cell.other;
+  const auto low = static_cast<std::uint32_t>(r);
+  const std::size_t column_index = (static_cast<std::size_t>(row) << bits) + (low >> (32 - bits));
+  const FactoredCell& column_cell = tables.columns[column_index];
+  const std::uint32_t q2 = low & ((1u << (32 - bits)) - 1);
+  const std::uint32_t keep_column = 0u - static_cast<std::uint32_t>(q2 < column_cell.whole);
+  std::uint32_t column = (column_cell.keep & keep_column) | (column_cell.other & ~keep_column);
+  if (q2 == column_cell.whole) [[unlikely]]
+    column = gen.uniform() < tables.column_fraction[column_index] ? column_cell.keep : column_cell.other;
+  const FactoredSpecies& si = tables.species[row];
+  const FactoredSpecies& sk = tables.species[column];
+  // Word 2: the particles from the low two 24-bit fields, as in lowrank_candidate.
+  const std::uint64_t r2 = gen();
+  const std::uint64_t m1 = (r2 & 0xffffffULL) * si.count, m2 = ((r2 >> 24) & 0xffffffULL) * sk.count;
+  std::uint32_t x = static_cast<std::uint32_t>(m1 >> 24), y = static_cast<std::uint32_t>(m2 >> 24);
+  const bool rejected = (static_cast<std::uint32_t>(m1) & 0xffffffu) < si.reject ||
+                        (static_cast<std::uint32_t>(m2) & 0xffffffu) < sk.reject;
+  if (rejected) [[unlikely]] {
+    rng::Xoshiro256pp rare = gen;  // (on a copy: lowrank_candidate)
+    rare.below_pair(si.count, sk.count, x, y);
+    gen = rare;
+  }
+  a = si.first + x, b = sk.first + y, pair = si.pair_row + sk.species, row_column = row | column << 16;
+}
+
 template <class Rule, bool Framed>
 [[gnu::always_inline]] inline double Collider::kernel_collision(const PairKernel& pk, std::uint32_t i, std::uint32_t k,
                                                                 particles::Vec3& va, particles::Vec3& vb, double g_dot_e2,
@@ -182,7 +225,10 @@ template <class Rule, bool Framed>
 template <bool Lowrank, bool Framed>
 void Collider::after_raise(const std::size_t* cum, std::uint32_t n, double* speed2) {
   if constexpr (Lowrank) {
-    set_block_lowrank(mix_.total_density());  // the block's A_ik over the raised bounds
+    if (block_factored_)
+      raise_block_factored();  // the rows only: the columns do not depend on the speeds
+    else
+      set_block_lowrank(mix_.total_density());  // the block's A_ik over the raised bounds
   } else {
     bound_ = mixture_bound(speed2, cum);
     if constexpr (Framed) bound_ *= speed_factor_;
@@ -295,7 +341,7 @@ void Collider::run_block_one_species(const Rule& rule, double t_stop) {
   if (!counters_.pair_events.empty()) counters_.pair_events[0] += events;
 }
 
-template <class Rule, bool Track, bool Lowrank, bool Framed, bool Two>
+template <class Rule, bool Track, bool Lowrank, bool Framed, bool Two, bool Factored>
 void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_stop) {
   // The process of run_majorant (or run_lowrank) on the block's slices, with less work per candidate
   // (header "Mixtures in blocks"); the stream in a local copy (its state in registers).
@@ -320,12 +366,17 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
   const LowrankCell* cells = lowrank_cells_.data();
   const LowrankOutcome* outcomes = lowrank_outcomes_.data();
   const unsigned cell_bits = lowrank_cell_bits_;
+  [[maybe_unused]] FactoredView factored = factored_view();
+  [[maybe_unused]] const double speed_factor = speed_factor_;
   // The drawn-ahead candidates: particles a, b and the pair i S + k, in three arrays of 32-bit words.
   const std::uint32_t* pair_species = pair_species_.data();
   std::array<std::uint32_t, block_lookahead<Framed>> ahead_a, ahead_b, ahead_pair;
-  const auto draw = [&](std::size_t slot) {
+  [[maybe_unused]] std::array<std::uint32_t, block_lookahead<Framed>> ahead_row_column;  // (factored: row | column<<16)
+  const auto draw = [&](std::size_t slot) __attribute__((always_inline)) {  // (GCC kept the factored draw out of line)
     std::uint32_t a, b, pair;
-    if constexpr (Lowrank)
+    if constexpr (Lowrank && Factored)
+      factored_candidate(gen, factored, a, b, pair, ahead_row_column[slot]);
+    else if constexpr (Lowrank)
       lowrank_candidate(gen, cells, outcomes, cell_bits, a, b, pair);
     else
       majorant_candidate<Two>(gen, n, s, index, edge1, offset0, offset1, a, b, pair);
@@ -347,6 +398,7 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
     std::uint64_t c = 0;
     for (; c < n_candidates; ++c) {
       const std::uint32_t a = ahead_a[next], b = ahead_b[next], pair = ahead_pair[next];
+      [[maybe_unused]] const std::uint32_t row_column = Factored ? ahead_row_column[next] : 0;
       draw(next);
       next = (next + 1) % block_lookahead<Framed>;
       if (Lowrank && a == b) continue;  // the self pair is part of the majorant's sum, never a collision
@@ -354,7 +406,11 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
       to_actual<Framed>(gx, gy, gz);
       const double g2 = gx * gx + gy * gy + gz * gz;
       // Accept with |g| / (w_i + w_k) (`lowrank`) or pi sigma_kj^2 chi_kj |g| / B_b (\ref sch_majorant "docs/schemes.md"), squared.
-      const double limit = Lowrank ? acceptance[pair] : bound, rate2 = Lowrank ? g2 : acceptance[pair] * g2;
+      // (factored: (w_i + w_k) ||G|| from the present species' w, as pair_limit_ holds it for the one-word draw)
+      const double limit = Factored  ? (factored.w[row_column & 0xffffu] + factored.w[row_column >> 16]) * speed_factor
+                           : Lowrank ? acceptance[pair]
+                                     : bound;
+      const double rate2 = Lowrank ? g2 : acceptance[pair] * g2;
       const double threshold = gen.uniform() * limit;
       if (threshold * threshold >= rate2) continue;
       if (rate2 > limit * limit) [[unlikely]] note_overshoot(std::sqrt(rate2) / limit);
@@ -389,6 +445,7 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
     after_raise<Lowrank, Framed>(cum, n, speed2);
     if constexpr (Lowrank) {  // the drawn-ahead pairs came from the old A_ik: redrawn
       cells = lowrank_cells_.data();  // (their sizes do not change: the same data)
+      factored = factored_view();
       for (std::size_t slot = 0; slot < block_lookahead<Framed>; ++slot) draw(slot);
       next = 0;
     }
