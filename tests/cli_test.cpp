@@ -2,6 +2,7 @@
 // exit status, the one-line message on stderr for bad input, and what is left in the directory.
 // Each test runs the real programs in a fresh temporary directory; every run is tiny.
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -403,6 +404,24 @@ TEST_F(CliDsmc, AnEndlessRunIsRefusedWithTheEstimate) {
   const Result r = dsmc(gdsmc::test::join_lines(lines));
   expect_input_error(r, "granular-dsmc", "t.nml:13: &dsmc: t_end: ",
                      {"collision events per replica", "a cooling to", "Haff's law", "allow_long_run = .true."});
+}
+
+// A FIFO at the output path blocked the run at the check for an earlier output (it opened it); it, a
+// device and a FIFO given to --restart or --compare= are refused before any work, in one line.
+TEST_F(CliDsmc, AFifoOrADeviceIsNeverOpenedOrReplaced) {
+  ASSERT_EQ(::mkfifo((dir / "out.h5").c_str(), 0600), 0);
+  expect_input_error(dsmc(base()), "granular-dsmc",
+                     "t.nml:16: &output: file: cannot write output file 'out.h5': it is a FIFO (named pipe), not a regular file",
+                     {}, {"out.h5", "t.nml"});
+  expect_input_error(dsmc(base(), "--force"), "granular-dsmc", "t.nml:16: &output: file: cannot write output file 'out.h5': it is a FIFO", {},
+                     {"out.h5", "t.nml"});
+  expect_input_error(dsmc(base(), "--output /dev/null"), "granular-dsmc",
+                     "--output /dev/null: &output: file: cannot write output file '/dev/null': it is a device, not a regular file", {}, {"out.h5", "t.nml"});
+  expect_input_error(dsmc(base(), "--restart out.h5 --output x.h5"), "granular-dsmc",
+                     "--restart: 'out.h5' is a FIFO (named pipe), not a checkpoint file", {}, {"out.h5", "t.nml"});
+  expect_input_error(dsmc(base(), "--output x.h5 --compare=out.h5"), "granular-dsmc",
+                     "--compare=out.h5: cannot write the JSON file: it is a FIFO (named pipe), not a regular file", {},
+                     {"out.h5", "t.nml"});
 }
 
 TEST_F(CliDsmc, EmptyFileBomNulAndRestartDirectory) {

@@ -321,6 +321,25 @@ TEST(SmoluchowskiSolve, GrowingTheSizesDoesNotChangeTheAnswer) {
   }
 }
 
+// A Stop is asked at every right-hand side: the integration ends with Stopped soon after the first call
+// that says so (here the 50th; CVODE may try a few more right-hand sides before it gives up), not at
+// the end (over 150 calls); a Stop that never says so leaves the answer unchanged, bit for bit.
+TEST(SmoluchowskiSolve, AStopEndsTheIntegrationAtTheNextRightHandSide) {
+  const smol::Parameters p = sticking_gas();
+  const double nu0 = monomer_collision_frequency(p);
+  const std::vector<double> times{0.0, 5.0 / nu0, 20.0 / nu0};
+  int asked = 0;
+  EXPECT_THROW(smol::solve(p, times, [&] { return ++asked >= 50; }), smol::Stopped);
+  EXPECT_GE(asked, 50);
+  EXPECT_LE(asked, 70);
+  int never = 0;
+  const smol::Solution a = smol::solve(p, times, [&] { return ++never < 0; });
+  const smol::Solution b = smol::solve(p, times);
+  EXPECT_GT(never, 150);
+  EXPECT_EQ(a.number_fraction, b.number_fraction);
+  EXPECT_EQ(a.kinetic_energy, b.kinetic_energy);
+}
+
 TEST(SmoluchowskiSolve, ElasticGasLosesEnergyOnlyByAggregation) {
   // alpha = eps_f = 1: bounces and fragmentations conserve kinetic energy and each aggregation
   // loses E_imp, so dE_kin/dt = -sum over pairs of (events) x (aggregated E_imp), which is

@@ -687,12 +687,13 @@ Point compare_point(const io::config::Config& config, const analysis::Prediction
   return pt;
 }
 
-std::vector<PointTheory> predict_points(const io::config::Config& config) {
+std::vector<PointTheory> predict_points(const io::config::Config& config, const theory::smoluchowski::Stop& stop) {
   std::vector<PointTheory> out;
   for (const auto& point : config.sweep_points()) {
     PointTheory t;
     try {
-      t.predictions = analysis::predict(point);
+      if (stop && stop()) throw theory::smoluchowski::Stopped();
+      t.predictions = analysis::predict(point, stop);
     } catch (const std::exception& e) {  // the theory failed: the table says so instead of failing
       t.error = e.what();
     }

@@ -214,8 +214,10 @@ struct PointTheory {
   std::string error;                               ///< else the reason
 };
 /// analysis::predict for every point of `config` (sweep or not). It depends on the input only, so
-/// granular-dsmc computes it in a thread of its own while the run goes on.
-std::vector<PointTheory> predict_points(const io::config::Config& config);
+/// granular-dsmc computes it in a thread of its own while the run goes on. When `stop` ends a point's
+/// theory (analysis::predict), its error is theory::smoluchowski::Stopped's message and the later
+/// points are not computed (the same error).
+std::vector<PointTheory> predict_points(const io::config::Config& config, const theory::smoluchowski::Stop& stop = {});
 
 /// Every point of `config` (sweep or not) against the file `file` written for it; `theory` from
 /// predict_points (computed here when empty).

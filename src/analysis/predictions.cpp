@@ -32,6 +32,8 @@ auto over_the_run(const io::config::Config& config, F&& integrate) {
     return integrate();
   } catch (const io::namelist::Error&) {
     throw;
+  } catch (const smoluchowski::Stopped&) {
+    throw;
   } catch (const std::exception& e) {
     const char* variable = config.dsmc.t_end ? "t_end" : "collisions_per_particle";
     const auto it = config.origin.find(std::string("dsmc:") + variable);
@@ -46,7 +48,7 @@ auto over_the_run(const io::config::Config& config, F&& integrate) {
 
 /// The Smoluchowski equations of smoluchowski.hpp on the run's sample points, in the units of the
 /// DSMC observables (counts for n_particles initial monomers).
-AggFragPrediction agg_frag_prediction(const io::config::Config& config) {
+AggFragPrediction agg_frag_prediction(const io::config::Config& config, const smoluchowski::Stop& stop) {
   namespace sm = smoluchowski;
   const sm::Parameters p = smoluchowski_parameters(config);
   AggFragPrediction out;
@@ -56,12 +58,12 @@ AggFragPrediction agg_frag_prediction(const io::config::Config& config) {
     if (times.empty()) {  // collision-driven: the times at which 2 x collisions per monomer reach the targets
       const auto targets = config.sample_collisions();
       double horizon = 1.0;
-      for (int guard = 0; guard < 60 && 2.0 * sm::solve(p, {0.0, horizon}).collisions.back() < targets.back(); ++guard)
+      for (int guard = 0; guard < 60 && 2.0 * sm::solve(p, {0.0, horizon}, stop).collisions.back() < targets.back(); ++guard)
         horizon *= 2.0;
       const std::size_t grid = 2001;
       std::vector<double> t(grid);
       for (std::size_t i = 0; i < grid; ++i) t[i] = horizon * static_cast<double>(i) / (grid - 1);
-      const auto fine = sm::solve(p, t);
+      const auto fine = sm::solve(p, t, stop);
       std::size_t i = 1;
       for (double c : targets) {
         if (c <= 0.0) {
@@ -73,7 +75,7 @@ AggFragPrediction agg_frag_prediction(const io::config::Config& config) {
         times.push_back(t[i - 1] + (t[i] - t[i - 1]) * (c - c0) / (c1 - c0));
       }
     }
-    return sm::solve(p, times);
+    return sm::solve(p, times, stop);
   });
   out.initial_rates = sm::initial_rates(p);
   const auto& sol = out.solution;
@@ -415,7 +417,7 @@ void add_white_noise(Predictions& out, const io::config::Config& config, const s
 
 }  // namespace
 
-Predictions predict(const io::config::Config& config) {
+Predictions predict(const io::config::Config& config, const smoluchowski::Stop& stop) {
   if (config.rough()) {
     Predictions out = predict_rough(config);
     if (config.thermostat.kind == io::config::ThermostatKind::white_noise) {
@@ -427,7 +429,7 @@ Predictions predict(const io::config::Config& config) {
   }
   Predictions out;
   if (config.has_agg_frag) {
-    out.agg_frag = agg_frag_prediction(config);
+    out.agg_frag = agg_frag_prediction(config, stop);
     out.approximations.emplace_back("initial_rates", "exact");
     for (const char* key : {"number", "temperature", "total_temperature", "kinetic_energy", "mean_size",
                             "monomer_fraction", "collisions", "aggregations", "fragmentations", "collisions_per_particle"})

@@ -115,8 +115,9 @@ struct Predictions {
 };
 
 /// The predictions for one point (not a sweep: call it per Config::sweep_points()). Throws
-/// std::runtime_error only when the ODEs themselves fail.
-Predictions predict(const io::config::Config& config);
+/// std::runtime_error only when the ODEs themselves fail, and theory::smoluchowski::Stopped when
+/// `stop` (asked by the one integration that can take long, the Smoluchowski equations) said so.
+Predictions predict(const io::config::Config& config, const theory::smoluchowski::Stop& stop = {});
 
 /// Every trajectory of `p` by the name of the observable it predicts (value[time][column], columns as the
 /// observable's: species, or cluster sizes 1..width of &agg_frag), as granular-theory prints them:

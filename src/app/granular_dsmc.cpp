@@ -1,8 +1,11 @@
 // granular-dsmc: runs the simulation a namelist describes and writes one H5MD file (\ref output_h5md "docs/output.md").
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -27,6 +30,20 @@
 #include "model/observables.hpp"
 
 namespace {
+
+/// "a FIFO (named pipe)", "a device", "a socket" when `path` (followed through links) exists and is one
+/// of them, else "": outputs are written beside and renamed into place, which must never replace such a
+/// file (a device node, for root) nor open it (a FIFO blocks until someone reads it).
+std::string special_file_kind(const std::string& path) {
+  std::error_code ec;
+  switch (std::filesystem::status(path, ec).type()) {
+    case std::filesystem::file_type::fifo: return "a FIFO (named pipe)";
+    case std::filesystem::file_type::block:
+    case std::filesystem::file_type::character: return "a device";
+    case std::filesystem::file_type::socket: return "a socket";
+    default: return "";
+  }
+}
 
 /// Whether `path` holds an earlier output of this program (an HDF5 file whose /h5md creator is
 /// granular-dsmc), which a new run may replace; anything else is the user's and is kept.
@@ -60,6 +77,7 @@ bool same_file(const std::string& a, const std::string& b) {
 std::string unwritable_reason(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) return "it is a directory";
+  if (const std::string kind = special_file_kind(path); !kind.empty()) return "it is " + kind + ", not a regular file";
   const std::string probe = path + ".tmp." + std::to_string(::getpid());
   std::ofstream out(probe, std::ios::binary);
   if (!out) return std::strerror(errno);
@@ -270,9 +288,15 @@ std::optional<int> check_paths(const Arguments& a, const gdsmc::io::config::Conf
     if (root) std::cerr << "granular-dsmc: --restart: '" << a.restart << "' is a directory, not a checkpoint file\n";
     return 2;
   }
+  if (const std::string kind = a.restart.empty() ? "" : special_file_kind(a.restart); !kind.empty()) {
+    if (root) std::cerr << "granular-dsmc: --restart: '" << a.restart << "' is " << kind << ", not a checkpoint file\n";
+    return 2;
+  }
   // A directory would only be found when the finished run is renamed into place.
   if (std::error_code ec; std::filesystem::is_directory(path, ec))
     return output_error(a, config, root, "cannot write output file '" + path + "': it is a directory");
+  if (const std::string kind = special_file_kind(path); !kind.empty())
+    return output_error(a, config, root, "cannot write output file '" + path + "': it is " + kind + ", not a regular file");
   std::error_code ec;
   if (std::filesystem::equivalent(path, a.input, ec))
     return output_error(a, config, root, "the output file '" + path + "' is the input namelist: it would be overwritten");
@@ -324,6 +348,9 @@ void print_summary(const std::string& path, const gdsmc::simulation::Summary& su
                  summary.acceptance_overshoots);
 }
 
+/// Seconds the --compare theory may go on after the run, when the run took less (granular_dsmc.cpp run()).
+constexpr double theory_allowance_seconds = 30.0;
+
 /// Runs the input, with --compare's theory in a thread of its own (the theory depends on the input
 /// only: computed while the DSMC runs, so that --compare adds almost nothing to the wall time); the
 /// program's exit status.
@@ -337,13 +364,36 @@ int run(const Arguments& a, const gdsmc::io::config::Config& config, bool root) 
   options.restart_path = a.restart;
   const std::string& path = config.output.file;
   gdsmc::analysis::compare::Comparison comparison;
+  // The theory stops at an interrupt, and once the run is done it may take as long again as the run
+  // did, at least theory_allowance_seconds (the Smoluchowski equations of a sticking gas can take
+  // hours: granular-theory computes them without a limit). Declared before the future, whose
+  // destructor waits for the theory's thread.
+  using Clock = std::chrono::steady_clock;
+  const auto started = Clock::now();
+  std::atomic<Clock::rep> theory_deadline{Clock::time_point::max().time_since_epoch().count()};
+  const gdsmc::theory::smoluchowski::Stop stop_theory = [&theory_deadline] {
+    return g_interrupted.load() || Clock::now().time_since_epoch().count() > theory_deadline.load();
+  };
   std::future<std::vector<gdsmc::analysis::compare::PointTheory>> theory;
   if (a.compare && root) {
     // With one thread the theory waits for the run (deferred): it must not take a second core.
     const auto policy = gdsmc::parallel::threads() > 1 ? std::launch::async : std::launch::deferred;
-    theory = std::async(policy, [&config] { return gdsmc::analysis::compare::predict_points(config); });
+    theory = std::async(policy, [&config, &stop_theory] { return gdsmc::analysis::compare::predict_points(config, stop_theory); });
     options.before_commit = [&](gdsmc::io::h5md::Writer& writer) {
-      comparison = gdsmc::analysis::compare::compare_file(config, writer.temporary_path(), theory.get());
+      const double allowance =
+          std::max(theory_allowance_seconds, std::chrono::duration<double>(Clock::now() - started).count());
+      theory_deadline.store((Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                                std::chrono::duration<double>(allowance))).time_since_epoch().count());
+      auto points = theory.get();
+      if (g_interrupted.load()) throw gdsmc::simulation::Interrupted();
+      for (auto& point : points)
+        if (point.error == gdsmc::theory::smoluchowski::Stopped().what())
+          point.error = "the Smoluchowski equations did not reach the end of the run within " +
+                        std::to_string(static_cast<long>(std::ceil(allowance))) +
+                        " s (as long as the run took, at least " +
+                        std::to_string(static_cast<long>(theory_allowance_seconds)) + " s): granular-theory " +
+                        config.source_file + " computes them without a limit";
+      comparison = gdsmc::analysis::compare::compare_file(config, writer.temporary_path(), std::move(points));
       gdsmc::analysis::compare::write(writer, comparison);
     };
   }

@@ -2,6 +2,8 @@
 // on stdout (\ref output_theory "docs/output.md").
 #include <array>
 #include <algorithm>
+#include <atomic>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -73,7 +75,9 @@ const char* kUsage =
     "  fragmentations, collisions_per_particle   {time, value} (event counts of one replica)\n"
     "  initial_rates        {collisions, aggregations, fragmentations, bounces, log_monomer_rate}: events per\n"
     "                       unit volume and time at t = 0 (exact: Maxwellian monomers)\n"
-    "  max_size, lost_mass_fraction   the largest size integrated and the mass beyond it at the last time\n";
+    "  max_size, lost_mass_fraction   the largest size integrated and the mass beyond it at the last time\n"
+    "                       (its cost grows as max_size^2: a sticking gas run long can take hours; Ctrl-C stops it)\n"
+    "Exit status: 0 success, 2 bad input, 1 the theory failed, 130 interrupted (nothing printed).\n";
 
 using gdsmc::analysis::json::array;
 using gdsmc::analysis::json::number;
@@ -186,11 +190,14 @@ std::string rough_json(const gdsmc::analysis::Predictions& p, const std::string&
   return json.str();
 }
 
+std::atomic<bool> g_interrupted{false};  // written only by the signal handler
+extern "C" void on_signal(int) { g_interrupted.store(true); }
+
 /// The theory of one system (analysis::predict) as a JSON object; `indent` prefixes every line. The
 /// notes of what was left out go to stderr.
 std::string point_json(const gdsmc::io::config::Config& config, const std::string& indent) {
   announce_large_mixture(config);
-  const auto p = gdsmc::analysis::predict(config);
+  const auto p = gdsmc::analysis::predict(config, [] { return g_interrupted.load(); });
   for (const auto& note : p.notes) std::cerr << "granular-theory: " << note << "\n";
   const std::string in = indent + "  ";
   auto approximations = [&] {
@@ -306,6 +313,9 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  // Ctrl-C stops the one long computation, the Smoluchowski integration, at its next right-hand side.
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
   try {
     if (!config.is_sweep()) {
       std::cout << point_json(config, "") << "\n";
@@ -334,6 +344,9 @@ int main(int argc, char** argv) {
       json << "\n  ]\n}\n";
       std::cout << json.str();
     }
+  } catch (const gdsmc::theory::smoluchowski::Stopped&) {
+    std::cerr << "granular-theory: interrupted: nothing printed\n";
+    return 130;
   } catch (const gdsmc::io::namelist::Error& e) {  // e.g. an end of the run the ODEs cannot reach
     std::cerr << "granular-theory: " << e.what() << "\n";
     return 2;

@@ -455,6 +455,7 @@ bool Gas::advance(double t_target, std::uint64_t event_target) {
   bool totals_valid = false;
   for (;;) {
     if (time_ >= next_step_time_) {  // exact bounds again (they only rise within a step)
+      if (stop_flag_ && stop_flag_->load(std::memory_order_relaxed)) return false;
       totals_valid = false;
       if (!bounds_exact_) recompute_bounds();
       bounds_exact_ = false;

@@ -96,6 +96,7 @@
  */
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -183,6 +184,9 @@ class Gas {
   /// ends at a step boundary, so a call ends within one step of t_target only if it is called with
   /// t_target at most block_step_end().
   bool advance(double t_target, std::uint64_t event_target = UINT64_MAX);
+  /// A flag (the caller's interrupt flag) that, once set, makes advance() return false at the next
+  /// step start, before its targets, as collide::Collider::set_stop_flag. nullptr (the default): never.
+  void set_stop_flag(const std::atomic<bool>* flag) { stop_flag_ = flag; }
 
   /// Cache blocks of about `block_size` clusters (header, "Cache blocks"; 0: none), run on up to
   /// `threads` OpenMP threads. The results do not depend on `threads`.
@@ -308,6 +312,7 @@ class Gas {
   std::size_t block_size_ = 0;          ///< cache blocks (0: none)
   int block_threads_ = 1;               ///< threads for the blocks of a step
   std::uint64_t blocked_steps_ = 0;     ///< blocked steps so far (not part of the State)
+  const std::atomic<bool>* stop_flag_ = nullptr;  ///< set_stop_flag
   bool bounds_exact_ = false;           ///< a blocked step just recomputed them (a restored gas recomputes: same values)
   std::vector<Gas> blocks_;             ///< the blocks' gases, kept between steps for their lists
   std::vector<std::uint32_t> labels_;   ///< the block of each cluster in a deal

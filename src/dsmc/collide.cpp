@@ -335,6 +335,7 @@ bool Collider::advance(double t_target, std::uint64_t event_target, bool exact_e
   while (time_ < t_target) {
     if (counters_.events >= event_target) return true;
     if (time_ >= next_step_time_) {
+      if (stop_requested()) return false;
       recompute_max_speeds();
       rebuild_bounds();
       if (rate_ <= 0.0) {  // all particles at rest: nothing can ever collide

@@ -136,6 +136,7 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -276,6 +277,11 @@ class Collider {
   /// ignored.
   bool advance(double t_target, std::uint64_t event_target = UINT64_MAX, bool exact_events = true,
                std::uint64_t event_limit = UINT64_MAX, bool to_step_end = false);
+  /// A flag (the caller's interrupt flag, set by a signal handler) that, once set, makes advance()
+  /// return false at the next step start, before its targets: a step is never split, the caller sees
+  /// an unfinished advance and stops. However small `step_fraction` is, a step start comes within one
+  /// O(N) bound recomputation (tests/scale_out/interrupt.sh). Read only; nullptr (the default): never.
+  void set_stop_flag(const std::atomic<bool>* flag) { stop_flag_ = flag; }
 
   /// The velocities were changed from outside between two advance() calls (the streaming of a
   /// shear flow, a thermostat's rescaling): the largest speeds and the bounds are recomputed
@@ -522,6 +528,8 @@ class Collider {
   FactoredTables factored_;
   bool block_factored_ = false;  ///< the current block's `lowrank` draw is the factored one (set_block_lowrank)
   std::size_t factor_above_ = lowrank_factor_above;  ///< set_lowrank_factor_above (tests)
+  const std::atomic<bool>* stop_flag_ = nullptr;     ///< set_stop_flag
+  bool stop_requested() const { return stop_flag_ && stop_flag_->load(std::memory_order_relaxed); }
   /// The factored tables as the kernel reads them (pointers into factored_; taken anew after a raise).
   struct FactoredView {
     const FactoredCell *rows, *columns;

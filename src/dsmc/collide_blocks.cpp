@@ -347,6 +347,7 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
       // Events are checked between steps only: all blocks are then at the same time.
       if (counters_.events >= any_target) return true;
       if (to_step_end && time_ > entry_time) return false;  // one step (or the rest of one) done
+      if (stop_requested()) return false;
       bool sampler_changed = false;
       const double rate = blocked_step_rate(sampler_changed);
       if (rate <= 0.0) {

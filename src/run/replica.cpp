@@ -296,6 +296,7 @@ FreeGas::FreeGas(const io::config::Config& config, std::size_t r, const ReplicaC
   // target run on the whole gas and stop at it exactly.
   collider_.use_blocks(static_cast<std::size_t>(config.dsmc.block_size));
   collider_.use_threads(ctx.block_threads);
+  collider_.set_stop_flag(ctx.options.interrupt);  // a step start notices it (collide.hpp)
   if (collider_.blocks() == 1)
     note_idle_threads(ctx, "this run has no cache blocks (they need 'majorant' or 'lowrank', at most 128 species and "
                            "N >= 2 block_size)");
@@ -492,6 +493,7 @@ ForcedGas::ForcedGas(const io::config::Config& config, std::size_t r, const Repl
     note_idle_threads(ctx, "a thermostat or shear flow has cache blocks only with 'majorant' or 'lowrank' (the "
                            "Enskog gas in shear flow needs 'pairs') and N >= 2 block_size");
   }
+  collider_.set_stop_flag(ctx.options.interrupt);
 }
 
 void ForcedGas::stage(double end, std::size_t i, ReplicaResult* result, bool last) {
@@ -582,6 +584,7 @@ Clusters::Clusters(const io::config::Config& config, std::size_t r, const Replic
     note_idle_threads(ctx, "this aggregation run has no cache blocks (they need N >= 2 block_size clusters)");
   // Cache blocks (agg_frag.hpp, "Cache blocks"): while N >= 2 block_size clusters, on the block threads.
   gas_.use_blocks(static_cast<std::size_t>(config.dsmc.block_size), ctx.block_threads);
+  gas_.set_stop_flag(ctx.options.interrupt);
 }
 
 void Clusters::advance_to_sample(std::size_t i, const Between& between) {
@@ -683,24 +686,30 @@ ReplicaResult run_replica(const io::config::Config& config, std::size_t replica,
     return record;
   };
   const auto interrupted = [&] { return ctx.options.interrupt && ctx.options.interrupt->load(); };
+  // A stop flag ends an advance early (collide.hpp set_stop_flag), so every safe point looks at the
+  // flag first: an unfinished advance or stage is never checkpointed, and never written.
+  const auto safe_point = [&] {
+    if (interrupted()) throw Interrupted();
+    ctx.safe_point(snapshot);
+  };
   const Engine::Between between = [&] {
     if (interrupted()) throw Interrupted();
     report(std::min(engine->fraction_done(), 0.999));
-    ctx.safe_point(snapshot);
+    safe_point();
   };
   const std::size_t n_samples = engine->samples();
   const auto& snapshot_times = config.output.snapshot_times;
   // Snapshots taken so far: the rows the result holds (also after a restart from a checkpoint).
   const auto taken = result.rows.find("snapshot_time");
   std::size_t next_snapshot = taken == result.rows.end() ? 0 : taken->second.second.size() / 2;
-  for (; next_sample < n_samples; ++next_sample, ctx.safe_point(snapshot)) {
+  for (; next_sample < n_samples; ++next_sample, safe_point()) {
     if (interrupted()) throw Interrupted();
     const auto t0 = Clock::now();
     for (; next_snapshot < snapshot_times.size() && snapshot_times[next_snapshot] <= engine->sample_time(next_sample);
          ++next_snapshot) {  // the snapshots up to this sample's time (io/snapshot.hpp)
       engine->advance_to_time(snapshot_times[next_snapshot], between);
       engine->take_snapshot(result);
-      ctx.safe_point(snapshot);
+      safe_point();
     }
     engine->advance_to_sample(next_sample, between);
     result.collide_seconds += std::chrono::duration<double>(Clock::now() - t0).count();

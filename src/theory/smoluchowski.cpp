@@ -143,17 +143,21 @@ struct PairConstants {
   bool can_fragment;     // k + j >= 3 (\ref af_outcome "docs/agg-frag.md": two monomers never shatter)
 };
 
-PairConstants pair_constants(const Parameters& p, std::size_t k, std::size_t j) {
+// cube_root_k = cbrt(k), cube_root_j = cbrt(j) (sigma_k = k^(1/3) sigma_1), from the caller's table.
+PairConstants pair_constants(const Parameters& p, std::size_t k, std::size_t j, double cube_root_k, double cube_root_j) {
   PairConstants c;
   c.mass_k = static_cast<double>(k) * p.monomer_mass;
   c.mass_j = static_cast<double>(j) * p.monomer_mass;
   c.total_mass = c.mass_k + c.mass_j;
   c.reduced_mass = c.mass_k * c.mass_j / c.total_mass;
-  const double contact = 0.5 * p.monomer_diameter *
-                         (std::cbrt(static_cast<double>(k)) + std::cbrt(static_cast<double>(j)));
+  const double contact = 0.5 * p.monomer_diameter * (cube_root_k + cube_root_j);
   c.cross_section = pi * contact * contact;
   c.can_fragment = k + j >= 3 && !std::isinf(p.fragmentation_energy);
   return c;
+}
+
+PairConstants pair_constants(const Parameters& p, std::size_t k, std::size_t j) {
+  return pair_constants(p, k, j, std::cbrt(static_cast<double>(k)), std::cbrt(static_cast<double>(j)));
 }
 
 // Region moments of one collision (smoluchowski.hpp, "Outcome of a collision"); s = theta_k +
@@ -200,11 +204,10 @@ PairMoments region_moments(const Parameters& p, const PairConstants& c, double T
 // (k, j): the right-hand side is a sum of pair contributions, each conserving mass on its own.
 class RateEquations {
  public:
-  RateEquations(const Parameters& p, std::size_t max_size)
-      : p_(p), max_size_(max_size), pairs_(max_size * max_size), density_(max_size),
-        temperature_(max_size) {
-    for (std::size_t k = 1; k <= max_size; ++k)
-      for (std::size_t j = 1; j <= max_size; ++j) pairs_[index(k, j)] = pair_constants(p, k, j);
+  RateEquations(const Parameters& p, std::size_t max_size, const Stop& stop)
+      : p_(p), stop_(stop), max_size_(max_size), cube_root_(max_size), density_(max_size), temperature_(max_size) {
+    // O(K) memory: a pair's constants are made when it is visited (a K x K table took 15 GB at K = 16384).
+    for (std::size_t k = 1; k <= max_size; ++k) cube_root_[k - 1] = std::cbrt(static_cast<double>(k));
   }
 
   std::size_t state_size() const { return 2 * max_size_ + 4; }
@@ -216,6 +219,7 @@ class RateEquations {
   std::size_t collision_index() const { return 2 * max_size_ + 3; }
 
   void rhs(std::span<const double> y, std::span<double> dydt) {
+    if (stop_ && stop_()) throw Stopped();
     read_state(y);
     std::fill(dydt.begin(), dydt.end(), 0.0);
     for (std::size_t k = 1; k <= max_size_; ++k) {
@@ -233,8 +237,6 @@ class RateEquations {
   }
 
  private:
-  std::size_t index(std::size_t k, std::size_t j) const { return (k - 1) * max_size_ + (j - 1); }
-
   void read_state(std::span<const double> y) {
     double total_density = 0.0, total_energy = 0.0;
     for (std::size_t k = 1; k <= max_size_; ++k) {
@@ -255,7 +257,7 @@ class RateEquations {
   void add_pair(std::size_t k, std::size_t j, double c_k, double T_k, double c_j, double T_j,
                 double scale, double* out) const {
     if (c_k < negligible_density || c_j < negligible_density || c_k * c_j < negligible_product) return;
-    const PairConstants& c = pairs_[index(k, j)];
+    const PairConstants c = pair_constants(p_, k, j, cube_root_[k - 1], cube_root_[j - 1]);
     const double theta_k = T_k / c.mass_k, theta_j = T_j / c.mass_j;
     const double s = theta_k + theta_j;
     // Events per unit volume and time / n_1(0): w_kj for k != j, w_kk/2 (\ref cm_mixture_rate "docs/collision-model.md").
@@ -291,8 +293,9 @@ class RateEquations {
   }
 
   Parameters p_;
+  const Stop& stop_;
   std::size_t max_size_;
-  std::vector<PairConstants> pairs_;  // K x K, both orders
+  std::vector<double> cube_root_;     // k^(1/3), k = 1..K
   std::vector<double> density_;       // clamped n_k/n_1(0)
   std::vector<double> temperature_;   // regularised T_k
   double mean_temperature_ = 1.0;     // in units of T0
@@ -359,8 +362,8 @@ std::unique_ptr<CvodeSolver> make_solver(RateEquations& equations, const std::ve
 /// current state (smoluchowski.hpp, "Numerical integration"); without, an integration whose lost mass
 /// passes allowed_lost_mass is abandoned.
 Solution integrate(const Parameters& p, std::size_t max_size, const std::vector<double>& times,
-                   bool grow) {
-  auto equations = std::make_unique<RateEquations>(p, max_size);
+                   bool grow, const Stop& stop) {
+  auto equations = std::make_unique<RateEquations>(p, max_size, stop);
   auto solver = make_solver(*equations, initial_state(*equations), 0.0);
 
   // Rows of the tables as they were written, each with the number of sizes integrated then.
@@ -376,11 +379,16 @@ Solution integrate(const Parameters& p, std::size_t max_size, const std::vector<
   // Advances to t; with `grow`, doubles K once the mass lost at this K has passed grow_lost_mass.
   double lost_before = 0.0;  // lost mass carried in from smaller K
   const auto advance = [&](double t) {
-    solver->advance_to(t);
+    try {
+      solver->advance_to(t);
+    } catch (const std::runtime_error&) {  // CVODE reports the right-hand side's Stopped as its failure
+      if (stop && stop()) throw Stopped();
+      throw;
+    }
     if (grow && lost() - lost_before >= grow_lost_mass && max_size < largest_max_size) {
       lost_before = lost();
       const std::vector<double> y(solver->state().begin(), solver->state().end());
-      auto wider = std::make_unique<RateEquations>(p, 2 * max_size);
+      auto wider = std::make_unique<RateEquations>(p, 2 * max_size, stop);
       std::vector<double> y_wide = widened_state(*equations, *wider, y);
       solver.reset();
       equations = std::move(wider);
@@ -465,15 +473,17 @@ InitialRates initial_rates(const Parameters& parameters) {
   return rates;
 }
 
-Solution solve(const Parameters& parameters, const std::vector<double>& times) {
+Solution solve(const Parameters& parameters, const std::vector<double>& times) { return solve(parameters, times, {}); }
+
+Solution solve(const Parameters& parameters, const std::vector<double>& times, const Stop& stop) {
   check_parameters(parameters, "solve");
   check_times(times);
   // One integration whose K grows as the clusters do; should the mass lost on the way exceed the
   // allowance, integrations from t = 0 with K doubled from that last K.
-  Solution grown = integrate(parameters, first_max_size, times, true);
+  Solution grown = integrate(parameters, first_max_size, times, true, stop);
   if (grown.lost_mass_fraction < allowed_lost_mass) return grown;
   for (std::size_t max_size = grown.max_size; max_size <= largest_max_size; max_size *= 2) {
-    Solution solution = integrate(parameters, max_size, times, false);
+    Solution solution = integrate(parameters, max_size, times, false, stop);
     if (solution.lost_mass_fraction < allowed_lost_mass) return solution;
   }
   throw std::runtime_error("smoluchowski::solve: more than 1e-8 of the mass grows beyond size " +

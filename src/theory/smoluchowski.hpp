@@ -90,6 +90,8 @@
 
 
 #include <cstddef>
+#include <functional>
+#include <stdexcept>
 #include <vector>
 
 namespace gdsmc::theory::smoluchowski {
@@ -173,5 +175,15 @@ struct Solution {
  * bad parameters or times, std::runtime_error naming a failing SUNDIALS call.
  */
 Solution solve(const Parameters& parameters, const std::vector<double>& times);
+
+/// Asked at every right-hand side (O(K^2) work, so within a fraction of a second at any K): true
+/// stops the integration with Stopped (an interrupt, or the time --compare allows the theory).
+using Stop = std::function<bool()>;
+/// What solve() throws when its Stop said so.
+struct Stopped : std::runtime_error {
+  Stopped() : std::runtime_error("the Smoluchowski integration was stopped") {}
+};
+/// solve() that asks `stop` (which may be empty: never) at every right-hand side.
+Solution solve(const Parameters& parameters, const std::vector<double>& times, const Stop& stop);
 
 }  // namespace gdsmc::theory::smoluchowski

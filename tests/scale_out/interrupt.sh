@@ -1,0 +1,162 @@
+#!/usr/bin/env bash
+# Ctrl-C on every path: an endless run (t_end = 1e30) of each kind is sent SIGINT (or SIGTERM) once it
+# is well under way and must end within a second (the standard: "every loop notices Ctrl-C within a
+# second, by time, whatever the step size"), with exit status 130 and no output file, temporary or
+# checkpoint left behind. The kinds: every scheme, one species and a mixture, Enskog, step_fraction
+# from 1e-300 to 100 (the documented range is (0, 100]), blocks and no blocks, threads inside a
+# replica and replicas on threads, the Gaussian and white-noise thermostats, shear flow, rough
+# spheres, aggregation/fragmentation, a sweep, --compare's theory (during and after the run) and
+# granular-theory alone, and with MPIEXEC two MPI ranks.
+# usage: interrupt.sh GRANULAR_DSMC WORKDIR [MPIEXEC]
+set -uo pipefail
+exe=$1 work=$2 mpiexec=${3:-none}
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
+
+limit=1.0  # seconds from the signal to the end of the process
+failures=0 cases=0
+
+base() {  # one species, 1e5 particles (blocks of 32768), an endless run, one replica
+  cat <<EOF
+&system
+  n_species = 1, mass = 1.0, diameter = 1.0, number_density = 0.01, restitution = 0.9
+/
+&initial
+  temperature = 1.0
+/
+&dsmc
+  n_particles = 100000, t_end = 1e30, allow_long_run = .true., replicas = 1, seed = 3
+/
+&output
+  file = 'out.h5', n_samples = 3
+/
+EOF
+}
+mixture=(--set system:n_species=2 --set "system:mass=1.0,2.0" --set "system:diameter=1.0,1.2"
+         --set "system:number_density=0.005,0.005" --set "initial:temperature=1.0,1.0")
+
+# run_case NAME SIGNAL EXTRA_GROUPS [LAUNCHER...] -- [--set ...]
+run_case() {
+  local name=$1 signal=$2 extra=$3
+  shift 3
+  local launcher=()
+  while [ $# -gt 0 ] && [ "$1" != "--" ]; do launcher+=("$1"); shift; done
+  shift
+  cases=$((cases + 1))
+  rm -rf "case-$name" && mkdir "case-$name" && cd "case-$name" || exit 1
+  { base; printf '%s\n' "$extra"; } > in.nml
+  local command=("${launcher[@]}")
+  [ "${launcher[0]:-}" = "mpi" ] && command=("${launcher[@]:1}")
+  "${command[@]}" "$exe" in.nml --quiet "$@" > stdout 2> stderr &
+  local pid=$!
+  sleep 1.2  # past the set-up, inside the loops
+  if ! kill -0 $pid 2>/dev/null; then
+    echo "FAIL $name: ended before the signal: $(tail -1 stderr)"; failures=$((failures + 1)); cd ..; return
+  fi
+  local sent=$(date +%s.%N)
+  if [ "${launcher[0]:-}" = "mpi" ]; then
+    # Open MPI's mpirun passes a signal on to the ranks only after odls_base_sigkill_timeout (1-2 s,
+    # its own delay); a batch system (scancel) and a terminal's Ctrl-C signal the ranks themselves.
+    pkill --signal "$signal" -f "^$exe in.nml"
+  else
+    kill -s "$signal" $pid
+  fi
+  local waited=0
+  if [ "${launcher[0]:-}" = "mpi" ]; then  # the ranks' end (mpirun's own teardown takes ~1 s more)
+    while pgrep -f "^$exe in.nml" > /dev/null && [ $waited -lt 100 ]; do sleep 0.02; waited=$((waited + 1)); done
+    local ended=$(date +%s.%N)
+    for _ in $(seq 100); do kill -0 $pid 2>/dev/null || break; sleep 0.05; done
+  else
+    while kill -0 $pid 2>/dev/null && [ $waited -lt 100 ]; do sleep 0.02; waited=$((waited + 1)); done
+    local ended=$(date +%s.%N)
+  fi
+  if kill -0 $pid 2>/dev/null; then
+    pkill -9 -f "$exe in.nml" ; kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
+    echo "FAIL $name: still running 2 s after SIG$signal"; failures=$((failures + 1)); cd ..; return
+  fi
+  wait $pid
+  local status=$? seconds
+  seconds=$(awk -v a="$sent" -v b="$ended" 'BEGIN { printf "%.3f", b - a }')
+  local left
+  left=$(ls | grep -v -x -e in.nml -e stdout -e stderr | tr '\n' ' ')
+  if [ $status -ne 130 ] || awk -v s="$seconds" -v l="$limit" 'BEGIN { exit !(s > l) }' || [ -n "$left" ]; then
+    echo "FAIL $name: SIG$signal -> exit $status after $seconds s (limit $limit s); left: ${left:-nothing}; $(tail -1 stderr)"
+    failures=$((failures + 1))
+  else
+    echo "ok   $name: SIG$signal -> exit 130 after $seconds s"
+  fi
+  cd ..
+}
+
+for sf in 1e-300 1e-6 1 100; do
+  for scheme in majorant lowrank pairs; do
+    run_case "$scheme-$sf" INT "" -- --set "dsmc:scheme='$scheme'" --set "dsmc:step_fraction=$sf"
+  done
+  run_case "mixture-lowrank-$sf" INT "" -- "${mixture[@]}" --set "dsmc:scheme='lowrank'" --set "dsmc:step_fraction=$sf"
+done
+run_case "majorant-no-blocks-1e-300" INT "" -- --set dsmc:block_size=0 --set dsmc:step_fraction=1e-300
+run_case "mixture-majorant-no-blocks-1e-300" INT "" -- "${mixture[@]}" --set dsmc:block_size=0 --set dsmc:step_fraction=1e-300
+run_case "mixture-pairs-1e-300" INT "" -- "${mixture[@]}" --set "dsmc:scheme='pairs'" --set dsmc:step_fraction=1e-300
+run_case "enskog-pairs-1e-300" INT "" -- --set system:enskog=.true. --set system:number_density=0.2 \
+  --set "dsmc:scheme='pairs'" --set dsmc:step_fraction=1e-300
+run_case "rough-1e-300" INT "" -- --set system:roughness=0.5 --set dsmc:step_fraction=1e-300
+run_case "gaussian-1e-300" INT $'&thermostat\n  kind = \'gaussian\'\n/' -- --set dsmc:step_fraction=1e-300
+run_case "white-noise-1e-300" INT $'&thermostat\n  kind = \'white_noise\', noise_strength = 0.01\n/' -- \
+  --set dsmc:step_fraction=1e-300
+run_case "shear-gaussian-1e-300" INT $'&thermostat\n  kind = \'gaussian\'\n/\n&shear\n  rate = 0.003\n/' -- \
+  --set dsmc:step_fraction=1e-300
+agg=$'&agg_frag\n  aggregation_energy = 0.5, fragmentation_energy = 1.5, fragment_restitution = 0.5\n/'
+for sf in 1e-300 1 100; do
+  run_case "agg-frag-blocks-$sf" INT "$agg" -- --set dsmc:step_fraction=$sf --set dsmc:n_particles=1000000
+  run_case "agg-frag-no-blocks-$sf" INT "$agg" -- --set dsmc:step_fraction=$sf --set dsmc:block_size=0 \
+    --set dsmc:n_particles=1000000
+done
+run_case "sweep-1e-300" INT $'&sweep\n  variable = \'system:restitution\'\n  values = 0.9, 0.7\n/' -- \
+  --set dsmc:step_fraction=1e-300
+run_case "block-threads-1e-300" INT "" env OMP_NUM_THREADS=2 -- --set dsmc:step_fraction=1e-300
+run_case "replica-threads-1e-300" INT "" env OMP_NUM_THREADS=2 -- --set dsmc:replicas=2 --set dsmc:step_fraction=1e-300
+run_case "sigterm-pairs-1e-300" TERM "" -- --set "dsmc:scheme='pairs'" --set dsmc:step_fraction=1e-300
+run_case "sigterm-agg-frag-1e-300" TERM "$agg" -- --set dsmc:step_fraction=1e-300 --set dsmc:block_size=0
+# --compare of a sticking gas: the Smoluchowski theory takes far longer than the run (the run takes
+# 0.3 s, the theory would take hours); interrupted while the theory runs beside the run (2 threads),
+# and after the run while only the theory is left (t_end = 1000).
+sticky=(--compare --set agg_frag:aggregation_energy=100)
+run_case "compare-agg-frag-during-run" INT "$agg" env OMP_NUM_THREADS=2 -- "${sticky[@]}" --set dsmc:n_particles=1000000
+run_case "compare-agg-frag-theory-after-run" INT "$agg" -- "${sticky[@]}" --set dsmc:t_end=1000
+run_case "compare-agg-frag-theory-one-thread" INT "$agg" env OMP_NUM_THREADS=1 -- "${sticky[@]}" --set dsmc:t_end=1000
+# granular-theory alone on the same input
+theory_exe=$(dirname "$exe")/granular-theory
+if [ -x "$theory_exe" ]; then
+  cases=$((cases + 1))
+  cd case-compare-agg-frag-theory-after-run || exit 1
+  "$theory_exe" in.nml --set agg_frag:aggregation_energy=100 --set dsmc:t_end=1000 > theory.json 2> theory.err &
+  pid=$!
+  sleep 1.2
+  sent=$(date +%s.%N)
+  kill -INT $pid
+  waited=0
+  while kill -0 $pid 2>/dev/null && [ $waited -lt 100 ]; do sleep 0.02; waited=$((waited + 1)); done
+  ended=$(date +%s.%N)
+  if kill -0 $pid 2>/dev/null; then
+    kill -9 $pid; wait $pid; echo "FAIL granular-theory: still running 2 s after SIGINT"; failures=$((failures + 1))
+  else
+    wait $pid
+    status=$?
+    seconds=$(awk -v a="$sent" -v b="$ended" 'BEGIN { printf "%.3f", b - a }')
+    if [ $status -ne 130 ] || [ -s theory.json ] || awk -v s="$seconds" -v l="$limit" 'BEGIN { exit !(s > l) }'; then
+      echo "FAIL granular-theory: SIGINT -> exit $status after $seconds s, $(wc -c < theory.json) bytes printed; $(cat theory.err)"
+      failures=$((failures + 1))
+    else
+      echo "ok   granular-theory: SIGINT -> exit 130 after $seconds s, nothing printed"
+    fi
+  fi
+  cd ..
+fi
+if [ "$mpiexec" != "none" ]; then
+  mpi=("$mpiexec" --oversubscribe -np 2)
+  if [ "$(id -u)" -eq 0 ]; then mpi+=(--allow-run-as-root); fi
+  run_case "mpi-2-ranks-1e-300" INT "" mpi env OMP_NUM_THREADS=1 "${mpi[@]}" -- --set dsmc:replicas=2 \
+    --set "dsmc:scheme='pairs'" --set dsmc:step_fraction=1e-300
+fi
+
+echo "$((cases - failures)) of $cases kinds of run stopped within $limit s of the signal"
+[ $failures -eq 0 ]
