@@ -2,6 +2,7 @@
 // exit status, the one-line message on stderr for bad input, and what is left in the directory.
 // Each test runs the real programs in a fresh temporary directory; every run is tiny.
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -9,6 +10,8 @@
 #include <gtest/gtest.h>
 
 #include "base_namelist.hpp"
+#include "io/file_lock.hpp"
+#include "run/checkpoint.hpp"
 #include "io/h5md.hpp"
 #include "io/version.hpp"
 
@@ -95,8 +98,10 @@ class CliFixture : public ::testing::Test {
   }
 
   /// Runs `tool args` in `dir` (args are passed to the shell as written).
-  Result run(const std::string& tool, const std::string& args) {
-    const std::string command = "cd " + quoted(dir.string()) + " && " +
+  /// Runs `tool args` in the test's folder; with `timeout_seconds`, killed after that long (exit 137).
+  Result run(const std::string& tool, const std::string& args, int timeout_seconds = 0) {
+    const std::string limit = timeout_seconds > 0 ? "timeout -s KILL " + std::to_string(timeout_seconds) + " " : "";
+    const std::string command = "cd " + quoted(dir.string()) + " && " + limit +
                                 quoted((fs::path(GDSMC_BIN_DIR) / tool).string()) + " " + args +
                                 " >" + quoted((capture / "stdout").string()) + " 2>" +
                                 quoted((capture / "stderr").string()) + " </dev/null";
@@ -361,6 +366,149 @@ TEST_F(CliDsmc, AnEndlessRunStopsAtSigintLeavingOnlyTheCheckpoint) {
   EXPECT_EQ(files(), (std::vector<std::string>{"out.checkpoint.h5", "t.nml"}));
 }
 
+// A checkpoint belongs to its run: a fresh run over an interrupted run's checkpoint, another input's,
+// or a file that is no checkpoint is refused in one line (the checkpoint would be replaced); with
+// --force it runs, and deletes at its end only a checkpoint it wrote itself, never the other run's.
+TEST_F(CliDsmc, ACheckpointOfAnotherRunIsNeitherReplacedNorDeleted) {
+  ASSERT_EQ(interrupt_an_endless_run(*this, 1500000).first, 130);
+  ASSERT_TRUE(fs::exists(dir / "out.checkpoint.h5"));
+  const std::string before = read_text(dir / "out.checkpoint.h5");
+  const std::vector<std::string> left{"out.checkpoint.h5", "t.nml"};
+  expect_input_error(run("granular-dsmc", "t.nml --quiet"), "granular-dsmc",
+                     "t.nml:16: &output: file: 'out.checkpoint.h5' holds the checkpoint of an interrupted run of this "
+                     "input: resume it with --restart out.checkpoint.h5, or give --force",
+                     {}, left);
+  expect_input_error(run("granular-dsmc", "t.nml --quiet --set dsmc:seed=9"), "granular-dsmc",
+                     "t.nml:16: &output: file: 'out.checkpoint.h5' holds the checkpoint of a run of another input", {}, left);
+  // --force, a short run (no checkpoint of its own): the interrupted run's checkpoint is still there.
+  const Result forced = run("granular-dsmc", "t.nml --quiet --force --set dsmc:t_end=1.0");
+  EXPECT_EQ(forced.status, 0) << forced.err;
+  EXPECT_EQ(read_text(dir / "out.checkpoint.h5"), before);
+  EXPECT_EQ(files(), (std::vector<std::string>{"out.checkpoint.h5", "out.h5", "t.nml"}));
+  // Not a checkpoint at all: refused, and kept with --force.
+  fs::remove(dir / "out.h5");
+  write("out.checkpoint.h5", "my notes");
+  expect_input_error(run("granular-dsmc", "t.nml --quiet --set dsmc:t_end=1.0"), "granular-dsmc",
+                     "t.nml:16: &output: file: 'out.checkpoint.h5' exists and is not a checkpoint of granular-dsmc", {},
+                     left);
+  EXPECT_EQ(run("granular-dsmc", "t.nml --quiet --force --set dsmc:t_end=1.0").status, 0);
+  EXPECT_EQ(read_text(dir / "out.checkpoint.h5"), "my notes");
+}
+
+// Two runs on one output: the second is refused in one line naming the first's process (the lock of
+// io/file_lock.hpp, held here by the test itself); the lock file is gone once its holder ends.
+TEST_F(CliDsmc, ASecondRunOnTheSameOutputIsRefused) {
+  {
+    const gdsmc::io::FileLock lock((dir / "out.lock").string());
+    ASSERT_TRUE(lock.held());
+    expect_input_error(dsmc(base()), "granular-dsmc",
+                       "t.nml:16: &output: file: cannot write output file 'out.h5': another run (process " +
+                           std::to_string(::getpid()) + ") is writing it (lock file 'out.lock')",
+                       {}, {"out.lock", "t.nml"});
+  }
+  EXPECT_FALSE(fs::exists(dir / "out.lock"));
+  const Result r = dsmc(base());
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(files(), (std::vector<std::string>{"out.h5", "t.nml"}));
+  // A stale lock file of a killed run (a process id, no lock held) is taken and removed at the end.
+  write("out.lock", "4194300\n");
+  EXPECT_EQ(dsmc(base()).status, 0);
+  EXPECT_EQ(files(), (std::vector<std::string>{"out.h5", "t.nml"}));
+  // A user's file, a link or a FIFO at the lock's path is neither truncated nor removed: refused.
+  write("out.lock", "my notes");
+  expect_input_error(dsmc(base()), "granular-dsmc",
+                     "t.nml:16: &output: file: cannot write output file 'out.h5': 'out.lock' exists and is not a lock "
+                     "file of granular-dsmc",
+                     {}, {"out.h5", "out.lock", "t.nml"});
+  EXPECT_EQ(read_text(dir / "out.lock"), "my notes");
+  fs::remove(dir / "out.lock");
+  fs::create_symlink("/nonexistent/x", dir / "out.lock");
+  expect_input_error(dsmc(base()), "granular-dsmc", "t.nml:16: &output: file: cannot write output file 'out.h5': ",
+                     {"not a regular file"}, {"out.h5", "out.lock", "t.nml"});
+  EXPECT_TRUE(fs::is_symlink(dir / "out.lock"));
+}
+
+/// Sets the scalar string attribute `name` of `object` in `file` (replacing it).
+void set_string_attribute(const std::string& file, const std::string& object, const char* name, const std::string& value) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  const hid_t o = H5Oopen(f, object.c_str(), H5P_DEFAULT);
+  ASSERT_GE(o, 0) << object;
+  if (H5Aexists(o, name) > 0) {
+    ASSERT_GE(H5Adelete(o, name), 0);
+  }
+  const hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, H5T_VARIABLE);
+  const hid_t scalar = H5Screate(H5S_SCALAR);
+  const hid_t a = H5Acreate2(o, name, type, scalar, H5P_DEFAULT, H5P_DEFAULT);
+  const char* text = value.c_str();
+  ASSERT_GE(H5Awrite(a, type, &text), 0);
+  H5Aclose(a);
+  H5Sclose(scalar);
+  H5Tclose(type);
+  H5Oclose(o);
+  H5Fclose(f);
+}
+
+/// Replaces the first value of dataset `name` of the checkpoint unit `unit` (reals or integers) by
+/// `value`, or with `remove_it` removes the dataset and its name from the unit's list, and signs the
+/// result with a valid checksum (run/checkpoint.hpp content_checksum): a forgery that the checksum
+/// cannot catch, only the check of each field.
+void forge_checkpoint(const std::string& file, const std::string& unit, const std::string& name, double value,
+                      bool remove_it) {
+  const std::string dataset = unit + "/" + name;
+  if (remove_it) {
+    for (const char* list : {"reals", "integers"}) {
+      std::string names = gdsmc::io::h5md::read_string_attribute(file, unit, list);
+      const auto at = names.find(name + "\n");
+      if (at == std::string::npos) continue;
+      names.erase(at, name.size() + 1);
+      set_string_attribute(file, unit, list, names);
+    }
+    const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(H5Ldelete(f, dataset.c_str(), H5P_DEFAULT), 0) << dataset;
+    H5Fclose(f);
+  } else {
+    const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    const hid_t d = H5Dopen2(f, dataset.c_str(), H5P_DEFAULT);
+    ASSERT_GE(d, 0) << dataset;
+    const hid_t space = H5Dget_space(d);
+    std::vector<double> values(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
+    ASSERT_GE(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), 0);
+    values.at(0) = value;  // (converted to the dataset's type: uint64 for integers)
+    ASSERT_GE(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), 0);
+    H5Sclose(space);
+    H5Dclose(d);
+    H5Fclose(f);
+  }
+  set_string_attribute(file, "/checkpoint", "checksum", gdsmc::simulation::content_checksum(file));
+}
+
+// Checkpoints with a valid checksum but a forged field: velocities of 1e300 (the restart never ended),
+// a next_sample beyond the samples recorded (an output of NaN errors), a missing array. Each is refused
+// in one line with exit 2 before the unit runs.
+TEST_F(CliDsmc, AForgedCheckpointFieldIsRefusedByItsCheck) {
+  ASSERT_EQ(interrupt_an_endless_run(*this, 1500000).first, 130);
+  const fs::path original = dir / "original.h5";
+  fs::copy_file(dir / "out.checkpoint.h5", original);
+  const std::string unit = "/checkpoint/running/unit_0";
+  const std::vector<std::tuple<std::string, double, bool, std::string>> forgeries{
+      {"particles/velocity", 1e300, false, "m v^2 beyond 1e30 times the largest initial temperature"},
+      {"replica/next_sample", 99.0, false, "'replica/next_sample' is 99 but the record holds"},
+      {"gas/c_sum", 0.0, true, "'gas/c_sum' is missing"},
+      {"collider/transfer", 0.0, true, "'collider/transfer' is missing"},
+  };
+  for (const auto& [name, value, remove_it, message] : forgeries) {
+    fs::copy_file(original, dir / "out.checkpoint.h5", fs::copy_options::overwrite_existing);
+    forge_checkpoint((dir / "out.checkpoint.h5").string(), unit, name, value, remove_it);
+    const Result r = run("granular-dsmc", "t.nml --quiet --restart out.checkpoint.h5", 60);  // (an endless run)
+    EXPECT_EQ(r.status, 2) << name << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(r.err.rfind("granular-dsmc: --restart: the checkpoint is damaged: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+  }
+}
+
 TEST_F(CliDsmc, ADamagedCheckpointIsRefusedAsDamaged) {
   ASSERT_EQ(interrupt_an_endless_run(*this, 2500000).first, 130);
   ASSERT_TRUE(fs::exists(dir / "out.checkpoint.h5"));
@@ -422,6 +570,21 @@ TEST_F(CliDsmc, AFifoOrADeviceIsNeverOpenedOrReplaced) {
   expect_input_error(dsmc(base(), "--output x.h5 --compare=out.h5"), "granular-dsmc",
                      "--compare=out.h5: cannot write the JSON file: it is a FIFO (named pipe), not a regular file", {},
                      {"out.h5", "t.nml"});
+}
+
+// n_particles = 2e9 is allowed, and ended in std::bad_alloc (exit 1) after start; a run whose particles
+// alone cannot fit (here under ulimit -v 4 GB: 1e9 particles x 28 bytes) is refused before any work.
+TEST_F(CliDsmc, ARunThatCannotFitInMemoryIsRefusedWithTheEstimate) {
+  struct rlimit saved {};
+  ASSERT_EQ(::getrlimit(RLIMIT_AS, &saved), 0);
+  struct rlimit limited = saved;
+  limited.rlim_cur = 4000000000ull;
+  if (saved.rlim_max != RLIM_INFINITY && saved.rlim_max < limited.rlim_cur) GTEST_SKIP() << "hard limit below 4 GB";
+  ASSERT_EQ(::setrlimit(RLIMIT_AS, &limited), 0);
+  const Result r = dsmc(base(), "--set dsmc:n_particles=1000000000 --set dsmc:replicas=1");
+  ::setrlimit(RLIMIT_AS, &saved);
+  expect_input_error(r, "granular-dsmc", "--set dsmc:n_particles=1000000000: &dsmc: n_particles: ",
+                     {"need about 28 GB", "more than the address-space limit (ulimit -v) (4 GB)"});
 }
 
 TEST_F(CliDsmc, EmptyFileBomNulAndRestartDirectory) {
@@ -667,6 +830,7 @@ TEST_F(CliDsmc, UnknownOptionOrNoInput) {
   const Result r = run("granular-dsmc", "t.nml --bogus");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("unknown option --bogus"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line, not the whole usage:\n" << r.err;
   EXPECT_EQ(run("granular-dsmc", "").status, 2);
   EXPECT_EQ(run("granular-dsmc", "t.nml --output").status, 2);
   EXPECT_EQ(files(), std::vector<std::string>{"t.nml"});

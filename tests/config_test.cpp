@@ -564,6 +564,15 @@ TEST(ConfigError, ViscoelasticNeedsItsParameterAndNoAlpha) {
   expect_error(stray, 6, "system", "visco_a_kappa", {"only used with restitution_model = 'viscoelastic'"});
 }
 
+// The restitution series holds up to u = 0.8 (docs/viscoelastic.md "Range of validity"); a run whose
+// impacts reach beyond failed with exit 1 after start naming no variable. Pair 1-1 at T = 1, m = 1:
+// impact speed 7 sqrt(2) = 9.90, u = sqrt(1.0) 9.90^(1/10) = 1.258 (by hand); 0.09 gives 0.377.
+TEST(ConfigError, ViscoelasticBeyondTheSeriesIsRefusedBeforeTheRun) {
+  const std::string m = error_of(with_line(6, "  restitution_model = 'viscoelastic', visco_a_kappa = 1.0"));
+  expect_error(m, 6, "system", "visco_a_kappa", {"reaches 1.26 at impact speed 9.9", "cut-off 0.8"});
+  EXPECT_NO_THROW(read_text(with_line(6, "  restitution_model = 'viscoelastic', visco_a_kappa = 0.09")));
+}
+
 TEST(ConfigRead, ViscoelasticBetaFollowsOneMaterialScaling) {
   const auto c = read_text(with_line(6, "  restitution_model = 'viscoelastic', visco_a_kappa = 0.09"));
   const auto beta = c.viscoelastic_beta();
@@ -696,6 +705,23 @@ TEST(ConfigError, MissingRequiredVariable) {
 TEST(ConfigError, TemperatureListOfWrongLength) {
   const std::string m = error_of(with_line(9, "  temperature = 1.0, 1.0, 1.0"));
   expect_error(m, 9, "initial", "temperature", {"expected 1 or n_species = 2 values", "got 3"});
+}
+
+// Scales far from 1 in the input's units ran and wrote NaN (mass = 1e308: T/m underflows, the fourth
+// moments to 0/0; a density of 1e-300: no collisions at all); refused in one line naming the variable.
+TEST(ConfigError, ScalesOutsideDoubleRangeAreRefused) {
+  expect_error(error_of(with_line(3, "  mass = 1e308, 10.0")), 3, "system", "mass",
+               {"mass(1) = 1e+308 is outside [1e-100, 1e100]", "fourth moments"});
+  expect_error(error_of(with_line(5, "  number_density = 0.02, 1e-300")), 5, "system", "number_density",
+               {"number_density(2) = 1e-300"});
+  expect_error(error_of(with_line(9, "  temperature = 1e-300")), 9, "initial", "temperature",
+               {"temperature(1) = 1e-300"});
+  auto hot = base_lines;
+  hot[8] = "  temperature = 1e50";
+  expect_error(error_of(gdsmc::test::with_line(hot, 3, "  mass = 1e-60, 10.0")), 9, "initial", "temperature",
+               {"temperature/mass(1) = 1e+110"});
+  expect_error(error_of(with_line(4, "  diameter = 1e-60, 1.0")), 5, "system", "number_density",
+               {"number_density x diameter^2 x sqrt(temperature/mass)(1) = 2e-122"});
 }
 
 // ---- Errors in overrides name the override, errors in the file name the file ----

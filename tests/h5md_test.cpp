@@ -193,6 +193,54 @@ TEST(H5md, TemporaryFileUntilCommit) {
   EXPECT_FALSE(fs::exists(writer.temporary_path()));
 }
 
+// A link planted at the temporary's name (a symlink attack, or a leftover) is removed, never written
+// through: its target keeps its content and the output is a regular file of its own.
+TEST(H5md, ALinkAtTheTemporaryNameIsNotFollowed) {
+  const TempDir dir;
+  const std::string path = dir.file("out.h5"), victim = dir.file("victim.txt");
+  std::ofstream(victim) << "precious";
+  fs::create_symlink(victim, path + ".tmp." + std::to_string(::getpid()));
+  Writer writer(path, "me", "granular-dsmc", "0.1.0");
+  EXPECT_FALSE(fs::is_symlink(writer.temporary_path()));
+  writer.commit();
+  EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(path)));
+  std::ifstream in(victim);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), "precious");
+}
+
+// A file that appears at the final path during the run and is not this creator's stays; the complete
+// new file is kept beside it under a name that says so. An earlier file of the creator, and anything
+// with replace_any_file(), is replaced.
+TEST(H5md, AFileThatAppearedDuringTheRunIsNotReplaced) {
+  const TempDir dir;
+  const std::string path = dir.file("out.h5");
+  {
+    Writer writer(path, "me", "granular-dsmc", "0.1.0");
+    std::ofstream(path) << "the user's";
+    try {
+      writer.commit();
+      ADD_FAILURE() << "commit replaced a file that is not granular-dsmc's";
+    } catch (const std::runtime_error& e) {
+      const std::string kept = dir.file("out.kept-" + std::to_string(::getpid()) + ".h5");
+      EXPECT_NE(std::string(e.what()).find("the complete output is in '" + kept + "'"), std::string::npos) << e.what();
+      EXPECT_TRUE(written_by(kept, "granular-dsmc"));
+    }
+  }
+  std::ifstream in(path);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), "the user's");
+  EXPECT_FALSE(written_by(path, "granular-dsmc"));
+  {
+    Writer writer(path, "me", "granular-dsmc", "0.1.0");
+    writer.replace_any_file();
+    writer.commit();
+  }
+  EXPECT_TRUE(written_by(path, "granular-dsmc"));
+  EXPECT_FALSE(written_by(path, "granular-dsmc checkpoint"));
+  Writer again(path, "me", "granular-dsmc", "0.1.0");  // its own earlier file: replaced
+  again.commit();
+  EXPECT_TRUE(written_by(path, "granular-dsmc"));
+}
+
 TEST(H5md, DestructionWithoutCommitLeavesNothing) {
   const TempDir dir;
   const std::string path = dir.file("out.h5");

@@ -225,3 +225,24 @@ TEST(Sample, AccumulatorOneReplica) {
   EXPECT_EQ(acc.mean(), (std::vector<double>{1.5, -2.0}));
   EXPECT_TRUE(acc.standard_error().empty());
 }
+
+// G_i = exp(2 beta v*/zeta*) Phi_i (Montanero and Garzo 2002, eq. (30)) has no meaning without cooling:
+// an elastic run (zeta* = 0) wrote +Inf in every bin (or NaN where Phi = 0). It is written as 0 there,
+// as Delta is where it is undefined; with cooling it is the weight times Phi, by hand at one bin.
+TEST(Sample, ReducedDistributionsAreFiniteWithoutCooling) {
+  const species::Mixture mix = mixture({1.0});
+  const std::size_t bins = 4;
+  const double range = 4.0;
+  const std::vector<double> phi{0.1, 0.2, 0.0, 0.05}, phi_error{0.01, 0.01, 0.0, 0.01};
+  for (double zeta : {0.0, -1.0, 1e-300}) {
+    const auto d = sample::reduced_distributions(mix, phi, phi_error, {0.0}, {1.0}, zeta, bins, range);
+    for (std::size_t b = 0; b < bins; ++b) {
+      EXPECT_EQ(d.species[0].g[b], 0.0) << "zeta* = " << zeta << ", bin " << b;
+      EXPECT_EQ(d.species[0].g_error[b], 0.0);
+      EXPECT_TRUE(std::isfinite(d.species[0].delta[b]));
+    }
+  }
+  const auto d = sample::reduced_distributions(mix, phi, phi_error, {0.1}, {1.0}, 2.0, bins, range);
+  const double beta = M_PI * mix.pair_correlation(0, 0);  // one species: pi chi (sigma/sigma)^2
+  EXPECT_NEAR(d.species[0].g[1], std::exp(2.0 * beta * 1.5 / 2.0) * 0.2, 1e-12);
+}

@@ -11,6 +11,7 @@
 #include "io/config.hpp"
 #include "io/h5md.hpp"
 #include "io/namelist.hpp"
+#include "run/replica.hpp"
 
 namespace fs = std::filesystem;
 using namespace gdsmc;
@@ -188,4 +189,30 @@ TEST(Simulation, ScalingStateIsTheReplicasAverages) {
   }
   EXPECT_NEAR(closure, 1.0, 1e-12);
   EXPECT_EQ(io::h5md::read_double_attribute(path.string(), "/observables/scaling_state", "scaling_start"), 6.0);
+}
+
+// The energy guard of free and cluster gases (run/replica.hpp): a rise beyond 1e-6 relative between two
+// samples stops the run in one line naming both values and times; a fall, or a rise of round-off
+// (elastic gases: ~1e-12), does not. By hand on rows of total_temperature.
+TEST(Simulation, TheEnergyGuardStopsAGasThatHeats) {
+  gdsmc::simulation::ReplicaResult r;
+  r.add("time", 1, {0.0});
+  r.add("total_temperature", 1, {1.0});
+  EXPECT_NO_THROW(gdsmc::simulation::check_energy_does_not_grow(r, "total_temperature"));  // one sample
+  r.add("time", 1, {5.0});
+  r.add("total_temperature", 1, {1.0 + 1e-9});
+  EXPECT_NO_THROW(gdsmc::simulation::check_energy_does_not_grow(r, "total_temperature"));
+  r.add("time", 1, {10.0});
+  r.add("total_temperature", 1, {0.5});
+  EXPECT_NO_THROW(gdsmc::simulation::check_energy_does_not_grow(r, "total_temperature"));
+  r.add("time", 1, {20.0});
+  r.add("total_temperature", 1, {0.51});
+  try {
+    gdsmc::simulation::check_energy_does_not_grow(r, "total_temperature");
+    ADD_FAILURE() << "a rise of 2 % passed";
+  } catch (const std::runtime_error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("rose from 0.5 to 0.51 between t = 10 and t = 20"), std::string::npos) << m;
+  }
+  EXPECT_NO_THROW(gdsmc::simulation::check_energy_does_not_grow(r, "total_energy"));  // no such row
 }

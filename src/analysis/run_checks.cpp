@@ -47,7 +47,8 @@ std::vector<std::string> input_warnings(const io::config::Config& config) {
   double densest = 0.0;
   for (const auto& point : config.sweep_points()) {
     const auto mix = point.mixture();
-    if (!mix.enskog) densest = std::max(densest, mix.packing_fraction());
+    // (&agg_frag is the dilute cluster gas by definition, docs/agg-frag.md: enskog cannot be set there)
+    if (!mix.enskog && !point.has_agg_frag) densest = std::max(densest, mix.packing_fraction());
   }
   if (densest > kDenseWarning) {
     const double chi = (1.0 - densest / 2.0) / std::pow(1.0 - densest, 3);  // Carnahan-Starling, docs/collision-model.md

@@ -1,4 +1,5 @@
 // granular-dsmc: runs the simulation a namelist describes and writes one H5MD file (\ref output_h5md "docs/output.md").
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include <fstream>
 #include <future>
 #include <iostream>
+#include <new>
 #include <optional>
 #include <string>
 #include <system_error>
@@ -23,6 +25,7 @@
 #include "analysis/compare.hpp"
 #include "analysis/run_checks.hpp"
 #include "io/config.hpp"
+#include "io/file_lock.hpp"
 #include "io/h5md.hpp"
 #include "io/namelist.hpp"
 #include "analysis/run_table.hpp"
@@ -47,19 +50,7 @@ std::string special_file_kind(const std::string& path) {
 
 /// Whether `path` holds an earlier output of this program (an HDF5 file whose /h5md creator is
 /// granular-dsmc), which a new run may replace; anything else is the user's and is kept.
-bool is_earlier_output(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) return false;
-  char signature[8] = {};
-  const bool hdf5 = std::fread(signature, 1, 8, f) == 8 && std::memcmp(signature, "\x89HDF\r\n\x1a\n", 8) == 0;
-  std::fclose(f);
-  if (!hdf5) return false;
-  try {
-    return gdsmc::io::h5md::read_string_attribute(path, "/h5md/creator", "name") == "granular-dsmc";
-  } catch (const std::exception&) {
-    return false;
-  }
-}
+bool is_earlier_output(const std::string& path) { return gdsmc::io::h5md::written_by(path, "granular-dsmc"); }
 
 /// Whether two paths name the same file, also when neither exists yet (lexically, after resolving
 /// what exists of them).
@@ -130,7 +121,8 @@ const char* kUsage =
     "                    the output is the same as that of an uninterrupted run\n"
     "  --set G:V=X       override variable V of group &G with X (Fortran syntax), e.g.\n"
     "                    --set dsmc:n_particles=2000 --set \"output:file='x.h5'\"\n"
-    "  --force           write the output over an existing file that is not an earlier output of granular-dsmc\n"
+    "  --force           write the output over an existing file that is not an earlier output of granular-dsmc,\n"
+    "                    and start afresh over the checkpoint of another or an interrupted run (replaced)\n"
     "  --print-defaults  print a commented namelist with every variable and its default\n"
     "  --print-observables  print the table of observables (name, unit, columns, definition) as Markdown\n"
     "  --table FILE.h5   print an output file as CSV (docs/output.md \"granular-dsmc --table\"): every time\n"
@@ -252,7 +244,7 @@ std::optional<int> parse_arguments(int argc, char** argv, Arguments& a) {
     } else if (arg == "--set") {
       a.overrides.push_back(next());
     } else if (!arg.empty() && arg[0] == '-') {
-      std::cerr << "granular-dsmc: unknown option " << arg << "\n" << kUsage;
+      std::cerr << "granular-dsmc: unknown option " << arg << " (granular-dsmc --help lists the options)\n";
       return 2;
     } else if (a.input.empty()) {
       a.input = arg;
@@ -278,6 +270,73 @@ int output_error(const Arguments& a, const gdsmc::io::config::Config& config, bo
     std::cerr << "granular-dsmc: "
               << gdsmc::io::namelist::Error(where, set ? it->second.second : 0, "output", "file", message).what() << "\n";
   return 2;
+}
+
+/// `bytes` as "1.2 GB" (decimal units, 2 significant digits).
+std::string format_bytes(double bytes) {
+  const char* units[] = {"bytes", "kB", "MB", "GB", "TB", "PB"};
+  int u = 0;
+  while (bytes >= 1000.0 && u < 5) {
+    bytes /= 1000.0;
+    ++u;
+  }
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2g %s", bytes, units[u]);
+  return text;
+}
+
+/// A run whose particles alone need more memory than the machine has (its physical memory, or the
+/// address-space limit of ulimit -v when lower) is refused before any work, naming n_particles, instead
+/// of failing with std::bad_alloc after start.
+std::optional<int> check_memory(const gdsmc::io::config::Config& config, bool root) {
+  const double need = gdsmc::simulation::estimated_memory_bytes(config, gdsmc::parallel::threads(), gdsmc::parallel::size());
+  double have = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGE_SIZE));
+  std::string what = "this machine's memory";
+  if (struct rlimit limit {}; ::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY &&
+                              static_cast<double>(limit.rlim_cur) < have) {
+    have = static_cast<double>(limit.rlim_cur);
+    what = "the address-space limit (ulimit -v)";
+  }
+  if (!(have > 0.0) || need <= have) return std::nullopt;
+  const auto it = config.origin.find("dsmc:n_particles");
+  const std::string file = it == config.origin.end() ? config.source_file : it->second.first;
+  const int line = it == config.origin.end() ? 0 : it->second.second;
+  if (root)
+    std::cerr << "granular-dsmc: "
+              << gdsmc::io::namelist::Error(file, line, "dsmc", "n_particles",
+                                            "the particles of the replicas run at once need about " + format_bytes(need) +
+                                                ", more than " + what + " (" + format_bytes(have) +
+                                                "): fewer particles, replicas or threads (OMP_NUM_THREADS), or more MPI ranks")
+                     .what()
+              << "\n";
+  return 2;
+}
+
+/// A checkpoint at the output's checkpoint path that this run would replace (its first checkpoint) and
+/// another run may need: refused without --force, unless it is the checkpoint this run resumes (or one of
+/// the same input, when --restart resumes from a copy).
+std::optional<int> check_checkpoint(const Arguments& a, const gdsmc::io::config::Config& config, bool root) {
+  using gdsmc::simulation::CheckpointFound;
+  const std::string& path = config.output.file;
+  const std::string checkpoint = gdsmc::simulation::checkpoint_path(path);
+  if (a.force || (!a.restart.empty() && same_file(a.restart, checkpoint))) return std::nullopt;
+  switch (gdsmc::simulation::find_checkpoint(config, path)) {
+    case CheckpointFound::none: return std::nullopt;
+    case CheckpointFound::this_input:  // resuming this input from a copy elsewhere replaces it: as asked
+      if (!a.restart.empty()) return std::nullopt;
+      return output_error(a, config, root,
+                          "'" + checkpoint + "' holds the checkpoint of an interrupted run of this input: resume it "
+                          "with --restart " + checkpoint + ", or give --force to start afresh and replace it");
+    case CheckpointFound::other_input:
+      return output_error(a, config, root,
+                          "'" + checkpoint + "' holds the checkpoint of a run of another input (namelist or --set) "
+                          "with the same output: choose another output file, or give --force to replace it");
+    case CheckpointFound::not_a_checkpoint:
+      break;
+  }
+  return output_error(a, config, root,
+                      "'" + checkpoint + "' exists and is not a checkpoint of granular-dsmc; this run's checkpoints "
+                      "go there: choose another output file, or give --force to replace it");
 }
 
 /// The files a run writes, checked before it: never the input, the checkpoint being resumed, or a file
@@ -306,6 +365,7 @@ std::optional<int> check_paths(const Arguments& a, const gdsmc::io::config::Conf
     return output_error(a, config, root,
                         "'" + path + "' exists and is not an output of granular-dsmc: choose another file, or "
                         "give --force to replace it");
+  if (const auto refused = check_checkpoint(a, config, root)) return refused;
   if (a.compare_json.empty()) return std::nullopt;
   // The JSON of --compare: never the input, the output or the checkpoint; writable before the run.
   const auto json_error = [&](const std::string& message) {
@@ -362,6 +422,7 @@ int run(const Arguments& a, const gdsmc::io::config::Config& config, bool root) 
   options.progress_terminal = isatty(STDERR_FILENO) != 0;
   options.interrupt = &g_interrupted;
   options.restart_path = a.restart;
+  options.replace_any_file = a.force;
   const std::string& path = config.output.file;
   gdsmc::analysis::compare::Comparison comparison;
   // The theory stops at an interrupt, and once the run is done it may take as long again as the run
@@ -425,6 +486,12 @@ int run(const Arguments& a, const gdsmc::io::config::Config& config, bool root) 
   } catch (const gdsmc::simulation::OutputPathError& e) {
     if (!root) return 2;
     return output_error(a, config, root, e.what());
+  } catch (const std::bad_alloc&) {
+    std::cerr << "granular-dsmc: out of memory (the particles alone need about "
+              << format_bytes(gdsmc::simulation::estimated_memory_bytes(config, gdsmc::parallel::threads(),
+                                                                         gdsmc::parallel::size()))
+              << " on this rank): nothing written; fewer particles, replicas or threads\n";
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "granular-dsmc: " << e.what() << "\n";
     return 1;
@@ -452,7 +519,20 @@ int main(int argc, char** argv) {
     if (root) std::cerr << "granular-dsmc: " << e.what() << "\n";
     return 2;
   }
+  // The lock first (rank 0 takes it, every rank learns the answer): the checks below then see no other
+  // run of this output at work. Released, and its file removed, when main returns.
+  std::optional<gdsmc::io::FileLock> lock;
+  std::string busy;
+  if (root) try {
+      lock.emplace(gdsmc::simulation::lock_path(config.output.file));
+    } catch (const gdsmc::io::LockRefused& e) {
+      busy = e.what();
+    }
+  busy = gdsmc::parallel::broadcast_from_root(busy);
+  if (!busy.empty())
+    return output_error(arguments, config, root, "cannot write output file '" + config.output.file + "': " + busy);
   if (const auto refused = check_paths(arguments, config, root)) return *refused;
+  if (const auto refused = check_memory(config, root)) return *refused;
   if (root)
     for (const auto& warning : gdsmc::analysis::input_warnings(config)) std::cerr << "granular-dsmc: warning: " << warning << "\n";
   return run(arguments, config, root);

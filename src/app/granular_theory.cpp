@@ -289,10 +289,14 @@ int main(int argc, char** argv) {
     if (arg == "--help" || arg == "-h") {
       std::cout << kUsage;
       return 0;
-    } else if (arg == "--set" && i + 1 < argc) {
+    } else if (arg == "--set") {
+      if (i + 1 == argc) {
+        std::cerr << "granular-theory: --set needs a value (--set group:variable=value)\n";
+        return 2;
+      }
       overrides.push_back(argv[++i]);
     } else if (!arg.empty() && arg[0] == '-') {
-      std::cerr << "granular-theory: unknown option " << arg << "\n" << kUsage;
+      std::cerr << "granular-theory: unknown option " << arg << " (granular-theory --help lists the options)\n";
       return 2;
     } else if (input.empty()) {
       input = arg;

@@ -191,9 +191,12 @@ observables::ReducedDistributions reduced_distributions(const species::Mixture& 
       const bool defined = maxwell > 0.0 && c[k] != 0.0;
       delta[b] = defined ? 2.0 / c[k] * (value[b] / maxwell - 1.0) : 0.0;
       delta_error[b] = defined ? 2.0 / std::abs(c[k]) * error[b] / maxwell : 0.0;
-      const double weight = std::exp(2.0 * beta * 0.5 * (edges[b] + edges[b + 1]) / zeta);  // eq 30
-      g[b] = weight * value[b];
-      g_error[b] = weight * error[b];
+      // eq 30; without cooling (zeta* = 0: an elastic or driven gas) there is no exponential tail and
+      // the weight overflows: G is written as 0 there, as Delta is (never Inf or NaN).
+      const double weight = zeta > 0.0 ? std::exp(2.0 * beta * 0.5 * (edges[b] + edges[b + 1]) / zeta) : 0.0;
+      const bool g_defined = std::isfinite(weight * value[b]) && std::isfinite(weight * error[b]);
+      g[b] = g_defined ? weight * value[b] : 0.0;
+      g_error[b] = g_defined ? weight * error[b] : 0.0;
     }
     sp.value = std::move(value);
     sp.delta = std::move(delta);

@@ -306,12 +306,16 @@ Config read_point(const namelist::Document& document, const std::vector<std::str
   check_system(c.system, prov["system"]);
   check_initial(c.initial, static_cast<std::size_t>(c.system.n_species), prov["initial"]);
   check_rough(c, prov);
+  check_scales(c, prov);
   check_dsmc(c.dsmc, c.mixture(), prov["dsmc"], document.find("dsmc")->line);
   check_output(c.output, c.dsmc, prov["output"]);
   if (c.has_agg_frag) check_agg_frag(c, prov);
   check_staged(c, prov);
   check_white_noise(c, prov);
   check_snapshots(c, prov);
+  // Again after the snapshots of from_file, whose temperatures replace &initial's.
+  check_scales(c, prov);
+  check_viscoelastic_range(c, prov);
   if (run_check) run_check(c);
   if (expand_sweep && !prov["sweep"].line.empty()) {
     check_sweep(c, prov["sweep"], document, overrides, run_check);

@@ -268,6 +268,60 @@ void check_output(Output& out, const Dsmc& d, const Provenance& prov) {
 /// Rough spheres (\ref rough_rule "docs/rough-spheres.md"): beta_kj resolved as restitution is, kappa_k and
 /// T_rot,k(0) filled per species; refused where the loops have no rough rule (clusters, frames,
 /// viscoelastic restitution), naming the variable that asks for it.
+void check_scales(const Config& c, std::map<std::string, Provenance>& prov) {
+  constexpr double low = 1e-100, high = 1e100;
+  const auto inside = [](double x) { return x >= low && x <= high; };
+  const auto refuse = [&](const std::string& group, const std::string& variable, std::size_t k, double value,
+                          const std::string& what) {
+    const Provenance& p = prov[group];
+    char text[160];
+    std::snprintf(text, sizeof text, "%s(%zu) = %.6g is outside [1e-100, 1e100]", what.c_str(), k + 1, value);
+    throw Error(p.file_of(variable), p.line.count(variable) ? p.line.at(variable) : p.group_line, group, variable,
+                std::string(text) + ": the code computes in the input's units, where the velocities' fourth moments "
+                "(T/m)^2 and the collision rates must stay far inside double range; choose units in which these "
+                "are nearer 1 (docs/output.md \"Units\")");
+  };
+  const auto& sys = c.system;
+  const std::size_t s = static_cast<std::size_t>(sys.n_species);
+  for (std::size_t k = 0; k < s && k < sys.mass.size() && k < c.initial.temperature.size(); ++k) {
+    if (!inside(sys.mass[k])) refuse("system", "mass", k, sys.mass[k], "mass");
+    if (!inside(sys.diameter[k])) refuse("system", "diameter", k, sys.diameter[k], "diameter");
+    if (!inside(sys.number_density[k])) refuse("system", "number_density", k, sys.number_density[k], "number_density");
+    const double t = c.initial.temperature[k];
+    if (!inside(t)) refuse("initial", "temperature", k, t, "temperature");
+    if (!inside(t / sys.mass[k])) refuse("initial", "temperature", k, t / sys.mass[k], "temperature/mass");
+    const double rate = sys.number_density[k] * sys.diameter[k] * sys.diameter[k] * std::sqrt(t / sys.mass[k]);
+    if (!inside(rate)) refuse("system", "number_density", k, rate, "number_density x diameter^2 x sqrt(temperature/mass)");
+  }
+}
+
+void check_viscoelastic_range(const Config& c, std::map<std::string, Provenance>& prov) {
+  const auto beta = c.viscoelastic_beta();
+  if (!beta) return;
+  const auto& sys = c.system;
+  const std::size_t s = static_cast<std::size_t>(sys.n_species);
+  double worst = 0.0, worst_speed = 0.0;
+  for (std::size_t k = 0; k < s; ++k)
+    for (std::size_t i = k; i < s; ++i) {
+      const double speed = 7.0 * std::sqrt(c.initial.temperature[k] / sys.mass[k] + c.initial.temperature[i] / sys.mass[i]);
+      const double u = std::sqrt((*beta)(k, i)) * std::pow(speed, 0.1);  // \ref visco_one_material "docs/viscoelastic.md"
+      if (u > worst) {
+        worst = u;
+        worst_speed = speed;
+      }
+    }
+  if (worst <= restitution::u_max) return;
+  const Provenance& p = prov["system"];
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "u = beta^(1/2) |g.e|^(1/10) reaches %.3g at impact speed %.3g (7 thermal relative speeds at the initial "
+                "temperature, about 1 in 1e11 collisions), beyond the series' cut-off %.2g: a smaller visco_a_kappa or a "
+                "lower temperature (docs/viscoelastic.md \"Range of validity\")",
+                worst, worst_speed, restitution::u_max);
+  throw Error(p.file_of("visco_a_kappa"), p.line.count("visco_a_kappa") ? p.line.at("visco_a_kappa") : p.group_line,
+              "system", "visco_a_kappa", text);
+}
+
 void check_rough(Config& c, std::map<std::string, Provenance>& prov) {
   Provenance& p = prov["system"];
   Provenance& q = prov["initial"];

@@ -127,6 +127,15 @@ void check_dsmc(const Dsmc& d, const species::Mixture& mix, const Provenance& pr
 void check_output(Output& out, const Dsmc& d, const Provenance& prov);
 void check_agg_frag(const Config& c, std::map<std::string, Provenance>& prov);
 void check_rough(Config& c, std::map<std::string, Provenance>& prov);
+/// Scales the code can compute with in the input's units (\ref output_units "docs/output.md"): mass, diameter,
+/// number_density and temperature of every species, T_k/m_k and the collision frequency
+/// n_k sigma_k^2 sqrt(T_k/m_k) within [1e-100, 1e100] (the fourth moments (T/m)^2 of the cumulants,
+/// cooled by up to 1e-40, stay within double range); one line naming the variable otherwise.
+void check_scales(const Config& c, std::map<std::string, Provenance>& prov);
+/// restitution_model = 'viscoelastic': the series of restitution.hpp holds up to u_max = 0.8; an input
+/// whose impacts at 7 thermal relative speeds sqrt(T_k/m_k + T_i/m_i) (about 1 in 1e11 collisions) of
+/// any pair reach u > 0.8 is refused naming visco_a_kappa (\ref visco_cutoff "docs/viscoelastic.md").
+void check_viscoelastic_range(const Config& c, std::map<std::string, Provenance>& prov);
 void check_white_noise(Config& c, std::map<std::string, Provenance>& prov);
 void check_staged(const Config& c, std::map<std::string, Provenance>& prov);
 void check_snapshots(Config& c, std::map<std::string, Provenance>& prov);

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
@@ -553,6 +554,8 @@ struct Writer::Impl {
   bool created = false;    // the temporary file is ours to remove
   bool committed = false;
   bool keep_temp = false;  // set when only the rename failed: the file holds a complete run
+  bool replace_any = false;  // replace_any_file()
+  std::string creator;       // /h5md/creator@name
 
   // In Impl rather than Writer so that a constructor failing after H5Fcreate also cleans up.
   ~Impl() {
@@ -595,7 +598,48 @@ void remove_stale_temporaries(const std::string& path) {
     if (::kill(static_cast<pid_t>(pid), 0) == -1 && errno == ESRCH) fs::remove(it->path(), ec);
   }
 }
+
+/// Creates `path` as an empty regular file of this process, exclusively and not through a link: a
+/// link planted at the name, or a leftover of a killed process with this pid, is removed first (only
+/// the link: never its target). Other failures are left to H5Fcreate to report.
+void create_exclusively(const std::string& path) {
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (fd >= 0) {
+      ::close(fd);
+      return;
+    }
+    if (errno != EEXIST) return;
+    std::error_code ec;
+    fs::remove(path, ec);
+  }
+}
+
+/// `<final stem>.kept-<pid>.h5`: where commit() keeps a complete file it must not rename onto the final path.
+std::string kept_path(const std::string& final_path) {
+  std::string stem = final_path;
+  if (stem.size() > 3 && stem.compare(stem.size() - 3, 3, ".h5") == 0) stem.resize(stem.size() - 3);
+  return stem + ".kept-" + std::to_string(::getpid()) + ".h5";
+}
 }  // namespace
+
+bool written_by(const std::string& path, const std::string& creator) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return false;
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) return false;
+  char signature[8] = {};
+  const bool hdf5 = std::fread(signature, 1, 8, f) == 8 && std::memcmp(signature, "\x89HDF\r\n\x1a\n", 8) == 0;
+  std::fclose(f);
+  if (!hdf5) return false;
+  try {
+    return read_string_attribute(path, "/h5md/creator", "name") == creator;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+void Writer::replace_any_file() { impl_->replace_any = true; }
 
 Writer::Writer(std::string final_path, std::string author, std::string creator_name,
                std::string creator_version)
@@ -604,8 +648,10 @@ Writer::Writer(std::string final_path, std::string author, std::string creator_n
   d.final_path = std::move(final_path);
   remove_stale_temporaries(d.final_path);
   d.temp_path = d.final_path + ".tmp." + std::to_string(::getpid());
+  d.creator = creator_name;
   with_context(d.context(), [&] {
     if (d.final_path.empty()) throw std::runtime_error("the path is empty");
+    create_exclusively(d.temp_path);
     Handle fapl = file_access(d.temp_path);
     // TRUNC, not EXCL: a leftover from a killed run with the same pid (common in containers)
     // must not block the next run; HDF5 itself refuses a file this process still has open.
@@ -817,6 +863,15 @@ void Writer::commit() {
     check(d.file.close(), "H5Fclose", d.temp_path);
     sync_file(d.temp_path);  // otherwise a crash right after the rename could leave an empty file
     std::error_code ec;
+    // The final path again, just before the rename: a file someone put there during the run stays.
+    if (!d.replace_any && fs::exists(fs::symlink_status(d.final_path, ec)) && !written_by(d.final_path, d.creator)) {
+      const std::string kept = kept_path(d.final_path);
+      fs::rename(d.temp_path, kept, ec);
+      d.keep_temp = true;
+      throw std::runtime_error("'" + d.final_path + "' appeared during the run and is not a file of " + d.creator +
+                               ": it is left as it is, and the complete output is in '" +
+                               (ec ? d.temp_path : kept) + "'");
+    }
     fs::rename(d.temp_path, d.final_path, ec);
     if (ec) {
       d.keep_temp = true;

@@ -49,7 +49,12 @@
  * and the data are fsync'ed first). A reader therefore sees either the previous file or the
  * complete new one, never a truncated one. A Writer destroyed without commit (an exception, a
  * failed run) deletes its temporary file, so a failed run leaves no half-written output behind;
- * only a killed process can leave a `.tmp.<pid>` file, and never under the final name.
+ * only a killed process can leave a `.tmp.<pid>` file, and never under the final name. The temporary
+ * is created exclusively and not through a link (O_EXCL | O_NOFOLLOW): a link planted at its name is
+ * removed, never written through. Just before the rename the final path is looked at again: a file
+ * that is not this creator's (written_by()) and appeared there during the run is not replaced (unless
+ * replace_any_file()); the new file is then kept beside it as `<stem>.kept-<pid>.h5` and named in the
+ * exception.
  *
  * Errors: every HDF5 call is checked; a failure throws std::runtime_error naming the output file,
  * the HDF5 call, the object, and HDF5's own description. HDF5's automatic printing of its error
@@ -168,8 +173,11 @@ class Writer {
 
   /// Flushes, closes, fsyncs and renames the temporary file onto the final path. If the rename
   /// itself fails, the complete temporary file is kept (and named in the exception), because it
-  /// holds a finished run.
+  /// holds a finished run. A file at the final path that is not written_by() this creator is not
+  /// replaced (header): the new one is kept as `<stem>.kept-<pid>.h5` and std::runtime_error names both.
   void commit();
+  /// commit() replaces whatever is at the final path (granular-dsmc --force).
+  void replace_any_file();
 
   /// The file written until commit(): `<final path>.tmp.<pid>`.
   const std::string& temporary_path() const;
@@ -211,6 +219,10 @@ std::vector<std::uint64_t> read_integers(const std::string& file, const std::str
 ParameterValue read_attribute(const std::string& file, const std::string& object_path,
                               const std::string& name);
 /// A string attribute (read_attribute holding a std::string; anything else throws).
+/// Whether `path` is a regular HDF5 file whose `/h5md/creator@name` is `creator` (an earlier output of
+/// the program that may replace it); false for anything else, without opening a FIFO or a device.
+bool written_by(const std::string& path, const std::string& creator);
+
 std::string read_string_attribute(const std::string& file, const std::string& object_path,
                                   const std::string& name);
 /// Any scalar (or one-element) numeric attribute, converted to double.

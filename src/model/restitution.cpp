@@ -12,7 +12,9 @@ double viscoelastic(double beta_ki, double normal_speed) {
   if (u > u_max)
     throw std::domain_error("viscoelastic restitution: u = beta^(1/2) |g.e|^(1/10) = " + std::to_string(u) +
                             " exceeds the series cut-off " + std::to_string(u_max) +
-                            " (impact speed " + std::to_string(std::abs(normal_speed)) + ")");
+                            " (impact speed " + std::to_string(std::abs(normal_speed)) +
+                            "): &system visco_a_kappa is too large for this run's impact speeds (docs/viscoelastic.md "
+                            "\"Range of validity\")");
   return series(u);
 }
 

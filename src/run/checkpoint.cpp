@@ -1,8 +1,10 @@
 // The checkpoint file of a rank (checkpoint.hpp, \ref output_checkpoint "docs/output.md").
 #include "run/checkpoint.hpp"
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 
@@ -46,17 +48,24 @@ class ContentHash {
 
 }  // namespace
 
-void CheckpointStore::load(const std::string& file) {
-  namespace h5 = io::h5md;
+namespace {
+
+/// What a checkpoint file holds, as load() reads it, and the checksum of that content.
+struct FileContent {
   std::map<std::size_t, state::Record> done, running;
-  ContentHash hash;
-  std::string fingerprint, stored_checksum;
+  std::string fingerprint, stored_checksum, checksum;
   double ranks = 0.0, layout = 0.0;
+};
+
+FileContent read_content(const std::string& file) {
+  namespace h5 = io::h5md;
+  FileContent c;
+  ContentHash hash;
   if (std::error_code ec; !std::filesystem::is_regular_file(file, ec))
     throw std::runtime_error("checkpoint '" + file + "': " +
                              (std::filesystem::exists(file, ec) ? "not a file" : "no such file"));
   try {
-    stored_checksum = h5::read_string_attribute(file, "/checkpoint", "checksum");
+    c.stored_checksum = h5::read_string_attribute(file, "/checkpoint", "checksum");
     for (const char* kind : {"done", "running"}) {
       const std::string listed = h5::read_string_attribute(file, "/checkpoint", std::string(kind) + "_units");
       hash.add(listed);
@@ -74,20 +83,37 @@ void CheckpointStore::load(const std::string& file) {
         std::istringstream integers(integer_names);
         for (std::string name; std::getline(integers, name);)
           if (!name.empty()) hash.add(snap.integers[name] = h5::read_integers(file, group + "/" + name));
-        (std::string(kind) == "done" ? done : running)[u] = std::move(snap);
+        (std::string(kind) == "done" ? c.done : c.running)[u] = std::move(snap);
       }
     }
-    fingerprint = h5::read_string_attribute(file, "/checkpoint", "fingerprint");
-    hash.add(fingerprint);
-    ranks = h5::read_double_attribute(file, "/checkpoint", "ranks");
-    hash.add(std::vector<double>{ranks});
+    c.fingerprint = h5::read_string_attribute(file, "/checkpoint", "fingerprint");
+    hash.add(c.fingerprint);
+    c.ranks = h5::read_double_attribute(file, "/checkpoint", "ranks");
+    hash.add(std::vector<double>{c.ranks});
     const auto format = h5::read_dataset(file, "/checkpoint/format").data;
-    layout = format.size() == 1 ? format[0] : -1.0;
+    c.layout = format.size() == 1 ? format[0] : -1.0;
   } catch (const std::exception& e) {
     throw std::runtime_error("checkpoint '" + file + "' is damaged or is not a checkpoint of granular-dsmc: " +
                              e.what());
   }
-  if (hash.hex() != stored_checksum)
+  c.checksum = hash.hex();
+  return c;
+}
+
+}  // namespace
+
+std::string content_checksum(const std::string& file) { return read_content(file).checksum; }
+
+void CheckpointStore::load(const std::string& file) {
+  namespace h5 = io::h5md;
+  FileContent content = read_content(file);
+  auto& done = content.done;
+  auto& running = content.running;
+  const std::string& fingerprint = content.fingerprint;
+  const std::string& stored_checksum = content.stored_checksum;
+  const double ranks = content.ranks, layout = content.layout;
+  const std::string hash_hex = content.checksum;
+  if (hash_hex != stored_checksum)
     throw std::runtime_error("checkpoint '" + file + "' is damaged: its content does not match the checksum "
                              "written with it (a partial copy, or a disk error)");
   if (fingerprint != fingerprint_)
@@ -109,6 +135,12 @@ void CheckpointStore::load(const std::string& file) {
   }
   for (auto& [u, snap] : done) done_[u] = load_result(snap);
   running_ = std::move(running);
+  resumed_path_ = file;
+  try {
+    resumed_token_ = h5::read_string_attribute(file, "/checkpoint", "run");
+  } catch (const std::exception&) {  // written before the tokens
+    resumed_token_.clear();
+  }
 }
 
 const ReplicaResult* CheckpointStore::finished_result(std::size_t unit) const {
@@ -138,13 +170,33 @@ void CheckpointStore::safe_point(std::size_t unit, const std::function<state::Re
   last_saved_[unit] = Clock::now();
 }
 
+std::string new_run_token() {
+  std::random_device device;
+  const std::uint64_t token = (static_cast<std::uint64_t>(device()) << 32) ^ device() ^
+                              static_cast<std::uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count());
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(token));
+  return text;
+}
+
 void CheckpointStore::remove() const {
   std::error_code ec;
-  std::filesystem::remove(path_, ec);
+  if (!std::filesystem::is_regular_file(path_, ec)) return;
+  std::string token;
+  try {
+    token = io::h5md::read_string_attribute(path_, "/checkpoint", "run");
+  } catch (const std::exception&) {  // not a checkpoint, or one written before the tokens
+  }
+  const bool own = written_ && token == run_token_;
+  const bool resumed = !resumed_path_.empty() && (token.empty() ? resumed_token_.empty() &&
+                                                                      std::filesystem::equivalent(path_, resumed_path_, ec)
+                                                                : token == resumed_token_);
+  if (own || resumed) std::filesystem::remove(path_, ec);
 }
 
 void CheckpointStore::write() const {
   io::h5md::Writer w(path_, "granular-dsmc", "granular-dsmc checkpoint", io::build_version());
+  if (replace_any_) w.replace_any_file();
   std::string done_units, running_units;
   for (const auto& [u, result] : done_) done_units += std::to_string(u) + " ";
   for (const auto& [u, snap] : running_) running_units += std::to_string(u) + " ";
@@ -181,6 +233,7 @@ void CheckpointStore::write() const {
   w.write_dataset("/checkpoint/format", {static_cast<double>(state::layout)}, {});
   w.write_attribute("/checkpoint", "fingerprint", fingerprint_);
   w.write_attribute("/checkpoint", "ranks", static_cast<double>(ranks_));
+  w.write_attribute("/checkpoint", "run", run_token_);
   w.write_attribute("/checkpoint", "done_units", done_units);
   w.write_attribute("/checkpoint", "running_units", running_units);
   w.write_attribute("/checkpoint", "description",
@@ -188,6 +241,7 @@ void CheckpointStore::write() const {
                                 "and the state of those in progress; resume with granular-dsmc FILE.nml "
                                 "--restart THIS_FILE"));
   w.commit();
+  written_ = true;
 }
 
 

@@ -10,7 +10,9 @@
  * (state::layout): this build writes 2 and reads 2 and 1 (the positional layout of the checkpoints
  * written before 2026-11-29, translated to the names of layout 2 as it is read); any other layout is
  * refused with a line that names it. The checksum (FNV-1a over every name and value in the order
- * written) is checked first, so that any damage is reported as such.
+ * written) is checked first, so that any damage is reported as such. `/checkpoint@run` (outside the
+ * checksum) is a random token of the run that wrote it: a complete run deletes only its own checkpoint
+ * or the one it resumed, never another run's at the same path.
  */
 #pragma once
 
@@ -31,13 +33,21 @@ namespace gdsmc::simulation {
 /// Rank k's file of the checkpoint whose rank-0 file is `path`.
 std::string rank_file(const std::string& path, int rank);
 
+/// The checksum of the content of the checkpoint `file` as load() computes it (whatever its stored
+/// checksum says): for tools that rewrite a checkpoint, and the tests that forge one field to see it
+/// refused for its content. Throws std::runtime_error for a file that is no checkpoint.
+std::string content_checksum(const std::string& file);
+
+/// A random token (16 hex digits) that tells the checkpoint files of one run from those of another.
+std::string new_run_token();
+
 /// A rank's checkpoint file (header).
 class CheckpointStore {
  public:
   /// `path`: the file to write; `every`: seconds between snapshots of a unit (<= 0: never); `fingerprint`:
   /// the input's (namelist text and overrides); `ranks`: the MPI ranks of the run; `units`: work units.
   CheckpointStore(std::string path, double every, std::string fingerprint, int ranks, std::size_t units)
-      : path_(std::move(path)), every_(every), fingerprint_(std::move(fingerprint)), ranks_(ranks),
+      : path_(std::move(path)), run_token_(new_run_token()), every_(every), fingerprint_(std::move(fingerprint)), ranks_(ranks),
         last_saved_(units, Clock::now()) {}
 
   /// Reads a checkpoint written by write(): checks that it is intact (its checksum), that it belongs to
@@ -52,13 +62,22 @@ class CheckpointStore {
   /// A safe point of unit `unit`: when its snapshot is `every` seconds old, a new one (taken by
   /// `snapshot`, outside the lock) replaces it and the file is rewritten.
   void safe_point(std::size_t unit, const std::function<state::Record()>& snapshot);
-  /// Deletes the file (the run is complete).
+  /// The run is complete: deletes the file if it is this run's (written by it: its `/checkpoint@run`
+  /// token is this store's) or the checkpoint it resumed (its token, or the very file given to
+  /// --restart when that has no token); a file of another run at the same path is left alone.
   void remove() const;
+  /// Its files replace whatever is at the path (--force; io/h5md.hpp Writer::commit).
+  void replace_any_file() { replace_any_ = true; }
 
  private:
   void write() const;
 
   std::string path_;
+  std::string run_token_;                ///< `/checkpoint@run` of the files this store writes (random)
+  std::string resumed_token_;            ///< that of the checkpoint load() read ("" if none or none in it)
+  std::string resumed_path_;             ///< the file load() read
+  mutable bool written_ = false;         ///< write() has written path_
+  bool replace_any_ = false;             ///< replace_any_file()
   double every_;
   std::string fingerprint_;
   int ranks_;

@@ -22,6 +22,24 @@
 
 namespace gdsmc::simulation {
 
+// A physics error that heats a free gas stops the run at once (replica.hpp).
+void check_energy_does_not_grow(const ReplicaResult& result, const char* row) {
+  const auto it = result.rows.find(row);
+  const auto times = result.rows.find("time");
+  if (it == result.rows.end() || it->second.first != 1 || it->second.second.size() < 2) return;
+  const auto& e = it->second.second;
+  const double before = e[e.size() - 2], now = e.back();
+  if (!(now > before * (1.0 + 1e-6))) return;
+  const std::vector<double> none;
+  const auto& t = times == result.rows.end() ? none : times->second.second;
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "the gas's energy (%s) rose from %.10g to %.10g between t = %.6g and t = %.6g, which collisions "
+                "of inelastic spheres cannot do: a physics error in the collision rule; the run is stopped",
+                row, before, now, t.size() >= 2 ? t[t.size() - 2] : 0.0, t.empty() ? 0.0 : t.back());
+  throw std::runtime_error(text);
+}
+
 namespace {
 
 /// What steps a replica and what measures it (header): a free gas, a gas with forcings, the clusters.
@@ -237,8 +255,26 @@ void Gas::save_gas(state::Record& r) const {
   r.put("gas/share_sum", share_sum_);
 }
 
+/// No run reaches a kinetic energy per particle of kinetic_energy_limit times the largest initial
+/// temperature (free cooling and agg/frag only lose energy; the thermostats hold T near its start or a
+/// steady value): a checkpoint beyond it was forged or damaged, and its moments would overflow (T/m <=
+/// 1e100 by the input checks, so v^2 <= 1e130 and v^4 <= 1e260 within double range).
+constexpr double kinetic_energy_limit = 1e30;
+
+double largest_initial_temperature(const io::config::Config& config) {
+  return *std::max_element(config.initial.temperature.begin(), config.initial.temperature.end());
+}
+
 void Gas::restore_gas(const state::Record& r) {
   particles::restore(sys_, r);
+  const double limit = kinetic_energy_limit * largest_initial_temperature(config_);
+  for (std::size_t k = 0; k < s_; ++k)
+    for (std::size_t i = sys_.first[k]; i < sys_.first[k] + sys_.count[k]; ++i) {
+      const particles::Vec3& v = sys_.v[i];
+      if (!(mix_.mass[k] * (v.x * v.x + v.y * v.y + v.z * v.z) <= limit))
+        throw state::StateError("particle " + std::to_string(i) + " has m v^2 beyond 1e30 times the largest initial "
+                                "temperature, which no run reaches");
+    }
   collider_.restore(r);
   scaling_samples_ = r.real("gas/scaling_samples");
   t_first_ = r.real("gas/t_first");
@@ -246,6 +282,11 @@ void Gas::restore_gas(const state::Record& r) {
   temp_first_ = r.real("gas/temp_first");
   temp_last_ = r.real("gas/temp_last");
   speed_counts_ = r.array("gas/speed_counts");
+  // Empty before the first scaling-state sample, S x reduced_bins after (a record is read, not trusted).
+  const std::size_t bins = s_ * static_cast<std::size_t>(config_.output.reduced_bins);
+  if (!speed_counts_.empty() && speed_counts_.size() != bins)
+    throw state::StateError("'gas/speed_counts' holds " + std::to_string(speed_counts_.size()) + " values, not " +
+                            std::to_string(bins));
   c_sum_ = r.array("gas/c_sum");
   share_sum_ = r.array("gas/share_sum");
 }
@@ -373,6 +414,7 @@ void FreeGas::advance_to_time(double t, const Between& between) {
 
 void FreeGas::sample(std::size_t i, ReplicaResult& result) {
   const sample::Moments m = measure_common(result);
+  check_energy_does_not_grow(result, config_.rough() ? "total_energy" : "total_temperature");
   const auto& counters = collider_.counters();
   if (s_ <= collide::pair_event_limit) {  // S(S+1)/2 columns, and a histogram per species: a few species only
     std::vector<double> pairs;
@@ -557,7 +599,14 @@ class Clusters final : public Engine {
     return std::min(f, 0.999);
   }
   void save(state::Record& r) const override { gas_.save(r); }
-  void restore(const state::Record& r) override { gas_.restore(r); }
+  void restore(const state::Record& r) override {
+    gas_.restore(r);
+    // As Gas::restore_gas: the clusters' kinetic energy per initial monomer is bounded too.
+    const double energy = gas_.measure().kinetic_energy / initial_monomers_;
+    if (!(energy <= energy_limit_))
+      throw state::StateError("the clusters' kinetic energy is beyond 1e30 times the initial temperature per monomer, "
+                              "which no run reaches");
+  }
   // No snapshots of clusters (io/config refuses snapshot_times with &agg_frag).
   double sample_time(std::size_t) const override { return std::numeric_limits<double>::infinity(); }
   void advance_to_time(double, const Between&) override { throw std::logic_error("no snapshots of &agg_frag"); }
@@ -567,6 +616,7 @@ class Clusters final : public Engine {
   bool time_driven_;
   std::vector<double> targets_;  ///< sample points: times, or collisions per initial monomer 2 x events / N_0
   double initial_monomers_, final_events_;
+  double energy_limit_;  ///< of a restored gas, per initial monomer (restore())
   agg_frag::Gas gas_;
 };
 
@@ -575,6 +625,7 @@ Clusters::Clusters(const io::config::Config& config, std::size_t r, const Replic
       targets_(time_driven_ ? config.sample_times() : config.sample_collisions()),
       initial_monomers_(static_cast<double>(config.dsmc.n_particles)),
       final_events_(time_driven_ ? 0.0 : std::ceil(targets_.back() * initial_monomers_ / 2.0)),
+      energy_limit_(kinetic_energy_limit * largest_initial_temperature(config)),
       gas_(agg_frag_model(config), static_cast<std::size_t>(config.dsmc.n_particles), config.initial.temperature[0],
            initial_distribution(config),
            rng::make_stream(static_cast<std::uint64_t>(config.dsmc.seed), r, rng::Purpose::initial_state),
@@ -622,6 +673,7 @@ void Clusters::sample(std::size_t i, ReplicaResult& result) {
   result.add(sample_row("size_energy", i), m.energy.size(), m.energy);
   result.add("total_temperature", 1, {2.0 / 3.0 * m.kinetic_energy / m.clusters});  // per cluster, \ref af_observables "docs/agg-frag.md"
   result.add("kinetic_energy", 1, {m.kinetic_energy / initial_monomers_});
+  check_energy_does_not_grow(result, "kinetic_energy");
   result.add("mean_size", 1, {initial_monomers_ / m.clusters});
   result.add("monomer_fraction", 1, {m.number[0] / initial_monomers_});
   result.add("collisions", 1, {static_cast<double>(counters.events)});
@@ -663,9 +715,16 @@ ReplicaResult run_replica(const io::config::Config& config, std::size_t replica,
       require_finite(*resume);
       result = load_result(*resume);
       next_sample = resume->integer("replica/next_sample");
+      // Every sample adds one row of "time": a next_sample that disagrees with them was forged.
+      const auto times = result.rows.find("time");
+      const std::size_t taken = times == result.rows.end() ? 0 : times->second.second.size();
+      if (next_sample > engine->samples() || next_sample != taken)
+        throw state::StateError("'replica/next_sample' is " + std::to_string(next_sample) + " but the record holds " +
+                                std::to_string(taken) + " samples of " + std::to_string(engine->samples()));
+      check_rows(result, taken, false);
       engine->restore(*resume);
-    } catch (const state::StateError& e) {
-      throw std::runtime_error(std::string("the checkpoint is damaged: ") + e.what());
+    } catch (const state::StateError& e) {  // exit status 2 with --restart's name (simulation.hpp)
+      throw RestartError(std::string("the checkpoint is damaged: ") + e.what());
     }
   } else {
     engine->start();

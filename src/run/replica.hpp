@@ -46,6 +46,14 @@ struct ReplicaContext {
   SafePoint safe_point;    ///< checkpoints
 };
 
+/// A gas without forcing only loses energy in collisions (the rules' energy balance, \ref cm_rule
+/// "docs/collision-model.md"; rough spheres with their rotation, agg/frag with the fragments' share):
+/// throws std::runtime_error, naming both values and times, when the one-column row `row` of `result`
+/// (an energy per particle, or a multiple of it) rose from its previous sample by more than 1e-6
+/// relative (round-off: elastic gases hold it to ~1e-12). Free gases and cluster gases call it at every
+/// sample, so that a physics error that heats the gas stops the run at once.
+void check_energy_does_not_grow(const ReplicaResult& result, const char* row);
+
 /// Runs replica `replica` of `config` from the start, or from `resume` (a checkpoint's record of it).
 /// Throws Interrupted when the interrupt flag is set, state::StateError for a damaged record.
 ReplicaResult run_replica(const io::config::Config& config, std::size_t replica, const state::Record* resume,

@@ -88,12 +88,49 @@ ReplicaResult load_result(const state::Record& record) {
   return r;
 }
 
+namespace {
+/// Whether `name` is a time series of the table of observables (a per-size row "name@i" is not).
+bool is_series(const std::string& name) {
+  try {
+    return observables::find(name).reduction == observables::Reduction::series;
+  } catch (const std::out_of_range&) {
+    return false;
+  }
+}
+}  // namespace
+
+void check_rows(const ReplicaResult& result, std::size_t samples, bool finished) {
+  for (const auto& [name, entry] : result.rows) {
+    const auto& [columns, values] = entry;
+    const auto refuse = [&](const std::string& what) {
+      throw state::StateError("row '" + name + "' holds " + std::to_string(values.size()) + " values of " +
+                              std::to_string(columns) + " columns: " + what);
+    };
+    if (columns == 0 || values.size() % columns != 0) refuse("not a whole number of rows");
+    observables::Reduction reduction;
+    try {
+      reduction = observables::find(name).reduction;
+    } catch (const std::out_of_range&) {  // a per-size row of &agg_frag ("number@i"): one row
+      if (name.find('@') != std::string::npos && values.size() != columns) refuse("expected one row");
+      continue;
+    }
+    if (reduction == observables::Reduction::series && values.size() != columns * samples)
+      refuse(std::to_string(samples) + " samples expected");
+    if (reduction == observables::Reduction::per_replica && finished && values.size() != columns)
+      refuse("one row expected");
+  }
+}
+
 PointResult reduce_point(std::vector<ReplicaResult>& replicas) {
   PointResult point;
   double mean_step_sum = 0.0;
   for (std::size_t r = 0; r < replicas.size(); ++r) {
     for (auto& [name, entry] : replicas[r].rows) {
       auto& a = point.observables[name];
+      // Every replica's rows of one observable alike (a damaged record must not be read past its end).
+      if (!a.values.empty() && (a.columns != entry.first || a.values.front().size() != entry.second.size()) &&
+          is_series(name))
+        throw std::runtime_error("the replicas' rows of '" + name + "' differ in shape (a damaged checkpoint)");
       a.columns = entry.first;
       // Rows of the reduced_* observables exist only for the replicas that reached the scaling
       // regime: each such replica adds one row, in replica order.

@@ -46,7 +46,15 @@ void save(const ReplicaResult& result, state::Record& record);
 /// The result save() wrote; throws state::StateError.
 ReplicaResult load_result(const state::Record& record);
 
-/// The replica results of one point, reduced in replica order (the same order in every run).
+/// The rows of a result read from a checkpoint, checked against what `samples` samples make (a record
+/// is read, not trusted: a row cut short would be read beyond its end when reduced): every row a whole
+/// number of rows of its columns; a time series (observables.hpp Reduction::series) one row per sample;
+/// a per-replica row exactly one (when `finished`; a unit in progress has none yet). Throws
+/// state::StateError naming the row.
+void check_rows(const ReplicaResult& result, std::size_t samples, bool finished);
+
+/// The replica results of one point, reduced in replica order (the same order in every run). Throws
+/// std::runtime_error when two replicas' rows of one observable differ in columns or length.
 PointResult reduce_point(std::vector<ReplicaResult>& replicas);
 
 /// The per-size observables of an &agg_frag replica ("number", "size_energy"): each sample's row as

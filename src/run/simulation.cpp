@@ -6,12 +6,15 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <exception>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "analysis/sweep_table.hpp"
+#include "dsmc/particles.hpp"
 #include "dsmc/sample.hpp"
 #include "io/h5md.hpp"
 #include "io/output.hpp"
@@ -78,6 +81,35 @@ void load_restart(CheckpointStore& checkpoints, const Options& options, int rank
   if (!first.empty()) throw RestartError(first);
 }
 
+/// The finished units a checkpoint holds must have every sample of their point (one row of "time" per
+/// sample): a record cut short is refused before any work, not found after the whole run.
+void check_finished_units(const CheckpointStore& checkpoints, const std::vector<io::config::Config>& points,
+                          const std::vector<Unit>& units, const std::vector<std::size_t>& mine) {
+  std::string problem;
+  for (std::size_t u : mine) {
+    const ReplicaResult* finished = checkpoints.finished_result(u);
+    if (!finished || !problem.empty()) continue;
+    const io::config::Config& point = points[units[u].point];
+    const std::size_t expected = point.dsmc.t_end ? point.sample_times().size() : point.sample_collisions().size();
+    const auto times = finished->rows.find("time");
+    const std::size_t found = times == finished->rows.end() ? 0 : times->second.second.size();
+    if (found != expected)
+      problem = "the checkpoint is damaged: finished work unit " + std::to_string(u) + " holds " + std::to_string(found) +
+                " samples, its point has " + std::to_string(expected);
+    else
+      try {
+        check_rows(*finished, expected, true);
+      } catch (const state::StateError& e) {
+        problem = "the checkpoint is damaged: finished work unit " + std::to_string(u) + ": " + e.what();
+      }
+  }
+  std::string first;
+  for (const auto& e : parallel::gather_to_root(problem))
+    if (!e.empty() && first.empty()) first = e;
+  first = parallel::broadcast_from_root(first);
+  if (!first.empty()) throw RestartError(first);
+}
+
 /// Runs this rank's units (`mine`, indices into `units`) on its threads; returns their results in the
 /// order of `mine`. Throws Interrupted, or std::runtime_error with the first failure of a thread.
 std::vector<ReplicaResult> run_units(const std::vector<io::config::Config>& points, const std::vector<Unit>& units,
@@ -85,7 +117,7 @@ std::vector<ReplicaResult> run_units(const std::vector<io::config::Config>& poin
                                      Progress& progress, const Options& options) {
   std::vector<ReplicaResult> done(mine.size());
   std::string failure;  // first error of a thread (exceptions must not leave an OpenMP region)
-  std::atomic<bool> interrupted{false}, failed{false};
+  std::atomic<bool> interrupted{false}, failed{false}, restart_failed{false};
   // Threads serve the units first; when this rank has fewer units than threads, each unit's cache
   // blocks share the rest (collide.hpp, "Threads inside one replica"), and the output is the same.
   const parallel::ThreadSplit split = parallel::split_threads(mine.size());
@@ -105,8 +137,12 @@ std::vector<ReplicaResult> run_units(const std::vector<io::config::Config>& poin
     } catch (const Interrupted&) {
       interrupted.store(true);
     } catch (const std::exception& e) {
+      const bool restart = dynamic_cast<const RestartError*>(&e) != nullptr;
 #pragma omp critical(gdsmc_failure)
-      if (!failed.exchange(true)) failure = e.what();
+      if (!failed.exchange(true)) {
+        failure = e.what();
+        restart_failed.store(restart);
+      }
     }
   };
   const auto n_mine = static_cast<std::ptrdiff_t>(mine.size());
@@ -120,6 +156,7 @@ std::vector<ReplicaResult> run_units(const std::vector<io::config::Config>& poin
   }
   progress.finish();
   if (interrupted.load()) throw Interrupted();
+  if (failed.load() && restart_failed.load()) throw RestartError(failure);
   if (failed.load()) throw std::runtime_error(failure);
   return done;
 }
@@ -130,7 +167,7 @@ std::vector<std::vector<ReplicaResult>> gather_results(const std::vector<io::con
                                                        const std::vector<Unit>& units, const std::vector<std::size_t>& mine,
                                                        std::vector<ReplicaResult>&& done, char status, const std::string& failure) {
   std::string packed(1, status);
-  if (status == 'F') packed += failure;
+  if (status == 'F' || status == 'R') packed += failure;
   else if (status == 'K')
     for (std::size_t k = 0; k < mine.size(); ++k) pack(packed, mine[k], done[k]);
   done.clear();
@@ -141,6 +178,7 @@ std::vector<std::vector<ReplicaResult>> gather_results(const std::vector<io::con
       if (g[0] != 'K' && verdict.empty()) verdict = g;
   verdict = parallel::broadcast_from_root(verdict);
   if (!verdict.empty() && verdict[0] == 'I') throw Interrupted();
+  if (!verdict.empty() && verdict[0] == 'R') throw RestartError(verdict.substr(1));
   if (!verdict.empty()) throw std::runtime_error(verdict.substr(1));
   std::vector<std::vector<ReplicaResult>> by_point(points.size());
   if (parallel::rank() != 0) return by_point;
@@ -242,6 +280,33 @@ Summary write_output(io::h5md::Writer& writer, const io::config::Config& config,
 
 }  // namespace
 
+CheckpointFound find_checkpoint(const io::config::Config& config, const std::string& output_path) {
+  const std::string path = checkpoint_path(output_path);
+  std::error_code ec;
+  if (!std::filesystem::exists(std::filesystem::symlink_status(path, ec))) return CheckpointFound::none;
+  if (!std::filesystem::is_regular_file(path, ec)) return CheckpointFound::not_a_checkpoint;  // never open a FIFO
+  try {
+    return io::h5md::read_string_attribute(path, "/checkpoint", "fingerprint") == fingerprint_of(config)
+               ? CheckpointFound::this_input
+               : CheckpointFound::other_input;
+  } catch (const std::exception&) {
+    return CheckpointFound::not_a_checkpoint;
+  }
+}
+
+double estimated_memory_bytes(const io::config::Config& config, int threads, int ranks) {
+  double per_particle = sizeof(particles::Vec3) + sizeof(std::uint32_t);
+  if (config.output.track_displacements) per_particle += sizeof(particles::Displacement);
+  if (config.rough()) per_particle += sizeof(particles::Vec3);
+  if (config.output.checkpoint_every || !config.output.snapshot_times.empty()) per_particle *= 2.0;
+  double units = 0.0;
+  for (const auto& point : config.sweep_points()) units += static_cast<double>(point.dsmc.replicas);
+  const double at_once = std::min(std::ceil(units / std::max(1, ranks)), static_cast<double>(std::max(1, threads)));
+  return at_once * static_cast<double>(config.dsmc.n_particles) * per_particle;
+}
+
+std::string lock_path(const std::string& output_path) { return without_h5(output_path) + ".lock"; }
+
 std::string checkpoint_path(const std::string& output_path, int rank) {
   const std::string stem = without_h5(output_path) + ".checkpoint";
   return rank == 0 ? stem + ".h5" : stem + ".rank" + std::to_string(rank) + ".h5";
@@ -266,6 +331,7 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
   const int rank = parallel::rank(), ranks = parallel::size();
   std::optional<io::h5md::Writer> writer;  // (not movable: opened in place)
   open_output(writer, config, output_path, rank);
+  if (writer && options.replace_any_file) writer->replace_any_file();
 
   std::vector<Unit> units;
   for (std::size_t p = 0; p < points.size(); ++p)
@@ -278,7 +344,9 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
   // Checkpoints: one file per rank (rank 0's is the one \ref output_checkpoint "docs/output.md" names).
   CheckpointStore checkpoints(checkpoint_path(output_path, rank), config.output.checkpoint_every.value_or(0.0),
                               fingerprint_of(config), ranks, units.size());
+  if (options.replace_any_file) checkpoints.replace_any_file();
   load_restart(checkpoints, options, rank);
+  check_finished_units(checkpoints, points, units, mine);
   Progress progress(options.progress && rank == 0, options.progress_terminal, point_of, points.size());
   std::vector<ReplicaResult> done;
   char status = 'K';
@@ -287,6 +355,9 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
     done = run_units(points, units, mine, checkpoints, progress, options);
   } catch (const Interrupted&) {
     status = 'I';
+  } catch (const RestartError& e) {  // a record of the checkpoint refused as its unit resumed
+    status = 'R';
+    failure = e.what();
   } catch (const std::exception& e) {
     status = 'F';
     failure = e.what();

@@ -41,6 +41,9 @@ struct Options {
   bool progress_terminal = true;
   const std::atomic<bool>* interrupt = nullptr;  ///< set by a signal handler: stop, write nothing
   std::string restart_path;                      ///< continue from this checkpoint (empty: from the start)
+  /// The output and the checkpoints replace whatever is at their paths at the end (--force); otherwise a
+  /// file that is not granular-dsmc's and appeared during the run is kept (io/h5md.hpp Writer::commit).
+  bool replace_any_file = false;
   /// Called on rank 0 when the file is complete, just before it is committed: may add groups (the
   /// /comparison of --compare, analysis/compare.hpp) and read the file back under writer.temporary_path().
   std::function<void(io::h5md::Writer&)> before_commit;
@@ -99,6 +102,22 @@ double chunk_end_time(double time, std::uint64_t candidates, double t_target, do
 
 /// `<output stem>.checkpoint.h5` (\ref output_checkpoint "docs/output.md"), `.rank<k>` before `.h5` for MPI rank k > 0.
 std::string checkpoint_path(const std::string& output_path, int rank = 0);
+
+/// The memory a rank of this run holds at most, in bytes (a lower bound, to refuse runs that cannot fit):
+/// the particle arrays of the replicas it runs at once (min(its units, threads)) at 28 bytes per particle
+/// (velocity, species), 32 more with displacements, 24 more for rough spheres' angular velocities, and
+/// as much again while a checkpoint or snapshot copies them; &agg_frag clusters as particles.
+double estimated_memory_bytes(const io::config::Config& config, int threads, int ranks);
+
+/// `<output stem>.lock`: the lock file that keeps two runs off one output and its checkpoint (io/file_lock.hpp).
+std::string lock_path(const std::string& output_path);
+
+/// What lies at the checkpoint path of `output_path` (rank 0's file): nothing, the checkpoint of a run of
+/// this input (an interrupted one: same namelist text and overrides), that of another input, or a file
+/// that is not a checkpoint. A fresh run starts only on `none` (granular-dsmc refuses the others
+/// without --restart or --force: the checkpoint would be replaced).
+enum class CheckpointFound { none, this_input, other_input, not_a_checkpoint };
+CheckpointFound find_checkpoint(const io::config::Config& config, const std::string& output_path);
 
 /// FNV-1a (64 bits) of `bytes` bytes at `data`, continuing from `hash`: the checksum of checkpoints.
 std::uint64_t fnv1a(std::uint64_t hash, const void* data, std::size_t bytes);
