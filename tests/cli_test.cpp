@@ -1274,6 +1274,57 @@ TEST_F(CliTheory, EveryKeyItPrintsIsInItsHelp) {
   }
 }
 
+// What an hour of fuzzing the command line found (tests/fuzz/README.md "Fuzzing the command line"), each refused
+// before any work in one line, or run as it should.
+TEST_F(CliDsmc, FindingsOfTheCommandLineFuzzer) {
+  write("t.nml", base());
+  // --compare=F.json replaced any file; now only an earlier --compare JSON, or anything with --force.
+  write("notes.json", "precious");
+  expect_input_error(run("granular-dsmc", "t.nml --quiet --compare=notes.json"), "granular-dsmc",
+                     "--compare=notes.json: 'notes.json' exists and is not a --compare JSON of granular-dsmc", {},
+                     {"notes.json", "t.nml"});
+  EXPECT_EQ(read_text(dir / "notes.json"), "precious");
+  // A link that leads nowhere at the output path ran to the end and failed (exit 1): refused at once.
+  fs::create_symlink("nowhere/x.h5", dir / "dang.h5");
+  expect_input_error(run("granular-dsmc", "t.nml --quiet --output dang.h5"), "granular-dsmc",
+                     "--output dang.h5: &output: file: 'dang.h5' exists and is not an output of granular-dsmc", {},
+                     {"dang.h5", "notes.json", "t.nml"});
+  fs::remove(dir / "dang.h5");
+  // A step_fraction of 1e-9 never ended (each step is O(N)): refused with the count of steps (here 1e-12:
+  // about 5e11 steps of 200 particles, beyond 1e13 updates).
+  expect_input_error(run("granular-dsmc", "t.nml --quiet --set dsmc:step_fraction=1e-12"), "granular-dsmc",
+                     "--set dsmc:step_fraction=1e-12: &dsmc: step_fraction: step_fraction = 1e-12 makes at least",
+                     {"time steps", "allow_long_run"}, {"notes.json", "t.nml"});
+  // Line breaks in --restart, --compare= and --table names were echoed raw (a message of 2-3 lines).
+  for (const char* args : {"t.nml --restart 'a\nb.h5'", "t.nml --compare='a\nb.json'", "--table 'a\nb.h5'"}) {
+    const Result r = run("granular-dsmc", args);
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find("a file name with a line break is not accepted"), std::string::npos) << r.err;
+  }
+  // A 255-character name passed the checks and failed in H5Fcreate with HDF5's internals.
+  const std::string long_name(252, 'L');
+  expect_input_error(run("granular-dsmc", "t.nml --quiet --output " + long_name + ".h5"), "granular-dsmc",
+                     "--output " + long_name + ".h5: &output: file: the file name is 255 characters long: at most 200",
+                     {}, {"notes.json", "t.nml"});
+  // Two particles: the pair at the bound itself (g = 2 v_max exactly) was counted as an overshoot of
+  // round-off (acceptance 1 + 2e-16) with a warning asking to report the input.
+  const Result two = run("granular-dsmc", std::string(GDSMC_EXAMPLES_DIR) +
+                                              "/haff.nml --quiet --set dsmc:n_particles=2 --output two.h5");
+  EXPECT_EQ(two.status, 0) << two.err;
+  EXPECT_EQ(two.err.find("acceptance probability above 1"), std::string::npos) << two.err;
+}
+
+TEST_F(CliTheory, VersionAndASetWithoutValue) {
+  const Result v = run("granular-theory", "--version");
+  EXPECT_EQ(v.status, 0);
+  EXPECT_EQ(v.out.rfind("granular-theory ", 0), 0u) << v.out;
+  write("t.nml", base());
+  const Result r = run("granular-theory", "t.nml --set");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "granular-theory: --set needs a value (--set group:variable=value)\n");
+}
+
 TEST_F(CliTheory, TwoInputFilesAreRefused) {
   // It used the last one silently.
   write("t.nml", base());

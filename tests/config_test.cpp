@@ -720,6 +720,12 @@ TEST(ConfigError, ScalesOutsideDoubleRangeAreRefused) {
   hot[8] = "  temperature = 1e50";
   expect_error(error_of(gdsmc::test::with_line(hot, 3, "  mass = 1e-60, 10.0")), 9, "initial", "temperature",
                {"temperature/mass(1) = 1e+110"});
+  // Rough spheres with the spin 2e40 times hotter than the translation: a collision-driven run never
+  // ended (its clock stood still once the translation had warmed up).
+  auto spun = base_lines;
+  spun[5] = "  restitution = 0.5, roughness = 0.5";
+  expect_error(error_of(gdsmc::test::with_line(spun, 9, "  temperature = 1e-40, rotational_temperature = 2.0")), 9,
+               "initial", "rotational_temperature", {"rotational_temperature(1)/temperature(1) = 2e+40 is beyond 1e20"});
   expect_error(error_of(with_line(4, "  diameter = 1e-60, 1.0")), 5, "system", "number_density",
                {"number_density x diameter^2 x sqrt(temperature/mass)(1) = 2e-122"});
 }

@@ -33,6 +33,19 @@ void check_run_cost(const io::config::Config& c) {
              "round-off of the conserved momentum, almost every candidate is rejected and the run would not end";
   else if (!(events <= kMaxEvents))
     reason = estimate + ", beyond 1e12 (a day or more)";
+  // Each time step recomputes the speed bounds over all N particles (collide.hpp "Time"), and a step is
+  // step_fraction majorant mean free times, at most step_fraction collisions per particle: a tiny
+  // step_fraction makes the steps the whole run (1e-9 at N = 2000: years), whatever the events.
+  const double steps = cost.collisions_per_particle / c.dsmc.step_fraction;
+  if (reason.empty() && !(steps * static_cast<double>(c.dsmc.n_particles) <= 10.0 * kMaxEvents)) {
+    const auto it = c.origin.find("dsmc:step_fraction");
+    throw io::namelist::Error(it == c.origin.end() ? c.source_file : it->second.first,
+                              it == c.origin.end() ? 0 : it->second.second, "dsmc", "step_fraction",
+                              "step_fraction = " + number(c.dsmc.step_fraction) + " makes at least " + number(steps) +
+                                  " time steps of N = " + number(static_cast<double>(c.dsmc.n_particles)) +
+                                  " particles each (" + estimate + "), beyond 1e13 particle updates (a day or more); "
+                                  "a larger step_fraction (1 is the default), or &dsmc allow_long_run = .true.");
+  }
   if (reason.empty()) return;
   // Where the variable was set (exactly one of the two is required, so it was).
   const auto it = c.origin.find(std::string("dsmc:") + variable);

@@ -52,6 +52,18 @@ std::string special_file_kind(const std::string& path) {
 /// granular-dsmc), which a new run may replace; anything else is the user's and is kept.
 bool is_earlier_output(const std::string& path) { return gdsmc::io::h5md::written_by(path, "granular-dsmc"); }
 
+/// Whether `path` is a regular file that --compare=F.json wrote (its JSON has "statistical_threshold"
+/// within its first 64 kB), which a new run may replace; anything else is the user's and is kept.
+bool is_earlier_compare_json(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(std::filesystem::symlink_status(path, ec))) return false;
+  std::ifstream in(path, std::ios::binary);
+  std::string head(65536, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  return !head.empty() && head[0] == '{' && head.find("\"statistical_threshold\"") != std::string::npos;
+}
+
 /// Whether two paths name the same file, also when neither exists yet (lexically, after resolving
 /// what exists of them).
 bool same_file(const std::string& a, const std::string& b) {
@@ -121,7 +133,8 @@ const char* kUsage =
     "                    the output is the same as that of an uninterrupted run\n"
     "  --set G:V=X       override variable V of group &G with X (Fortran syntax), e.g.\n"
     "                    --set dsmc:n_particles=2000 --set \"output:file='x.h5'\"\n"
-    "  --force           write the output over an existing file that is not an earlier output of granular-dsmc,\n"
+    "  --force           write the output (and --compare=F.json) over an existing file that is not an earlier\n"
+    "                    output of granular-dsmc,\n"
     "                    and start afresh over the checkpoint of another or an interrupted run (replaced)\n"
     "  --print-defaults  print a commented namelist with every variable and its default\n"
     "  --print-observables  print the table of observables (name, unit, columns, definition) as Markdown\n"
@@ -169,6 +182,7 @@ int print_table(int argc, char** argv, int first) {
     } else if (!arg.empty() && arg[0] == '-') {
       return refuse("unknown option " + arg + " (--table takes QUANTITY..., --point K and --theory)");
     } else if (request.file.empty()) {
+      if (arg.find_first_of("\n\r") != std::string::npos) return refuse("a file name with a line break is not accepted");
       request.file = arg;
     } else {
       request.quantities.push_back(arg);
@@ -239,8 +253,16 @@ std::optional<int> parse_arguments(int argc, char** argv, Arguments& a) {
         std::cerr << "granular-dsmc: --compare=: no JSON file named (give --compare alone for the table only)\n";
         return 2;
       }
+      if (a.compare_json.find_first_of("\n\r") != std::string::npos) {
+        std::cerr << "granular-dsmc: --compare=: a file name with a line break is not accepted\n";
+        return 2;
+      }
     } else if (arg == "--restart") {
       a.restart = next();
+      if (a.restart.find_first_of("\n\r") != std::string::npos) {
+        std::cerr << "granular-dsmc: --restart: a file name with a line break is not accepted\n";
+        return 2;
+      }
     } else if (arg == "--set") {
       a.overrides.push_back(next());
     } else if (!arg.empty() && arg[0] == '-') {
@@ -347,6 +369,10 @@ std::optional<int> check_paths(const Arguments& a, const gdsmc::io::config::Conf
     if (root) std::cerr << "granular-dsmc: --restart: '" << a.restart << "' is a directory, not a checkpoint file\n";
     return 2;
   }
+  if (std::error_code ec; !a.restart.empty() && !std::filesystem::exists(a.restart, ec)) {
+    if (root) std::cerr << "granular-dsmc: --restart: checkpoint '" << a.restart << "': no such file\n";
+    return 2;
+  }
   if (const std::string kind = a.restart.empty() ? "" : special_file_kind(a.restart); !kind.empty()) {
     if (root) std::cerr << "granular-dsmc: --restart: '" << a.restart << "' is " << kind << ", not a checkpoint file\n";
     return 2;
@@ -356,12 +382,18 @@ std::optional<int> check_paths(const Arguments& a, const gdsmc::io::config::Conf
     return output_error(a, config, root, "cannot write output file '" + path + "': it is a directory");
   if (const std::string kind = special_file_kind(path); !kind.empty())
     return output_error(a, config, root, "cannot write output file '" + path + "': it is " + kind + ", not a regular file");
+  // The temporary `<name>.tmp.<pid>` and the checkpoint `<stem>.checkpoint.rank<k>.h5` need room beside the name.
+  if (const auto name = std::filesystem::path(path).filename().string(); name.size() > 200)
+    return output_error(a, config, root,
+                        "the file name is " + std::to_string(name.size()) + " characters long: at most 200, so that its "
+                        "temporary and checkpoint names stay within the file system's limit of 255");
   std::error_code ec;
   if (std::filesystem::equivalent(path, a.input, ec))
     return output_error(a, config, root, "the output file '" + path + "' is the input namelist: it would be overwritten");
   if (!a.restart.empty() && std::filesystem::equivalent(path, a.restart, ec))
     return output_error(a, config, root, "the output file '" + path + "' is the checkpoint given to --restart");
-  if (!a.force && std::filesystem::exists(path, ec) && !is_earlier_output(path))
+  // (a link counts as what is at the path, also when it leads nowhere: never replaced without --force)
+  if (!a.force && std::filesystem::exists(std::filesystem::symlink_status(path, ec)) && !is_earlier_output(path))
     return output_error(a, config, root,
                         "'" + path + "' exists and is not an output of granular-dsmc: choose another file, or "
                         "give --force to replace it");
@@ -373,6 +405,10 @@ std::optional<int> check_paths(const Arguments& a, const gdsmc::io::config::Conf
     return 2;
   };
   if (same_file(a.compare_json, a.input)) return json_error("it is the input namelist: it would be overwritten");
+  if (std::error_code ec; !a.force && std::filesystem::exists(std::filesystem::symlink_status(a.compare_json, ec)) &&
+                          special_file_kind(a.compare_json).empty() && !is_earlier_compare_json(a.compare_json))
+    return json_error("'" + a.compare_json + "' exists and is not a --compare JSON of granular-dsmc: choose another "
+                      "file, or give --force to replace it");
   if (same_file(a.compare_json, path)) return json_error("it is the output file of the run (&output file)");
   if (!a.restart.empty() && same_file(a.compare_json, a.restart)) return json_error("it is the checkpoint given to --restart");
   if (root)

@@ -15,6 +15,7 @@
 
 #include "io/config.hpp"
 #include "io/namelist.hpp"
+#include "io/version.hpp"
 #include "analysis/json.hpp"
 #include "analysis/predictions.hpp"
 #include "analysis/run_checks.hpp"
@@ -35,7 +36,7 @@ const char* kUnitsJson =
     "\"cooling_rate_sonine\": \"time-1\", \"tail_decay_rate\": \"1\", \"other_keys\": \"1\"}";
 
 const char* kUsage =
-    "usage: granular-theory FILE.nml [--set group:variable=value]...\n"
+    "usage: granular-theory FILE.nml [--set group:variable=value]...   (or --help, --version)\n"
     "Prints the theory for the namelist's system as one JSON object on stdout:\n"
     "  n_species            S, the number of species (&agg_frag: 1, the monomer)\n"
     "  collision_frequency  [nu_k] collisions suffered per particle of species k per unit time at t=0\n"
@@ -288,6 +289,9 @@ int main(int argc, char** argv) {
     const std::string arg = argv[i];
     if (arg == "--help" || arg == "-h") {
       std::cout << kUsage;
+      return 0;
+    } else if (arg == "--version") {
+      std::cout << "granular-theory " << gdsmc::io::build_version() << "\n";
       return 0;
     } else if (arg == "--set") {
       if (i + 1 == argc) {

@@ -653,8 +653,10 @@ class Collider {
   }
 
   /// An acceptance probability `p` > 1 (header of Counters::overshoots); kept out of line, it never
-  /// happens in a correct run.
+  /// happens in a correct run. A pair at the bound itself (two particles of zero total momentum have
+  /// g = 2 v_max exactly) gives p = 1 within round-off, 1 + 2e-16: not an overshoot, and no bias.
   [[gnu::cold]] void note_overshoot(double p) {
+    if (p <= 1.0 + 1e-12) return;
     ++counters_.overshoots;
     counters_.largest_acceptance = std::max(counters_.largest_acceptance, p);
   }

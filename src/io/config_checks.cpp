@@ -292,6 +292,24 @@ void check_scales(const Config& c, std::map<std::string, Provenance>& prov) {
     if (!inside(t / sys.mass[k])) refuse("initial", "temperature", k, t / sys.mass[k], "temperature/mass");
     const double rate = sys.number_density[k] * sys.diameter[k] * sys.diameter[k] * std::sqrt(t / sys.mass[k]);
     if (!inside(rate)) refuse("system", "number_density", k, rate, "number_density x diameter^2 x sqrt(temperature/mass)");
+    // Rough spheres: a spin far hotter than the translation makes the first collisions take ~sqrt(T_rot/T)
+    // times longer than the later ones, whose time steps then vanish in the round-off of the clock.
+    const auto& spin = c.initial.rotational_temperature;
+    if (k < spin.size() && c.rough()) {
+      if (!inside(spin[k])) refuse("initial", "rotational_temperature", k, spin[k], "rotational_temperature");
+      if (!(spin[k] / t <= 1e20)) {
+        const Provenance& p = prov["initial"];
+        char text[320];
+        std::snprintf(text, sizeof text,
+                      "rotational_temperature(%zu)/temperature(%zu) = %.3g is beyond 1e20: the first collisions would take "
+                      "%.3g times as long as the later ones, whose time steps vanish in the clock's round-off (the run "
+                      "would not end); start the translation warmer",
+                      k + 1, k + 1, spin[k] / t, std::sqrt(spin[k] / t));
+        throw Error(p.file_of("rotational_temperature"),
+                    p.line.count("rotational_temperature") ? p.line.at("rotational_temperature") : p.group_line,
+                    "initial", "rotational_temperature", text);
+      }
+    }
   }
 }
 

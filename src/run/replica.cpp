@@ -661,9 +661,14 @@ void Clusters::advance_to_sample(std::size_t i, const Between& between) {
     between();
   }
   if (!time_driven_ && gas_.counters().events < event_target)
-    throw std::runtime_error("the gas aggregated into one cluster at t = " + std::to_string(gas_.time()) +
-                             " before collisions_per_particle = " + std::to_string(targets_[i]) +
-                             " was reached; give t_end instead");
+  {
+    char text[256];  // (the clock of a gas with nothing left to collide stands at infinity: not shown)
+    std::snprintf(text, sizeof text,
+                  "the gas aggregated into one cluster after %.6g collisions per monomer, before "
+                  "collisions_per_particle = %.6g was reached; give t_end instead",
+                  2.0 * static_cast<double>(gas_.counters().events) / initial_monomers_, targets_[i]);
+    throw std::runtime_error(text);
+  }
 }
 
 void Clusters::sample(std::size_t i, ReplicaResult& result) {
