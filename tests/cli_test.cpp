@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "base_namelist.hpp"
+#include "sanitizer_scale.hpp"
 #include "io/file_lock.hpp"
 #include "run/checkpoint.hpp"
 #include "io/h5md.hpp"
@@ -575,6 +576,7 @@ TEST_F(CliDsmc, AFifoOrADeviceIsNeverOpenedOrReplaced) {
 // n_particles = 2e9 is allowed, and ended in std::bad_alloc (exit 1) after start; a run whose particles
 // alone cannot fit (here under ulimit -v 4 GB: 1e9 particles x 28 bytes) is refused before any work.
 TEST_F(CliDsmc, ARunThatCannotFitInMemoryIsRefusedWithTheEstimate) {
+  if (gdsmc::test::sanitized) GTEST_SKIP() << "AddressSanitizer reserves terabytes of address space: no ulimit -v";
   struct rlimit saved {};
   ASSERT_EQ(::getrlimit(RLIMIT_AS, &saved), 0);
   struct rlimit limited = saved;

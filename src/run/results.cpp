@@ -100,8 +100,10 @@ bool is_series(const std::string& name) {
 }  // namespace
 
 void check_rows(const ReplicaResult& result, std::size_t samples, bool finished) {
-  for (const auto& [name, entry] : result.rows) {
-    const auto& [columns, values] = entry;
+  for (const auto& row : result.rows) {  // (no structured bindings: the lambda below captures them)
+    const std::string& name = row.first;
+    const std::size_t columns = row.second.first;
+    const std::vector<double>& values = row.second.second;
     const auto refuse = [&](const std::string& what) {
       throw state::StateError("row '" + name + "' holds " + std::to_string(values.size()) + " values of " +
                               std::to_string(columns) + " columns: " + what);
