@@ -265,21 +265,23 @@ void check_output(Output& out, const Dsmc& d, const Provenance& prov) {
   }
 }
 
-/// Rough spheres (\ref rough_rule "docs/rough-spheres.md"): beta_kj resolved as restitution is, kappa_k and
-/// T_rot,k(0) filled per species; refused where the loops have no rough rule (clusters, frames,
-/// viscoelastic restitution), naming the variable that asks for it.
+/// Throws the input Error for `variable` of `group` where it was set (the group's line if it was not).
+[[noreturn]] static void refuse_variable(const Provenance& p, const std::string& group, const std::string& variable,
+                                         const std::string& message) {
+  throw Error(p.file_of(variable), p.line.count(variable) ? p.line.at(variable) : p.group_line, group, variable, message);
+}
+
 void check_scales(const Config& c, std::map<std::string, Provenance>& prov) {
   constexpr double low = 1e-100, high = 1e100;
   const auto inside = [](double x) { return x >= low && x <= high; };
   const auto refuse = [&](const std::string& group, const std::string& variable, std::size_t k, double value,
                           const std::string& what) {
-    const Provenance& p = prov[group];
     char text[160];
     std::snprintf(text, sizeof text, "%s(%zu) = %.6g is outside [1e-100, 1e100]", what.c_str(), k + 1, value);
-    throw Error(p.file_of(variable), p.line.count(variable) ? p.line.at(variable) : p.group_line, group, variable,
-                std::string(text) + ": the code computes in the input's units, where the velocities' fourth moments "
-                "(T/m)^2 and the collision rates must stay far inside double range; choose units in which these "
-                "are nearer 1 (docs/output.md \"Units\")");
+    refuse_variable(prov[group], group, variable,
+                    std::string(text) + ": the code computes in the input's units, where the velocities' fourth moments "
+                    "(T/m)^2 and the collision rates must stay far inside double range; choose units in which these "
+                    "are nearer 1 (docs/output.md \"Units\")");
   };
   const auto& sys = c.system;
   const std::size_t s = static_cast<std::size_t>(sys.n_species);
@@ -298,16 +300,13 @@ void check_scales(const Config& c, std::map<std::string, Provenance>& prov) {
     if (k < spin.size() && c.rough()) {
       if (!inside(spin[k])) refuse("initial", "rotational_temperature", k, spin[k], "rotational_temperature");
       if (!(spin[k] / t <= 1e20)) {
-        const Provenance& p = prov["initial"];
         char text[320];
         std::snprintf(text, sizeof text,
                       "rotational_temperature(%zu)/temperature(%zu) = %.3g is beyond 1e20: the first collisions would take "
                       "%.3g times as long as the later ones, whose time steps vanish in the clock's round-off (the run "
                       "would not end); start the translation warmer",
                       k + 1, k + 1, spin[k] / t, std::sqrt(spin[k] / t));
-        throw Error(p.file_of("rotational_temperature"),
-                    p.line.count("rotational_temperature") ? p.line.at("rotational_temperature") : p.group_line,
-                    "initial", "rotational_temperature", text);
+        refuse_variable(prov["initial"], "initial", "rotational_temperature", text);
       }
     }
   }
@@ -329,17 +328,18 @@ void check_viscoelastic_range(const Config& c, std::map<std::string, Provenance>
       }
     }
   if (worst <= restitution::u_max) return;
-  const Provenance& p = prov["system"];
   char text[512];
   std::snprintf(text, sizeof text,
                 "u = beta^(1/2) |g.e|^(1/10) reaches %.3g at impact speed %.3g (7 thermal relative speeds at the initial "
                 "temperature, about 1 in 1e11 collisions), beyond the series' cut-off %.2g: a smaller visco_a_kappa or a "
                 "lower temperature (docs/viscoelastic.md \"Range of validity\")",
                 worst, worst_speed, restitution::u_max);
-  throw Error(p.file_of("visco_a_kappa"), p.line.count("visco_a_kappa") ? p.line.at("visco_a_kappa") : p.group_line,
-              "system", "visco_a_kappa", text);
+  refuse_variable(prov["system"], "system", "visco_a_kappa", text);
 }
 
+/// Rough spheres (\ref rough_rule "docs/rough-spheres.md"): beta_kj resolved as restitution is, kappa_k and
+/// T_rot,k(0) filled per species; refused where the loops have no rough rule (clusters, frames,
+/// viscoelastic restitution), naming the variable that asks for it.
 void check_rough(Config& c, std::map<std::string, Provenance>& prov) {
   Provenance& p = prov["system"];
   Provenance& q = prov["initial"];
