@@ -14,6 +14,7 @@ packages=(
   python3-matplotlib python3-h5py python3-numpy  # paper-figures/
   libopenmpi-dev openmpi-bin  # mpirun: replicas and sweep points over ranks
   clang libclang-rt-dev # scripts/clang-fuzz.sh: the clang build, sanitizers, libFuzzer (tests/fuzz)
+  procps                # pkill, pgrep: tests/scale_out (restart.sh, interrupt.sh) signal the runs they start
 )
 
 missing=()

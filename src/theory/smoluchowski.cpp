@@ -206,7 +206,7 @@ class RateEquations {
  public:
   RateEquations(const Parameters& p, std::size_t max_size, const Stop& stop)
       : p_(p), stop_(stop), max_size_(max_size), cube_root_(max_size), density_(max_size), temperature_(max_size) {
-    // O(K) memory: a pair's constants are made when it is visited (a K x K table took 15 GB at K = 16384).
+    // O(K) memory: a pair's constants are made when it is visited, not kept in a K x K table.
     for (std::size_t k = 1; k <= max_size; ++k) cube_root_[k - 1] = std::cbrt(static_cast<double>(k));
   }
 
