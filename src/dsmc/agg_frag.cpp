@@ -497,8 +497,6 @@ bool Gas::advance(double t_target, std::uint64_t event_target) {
     time_ += wait;
     credit_ = 0.0;
     counters_.candidates += 1;
-    // And every 2^16 candidates: a step of any length (a block's runs to its end, up to 2^22 candidates).
-    if ((counters_.candidates & 0xFFFFu) == 0 && stop_flag_ && stop_flag_->load(std::memory_order_relaxed)) return false;
     const auto [row, column] = sampler_.sample(gen_, totals);
     const Cluster a{static_cast<std::uint32_t>(row + 1), 0}, b0{static_cast<std::uint32_t>(column + 1), 0};
     const auto& list_a = lists_[a.size];

@@ -185,8 +185,8 @@ class Gas {
   /// t_target at most block_step_end().
   bool advance(double t_target, std::uint64_t event_target = UINT64_MAX);
   /// A flag (the caller's interrupt flag) that, once set, makes advance() return false at the next
-  /// step start or within 2^16 candidates, before its targets (as collide::Collider::set_stop_flag);
-  /// the blocks of a blocked step stop as early, and the gas is then fit only to be discarded.
+  /// step start, before its targets (as collide::Collider::set_stop_flag); the blocks of a blocked
+  /// step (at most 2^22 candidates) stop as early, and the gas is then fit only to be discarded.
   /// nullptr (the default): never.
   void set_stop_flag(const std::atomic<bool>* flag) { stop_flag_ = flag; }
 
