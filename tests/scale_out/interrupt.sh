@@ -46,7 +46,10 @@ run_case() {
   { base; printf '%s\n' "$extra"; } > in.nml
   local command=("${launcher[@]}")
   [ "${launcher[0]:-}" = "mpi" ] && command=("${launcher[@]:1}")
-  "${command[@]}" "$exe" in.nml --quiet "$@" > stdout 2> stderr &
+  # The input by its absolute path: the ranks are found by their command line, and other tests running
+  # at the same time (ctest -j) also run "granular-dsmc in.nml"; they must neither be signalled nor waited for.
+  local input=$PWD/in.nml
+  "${command[@]}" "$exe" "$input" --quiet "$@" > stdout 2> stderr &
   local pid=$!
   sleep 1.2  # past the set-up, inside the loops
   if ! kill -0 $pid 2>/dev/null; then
@@ -56,13 +59,13 @@ run_case() {
   if [ "${launcher[0]:-}" = "mpi" ]; then
     # Open MPI's mpirun passes a signal on to the ranks only after odls_base_sigkill_timeout (1-2 s,
     # its own delay); a batch system (scancel) and a terminal's Ctrl-C signal the ranks themselves.
-    pkill --signal "$signal" -f "^$exe in.nml"
+    pkill --signal "$signal" -f "^$exe $input "
   else
     kill -s "$signal" $pid
   fi
   local waited=0
   if [ "${launcher[0]:-}" = "mpi" ]; then  # the ranks' end (mpirun's own teardown takes ~1 s more)
-    while pgrep -f "^$exe in.nml" > /dev/null && [ $waited -lt 100 ]; do sleep 0.02; waited=$((waited + 1)); done
+    while pgrep -f "^$exe $input " > /dev/null && [ $waited -lt 100 ]; do sleep 0.02; waited=$((waited + 1)); done
     local ended=$(date +%s.%N)
     for _ in $(seq 100); do kill -0 $pid 2>/dev/null || break; sleep 0.05; done
   else
@@ -70,7 +73,7 @@ run_case() {
     local ended=$(date +%s.%N)
   fi
   if kill -0 $pid 2>/dev/null; then
-    pkill -9 -f "$exe in.nml" ; kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
+    pkill -9 -f "^$exe $input " ; kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
     echo "FAIL $name: still running 2 s after SIG$signal"; failures=$((failures + 1)); cd ..; return
   fi
   wait $pid
