@@ -60,7 +60,7 @@ if [ "$mpiexec" != "none" ]; then
     [ $waited -lt 600 ] || { echo "FAIL: no MPI checkpoints after 60 s"; exit 1; }
   done
   sleep 0.5
-  pkill -9 -f "$exe $nml" || true  # the ranks, then their launcher
+  pkill -9 -f "^$exe $nml " || true  # the ranks (this run's input name only), then their launcher
   kill -9 $pid 2>/dev/null || true
   wait $pid 2>/dev/null || true
   rm -f restart.h5.tmp.*
