@@ -3,7 +3,10 @@
 # equations as Markdown math, $...$ inline and $$...$$ displayed (which GitHub and most Markdown
 # viewers render), and Doxygen wants \f$...\f$ and \f[...\f]. Fenced code blocks and `code spans`
 # are left alone, except that a code span holding a quote (`kind = 'gaussian'`) becomes <code>...</code>:
-# Doxygen 1.9 reads a quote before the closing backtick as the end of a `...' quotation. Usage (Doxygen FILTER_PATTERNS): perl markdown_math.pl FILE > filtered
+# Doxygen 1.9 reads a quote before the closing backtick as the end of a `...' quotation. Cross-references
+# are plain Markdown links to a page's heading anchor, [text](page.md#anchor) or [text](#anchor) on the
+# same page (which any Markdown viewer follows); they become [text](@ref anchor), Doxygen's link to the
+# section. Usage (Doxygen FILTER_PATTERNS): perl markdown_math.pl FILE > filtered
 use strict;
 use warnings;
 
@@ -22,7 +25,7 @@ while (my $line = <>) {
     next;
   }
   if ($in_display) { print $line; next; }
-  # Outside code spans: $$...$$ on one line, then $...$.
+  # Outside code spans: links to anchors, then $$...$$ on one line, then $...$.
   my @parts = split /(`[^`]*`)/, $line;
   for my $p (@parts) {
     if ($p =~ /^`(.*)`$/s) {
@@ -35,6 +38,7 @@ while (my $line = <>) {
       }
       next;
     }
+    $p =~ s{\]\((?:[\w./-]*\.md)?#([A-Za-z0-9_]+)\)}{](\@ref $1)}g;
     $p =~ s/\$\$(.+?)\$\$/\\f[$1\\f]/g;
     $p =~ s/(?<![\\\w])\$([^\$\n]+?)\$/\\f\$$1\\f\$/g;
   }

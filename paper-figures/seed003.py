@@ -102,7 +102,7 @@ def one_component_dsmc():
         with h5py.File(path) as f:
             if "sonine_c" not in f["observables"]:
                 continue
-            alpha = f["parameters/system"].attrs["restitution"][0]
+            alpha = float(np.ravel(f["parameters/system"].attrs["restitution"])[0])
             _, c, dc = observable(f, "sonine_c")
             _, C, _ = observable(f, "collisions_per_particle")
         c, dc = np.ravel(c), np.ravel(dc)
@@ -165,7 +165,7 @@ def reduced_distribution(path):
         d = {k: s[k][()] for k in ("value", "error", "delta", "delta_error", "g", "g_error")}
         d.update(v=0.5 * (edges[1:] + edges[:-1]), lam=s.attrs["lambda"], c=s.attrs["sonine_c"],
                  beta=s.attrs["tail_beta"], zeta=g.attrs["cooling_rate_reduced"],
-                 alpha=f["parameters/system"].attrs["restitution"][0],
+                 alpha=float(np.ravel(f["parameters/system"].attrs["restitution"])[0]),
                  n=f["parameters/dsmc"].attrs["n_particles"])
     return d
 

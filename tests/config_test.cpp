@@ -378,6 +378,7 @@ TEST(ConfigResolved, ContainsEveryFieldOfEveryGroup) {
       EXPECT_EQ(std::get<long long>(p.value), 4);
     } else if (key == "system:restitution") {
       EXPECT_EQ(std::get<std::vector<double>>(p.value), (std::vector<double>(4, 0.5)));
+      EXPECT_EQ(p.shape, (std::vector<std::size_t>{2, 2}));  // written as an (S, S) attribute
     } else if (key == "initial:temperature") {
       EXPECT_EQ(std::get<std::vector<double>>(p.value), (std::vector<double>{1.0, 1.0}));
     }
@@ -1230,10 +1231,25 @@ TEST(ConfigSweep, ResolvedKeepsTheOneVariableTypes) {
     if (p.name == "values") {
       seen_values = true;
       EXPECT_EQ(p.value, gdsmc::io::h5md::ParameterValue(std::vector<std::string>{"0.5", "0.7"}));
+      EXPECT_TRUE(p.shape.empty());  // a list; several variables give a (points, variables) table
     }
   }
   EXPECT_TRUE(seen_variable);
   EXPECT_TRUE(seen_values);
+}
+
+// Several swept variables: /parameters/sweep@values is the (points, variables) table of the value texts.
+TEST(ConfigSweep, ResolvedValuesOfSeveralVariablesAreATable) {
+  const auto c = read_text(with_sweep("&sweep variable = 'system:restitution', 'system:mass(2)'\n"
+                                      "  values = 0.6, 2.0,  0.9, 5.0,  0.7, 3.0 /"));
+  bool seen = false;
+  for (const auto& p : c.resolved())
+    if (p.group == "sweep" && p.name == "values") {
+      seen = true;
+      EXPECT_EQ(p.value, gdsmc::io::h5md::ParameterValue(std::vector<std::string>{"0.6", "2.0", "0.9", "5.0", "0.7", "3.0"}));
+      EXPECT_EQ(p.shape, (std::vector<std::size_t>{3, 2}));
+    }
+  EXPECT_TRUE(seen);
 }
 
 // Rough spheres (\ref rough_rule "docs/rough-spheres.md")

@@ -84,6 +84,8 @@ std::vector<Parameter> every_kind_of_parameter() {
       {"output", "file", std::string("run_α.h5")},
       {"output", "names", std::vector<std::string>{"small", "βig", ""}},
       {"output", "empty_text", std::string()},
+      {"system", "restitution", std::vector<double>{0.9, 0.8, 0.8, 0.7}, {2, 2}},  // read back flat
+      {"sweep", "values", std::vector<std::string>{"0.6", "2.0", "0.9", "5.0", "0.5", "1"}, {3, 2}},
   };
 }
 
@@ -481,6 +483,19 @@ TEST(H5md, NoHdf5FilesOrObjectsLeftOpen) {
 
 namespace {
 
+/// The dimensions of attribute `name` of `object` (empty: a scalar).
+std::vector<hsize_t> attribute_dims(const std::string& file, const std::string& object, const char* name) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t a = H5Aopen_by_name(f, object.c_str(), name, H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t space = H5Aget_space(a);
+  std::vector<hsize_t> dims(static_cast<std::size_t>(std::max(0, H5Sget_simple_extent_ndims(space))));
+  H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+  H5Sclose(space);
+  H5Aclose(a);
+  H5Fclose(f);
+  return dims;
+}
+
 /// The character set and whether the string attribute `name` of `object` is of variable length.
 std::pair<H5T_cset_t, bool> string_kind(const std::string& file, const std::string& object, const char* name) {
   const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
@@ -494,6 +509,23 @@ std::pair<H5T_cset_t, bool> string_kind(const std::string& file, const std::stri
 }
 
 }  // namespace
+
+// /parameters arrays in their shape: a pair matrix (S, S), a sweep table (points, variables); the
+// others as before (a scalar, 1-D lists). A shape that does not hold the value is refused.
+TEST(H5md, ParametersAreWrittenInTheirShape) {
+  const TempDir dir;
+  const std::string path = dir.file("out.h5");
+  write_example(path);
+  EXPECT_EQ(attribute_dims(path, "/parameters/system", "restitution"), (std::vector<hsize_t>{2, 2}));
+  EXPECT_EQ(attribute_dims(path, "/parameters/sweep", "values"), (std::vector<hsize_t>{3, 2}));
+  EXPECT_EQ(attribute_dims(path, "/parameters/system", "masses"), (std::vector<hsize_t>{2}));
+  EXPECT_EQ(attribute_dims(path, "/parameters/system", "alpha"), (std::vector<hsize_t>{}));
+  for (const Parameter& bad : {Parameter{"system", "restitution", std::vector<double>{0.9, 0.8, 0.8}, {2, 2}},
+                               Parameter{"system", "alpha", 0.9, {1}}}) {
+    Writer w(dir.file("bad.h5"), "A. Uthor", "granular-dsmc", "0.1.0");
+    EXPECT_THROW(w.write_parameters({bad}, namelist_text), std::invalid_argument) << bad.name;
+  }
+}
 
 TEST(H5md, UnitStringGrammar) {
   for (const char* good : {"1", "nm+3", "um+2 s-1", "60 s", "10+3 m", "0.5 m", "energy length-3 time", "length+2"})

@@ -283,14 +283,19 @@ void append_resolved(std::vector<h5md::Parameter>& out, const std::string& group
             // The points run, point after point (also for lists and grids): the value texts.
             if constexpr (std::is_same_v<G, Sweep>) {
               std::vector<std::string> flat;
-              for (const auto& row : target.table()) flat.insert(flat.end(), row.begin(), row.end());
-              out.push_back({group, f.name, flat});
+              const auto table = target.table();
+              for (const auto& row : table) flat.insert(flat.end(), row.begin(), row.end());
+              // One variable: a list of the points' values; several: a (points, variables) table.
+              const std::size_t variables = table.empty() ? 0 : table.front().size();
+              if (variables > 1) out.push_back({group, f.name, flat, {table.size(), variables}});
+              else out.push_back({group, f.name, flat});
             }
           } else if constexpr (Choice<T>) {
             out.push_back({group, f.name, name(v)});
           } else if constexpr (std::is_same_v<T, species::PairMatrix>) {
-            // A uniform matrix of very many species (not stored densely) is written as its value.
-            out.push_back({group, f.name, v.is_dense() ? v.values : std::vector<double>{v(0, 0)}});
+            // An (S, S) matrix; a uniform matrix of very many species (not stored densely) as its value.
+            if (v.is_dense()) out.push_back({group, f.name, v.values, {v.size, v.size}});
+            else out.push_back({group, f.name, std::vector<double>{v(0, 0)}});
           } else {
             out.push_back({group, f.name, v});
           }

@@ -216,7 +216,7 @@ Handle utf8_string_type(const std::string& object) {
 }
 
 void put_attribute(hid_t object, const std::string& where, const std::string& name, hid_t file_type,
-                   hid_t memory_type, const hsize_t* dims, const void* data);
+                   hid_t memory_type, const hsize_t* dims, const void* data, int rank = 1);
 
 /// The `unit` attribute of H5MD's units module: a scalar variable-length ASCII string.
 void put_unit(hid_t dataset, const std::string& dataset_path, const std::string& unit) {
@@ -254,27 +254,32 @@ Handle ensure_group(hid_t file, const std::string& path) {
 
 /// One attribute; `dims` = nullptr gives a scalar dataspace.
 void put_attribute(hid_t object, const std::string& where, const std::string& name, hid_t file_type,
-                   hid_t memory_type, const hsize_t* dims, const void* data) {
+                   hid_t memory_type, const hsize_t* dims, const void* data, int rank) {
   Handle space =
       dims == nullptr
           ? make(H5Screate(H5S_SCALAR), H5Sclose, "H5Screate", where)
-          : make(H5Screate_simple(1, dims, nullptr), H5Sclose, "H5Screate_simple", where);
+          : make(H5Screate_simple(rank, dims, nullptr), H5Sclose, "H5Screate_simple", where);
   Handle attribute =
       make(H5Acreate2(object, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
            H5Aclose, "H5Acreate2", where);
-  if (dims == nullptr || dims[0] > 0)
+  if (dims == nullptr || std::all_of(dims, dims + rank, [](hsize_t d) { return d > 0; }))
     check(H5Awrite(attribute.get(), memory_type, data), "H5Awrite", where);
 }
 
 /// `replace` = false makes a second value for the same name an error (a duplicate parameter is a
-/// bug upstream that should not pass silently); true is for explicit annotations.
+/// bug upstream that should not pass silently); true is for explicit annotations. A non-empty
+/// `shape` writes an array value in that shape (row-major) instead of 1-D.
 void put_value(hid_t object, const std::string& object_path, const std::string& name,
-               const ParameterValue& value, bool replace) {
+               const ParameterValue& value, bool replace, const std::vector<std::size_t>& shape = {}) {
   const std::string where = object_path + "@" + name;
   if (replace && check(H5Aexists(object, name.c_str()), "H5Aexists", where) > 0)
     check(H5Adelete(object, name.c_str()), "H5Adelete", where);
-  auto put = [&](hid_t file_type, hid_t memory_type, const hsize_t* dims, const void* data) {
-    put_attribute(object, where, name, file_type, memory_type, dims, data);
+  const std::vector<hsize_t> dims(shape.begin(), shape.end());
+  auto put = [&](hid_t file_type, hid_t memory_type, const hsize_t* length, const void* data) {
+    if (length != nullptr && !dims.empty())
+      put_attribute(object, where, name, file_type, memory_type, dims.data(), data, static_cast<int>(dims.size()));
+    else
+      put_attribute(object, where, name, file_type, memory_type, length, data);
   };
   std::visit(
       Overloaded{
@@ -455,9 +460,9 @@ ParameterValue read_attribute_value(hid_t file, const std::string& object_path,
   if (space_class < 0) fail("H5Sget_simple_extent_type", where);
   hssize_t count = 0;
   const bool scalar = space_class == H5S_SCALAR;
-  if (!scalar) {
-    if (space_class != H5S_SIMPLE || extent(space.get(), where, count).size() != 1)
-      throw std::runtime_error("attribute '" + where + "' is neither a scalar nor 1-D");
+  if (!scalar) {  // an array of any rank is read flat, row-major (pair matrices of /parameters)
+    if (space_class != H5S_SIMPLE || extent(space.get(), where, count).empty())
+      throw std::runtime_error("attribute '" + where + "' is neither a scalar nor an array");
   } else {
     count = 1;
   }
@@ -691,17 +696,30 @@ Writer::~Writer() = default;
 
 void Writer::write_parameters(const std::vector<Parameter>& parameters,
                               const std::string& namelist_text) {
-  for (const Parameter& p : parameters)
+  for (const Parameter& p : parameters) {
     if (p.group.empty() || p.group.find('/') != std::string::npos)
       throw std::invalid_argument("h5md: invalid namelist group name '" + p.group +
                                   "' for parameter '" + p.name + "'");
+    if (p.shape.empty()) continue;
+    const std::size_t length = std::visit(
+        []<class T>(const T& v) -> std::size_t {
+          if constexpr (requires { v.size(); } && !std::is_same_v<T, std::string>) return v.size();
+          else return 0;  // a scalar has no shape
+        },
+        p.value);
+    std::size_t cells = 1;
+    for (std::size_t d : p.shape) cells *= d;
+    if (cells != length || length == 0)
+      throw std::invalid_argument("h5md: parameter '" + p.group + "/" + p.name + "': a shape of " +
+                                  std::to_string(cells) + " values for " + std::to_string(length));
+  }
   const hid_t file = impl_->open_file();
   with_context(impl_->context(), [&] {
     const Handle root = ensure_group(file, "/parameters");
     put_value(root.get(), "/parameters", "namelist", namelist_text, false);
     for (const Parameter& p : parameters) {
       const std::string path = "/parameters/" + p.group;
-      put_value(ensure_group(file, path).get(), path, p.name, p.value, false);
+      put_value(ensure_group(file, path).get(), path, p.name, p.value, false, p.shape);
     }
   });
 }

@@ -82,6 +82,9 @@ struct Parameter {
   std::string group;     ///< namelist group, e.g. "system"
   std::string name;      ///< variable name
   ParameterValue value;  ///< its resolved value
+  /// Shape of an array value (row-major), e.g. {S, S} for a pair matrix; empty: a scalar, or 1-D of
+  /// the value's length. The product must equal the value's length.
+  std::vector<std::size_t> shape = {};
 };
 
 /// One time series: value is row-major [time][column]; columns = 1 writes a 1-D dataset of shape
@@ -126,8 +129,9 @@ class Writer {
   Writer(const Writer&) = delete;
   Writer& operator=(const Writer&) = delete;
 
-  /// `/parameters/GROUP@NAME` for every parameter and `/parameters@namelist` = namelist_text.
-  /// A group name must be non-empty and free of '/'; a duplicate (group, name) is an error.
+  /// `/parameters/GROUP@NAME` for every parameter (in its shape) and `/parameters@namelist` =
+  /// namelist_text. A group name must be non-empty and free of '/'; a duplicate (group, name) or a
+  /// shape that does not hold the value is an error.
   void write_parameters(const std::vector<Parameter>& parameters, const std::string& namelist_text);
 
   /// `/observables/NAME/{step,time,value[,error]}`; `name` may contain '/' for nested groups.
@@ -215,14 +219,15 @@ std::vector<std::uint64_t> read_integers(const std::string& file, const std::str
 
 /// Reads any attribute this module writes (and fixed-length strings, int32, ...): integer class of
 /// size 1 with scalar dataspace -> bool, other integers -> long long, floats -> double, strings ->
-/// std::string; a 1-D dataspace gives the vector alternative.
+/// std::string; an array dataspace gives the vector alternative (flattened, row-major, for the pair
+/// matrices of /parameters).
 ParameterValue read_attribute(const std::string& file, const std::string& object_path,
                               const std::string& name);
-/// A string attribute (read_attribute holding a std::string; anything else throws).
 /// Whether `path` is a regular HDF5 file whose `/h5md/creator@name` is `creator` (an earlier output of
 /// the program that may replace it); false for anything else, without opening a FIFO or a device.
 bool written_by(const std::string& path, const std::string& creator);
 
+/// A string attribute (read_attribute holding a std::string; anything else throws).
 std::string read_string_attribute(const std::string& file, const std::string& object_path,
                                   const std::string& name);
 /// Any scalar (or one-element) numeric attribute, converted to double.

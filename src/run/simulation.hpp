@@ -112,11 +112,11 @@ double estimated_memory_bytes(const io::config::Config& config, int threads, int
 /// `<output stem>.lock`: the lock file that keeps two runs off one output and its checkpoint (io/file_lock.hpp).
 std::string lock_path(const std::string& output_path);
 
-/// What lies at the checkpoint path of `output_path` (rank 0's file): nothing, the checkpoint of a run of
-/// this input (an interrupted one: same namelist text and overrides), that of another input, or a file
-/// that is not a checkpoint. A fresh run starts only on `none` (granular-dsmc refuses the others
-/// without --restart or --force: the checkpoint would be replaced).
+/// What lies at a checkpoint path: nothing, the checkpoint of a run of this input (an interrupted one:
+/// same namelist text and overrides), that of another input, or a file that is not a checkpoint.
 enum class CheckpointFound { none, this_input, other_input, not_a_checkpoint };
+/// What lies at the checkpoint path of `output_path` (rank 0's file). A fresh run starts only on `none`
+/// (granular-dsmc refuses the others without --restart or --force: the checkpoint would be replaced).
 CheckpointFound find_checkpoint(const io::config::Config& config, const std::string& output_path);
 
 /// FNV-1a (64 bits) of `bytes` bytes at `data`, continuing from `hash`: the checksum of checkpoints.
