@@ -4,7 +4,7 @@
 
 figures (OUT_DIR/<figure>.pdf and .png) and the validation cases they draw:
   seed000_fig1_fig3_haff        Haff cooling T(t)/T_0       haff_cooling_alpha{0.9,0.5}
-  seed000_fig2_fig4_collisions  collisions against T/T_0    haff_cooling_alpha{0.9,0.5}
+  seed000_fig2_fig4_collisions  N_c against T/T_0           haff_cooling_alpha{0.9,0.5}
   seed000_fig5_velocity         velocity distribution       velocity_shell, velocity_cube
   seed000_fig6_polydisperse     polydisperse T_k(t)         polydisperse
 A figure with one of its cases drawn is made (partial); e.g. one Haff run of your own at any restitution:
@@ -28,8 +28,11 @@ def haff_figures():
             t, T, dT = observable(f, "total_temperature")
             _, C, dC = observable(f, "collisions_per_particle")
             alpha = float(np.ravel(f["parameters/system"].attrs["restitution"])[0])  # a user's run: any alpha
+            n_particles = int(f["parameters/dsmc"].attrs["n_particles"])
         tt, TT = np.array(th["temperature"]["time"]), np.array(th["temperature"]["value"])[:, 0]
         CC = np.array(th["collisions_per_particle"]["value"], float).reshape(len(tt), -1)[:, 0]
+        # Figs 2 and 4 count collisions: N_c = (N/2) x collisions per particle (each collision counts for two particles)
+        C, dC, CC = C * n_particles / 2, dC * n_particles / 2, CC * n_particles / 2
         name = fc.approximation(th, "temperature")
         s = slice(1, None)
         ax_t.errorbar(t[s], T[s], yerr=dT[s], fmt=marker, mfc="none", color=color,
@@ -37,7 +40,8 @@ def haff_figures():
         ax_t.plot(tt[s], TT[s], "-", color=color)
         residuals(ar_t, t[s], T[s], dT[s], fc.on_times(t[s], tt[s], TT[s]), kind="percent", fmt=marker,
                   mfc="none", color=color)
-        ax_c.errorbar(T, C, yerr=dC, fmt=marker, mfc="none", color=color, label=rf"DSMC, $\alpha = {alpha:g}$")
+        ax_c.errorbar(T, C, yerr=dC, fmt=marker, mfc="none", color=color,
+                      label=rf"DSMC, $\alpha = {alpha:g}$, $N = {n_particles:.0e}$".replace("e+0", "e"))
         ax_c.plot(TT, CC, "-", color=color)
         cname = fc.approximation(th, "collisions_per_particle")
         # at the same temperature: the theory line C(T) interpolated in ln T (T falls with t)
@@ -51,7 +55,7 @@ def haff_figures():
     ax_t.set(xscale="log", yscale="log", ylabel=r"$T(t)/T_0$")
     ar_t.set(xscale="log", xlabel=r"$t$")
     ax_t.legend()
-    ax_c.set(xscale="log", ylabel="collisions per particle")
+    ax_c.set(xscale="log", ylabel=r"number of collisions $N_c$ (one replica)")
     ar_c.set(xscale="log", xlabel=r"$T/T_0$")
     ax_c.legend()
     save(fig_t, "seed000_fig1_fig3_haff")

@@ -344,7 +344,7 @@ def fig7():
 def fig8():
     """<R_k^2>/<R_1^2> against k at the end of the run, n_k = n_1 k^-theta (validation msd_many_species)."""
     fig, ax, ar = with_residuals()
-    drawn = False
+    drawn, t_end = False, None
     for case, marker, color in (("msd_ratio_theta3", "o", "C0"), ("msd_ratio_theta4", "s", "C1")):
         try:
             path = pick(case)
@@ -355,6 +355,7 @@ def fig8():
             R = f["observables/msd/value"][()]
             dR = f["observables/msd/error"][()]
             theta = float(f["parameters/system"].attrs["density_exponent"])
+            t_end = float(f["observables/msd/time"][-1])
         k = np.arange(1, R.shape[1] + 1)
         ratio = R[-1] / R[-1, 0]
         err = ratio * np.sqrt((dR[-1] / R[-1]) ** 2 + (dR[-1, 0] / R[-1, 0]) ** 2)
@@ -367,7 +368,7 @@ def fig8():
         plt.close(fig)
         raise Missing("no MSD-ratio outputs", case="msd_ratio_theta3")
     ax.set(xscale="log", ylabel=r"$\langle R_k^2\rangle/\langle R_1^2\rangle$",
-           title=r"$n_k = n_1 k^{-\theta}$, $\varepsilon = 0.5$, $t = 10^6$")
+           title=rf"$n_k = n_1 k^{{-\theta}}$, $\varepsilon = 0.5$, $t = {t_end:.3g}$ (the paper: $10^9$)")
     ar.set(xlabel=r"$k = m_k/m_1$")
     ax.legend()
     save(fig, "seed001_fig8_msd_ratio")

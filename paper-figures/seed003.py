@@ -177,7 +177,7 @@ def fig3_delta():
     lam = d["lam"]
     fig, axes, ars = with_residuals(ncols=2, width=PAGE, height=3.2)
     sonine = lambda v: 0.5 * lam**2 * v**4 - 2.5 * lam * v**2 + 15.0 / 8.0  # noqa: E731
-    for ax, ar, vmax in ((axes[0], ars[0], 1.4), (axes[1], ars[1], 2.05)):
+    for ax, ar, vmax in ((axes[0], ars[0], 1.5), (axes[1], ars[1], 2.05)):  # (a): the paper's axes, v* to 1.5
         sel = d["v"] <= vmax
         x = np.linspace(0.0, vmax, 400)
         ax.plot(x, sonine(x), "k--", lw=1, label="first Sonine polynomial")
@@ -189,8 +189,8 @@ def fig3_delta():
         ax.set(ylabel=r"$\Delta_1(v^*)$", xlim=(0.0, vmax))
         ar.set(xlabel=r"$v^*$")
         ax.legend(loc="upper left")
-    axes[0].set_ylim(-1.6, 3.2)
-    axes[0].set_title("(a) thermal speeds")
+    axes[0].set_ylim(-1.6, max(3.2, 1.05 * sonine(1.5)))  # the paper's Delta_1 axis reaches the polynomial at 1.5
+    axes[0].set_title("(a) thermal speeds, as printed")
     axes[1].set_title(r"(b) up to $v^* = 2$: the tail leaves the polynomial")
     fig.suptitle(f"$\\alpha = {d['alpha']:g}$, $\\mu = 4$, $\\delta = 1/2$, $w = 1$, $\\lambda_1 = {lam:.3f}$")
     save(fig, "seed003_fig3_delta")

@@ -4,19 +4,18 @@ alpha in uniform shear flow with the Gaussian thermostat (DSMC, time average ove
 error) over the first-Sonine theory of `granular-theory` for the steady state the protocol measures
 (HSS) and, for contrast, the freely cooling gas (HCS); Figs 7-9, eta/eta_0 of mixtures against mass
 ratio, size ratio and concentration at alpha = 0.9, 0.8, 0.7 over the mixture theory; Figs 10-12, the
-Enskog binary mixture (kinetic and total eta/eta_0 against the solid fraction, total against the mass
-ratio; one-component Enskog points beside them); and Figs 1-5's check, the HSS temperature ratio and
+Enskog binary mixture in the paper's units (kinetic part eta_k* and total eta* = nu eta/(n T) against
+the solid fraction, eta* against the mass ratio); and Figs 1-5's check, the HSS temperature ratio and
 cumulants against the HCS first-Sonine values. Residual panels (DSMC/theory - 1 in percent, or DSMC
 minus theory in standard errors) below each comparison.
 
 figures (OUT_DIR/<figure>.pdf and .png) and the validation cases they draw:
   seed004_fig6_viscosity    viscosity_alpha{1.0,0.9,0.8,0.7,0.6}
   seed004_fig7_9_mixtures   viscosity_fig7_mu{1.5,3.0,6.0,10.0}_alpha{0.9,0.8,0.7},
-                            viscosity_fig8_w{1.5,2.0}_alpha{0.9,0.8,0.7},
-                            viscosity_fig9_x{0.25,0.75}_alpha{0.9,0.8,0.7}
+                            viscosity_fig8_w{1,2,3,4,5}_alpha{0.9,0.8,0.7} (mu = 4),
+                            viscosity_fig9_d{2,3,4,5}_alpha{0.9,0.8,0.7} (mu = 4; delta = 1 is fig8_w1)
   seed004_fig10_12_enskog   viscosity_fig10_phi{0.1,0.2,0.3}_alpha{0.9,0.8,0.7},
-                            viscosity_fig12_mu{2,8}_alpha{0.9,0.8,0.7}, viscosity_enskog_phi{0.1,0.2},
-                            viscosity_enskog_phi0.2_alpha0.8
+                            viscosity_fig12_mu{2,8}_alpha{0.9,0.8,0.7} (in eta_k*, eta* as printed)
   seed004_fig1_5_hss        hss_one, hss_binary
 Each figure is made from any of its cases; a panel left without DSMC data says so.
 """
@@ -37,7 +36,7 @@ def fig6():
             continue
         with h5py.File(path) as f:
             a = f["observables/shear_viscosity"].attrs
-            alphas.append(float(f["parameters/system"].attrs["restitution"][0]))
+            alphas.append(float(np.ravel(f["parameters/system"].attrs["restitution"])[0]))
             eta.append(a["time_average"])
             err.append(a["time_average_error"])
         last = path
@@ -70,43 +69,59 @@ def time_average(path):
 
 @figure("seed004_fig7_9_mixtures")
 def fig7_9():
-    panels = (("fig7_mu", (1.5, 3.0, 6.0, 10.0), r"mass ratio $m_1/m_2$"),
-              ("fig8_w", (1.5, 2.0), r"size ratio $\sigma_1/\sigma_2$"),
-              ("fig9_x", (0.25, 0.75), r"concentration $x_1$"))
+    """Figs 7-9: eta/eta_0 (over the elastic dilute mixture) against the mass ratio mu at equal sizes and
+    numbers (Fig 7), and at mu = 4 against the size ratio omega = sigma1/sigma2 at equal numbers (Fig 8) and
+    the concentration ratio delta = n1/n2 at equal sizes (Fig 9), at alpha = 0.9, 0.8, 0.7; the lines are
+    the HSS first-Sonine theory over the paper's ranges."""
+    def fig9_case(d):  # delta = 1 is Fig 8's omega = 1
+        return "viscosity_fig8_w1" if d == 1 else f"viscosity_fig9_d{d}"
+
+    def fig9_density(d):  # n1, n2 at total n = 0.01 (eta/eta_0 of a dilute gas does not depend on n)
+        return f"system:number_density={0.01 * d / (1 + d):.6f},{0.01 / (1 + d):.6f}"
+
+    panels = (("Fig. 7", (1.5, 3.0, 6.0, 10.0), lambda x: f"viscosity_fig7_mu{x}", r"mass ratio $\mu = m_1/m_2$",
+               np.linspace(1.0, 10.0, 19), lambda x: [f"system:mass={x:.4f},1.0"]),
+              ("Fig. 8", (1, 2, 3, 4, 5), lambda x: f"viscosity_fig8_w{x}", r"size ratio $\omega = \sigma_1/\sigma_2$",
+               np.linspace(1.0, 5.0, 17), lambda x: [f"system:diameter={x:.4f},1.0"]),
+              ("Fig. 9", (1, 2, 3, 4, 5), fig9_case, r"concentration ratio $\delta = n_1/n_2$",
+               np.linspace(1.0, 5.0, 17), lambda x: [fig9_density(x)]))
     fig, axes, ars = with_residuals(ncols=3, width=PAGE, height=3.2)
     drawn = False
     empty = []  # (axes, the cases it lacks)
-    for ax, ar, (stem, xs, label) in zip(axes, ars, panels):
+    for ax, ar, (title, xs, case, label, grid, at) in zip(axes, ars, panels):
         alphas = ("0.9", "0.8", "0.7")
-        empty.append((ax, [f"viscosity_{stem}{x}_alpha{a}" for a in alphas for x in xs]))
+        empty.append((ax, [f"{case(x)}_alpha{a}" for a in alphas for x in xs]))
         for k, (alpha, marker) in enumerate(zip(alphas, "os^")):
             pts = []
             for x in xs:
                 try:
-                    path = pick(f"viscosity_{stem}{x}_alpha{alpha}")
+                    path = pick(f"{case(x)}_alpha{alpha}")
                 except Missing:
                     continue
                 eta, err, _, _ = time_average(path)
                 th = theory(path)["shear_viscosity_ratio"]["hss"]
-                pts.append((x, eta, err, th))
+                pts.append((float(x), eta, err, th))
             if not pts:
                 continue
             drawn = True
             empty[-1] = None
             x, eta, err, th = map(np.array, zip(*pts))
             ax.errorbar(x, eta, yerr=err, fmt=marker, mfc="none", color=f"C{k}", label=f"DSMC, $\\alpha = {alpha}$")
-            ax.plot(x, th, "--x", color=f"C{k}", ms=5)
+            line = [theory(path, [f"system:restitution={alpha}"] + at(g))["shear_viscosity_ratio"]["hss"] for g in grid]
+            ax.plot(grid, line, ("-", "--", ":")[k], color=f"C{k}", lw=1)  # the paper's solid, dashed, dotted
             residuals(ar, x, eta, err, th, kind="percent", fmt=marker, mfc="none", color=f"C{k}")
+        ax.set_title(title + (r": $\omega = \delta = 1$" if title == "Fig. 7" else
+                              r": $\mu = 4$, $\delta = 1$" if title == "Fig. 8" else r": $\mu = 4$, $\omega = 1$"))
         ar.set(xlabel=label)
         ar.set_ylabel("")
-        ax.set(ylabel=r"$\eta/\eta_0$ (elastic mixture)" if stem == "fig7_mu" else "")
+        ax.set(ylabel=r"$\eta/\eta_0$" if title == "Fig. 7" else "")
     if not drawn:
         plt.close(fig)
         raise Missing("no shear viscosity outputs of mixtures", case="viscosity_fig7_mu3.0_alpha0.9")
     for ax, cases in filter(None, empty):
         fc.no_dsmc(ax, cases, theory_drawn=False)
     ars[0].set_ylabel(fc.PERCENT_LABEL)
-    axes[0].plot([], [], "k--x", ms=5, label="first Sonine, steady state")
+    axes[0].plot([], [], "k-", lw=1, label="first Sonine, steady state")
     axes[0].legend()
     save(fig, "seed004_fig7_9_mixtures")
 
@@ -115,29 +130,40 @@ def fig7_9():
 def fig10_12():
     """Seed 004 Figs 10-12 are for a binary Enskog mixture (equal sizes and numbers): Fig 10 the kinetic
     part and Fig 11 the total viscosity against the solid fraction at mass ratio 4, Fig 12 the total
-    against the mass ratio at phi = 0.2, each at alpha = 0.9, 0.8, 0.7. Drawn as eta/eta_0 over the
-    elastic dilute mixture (Montanero 2003's eta* = nu eta/(n T) is that times nu eta_0/n, which does not
-    depend on phi), with the one-component Enskog points (alpha = 1, 0.8) in the first two panels."""
+    against the mass ratio at phi = 0.2, each at alpha = 0.9, 0.8, 0.7. Drawn as printed, in Montanero
+    2003's units eta_k* and eta* = nu eta/(n T), nu = sqrt(pi) n sigma_12^2 v0: the DSMC's eta/eta_0 times
+    nu eta_0/(n T) of its own mixture (granular-theory shear_viscosity_reduced over shear_viscosity_ratio,
+    a number of the parameters only), the lines granular-theory's shear_viscosity_(kinetic_)reduced."""
     fig, axes, ars = with_residuals(ncols=3, width=PAGE, height=3.2)
     drawn = False
     filled = [False, False, False]  # the panels with DSMC points
     phis = (0.1, 0.2, 0.3)
-    grid = np.linspace(0.02, 0.32, 16)
+    grid = np.linspace(0.005, 0.3, 14)
 
-    def enskog_theory(path, alpha, phi):
-        n = 3.0 * phi / np.pi  # each species: (pi/6) 2 n sigma^3 = phi
-        th = theory(path, [f"system:restitution={alpha}", f"system:number_density={n:.6f},{n:.6f}"])
-        return th["shear_viscosity_kinetic_ratio"]["hss"], th["shear_viscosity_ratio"]["hss"]
+    def enskog_theory(path, alpha, phi=None, mu=None):
+        """eta_k*, eta* and nu eta_0/(n T) of the first-Sonine HSS at (alpha, phi or the file's, mu or the file's)."""
+        extra = [f"system:restitution={alpha}"]
+        if phi is not None:
+            n = 3.0 * phi / np.pi  # each species: (pi/6) 2 n sigma^3 = phi
+            # (a shear rate that keeps a* small at every density: the theory's viscosity does not depend on it)
+            extra += [f"system:number_density={n:.6f},{n:.6f}", "shear:rate=0.0001"]
+        if mu is not None:
+            extra.append(f"system:mass={mu:.4f},1.0")
+        th = theory(path, extra)
+        factor = th["shear_viscosity_reduced"]["hss"] / th["shear_viscosity_ratio"]["hss"]
+        return th["shear_viscosity_kinetic_reduced"]["hss"], th["shear_viscosity_reduced"]["hss"], factor
 
     for k, (alpha, marker) in enumerate(zip(("0.9", "0.8", "0.7"), "os^")):
-        color = f"C{k}"
+        color, style = f"C{k}", ("-", "--", ":")[k]  # the paper's solid, dashed, dotted lines
         pts = []
         for phi in phis:
             try:
                 path = pick(f"viscosity_fig10_phi{phi}_alpha{alpha}")
             except Missing:
                 continue
-            pts.append((phi,) + tuple(time_average(path)) + enskog_theory(path, alpha, phi))
+            eta, err, kin, kin_err = time_average(path)
+            th_kin, th_tot, factor = enskog_theory(path, alpha)
+            pts.append((phi, factor * eta, factor * err, factor * kin, factor * kin_err, th_kin, th_tot))
         if pts:
             drawn = filled[0] = filled[1] = True
             phi, eta, err, kin, kin_err, th_kin, th_tot = map(np.array, zip(*pts))
@@ -146,9 +172,9 @@ def fig10_12():
             axes[1].errorbar(phi, eta, yerr=err, fmt=marker, mfc="none", color=color)
             residuals(ars[0], phi, kin, kin_err, th_kin, kind="percent", fmt=marker, mfc="none", color=color)
             residuals(ars[1], phi, eta, err, th_tot, kind="percent", fmt=marker, mfc="none", color=color)
-            lines = np.array([enskog_theory(path, alpha, p) for p in grid])
-            axes[0].plot(grid, lines[:, 0], "-", color=color)
-            axes[1].plot(grid, lines[:, 1], "-", color=color)
+            lines = np.array([enskog_theory(path, alpha, phi=p)[:2] for p in grid])
+            axes[0].plot(grid, lines[:, 0], style, color=color)
+            axes[1].plot(grid, lines[:, 1], style, color=color)
         pts = []
         for mu in ("2", "4", "8"):
             try:
@@ -156,29 +182,15 @@ def fig10_12():
             except Missing:
                 continue
             eta, err, _, _ = time_average(path)
-            th = theory(path, [f"system:restitution={alpha}", f"system:mass={float(mu):.4f},1.0"])
-            pts.append((float(mu), eta, err, th["shear_viscosity_ratio"]["hss"]))
+            _, th_tot, factor = enskog_theory(path, alpha, mu=float(mu))
+            pts.append((float(mu), factor * eta, factor * err, th_tot))
         if pts:
             drawn = filled[2] = True
             mu, eta, err, th_tot = map(np.array, zip(*pts))
             axes[2].errorbar(mu, eta, yerr=err, fmt=marker, mfc="none", color=color)
             residuals(ars[2], mu, eta, err, th_tot, kind="percent", fmt=marker, mfc="none", color=color)
-            mus = np.linspace(1.0, 9.0, 17)
-            th = [theory(path, [f"system:restitution={alpha}", f"system:mass={m:.4f},1.0"])["shear_viscosity_ratio"]["hss"]
-                  for m in mus]
-            axes[2].plot(mus, th, "-", color=color)
-    for name, alpha, marker in (("viscosity_enskog_phi0.1", "1.0", "^"), ("viscosity_enskog_phi0.2", "1.0", "^"),
-                                ("viscosity_enskog_phi0.2_alpha0.8", "0.8", "v")):
-        try:
-            path = pick(name)
-        except Missing:
-            continue
-        eta, err, kin, kin_err = time_average(path)
-        filled[0] = filled[1] = True
-        phi = 0.1 if "phi0.1" in name else 0.2
-        axes[0].errorbar([phi], [kin], yerr=[kin_err], fmt=marker, mfc="none", color="k")
-        axes[1].errorbar([phi], [eta], yerr=[err], fmt=marker, mfc="none", color="k",
-                         label=f"DSMC, one species, $\\alpha = {alpha}$" if phi == 0.2 else None)
+            mus = np.linspace(1.0, 10.0, 19)
+            axes[2].plot(mus, [enskog_theory(path, alpha, mu=m)[1] for m in mus], style, color=color)
     if not drawn:
         plt.close(fig)
         raise Missing("no Enskog mixture viscosity outputs", case="viscosity_fig10_phi0.2_alpha0.9")
@@ -187,15 +199,15 @@ def fig10_12():
     for ax, has_points, cases in zip(axes, filled, lacking):
         if not has_points:
             fc.no_dsmc(ax, cases, theory_drawn=False)
-    axes[0].set(ylabel=r"kinetic part $\eta_k/\eta_0$")
-    axes[0].set_title(r"$m_1/m_2 = 4$")
-    axes[1].set(ylabel=r"$\eta/\eta_0$")
-    axes[1].set_title(r"$m_1/m_2 = 4$")
-    axes[2].set(ylabel=r"$\eta/\eta_0$")
-    axes[2].set_title(r"$\phi = 0.2$")
+    axes[0].set(ylabel=r"$\eta_k^* = \nu\eta_k/(nT)$")
+    axes[0].set_title(r"Fig. 10: $\mu = 4$, $\omega = \delta = 1$")
+    axes[1].set(ylabel=r"$\eta^* = \nu\eta/(nT)$")
+    axes[1].set_title(r"Fig. 11: $\mu = 4$, $\omega = \delta = 1$")
+    axes[2].set(ylabel=r"$\eta^*$")
+    axes[2].set_title(r"Fig. 12: $\phi = 0.2$, $\omega = \delta = 1$")
     ars[0].set(xlabel=r"solid fraction $\phi$")
     ars[1].set(xlabel=r"solid fraction $\phi$")
-    ars[2].set(xlabel=r"mass ratio $m_1/m_2$")
+    ars[2].set(xlabel=r"mass ratio $\mu = m_1/m_2$")
     for ar in ars[1:]:
         ar.set_ylabel("")
     axes[1].plot([], [], "k-", label="Enskog first Sonine, steady state")

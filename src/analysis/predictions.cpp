@@ -314,6 +314,12 @@ void add_viscosity(Predictions& out, const species::Mixture& mix, const std::opt
         out.shear_viscosity_kinetic_hss = hss[1];
         out.approximations.emplace_back("shear_viscosity_kinetic_ratio", "first_sonine");
       }
+      if (s == 2) {  // eta* = nu eta/(n T) = (nu eta_0/(n T)) eta/eta_0, at T = 1 (the factor is T-free)
+        out.shear_viscosity_reduced_factor = vt::binary_reduced_viscosity_frequency(mix, 1.0) *
+                                             vt::elastic_mixture_viscosity(mix, 1.0) / mix.total_density();
+        out.approximations.emplace_back("shear_viscosity_reduced", "first_sonine");
+        if (mix.enskog) out.approximations.emplace_back("shear_viscosity_kinetic_reduced", "first_sonine");
+      }
     } catch (const std::exception& e) {
       out.notes.push_back(std::string("shear_viscosity_ratio left out: ") + e.what());
     }

@@ -13,7 +13,8 @@
  * - sonine_a2, cooling_rate_sonine (one species; \ref haff_sonine "docs/haff-and-mixtures.md"), asymptotic_temperature_ratio
  *   (\ref haff_mixture_odes "docs/haff-and-mixtures.md"), hcs.first_sonine / hcs.maxwellian (sonine_mixture.hpp, any number of species),
  *   the binary first-Sonine HCS with tails (sonine.hpp; Montanero and Garzo 2002, \ref son_tails "docs/sonine.md").
- * - shear_viscosity_ratio (viscosity.hpp; Montanero 2003, \ref eta_one_species "docs/shear-viscosity.md", \ref eta_thermostat "docs/shear-viscosity.md").
+ * - shear_viscosity_ratio (viscosity.hpp; Montanero 2003, \ref eta_one_species "docs/shear-viscosity.md", \ref eta_thermostat "docs/shear-viscosity.md");
+ *   binary mixtures also in Montanero 2003's units eta* (Figs. 10-12, \ref eta_mixture "docs/shear-viscosity.md").
  * - rough spheres (&system roughness): one species, the Maxwellian two-temperature equations and the
  *   HCS theta, zeta* (theory/rough.hpp, \ref rough_maxwellian "docs/rough-spheres.md"); the smooth-sphere entries
  *   are left out (they do not describe rough spheres), and so is everything for rough mixtures.
@@ -82,6 +83,9 @@ struct Predictions {
   std::optional<double> shear_viscosity_hss;          ///< eta/eta_0 in the HSS
   std::optional<double> shear_viscosity_kinetic_hcs;  ///< its kinetic part (Enskog), HCS
   std::optional<double> shear_viscosity_kinetic_hss;  ///< its kinetic part (Enskog), HSS
+  /// Binary mixtures: nu eta_0/(n T), which turns eta/eta_0 into Montanero 2003's eta* = nu eta/(n T)
+  /// (Figs. 10-12; nu = sqrt(pi) n sigma_12^2 v0); it does not depend on T.
+  std::optional<double> shear_viscosity_reduced_factor;
   std::optional<AggFragPrediction> agg_frag;          ///< &agg_frag runs: the Smoluchowski solution
   /// Rough spheres of one species: the Maxwellian HCS theta = T_rot/T_tr and zeta_tr/nu (theory/rough.hpp).
   std::optional<theory::rough::CoolingState> rough_hcs_maxwellian;

@@ -59,6 +59,9 @@ const char* kUsage =
     "  shear_viscosity_ratio {hcs, hss} eta/eta_0 in first Sonine (Montanero 2003, docs/shear-viscosity.md): one species\n"
     "                       (dilute or Enskog), binary mixtures (over the elastic mixture value)\n"
     "  shear_viscosity_kinetic_ratio {hcs, hss} its kinetic part, Enskog gases (Montanero 2003, Fig. 10, docs/shear-viscosity.md)\n"
+    "  shear_viscosity_reduced {hcs, hss} binary mixtures: eta* = nu eta/(n T), nu = sqrt(pi) n sigma_12^2 v0,\n"
+    "                       v0 = sqrt(2 T (m1 + m2)/(m1 m2)), the units of Montanero 2003, Figs. 10-12\n"
+    "  shear_viscosity_kinetic_reduced {hcs, hss} its kinetic part eta_k*, Enskog binary mixtures (Fig. 10)\n"
     "  diffusion_coefficient_ratio  [D_k/D_1] (Bodrova and Osinsky 2024, eq. (19), docs/diffusion-msd.md); msd {time, value[t][k]} (eq 17)\n"
     "                       when &output track_displacements = .true. (not with msd_start_temperature)\n"
     "With &system roughness (rough spheres, docs/rough-spheres.md), one species: temperature is T_tr, and\n"
@@ -273,6 +276,15 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
   if (p.shear_viscosity_kinetic_hcs)
     json << ",\n" << in << "\"shear_viscosity_kinetic_ratio\": {\"hcs\": " << number(*p.shear_viscosity_kinetic_hcs)
          << ", \"hss\": " << number(*p.shear_viscosity_kinetic_hss) << "}";
+  if (p.shear_viscosity_reduced_factor) {
+    const double factor = *p.shear_viscosity_reduced_factor;
+    json << ",\n" << in << "\"shear_viscosity_reduced\": {\"hcs\": " << number(factor * *p.shear_viscosity_hcs)
+         << ", \"hss\": " << number(factor * *p.shear_viscosity_hss) << "}";
+    if (p.shear_viscosity_kinetic_hcs)
+      json << ",\n" << in << "\"shear_viscosity_kinetic_reduced\": {\"hcs\": "
+           << number(factor * *p.shear_viscosity_kinetic_hcs) << ", \"hss\": "
+           << number(factor * *p.shear_viscosity_kinetic_hss) << "}";
+  }
   // The approximation behind every key printed (\ref output_theory "docs/output.md"), and the units.
   json << ",\n" << approximations();
   json << ",\n" << in << kUnitsJson;

@@ -762,6 +762,7 @@ ReplicaResult run_replica(const io::config::Config& config, std::size_t replica,
     safe_point();
   };
   const std::size_t n_samples = engine->samples();
+  const std::uint64_t resumed_at = next_sample;
   const auto& snapshot_times = config.output.snapshot_times;
   // Snapshots taken so far: the rows the result holds (also after a restart from a checkpoint).
   const auto taken = result.rows.find("snapshot_time");
@@ -778,6 +779,15 @@ ReplicaResult run_replica(const io::config::Config& config, std::size_t replica,
     engine->advance_to_sample(next_sample, between);
     result.collide_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
     engine->sample(next_sample, result);
+    if (resume && next_sample == resumed_at) {
+      // Which rows a replica writes depends on the input: a row missing from the record shows in the
+      // first sample after it (one row where the others have all), not only at the end of the run.
+      try {
+        check_rows(result, next_sample + 1, false);
+      } catch (const state::StateError& e) {
+        throw RestartError(std::string("the checkpoint is damaged: ") + e.what());
+      }
+    }
     report(next_sample + 1 == n_samples ? 1.0 : std::min(engine->fraction_done(), 0.999));
   }
   engine->finish(result);
