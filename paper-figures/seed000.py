@@ -5,6 +5,7 @@
 figures (OUT_DIR/<figure>.pdf and .png) and the validation cases they draw:
   seed000_fig1_fig3_haff        Haff cooling T(t)/T_0       haff_cooling_alpha{0.9,0.5}
   seed000_fig2_fig4_collisions  N_c against T/T_0           haff_cooling_alpha{0.9,0.5}
+  seed000_fig1_fig2_n2000       Figs 1-2 at N = 2000        haff_cooling_n2000_alpha0.9
   seed000_fig5_velocity         velocity distribution       velocity_shell, velocity_cube
   seed000_fig6_polydisperse     polydisperse T_k(t)         polydisperse
 A figure with one of its cases drawn is made (partial); e.g. one Haff run of your own at any restitution:
@@ -60,6 +61,50 @@ def haff_figures():
     ax_c.legend()
     save(fig_t, "seed000_fig1_fig3_haff")
     save(fig_c, "seed000_fig2_fig4_collisions")
+
+
+@figure("seed000_fig1_fig2_n2000")
+def small_n_figure():
+    """Figs 1 and 2 are printed for N = 2000, where one run scatters about Haff's law: the mean of the
+    replicas +- its standard error (points), and the scatter of a single run, the replicas' standard
+    deviation sqrt(R) SE (band), over Haff's law (left: T/T_0 against t; right: N_c against T/T_0)."""
+    path = pick("haff_cooling_n2000_alpha0.9")
+    th = theory(path)
+    with h5py.File(path) as f:
+        t, T, dT = observable(f, "total_temperature")
+        _, C, dC = observable(f, "collisions_per_particle")
+        n_particles = int(f["parameters/dsmc"].attrs["n_particles"])
+        replicas = int(f["parameters/dsmc"].attrs["replicas"])
+        alpha = float(np.ravel(f["parameters/system"].attrs["restitution"])[0])
+    C, dC = C * n_particles / 2, dC * n_particles / 2  # the number of collisions N_c of one run
+    tt, TT = np.array(th["temperature"]["time"]), np.array(th["temperature"]["value"])[:, 0]
+    CC = np.array(th["collisions_per_particle"]["value"], float).reshape(len(tt), -1)[:, 0] * n_particles / 2
+    spread = np.sqrt(replicas)
+    fig, axes, ars = with_residuals(ncols=2, width=fc.PAGE, height=3.2)
+    s = slice(1, None)
+    axes[0].fill_between(t[s], T[s] - spread * dT[s], T[s] + spread * dT[s], color="C0", alpha=0.25, lw=0,
+                         label=f"one run (standard deviation of {replicas} runs)")
+    axes[0].errorbar(t[s], T[s], yerr=dT[s], fmt="o", mfc="none", color="C0", label=f"DSMC, mean of {replicas} runs")
+    axes[0].plot(tt[s], TT[s], "k-", lw=1, label=f"Haff's law, {fc.approximation(th, 'temperature')} cooling rate")
+    T_th = fc.on_times(t[s], tt[s], TT[s])
+    ars[0].fill_between(t[s], -100 * spread * dT[s] / T_th, 100 * spread * dT[s] / T_th, color="C0", alpha=0.25, lw=0)
+    residuals(ars[0], t[s], T[s], dT[s], T_th, kind="percent", fmt="o", mfc="none", color="C0")
+    axes[0].set(xscale="log", yscale="log", ylabel=r"$T(t)/T_0$", title=f"Fig. 1: $N = {n_particles}$, $\\alpha = {alpha:g}$")
+    ars[0].set(xscale="log", xlabel=r"$t$")
+    axes[1].fill_between(T, C - spread * dC, C + spread * dC, color="C0", alpha=0.25, lw=0)
+    axes[1].errorbar(T, C, yerr=dC, fmt="o", mfc="none", color="C0")
+    axes[1].plot(TT, CC, "k-", lw=1)
+    inside = (T >= TT.min()) & (T <= TT.max())
+    inside[0] = False
+    C_th = np.interp(-np.log(T[inside]), -np.log(TT), CC)
+    ars[1].fill_between(T[inside], -100 * spread * dC[inside] / C_th, 100 * spread * dC[inside] / C_th, color="C0",
+                        alpha=0.25, lw=0)  # (the scatter of one run shows at this scale only)
+    residuals(ars[1], T[inside], C[inside], dC[inside], C_th, kind="percent", fmt="o", mfc="none", color="C0")
+    axes[1].set(xscale="log", ylabel=r"number of collisions $N_c$", title=f"Fig. 2: $N = {n_particles}$")
+    ars[1].set(xscale="log", xlabel=r"$T/T_0$")
+    ars[1].set_ylabel("")
+    axes[0].legend()
+    save(fig, "seed000_fig1_fig2_n2000")
 
 
 # the legend names the start the file records (&initial distribution), so a user's run is named right

@@ -860,7 +860,15 @@ TEST_F(CliDsmc, UnknownOptionOrNoInput) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("unknown option --bogus"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line, not the whole usage:\n" << r.err;
-  EXPECT_EQ(run("granular-dsmc", "").status, 2);
+  // No input, an empty argument (the fuzzer's ""), an option without its value: one line each, not the
+  // whole usage (--help prints that), for both programs.
+  for (const char* tool : {"granular-dsmc", "granular-theory"})
+    for (const char* args : {"", "''", "t.nml ''", "t.nml --set"}) {
+      const Result bad = run(tool, args);
+      EXPECT_EQ(bad.status, 2) << tool << " " << args;
+      EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << tool << " " << args << ":\n" << bad.err;
+      EXPECT_EQ(bad.err.rfind(std::string(tool) + ": ", 0), 0u) << bad.err;
+    }
   EXPECT_EQ(run("granular-dsmc", "t.nml --output").status, 2);
   EXPECT_EQ(files(), std::vector<std::string>{"t.nml"});
 }

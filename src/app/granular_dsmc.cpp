@@ -207,7 +207,7 @@ std::optional<int> parse_arguments(int argc, char** argv, Arguments& a) {
     const std::string arg = argv[i];
     auto next = [&]() -> std::string {
       if (i + 1 >= argc) {
-        std::cerr << "granular-dsmc: " << arg << " needs a value\n" << kUsage;
+        std::cerr << "granular-dsmc: " << arg << " needs a value (granular-dsmc --help lists the options)\n";
         std::exit(2);
       }
       return argv[++i];
@@ -268,6 +268,9 @@ std::optional<int> parse_arguments(int argc, char** argv, Arguments& a) {
     } else if (!arg.empty() && arg[0] == '-') {
       std::cerr << "granular-dsmc: unknown option " << arg << " (granular-dsmc --help lists the options)\n";
       return 2;
+    } else if (arg.empty()) {
+      std::cerr << "granular-dsmc: an empty argument where the namelist file was expected\n";
+      return 2;
     } else if (a.input.empty()) {
       a.input = arg;
     } else {
@@ -275,8 +278,8 @@ std::optional<int> parse_arguments(int argc, char** argv, Arguments& a) {
       return 2;
     }
   }
-  if (a.input.empty()) {
-    std::cerr << kUsage;
+  if (a.input.empty()) {  // one line, as every refusal (--help prints the usage)
+    std::cerr << "granular-dsmc: no input file: granular-dsmc FILE.nml [options] (granular-dsmc --help lists the options)\n";
     return 2;
   }
   return std::nullopt;

@@ -314,6 +314,9 @@ int main(int argc, char** argv) {
     } else if (!arg.empty() && arg[0] == '-') {
       std::cerr << "granular-theory: unknown option " << arg << " (granular-theory --help lists the options)\n";
       return 2;
+    } else if (arg.empty()) {
+      std::cerr << "granular-theory: an empty argument where the namelist file was expected\n";
+      return 2;
     } else if (input.empty()) {
       input = arg;
     } else {
@@ -321,8 +324,9 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  if (input.empty()) {
-    std::cerr << kUsage;
+  if (input.empty()) {  // one line, as every refusal (--help prints the usage)
+    std::cerr << "granular-theory: no input file: granular-theory FILE.nml [--set group:variable=value]... "
+                 "(granular-theory --help lists the options)\n";
     return 2;
   }
   gdsmc::io::config::Config config;
