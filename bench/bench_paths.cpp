@@ -3,6 +3,12 @@
 // measured in one process one after another on the same machine.
 //
 // usage: bench_paths [--no-pairs] [--repeat R] [N ...]   (default: 100000 1000000; add 10000000 for the large case)
+//        bench_paths --species [N]   (default N = 1000000)
+//   --species: the species sweep, M = 1, 2, 8, 32, 100, 128, 129, 256, 257, 1e3, 1e4, 1e5 species, `lowrank`
+//               (masses k, diameters k^(1/3), equal number densities adding up to 0.01, alpha = 0.9,
+//               collisions_per_particle = 10, one replica, one thread), each in a child process: its
+//               collision-loop rate, ns per collision, ratio to M = 1, the whole process's wall seconds and
+//               its peak memory (maximum resident set) in bytes per particle.
 //   --no-pairs: skip the two `pairs` rows (about 25 s each at N = 1e6), e.g. to repeat the others often.
 //   --repeat R: R rounds (R >= 2) in which every path runs right after a run of the reference (one species,
 //               t_end), its ratio taken against that run: on a machine whose speed drifts from second to
@@ -28,6 +34,8 @@
 #include <ctime>
 #include <filesystem>
 #include <string>
+#include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 #include <vector>
 
@@ -104,9 +112,67 @@ simulation::Summary run(const std::string& text, int threads) {
   return s;
 }
 
+/// The species sweep (usage above): each M in a child process, so that its peak memory is its own.
+int species_sweep(std::size_t n) {
+  const std::vector<long> counts = {1, 2, 8, 32, 100, 128, 129, 256, 257, 1000, 10000, 100000};
+  std::printf("species sweep: N = %zu, lowrank, masses k, diameters k^(1/3), equal densities (0.01 in all), "
+              "alpha = 0.9, 10 collisions per particle, one replica, one thread\n", n);
+  std::printf("%8s %14s %12s %8s %10s %14s\n", "species", "collisions/s", "ns/collision", "ratio", "seconds",
+              "bytes/particle");
+  double reference = 0.0;
+  for (long m : counts) {
+    if (static_cast<std::size_t>(2 * m) > n) break;  // at least 2 particles a species
+    char density[32];
+    std::snprintf(density, sizeof density, "%.17g", 0.01 / static_cast<double>(m));
+    const std::string text =
+        "&system\n n_species = " + std::to_string(m) + "\n mass = 1.0\n diameter = 1.0\n number_density = " +
+        std::string(density) + "\n mass_law = 'linear'\n diameter_law = 'cube_root'\n"
+        " density_law = 'power'\n density_exponent = 0.0\n restitution = 0.9\n/\n&initial\n temperature = 1.0\n/\n"
+        "&dsmc\n scheme = 'lowrank'\n n_particles = " + std::to_string(n) +
+        "\n replicas = 1\n seed = 1\n collisions_per_particle = 10.0\n allow_long_run = .true.\n/\n&output\n n_samples = 2\n/\n";
+    int channel[2];
+    if (::pipe(channel) != 0) return 1;
+    const auto start = std::chrono::steady_clock::now();
+    const pid_t child = ::fork();
+    if (child < 0) return 1;
+    if (child == 0) {
+      ::close(channel[0]);
+      const simulation::Summary s = run(text, 1);
+      const double rate = s.events_per_second;
+      const ssize_t written = ::write(channel[1], &rate, sizeof rate);
+      ::_exit(written == sizeof rate ? 0 : 1);
+    }
+    ::close(channel[1]);
+    double rate = 0.0;
+    const ssize_t got = ::read(channel[0], &rate, sizeof rate);
+    ::close(channel[0]);
+    int status = 0;
+    rusage usage{};
+    ::wait4(child, &status, 0, &usage);
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (got != sizeof rate || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+      std::printf("%8ld %14s\n", m, "(failed)");
+      continue;
+    }
+    if (reference == 0.0) reference = rate;
+    const double bytes = 1024.0 * static_cast<double>(usage.ru_maxrss) / static_cast<double>(n);  // ru_maxrss: KiB
+    std::printf("%8ld %14.4g %12.1f %8.2f %10.2f %14.0f\n", m, rate, 1e9 / rate, rate / reference, wall, bytes);
+    std::fflush(stdout);
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc >= 2 && std::string(argv[1]) == "--species") {
+    const unsigned long long n = argc >= 3 ? std::strtoull(argv[2], nullptr, 10) : 1000000ull;
+    if (n < 2) {
+      std::fprintf(stderr, "usage: bench_paths --species [N]   (N >= 2; default 1000000)\n");
+      return 2;
+    }
+    return species_sweep(n);
+  }
   std::vector<std::size_t> sizes;
   bool pairs = true;
   int repeat = 1;

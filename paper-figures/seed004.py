@@ -10,7 +10,7 @@ cumulants against the HCS first-Sonine values. Residual panels (DSMC/theory - 1 
 minus theory in standard errors) below each comparison.
 
 figures (OUT_DIR/<figure>.pdf and .png) and the validation cases they draw:
-  seed004_fig6_viscosity    viscosity_alpha{1.0,0.9,0.8,0.7,0.6}
+  seed004_fig6_viscosity    viscosity_alpha{1.0,0.9,0.8,0.7,0.6,0.5}
   seed004_fig7_9_mixtures   viscosity_fig7_mu{1.5,3.0,6.0,10.0}_alpha{0.9,0.8,0.7},
                             viscosity_fig8_w{1,2,3,4,5}_alpha{0.9,0.8,0.7} (mu = 4),
                             viscosity_fig9_d{2,3,4,5}_alpha{0.9,0.8,0.7} (mu = 4; delta = 1 is fig8_w1)
@@ -29,7 +29,7 @@ from figures_common import COLUMN, PAGE, Missing, figure, pick, theory, save, wi
 @figure("seed004_fig6_viscosity")
 def fig6():
     alphas, eta, err, last = [], [], [], None
-    for alpha in ("1.0", "0.9", "0.8", "0.7", "0.6"):
+    for alpha in ("1.0", "0.9", "0.8", "0.7", "0.6", "0.5"):
         try:
             path = pick(f"viscosity_alpha{alpha}")
         except Missing:  # the quick tier has alpha = 1 and 0.7 only

@@ -863,7 +863,8 @@ TEST_F(CliDsmc, UnknownOptionOrNoInput) {
   // No input, an empty argument (the fuzzer's ""), an option without its value: one line each, not the
   // whole usage (--help prints that), for both programs.
   for (const char* tool : {"granular-dsmc", "granular-theory"})
-    for (const char* args : {"", "''", "t.nml ''", "t.nml --set"}) {
+    for (const char* args : {"", "''", "t.nml ''", "t.nml --set", "t.nml \"$(printf '%s\\n%s' --output=new line.h5)\"",
+                             "t.nml \"$(printf 'b\\nc')\""}) {  // (the last two: a line break inside an argument)
       const Result bad = run(tool, args);
       EXPECT_EQ(bad.status, 2) << tool << " " << args;
       EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << tool << " " << args << ":\n" << bad.err;

@@ -1581,13 +1581,13 @@ TEST(Collide, ScatteredRareSpeciesMatchUnblocked) {
 }
 
 // Blocks for more than pair_event_limit species (up to block_species_limit; collide.hpp, "Mixtures in
-// blocks"): 100 species, m_k = k, sigma_k = k^(1/3), N_k ~ k^-1.5 (N = 16766, N_100 = 7), alpha = 0.8,
-// blocks of 3000 (K = 5: species 1-8 dealt, 92 scattered, most blocks missing some of them, so that
+// blocks"): 200 species, m_k = k, sigma_k = k^(1/3), N_k ~ k^-1.5 (N = 17301, N_200 = 2), alpha = 0.8,
+// blocks of 3000 (K = 5: species 1-7 dealt, 193 scattered, most blocks missing some of them, so that
 // the alias table covers the species present only). Blocked and unblocked, `majorant` and `lowrank`,
-// 16 replicas each (8 under the sanitizers): T_1, the temperature of species 2-10 and of 11-100 together and the time at an
+// 16 replicas each (8 under the sanitizers): T_1, the temperature of species 2-10 and of 11-200 together and the time at an
 // event target agree within 4 combined SE; the blocked runs make no acceptance overshoot.
 TEST(Collide, ManySpeciesBlocksMatchUnblocked) {
-  const std::size_t s = 100;
+  const std::size_t s = 200;  // up to block_species_limit
   std::vector<double> mass(s), diameter(s), density(s), temperature(s, 1.0);
   std::vector<std::size_t> counts(s);
   std::size_t total = 0;
@@ -1629,7 +1629,7 @@ TEST(Collide, ManySpeciesBlocksMatchUnblocked) {
         observed[blocked][3].push_back(c.time());
       }
     }
-    const char* names[] = {"T_1", "T of species 2-10", "T of species 11-100", "time at the target"};
+    const char* names[] = {"T_1", "T of species 2-10", "T of species 11-200", "time at the target"};
     for (int q = 0; q < 4; ++q) {
       const auto [m0, s0] = mean_se(observed[0][q]);
       const auto [m1, s1] = mean_se(observed[1][q]);

@@ -180,7 +180,7 @@ int print_table(int argc, char** argv, int first) {
         return refuse("--point " + k + ": a sweep point is a number from 1");
       request.point = std::stoul(k);
     } else if (!arg.empty() && arg[0] == '-') {
-      return refuse("unknown option " + arg + " (--table takes QUANTITY..., --point K and --theory)");
+      return refuse("unknown option " + gdsmc::io::namelist::printable(arg) + " (--table takes QUANTITY..., --point K and --theory)");
     } else if (request.file.empty()) {
       if (arg.find_first_of("\n\r") != std::string::npos) return refuse("a file name with a line break is not accepted");
       request.file = arg;
@@ -207,7 +207,7 @@ std::optional<int> parse_arguments(int argc, char** argv, Arguments& a) {
     const std::string arg = argv[i];
     auto next = [&]() -> std::string {
       if (i + 1 >= argc) {
-        std::cerr << "granular-dsmc: " << arg << " needs a value (granular-dsmc --help lists the options)\n";
+        std::cerr << "granular-dsmc: " << gdsmc::io::namelist::printable(arg) << " needs a value (granular-dsmc --help lists the options)\n";
         std::exit(2);
       }
       return argv[++i];
@@ -266,7 +266,7 @@ std::optional<int> parse_arguments(int argc, char** argv, Arguments& a) {
     } else if (arg == "--set") {
       a.overrides.push_back(next());
     } else if (!arg.empty() && arg[0] == '-') {
-      std::cerr << "granular-dsmc: unknown option " << arg << " (granular-dsmc --help lists the options)\n";
+      std::cerr << "granular-dsmc: unknown option " << gdsmc::io::namelist::printable(arg) << " (granular-dsmc --help lists the options)\n";
       return 2;
     } else if (arg.empty()) {
       std::cerr << "granular-dsmc: an empty argument where the namelist file was expected\n";
@@ -274,7 +274,7 @@ std::optional<int> parse_arguments(int argc, char** argv, Arguments& a) {
     } else if (a.input.empty()) {
       a.input = arg;
     } else {
-      std::cerr << "granular-dsmc: one input file only (got '" << a.input << "' and '" << arg << "')\n";
+      std::cerr << "granular-dsmc: one input file only (got '" << gdsmc::io::namelist::printable(a.input) << "' and '" << gdsmc::io::namelist::printable(arg) << "')\n";
       return 2;
     }
   }

@@ -312,7 +312,7 @@ int main(int argc, char** argv) {
       }
       overrides.push_back(argv[++i]);
     } else if (!arg.empty() && arg[0] == '-') {
-      std::cerr << "granular-theory: unknown option " << arg << " (granular-theory --help lists the options)\n";
+      std::cerr << "granular-theory: unknown option " << gdsmc::io::namelist::printable(arg) << " (granular-theory --help lists the options)\n";
       return 2;
     } else if (arg.empty()) {
       std::cerr << "granular-theory: an empty argument where the namelist file was expected\n";
@@ -320,7 +320,7 @@ int main(int argc, char** argv) {
     } else if (input.empty()) {
       input = arg;
     } else {
-      std::cerr << "granular-theory: one input file only (got '" << input << "' and '" << arg << "')\n";
+      std::cerr << "granular-theory: one input file only (got '" << gdsmc::io::namelist::printable(input) << "' and '" << gdsmc::io::namelist::printable(arg) << "')\n";
       return 2;
     }
   }

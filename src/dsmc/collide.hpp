@@ -49,7 +49,7 @@
  * drawn independently of the state, so drawing it earlier does not change its law; `lowrank` discards its drawn-ahead
  * pairs whenever A_ik changes. They are part of the State. The block kernels draw 8 ahead, 32 in a frame ("Frame").
  *
- * **Blocks** (\ref sch_blocks "docs/schemes.md"; `use_blocks`: one species or a mixture of at most 128 species,
+ * **Blocks** (\ref sch_blocks "docs/schemes.md"; `use_blocks`: one species or a mixture of at most 256 species,
  * `majorant` or `lowrank`, N >= 2 block_size). The particles are split into K = N / block_size contiguous blocks;
  * during a time step each block is a gas of its own, with candidates among its N_b particles at R_b = N_b n B_b / 2,
  * B_b = 2 pi sigma^2 chi vmax_b: the pair rate is pi sigma^2 chi |g| n/(N_b - 1), every particle keeps the gas's
@@ -157,9 +157,10 @@ enum class Scheme { majorant, pairs, lowrank };
 
 /// Per-species-pair event counts are kept for mixtures of at most this many species.
 inline constexpr std::size_t pair_event_limit = 64;
-/// Cache blocks serve mixtures of at most this many species (header "Mixtures in blocks": a block's
-/// alias table of the present species' pairs takes at most 14 bits of a candidate's word).
-inline constexpr std::size_t block_species_limit = 128;
+/// Cache blocks serve mixtures of at most this many species (header "Mixtures in blocks"). Above it the
+/// S x S pair tables read for every collision and the factored draw's column tables, O(P^2) at every
+/// block visit, cost more than the blocks save (docs/performance.md, "Many species in blocks").
+inline constexpr std::size_t block_species_limit = 256;
 
 /// The species of a block's i-th particle in the `majorant` mixture kernel: the k with edge[k] <= i <
 /// edge[k + 1], edge the block's running counts (edge[0] = 0 <= i < edge[s]; an empty species has

@@ -17,10 +17,6 @@
 
 namespace gdsmc::io::namelist {
 
-namespace {
-
-/// `text` for a one-line message: control characters (a newline in a quoted string, a NUL) written
-/// as escapes, and cut after `limit` characters with "..." (an absurdly long name or value).
 std::string printable(std::string_view text, std::size_t limit) {
   std::string out;
   for (std::size_t i = 0; i < text.size(); ++i) {
@@ -41,6 +37,8 @@ std::string printable(std::string_view text, std::size_t limit) {
   }
   return out;
 }
+
+namespace {
 
 std::string format_error(const std::string& file, int line, const std::string& group,
                          const std::string& variable, const std::string& message) {
