@@ -132,13 +132,19 @@ int species_sweep(std::size_t n) {
         "\n replicas = 1\n seed = 1\n collisions_per_particle = 10.0\n allow_long_run = .true.\n/\n&output\n n_samples = 2\n/\n";
     int channel[2];
     if (::pipe(channel) != 0) return 1;
+    std::fflush(stdout);  // (the child must not print the parent's buffer again)
     const auto start = std::chrono::steady_clock::now();
     const pid_t child = ::fork();
     if (child < 0) return 1;
     if (child == 0) {
       ::close(channel[0]);
-      const simulation::Summary s = run(text, 1);
-      const double rate = s.events_per_second;
+      double rate = 0.0;
+      try {
+        rate = run(text, 1).events_per_second;
+      } catch (const std::exception& e) {  // one line, and no temporary output left (run() removes it)
+        std::fprintf(stderr, "bench_paths: %ld species: %s\n", m, e.what());
+        ::_exit(1);
+      }
       const ssize_t written = ::write(channel[1], &rate, sizeof rate);
       ::_exit(written == sizeof rate ? 0 : 1);
     }

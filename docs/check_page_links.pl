@@ -12,8 +12,11 @@
 #     heading anchor {#anchor} of that file (of the page itself for #anchor alone);
 #  2. every [text](@ref NAME) (the pages generated at build time: input, observables_page,
 #     validation_results) names a generated page or an anchor;
-#  3. no page uses Doxygen's \ref (it reads as markup in a plain viewer), and no link text runs over a
-#     line break (the filter works line by line).
+#  3. no page uses Doxygen's \ref (it reads as markup in a plain viewer), no link text runs over a line
+#     break (the filter works line by line), and no line starts with a stray "docs/PAGE.md") left over
+#     from a \ref whose text ran over a line;
+#  4. a page of the site's own (docs/, examples/) links to no Markdown file outside them (Doxygen cannot
+#     resolve it, and the site's build fails on the warning): name such a file as `code` instead.
 # Each offender is printed as FILE:LINE: message; the exit status is 1 if there is any.
 #
 # usage: perl check_page_links.pl REPOSITORY_ROOT
@@ -79,6 +82,8 @@ for my $page (@pages) {
     if ($text =~ /^([^\[]*?)\]\((?:[^)\s]*\.md)?#[A-Za-z0-9_]+\)/) {
       fail($page, $l, "a link text runs over a line break: keep [text](target) on one line");
     }
+    fail($page, $l, "a stray \"...md\") after a link: the rest of a former \\ref's text")
+      if $text =~ /^\s*"[\w\/.-]+\.md"\)/;
     while ($text =~ /\]\(([^)\s]+)\)/g) {
       my $target = $1;
       next if $target =~ m{^[a-z][a-z0-9+.-]*:}i;    # https:, mailto:, ...
@@ -89,6 +94,10 @@ for my $page (@pages) {
       my $file = $path eq '' ? $page : File::Spec->canonpath(dirname($page) . "/$path");
       $file =~ s{(^|/)(?!\.\.)[^/]+/\.\.(/|$)}{$1}g while $file =~ m{(^|/)(?!\.\.)[^/]+/\.\.(/|$)};
       if (!-e $file) { fail($page, $l, "$target: no such file ($file)"); next; }
+      if ($page =~ m{^(docs|examples)/} && $file =~ /\.md$/ && $file !~ m{^(docs|examples)/}) {
+        fail($page, $l, "$target: the site (Doxygen) cannot link to a page outside docs/ and examples/: name it as `$file`");
+        next;
+      }
       next unless defined $anchor;
       if ($file !~ /\.md$/) { fail($page, $l, "$target: an anchor in a file that is not a page"); next; }
       if (!anchors_of($file)->{$anchor}) {

@@ -16,7 +16,11 @@ figures (OUT_DIR/<figure>.pdf and .png) and the validation cases they draw:
                             viscosity_fig9_d{2,3,4,5}_alpha{0.9,0.8,0.7} (mu = 4; delta = 1 is fig8_w1)
   seed004_fig10_12_enskog   viscosity_fig10_phi{0.1,0.2,0.3}_alpha{0.9,0.8,0.7},
                             viscosity_fig12_mu{2,8}_alpha{0.9,0.8,0.7} (in eta_k*, eta* as printed)
-  seed004_fig1_5_hss        hss_one, hss_binary
+  seed004_fig1_5_hss        hss_one, hss_binary (the one-point check at alpha = 0.5)
+  seed004_fig1_5_curves     Figs 1, 3, 4, 5: hss_fig1_alpha{0.5,0.6,0.7,0.8,0.9},
+                            hss_fig3_mu{0.1,2.0,10.0}_alpha{0.5,0.6,0.7,0.8,0.9},
+                            hss_fig4_delta{0.25,1,4}_alpha{0.5,0.6,0.7,0.8,0.9},
+                            hss_fig5_alpha{0.6,0.8}_phi{0,0.05,0.1,0.15,0.2,0.25}
 Each figure is made from any of its cases; a panel left without DSMC data says so.
 """
 import figures_common as fc  # first: it answers --help before matplotlib is loaded
@@ -265,6 +269,135 @@ def fig1_5():
     ars[1].set_ylabel("")
     axes[0].legend()
     save(fig, "seed004_fig1_5_hss")
+
+
+def hss_state(path):
+    """(c_1, c_2, their SE, gamma = T1/T2, its SE) of an HSS run: each replica's average past scaling_start,
+    SE over the replicas (/observables/scaling_state); gamma = x2 s1/(1 - x1 s1) from s1 = T_1/T."""
+    with h5py.File(path) as f:
+        g = f["observables/scaling_state"]
+        c, dc = g["sonine_c"][()], g["sonine_c_error"][()]
+        s1, ds1 = g["temperature_over_mean"][0], g["temperature_over_mean_error"][0]
+        n = np.ravel(f["parameters/system"].attrs["number_density"])
+    x1, x2 = n[0] / n.sum(), n[1] / n.sum()
+    return c, dc, x2 * s1 / (1 - x1 * s1), x2 / (1 - x1 * s1) ** 2 * ds1
+
+
+@figure("seed004_fig1_5_curves")
+def fig1_5_curves():
+    """Figs 1, 3, 4 and 5 as printed, in the steady state under the thermostat (its c_i and gamma are the
+    cooling state's): (1) c_1, c_2 against alpha at mu = 2, omega = delta = 1, with the one-component c;
+    (3) gamma against alpha at omega = 1, delta = 2 for mu = 1/10, 2, 10; (4) gamma against alpha at mu = 4,
+    omega = 1 for delta = 1/4, 1, 4; (5) gamma(alpha, phi)/gamma(alpha, 0) against the packing fraction at
+    mu = omega = 2, delta = 1/2 (Enskog), alpha = 0.6, 0.8, the DSMC over its own phi = 0 run. Lines: first
+    Sonine (granular-theory); residuals DSMC/theory - 1 in percent (Fig 1: in standard errors, as c
+    crosses zero)."""
+    alphas = ("0.5", "0.6", "0.7", "0.8", "0.9")
+    grid = np.linspace(0.5, 1.0, 11)
+    styles = (("^", ":"), ("s", "--"), ("o", "-"))  # the paper's triangles dotted, squares dashed, circles solid
+    fig, axes, ars = with_residuals(ncols=4, width=PAGE * 1.25, height=3.3)
+    empty = []
+
+    def curve(ax, ar, cases, value, line, k, label, kind="percent"):
+        """DSMC points of `cases` (alpha -> case) and the theory line over `grid`; value(path) -> (y, dy)."""
+        marker, style = styles[k]
+        pts, last = [], None
+        for a in alphas:
+            try:
+                path = pick(cases(a))
+            except Missing:
+                continue
+            y, dy = value(path)
+            pts.append((float(a), y, dy, line(path, float(a))))
+            last = path
+        if last is None:
+            return False
+        ax.plot(grid, [line(last, a) for a in grid], style, color=f"C{k}", lw=1)
+        x, y, dy, th = map(np.array, zip(*pts))
+        ax.errorbar(x, y, yerr=dy, fmt=marker, mfc="none", color=f"C{k}", label=label)
+        residuals(ar, x, y, dy, th, kind=kind, fmt=marker, mfc="none", color=f"C{k}")
+        return True
+
+    def theory_at(path, alpha, key, index=None, extra=()):
+        th = theory(path, [f"system:restitution={alpha:.4f}", *extra])
+        return th[key] if index is None else th[key][index]
+
+    # Fig 1
+    drawn = False
+    for k, (species, sty) in enumerate(((0, 2), (1, 1))):
+        drawn |= curve(axes[0], ars[0], lambda a: f"hss_fig1_alpha{a}",
+                       lambda p, i=species: (hss_state(p)[0][i], hss_state(p)[1][i]),
+                       lambda p, a, i=species: theory_at(p, a, "sonine_c", i), sty, f"$c_{species + 1}$", kind="se")
+    if drawn:
+        one = ["system:n_species=1", "system:mass=1.0", "system:diameter=1.0", "system:number_density=0.03",
+               "initial:temperature=1.0"]
+        path = pick("hss_fig1_alpha0.5")
+        axes[0].plot(grid, [theory(path, [f"system:restitution={a:.4f}", *one])["hcs"]["first_sonine"]["sonine_c"][0]
+                            for a in grid], ":", color="C0", lw=1, label="one component")
+    else:
+        empty.append((axes[0], [f"hss_fig1_alpha{a}" for a in alphas]))
+    axes[0].set(ylabel=r"$c_i$", title=r"Fig. 1: $\mu = 2$, $\omega = \delta = 1$")
+    # Figs 3 and 4
+    for ax, ar, title, variants in (
+            (axes[1], ars[1], r"Fig. 3: $\omega = 1$, $\delta = 2$",
+             (("mu0.1", r"$\mu = 1/10$"), ("mu2.0", r"$\mu = 2$"), ("mu10.0", r"$\mu = 10$"))),
+            (axes[2], ars[2], r"Fig. 4: $\mu = 4$, $\omega = 1$",
+             (("delta0.25", r"$\delta = 1/4$"), ("delta1", r"$\delta = 1$"), ("delta4", r"$\delta = 4$")))):
+        stem = "hss_fig3_" if title.startswith("Fig. 3") else "hss_fig4_"
+        drawn = False
+        for k, (tag, label) in enumerate(variants):
+            drawn |= curve(ax, ar, lambda a, t=tag: f"{stem}{t}_alpha{a}", lambda p: hss_state(p)[2:],
+                           lambda p, a: theory_at(p, a, "temperature_ratio"), k, label)
+        if not drawn:
+            empty.append((ax, [f"{stem}{t}_alpha{a}" for t, _ in variants for a in alphas]))
+        ax.set(ylabel=r"$\gamma = T_1/T_2$", title=title)
+    # Fig 5
+    phis = ("0.05", "0.1", "0.15", "0.2", "0.25")
+    drawn = False
+    for k, alpha in ((2, "0.6"), (1, "0.8")):
+        marker, style = styles[k]
+        try:
+            _, _, g0, dg0 = hss_state(pick(f"hss_fig5_alpha{alpha}_phi0"))
+        except Missing:
+            continue
+        pts = []
+        for phi in phis:
+            try:
+                path = pick(f"hss_fig5_alpha{alpha}_phi{phi}")
+            except Missing:
+                continue
+            _, _, g, dg = hss_state(path)
+            dilute = theory(path, ["system:enskog=.false."])["temperature_ratio"]
+            pts.append((float(phi), g / g0, g / g0 * np.hypot(dg / g, dg0 / g0),
+                        theory(path)["temperature_ratio"] / dilute))
+        if not pts:
+            continue
+        drawn = True
+        x, y, dy, th = map(np.array, zip(*pts))
+        line = []
+        for p in np.linspace(0.01, 0.25, 13):
+            n2 = 6 * p / (5 * np.pi)
+            dens = [f"system:number_density={n2 / 2:.6f},{n2:.6f}"]
+            line.append(theory(path, dens)["temperature_ratio"] / theory(path, dens + ["system:enskog=.false."])["temperature_ratio"])
+        axes[3].plot(np.linspace(0.01, 0.25, 13), line, style, color=f"C{k}", lw=1)
+        axes[3].errorbar(x, y, yerr=dy, fmt=marker, mfc="none", color=f"C{k}", label=f"$\\alpha = {alpha}$")
+        residuals(ars[3], x, y, dy, th, kind="percent", fmt=marker, mfc="none", color=f"C{k}")
+    if not drawn:
+        empty.append((axes[3], [f"hss_fig5_alpha{a}_phi{p}" for a in ("0.6", "0.8") for p in ("0",) + phis]))
+    axes[3].set(ylabel=r"$\gamma(\alpha, \phi)/\gamma(\alpha, 0)$", title=r"Fig. 5: $\mu = \omega = 2$, $\delta = 1/2$")
+    if len(empty) == 4:
+        plt.close(fig)
+        raise Missing("no steady-state curves", case="hss_fig1_alpha0.5")
+    for ax, cases in empty:
+        fc.no_dsmc(ax, cases, theory_drawn=False)
+    for ar in ars[:3]:
+        ar.set(xlabel=r"$\alpha$")
+    ars[3].set(xlabel=r"solid fraction $\phi$")
+    for ar in ars[1:]:
+        ar.set_ylabel("")
+    for ax in axes:
+        ax.legend(fontsize="small")
+    save(fig, "seed004_fig1_5_curves")
 
 
 if __name__ == "__main__":

@@ -177,7 +177,7 @@ int print_table(int argc, char** argv, int first) {
       if (i + 1 >= argc) return refuse("--point needs a sweep point (1, 2, ...)");
       const std::string k = argv[++i];
       if (k.empty() || k.size() > 9 || k.find_first_not_of("0123456789") != std::string::npos || std::stoul(k) == 0)
-        return refuse("--point " + k + ": a sweep point is a number from 1");
+        return refuse("--point " + gdsmc::io::namelist::printable(k) + ": a sweep point is a number from 1");
       request.point = std::stoul(k);
     } else if (!arg.empty() && arg[0] == '-') {
       return refuse("unknown option " + gdsmc::io::namelist::printable(arg) + " (--table takes QUANTITY..., --point K and --theory)");
@@ -194,7 +194,8 @@ int print_table(int argc, char** argv, int first) {
     std::cout << printed.csv << std::flush;
     for (const auto& note : printed.notes) std::cerr << "granular-dsmc: --table " << request.file << ": " << note << "\n";
   } catch (const std::exception& e) {
-    std::cerr << "granular-dsmc: --table " << request.file << ": " << e.what() << "\n";
+    std::cerr << "granular-dsmc: --table " << request.file << ": " << gdsmc::io::namelist::printable(e.what(), 1000)
+              << "\n";  // (a quantity's name is the user's: it may hold a line break)
     return 2;
   }
   return 0;

@@ -116,7 +116,7 @@
  * change of sampler judges its events from the last step's events per unit time and is 5 mean free times long);
  * set_block_sampler() forces one. Viscoelastic mixtures, whole-gas steps and unblocked runs keep the scheme's loops.
  * Checked by Collide.BlockedMixtureMatchesUnblocked, Collide.BlockedThreeSpeciesLowrankMatchesUnblocked,
- * Collide.BlocksRunTheCheaperSampler, Collide.ManySpeciesBlocksMatchUnblocked (the factored draw, about 95 species a
+ * Collide.BlocksRunTheCheaperSampler, Collide.ManySpeciesBlocksMatchUnblocked (the factored draw, 200 species, about 150 present in a
  * block), Collide.FactoredDrawMatchesOneWordDrawAndUnblocked (the factored draw forced at P = 2, 3, 20),
  * Collide.FactoredDrawOnlyAboveTheThreshold and the mixture validations.
  *
@@ -220,7 +220,7 @@ class Collider {
            double step_fraction, rules::Rule rule);
 
   /// Cache blocks of about `block_size` particles (header, "Blocks"), for one species or a mixture of
-  /// at most block_species_limit (128) species with the `majorant` or `lowrank` scheme and N >= 2 block_size; otherwise (or
+  /// at most block_species_limit (256) species with the `majorant` or `lowrank` scheme and N >= 2 block_size; otherwise (or
   /// with 0) the whole gas is one block. Call before the first advance().
   void use_blocks(std::size_t block_size);
   std::size_t blocks() const { return block_first_.empty() ? 1 : block_first_.size() - 1; }
@@ -556,7 +556,10 @@ class Collider {
   static void factored_candidate(Gen& gen, const FactoredView& tables, std::uint32_t& a, std::uint32_t& b,
                                  std::uint32_t& pair, std::uint32_t& row_column);
   /// `lowrank`'s candidate in a block from one 64-bit word (header "Mixtures in blocks"): particles a,
-  /// b and the pair i S + k, by the block's cells and outcomes (collide_kernels.cpp).
+  /// b and the pair i S + k, by the block's cells and outcomes (collide_kernels.cpp). Its cell and coin
+  /// share 16 bits: 2^m >= P^2 cells leave 16 - m >= 0 coin bits for every P up to the limit.
+  static_assert(block_species_limit * block_species_limit <= (std::size_t{1} << 16),
+                "the one-word draw's cell index and coin share 16 bits of a candidate's word");
   template <class Gen>
   static void lowrank_candidate(Gen& gen, const LowrankCell* cells, const LowrankOutcome* outcomes, unsigned cell_bits,
                                 std::uint32_t& a, std::uint32_t& b, std::uint32_t& pair);

@@ -115,8 +115,8 @@ Document parse_file(const std::string& path);
 /// equally close candidates wins.
 std::string closest_name(std::string_view name, const std::vector<std::string>& candidates);
 
-/// `text` for a one-line message: control characters (a newline, a NUL) written as escapes (\n,
-/// \x00), cut after `limit` characters with "..." (an absurdly long name, value or argument).
+/// `text` for a one-line message: control characters (a newline, a NUL) written as escapes (`\n`,
+/// `\x00`), cut after `limit` characters with "..." (an absurdly long name, value or argument).
 std::string printable(std::string_view text, std::size_t limit = 200);
 
 }  // namespace gdsmc::io::namelist

@@ -749,7 +749,9 @@ ReplicaResult run_replica(const io::config::Config& config, std::size_t replica,
     engine->save(record);
     return record;
   };
-  const auto interrupted = [&] { return ctx.options.interrupt && ctx.options.interrupt->load(); };
+  const auto interrupted = [&] {
+    return (ctx.options.interrupt && ctx.options.interrupt->load()) || (ctx.abandon && ctx.abandon->load());
+  };
   // A stop flag ends an advance early (collide.hpp set_stop_flag), so every safe point looks at the
   // flag first: an unfinished advance or stage is never checkpointed, and never written.
   const auto safe_point = [&] {

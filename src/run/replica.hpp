@@ -22,6 +22,7 @@
  */
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <functional>
 
@@ -44,6 +45,9 @@ struct ReplicaContext {
   std::size_t slot;        ///< the unit's slot in it
   int block_threads;       ///< threads for the unit's cache blocks
   SafePoint safe_point;    ///< checkpoints
+  /// Set when another unit of this rank failed: this one stops at its next step end (as on an
+  /// interrupt, without a checkpoint), so that the failure is reported at once, not after the run.
+  const std::atomic<bool>* abandon = nullptr;
 };
 
 /// A gas without forcing only loses energy in collisions (the rules' energy balance, \ref cm_rule

@@ -131,11 +131,12 @@ std::vector<ReplicaResult> run_units(const std::vector<io::config::Config>& poin
         return;
       }
       ReplicaContext context{options, progress, slot, split.per_unit,
-                             [&](const std::function<state::Record()>& snapshot) { checkpoints.safe_point(u, snapshot); }};
+                             [&](const std::function<state::Record()>& snapshot) { checkpoints.safe_point(u, snapshot); },
+                             &failed};
       done[slot] = run_replica(points[units[u].point], units[u].replica, checkpoints.resume_point(u), context);
       checkpoints.finished(u, done[slot]);
     } catch (const Interrupted&) {
-      interrupted.store(true);
+      if (!failed.load()) interrupted.store(true);  // (else abandoned for another unit's failure)
     } catch (const std::exception& e) {
       const bool restart = dynamic_cast<const RestartError*>(&e) != nullptr;
 #pragma omp critical(gdsmc_failure)
@@ -155,9 +156,9 @@ std::vector<ReplicaResult> run_units(const std::vector<io::config::Config>& poin
     for (std::ptrdiff_t k = 0; k < n_mine; ++k) run_unit(k);
   }
   progress.finish();
-  if (interrupted.load()) throw Interrupted();
   if (failed.load() && restart_failed.load()) throw RestartError(failure);
   if (failed.load()) throw std::runtime_error(failure);
+  if (interrupted.load()) throw Interrupted();
   return done;
 }
 

@@ -128,8 +128,13 @@ int main(int argc, char** argv) {
                      0.0);
         continue;
       }
-      std::snprintf(text, sizeof text, "c_%zu vs first Sonine (CONSISTENCY CHECK: allowance 15 %%, docs/sonine.md)", k + 1);
-      report.check(text, c[k], c_error[k], hcs.sonine_c[k], 4.0, 0.15 * std::abs(hcs.sonine_c[k]));
+      // Neither: no independent estimate of first Sonine's error on c_k for this mixture (it can be a factor
+      // 2 on the lighter species' c: Montanero 2003, Figs 1-5's mixtures), so the difference is stated.
+      std::snprintf(text, sizeof text, "c_%zu = %.5f +- %.5f, first Sonine %.5f (DSMC/first Sonine - 1 = %+.1f %%, "
+                    "%.1f SE; stated: no exact or independent value for this mixture)",
+                    k + 1, c[k], c_error[k], hcs.sonine_c[k], 100.0 * (c[k] / hcs.sonine_c[k] - 1.0),
+                    (c[k] - hcs.sonine_c[k]) / c_error[k]);
+      report.note(text);
     }
   }
   return report.exit_code();
