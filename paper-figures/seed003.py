@@ -69,20 +69,27 @@ def fig1_gamma_time():
     th = theory(path)["points"]
     fig, axes, ars = with_residuals(ncols=2, width=PAGE, height=3.0, sharex="col")
     with h5py.File(path) as f:
+        # Time in the paper's unit t0 = lambda_11/v01(0), lambda_11 = 1/(sqrt2 pi n1 sigma_11^2) (n* = 0:
+        # chi_11 = 1), v01(0) = sqrt(2 T1(0)/m1) (Montanero and Garzo 2002, Sec. 3 and Fig. 1's caption).
+        p = f["parameters/system"].attrs
+        n1, sigma1, m1 = (float(np.ravel(p[key])[0]) for key in ("number_density", "diameter", "mass"))
+        T1 = float(np.ravel(f["parameters/initial"].attrs["temperature"])[0])
+        t0 = 1.0 / (np.sqrt(2.0) * np.pi * n1 * sigma1**2) / np.sqrt(2.0 * T1 / m1)
         for k, (ax, ar, (value, g)) in enumerate(zip(axes, ars, sweep_points(f))):
-            _, T, dT = observable(g, "temperature")
+            t, T, dT = observable(g, "temperature")
             _, C, _ = observable(g, "collisions_per_particle")
             gam = T[:, 0] / T[:, 1]
             err = gam * np.hypot(dT[:, 0] / T[:, 0], dT[:, 1] / T[:, 1])
-            ax.errorbar(C, gam, yerr=err, fmt="o", mfc="none", color="C0", label="DSMC")
+            x = t / t0
+            ax.errorbar(x, gam, yerr=err, fmt="o", mfc="none", color="C0", label="DSMC")
             gs = th[k]["temperature_ratio"]
-            ax.axhline(gs, color="k", ls="--", lw=1, label=f"first Sonine, $\\gamma = {gs:.4f}$")
+            ax.axhline(gs, color="k", ls=":", lw=1, label=f"first Sonine, $\\gamma = {gs:.4f}$")
             late = C >= SCALING_START  # the HCS: the residual of the settled ratio
-            residuals(ar, C[late], gam[late], err[late], np.full(late.sum(), gs), kind="percent", fmt="o",
+            residuals(ar, x[late], gam[late], err[late], np.full(late.sum(), gs), kind="percent", fmt="o",
                       mfc="none", color="C0")
             ax.set(ylabel=r"$\gamma(t) = T_1/T_2$")
             ax.set_title(f"({'ab'[k]}) $\\alpha = {float(value):g}$")
-            ar.set(xlabel="collisions per particle")
+            ar.set(xlabel=r"$t/t_0$, $t_0 = \lambda_{11}/v_{01}(0)$")
             if abs(gs - 1.0) < 1e-12:
                 ax.set_ylim(0.96, 1.04)
             ax.legend(loc="lower right" if gs > 1 else "upper right")
