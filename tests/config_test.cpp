@@ -385,6 +385,21 @@ TEST(ConfigResolved, ContainsEveryFieldOfEveryGroup) {
   }
 }
 
+// One species keeps its restitution as one value (a 1-D list of one), as before the pair matrices had
+// their shape: a reader's attrs['restitution'][0] is still the number.
+TEST(ConfigResolved, OneSpeciesRestitutionIsOneValue) {
+  const auto c = read_text(config::defaults_template());
+  ASSERT_EQ(c.system.n_species, 1);
+  bool seen = false;
+  for (const auto& p : c.resolved())
+    if (p.group == "system" && p.name == "restitution") {
+      seen = true;
+      EXPECT_EQ(std::get<std::vector<double>>(p.value), (std::vector<double>{0.9}));
+      EXPECT_TRUE(p.shape.empty());
+    }
+  EXPECT_TRUE(seen);
+}
+
 TEST(ConfigResolved, CollisionDrivenRunListsItsEnd) {
   const auto names = resolved_names(read_text(with_line(13, "  collisions_per_particle = 8.0")));
   EXPECT_TRUE(names.count("dsmc:collisions_per_particle"));

@@ -293,9 +293,11 @@ void append_resolved(std::vector<h5md::Parameter>& out, const std::string& group
           } else if constexpr (Choice<T>) {
             out.push_back({group, f.name, name(v)});
           } else if constexpr (std::is_same_v<T, species::PairMatrix>) {
-            // An (S, S) matrix; a uniform matrix of very many species (not stored densely) as its value.
-            if (v.is_dense()) out.push_back({group, f.name, v.values, {v.size, v.size}});
-            else out.push_back({group, f.name, std::vector<double>{v(0, 0)}});
+            // An (S, S) matrix from two species on; one species, or a uniform matrix of very many species
+            // (not stored densely), as its one value (1-D, as before the matrices had their shape).
+            if (!v.is_dense()) out.push_back({group, f.name, std::vector<double>{v(0, 0)}});
+            else if (v.size > 1) out.push_back({group, f.name, v.values, {v.size, v.size}});
+            else out.push_back({group, f.name, v.values});  // one species (or none set: roughness of a smooth gas)
           } else {
             out.push_back({group, f.name, v});
           }
