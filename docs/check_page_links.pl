@@ -44,11 +44,15 @@ sub slurp {
 sub prose_lines {
   my ($f) = @_;
   my @out;
-  my $fence = 0;
+  my $fence = '';  # the string that opened the fence in force ('' outside one)
   for my $line (split /\n/, slurp($f), -1) {
-    if ($line =~ /^\s*(```|~~~)/) { $fence = !$fence; push @out, ''; next; }
-    if ($fence) { push @out, ''; next; }
-    (my $prose = $line) =~ s/`[^`]*`/``/g;
+    if ($line =~ /^\s*(```+|~~~+)/) {
+      my $mark = $1;
+      if ($fence eq '') { $fence = $mark; push @out, ''; next; }
+      if (substr($mark, 0, 1) eq substr($fence, 0, 1) && length($mark) >= length($fence)) { $fence = ''; push @out, ''; next; }
+    }
+    if ($fence ne '') { push @out, ''; next; }
+    (my $prose = $line) =~ s/(`+).*?\1//g;  # code spans of any number of backticks
     push @out, $prose;
   }
   return @out;
