@@ -339,6 +339,12 @@ SE_LABEL = "DSMC $-$ theory\n(standard errors)"
 PERCENT_LABEL = "DSMC/theory $-$ 1\n(%)"
 
 
+def power_of_ten(x):
+    """x for a title in TeX: 10^{n} when x is a power of ten (1e9 -> 10^{9}), else its 3 significant digits."""
+    n = round(np.log10(x)) if x > 0 else 0
+    return f"10^{{{n}}}" if x > 0 and abs(x / 10.0**n - 1.0) < 1e-9 else f"{x:.3g}"
+
+
 def with_residuals(ncols=1, width=COLUMN, height=3.4, ratio=(3.0, 1.2), sharex="col"):
     """A figure with `ncols` main panels over as many residual panels: (fig, main axes, residual axes)
     (arrays of length ncols, or single axes when ncols = 1)."""
