@@ -222,6 +222,14 @@ def pick(name):
     raise Missing(f"no run of {name} in {runs_dir()}", case=name)
 
 
+def pick_or_none(name):
+    """pick(name), or None when the case has no run (noted as missing all the same)."""
+    try:
+        return pick(name)
+    except Missing:
+        return None
+
+
 def pick_some(names):
     """[(name, path)] of the cases of `names` that have a run (the others are noted as missing, and the
     figure is partial); Missing when none has."""

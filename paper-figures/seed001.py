@@ -28,7 +28,7 @@ import h5py
 import matplotlib
 import matplotlib.pyplot as plt
 import numpy as np
-from figures_common import (COLUMN, figure, pick, observable, run_theory, theory, save, Missing,
+from figures_common import (COLUMN, figure, pick, pick_or_none, observable, run_theory, theory, save, Missing,
                             TheoryError, with_residuals, residuals)
 
 
@@ -346,13 +346,9 @@ def fig8():
     fig, ax, ar = with_residuals()
     drawn, t_end = False, None
     for case, marker, color in (("msd_ratio_theta3", "o", "C0"), ("msd_ratio_theta4", "s", "C1")):
-        try:  # the paper's t = 1e9 where that run exists, else the t = 1e6 runs
-            path = pick(case + "_t1e9")
-        except Missing:
-            try:
-                path = pick(case)
-            except Missing:
-                continue
+        path = pick_or_none(case + "_t1e9") or pick_or_none(case)  # the paper's t = 1e9 where it was run
+        if path is None:
+            continue
         th = theory(path)
         with h5py.File(path) as f:
             R = f["observables/msd/value"][()]

@@ -27,16 +27,15 @@ import figures_common as fc  # first: it answers --help before matplotlib is loa
 import h5py
 import matplotlib.pyplot as plt
 import numpy as np
-from figures_common import COLUMN, PAGE, Missing, figure, pick, theory, save, with_residuals, residuals
+from figures_common import COLUMN, PAGE, Missing, figure, pick, pick_or_none, theory, save, with_residuals, residuals
 
 
 @figure("seed004_fig6_viscosity")
 def fig6():
     alphas, eta, err, last = [], [], [], None
     for alpha in ("1.0", "0.9", "0.8", "0.7", "0.6", "0.5"):
-        try:
-            path = pick(f"viscosity_alpha{alpha}")
-        except Missing:  # the quick tier has alpha = 1 and 0.7 only
+        path = pick_or_none(f"viscosity_alpha{alpha}")
+        if path is None:  # the quick tier has alpha = 1 and 0.7 only
             continue
         with h5py.File(path) as f:
             a = f["observables/shear_viscosity"].attrs
@@ -98,9 +97,8 @@ def fig7_9():
         for k, (alpha, marker) in enumerate(zip(alphas, "os^")):
             pts = []
             for x in xs:
-                try:
-                    path = pick(f"{case(x)}_alpha{alpha}")
-                except Missing:
+                path = pick_or_none(f"{case(x)}_alpha{alpha}")
+                if path is None:
                     continue
                 eta, err, _, _ = time_average(path)
                 th = theory(path)["shear_viscosity_ratio"]["hss"]
@@ -161,9 +159,8 @@ def fig10_12():
         color, style = f"C{k}", ("-", "--", ":")[k]  # the paper's solid, dashed, dotted lines
         pts = []
         for phi in phis:
-            try:
-                path = pick(f"viscosity_fig10_phi{phi}_alpha{alpha}")
-            except Missing:
+            path = pick_or_none(f"viscosity_fig10_phi{phi}_alpha{alpha}")
+            if path is None:
                 continue
             eta, err, kin, kin_err = time_average(path)
             th_kin, th_tot, factor = enskog_theory(path, alpha)
@@ -181,9 +178,8 @@ def fig10_12():
             axes[1].plot(grid, lines[:, 1], style, color=color)
         pts = []
         for mu in ("2", "4", "8"):
-            try:
-                path = pick(f"viscosity_fig12_mu{mu}_alpha{alpha}" if mu != "4" else f"viscosity_fig10_phi0.2_alpha{alpha}")
-            except Missing:
+            path = pick_or_none(f"viscosity_fig12_mu{mu}_alpha{alpha}" if mu != "4" else f"viscosity_fig10_phi0.2_alpha{alpha}")
+            if path is None:
                 continue
             eta, err, _, _ = time_average(path)
             _, th_tot, factor = enskog_theory(path, alpha, mu=float(mu))
@@ -226,9 +222,8 @@ def fig1_5():
     cumulants (left) and the temperature ratio (right); the last half of the samples averaged."""
     rows_c, rows_g = [], []  # (tick label, DSMC, SE, first Sonine)
     for name in ("hss_one", "hss_binary"):
-        try:
-            path = pick(name)
-        except Missing:
+        path = pick_or_none(name)
+        if path is None:
             continue
         th = theory(path)
         with h5py.File(path) as f:
@@ -303,9 +298,8 @@ def fig1_5_curves():
         marker, style = styles[k]
         pts, last = [], None
         for a in alphas:
-            try:
-                path = pick(cases(a))
-            except Missing:
+            path = pick_or_none(cases(a))
+            if path is None:
                 continue
             y, dy = value(path)
             pts.append((float(a), y, dy, line(path, float(a))))
@@ -356,15 +350,14 @@ def fig1_5_curves():
     drawn = False
     for k, alpha in ((2, "0.6"), (1, "0.8")):
         marker, style = styles[k]
-        try:
-            _, _, g0, dg0 = hss_state(pick(f"hss_fig5_alpha{alpha}_phi0"))
-        except Missing:
+        dilute_run = pick_or_none(f"hss_fig5_alpha{alpha}_phi0")
+        if dilute_run is None:
             continue
+        _, _, g0, dg0 = hss_state(dilute_run)
         pts = []
         for phi in phis:
-            try:
-                path = pick(f"hss_fig5_alpha{alpha}_phi{phi}")
-            except Missing:
+            path = pick_or_none(f"hss_fig5_alpha{alpha}_phi{phi}")
+            if path is None:
                 continue
             _, _, g, dg = hss_state(path)
             dilute = theory(path, ["system:enskog=.false."])["temperature_ratio"]
