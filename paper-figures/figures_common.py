@@ -282,12 +282,29 @@ def observable(group, name):
     return g["time"][()], g["value"][()], err
 
 
+def reduced_distribution(path):
+    """Species 1's reduced distributions of a run (observables/reduced_distribution, docs/output.md):
+    Phi_1, Delta_1, G_1 with their errors on the bin centres v, and lambda_1, c_1, beta_1, zeta*, alpha, N."""
+    with h5py.File(path) as f:
+        g = f["observables/reduced_distribution"]
+        s = g["species_1"]
+        edges = g["bin_edges"][()]
+        d = {k: s[k][()] for k in ("value", "error", "delta", "delta_error", "g", "g_error")}
+        d.update(v=0.5 * (edges[1:] + edges[:-1]), lam=s.attrs["lambda"], c=s.attrs["sonine_c"],
+                 beta=s.attrs["tail_beta"], zeta=g.attrs["cooling_rate_reduced"],
+                 alpha=float(np.ravel(f["parameters/system"].attrs["restitution"])[0]),
+                 n=f["parameters/dsmc"].attrs["n_particles"])
+    return d
+
+
 def stored_input(path):
-    """Namelist text and overrides (without output:) stored in an output file's /parameters."""
+    """Namelist text and overrides stored in an output file's /parameters: those of &output only where
+    they change the theory (the MSD's start, output:msd_*), not the file or the sampling."""
     with h5py.File(path) as f:
         p = f["parameters"].attrs
         text = p["namelist"]
-        overrides = [o for o in p["overrides"].split("\n") if o and not o.startswith("output:")]
+        overrides = [o for o in p["overrides"].split("\n")
+                     if o and (not o.startswith("output:") or o.startswith("output:msd_"))]
     return text, overrides
 
 

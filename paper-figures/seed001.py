@@ -6,7 +6,7 @@ long-time limit) against n_2 and the restitution.
 figures (OUT_DIR/<figure>.pdf and .png) and the validation cases they draw:
   seed001_fig1_msd_rescaled               msd_fig1
   seed001_fig2_msd_binary                 msd_fig2
-  seed001_fig3_msd_dilute_heavy           msd_fig3
+  seed001_fig3_msd_dilute_heavy           msd_fig3, msd_fig3_late (dashed: measured from <T> = 1)
   seed001_fig6_msd_ternary                msd_fig6
   seed001_fig9_msd_viscoelastic           msd_fig9
   seed001_fig10_msd_viscoelastic_ternary  msd_fig10
@@ -63,9 +63,10 @@ def msd_data(path):
                  n=s["number_density"], N=f["parameters/dsmc"].attrs["n_particles"],
                  replicas=f["parameters/dsmc"].attrs["replicas"],
                  model=s["restitution_model"] if "restitution_model" in s else "constant")
-    th = theory(path)  # on the DSMC sample times, for the ratio panel
-    assert np.allclose(th["msd"]["time"], d["t"], rtol=1e-9), "theory and DSMC sample times differ"
-    d["Rth"] = np.array(th["msd"]["value"])
+    th = theory(path)  # on the DSMC sample times (from the MSD's start on), for the ratio panel
+    late = len(d["t"]) - len(th["msd"]["time"])  # samples before a late start (output:msd_start_time)
+    assert late >= 0 and np.allclose(th["msd"]["time"], d["t"][late:], rtol=1e-9), "theory and DSMC sample times differ"
+    d["Rth"] = np.vstack([np.zeros((late, R.shape[1])), np.array(th["msd"]["value"]).reshape(-1, R.shape[1])])
     dense = theory(path, [f"output:n_samples={LINE_SAMPLES}"])
     d["tl"] = np.array(dense["msd"]["time"])
     d["Rl"] = np.array(dense["msd"]["value"])
@@ -94,7 +95,25 @@ def slope_guide(ax, x0, x1, y0, power, label, ls="--", where="above"):
         ax.annotate(label, (xm, ym), textcoords="offset points", xytext=(-14, 6))
 
 
-def msd_figure(case, title, filename, total=False, rescale=False, guides=("t^2",)):
+def late_start(path):
+    """The MSDs of a run whose measurement started late (output:msd_start_time) in the time of the paper's
+    protocol, where the measurement starts when <T> = 1 after cooling from <T> >> 1: hard spheres of constant
+    restitution are the same gas with all velocities scaled by sqrt(T), so a time t - t_start of this run
+    is (t - t_start) sqrt(<T>(t_start)) there, and the displacements are unchanged. <T>(t_start) is the
+    mixture temperature interpolated log-log between the samples around the start."""
+    d = msd_data(path)
+    with h5py.File(path) as f:
+        start = float(np.mean(f["observables/msd/start_time"][()]))
+        tT, T_total, _ = observable(f, "total_temperature")
+    keep = tT > 0
+    T_start = float(np.exp(np.interp(np.log(start), np.log(tT[keep]), np.log(T_total[keep]))))
+    scale = np.sqrt(T_start)
+    d["xd"], d["xl"] = (d["t"] - start) * scale, (d["tl"] - start) * scale
+    d["sel"], d["sl"] = d["t"] > start, d["tl"] > start
+    return d
+
+
+def msd_figure(case, title, filename, total=False, rescale=False, guides=("t^2",), late_case=None):
     path = pick(case)
     d = msd_data(path)
     S = d["R"].shape[1]
@@ -112,6 +131,17 @@ def msd_figure(case, title, filename, total=False, rescale=False, guides=("t^2",
         ax.errorbar(xd[sel], d["R"][sel, k], yerr=d["dR"][sel, k], fmt=MARKERS[k], mfc="none", color=c)
         residuals(ar, xd[sel], d["R"][sel, k], d["dR"][sel, k], d["Rth"][sel, k], kind="percent", fmt=MARKERS[k],
                   mfc="none", color=c, ms=2.5)
+    late_path = pick_or_none(late_case) if late_case else None
+    if late_path is not None:  # the paper's dashed lines: the measurement started at <T> = 1
+        e = late_start(late_path)
+        for k in range(S):
+            c = COLORS[k]
+            ax.plot(e["xl"][e["sl"]], e["Rl"][e["sl"], k], "--", color=c, lw=1.0)
+            ax.errorbar(e["xd"][e["sel"]], e["R"][e["sel"], k], yerr=e["dR"][e["sel"], k], fmt=MARKERS[k], color=c,
+                        ms=3)
+            residuals(ar, e["xd"][e["sel"]], e["R"][e["sel"], k], e["dR"][e["sel"], k], e["Rth"][e["sel"], k],
+                      kind="percent", fmt=MARKERS[k], color=c, ms=2.5)
+        ax.plot([], [], "k--", lw=1.0, label="dashed, filled: started at $\\langle T\\rangle = 1$")
     if total:  # eq 16: number-fraction weighted mean of the partial MSDs
         x = d["x"]
         Rt_l = d["Rl"] @ x
@@ -375,7 +405,8 @@ def fig8():
 
 @figure("seed001_fig3_msd_dilute_heavy")
 def fig3():
-    msd_figure("msd_fig3", r"dilute heavy species $n_2 = 0.001$, $m = 1, 100$", "seed001_fig3_msd_dilute_heavy")
+    msd_figure("msd_fig3", r"dilute heavy species $n_2 = 0.001$, $m = 1, 100$", "seed001_fig3_msd_dilute_heavy",
+               late_case="msd_fig3_late")
 
 
 @figure("seed001_fig1_msd_rescaled")

@@ -10,7 +10,8 @@ figures (OUT_DIR/<figure>.pdf and .png) and the validation cases they draw:
   seed003_fig3_delta              hcs_distribution_alpha0.5
   seed003_fig4_gamma_alpha_mu     gamma_alpha_fig4_mu{10,2,0.1}
   seed003_fig5_gamma_alpha_delta  gamma_alpha_fig5_delta{4,1,0.25}
-  seed003_fig6_gamma_density      gamma_density_alpha{0.6,0.8}
+  seed003_fig6_gamma_density      gamma_density_alpha{0.6,0.8}, gamma_density_alpha{0.6,0.8}_dilute
+                                  (gamma(alpha, 0): the same mixture as a dilute gas)
   seed003_fig7_tail               hcs_distribution_alpha{0.3,0.5}
 Figs 1, 4, 5, 6 read &sweep runs (one point per sweep value).
 """
@@ -21,8 +22,8 @@ import h5py
 import matplotlib
 import matplotlib.pyplot as plt
 import numpy as np
-from figures_common import (COLUMN, PAGE, figure, pick, pick_some, observable, stored_input, run_theory,
-                            theory, save, with_residuals, residuals)
+from figures_common import (COLUMN, PAGE, figure, pick, pick_or_none, pick_some, observable, reduced_distribution, stored_input,
+                            run_theory, theory, save, with_residuals, residuals)
 
 
 ALPHA_LINE = np.round(np.arange(0.1, 1.0001, 0.02), 2)  # alpha grid of the theory lines
@@ -164,19 +165,6 @@ def fig2_cumulants():
     save(fig, "seed003_fig2_cumulants")
 
 
-def reduced_distribution(path):
-    with h5py.File(path) as f:
-        g = f["observables/reduced_distribution"]
-        s = g["species_1"]
-        edges = g["bin_edges"][()]
-        d = {k: s[k][()] for k in ("value", "error", "delta", "delta_error", "g", "g_error")}
-        d.update(v=0.5 * (edges[1:] + edges[:-1]), lam=s.attrs["lambda"], c=s.attrs["sonine_c"],
-                 beta=s.attrs["tail_beta"], zeta=g.attrs["cooling_rate_reduced"],
-                 alpha=float(np.ravel(f["parameters/system"].attrs["restitution"])[0]),
-                 n=f["parameters/dsmc"].attrs["n_particles"])
-    return d
-
-
 @figure("seed003_fig3_delta")
 def fig3_delta():
     path = pick("hcs_distribution_alpha0.5")
@@ -265,22 +253,33 @@ def fig6_gamma_density():
                 _, T, dT = observable(g, "temperature")
                 rows.append(((n1 + n2) * sigma12**3, *gamma_of(T, dT, -1)))
         rows = np.array(rows)
-        # dilute first-Sonine gamma(alpha, 0): the same mixture without the Enskog factors
+        # gamma(alpha, 0): the theory's from the same mixture without the Enskog factors; the DSMC's from
+        # its dilute run (gamma_density_alpha*_dilute), as the paper divides its measured gamma(n*)
         dilute = theory_sweep(path, "system:restitution", [alpha], extra=["system:enskog=.false."])
         g0 = dilute[0]["temperature_ratio"]
+        dilute_path = pick_or_none(f"{case}_dilute")
+        if dilute_path is None:
+            m0, dm0, over = g0, 0.0, "dilute first Sonine"
+        else:
+            with h5py.File(dilute_path) as f:
+                (_, g), = sweep_points(f)
+                _, T, dT = observable(g, "temperature")
+            m0, dm0 = gamma_of(T, dT, -1)
+            over = "its dilute DSMC"
+        ratio_err = rows[:, 1] / m0 * np.hypot(rows[:, 2] / rows[:, 1], dm0 / m0)
         nstar = np.round(np.arange(0.01, 0.5001, 0.01), 3)
         pairs = [f"'{x1 * s / sigma12**3:.7g}, {(1 - x1) * s / sigma12**3:.7g}'" for s in nstar]
         pts = theory_sweep(path, "system:number_density", pairs)
         ratio = np.array([p["temperature_ratio"] for p in pts]) / g0
         xl, yl = np.r_[0.0, nstar], np.r_[1.0, ratio]
         ax.plot(xl, yl, ls, color=color, lw=1.2, label=f"$\\alpha = {alpha}$, first Sonine (Enskog)")
-        ax.errorbar(rows[:, 0], rows[:, 1] / g0, yerr=rows[:, 2] / g0, fmt=marker, mfc="none", color=color,
-                    label=f"$\\alpha = {alpha}$, DSMC")
-        residuals(ar, rows[:, 0], rows[:, 1] / g0, rows[:, 2] / g0, line_at(xl, yl, rows[:, 0]), kind="percent",
+        ax.errorbar(rows[:, 0], rows[:, 1] / m0, yerr=ratio_err, fmt=marker, mfc="none", color=color,
+                    label=f"$\\alpha = {alpha}$, DSMC over {over}")
+        residuals(ar, rows[:, 0], rows[:, 1] / m0, ratio_err, line_at(xl, yl, rows[:, 0]), kind="percent",
                   fmt=marker, mfc="none", color=color)
     ax.set(ylabel=r"$\gamma(\alpha, n^*)/\gamma(\alpha, 0)$", xlim=(0.0, 0.52))
     ar.set(xlabel=r"$n^* = n\sigma_{12}^3$")
-    ax.set_title(r"$\mu = 2$, $\delta = 1/2$, $w = 2$; $\gamma(\alpha, 0)$: dilute first Sonine")
+    ax.set_title(r"$\mu = 2$, $\delta = 1/2$, $w = 2$")
     ax.legend()
     save(fig, "seed003_fig6_gamma_density")
 

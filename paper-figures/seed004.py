@@ -6,7 +6,8 @@ error) over the first-Sonine theory of `granular-theory` for the steady state th
 ratio, size ratio and concentration at alpha = 0.9, 0.8, 0.7 over the mixture theory; Figs 10-12, the
 Enskog binary mixture in the paper's units (kinetic part eta_k* and total eta* = nu eta/(n T) against
 the solid fraction, eta* against the mass ratio); and Figs 1-5's check, the HSS temperature ratio and
-cumulants against the HCS first-Sonine values. Residual panels (DSMC/theory - 1 in percent, or DSMC
+cumulants against the HCS first-Sonine values, and Fig 2, Delta_1(v*) of the steady state against the
+Sonine polynomial. Residual panels (DSMC/theory - 1 in percent, or DSMC
 minus theory in standard errors) below each comparison.
 
 figures (OUT_DIR/<figure>.pdf and .png) and the validation cases they draw:
@@ -17,6 +18,7 @@ figures (OUT_DIR/<figure>.pdf and .png) and the validation cases they draw:
   seed004_fig10_12_enskog   viscosity_fig10_phi{0.1,0.2,0.3}_alpha{0.9,0.8,0.7},
                             viscosity_fig12_mu{2,8}_alpha{0.9,0.8,0.7} (in eta_k*, eta* as printed)
   seed004_fig1_5_hss        hss_one, hss_binary (the one-point check at alpha = 0.5)
+  seed004_fig2_delta        hss_fig2_alpha0.5 (Delta_1(v*) of the HSS, mu = 4, delta = 1/2, as printed)
   seed004_fig1_5_curves     Figs 1, 3, 4, 5: hss_fig1_alpha{0.5,0.6,0.7,0.8,0.9},
                             hss_fig3_mu{0.1,2.0,10.0}_alpha{0.5,0.6,0.7,0.8,0.9},
                             hss_fig4_delta{0.25,1,4}_alpha{0.5,0.6,0.7,0.8,0.9},
@@ -27,7 +29,8 @@ import figures_common as fc  # first: it answers --help before matplotlib is loa
 import h5py
 import matplotlib.pyplot as plt
 import numpy as np
-from figures_common import COLUMN, PAGE, Missing, figure, pick, pick_or_none, theory, save, with_residuals, residuals
+from figures_common import (COLUMN, PAGE, Missing, figure, pick, pick_or_none, reduced_distribution, theory, save,
+                            with_residuals, residuals)
 
 
 @figure("seed004_fig6_viscosity")
@@ -214,6 +217,29 @@ def fig10_12():
     for ax in axes[:2]:
         ax.legend()
     save(fig, "seed004_fig10_12_enskog")
+
+
+@figure("seed004_fig2_delta")
+def fig2_delta():
+    """Delta_1(v*) of the HSS (mu = 4, delta = 1/2, w = 1, alpha = 0.5) on the paper's axes, v* to 1.5 and
+    Delta_1 from -2.5 to 10, against the first Sonine polynomial (Montanero and Garzo 2002, eq 28)."""
+    d = reduced_distribution(pick("hss_fig2_alpha0.5"))
+    lam = d["lam"]
+    sonine = lambda v: 0.5 * lam**2 * v**4 - 2.5 * lam * v**2 + 15.0 / 8.0  # noqa: E731
+    fig, ax, ar = with_residuals(height=3.4)
+    sel = d["v"] <= 1.5
+    x = np.linspace(0.0, 1.5, 400)
+    ax.plot(x, sonine(x), "k--", lw=1, label="first Sonine polynomial")
+    ax.errorbar(d["v"][sel], d["delta"][sel], yerr=d["delta_error"][sel], fmt="o", mfc="none", color="C0",
+                label="DSMC, steady state")
+    residuals(ar, d["v"][sel], d["delta"][sel], d["delta_error"][sel], sonine(d["v"][sel]), kind="se", fmt="o",
+              mfc="none", color="C0")
+    ax.axhline(0.0, color="0.6", lw=0.6)
+    ax.set(ylabel=r"$\Delta_1(v^*)$", xlim=(0.0, 1.5), ylim=(-2.5, 10.0))
+    ar.set(xlabel=r"$v^*$")
+    ax.legend(loc="upper left")
+    ax.set_title(f"$\\alpha = {d['alpha']:g}$, $\\mu = 4$, $\\delta = 1/2$, $w = 1$, $\\phi = 0$")
+    save(fig, "seed004_fig2_delta")
 
 
 @figure("seed004_fig1_5_hss")

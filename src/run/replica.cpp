@@ -131,8 +131,9 @@ class Gas : public Engine {
   void take_snapshot(ReplicaResult& result) const override;
 
  protected:
-  Gas(const io::config::Config& config, std::size_t r)
-      : config_(config), mix_(config.mixture()), s_(mix_.size()),
+  /// `reduced`: the replica accumulates the reduced speed distributions Phi_i(v*) of its scaling state.
+  Gas(const io::config::Config& config, std::size_t r, bool reduced)
+      : reduced_(reduced && config.mixture().size() <= 2), config_(config), mix_(config.mixture()), s_(mix_.size()),
         counts_(species::particle_counts(static_cast<std::size_t>(config.dsmc.n_particles), mix_)),
         sys_(initial_system(config, mix_, counts_, r)),
         collider_(scheme(config), mix_, sys_,
@@ -155,9 +156,18 @@ class Gas : public Engine {
   /// scaling_temperature_share): one value per replica, so that their standard error over the replicas is
   /// that of the time average itself, whatever the correlation between samples (/scaling_state).
   void add_scaling_averages(ReplicaResult& result) const;
+  /// The speeds of sample `m` added to the reduced distributions' counts (a scaling-state sample).
+  void add_reduced_speeds(const sample::Moments& m);
+  /// Phi_i(v*), c_i, T_i/T of the scaling state and its reduced cooling rate `zeta_star` (Montanero and
+  /// Garzo 2002, \ref son_reduced_distributions "docs/sonine.md"), when the replica has two scaling samples.
+  void add_reduced(ReplicaResult& result, double zeta_star) const;
+  /// Whether add_reduced() has what it needs: two scaling samples at distinct times.
+  bool has_reduced() const { return reduced_ && scaling_samples_ >= 2.0 && t_last_ > t_first_; }
   void save_gas(state::Record& r) const;
   void restore_gas(const state::Record& r);
 
+  /// Phi_i(v*) is defined for one or two species (Montanero and Garzo 2002, \ref son_reduced_distributions "docs/sonine.md").
+  bool reduced_;
   const io::config::Config& config_;
   species::Mixture mix_;
   std::size_t s_;
@@ -207,6 +217,26 @@ void Gas::add_scaling_averages(ReplicaResult& result) const {
   for (auto& x : share) x /= scaling_samples_;
   result.add("scaling_sonine_c", c.size(), c);
   result.add("scaling_temperature_share", share.size(), share);
+}
+
+void Gas::add_reduced_speeds(const sample::Moments& m) {
+  if (!reduced_) return;
+  sample::add_reduced_speeds(mix_, sys_, m, sample::reduced_velocity_scale(mix_, m.total_temperature),
+                             static_cast<std::size_t>(config_.output.reduced_bins), config_.output.reduced_range,
+                             speed_counts_);
+}
+
+void Gas::add_reduced(ReplicaResult& result, double zeta_star) const {
+  const auto bins = static_cast<std::size_t>(config_.output.reduced_bins);
+  result.add("reduced_distribution", s_ * bins,
+             sample::reduced_distribution(speed_counts_, std::vector<double>(counts_.begin(), counts_.end()),
+                                          scaling_samples_, bins, config_.output.reduced_range));
+  std::vector<double> c = c_sum_, share = share_sum_;
+  for (auto& x : c) x /= scaling_samples_;
+  for (auto& x : share) x /= scaling_samples_;
+  result.add("reduced_sonine_c", s_, c);
+  result.add("reduced_temperature_share", s_, share);
+  result.add("reduced_cooling_rate", 1, {zeta_star});
 }
 
 void Gas::take_snapshot(ReplicaResult& result) const {
@@ -320,7 +350,7 @@ class FreeGas final : public Gas {
   /// Displacements from msd_start_time: stop there exactly, then start tracking.
   void start_displacements(double t_target, std::uint64_t event_target, const Between& between);
 
-  bool time_driven_, track_, reduced_, blocked_;
+  bool time_driven_, track_, blocked_;
   double final_events_, chunk_;
   bool in_sample_ = false;  ///< the current sample's msd start handling is done, its chunks are running
   bool tracking_ = false;
@@ -328,10 +358,8 @@ class FreeGas final : public Gas {
 };
 
 FreeGas::FreeGas(const io::config::Config& config, std::size_t r, const ReplicaContext& ctx)
-    : Gas(config, r), time_driven_(config.dsmc.t_end.has_value()),
-      track_(config.output.track_displacements),
-      // v0 and Phi_i(v*) are defined for one or two species (Montanero and Garzo 2002, \ref son_reduced_distributions "docs/sonine.md")
-      reduced_(s_ <= 2) {
+    : Gas(config, r, true), time_driven_(config.dsmc.t_end.has_value()),
+      track_(config.output.track_displacements) {
   final_events_ = time_driven_ ? 0.0 : std::ceil(targets_.back() * static_cast<double>(sys_.size()) / 2.0);
   // Cache blocks (collide.hpp "Blocks"): in collision-driven runs the steps near each sample's event
   // target run on the whole gas and stop at it exactly.
@@ -434,10 +462,7 @@ void FreeGas::sample(std::size_t i, ReplicaResult& result) {
   if (track_)
     result.add("msd", s_, tracking_ ? sample::mean_squared_displacement(sys_, collider_.time()) : std::vector<double>(s_, 0.0));
   if (i > 0 && collisions_per_particle() >= config_.output.scaling_start) {
-    if (reduced_)
-      sample::add_reduced_speeds(mix_, sys_, m, sample::reduced_velocity_scale(mix_, m.total_temperature),
-                                 static_cast<std::size_t>(config_.output.reduced_bins), config_.output.reduced_range,
-                                 speed_counts_);
+    add_reduced_speeds(m);
     add_scaling_sample(m, collider_.time());
   }
   in_sample_ = false;
@@ -448,22 +473,13 @@ void FreeGas::finish(ReplicaResult& result) {
   result.mean_step = collider_.mean_step();
   if (track_) result.add("msd_start", 1, {tracking_ ? msd_start_ : -1.0});
   add_scaling_averages(result);
-  if (!reduced_ || scaling_samples_ < 2.0 || !(t_last_ > t_first_)) return;
-  const auto bins = static_cast<std::size_t>(config_.output.reduced_bins);
-  result.add("reduced_distribution", s_ * bins,
-             sample::reduced_distribution(speed_counts_, std::vector<double>(counts_.begin(), counts_.end()),
-                                          scaling_samples_, bins, config_.output.reduced_range));
-  std::vector<double> c = c_sum_, share = share_sum_;
-  for (auto& x : c) x /= scaling_samples_;
-  for (auto& x : share) x /= scaling_samples_;
-  result.add("reduced_sonine_c", s_, c);
-  result.add("reduced_temperature_share", s_, share);
+  if (!has_reduced()) return;
   // zeta* = zeta/(n sigma_12^2 v0) with zeta = 2 sqrt(T) d(T^-1/2)/dt, constant in the HCS
   // (\ref haff_law "docs/haff-and-mixtures.md", \ref son_scaling "docs/sonine.md"): zeta* = 2 slope / (n sigma_12^2 sqrt(2 (m1 + m2)/(m1 m2))).
   const double slope = (1.0 / std::sqrt(temp_last_) - 1.0 / std::sqrt(temp_first_)) / (t_last_ - t_first_);
   const double sigma12 = mix_.contact_distance(0, s_ - 1);
   const double v0_unit = sample::reduced_velocity_scale(mix_, 1.0);
-  result.add("reduced_cooling_rate", 1, {2.0 * slope / (mix_.total_density() * sigma12 * sigma12 * v0_unit)});
+  add_reduced(result, 2.0 * slope / (mix_.total_density() * sigma12 * sigma12 * v0_unit));
 }
 
 void FreeGas::save(state::Record& r) const {
@@ -497,11 +513,10 @@ class ForcedGas final : public Gas {
   void save(state::Record& r) const override {
     save_gas(r);
     stages_.save(r);
+    r.put("gas/dissipated_first", dissipated_first_);
+    r.put("gas/dissipated_last", dissipated_last_);
   }
-  void restore(const state::Record& r) override {
-    restore_gas(r);
-    stages_.restore(r);
-  }
+  void restore(const state::Record& r) override;
 
  private:
   /// One stage from the collider's time to `end` (thermostat.hpp Stages): with `result`, sample `i` is
@@ -509,7 +524,29 @@ class ForcedGas final : public Gas {
   void stage(double end, std::size_t i, ReplicaResult* result, bool last);
 
   thermostat::Stages stages_;
+  /// The collisions' loss (collide.hpp Counters::dissipated) at the first and the last scaling sample: the
+  /// cooling rate of the HSS, which the thermostat restores.
+  double dissipated_first_ = 0.0, dissipated_last_ = 0.0;
 };
+
+/// The HSS of the Gaussian thermostat alone, smooth spheres: its scaled distribution is the HCS's (the
+/// thermostat term (zeta/2) d/dv . (v f) is the HCS's scaling term; \ref eta_thermostat "docs/shear-viscosity.md"),
+/// so it has the reduced distributions. Shear flow, white noise and rough spheres have other states.
+bool hss_of_gaussian_thermostat(const io::config::Config& config) {
+  return config.thermostat.kind == io::config::ThermostatKind::gaussian && !config.shear.rate && !config.rough();
+}
+
+void ForcedGas::restore(const state::Record& r) {
+  restore_gas(r);
+  stages_.restore(r);
+  if (r.has("gas/dissipated_first") && r.has("gas/dissipated_last")) {
+    dissipated_first_ = r.real("gas/dissipated_first");
+    dissipated_last_ = r.real("gas/dissipated_last");
+  } else if (reduced_ && scaling_samples_ > 0.0) {
+    throw state::StateError("'gas/dissipated_first' is missing: the checkpoint of an earlier build, whose steady-state "
+                            "distributions cannot be completed; run the input again without --restart");
+  }
+}
 
 /// The stages of a replica with forcings: the forcings of the input (run/model.cpp), the Enskog gas in
 /// shear flow's shifted relative velocity set on the collider (collide.hpp set_shear) first.
@@ -523,7 +560,7 @@ thermostat::Stages make_stages(const io::config::Config& config, const species::
 }
 
 ForcedGas::ForcedGas(const io::config::Config& config, std::size_t r, const ReplicaContext& ctx)
-    : Gas(config, r),
+    : Gas(config, r, hss_of_gaussian_thermostat(config)),
       // (the centre-of-mass velocity sum m V / sum m removed first: \ref eta_thermostat "docs/shear-viscosity.md")
       stages_((thermostat::remove_mean_flow(mix_, sys_), make_stages(config, mix_, sys_, collider_, r))) {
   // Cache blocks with `majorant` or `lowrank` (collide.hpp, "Frame": frames in blocks): a pass over the
@@ -543,7 +580,12 @@ void ForcedGas::stage(double end, std::size_t i, ReplicaResult* result, bool las
   stages_.begin(dt, result != nullptr);
   if (result) {  // the sample of this instant: after the streaming of the stage that starts now
     const sample::Moments m = measure_common(*result);
-    if (i > 0 && collisions_per_particle() >= config_.output.scaling_start) add_scaling_sample(m, collider_.time());
+    if (i > 0 && collisions_per_particle() >= config_.output.scaling_start) {
+      add_reduced_speeds(m);
+      if (scaling_samples_ == 0.0) dissipated_first_ = collider_.counters().dissipated;
+      dissipated_last_ = collider_.counters().dissipated;
+      add_scaling_sample(m, collider_.time());
+    }
     stages_.measure(m, dt, i > 0, *result);
   }
   if (last) return;
@@ -577,6 +619,20 @@ void ForcedGas::finish(ReplicaResult& result) {
   result.events = collider_.counters().events;
   result.mean_step = collider_.time() > 0.0 && stages_.count() > 0.0 ? collider_.time() / stages_.count() : 0.0;
   add_scaling_averages(result);
+  if (has_reduced() && stages_.count() > 0.0) {
+    // The collisions' loss over the kinetic energy (3/2) N T, which the thermostat restores after each
+    // stage (\ref eta_thermostat "docs/shear-viscosity.md"): the fraction `lost` of it per stage of length
+    // `step`. Within a stage the gas cools freely, E_after/E_before = (1 + zeta dt/2)^-2 (Haff's law,
+    // \ref haff_law "docs/haff-and-mixtures.md"): zeta at the HSS temperature, the stage's start, is
+    // 2 ((1 - lost)^-1/2 - 1)/step (lost/step alone is 3 lost/4 low); zeta* = zeta/(n sigma_12^2 v0(T)).
+    const double n_particles = static_cast<double>(sys_.size());
+    const double step = collider_.time() / stages_.count();  // the stages' length, constant in the HSS
+    const double lost = (dissipated_last_ - dissipated_first_) / (t_last_ - t_first_) * step / (1.5 * n_particles * temp_last_);
+    const double zeta = 2.0 * (1.0 / std::sqrt(1.0 - lost) - 1.0) / step;
+    const double sigma12 = mix_.contact_distance(0, s_ - 1);
+    add_reduced(result, zeta / (mix_.total_density() * sigma12 * sigma12 *
+                                sample::reduced_velocity_scale(mix_, temp_last_)));
+  }
   stages_.finish(result);
 }
 

@@ -5,14 +5,19 @@
 #include <cstdarg>
 #include <cstdint>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <iostream>
 
 #include "io/namelist.hpp"
+#include "io/version.hpp"
+#include "analysis/json.hpp"
 
 namespace gdsmc::validation {
+
+namespace json = analysis::json;
 
 std::optional<std::string> take_option(int& argc, char** argv, const std::string& name) {
   for (int i = 1; i + 1 < argc; ++i)
@@ -111,8 +116,35 @@ Case run_case(int argc, char** argv, const std::string& default_output) {
   return c;
 }
 
-Report::Report(std::string title, std::string copy_to) : title_(std::move(title)) {
-  if (!copy_to.empty()) copy_ = std::fopen(copy_to.c_str(), "w");
+namespace {
+/// `X.report.json` for the text report `X.report.txt`, else "".
+std::string json_file(const std::string& text_report) {
+  const std::string suffix = ".report.txt";
+  if (text_report.size() <= suffix.size() ||
+      text_report.compare(text_report.size() - suffix.size(), suffix.size(), suffix) != 0)
+    return "";
+  return text_report.substr(0, text_report.size() - 4) + ".json";
+}
+
+/// The present time in UTC, ISO 8601 to the second.
+std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+}  // namespace
+
+Report::Report(std::string title, std::string copy_to) : title_(std::move(title)), copy_to_(std::move(copy_to)) {
+  if (!copy_to_.empty()) {
+    copy_ = std::fopen(copy_to_.c_str(), "w");
+    // An earlier run's JSON report would otherwise stand beside this run's text if this one stopped
+    // before exit_code().
+    std::error_code ignored;
+    if (const std::string json = json_file(copy_to_); !json.empty()) std::filesystem::remove(json, ignored);
+  }
   print("== %s\n", title_.c_str());
 }
 
@@ -142,6 +174,12 @@ bool Report::check(const std::string& quantity, double measured, double standard
               "tolerance %g SE + %.3g systematic\n",
               pass ? "PASS" : "FAIL", quantity.c_str(), measured, standard_error, theory, diff,
               standard_error > 0 ? diff / standard_error : INFINITY, z, systematic);
+  json_checks_.push_back("{\"quantity\": " + json::quote(quantity) + ", \"pass\": " + (pass ? "true" : "false") +
+                         ", \"measured\": " + json::number(measured) + ", \"standard_error\": " +
+                         json::number(standard_error) + ", \"theory\": " + json::number(theory) +
+                         ", \"z\": " + json::number(z) + ", \"systematic\": " + json::number(systematic) +
+                         ", \"tolerance\": " + json::number(tolerance) + ", \"diff_se\": " +
+                         json::number(standard_error > 0 ? diff / standard_error : INFINITY) + "}");
   return pass;
 }
 
@@ -149,14 +187,53 @@ bool Report::require(const std::string& what, bool condition) {
   ++checks_;
   if (!condition) ++failures_;
   print("%s %s\n", condition ? "PASS" : "FAIL", what.c_str());
+  json_checks_.push_back("{\"quantity\": " + json::quote(what) + ", \"pass\": " + (condition ? "true" : "false") + "}");
   return condition;
 }
 
-void Report::note(const std::string& text) { print("     %s\n", text.c_str()); }
+void Report::state(const std::string& quantity, double measured, double standard_error, double reference) {
+  const double diff = measured - reference;
+  print("STATED %-32s measured %.6g +- %.2g (SE)  reference %.6g  reference - measured %+.2f %% = %+.2f SE (not asserted)\n",
+        quantity.c_str(), measured, standard_error, reference, 100.0 * -diff / measured,
+        standard_error > 0 ? -diff / standard_error : INFINITY);
+  json_checks_.push_back("{\"quantity\": " + json::quote(quantity) + ", \"stated\": true, \"measured\": " +
+                         json::number(measured) + ", \"standard_error\": " + json::number(standard_error) +
+                         ", \"theory\": " + json::number(reference) + ", \"diff_se\": " +
+                         json::number(standard_error > 0 ? std::abs(diff) / standard_error : INFINITY) + "}");
+}
+
+void Report::note(const std::string& text) {
+  print("     %s\n", text.c_str());
+  notes_.push_back(text);
+}
 
 int Report::exit_code() {
   print("== %s: %d checks, %d failed\n", title_.c_str(), checks_, failures_);
+  write_json();
   return failures_ ? 1 : 0;
+}
+
+void Report::write_json() const {
+  const std::string file = json_file(copy_to_);
+  if (file.empty()) return;
+  const std::string temporary = file + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out << "{\n  \"title\": " << json::quote(title_) << ",\n  \"version\": " << json::quote(io::build_version())
+        << ",\n  \"date\": " << json::quote(utc_now()) << ",\n  \"failed\": " << failures_ << ",\n  \"checks\": [";
+    for (std::size_t i = 0; i < json_checks_.size(); ++i) out << (i ? ",\n    " : "\n    ") << json_checks_[i];
+    out << "\n  ],\n  \"notes\": [";
+    for (std::size_t i = 0; i < notes_.size(); ++i) out << (i ? ",\n    " : "\n    ") << json::quote(notes_[i]);
+    out << "\n  ]\n}\n";
+    out.close();  // (a failure of the last write shows only here)
+    if (!out) {
+      std::fprintf(stderr, "validation: cannot write the report '%s'\n", temporary.c_str());
+      return;
+    }
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, file, error);
+  if (error) std::fprintf(stderr, "validation: cannot write the report '%s': %s\n", file.c_str(), error.message().c_str());
 }
 
 io::h5md::ObservableData observable(const Case& c, const std::string& name) {

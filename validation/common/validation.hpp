@@ -55,6 +55,13 @@ struct Variants {
 Variants read_variants(int argc, char** argv, const std::string& default_stem);
 
 /// Collects checks and prints them; `exit_code()` is 1 if any failed.
+///
+/// With a `copy_to` file `X.report.txt`, exit_code() also writes `X.report.json`, the machine-readable
+/// report that docs/figures.md and the validation pages are generated from (validation/reports/README.md):
+/// {"title", "version" (io::build_version), "date" (UTC, ISO 8601), "checks": [{"quantity", "pass",
+/// "measured", "standard_error", "theory", "z", "systematic", "tolerance", "diff_se" = |measured - theory|/SE} or {"quantity",
+/// "pass"} for a require(), {"quantity", "stated": true, "measured", "standard_error", "theory", "diff_se"}
+/// for a state()], "notes": [...], "failed"}; non-finite numbers as null.
 class Report {
  public:
   /// Prints to stdout and, when `copy_to` is not empty, also to that file (the docs quote it).
@@ -65,6 +72,9 @@ class Report {
              double z, double systematic = 0.0);
   /// A plain condition (for sanity checks that are not statistical).
   bool require(const std::string& what, bool condition);
+  /// A comparison stated, not asserted (no independent estimate of the reference's error exists): printed
+  /// as `STATED`, in the JSON with `"stated": true` and no `pass`; it counts as no check.
+  void state(const std::string& quantity, double measured, double standard_error, double reference);
   /// A line of text in the report (no check).
   void note(const std::string& text);
   /// 0 when every check passed, else 1; prints the summary line.
@@ -72,9 +82,13 @@ class Report {
 
  private:
   void print(const char* format, ...);
+  void write_json() const;
   std::string title_;
+  std::string copy_to_;
   std::FILE* copy_ = nullptr;
   int checks_ = 0, failures_ = 0;
+  std::vector<std::string> json_checks_;  ///< each check as a JSON object
+  std::vector<std::string> notes_;
 };
 
 /// The observable `name` of the case's output file.

@@ -1,4 +1,4 @@
-// The reduced distributions of the binary HCS (Montanero and Garzo 2002, Figs. 3 and 7, \ref son_reduced_distributions "docs/sonine.md"). See README.md.
+// The reduced distributions of the binary HCS (Montanero and Garzo 2002, Figs. 3 and 7; and of the HSS, Montanero 2003 Fig. 2, \ref son_reduced_distributions "docs/sonine.md"). See README.md.
 #include <cmath>
 #include <fstream>
 
@@ -19,7 +19,11 @@ int main(int argc, char** argv) {
   const auto run = validation::run_case(argc, argv, "hcs_distribution.h5");
   const auto mix = run.config.mixture();
   const double alpha = mix.restitution(0, 0);
-  validation::Report report("HCS distributions, alpha = " + std::to_string(alpha).substr(0, 4), run.report_file());
+  // The HSS of the Gaussian thermostat (homogeneous_steady_state/hss_fig2.nml) has the HCS's scaled state.
+  const bool hss = run.config.thermostat.kind == io::config::ThermostatKind::gaussian;
+  validation::Report report(std::string(hss ? "HSS (Gaussian thermostat)" : "HCS") + " distributions, alpha = " +
+                                std::to_string(alpha).substr(0, 4),
+                            run.report_file());
   const auto hcs = theory::binary_hcs_first_sonine(mix);
   const std::string group = "/observables/reduced_distribution";
   const std::string sp = group + "/species_1";

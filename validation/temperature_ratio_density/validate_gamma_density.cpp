@@ -16,7 +16,8 @@ int main(int argc, char** argv) {
   for (std::size_t p = 0; p < points.size(); ++p) {
     const auto mix = points[p].mixture();
     const double sigma12 = mix.contact_distance(0, 1);
-    const double n_star = mix.total_density() * sigma12 * sigma12 * sigma12;
+    // A dilute run (enskog = .false.: gamma(alpha, 0) of the figure's normalisation) is n* = 0.
+    const double n_star = mix.enskog ? mix.total_density() * sigma12 * sigma12 * sigma12 : 0.0;
     const double theory_gamma = theory::binary_hcs_first_sonine(mix).temperature_ratio;
     const auto dilute = species::make_mixture(mix.mass, mix.diameter, mix.number_density, mix.restitution, false);
     const double theory_dilute = theory::binary_hcs_first_sonine(dilute).temperature_ratio;
