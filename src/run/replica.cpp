@@ -133,7 +133,7 @@ class Gas : public Engine {
  protected:
   /// `reduced`: the replica accumulates the reduced speed distributions Phi_i(v*) of its scaling state.
   Gas(const io::config::Config& config, std::size_t r, bool reduced)
-      : reduced_(reduced && config.mixture().size() <= 2), config_(config), mix_(config.mixture()), s_(mix_.size()),
+      : reduced_(reduced && config.system.n_species <= 2), config_(config), mix_(config.mixture()), s_(mix_.size()),
         counts_(species::particle_counts(static_cast<std::size_t>(config.dsmc.n_particles), mix_)),
         sys_(initial_system(config, mix_, counts_, r)),
         collider_(scheme(config), mix_, sys_,
