@@ -539,16 +539,8 @@ int run(const Arguments& a, const gdsmc::io::config::Config& config, bool root) 
   return 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  // Under mpirun every rank runs this main: all read the input (each reports a bad input the same
-  // way) and run their share of the work; rank 0 alone writes the file and the summary (parallel.hpp).
-  gdsmc::io::h5md::skip_library_shutdown();  // before any HDF5 call (h5md.hpp)
-  // A file size limit (ulimit -f) makes a write fail with EFBIG, reported like a full disk, instead
-  // of killing the process and leaving its temporary file.
-  std::signal(SIGXFSZ, SIG_IGN);
-  gdsmc::parallel::Session mpi(argc, argv);
+/// Everything but MPI's start and end: reads the input, runs, writes; the exit status.
+int run_program(int argc, char** argv) {
   const bool root = gdsmc::parallel::rank() == 0;
   Arguments arguments;
   if (const auto done = parse_arguments(argc, argv, arguments)) return *done;
@@ -560,7 +552,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   // The lock first (rank 0 takes it, every rank learns the answer): the checks below then see no other
-  // run of this output at work. Released, and its file removed, when main returns.
+  // run of this output at work. Released, and its file removed, when run_program returns.
   std::optional<gdsmc::io::FileLock> lock;
   std::string busy;
   if (root) try {
@@ -576,4 +568,17 @@ int main(int argc, char** argv) {
   if (root)
     for (const auto& warning : gdsmc::analysis::input_warnings(config)) std::cerr << "granular-dsmc: warning: " << warning << "\n";
   return run(arguments, config, root);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Under mpirun every rank runs this main: all read the input (each reports a bad input the same
+  // way) and run their share of the work; rank 0 alone writes the file and the summary (parallel.hpp).
+  gdsmc::io::h5md::skip_library_shutdown();  // before any HDF5 call (h5md.hpp)
+  // A file size limit (ulimit -f) makes a write fail with EFBIG, reported like a full disk, instead
+  // of killing the process and leaving its temporary file.
+  std::signal(SIGXFSZ, SIG_IGN);
+  gdsmc::parallel::Session mpi(argc, argv);
+  return mpi.finish(run_program(argc, argv));
 }

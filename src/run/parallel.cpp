@@ -1,7 +1,14 @@
 #include "run/parallel.hpp"
 
+#include <chrono>
+#include <csignal>
 #include <cstdlib>
+#include <sstream>
 #include <stdexcept>
+#include <thread>
+
+#include <sys/types.h>
+#include <unistd.h>
 
 #ifdef GDSMC_HAVE_MPI
 #include <mpi.h>
@@ -45,6 +52,54 @@ Session::Session(int& argc, char**& argv) {
 Session::~Session() {
 #ifdef GDSMC_HAVE_MPI
   if (active()) MPI_Finalize();
+#endif
+}
+
+#ifdef GDSMC_HAVE_MPI
+namespace {
+std::string host_name() {
+  char name[256] = {};
+  if (gethostname(name, sizeof name - 1) != 0) return "";
+  return name;
+}
+
+/// The process ids of the other ranks on this node, as rank 0 learns them (empty elsewhere).
+std::vector<pid_t> peers_on_this_node() {
+  const std::vector<std::string> all = gather_to_root(host_name() + " " + std::to_string(getpid()));
+  std::vector<pid_t> peers;
+  const std::string here = host_name();
+  for (std::size_t k = 1; k < all.size(); ++k) {
+    std::istringstream in(all[k]);
+    std::string host;
+    long pid = 0;
+    if (in >> host >> pid && host == here && pid > 0) peers.push_back(static_cast<pid_t>(pid));
+  }
+  return peers;
+}
+
+void wait_until_ended(const std::vector<pid_t>& peers) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+  for (const pid_t pid : peers)
+    while (kill(pid, 0) == 0 && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+}
+}  // namespace
+#endif
+
+int Session::finish(int status) {
+#ifdef GDSMC_HAVE_MPI
+  if (!active()) return status;
+  const bool several = size() > 1;
+  const bool root = rank() == 0;
+  std::vector<pid_t> peers;
+  if (several) peers = peers_on_this_node();  // collective: every rank, whatever its status
+  MPI_Finalize();
+  if (!several || status == 0) return status;
+  if (!root) return 0;
+  wait_until_ended(peers);
+  return status;
+#else
+  return status;
 #endif
 }
 

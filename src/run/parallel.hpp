@@ -25,7 +25,14 @@ namespace gdsmc::parallel {
 class Session {
  public:
   Session(int& argc, char**& argv);
-  ~Session();
+  ~Session();  ///< finalises MPI if finish() was not called (a path that left by an exception)
+  /// Ends MPI and returns this process's exit status for a run that ended with `status` on every rank
+  /// (the ranks agree: each rank's failure or interrupt is gathered and broadcast, simulation.hpp).
+  /// Every rank must call it. Open MPI's mpirun aborts the job when a rank exits non-zero, and a rank
+  /// still inside MPI_Finalize then waits out the launcher's 2 s timeout before it ends; so with
+  /// several ranks, rank 0 alone exits with `status` (mpirun and srun report it), the other ranks
+  /// with 0, and rank 0 only after the other ranks on its node have ended (at most 1 s).
+  int finish(int status);
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
 };

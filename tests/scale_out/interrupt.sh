@@ -157,9 +157,13 @@ fi
 if [ "$mpiexec" != "none" ]; then
   mpi=("$mpiexec" --oversubscribe -np 2)
   if [ "$(id -u)" -eq 0 ]; then mpi+=(--allow-run-as-root); fi
-  run_case "mpi-2-ranks-1e-300" INT "" mpi env OMP_NUM_THREADS=1 "${mpi[@]}" -- --set dsmc:replicas=2 \
-    --set "dsmc:scheme='pairs'" --set dsmc:step_fraction=1e-300
+  # Three times: which rank leaves MPI_Finalize first is a race, and a rank that exits non-zero while
+  # another is still inside it made that one wait out Open MPI's 2 s timeout (parallel.hpp, finish).
+  for attempt in 1 2 3; do
+    run_case "mpi-2-ranks-1e-300-$attempt" INT "" mpi env OMP_NUM_THREADS=1 "${mpi[@]}" -- --set dsmc:replicas=2 \
+      --set "dsmc:scheme='pairs'" --set dsmc:step_fraction=1e-300
+  done
 fi
 
-echo "$((cases - failures)) of $cases kinds of run stopped within $limit s of the signal"
+echo "$((cases - failures)) of $cases runs (40 kinds, the MPI one three times) stopped within $limit s of the signal"
 [ $failures -eq 0 ]
