@@ -46,7 +46,8 @@ TEST(Thermostat, WhiteNoiseKicksKeepTheMomentumAndHaveTheirVariance) {
   sys.count = {n, n};
   gdsmc::thermostat::WhiteNoise noise(mix, {0.2, 0.05});
   auto gen = gdsmc::rng::make_stream(4, 0, gdsmc::rng::Purpose::forcing);
-  noise.act(sys, 0.5, gen);
+  const Vec3 shift = noise.act(sys, 0.5, gen);
+  for (auto& v : sys.v) v = {v.x + shift.x, v.y + shift.y, v.z + shift.z};
   double px = 0.0, py = 0.0, pz = 0.0, scale = 0.0;
   double mean2[2] = {0.0, 0.0};
   for (std::size_t i = 0; i < 2 * n; ++i) {
@@ -242,9 +243,11 @@ class Kick final : public gdsmc::thermostat::Forcing {
   const char* name() const override { return "kick"; }
   void compose(gdsmc::thermostat::Rescaling&, double&) override {}
   bool acts_on_particles() const override { return true; }
-  void act(System& sys, double, gdsmc::rng::Xoshiro256pp& gen) override {
+  Vec3 act(System& sys, double dt, gdsmc::rng::Xoshiro256pp& gen) override {
     for (auto& v : sys.v) v = {v.x + kick_ + noise_ * gen.normal(), v.y + noise_ * gen.normal(), v.z + noise_ * gen.normal()};
     ++acts;
+    times.push_back(dt);
+    return {0.0, 0.0, 0.0};
   }
   void end_stage(const StageEnd&) override {}
   void measure(const Sample&, gdsmc::sample::Rows& rows) override { rows.add("kicks", 1, {static_cast<double>(acts)}); }
@@ -252,6 +255,7 @@ class Kick final : public gdsmc::thermostat::Forcing {
   void save(gdsmc::state::Record& r) const override { r.put_integer("kick/acts", acts); }
   void restore(const gdsmc::state::Record& r) override { acts = r.integer("kick/acts"); }
   std::uint64_t acts = 0;
+  std::vector<double> times;  ///< the dt of each act()
 
  private:
   double kick_, noise_;
@@ -332,8 +336,40 @@ TEST(Stages, AForcingActsOnEveryParticleOncePerStage) {
   gdsmc::sample::Rows rows;
   c.stages.begin(0.1, true);
   c.stages.measure(gdsmc::sample::measure(c.mix, c.sys), 0.1, true, rows);
-  // A sampled stage: the sample first (10 kicks so far), the stage's kick after it.
-  EXPECT_EQ(rows.rows.at("kicks").second, std::vector<double>{10.0});
-  EXPECT_EQ(c.kick->acts, 11u);
+  // A sampled stage: the last stage's second half acts before the sample (11 acts), this stage's first half
+  // after it (12).
+  EXPECT_EQ(rows.rows.at("kicks").second, std::vector<double>{11.0});
+  EXPECT_EQ(c.kick->acts, 12u);
   EXPECT_EQ(rows.rows.count("pressure_tensor"), 1u);
+}
+
+// Strang's splitting of a forcing's action (thermostat.hpp, "Forcings that act on each particle"): the
+// first stage's first half at its start, (dt_{k-1} + dt_k)/2 between stages k-1 and k, and at a sample
+// dt_{k-1}/2 before it and dt_k/2 after it; so the actions up to a sample add up to its time exactly,
+// and a record saved between stages carries the half still owed.
+TEST(Stages, AForcingActsHalfAStageAtEachEndAndASampleSitsBetweenTheHalves) {
+  KickedGas g(0.0, 0.0);
+  std::vector<double> dt;
+  for (int s = 0; s < 4; ++s) {
+    const double end = g.stages.stage_end(1e30);
+    dt.push_back(end - g.collider.time());
+    g.stages.begin(dt.back(), false);
+    g.stages.end(end);
+  }
+  ASSERT_EQ(g.kick->times.size(), 4u);
+  EXPECT_EQ(g.kick->times[0], dt[0] / 2.0);
+  for (std::size_t k = 1; k < 4; ++k) EXPECT_EQ(g.kick->times[k], dt[k - 1] / 2.0 + dt[k] / 2.0) << "stage " << k;
+  gdsmc::state::Record saved;
+  g.stages.save(saved);
+  EXPECT_EQ(saved.real("stages/pending_act"), dt[3] / 2.0);
+  gdsmc::sample::Rows rows;
+  g.stages.begin(0.3, true);
+  EXPECT_EQ(g.kick->times.size(), 5u);  // before the sample: the last stage's second half
+  EXPECT_EQ(g.kick->times[4], dt[3] / 2.0);
+  g.stages.measure(gdsmc::sample::measure(g.mix, g.sys), 0.3, true, rows);
+  ASSERT_EQ(g.kick->times.size(), 6u);  // after it: this stage's first half
+  EXPECT_EQ(g.kick->times[5], 0.15);
+  double total = 0.0;
+  for (std::size_t k = 0; k < 5; ++k) total += g.kick->times[k];
+  EXPECT_NEAR(total, g.collider.time(), 1e-12 * g.collider.time());
 }

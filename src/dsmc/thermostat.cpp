@@ -166,8 +166,9 @@ void GaussianThermostat::measure(const Sample&, sample::Rows& rows) {
   zeta_sum_ = zeta_stages_ = 0.0;
 }
 
-void WhiteNoise::act(particles::System& sys, double dt, rng::Xoshiro256pp& gen) {
-  // dv = sqrt(chi^2_k dt) xi (\ref wn_forcing "docs/white-noise.md"), then the kicks' centre-of-mass velocity removed
+particles::Vec3 WhiteNoise::act(particles::System& sys, double dt, rng::Xoshiro256pp& gen) {
+  // dv = sqrt(chi^2_k dt) xi (\ref wn_forcing "docs/white-noise.md"); the kicks' centre-of-mass velocity, returned, is removed
+  // in the pass that follows (Stages::act)
   double px = 0.0, py = 0.0, pz = 0.0, total_mass = 0.0;
   for (std::size_t k = 0; k < sys.n_species(); ++k) {
     const double sd = std::sqrt(strength_[k] * dt), m = mix_.mass[k];
@@ -180,8 +181,7 @@ void WhiteNoise::act(particles::System& sys, double dt, rng::Xoshiro256pp& gen) 
     px += m * kx, py += m * ky, pz += m * kz;
     total_mass += m * static_cast<double>(sys.count[k]);
   }
-  const double ux = px / total_mass, uy = py / total_mass, uz = pz / total_mass;
-  for (auto& v : sys.v) v = {v.x - ux, v.y - uy, v.z - uz};
+  return {-px / total_mass, -py / total_mass, -pz / total_mass};
 }
 
 void GaussianThermostat::save(state::Record& r) const {
@@ -272,22 +272,39 @@ void Stages::begin(double dt, bool sample) {
   }
   // One pass: V = G u + b for every particle, the energy, the moments and the largest speeds (the
   // collider's bounds, exact again); the frame is the identity afterwards. A forcing acting on each
-  // particle acts then, and a second pass measures what it left.
-  StageStart pass = materialise(mix_, sys_, frame_);
+  // particle acts then, and a second pass measures what it left; the first is skipped when it would
+  // only measure (the identity frame) and the second follows.
+  const bool identity = frame_.scale == 1.0 && frame_.shear == 0.0 && frame_.offset.x == 0.0 &&
+                        frame_.offset.y == 0.0 && frame_.offset.z == 0.0;
+  const bool measured_later = acts_ && (!sample || pending_act_ > 0.0);
+  StageStart pass = identity && measured_later ? StageStart{} : materialise(mix_, sys_, frame_);
   frame_ = Frame{};
-  if (acts_ && sample) {  // the sample first: the kicks of this stage follow it (measure())
-    deferred_act_ = dt;
-  } else if (acts_) {
-    act(dt);
-    return;
+  if (acts_) {
+    // Half of each stage's action at its start, half at its end (header, "Forcings that act on each
+    // particle"): here the previous stage's second half and this one's first, at a sample on either side of it.
+    const double first_half = dt / 2.0, second_half = pending_act_;
+    pending_act_ = first_half;
+    if (!sample) {
+      act(second_half + first_half);
+      return;
+    }
+    deferred_act_ = first_half;  // after the sample (measure())
+    if (second_half > 0.0) {
+      act(second_half);
+      return;
+    }
   }
   start_from(pass);
 }
 
 void Stages::act(double dt) {
+  Frame shift;  // the identity map and the velocity the forcings ask to add
   for (const auto& f : forcings_)
-    if (f->acts_on_particles()) f->act(sys_, dt, gen_);
-  start_from(materialise(mix_, sys_, Frame{}));
+    if (f->acts_on_particles()) {
+      const particles::Vec3 u = f->act(sys_, dt, gen_);
+      shift.offset = {shift.offset.x + u.x, shift.offset.y + u.y, shift.offset.z + u.z};
+    }
+  start_from(materialise(mix_, sys_, shift));
 }
 
 void Stages::start_from(const StageStart& pass) {
@@ -343,6 +360,7 @@ void Stages::save(state::Record& r) const {
   r.put("stages/last_transfer", std::vector<double>(last_transfer_.begin(), last_transfer_.end()));
   r.put("stages/frame_offset", std::vector<double>{frame_.offset.x, frame_.offset.y, frame_.offset.z});
   r.put("stages/momentum", std::vector<double>{momentum_.x, momentum_.y, momentum_.z});
+  r.put("stages/pending_act", pending_act_);
   const auto g = gen_.state();
   r.put("stages/generator", std::vector<std::uint64_t>(std::begin(g.s), std::end(g.s)));
   r.put("stages/generator_spare", g.spare);
@@ -359,6 +377,12 @@ void Stages::restore(const state::Record& r) {
   const auto& momentum = r.array("stages/momentum", 3);
   frame_ = {collider_.frame_scale(), collider_.frame_shear(), {offset[0], offset[1], offset[2]}};
   momentum_ = {momentum[0], momentum[1], momentum[2]};
+  if (r.has("stages/pending_act")) {
+    pending_act_ = r.real("stages/pending_act");
+  } else if (acts_) {
+    throw state::StateError("'stages/pending_act' is missing: the checkpoint of an earlier build, whose white-noise "
+                            "kicks were split otherwise; run the input again without --restart");
+  }
   // (a checkpoint of layout 1 has no forcings' stream: none of its forcings drew from it)
   if (r.has_integers("stages/generator")) {
     rng::Xoshiro256pp::State g{};

@@ -60,6 +60,13 @@
  * S leaves [1/2, 2]. bench/bench_usf.cpp measures the stage loop against the plain loop of the same
  * gas (\ref perf_frames "docs/performance.md").
  *
+ * **Forcings that act on each particle** (the white noise). Their action over a stage is split in
+ * halves, the first at the stage's start and the second at its end, which is the next stage's start:
+ * there the two halves act as one, dt_previous/2 + dt/2 (Strang's splitting, second order in the stage
+ * length where the plain split, all of it at the start, is first order; \ref wn_forcing "docs/white-noise.md"). At a
+ * sample the sample is taken between the two halves, so a sample at t holds the action over [0, t)
+ * exactly.
+ *
  * Units: the user's. Namelist groups `&thermostat`, `&shear`. Checked by tests/thermostat_test.cpp and
  * validation/shear_viscosity.
  */
@@ -178,13 +185,16 @@ class Forcing {
   /// Composes the linear map it applies at the start of the stage about to begin into `rescaling`
   /// (V -> m + s (V - m), first) and `shear_rate` (V_x -> V_x - a V_y dt, then).
   virtual void compose(Rescaling& rescaling, double& shear_rate) = 0;
-  /// Whether it also acts on each particle apart at the start of a stage (random kicks, say): then the
-  /// stage's frame is applied to the velocities first (one pass), and act() follows the linear maps; at
-  /// a sampled stage after the sample, so that a sample at t holds the kicks of [0, t) exactly.
+  /// Whether it also acts on each particle apart (random kicks, say): then at the start of a stage the
+  /// frame is applied to the velocities first (one pass), and act() follows the linear maps (header,
+  /// "Forcings that act on each particle").
   virtual bool acts_on_particles() const { return false; }
-  /// Its action on every particle at the start of a stage of length dt (after the linear maps),
-  /// drawing from `gen`, the replica's stream of forcings (rng Purpose::forcing).
-  virtual void act(particles::System& /*sys*/, double /*dt*/, rng::Xoshiro256pp& /*gen*/) {}
+  /// Its action on every particle over a time dt (after the linear maps), drawing from `gen`, the
+  /// replica's stream of forcings (rng Purpose::forcing); returns a velocity that the pass which follows
+  /// adds to every particle (the kicks' centre-of-mass velocity removed there, say, not in a pass of its own).
+  virtual particles::Vec3 act(particles::System& /*sys*/, double /*dt*/, rng::Xoshiro256pp& /*gen*/) {
+    return {0.0, 0.0, 0.0};
+  }
   /// What the end of a stage tells it: the kinetic energy and mean flow at the stage's start (after
   /// its streaming), the inelastic loss of its collisions, and the kinetic energy after them (a
   /// function: computed only when asked for).
@@ -267,11 +277,11 @@ class ShearFlow final : public Forcing {
 };
 
 /// The white-noise thermostat (\ref wn_forcing "docs/white-noise.md"; van Noije and Ernst 1998; mixtures: Barrat
-/// and Trizac 2002): at the start of each stage of length dt every particle of species k receives an
-/// independent Gaussian kick, dv = sqrt(chi^2_k dt) xi per component, and then the kicks' centre-of-mass
-/// velocity sum m dv / sum m is taken from every particle, so the total momentum stays zero (the energy
-/// input per stage is (3/2) sum_k N_k m_k chi^2_k dt (1 - m_k/M) in the mean). Angular velocities are not
-/// kicked. No state of its own (the stream is the stages'); no observables.
+/// and Trizac 2002): the kicks over a time dt (Stages splits a stage's in halves, header) are, for every
+/// particle of species k, an independent Gaussian dv = sqrt(chi^2_k dt) xi per component, and then the
+/// kicks' centre-of-mass velocity sum m dv / sum m is taken from every particle (returned, for the pass
+/// that follows), so the total momentum stays zero (the energy input is (3/2) sum_k N_k m_k chi^2_k dt (1 - m_k/M) in the mean). Angular
+/// velocities are not kicked. No state of its own (the stream is the stages'); no observables.
 class WhiteNoise final : public Forcing {
  public:
   /// chi^2_k per species of `mix`.
@@ -279,7 +289,7 @@ class WhiteNoise final : public Forcing {
   const char* name() const override { return "white_noise"; }
   void compose(Rescaling&, double&) override {}
   bool acts_on_particles() const override { return true; }
-  void act(particles::System& sys, double dt, rng::Xoshiro256pp& gen) override;
+  particles::Vec3 act(particles::System& sys, double dt, rng::Xoshiro256pp& gen) override;
   void end_stage(const StageEnd&) override {}
   void measure(const Sample&, sample::Rows&) override {}
   void finish(sample::Rows&) const override {}
@@ -332,7 +342,8 @@ class Stages {
   std::vector<std::unique_ptr<Forcing>> forcings_;
   double stage_step_, stage_cap_, shear_rate_;
   bool collisional_, acts_;  ///< the Enskog gas in shear flow; a forcing acts on each particle
-  double deferred_act_ = 0.0;  ///< a sampled stage's length: its forcings act on the particles after the sample
+  double deferred_act_ = 0.0;  ///< at a sample: the time over which the forcings act after it
+  double pending_act_ = 0.0;   ///< the second half of the last stage, over which the forcings have not yet acted
   /// The forcings' actions on each particle over dt, then a pass (the stage's start values).
   void act(double dt);
   /// The stage's start values from a pass: momentum, the collider's exact bounds, energy and mean flow.

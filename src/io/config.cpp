@@ -295,6 +295,10 @@ Config read_point(const namelist::Document& document, const std::vector<std::str
   // &agg_frag runs with the low-rank scheme only: an input that names no scheme gets it (a named other
   // scheme is refused by check_agg_frag)
   if (c.has_agg_frag && !prov["dsmc"].line.count("scheme")) c.dsmc.scheme = Scheme::lowrank;
+  // The white noise's kicks are split in halves around each stage (second order in its length): its stages
+  // default to the longest allowed (docs/white-noise.md, "Stage length").
+  if (c.thermostat.kind == ThermostatKind::white_noise && !prov["dsmc"].line.count("stage_step"))
+    c.dsmc.stage_step = Dsmc::white_noise_stage_step;
 
   for (const auto& [group, p] : prov)
     for (const auto& [variable, line] : p.line)

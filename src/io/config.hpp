@@ -120,6 +120,7 @@ struct Dsmc {
   double step_fraction = 1.0;     ///< time step (bound refresh) in majorant mean free times
   long long block_size = 32768;  ///< cache blocks (collide.hpp "Blocks"); 0: none
   double stage_step = 0.125;     ///< with &thermostat or &shear: stage length in majorant mean free times
+  static constexpr double white_noise_stage_step = 1.0;  ///< stage_step's default with the white noise
   bool allow_long_run = false;   ///< run even when the estimated work is beyond the caps (check_run_cost)
 };
 

@@ -91,7 +91,7 @@ const std::vector<Field<Dsmc>>& dsmc_fields() {
        Range{0, 2e9}},
       {"stage_step", &Dsmc::stage_step, "",
        "with &thermostat or &shear: length of one streaming/collision/thermostat stage in majorant mean free "
-       "times (also at most 0.01/a)",
+       "times (also at most 0.01/a); default 1 with kind = 'white_noise'",
        Range{0, 1, true}},
       {"allow_long_run", &Dsmc::allow_long_run, "",
        ".true.: run even when kinetic theory estimates more than 1e12 collision events per replica, or a "
