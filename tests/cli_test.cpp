@@ -1536,14 +1536,23 @@ TEST_F(CliTheory, WhiteNoiseGivesTheMaxwellianAndSonineStates) {
   EXPECT_EQ(elastic.out.find("inf"), std::string::npos) << elastic.out;
   EXPECT_NE(elastic.err.find("white noise: no steady state"), std::string::npos) << elastic.err;
   // a binary (docs/white-noise.md's measured mixture): the Maxwellian T_k of theory::rough::mixture_driven_state
-  // (checked in tests/rough_test.cpp), arrays, the Sonine entry a sentence
+  // (checked in tests/rough_test.cpp) and the first-Sonine T_k, c_k of theory::white_noise_first_sonine (checked in
+  // tests/sonine_mixture_test.cpp), arrays; the Sonine T_k is the one the key translational_temperature gives.
+  // Rough, the Sonine entry is a sentence.
   write("t.nml", "&system n_species = 2, mass = 1.0, 4.0, diameter = 1.0, 1.5, number_density = 0.006, 0.004, "
                  "restitution = 0.8" + rest);
   const Result binary = run("granular-theory", "t.nml");
   EXPECT_EQ(binary.status, 0) << binary.err;
   for (const char* key : {"\"white_noise\": {\"maxwellian\": {\"translational_temperature\": [0.17951", ", 0.15857",
-                          "\"sonine\": \"not computed"})
+                          "\"sonine\": {\"translational_temperature\": [0.17989", ", 0.15842", "\"sonine_c\": [-0.0192",
+                          "]}, \"translational_temperature\": [0.17989", "\"white_noise.translational_temperature\": \"first_sonine\""})
     EXPECT_NE(binary.out.find(key), std::string::npos) << key << " in " << binary.out;
+  write("t.nml", "&system n_species = 2, mass = 1.0, 4.0, diameter = 1.0, 1.5, number_density = 0.006, 0.004, "
+                 "restitution = 0.8, roughness = 0.3" + rest);
+  const Result rough_binary = run("granular-theory", "t.nml");
+  EXPECT_EQ(rough_binary.status, 0) << rough_binary.err;
+  EXPECT_NE(rough_binary.out.find("\"sonine\": \"not computed: the Sonine theory of driven rough mixtures"), std::string::npos)
+      << rough_binary.out;
   // elastic and perfectly rough: no loss either, whatever kappa (round-off must not make a steady state)
   for (const char* kappa : {"0.1", "0.4", "0.6666666666666666"}) {
     write("t.nml", "&system mass = 1.0, diameter = 1.0, number_density = 0.01, restitution = 1.0, roughness = 1.0, "

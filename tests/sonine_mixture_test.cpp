@@ -299,3 +299,77 @@ TEST(SonineMixtureHcs, TernaryExample) {
   EXPECT_NEAR(h.cooling_rate_reduced, 0.419184, 5e-7);
   EXPECT_NEAR(theory::hcs_maxwellian_cooling_rate_reduced(mix, maxwellian), 0.417162, 5e-7);
 }
+
+// The white-noise steady state (sonine_mixture.hpp \ref sonmix_driven). One species, alpha = 0.9, m = sigma = 1,
+// n = 0.01, chi^2 = 0.001, by hand: van Noije and Ernst's a2 = 16 (1 - a)(1 - 2a^2)/(241 - 177a + 30a^2 - 30a^3)
+// = -0.0117913, zeta* = (1 - a^2)(1 + 3 a2/16)/3 = 0.0631933 in units of 4 n sigma^2 sqrt(pi T/m), so
+// T^(3/2) = m chi^2/(zeta* 4 n sigma^2 sqrt(pi/m)): T = 0.3679561 (docs/white-noise.md, "The steady state").
+// At alpha = 0.5 a2 = 0.0256 exactly.
+TEST(SonineMixtureWhiteNoise, OneSpeciesIsVanNoijeAndErnst) {
+  const auto one = theory::white_noise_first_sonine(make_mixture({1.0}, {1.0}, {0.01}, PairMatrix(1, 0.9), false), {0.001});
+  ASSERT_EQ(one.temperature.size(), 1u);
+  EXPECT_NEAR(one.sonine_c[0] / 2.0, -0.011791275407108, 1e-12);
+  EXPECT_NEAR(one.temperature[0], 0.367956068667187, 1e-12);
+  EXPECT_EQ(one.temperature_over_mean[0], 1.0);
+  const auto half = theory::white_noise_first_sonine(make_mixture({1.0}, {1.0}, {0.01}, PairMatrix(1, 0.5), false), {0.001});
+  EXPECT_NEAR(half.sonine_c[0] / 2.0, 0.0256, 1e-12);
+}
+
+// Two identical species are the one species: the same T and c for both (the second started away from it).
+TEST(SonineMixtureWhiteNoise, IdenticalSpeciesAreTheOneSpecies) {
+  const auto one = theory::white_noise_first_sonine(make_mixture({2.0}, {1.5}, {0.03}, PairMatrix(1, 0.7), false), {0.002});
+  const auto two = theory::white_noise_first_sonine(make_mixture({2.0, 2.0}, {1.5, 1.5}, {0.01, 0.02}, PairMatrix(2, 0.7), false),
+                                                    {0.002, 0.002}, {1.0, 1.3});
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_NEAR(two.temperature[k], one.temperature[0], 1e-10 * one.temperature[0]) << "species " << k + 1;
+    EXPECT_NEAR(two.sonine_c[k], one.sonine_c[0], 1e-10) << "species " << k + 1;
+  }
+}
+
+// A binary and a 5-species mixture (Enskog, equal forces): the solution satisfies its equations, recomputed from
+// hcs_pair_terms: m_k chi_k^2 = zeta_k T_k with zeta_k = zeta_k* hcs_rate_unit sqrt(T), and the fourth moments
+// Omega_i + 2 W_i zeta_i = 0 (the kicks' 10 chi_i^2 <v^2>_i), W_i = 15 (T_i/(m_i v_ref^2))^2.
+TEST(SonineMixtureWhiteNoise, SolutionSatisfiesTheEquations) {
+  for (std::size_t s : {2u, 5u}) {
+    SCOPED_TRACE(::testing::Message() << "s " << s);
+    std::vector<double> m(s), sigma(s), n(s), chi2(s);
+    std::vector<std::vector<double>> a(s, std::vector<double>(s));
+    for (std::size_t k = 0; k < s; ++k) {
+      const double u = static_cast<double>(k) / static_cast<double>(s - 1);
+      m[k] = std::pow(4.0, u);
+      sigma[k] = 1.0 + 0.5 * u;
+      n[k] = 0.03 * (1.0 + 0.5 * std::sin(3.0 * static_cast<double>(k))) / static_cast<double>(s);
+      chi2[k] = 0.001 / (m[k] * m[k]);  // equal forces
+      for (std::size_t j = 0; j < s; ++j) a[k][j] = 0.6 + 0.3 * std::abs(std::sin(static_cast<double>(k + j)));
+    }
+    const Mixture mix = mixture(m, sigma, n, a, true);
+    const auto w = theory::white_noise_first_sonine(mix, chi2);
+    double inv_m_mean = 0.0, mean_t = 0.0;
+    for (std::size_t k = 0; k < s; ++k) {
+      inv_m_mean += 1.0 / m[k] / static_cast<double>(s);
+      mean_t += mix.mole_fraction(k) * w.temperature[k];
+    }
+    const double unit = theory::hcs_rate_unit(mix) * std::sqrt(mean_t);
+    for (std::size_t i = 0; i < s; ++i) {
+      EXPECT_NEAR(w.temperature_over_mean[i], w.temperature[i] / mean_t, 1e-12);
+      double zeta = 0.0, omega = 0.0;
+      for (std::size_t j = 0; j < s; ++j) {
+        const auto t = theory::hcs_pair_terms(mix, i, j, w.temperature_over_mean[i], w.temperature_over_mean[j]);
+        zeta += t.zeta0 + t.zeta_self * w.sonine_c[i] + t.zeta_partner * w.sonine_c[j];
+        omega += t.omega0 + t.omega_self * w.sonine_c[i] + t.omega_partner * w.sonine_c[j];
+      }
+      EXPECT_NEAR(zeta * unit * w.temperature[i], m[i] * chi2[i], 1e-9 * m[i] * chi2[i]) << "species " << i + 1;
+      const double t = w.temperature_over_mean[i] / (m[i] * 4.0 * inv_m_mean);
+      EXPECT_NEAR(omega + 2.0 * 15.0 * t * t * zeta, 0.0, 1e-9 * std::abs(omega)) << "species " << i + 1;
+    }
+  }
+}
+
+TEST(SonineMixtureWhiteNoise, RefusesAnElasticMixtureAndBadStrengths) {
+  const Mixture elastic = make_mixture({1.0, 2.0}, {1.0, 1.0}, {0.01, 0.01}, PairMatrix(2, 1.0), false);
+  EXPECT_THROW(theory::white_noise_first_sonine(elastic, {0.001, 0.001}), std::invalid_argument);
+  const Mixture mix = make_mixture({1.0, 2.0}, {1.0, 1.0}, {0.01, 0.01}, PairMatrix(2, 0.8), false);
+  EXPECT_THROW(theory::white_noise_first_sonine(mix, {0.001}), std::invalid_argument);
+  EXPECT_THROW(theory::white_noise_first_sonine(mix, {0.001, 0.0}), std::invalid_argument);
+  EXPECT_THROW(theory::white_noise_first_sonine(mix, {0.001, std::nan("")}), std::invalid_argument);
+}

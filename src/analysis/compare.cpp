@@ -349,16 +349,20 @@ void add_white_noise(Point& pt, const analysis::Predictions::WhiteNoise& w, cons
   if (const auto a = final_value("cumulant_a11", 1.0)) last("white_noise_a11", "a11", "first_sonine", a->first, a->second, st->cumulants.a11);
 }
 
-/// The white-noise steady state of a mixture (\ref wn_theory "docs/white-noise.md"): T_k and, for rough spheres,
-/// theta_k at the last sample beside the Maxwellian state (no stated allowance).
-void add_white_noise_mixture(Point& pt, const theory::rough::MixtureDrivenState& w, const Measured& m) {
+/// The white-noise steady state of a mixture (\ref wn_theory "docs/white-noise.md"): T_k beside the first-Sonine state
+/// (smooth spheres; else the Maxwellian one) and, for rough spheres, theta_k beside the Maxwellian state, at the
+/// last sample (no stated allowance).
+void add_white_noise_mixture(Point& pt, const theory::rough::MixtureDrivenState& w,
+                             const std::optional<theory::DrivenFirstSonine>& sonine, const Measured& m) {
   const std::size_t s = w.translational.size();
   if (!m.has("temperature")) return;
   const auto& t = m.observables.at("temperature");
   if (t.value.size() < s) return;
   const std::size_t row = t.value.size() - s;
   const std::string source = std::string(kNone) + " (the Maxwellian theory of the driven mixture; docs/white-noise.md)";
-  Quantity q{"white_noise_temperature", "T_k", "maxwellian", source, {}, s, {}, {}, w.translational, std::vector<double>(s, kNaN)};
+  const std::string sonine_source = std::string(kNone) + " (the first-Sonine theory of the driven mixture; docs/white-noise.md)";
+  Quantity q{"white_noise_temperature", "T_k", sonine ? "first_sonine" : "maxwellian", sonine ? sonine_source : source, {}, s,
+             {}, {}, sonine ? sonine->temperature : w.translational, std::vector<double>(s, kNaN)};
   for (std::size_t k = 0; k < s; ++k) {
     q.value.push_back(t.value[row + k]);
     q.error.push_back(t.error.empty() ? kNaN : t.error[row + k]);
@@ -661,7 +665,7 @@ Point compare_point(const io::config::Config& config, const analysis::Prediction
     if ((!config.staged() || hss) && p.hcs_first_sonine) add_scaling_state(pt, config, p, m);
     if (config.output.track_displacements) add_diffusion(pt, config, p, m);
     if (p.white_noise) add_white_noise(pt, *p.white_noise, m);
-    if (p.white_noise_mixture) add_white_noise_mixture(pt, *p.white_noise_mixture, m);
+    if (p.white_noise_mixture) add_white_noise_mixture(pt, *p.white_noise_mixture, p.white_noise_mixture_sonine, m);
     if (config.shear.rate) {
       const auto eta = m.attributes.find("shear_viscosity@time_average");
       if (config.thermostat.kind != io::config::ThermostatKind::gaussian) {

@@ -387,9 +387,25 @@ void add_white_noise(Predictions& out, const io::config::Config& config, const s
   if (mix.size() != 1) {
     auto state = rough::mixture_driven_state(mix, config.thermostat.noise_strength);
     if (state.translational.empty()) return out.notes.push_back("white noise: " + state.why_not);
-    out.white_noise_mixture = std::move(state);
     out.approximations.emplace_back("white_noise.maxwellian", "maxwellian");
-    out.notes.push_back("white noise, mixtures: the Maxwellian steady state only (no Sonine theory)");
+    if (mix.rough()) {  // (more than 64 species have no Maxwellian state above, which starts the Sonine one)
+      out.white_noise_mixture_sonine_why_not = "not computed: the Sonine theory of driven rough mixtures is not implemented";
+    } else {
+      try {
+        out.white_noise_mixture_sonine = white_noise_first_sonine(mix, config.thermostat.noise_strength, state.translational);
+        out.approximations.emplace_back("white_noise.sonine", "first_sonine");
+      } catch (const std::exception& e) {
+        out.white_noise_mixture_sonine_why_not = e.what();
+      }
+    }
+    out.approximations.emplace_back("white_noise.translational_temperature",
+                                    out.white_noise_mixture_sonine ? "first_sonine" : "maxwellian");
+    if (!out.white_noise_mixture_sonine)
+      out.notes.push_back("white noise, mixtures: the Maxwellian steady state only (first Sonine: " +
+                          out.white_noise_mixture_sonine_why_not + ")");
+    if (out.hcs_first_sonine)
+      out.notes.push_back("white noise: the hcs keys describe the free cooling of the same gas, not this driven state");
+    out.white_noise_mixture = std::move(state);
     return;
   }
   const bool rough_gas = mix.rough();

@@ -113,6 +113,10 @@ struct Predictions {
   /// &thermostat kind = 'white_noise', mixtures: the Maxwellian steady T_k (and theta_k for rough spheres)
   /// (theory/rough.hpp mixture_driven_state).
   std::optional<theory::rough::MixtureDrivenState> white_noise_mixture;
+  /// ... and for smooth spheres its first-Sonine state (theory/sonine_mixture.hpp white_noise_first_sonine),
+  /// or why there is none.
+  std::optional<theory::DrivenFirstSonine> white_noise_mixture_sonine;
+  std::string white_noise_mixture_sonine_why_not;
   /// key -> "maxwellian", "first_sonine", "exact", ... for every key present, in print order.
   std::vector<std::pair<std::string, std::string>> approximations;
   std::vector<std::string> notes;  ///< what was left out and why, in order

@@ -563,8 +563,16 @@ int run_program(int argc, char** argv) {
   busy = gdsmc::parallel::broadcast_from_root(busy);
   if (!busy.empty())
     return output_error(arguments, config, root, "cannot write output file '" + config.output.file + "': " + busy);
-  if (const auto refused = check_paths(arguments, config, root)) return *refused;
-  if (const auto refused = check_memory(config, root)) return *refused;
+  // The checks look at this rank's node (its files, its memory; --compare's JSON on rank 0 only): the ranks
+  // agree on the largest refusal, so that all of them stop, or none.
+  std::optional<int> refused = check_paths(arguments, config, root);
+  if (!refused) refused = check_memory(config, root);
+  if (const int agreed = gdsmc::parallel::largest_over_ranks(refused.value_or(0)); agreed != 0) {
+    if (root && !refused)
+      std::cerr << "granular-dsmc: another MPI rank refused the run before it started (the output's folder or the memory "
+                   "of its node)\n";
+    return agreed;
+  }
   if (root)
     for (const auto& warning : gdsmc::analysis::input_warnings(config)) std::cerr << "granular-dsmc: warning: " << warning << "\n";
   return run(arguments, config, root);

@@ -72,7 +72,10 @@ const char* kUsage =
     "                       {theta: [T_rot,k/T_k], translational_temperature_over_mean: [T_k/T]}, sonine: why not}\n"
     "With &thermostat kind = 'white_noise' (docs/white-noise.md), one species: white_noise {maxwellian:\n"
     "                       {translational_temperature[, theta]}, sonine: {translational_temperature[, theta],\n"
-    "                       a20[, a02, a11]} or why not, translational_temperature (Sonine where it exists)}\n"
+    "                       a20[, a02, a11]} or why not, translational_temperature (Sonine where it exists)};\n"
+    "                       mixtures: white_noise {maxwellian: {translational_temperature: [T_k][, theta: [theta_k]]},\n"
+    "                       sonine: {translational_temperature: [T_k], sonine_c: [c_k]} (smooth) or why not,\n"
+    "                       translational_temperature: [T_k] (Sonine where it exists)}\n"
     "With &agg_frag (docs/agg-frag.md), the Smoluchowski rate equations with Maxwellian kernels instead:\n"
     "  number, temperature  {time, value[t][k]} per cluster size k (number: N_k for the run's n_particles)\n"
     "  total_temperature, kinetic_energy, mean_size, monomer_fraction, collisions, aggregations,\n"
@@ -172,9 +175,13 @@ std::string rough_json(const gdsmc::analysis::Predictions& p, const std::string&
   if (const auto& w = p.white_noise_mixture) {
     json << ",\n" << in << "\"white_noise\": {\"maxwellian\": {\"translational_temperature\": " << array(w->translational);
     if (!w->theta.empty()) json << ", \"theta\": " << array(w->theta);
-    json << "}, \"sonine\": \"not computed: the Sonine theory of driven mixtures is not implemented\", "
-            "\"translational_temperature\": "
-         << array(w->translational) << "}";
+    json << "}, \"sonine\": ";
+    if (const auto& st = p.white_noise_mixture_sonine)
+      json << "{\"translational_temperature\": " << array(st->temperature) << ", \"sonine_c\": " << array(st->sonine_c) << "}";
+    else
+      json << "\"" << escape(p.white_noise_mixture_sonine_why_not) << "\"";
+    json << ", \"translational_temperature\": "
+         << array(p.white_noise_mixture_sonine ? p.white_noise_mixture_sonine->temperature : w->translational) << "}";
   }
   if (p.rough_hcs_maxwellian) {
     json << ",\n" << in << "\"rough_hcs\": {\"maxwellian\": {\"theta\": " << number(p.rough_hcs_maxwellian->theta)

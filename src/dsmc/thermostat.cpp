@@ -270,29 +270,26 @@ void Stages::begin(double dt, bool sample) {
     start_ = frame_energy(collider_.frame_moments(), momentum_, total_mass_, frame_);
     return;
   }
+  // Half of each stage's action at its start, half at its end (header, "Forcings that act on each particle"):
+  // here the previous stage's second half and this one's first, at a sample on either side of it.
+  double first_half = 0.0, second_half = 0.0;
+  if (acts_) {
+    first_half = dt / 2.0, second_half = pending_act_;
+    pending_act_ = first_half;
+  }
+  const bool acts_now = acts_ && (!sample || second_half > 0.0);
   // One pass: V = G u + b for every particle, the energy, the moments and the largest speeds (the
   // collider's bounds, exact again); the frame is the identity afterwards. A forcing acting on each
   // particle acts then, and a second pass measures what it left; the first is skipped when it would
   // only measure (the identity frame) and the second follows.
   const bool identity = frame_.scale == 1.0 && frame_.shear == 0.0 && frame_.offset.x == 0.0 &&
                         frame_.offset.y == 0.0 && frame_.offset.z == 0.0;
-  const bool measured_later = acts_ && (!sample || pending_act_ > 0.0);
-  StageStart pass = identity && measured_later ? StageStart{} : materialise(mix_, sys_, frame_);
+  StageStart pass = identity && acts_now ? StageStart{} : materialise(mix_, sys_, frame_);
   frame_ = Frame{};
-  if (acts_) {
-    // Half of each stage's action at its start, half at its end (header, "Forcings that act on each
-    // particle"): here the previous stage's second half and this one's first, at a sample on either side of it.
-    const double first_half = dt / 2.0, second_half = pending_act_;
-    pending_act_ = first_half;
-    if (!sample) {
-      act(second_half + first_half);
-      return;
-    }
-    deferred_act_ = first_half;  // after the sample (measure())
-    if (second_half > 0.0) {
-      act(second_half);
-      return;
-    }
+  if (sample && acts_) deferred_act_ = first_half;  // after the sample (measure())
+  if (acts_now) {
+    act(sample ? second_half : second_half + first_half);
+    return;
   }
   start_from(pass);
 }
@@ -344,7 +341,7 @@ void Stages::measure(const sample::Moments& m, double dt, bool averaged, sample:
   rows.add("pressure_tensor", 6, std::vector<double>(total.begin(), total.end()));
   const Forcing::Sample sample{now, m.total_temperature, total, kinetic, averaged};
   for (const auto& f : forcings_) f->measure(sample, rows);
-  if (deferred_act_ > 0.0) {  // the stage's kicks, after its sample (header "Stages")
+  if (deferred_act_ > 0.0) {  // this stage's first half, after its sample (header, "Forcings that act on each particle")
     act(deferred_act_);
     deferred_act_ = 0.0;
   }

@@ -186,8 +186,8 @@ class Forcing {
   /// (V -> m + s (V - m), first) and `shear_rate` (V_x -> V_x - a V_y dt, then).
   virtual void compose(Rescaling& rescaling, double& shear_rate) = 0;
   /// Whether it also acts on each particle apart (random kicks, say): then at the start of a stage the
-  /// frame is applied to the velocities first (one pass), and act() follows the linear maps (header,
-  /// "Forcings that act on each particle").
+  /// frame is applied to the velocities first (one pass, skipped for the identity frame), and act()
+  /// follows the linear maps (header, "Forcings that act on each particle").
   virtual bool acts_on_particles() const { return false; }
   /// Its action on every particle over a time dt (after the linear maps), drawing from `gen`, the
   /// replica's stream of forcings (rng Purpose::forcing); returns a velocity that the pass which follows

@@ -1,5 +1,6 @@
 #include "run/parallel.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
@@ -63,16 +64,25 @@ std::string host_name() {
   return name;
 }
 
-/// The process ids of the other ranks on this node, as rank 0 learns them (empty elsewhere).
-std::vector<pid_t> peers_on_this_node() {
-  const std::vector<std::string> all = gather_to_root(host_name() + " " + std::to_string(getpid()));
-  std::vector<pid_t> peers;
+/// What rank 0 learns of the others at the end: the process ids of those on its node and the largest status.
+struct Peers {
+  std::vector<pid_t> on_this_node;
+  int largest_status = 0;
+};
+Peers gather_peers(int status) {
+  const std::vector<std::string> all =
+      gather_to_root(std::to_string(status) + " " + std::to_string(getpid()) + " " + host_name());
+  Peers peers;
   const std::string here = host_name();
-  for (std::size_t k = 1; k < all.size(); ++k) {
+  for (std::size_t k = 0; k < all.size(); ++k) {
     std::istringstream in(all[k]);
-    std::string host;
+    int code = 0;
     long pid = 0;
-    if (in >> host >> pid && host == here && pid > 0) peers.push_back(static_cast<pid_t>(pid));
+    std::string host;
+    if (!(in >> code >> pid)) continue;
+    if (!(in >> host)) host.clear();
+    peers.largest_status = std::max(peers.largest_status, code);
+    if (k > 0 && host == here && pid > 0) peers.on_this_node.push_back(static_cast<pid_t>(pid));
   }
   return peers;
 }
@@ -91,13 +101,14 @@ int Session::finish(int status) {
   if (!active()) return status;
   const bool several = size() > 1;
   const bool root = rank() == 0;
-  std::vector<pid_t> peers;
-  if (several) peers = peers_on_this_node();  // collective: every rank, whatever its status
+  Peers peers;
+  if (several) peers = gather_peers(status);  // collective: every rank, whatever its status
   MPI_Finalize();
-  if (!several || status == 0) return status;
+  if (!several) return status;
   if (!root) return 0;
-  wait_until_ended(peers);
-  return status;
+  const int job_status = std::max(status, peers.largest_status);
+  if (job_status != 0) wait_until_ended(peers.on_this_node);
+  return job_status;
 #else
   return status;
 #endif
@@ -191,6 +202,17 @@ std::string broadcast_from_root(const std::string& value) {
   std::string out = rank() == 0 ? value : std::string(static_cast<std::size_t>(length), '\0');
   check(MPI_Bcast(out.data(), length, MPI_CHAR, 0, MPI_COMM_WORLD), "MPI_Bcast");
   return out;
+#else
+  return value;
+#endif
+}
+
+int largest_over_ranks(int value) {
+  if (size() == 1) return value;
+#ifdef GDSMC_HAVE_MPI
+  int largest = value;
+  check(MPI_Allreduce(&value, &largest, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD), "MPI_Allreduce");
+  return largest;
 #else
   return value;
 #endif

@@ -30,8 +30,8 @@ class Session {
   /// (the ranks agree: each rank's failure or interrupt is gathered and broadcast, simulation.hpp).
   /// Every rank must call it. Open MPI's mpirun aborts the job when a rank exits non-zero, and a rank
   /// still inside MPI_Finalize then waits out the launcher's 2 s timeout before it ends; so with
-  /// several ranks, rank 0 alone exits with `status` (mpirun and srun report it), the other ranks
-  /// with 0, and rank 0 only after the other ranks on its node have ended (at most 1 s).
+  /// several ranks, rank 0 alone exits with the largest of the ranks' statuses (mpirun and srun report
+  /// it), the other ranks with 0, and rank 0 only after the other ranks on its node have ended (at most 1 s).
   int finish(int status);
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
@@ -57,5 +57,7 @@ ThreadSplit split_threads(std::size_t units);
 std::vector<std::string> gather_to_root(const std::string& mine);
 /// Rank 0's value, on every rank.
 std::string broadcast_from_root(const std::string& value);
+/// The largest of every rank's `value`, on every rank (collective: every rank must call it).
+int largest_over_ranks(int value);
 
 }  // namespace gdsmc::parallel

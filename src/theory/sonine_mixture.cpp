@@ -52,6 +52,10 @@ struct Reduced {
   std::size_t s = 0;
   std::vector<double> m, sigma, x;
   std::vector<double> chi, alpha;  // s x s, row-major
+  /// The white-noise steady state instead of the HCS (white_noise_first_sonine): the kicks' input
+  /// m_k chi_k^2, relative to the last species' (`drive`).
+  bool driven = false;
+  std::vector<double> drive;
   explicit Reduced(const species::Mixture& mix) : s(mix.size()) {
     double inv_m = 0.0, mean_sigma = 0.0;
     for (std::size_t k = 0; k < s; ++k) {
@@ -140,7 +144,7 @@ void assemble_row(const Reduced& r, std::size_t i, const SonineTerms* row, doubl
   Zrow[i] += z_ii;
   Orow[i] += o_ii;
   for (std::size_t j = 0; j < s; ++j) Mrow[j] = 2.0 * W_i * Zrow[j] + Orow[j];
-  Mrow[i] += W_i * zeta0;
+  if (!r.driven) Mrow[i] += W_i * zeta0;  // the HCS's -2 zeta_i <v^4>_i holds <v^4>_i = W_i (1 + c_i/2)
   b = -2.0 * W_i * zeta0 - omega0;
 }
 
@@ -189,10 +193,16 @@ State evaluate(const Reduced& r, const std::vector<double>& tau) {
   return st;
 }
 
+/// The quantity equal for every species at the solution: zeta_k (HCS), or zeta_k T_k/(m_k chi_k^2)
+/// (the white noise: every species' kicks balance its collisions' loss).
+double balanced(const Reduced& r, const State& st, std::size_t k) {
+  return r.driven ? st.zeta(k) * st.tau[k] / r.drive[k] : st.zeta(k);
+}
+
 VectorXd residual(const Reduced& r, const State& st, double nu) {
   const std::size_t s = r.s;
   VectorXd F(s);
-  for (std::size_t k = 0; k + 1 < s; ++k) F(k) = (st.zeta(k) - st.zeta(s - 1)) / nu;
+  for (std::size_t k = 0; k + 1 < s; ++k) F(k) = (balanced(r, st, k) - balanced(r, st, s - 1)) / nu;
   double norm = -1.0;
   for (std::size_t k = 0; k < s; ++k) norm += r.x[k] * st.tau[k];
   F(s - 1) = norm;
@@ -231,7 +241,7 @@ MatrixXd zeta_jacobian(const Reduced& r, const State& st) {
       const double d_zii = nw.zeta_self - old.zeta_self, d_oii = nw.omega_self - old.omega_self;
       const double d_zik = nw.zeta_partner - old.zeta_partner;
       const double d_oik = nw.omega_partner - old.omega_partner;
-      const double d_Mii = 2.0 * W * d_zii + d_oii + W * d_z0;
+      const double d_Mii = 2.0 * W * d_zii + d_oii + (r.driven ? 0.0 : W * d_z0);
       const double d_Mik = 2.0 * W * d_zik + d_oik;
       const double d_b = -2.0 * W * d_z0 - d_o0;
       R(i, k) = (d_b - d_Mii * st.c(i) - d_Mik * st.c(k)) / h;
@@ -302,7 +312,7 @@ namespace {
 /// the number of Newton steps taken.
 State newton(const Reduced& r, double nu, const std::vector<double>& start, int& iterations) {
   const std::size_t s = r.s;
-  const char* what = "hcs_first_sonine";
+  const char* what = r.driven ? "white_noise_first_sonine" : "hcs_first_sonine";
   State st = evaluate(r, start);
   if (!st.ok)
     throw std::runtime_error(std::string(what) +
@@ -323,8 +333,14 @@ State newton(const Reduced& r, double nu, const std::vector<double>& start, int&
           " iterations (the first-Sonine equations may have no solution near the Maxwellian ratios)");
     const bool last = fnorm < residual_tolerance;  // one more full step once the tolerance is met
     const MatrixXd Jz = zeta_jacobian(r, st);
+    MatrixXd Jb = Jz;  // d balanced(k)/d u_j
+    if (r.driven)
+      for (std::size_t k = 0; k < s; ++k) {
+        Jb.row(k) *= st.tau[k] / r.drive[k];
+        Jb(k, k) += st.zeta(k) * st.tau[k] / r.drive[k];
+      }
     MatrixXd J(s, s);
-    for (std::size_t k = 0; k + 1 < s; ++k) J.row(k) = (Jz.row(k) - Jz.row(s - 1)) / nu;
+    for (std::size_t k = 0; k + 1 < s; ++k) J.row(k) = (Jb.row(k) - Jb.row(s - 1)) / nu;
     for (std::size_t k = 0; k < s; ++k) J(s - 1, k) = r.x[k] * st.tau[k];
     VectorXd du = J.partialPivLu().solve(-F);
     if (!du.allFinite()) throw std::runtime_error(std::string(what) + ": singular Newton matrix");
@@ -370,6 +386,28 @@ State newton(const Reduced& r, double nu, const std::vector<double>& start, int&
                            std::to_string(newton_max_iterations) + " iterations");
 }
 
+
+
+/// The collision-frequency scale of the residual: sum_ij x_i x_j chi_ij (sigma_ij/sigma_ref)^2 v0_ij/(v_ref/2).
+double frequency_scale(const Reduced& r) {
+  const std::size_t s = r.s;
+  double nu = 0.0;
+  for (std::size_t i = 0; i < s; ++i)
+    for (std::size_t j = 0; j < s; ++j) {
+      const double mi = r.m[i], mj = r.m[j], sij = 0.5 * (r.sigma[i] + r.sigma[j]);
+      nu += r.x[i] * r.x[j] * r.chi[i * s + j] * sij * sij * std::sqrt(2.0 * (mi + mj) / (mi * mj));
+    }
+  return nu;
+}
+
+/// Temperatures in any normalisation as T_k/T (sum_k x_k T_k/T = 1).
+std::vector<double> over_mean(const Reduced& r, std::vector<double> tau) {
+  double mean = 0.0;
+  for (std::size_t k = 0; k < r.s; ++k) mean += r.x[k] * tau[k];
+  for (double& t : tau) t /= mean;
+  return tau;
+}
+
 }  // namespace
 
 HcsFirstSonine hcs_first_sonine(const species::Mixture& mix,
@@ -385,22 +423,14 @@ HcsFirstSonine hcs_first_sonine(const species::Mixture& mix,
   if (!maxwellian_start.empty() && maxwellian_start.size() != s)
     throw std::invalid_argument("hcs_first_sonine: the start needs one T_k/T per species");
   const Reduced r(mix);
-  double nu = 0.0;  // collision-frequency scale of the residual
-  for (std::size_t i = 0; i < s; ++i)
-    for (std::size_t j = 0; j < s; ++j) {
-      const double mi = r.m[i], mj = r.m[j], sij = 0.5 * (r.sigma[i] + r.sigma[j]);
-      nu += r.x[i] * r.x[j] * r.chi[i * s + j] * sij * sij * std::sqrt(2.0 * (mi + mj) / (mi * mj));
-    }
+  const double nu = frequency_scale(r);
 
   // Start: the Maxwellian ratios (equipartition for an elastic mixture, where they are exact).
   double alpha_min = 1.0;
   for (double a : r.alpha) alpha_min = std::min(alpha_min, a);
   std::vector<double> tau(s, 1.0);
   if (!maxwellian_start.empty()) {
-    tau = maxwellian_start;
-    double mean = 0.0;
-    for (std::size_t k = 0; k < s; ++k) mean += r.x[k] * tau[k];
-    for (double& t : tau) t /= mean;
+    tau = over_mean(r, maxwellian_start);
   } else if (s > 1 && alpha_min < 1.0) {
     tau = maxwellian_temperature_over_mean(mix);  // Newton on the fixed point of \ref haff_mixture_odes "docs/haff-and-mixtures.md" (theory.hpp)
   }
@@ -411,6 +441,41 @@ HcsFirstSonine hcs_first_sonine(const species::Mixture& mix,
   double z = 0.0;
   for (std::size_t k = 0; k < s; ++k) z += r.x[k] * st.tau[k] * st.zeta(k);  // Montanero and Garzo 2002, eq. (11), \ref son_binary_gamma "docs/sonine.md"
   out.cooling_rate_reduced = z / zeta_unit;
+  return out;
+}
+
+DrivenFirstSonine white_noise_first_sonine(const species::Mixture& mix, const std::vector<double>& strength,
+                                           const std::vector<double>& maxwellian_start) {
+  require_mixture(mix, "white_noise_first_sonine");
+  const std::size_t s = mix.size();
+  if (s > max_hcs_species)
+    throw std::invalid_argument("white_noise_first_sonine: " + std::to_string(s) + " species exceed the limit of " +
+                                std::to_string(max_hcs_species));
+  if (strength.size() != s) throw std::invalid_argument("white_noise_first_sonine: one noise strength per species");
+  for (double c : strength)
+    if (!(c > 0.0) || !std::isfinite(c))
+      throw std::invalid_argument("white_noise_first_sonine: noise strengths must be positive and finite");
+  if (!maxwellian_start.empty() && maxwellian_start.size() != s)
+    throw std::invalid_argument("white_noise_first_sonine: the start needs one temperature per species");
+  Reduced r(mix);
+  if (std::all_of(r.alpha.begin(), r.alpha.end(), [](double a) { return a == 1.0; }))
+    throw std::invalid_argument("white_noise_first_sonine: no steady state (the collisions lose no energy)");
+  r.driven = true;
+  r.drive.resize(s);
+  for (std::size_t k = 0; k < s; ++k) r.drive[k] = mix.mass[k] * strength[k] / (mix.mass[s - 1] * strength[s - 1]);
+  DrivenFirstSonine out;
+  const State st = newton(r, frequency_scale(r), maxwellian_start.empty() ? std::vector<double>(s, 1.0)
+                                                                          : over_mean(r, maxwellian_start),
+                          out.newton_iterations);
+  // m_k chi_k^2 = zeta_k T_k for every k (\ref sonmix_driven): T from the last species'
+  const double zeta_last = st.zeta(static_cast<Eigen::Index>(s - 1)) / zeta_unit;
+  if (!(zeta_last > 0.0))
+    throw std::runtime_error("white_noise_first_sonine: no steady state (a species' Sonine cooling rate is not positive)");
+  const double temperature =
+      std::pow(mix.mass[s - 1] * strength[s - 1] / (zeta_last * hcs_rate_unit(mix) * st.tau[s - 1]), 2.0 / 3.0);
+  out.temperature_over_mean = st.tau;
+  for (double t : st.tau) out.temperature.push_back(t * temperature);
+  out.sonine_c.assign(st.c.data(), st.c.data() + s);
   return out;
 }
 

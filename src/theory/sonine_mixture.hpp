@@ -53,6 +53,16 @@
  * s and thereby the unit (hcs_rate_unit), not the physical cooling rate.
  * zeta* = sum_k x_k tau_k zeta_k* (Montanero and Garzo 2002, eq. (11), \ref son_binary_gamma "docs/sonine.md"), equal to every zeta_k* at the solution.
  *
+ * \section sonmix_driven The white-noise steady state
+ * The same moments with the kicks of the white noise (\ref wn_theory "docs/white-noise.md"; one species: van
+ * Noije and Ernst 1998; mixtures: the equal-force driving of Barrat and Trizac 2002, any chi_k^2): every
+ * species' kicks balance its collisions' loss, m_k chi_k^2 = zeta_k T_k (s - 1 equations zeta_k tau_k/(m_k
+ * chi_k^2) equal, with sum_k x_k tau_k = 1), and the kicks' 10 chi_k^2 <v^2>_k = 2 W_k zeta_k in
+ * d<v^4>_k/dt (so the c system lacks the HCS's delta_ij W_i zeta_i^(0)): Omega_i + 2 W_i zeta_i = 0. The
+ * absolute temperature then follows from m_s chi_s^2 = zeta_s T_s, zeta_s = zeta_s* hcs_rate_unit sqrt(T).
+ * The same Newton's method. One species gives van Noije and Ernst's a2 = c/2 and the Sonine balance of
+ * theory::rough::sonine_driven_state (smooth spheres). Smooth spheres only (the rates ignore roughness).
+ *
  * \section sonmix_limits Limits and cost
  * Pair terms O(s^2) per evaluation, the c system and the Newton Jacobian O(s^3) per iteration;
  * 4 first-Sonine iterations are typical (timings of bench/bench_theory.cpp:
@@ -83,6 +93,20 @@ struct HcsFirstSonine {
   int newton_iterations = 0;                  ///< Newton steps the solution took
 };
 
+/// The white-noise steady state of an s-species mixture in first Sonine approximation (\ref sonmix_driven).
+struct DrivenFirstSonine {
+  std::vector<double> temperature;            ///< T_k (the units of the mixture and strengths)
+  std::vector<double> temperature_over_mean;  ///< T_k/T, T = sum_k n_k T_k/n
+  std::vector<double> sonine_c;               ///< c_k (one species: 2 a2)
+  int newton_iterations = 0;                  ///< Newton steps the solution took
+};
+/// Solves \ref sonmix_driven for the noise strengths chi_k^2 (`strength`, one per species);
+/// `maxwellian_start` (optional, any normalisation): the Maxwellian steady temperatures
+/// (theory::rough::mixture_driven_state), else equal temperatures. Throws std::invalid_argument for
+/// a bad mixture or strength, an elastic mixture (no steady state) or s > max_hcs_species,
+/// std::runtime_error if Newton's method fails or a cooling rate is not positive.
+DrivenFirstSonine white_noise_first_sonine(const species::Mixture& mix, const std::vector<double>& strength,
+                                           const std::vector<double>& maxwellian_start = {});
 /// Largest s that hcs_first_sonine accepts (its cost grows like s^3 per Newton iteration).
 inline constexpr std::size_t max_hcs_species = 1200;
 
