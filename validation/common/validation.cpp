@@ -2,6 +2,7 @@
 
 
 #include <array>
+#include <cmath>
 #include <cstdarg>
 #include <cstdint>
 #include <cstdio>
@@ -408,6 +409,21 @@ ScalingState read_scaling_state(const std::string& file, const std::string& obse
   state.known = state.c.size() == species && state.c_error.size() == species && state.share.size() == species &&
                 state.share_error.size() == species;
   return state;
+}
+
+SteadyAverage steady_average(const io::h5md::ObservableData& o, double from, double scale, std::size_t column,
+                             std::size_t columns) {
+  SteadyAverage a;
+  int n = 0;
+  for (std::size_t i = 0; i < o.time.size(); ++i)
+    if (o.time[i] >= from) {
+      a.value += scale * o.value[i * columns + column];
+      a.error += scale * (o.error.empty() ? NAN : o.error[i * columns + column]);
+      ++n;
+    }
+  a.value /= n;
+  a.error /= n;
+  return a;
 }
 
 }  // namespace gdsmc::validation

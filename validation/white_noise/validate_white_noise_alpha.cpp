@@ -14,25 +14,6 @@ namespace {
 
 constexpr double kSteadyFrom = 600.0;  // the samples averaged: t >= 600 (16-26 collisions per particle and more)
 
-/// Mean over the steady samples and the mean of their standard errors (an upper bound of the mean's SE: the
-/// samples are correlated).
-struct Average {
-  double value = 0.0, error = 0.0;
-};
-Average steady(const io::h5md::ObservableData& o, double scale) {
-  Average a;
-  int n = 0;
-  for (std::size_t i = 0; i < o.time.size(); ++i)
-    if (o.time[i] >= kSteadyFrom) {
-      a.value += scale * o.value[i];
-      a.error += scale * (o.error.empty() ? NAN : o.error[i]);
-      ++n;
-    }
-  a.value /= n;
-  a.error /= n;
-  return a;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -50,7 +31,7 @@ int main(int argc, char** argv) {
     const auto t = io::h5md::read_observable(run.file, root + "total_temperature");
     const auto c = io::h5md::read_observable(run.file, root + "sonine_c");
     if (!report.require("replicas > 1, so standard errors exist", !t.error.empty())) return report.exit_code();
-    const Average temperature = steady(t, 1.0), a2 = steady(c, 0.5);
+    const auto temperature = validation::steady_average(t, kSteadyFrom), a2 = validation::steady_average(c, kSteadyFrom, 0.5);
     // T^(3/2) = m chi^2/(zeta* nu_1) (docs/white-noise.md)
     const double unit = mix.mass[0] * config.thermostat.noise_strength[0] / theory::rough::frequency_unit(mix);
     const auto sonine = theory::rough::sonine_driven_state(alpha, -1.0, 0.4);

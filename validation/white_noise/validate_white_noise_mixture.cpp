@@ -16,25 +16,6 @@ namespace {
 
 constexpr double kSteadyFrom = 600.0;  // the samples averaged: t >= 600 (about 20 collisions per particle and more)
 
-/// Species k's mean over the steady samples of an Nt x S observable and the mean of their standard errors (an
-/// upper bound of the mean's SE: the samples are correlated).
-struct Average {
-  double value = 0.0, error = 0.0;
-};
-Average steady(const io::h5md::ObservableData& o, std::size_t k, std::size_t s, double scale) {
-  Average a;
-  int n = 0;
-  for (std::size_t i = 0; i < o.time.size(); ++i)
-    if (o.time[i] >= kSteadyFrom) {
-      a.value += scale * o.value[i * s + k];
-      a.error += scale * (o.error.empty() ? NAN : o.error[i * s + k]);
-      ++n;
-    }
-  a.value /= n;
-  a.error /= n;
-  return a;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -55,7 +36,8 @@ int main(int argc, char** argv) {
                       t.value.size() == t.time.size() * s && c.value.size() == c.time.size() * s))
     return report.exit_code();
   for (std::size_t k = 0; k < s; ++k) {
-    const Average temperature = steady(t, k, s, 1.0), ck = steady(c, k, s, 1.0);
+    const auto temperature = validation::steady_average(t, kSteadyFrom, 1.0, k, s),
+               ck = validation::steady_average(c, kSteadyFrom, 1.0, k, s);
     char name[200];
     std::snprintf(name, sizeof name, "species %zu: steady T_k vs first Sonine (Maxwellian %.5f)", k + 1, maxwell.translational[k]);
     report.check(name, temperature.value, temperature.error, sonine.temperature[k], 4.0,
