@@ -295,6 +295,59 @@ TEST(Rng, NormalMoments) {
   EXPECT_NEAR(m4, 3.0, 5.0 * se4);
 }
 
+// normal_ziggurat(): 2e6 deviates against the normal distribution. Moments: <x> = 0 (SE 1/sqrt(N)), <x^2> = 1
+// (SE sqrt(2/N)), <x^3> = 0 (Var x^3 = 15, SE sqrt(15/N)), <x^4> = 3 (SE sqrt(96/N)); tails P(|x| > t) =
+// erfc(t/sqrt 2) at t = 1, 2, r = 3.4426 (the base strip's edge, beyond which the tail method draws) and 4,
+// binomial SE, and again for r, 4 and 4.5 with 2e7 more deviates (the tail's shape); 5 SE each. Shape: 64 cells equally likely under the normal CDF, the chi-square p-value above
+// 1e-4. The same seed gives the same deviates, and normal()'s spare is left alone.
+TEST(Rng, ZigguratNormalMatchesTheNormalDistribution) {
+  Xoshiro256pp gen(271828);
+  const int count = 2000000;
+  const double n = count;
+  const std::vector<double> edges{1.0, 2.0, 3.442619855899, 4.0};
+  std::vector<double> beyond(edges.size(), 0.0), cells(64, 0.0);
+  double m1 = 0.0, m2 = 0.0, m3 = 0.0, m4 = 0.0;
+  for (int i = 0; i < count; ++i) {
+    const double x = gen.normal_ziggurat(), x2 = x * x;
+    m1 += x, m2 += x2, m3 += x2 * x, m4 += x2 * x2;
+    for (std::size_t e = 0; e < edges.size(); ++e) beyond[e] += std::abs(x) > edges[e] ? 1.0 : 0.0;
+    cells[std::min<std::size_t>(63, static_cast<std::size_t>(64.0 * gsl_cdf_ugaussian_P(x)))] += 1.0;
+  }
+  EXPECT_NEAR(m1 / n, 0.0, 5.0 * std::sqrt(1.0 / n));
+  EXPECT_NEAR(m2 / n, 1.0, 5.0 * std::sqrt(2.0 / n));
+  EXPECT_NEAR(m3 / n, 0.0, 5.0 * std::sqrt(15.0 / n));
+  EXPECT_NEAR(m4 / n, 3.0, 5.0 * std::sqrt(96.0 / n));
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const double p = std::erfc(edges[e] / std::sqrt(2.0));
+    EXPECT_NEAR(beyond[e], n * p, 5.0 * std::sqrt(n * p * (1.0 - p))) << "P(|x| > " << edges[e] << ")";
+  }
+  // The tail beyond r, where 1 deviate in 1700 falls, with 2e7 more: P(|x| > 4) and P(|x| > 4.5) test its shape.
+  const std::vector<double> far{3.442619855899, 4.0, 4.5};
+  std::vector<double> far_count(far.size(), 0.0);
+  const double n_far = 2e7;
+  for (int i = 0; i < 20000000; ++i) {
+    const double x = std::abs(gen.normal_ziggurat());
+    for (std::size_t e = 0; e < far.size(); ++e) far_count[e] += x > far[e] ? 1.0 : 0.0;
+  }
+  for (std::size_t e = 0; e < far.size(); ++e) {
+    const double p = std::erfc(far[e] / std::sqrt(2.0));
+    EXPECT_NEAR(far_count[e], n_far * p, 5.0 * std::sqrt(n_far * p * (1.0 - p))) << "P(|x| > " << far[e] << "), 2e7 deviates";
+  }
+  double chi2 = 0.0;
+  for (double c : cells) chi2 += (c - n / 64.0) * (c - n / 64.0) / (n / 64.0);
+  const double p_value = gsl_cdf_chisq_Q(chi2, 63.0);
+  std::printf("[ Rng.Ziggurat ] <x> %.5f <x^2> %.5f <x^3> %.5f <x^4> %.5f; chi^2 = %.1f (63 dof), p = %.3f\n", m1 / n,
+              m2 / n, m3 / n, m4 / n, chi2, p_value);
+  EXPECT_GT(p_value, 1e-4);
+
+  Xoshiro256pp a(9), b(9);
+  (void)a.normal();  // a spare is kept
+  (void)b.normal();
+  for (int i = 0; i < 1000; ++i) ASSERT_EQ(a.normal_ziggurat(), b.normal_ziggurat()) << "deviate " << i;
+  EXPECT_EQ(a.normal(), b.normal());  // the spares, untouched
+  EXPECT_TRUE(a == b);
+}
+
 // unit_vector: |e| = 1 to round-off; over 1e6 vectors the components have mean 0 (each has variance
 // 1/3, SE = sqrt(1/(3N))) and <z^2> = 1/3 (Var z^2 = 1/5 - 1/9 = 4/45, SE = sqrt(4/(45 N)));
 // tolerance 5 SE.

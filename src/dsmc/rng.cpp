@@ -1,5 +1,8 @@
 #include "dsmc/rng.hpp"
 
+#include <array>
+#include <cstddef>
+
 namespace gdsmc::rng {
 
 namespace {
@@ -60,6 +63,57 @@ double Xoshiro256pp::normal() {
   spare_ = v * factor;
   has_spare_ = true;
   return u * factor;
+}
+
+namespace {
+/// The 128 layers of Marsaglia and Tsang's (2000) ziggurat for the normal density f(x) = exp(-x^2/2): the
+/// base strip's edge r, each layer's acceptance bound k (|h| < k_i: inside the layer's rectangle), its
+/// abscissa step w (x = h w_i for a signed 32-bit h) and f at its edge.
+struct Ziggurat {
+  static constexpr double r = 3.442619855899;          // the base strip's edge
+  static constexpr double area = 9.91256303526217e-3;  // each layer's area
+  std::array<std::uint32_t, 128> k{};
+  std::array<double, 128> w{}, f{};
+  Ziggurat() {
+    const double m1 = 2147483648.0;  // 2^31
+    double dn = r, tn = r;
+    const double q = area / std::exp(-0.5 * dn * dn);
+    k[0] = static_cast<std::uint32_t>((dn / q) * m1);
+    k[1] = 0;
+    w[0] = q / m1;
+    w[127] = dn / m1;
+    f[0] = 1.0;
+    f[127] = std::exp(-0.5 * dn * dn);
+    for (int i = 126; i >= 1; --i) {
+      dn = std::sqrt(-2.0 * std::log(area / dn + std::exp(-0.5 * dn * dn)));
+      k[static_cast<std::size_t>(i) + 1] = static_cast<std::uint32_t>((dn / tn) * m1);
+      tn = dn;
+      f[static_cast<std::size_t>(i)] = std::exp(-0.5 * dn * dn);
+      w[static_cast<std::size_t>(i)] = dn / m1;
+    }
+  }
+};
+}  // namespace
+
+double Xoshiro256pp::normal_ziggurat() {
+  static const Ziggurat z;  // immutable after its thread-safe construction
+  for (;;) {
+    const std::uint64_t u = (*this)();
+    const std::size_t i = static_cast<std::size_t>(u & 127u);
+    const auto h = static_cast<std::int32_t>(static_cast<std::uint32_t>(u >> 32));
+    const double x = static_cast<double>(h) * z.w[i];
+    const std::uint32_t magnitude = h < 0 ? 0u - static_cast<std::uint32_t>(h) : static_cast<std::uint32_t>(h);
+    if (magnitude < z.k[i]) return x;  // inside the layer's rectangle
+    if (i == 0) {                      // the tail beyond r
+      double t, y;
+      do {
+        t = -std::log(uniform_pos()) / Ziggurat::r;
+        y = -std::log(uniform_pos());
+      } while (y + y < t * t);
+      return h > 0 ? Ziggurat::r + t : -(Ziggurat::r + t);
+    }
+    if (z.f[i] + uniform() * (z.f[i - 1] - z.f[i]) < std::exp(-0.5 * x * x)) return x;  // inside the wedge
+  }
 }
 
 bool Xoshiro256pp::operator==(const Xoshiro256pp& other) const {

@@ -12,7 +12,9 @@
  * Conversions: uniform doubles on [0, 1) and (0, 1] from the top 53 bits; integers in [0, n) by
  * the multiply-shift of Lemire (bias below n / 2^64, negligible for any particle count), and two at
  * once from the halves of one draw (below_pair, exact by rejection); normal
- * deviates by the Marsaglia polar method (portable, unlike std::normal_distribution).
+ * deviates by the Marsaglia polar method (portable, unlike std::normal_distribution) or by the ziggurat
+ * method (normal_ziggurat; GSL's gsl_ran_gaussian_ziggurat took as many instructions as the polar method
+ * through GSL's generator interface, \ref perf_white_noise_halves "docs/performance.md").
  * Checked by tests/rng_test.cpp.
  */
 #pragma once
@@ -79,6 +81,13 @@ class Xoshiro256pp {
   }
   /// Standard normal deviate (Marsaglia polar method; the second deviate is kept).
   double normal();
+  /// Standard normal deviate by the ziggurat method (Marsaglia and Tsang 2000, 128 layers): one draw in
+  /// about 99 % of calls, its low 7 bits the layer and its top 32 the abscissa (bits apart, so that the
+  /// layer and the value are independent: Doornik 2005 found the original's shared bits correlated);
+  /// the wedges by rejection, the tail beyond r = 3.4426 by Marsaglia's exponential method. About half
+  /// the time of normal(), for the forcings that draw three deviates per particle and stage
+  /// (thermostat.hpp WhiteNoise). Leaves normal()'s spare alone.
+  double normal_ziggurat();
 
   bool operator==(const Xoshiro256pp& other) const;
 

@@ -174,7 +174,7 @@ particles::Vec3 WhiteNoise::act(particles::System& sys, double dt, rng::Xoshiro2
     const double sd = std::sqrt(strength_[k] * dt), m = mix_.mass[k];
     double kx = 0.0, ky = 0.0, kz = 0.0;
     for (std::size_t i = sys.first[k]; i < sys.first[k] + sys.count[k]; ++i) {
-      const double dx = sd * gen.normal(), dy = sd * gen.normal(), dz = sd * gen.normal();
+      const double dx = sd * gen.normal_ziggurat(), dy = sd * gen.normal_ziggurat(), dz = sd * gen.normal_ziggurat();
       sys.v[i] = {sys.v[i].x + dx, sys.v[i].y + dy, sys.v[i].z + dz};
       kx += dx, ky += dy, kz += dz;
     }
