@@ -343,9 +343,10 @@ TEST(Rng, ZigguratNormalMatchesTheNormalDistribution) {
   Xoshiro256pp a(9), b(9);
   (void)a.normal();  // a spare is kept
   (void)b.normal();
+  Xoshiro256pp copy = a;
+  const double spare = copy.normal();  // the spare a holds
   for (int i = 0; i < 1000; ++i) ASSERT_EQ(a.normal_ziggurat(), b.normal_ziggurat()) << "deviate " << i;
-  EXPECT_EQ(a.normal(), b.normal());  // the spares, untouched
-  EXPECT_TRUE(a == b);
+  EXPECT_EQ(a.normal(), spare);  // still a's spare after 1000 ziggurat deviates
 }
 
 // unit_vector: |e| = 1 to round-off; over 1e6 vectors the components have mean 0 (each has variance

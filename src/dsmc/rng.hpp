@@ -82,7 +82,7 @@ class Xoshiro256pp {
   /// Standard normal deviate (Marsaglia polar method; the second deviate is kept).
   double normal();
   /// Standard normal deviate by the ziggurat method (Marsaglia and Tsang 2000, 128 layers): one draw in
-  /// about 99 % of calls, its low 7 bits the layer and its top 32 the abscissa (bits apart, so that the
+  /// about 97 % of calls, its low 7 bits the layer and its top 32 the abscissa (bits apart, so that the
   /// layer and the value are independent: Doornik 2005 found the original's shared bits correlated);
   /// the wedges by rejection, the tail beyond r = 3.4426 by Marsaglia's exponential method. About half
   /// the time of normal(), for the forcings that draw three deviates per particle and stage
