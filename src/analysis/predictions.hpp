@@ -116,7 +116,7 @@ struct Predictions {
   /// ... and for smooth spheres its first-Sonine state (theory/sonine_mixture.hpp white_noise_first_sonine),
   /// or why there is none.
   std::optional<theory::DrivenFirstSonine> white_noise_mixture_sonine;
-  std::string white_noise_mixture_sonine_why_not;
+  std::string white_noise_mixture_sonine_why_not;  ///< why white_noise_mixture_sonine is empty (when it is)
   /// key -> "maxwellian", "first_sonine", "exact", ... for every key present, in print order.
   std::vector<std::pair<std::string, std::string>> approximations;
   std::vector<std::string> notes;  ///< what was left out and why, in order

@@ -150,12 +150,13 @@ struct ScalingState {
 /// Reads `observables_root`/scaling_state ("/observables" or "/sweep/point_K/observables").
 ScalingState read_scaling_state(const std::string& file, const std::string& observables_root, std::size_t species);
 
-/// A steady state's mean: column `column` of an observable of `columns` columns (Nt x S, time-major; 1 for
-/// a scalar one) over the samples at t >= `from`, times `scale`, and the mean of their standard errors (an
-/// upper bound of the mean's SE, the samples being correlated; NaN without errors).
+/// A steady state's mean and an upper bound of its standard error (steady_average).
 struct SteadyAverage {
-  double value = 0.0, error = 0.0;
+  double value = 0.0;  ///< the mean over the samples
+  double error = 0.0;  ///< the mean of their standard errors (the samples are correlated); NaN without errors
 };
+/// Column `column` of an observable of `columns` columns (Nt x S, time-major; 1 for a scalar one) over the
+/// samples at t >= `from`, times `scale`: the mean and the mean of the samples' standard errors.
 SteadyAverage steady_average(const io::h5md::ObservableData& o, double from, double scale = 1.0, std::size_t column = 0,
                              std::size_t columns = 1);
 
