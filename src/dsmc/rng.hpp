@@ -13,8 +13,7 @@
  * the multiply-shift of Lemire (bias below n / 2^64, negligible for any particle count), and two at
  * once from the halves of one draw (below_pair, exact by rejection); normal
  * deviates by the Marsaglia polar method (portable, unlike std::normal_distribution) or by the ziggurat
- * method (normal_ziggurat; GSL's gsl_ran_gaussian_ziggurat took as many instructions as the polar method
- * through GSL's generator interface, \ref perf_white_noise_halves "docs/performance.md").
+ * method (normal_ziggurat; its cost against GSL's and the polar method: \ref perf_white_noise_halves "docs/performance.md").
  * Checked by tests/rng_test.cpp.
  */
 #pragma once
