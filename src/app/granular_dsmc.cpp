@@ -137,6 +137,7 @@ const char* kUsage =
     "                    output of granular-dsmc,\n"
     "                    and start afresh over the checkpoint of another or an interrupted run (replaced)\n"
     "  --print-defaults  print a commented namelist with every variable and its default\n"
+    "  --print-reference  print every namelist variable (default, allowed values, units, meaning) as Markdown\n"
     "  --print-observables  print the table of observables (name, unit, columns, definition) as Markdown\n"
     "  --table FILE.h5   print an output file as CSV (docs/output.md \"granular-dsmc --table\"): every time\n"
     "                    series of a run (time, then each column and its _error; species from 1), or the\n"
