@@ -134,6 +134,40 @@ TEST(CompareKnownError, SonineRateAndViscosity) {
   EXPECT_NEAR(cmp::shear_viscosity_known_error(mix), 0.016 + 0.0033, 1e-15);
 }
 
+// The steady shear flow without thermostat (\ref eta_usf_steady "docs/shear-viscosity.md"): a* and P_ij/p at the
+// last sample (p = tr P/3) against Grad's solution, the known error |Grad - independent| of the table (alpha = 0.7: a* 0.03682,
+// between 0.7 and 0.9 the larger of the two: P_yy 0.01976).
+TEST(CompareRows, SteadyShearAgainstGrad) {
+  auto c = read_text(
+      "&system\n n_species = 1\n mass = 1.0\n diameter = 1.0\n number_density = 0.01\n restitution = 0.7\n/\n"
+      "&initial\n temperature = 0.28\n/\n&dsmc\n n_particles = 1000\n t_end = 1000.0\n replicas = 16\n/\n"
+      "&shear\n rate = 0.02\n/\n&output\n n_samples = 2\n/\n");
+  const auto theory = gdsmc::analysis::predict(c);
+  ASSERT_TRUE(theory.steady_shear_grad.has_value());
+  cmp::Measured m;
+  const double t = 0.28, p = 0.01 * t;  // P_xx/p = 1.4, P_xy/p = -0.5 at the last sample, p = tr P/3
+  m.observables["total_temperature"] = series({0.0, 1000.0}, {1.0, t}, {0.0, 0.001}, 1);
+  m.observables["reduced_shear_rate"] = series({0.0, 1000.0}, {0.35, 0.667}, {0.0, 0.002}, 1);
+  m.observables["pressure_tensor"] =
+      series({0.0, 1000.0}, {0.01, 0.01, 0.01, 0.0, 0.0, 0.0, 1.4 * p, 0.76 * p, 0.84 * p, -0.5 * p, 0.0, 0.0},
+             std::vector<double>(12, 1e-5), 6);
+  const auto pt = cmp::compare_point(c, theory, m);
+  const auto& rate = find(pt, "steady_shear_rate");
+  EXPECT_DOUBLE_EQ(rate.value[0], 0.667);
+  EXPECT_NEAR(rate.theory[0], 0.630973536820, 1e-11);
+  EXPECT_DOUBLE_EQ(rate.known_error[0], 0.03682);
+  const auto& xy = find(pt, "steady_shear_pressure_xy");
+  EXPECT_NEAR(xy.value[0], -0.5, 1e-12);
+  EXPECT_NEAR(xy.error[0], 0.5 * std::hypot(1e-5 / (0.5 * p), std::sqrt(3.0) * 1e-5 / 3.0 / p), 1e-12);
+  EXPECT_NEAR(find(pt, "steady_shear_pressure_zz").value[0], 0.84, 1e-12);
+  EXPECT_DOUBLE_EQ(cmp::steady_shear_known_error(0.8, 2), 0.01976);
+  EXPECT_DOUBLE_EQ(cmp::steady_shear_known_error(0.95, 0), 0.00538);
+  EXPECT_TRUE(std::isnan(cmp::steady_shear_known_error(0.4, 0)));
+  // with the Gaussian thermostat the state is another one: no steady-shear rows
+  c.thermostat.kind = gdsmc::io::config::ThermostatKind::gaussian;
+  for (const auto& q : cmp::compare_point(c, theory, m).quantities) EXPECT_NE(q.name, "steady_shear_rate");
+}
+
 // The Haff row: theory T(t) = T0/(1 + t/t0)^2, t0 = 2/zeta0, zeta0 = (4/3) sqrt(pi) (1 - alpha^2) n sigma^2
 // sqrt(T0/m) (\ref haff_law "docs/haff-and-mixtures.md"); collisions per particle nu0 t0 ln(1 + t/t0), nu0 = 4 sqrt(pi) n sigma^2 sqrt(T0/m)
 // (\ref cm_pair_rate "docs/collision-model.md"); DSMC 0.4 % above with SE 0.1 %: z = +4, +0.4 %, known error 1.15 eps ln(T0/T) T.

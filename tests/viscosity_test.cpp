@@ -62,6 +62,32 @@ TEST(ViscosityOneComponent, ErrataReferenceValues) {
 // Elastic gas: a2 = 0, zeta* = 0, nu_eta* = 1, so eta = eta_0 in both states; and
 // eta_0 = (5/(16 sigma^2)) sqrt(m T/pi) evaluated by hand for m = 2, sigma = 0.5, T = 3:
 // (5/4) sqrt(6/pi) = 1.727470... ; inelastic viscosities exceed eta_0, the HSS one more.
+// Grad's steady uniform shear flow (\ref eta_usf_steady "docs/shear-viscosity.md"), by hand at alpha = 0.5:
+// zeta* = (5/12)(3/4) = 5/16, nu_eta* = (3/2)(5/2)/4 = 15/16, so P_yy/p = 1 - 1/3 = 2/3, P_xx/p = 5/3,
+// a*^2 = (3/2)(5/16)(15/16)^2/(10/16) = 675/1024 (a* = 15 sqrt(3)/32), P_xy/p = -a* (2/3)/(15/16) = -1/sqrt(3),
+// eta/eta_0 = (2/3)/(15/16) = 32/45; at alpha = 1 the elastic gas needs no shear (a* = 0, eta = eta_0).
+TEST(ViscosityOneComponent, SteadyShearGradByHand) {
+  const auto half = viscosity::steady_shear_grad(0.5);
+  EXPECT_NEAR(half.reduced_shear_rate, 15.0 * std::sqrt(3.0) / 32.0, 1e-14);
+  EXPECT_NEAR(half.pressure_yy, 2.0 / 3.0, 1e-14);
+  EXPECT_NEAR(half.pressure_zz, 2.0 / 3.0, 1e-14);
+  EXPECT_NEAR(half.pressure_xx, 5.0 / 3.0, 1e-14);
+  EXPECT_NEAR(half.pressure_xy, -1.0 / std::sqrt(3.0), 1e-14);
+  EXPECT_NEAR(half.viscosity, 32.0 / 45.0, 1e-14);
+  // alpha = 0.7 (zeta* = 0.2125, nu_eta* = 0.9775), computed by hand to 12 digits
+  const auto seven = viscosity::steady_shear_grad(0.7);
+  EXPECT_NEAR(seven.reduced_shear_rate, 0.630973536820, 1e-11);
+  EXPECT_NEAR(seven.pressure_xy, -0.505171740810, 1e-11);
+  EXPECT_NEAR(seven.viscosity, 0.800622706550, 1e-11);
+  // the energy balance of the steady state, -a* P_xy/p = (3/2) zeta*, and the trace 3
+  EXPECT_NEAR(-seven.reduced_shear_rate * seven.pressure_xy, 1.5 * 0.2125, 1e-14);
+  EXPECT_NEAR(seven.pressure_xx + seven.pressure_yy + seven.pressure_zz, 3.0, 1e-14);
+  const auto elastic = viscosity::steady_shear_grad(1.0);
+  EXPECT_EQ(elastic.reduced_shear_rate, 0.0);
+  EXPECT_NEAR(elastic.viscosity, 1.0, 1e-15);
+  EXPECT_THROW(viscosity::steady_shear_grad(1.1), std::invalid_argument);
+}
+
 TEST(ViscosityOneComponent, ElasticLimitAndOrdering) {
   EXPECT_DOUBLE_EQ(viscosity::dilute_reduced_viscosity(1.0, hcs), 1.0);
   EXPECT_DOUBLE_EQ(viscosity::dilute_reduced_viscosity(1.0, hss), 1.0);

@@ -622,7 +622,8 @@ double shear_viscosity_known_error(const species::Mixture& mix) {
 Measured read_measured(const std::string& file, const std::string& root) {
   Measured m;
   for (const char* name : {"total_temperature", "temperature", "sonine_c", "collisions_per_particle", "time", "msd",
-                           "number", "mean_size", "rotational_temperature", "cumulant_a20", "cumulant_a02", "cumulant_a11"}) {
+                           "number", "mean_size", "rotational_temperature", "cumulant_a20", "cumulant_a02", "cumulant_a11",
+                           "reduced_shear_rate", "pressure_tensor"}) {
     try {
       m.observables.emplace(name, io::h5md::read_observable(file, root + "/" + name));
     } catch (const std::runtime_error&) {
@@ -650,6 +651,66 @@ Measured read_measured(const std::string& file, const std::string& root) {
   return m;
 }
 
+/// The known error of Grad's steady shear flow (\ref eta_usf_steady "docs/shear-viscosity.md"): |Grad - the independent
+/// program| at alpha = 0.9, 0.7, 0.5 (the table there), the larger of the two table points around alpha (0 at
+/// alpha = 1); NaN below 0.5, where no estimate was made. `which`: 0 a*, 1-4 P_xx, P_yy, P_zz, P_xy over p.
+double steady_shear_known_error(double alpha, std::size_t which) {
+  constexpr double kAlpha[4] = {1.0, 0.9, 0.7, 0.5};
+  constexpr double kGap[5][4] = {{0.0, 0.00538, 0.03682, 0.08371},
+                                 {0.0, 0.00378, 0.00571, 0.00253},
+                                 {0.0, 0.00764, 0.01976, 0.03177},
+                                 {0.0, 0.01144, 0.02547, 0.02923},
+                                 {0.0, 0.00079, 0.00075, 0.00340}};
+  if (!(alpha >= kAlpha[3])) return kNaN;
+  for (std::size_t i = 1; i < 4; ++i)
+    if (alpha >= kAlpha[i]) return std::max(kGap[which][i - 1], kGap[which][i]);
+  return kNaN;
+}
+
+namespace {
+
+/// The steady shear flow without thermostat of one dilute species: a* and P_ij/p at the last sample beside
+/// Grad's solution (\ref eta_usf_steady "docs/shear-viscosity.md"), the run taken to have reached the steady state.
+void add_steady_shear(Point& pt, const io::config::Config& config, const theory::viscosity::SteadyShear& grad,
+                      const Measured& m) {
+  if (!m.has("reduced_shear_rate") || !m.has("pressure_tensor")) return;
+  const auto& rate = m.observables.at("reduced_shear_rate");
+  const auto& pressure = m.observables.at("pressure_tensor");
+  if (rate.value.empty() || pressure.value.size() < 6) return;
+  const double alpha = config.mixture().restitution(0, 0);
+  const char* source = "docs/shear-viscosity.md#eta_usf_steady: |Grad - the independent program| at alpha = 0.9, 0.7, 0.5";
+  const auto add = [&](const std::string& name, const std::string& label, double value, double error, double theory,
+                       std::size_t which) {
+    Quantity q{name, label, "grad", source, {}, 1, {value}, {error}, {theory}, {steady_shear_known_error(alpha, which)}};
+    q.at = "last sample";
+    pt.quantities.push_back(std::move(q));
+  };
+  add("steady_shear_rate", "a*", rate.value.back(), rate.error.empty() ? kNaN : rate.error.back(),
+      grad.reduced_shear_rate, 0);
+  // p = tr P/3 of the same sample (the tensor is sampled at the middle of the streaming jump, the temperature
+  // after it: thermostat.hpp, "Sampling point")
+  const std::size_t last = pressure.value.size() - 6;  // columns xx yy zz xy xz yz
+  const double* row = pressure.value.data() + last;
+  const double p = (row[0] + row[1] + row[2]) / 3.0;
+  double p_error = kNaN;
+  if (!pressure.error.empty()) {
+    const double* e = pressure.error.data() + last;
+    p_error = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]) / 3.0;
+  }
+  const double theory[4] = {grad.pressure_xx, grad.pressure_yy, grad.pressure_zz, grad.pressure_xy};
+  const char* component[4] = {"xx", "yy", "zz", "xy"};
+  for (std::size_t c = 0; c < 4; ++c) {
+    const double pij = row[c], ratio = pij / p;
+    const double pij_error = pressure.error.empty() ? kNaN : pressure.error[last + c];
+    // (P_ij and p of one sample are correlated: the two relative errors added in quadrature, an upper bound)
+    const double error = std::abs(ratio) * std::hypot(pij_error / pij, p_error / p);
+    add(std::string("steady_shear_pressure_") + component[c], std::string("P_") + component[c] + "/p", ratio, error,
+        theory[c], c + 1);
+  }
+}
+
+}  // namespace
+
 Point compare_point(const io::config::Config& config, const analysis::Predictions& p, const Measured& m) {
   Point pt;
   pt.replicas = static_cast<std::size_t>(config.dsmc.replicas);
@@ -671,6 +732,8 @@ Point compare_point(const io::config::Config& config, const analysis::Prediction
       if (config.thermostat.kind != io::config::ThermostatKind::gaussian) {
         pt.notes.push_back("shear_viscosity not compared: the theory is that of the thermostatted state (HSS); "
                            "this &shear run has no Gaussian thermostat");
+        if (config.thermostat.kind == io::config::ThermostatKind::none && p.steady_shear_grad)
+          add_steady_shear(pt, config, *p.steady_shear_grad, m);
       } else if (!p.shear_viscosity_hss) {
         pt.notes.push_back("shear_viscosity not compared: no viscosity theory for this mixture");
       } else if (eta != m.attributes.end()) {

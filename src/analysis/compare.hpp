@@ -204,6 +204,10 @@ double sonine_rate_error(const species::Mixture& mix, const std::vector<double>&
 double cumulant_known_error(const species::Mixture& mix);
 /// Known error of the first-Sonine HSS eta/eta_0 relative to the value, NaN where none is stated.
 double shear_viscosity_known_error(const species::Mixture& mix);
+/// Known error of Grad's steady shear flow at restitution alpha (\ref eta_usf_steady "docs/shear-viscosity.md"):
+/// |Grad - the independent program| at the table's alpha = 0.9, 0.7, 0.5, the larger of the two around alpha (0 at
+/// alpha = 1, where no steady state exists), NaN below 0.5; `which` 0: a*, 1-4: P_xx, P_yy, P_zz, P_xy over p.
+double steady_shear_known_error(double alpha, std::size_t which);
 
 /// The comparison of one point from its Config, its theory and its measurements (pure).
 Point compare_point(const io::config::Config& point, const analysis::Predictions& theory, const Measured& measured);

@@ -304,6 +304,10 @@ void add_viscosity(Predictions& out, const species::Mixture& mix, const std::opt
         const auto v = vt::enskog_reduced_viscosity(alpha, mix.packing_fraction(), state);
         return {v.total, v.kinetic};
       };
+      if (s == 1 && !mix.enskog) {  // \ref eta_usf_steady "docs/shear-viscosity.md"
+        out.steady_shear_grad = vt::steady_shear_grad(mix.restitution(0, 0));
+        out.approximations.emplace_back("steady_shear", "grad");
+      }
       const auto hcs = reduced(vt::State::homogeneous_cooling);
       const auto hss = reduced(vt::State::gaussian_thermostat);
       out.shear_viscosity_hcs = hcs[0];

@@ -197,6 +197,21 @@ double dilute_reduced_viscosity(double alpha, State state, double a2) {
       "viscosity::dilute_reduced_viscosity");
 }
 
+SteadyShear steady_shear_grad(double alpha) {
+  require_restitution(alpha, "viscosity::steady_shear_grad");
+  // \ref eta_usf_steady "docs/shear-viscosity.md": the moment equations of P_ij in the steady state,
+  // a (delta_ix P_yj + delta_jx P_yi) = -nu (P_ij - p delta_ij) - zeta p delta_ij, at a2 = 0
+  const double nu = reduced_momentum_collision_frequency(alpha, 0.0), zeta = reduced_cooling_rate(alpha, 0.0);
+  const double normal = 1.0 - zeta / nu;  // P_yy/p = P_zz/p
+  SteadyShear steady;
+  steady.reduced_shear_rate = std::sqrt(1.5 * zeta * nu * nu / (nu - zeta));  // the trace: -a P_xy = (3/2) zeta p
+  steady.pressure_yy = steady.pressure_zz = normal;
+  steady.pressure_xx = 1.0 + 2.0 * zeta / nu;
+  steady.pressure_xy = -steady.reduced_shear_rate * normal / nu;
+  steady.viscosity = normal / nu;
+  return steady;
+}
+
 double dilute_reduced_viscosity(double alpha, State state) {
   require_restitution(alpha, "viscosity::dilute_reduced_viscosity");
   return dilute_reduced_viscosity(alpha, state, sonine_a2(alpha));

@@ -661,6 +661,223 @@ std::vector<std::vector<double>> run_in_time(const std::vector<double>& mass, co
   return out;
 }
 
+
+/// The steady uniform shear flow mode (--shear a, with --density and --t-end): the homogeneous gas in the
+/// Lagrangian frame of the flow u_x = a y, whose peculiar velocities stream as dV_x/dt = -a V_y between
+/// collisions, exactly: each particle keeps its velocity at the time t_last of its last collision, and
+/// V_x(t) = vx - a vy (t - t_last). No thermostat: viscous heating and collisional cooling balance in the
+/// steady state. Candidates in real time as in run_in_time: each pair, accepted or not, advances time by an
+/// exponential with rate (N - 1) n pi sigma_max^2 v_max, accepted with sigma_ij^2 |g(t)|/(sigma_max^2 2 v_max).
+/// The bound holds over an epoch of strain a Delta = 0.01: |V(t)| <= |V(t0)| (1 + a (t - t0)), so v_max is the
+/// largest speed at the epoch's start times 1 + a Delta, raised when a collision leaves a particle faster
+/// than v_max/(1 + a Delta). Every `sample_every` from `average_from` to `t_end` it measures T, T_k/T and the
+/// kinetic pressure tensor over p = n T, sum m V_i V_j/(N T) (V relative to the mean velocity), without
+/// changing the state; the run's result is the mean over those samples.
+struct ShearResult {
+  double temperature = 0.0;
+  std::vector<double> ratio;      // T_k/T
+  std::vector<double> pressure;   // P_xx/p, P_yy/p, P_zz/p, P_xy/p
+};
+
+ShearResult run_shear(const std::vector<double>& mass, const std::vector<double>& diameter,
+                      const std::vector<double>& density, double alpha, std::size_t n, double shear_rate,
+                      double initial_temperature, double t_end, double average_from, double sample_every,
+                      std::uint64_t seed) {
+  const std::size_t s = mass.size();
+  const double pi = 3.14159265358979323846;
+  Random rng(seed);
+  double n_total = 0.0;
+  for (double x : density) n_total += x;
+  std::vector<std::size_t> kind(n);
+  {
+    std::size_t i = 0;
+    for (std::size_t k = 0; k < s; ++k) {
+      const std::size_t count = k + 1 == s ? n - i : static_cast<std::size_t>(std::llround(n * density[k] / n_total));
+      for (std::size_t c = 0; c < count && i < n; ++c) kind[i++] = k;
+    }
+  }
+  std::vector<double> vx(n), vy(n), vz(n), t_last(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double sd = std::sqrt(initial_temperature / mass[kind[i]]);
+    vx[i] = sd * rng.normal();
+    vy[i] = sd * rng.normal();
+    vz[i] = sd * rng.normal();
+  }
+  double sigma_max = 0.0;
+  for (double d : diameter) sigma_max = std::max(sigma_max, d);
+  std::vector<double> sigma2(s * s), fraction_to(s * s);
+  for (std::size_t a = 0; a < s; ++a)
+    for (std::size_t b = 0; b < s; ++b) {
+      const double sab = 0.5 * (diameter[a] + diameter[b]);
+      sigma2[a * s + b] = sab * sab / (sigma_max * sigma_max);
+      fraction_to[a * s + b] = mass[b] / (mass[a] + mass[b]) * (1.0 + alpha);
+    }
+  const double epoch = 0.01 / shear_rate, margin = 1.0 + shear_rate * epoch;
+  const double rate_per_speed = static_cast<double>(n - 1) * n_total * pi * sigma_max * sigma_max;
+  auto bring = [&](std::size_t i, double t) {  // particle i's velocity at time t
+    vx[i] -= shear_rate * vy[i] * (t - t_last[i]);
+    t_last[i] = t;
+  };
+  ShearResult result;
+  result.ratio.assign(s, 0.0);
+  result.pressure.assign(4, 0.0);
+  double samples = 0.0;
+  auto measure = [&](double t) {
+    std::vector<double> wx(n);
+    double px = 0, py = 0, pz = 0, mt = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double m = mass[kind[i]];
+      wx[i] = vx[i] - shear_rate * vy[i] * (t - t_last[i]);
+      px += m * wx[i];
+      py += m * vy[i];
+      pz += m * vz[i];
+      mt += m;
+    }
+    const double ux = px / mt, uy = py / mt, uz = pz / mt;
+    std::vector<double> e(s, 0.0), count(s, 0.0);
+    double pxx = 0, pyy = 0, pzz = 0, pxy = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double m = mass[kind[i]], x = wx[i] - ux, y = vy[i] - uy, z = vz[i] - uz;
+      pxx += m * x * x;
+      pyy += m * y * y;
+      pzz += m * z * z;
+      pxy += m * x * y;
+      e[kind[i]] += m * (x * x + y * y + z * z);
+      count[kind[i]] += 1.0;
+    }
+    const double temperature = (pxx + pyy + pzz) / (3.0 * static_cast<double>(n));
+    result.temperature += temperature;
+    for (std::size_t k = 0; k < s; ++k) result.ratio[k] += e[k] / (3.0 * count[k]) / temperature;
+    const double nt = static_cast<double>(n) * temperature;
+    result.pressure[0] += pxx / nt;
+    result.pressure[1] += pyy / nt;
+    result.pressure[2] += pzz / nt;
+    result.pressure[3] += pxy / nt;
+    samples += 1.0;
+  };
+  double t = 0.0, next_sample = average_from;
+  while (t < t_end) {
+    // an epoch: every particle brought to t, the bound over the epoch
+    const double epoch_end = std::min(t + epoch, t_end);
+    double vmax2 = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      bring(i, t);
+      vmax2 = std::max(vmax2, vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i]);
+    }
+    double vmax = std::sqrt(vmax2) * margin;
+    for (;;) {
+      const double wait = -std::log(1.0 - rng.uniform()) / (rate_per_speed * vmax);
+      // samples that fall before the next candidate (the process is memoryless: the wait is redrawn
+      // from the epoch's end, never needed from a sample)
+      while (next_sample <= t_end && next_sample < std::min(t + wait, epoch_end)) {
+        measure(next_sample);
+        next_sample += sample_every;
+      }
+      if (t + wait >= epoch_end) {
+        t = epoch_end;
+        break;
+      }
+      t += wait;
+      const std::size_t i = rng.below(n);
+      std::size_t j = rng.below(n - 1);
+      if (j >= i) ++j;
+      bring(i, t);
+      bring(j, t);
+      const double gx = vx[i] - vx[j], gy = vy[i] - vy[j], gz = vz[i] - vz[j];
+      const double g = std::sqrt(gx * gx + gy * gy + gz * gz);
+      const std::size_t a = kind[i], b = kind[j];
+      if (rng.uniform() * 2.0 * vmax >= sigma2[a * s + b] * g) continue;
+      // e with density ~ (g.e) on the hemisphere about g (as in run)
+      const double ct = std::sqrt(rng.uniform()), st = std::sqrt(1.0 - ct * ct);
+      const double phi = 2.0 * pi * rng.uniform();
+      const double hx = gx / g, hy = gy / g, hz = gz / g;
+      double ox, oy, oz;
+      if (std::abs(hx) < 0.9) {
+        ox = 0.0;
+        oy = hz;
+        oz = -hy;
+      } else {
+        ox = -hz;
+        oy = 0.0;
+        oz = hx;
+      }
+      const double on = std::sqrt(ox * ox + oy * oy + oz * oz);
+      ox /= on;
+      oy /= on;
+      oz /= on;
+      const double qx = hy * oz - hz * oy, qy = hz * ox - hx * oz, qz = hx * oy - hy * ox;
+      const double ex = ct * hx + st * (std::cos(phi) * ox + std::sin(phi) * qx);
+      const double ey = ct * hy + st * (std::cos(phi) * oy + std::sin(phi) * qy);
+      const double ez = ct * hz + st * (std::cos(phi) * oz + std::sin(phi) * qz);
+      const double ge = g * ct;
+      const double di = fraction_to[a * s + b] * ge, dj = fraction_to[b * s + a] * ge;
+      vx[i] -= di * ex;
+      vy[i] -= di * ey;
+      vz[i] -= di * ez;
+      vx[j] += dj * ex;
+      vy[j] += dj * ey;
+      vz[j] += dj * ez;
+      const double fastest = std::max(vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i], vx[j] * vx[j] + vy[j] * vy[j] + vz[j] * vz[j]);
+      vmax = std::max(vmax, std::sqrt(fastest) * margin);
+    }
+  }
+  while (next_sample <= t_end * (1.0 + 1e-12)) {  // a sample at t_end itself
+    measure(next_sample);
+    next_sample += sample_every;
+  }
+  result.temperature /= samples;
+  for (double& r : result.ratio) r /= samples;
+  for (double& p : result.pressure) p /= samples;
+  return result;
+}
+
+/// --shear: `replicas` runs of run_shear, their means and standard errors; for one species also the
+/// reduced shear rate a* = a eta_0(T)/(n T), eta_0 = (5/(16 sigma^2)) sqrt(m T/pi) (the elastic first
+/// Chapman-Enskog viscosity), of each replica's mean T.
+int shear_mode(const std::vector<double>& mass, const std::vector<double>& diameter, const std::vector<double>& density,
+               double alpha, std::size_t n, double shear, double initial_temperature, double t_end, double average_from,
+               double sample_every, std::size_t replicas, std::uint64_t seed, int argc, char** argv) {
+  const std::size_t s = mass.size();
+  if (s == 0 || diameter.size() != s || density.size() != s || !(alpha >= 0.0 && alpha < 1.0) || !(shear > 0.0) ||
+      !(t_end > 0.0) || !(average_from >= 0.0 && average_from <= t_end) || !(sample_every > 0.0) ||
+      !(initial_temperature > 0.0) || replicas < 2 || n < 100) {
+    std::fprintf(stderr, "usage: hcs_reference --shear a --mass ... --diameter ... --density n1,... --alpha a (< 1) "
+                         "--t-end T --average-from T0 --sample-every dt [--temperature T0] [--particles N] "
+                         "[--replicas R >= 2] [--seed s]\n");
+    return 2;
+  }
+  std::vector<ShearResult> all;
+  for (std::size_t r = 0; r < replicas; ++r)
+    all.push_back(run_shear(mass, diameter, density, alpha, n, shear, initial_temperature, t_end, average_from,
+                            sample_every, seed * 1000003ULL + r));
+  const double rep = static_cast<double>(replicas);
+  auto print = [&](const char* name, auto&& value) {
+    double mean = 0.0, var = 0.0;
+    for (const auto& a : all) mean += value(a) / rep;
+    for (const auto& a : all) var += (value(a) - mean) * (value(a) - mean);
+    std::printf("%s %.9e %.3e\n", name, mean, std::sqrt(var / (rep - 1.0) / rep));
+  };
+  std::printf("# hcs_reference (steady uniform shear flow): %zu replicas x %zu particles, a = %g, t_end = %g, "
+              "averaged from %g every %g\n", replicas, n, shear, t_end, average_from, sample_every);
+  std::printf("# command:");
+  for (int a = 1; a < argc; ++a) std::printf(" %s", argv[a]);
+  std::printf("\n# quantity value se\n");
+  print("temperature", [](const ShearResult& a) { return a.temperature; });
+  for (std::size_t k = 0; k < s; ++k) {
+    const std::string name = "temperature_ratio_" + std::to_string(k + 1);
+    print(name.c_str(), [k](const ShearResult& a) { return a.ratio[k]; });
+  }
+  const char* components[4] = {"pressure_xx", "pressure_yy", "pressure_zz", "pressure_xy"};
+  for (std::size_t c = 0; c < 4; ++c) print(components[c], [c](const ShearResult& a) { return a.pressure[c]; });
+  if (s == 1) {
+    const double pi = 3.14159265358979323846;
+    print("reduced_shear_rate", [&](const ShearResult& a) {
+      const double eta0 = 5.0 / (16.0 * diameter[0] * diameter[0]) * std::sqrt(mass[0] * a.temperature / pi);
+      return shear * eta0 / (density[0] * a.temperature);
+    });
+  }
+  return 0;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -675,6 +892,7 @@ int main(int argc, char** argv) {
   bool want_msd = false;
   double visco_beta = -1.0, msd_start = -1.0;
   bool want_visco_check = false;
+  double shear = -1.0, t_end = -1.0, average_from = -1.0, sample_every = -1.0, initial_temperature = 1.0;
   for (int i = 1; i + 1 < argc; i += 2) {
     const char* key = argv[i];
     const char* value = argv[i + 1];
@@ -698,6 +916,11 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(key, "--visco-beta")) visco_beta = std::atof(value);
     else if (!std::strcmp(key, "--msd-start")) msd_start = std::atof(value);
     else if (!std::strcmp(key, "--visco-check")) want_visco_check = std::atoi(value) != 0;
+    else if (!std::strcmp(key, "--shear")) shear = std::atof(value);
+    else if (!std::strcmp(key, "--t-end")) t_end = std::atof(value);
+    else if (!std::strcmp(key, "--average-from")) average_from = std::atof(value);
+    else if (!std::strcmp(key, "--sample-every")) sample_every = std::atof(value);
+    else if (!std::strcmp(key, "--temperature")) initial_temperature = std::atof(value);
     else {
       std::fprintf(stderr, "hcs_reference: unknown option %s\n", key);
       return 2;
@@ -706,6 +929,8 @@ int main(int argc, char** argv) {
   if (want_visco_check) return visco_check();
   const std::size_t s = mass.size();
   const bool visco = visco_beta >= 0.0;
+  if (shear >= 0.0) return shear_mode(mass, diameter, density, alpha, n, shear, initial_temperature, t_end,
+                                       average_from, sample_every, replicas, seed, argc, argv);
   if (!density.empty()) {  // the time-resolved mode
     if (density.size() != s || diameter.size() != s || log_times.size() != 3 || !(log_times[0] > 0.0) ||
         !(log_times[1] > log_times[0]) || log_times[2] < 3 || !(visco || (alpha >= 0.0 && alpha <= 1.0)) ||
