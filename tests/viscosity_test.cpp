@@ -88,6 +88,31 @@ TEST(ViscosityOneComponent, SteadyShearGradByHand) {
   EXPECT_THROW(viscosity::steady_shear_grad(1.1), std::invalid_argument);
 }
 
+// Grad's steady shear flow of a binary mixture (\ref eta_usf_steady "docs/shear-viscosity.md"): two mechanically
+// identical species are one species (a*, P_ij/p, equal temperatures); with unequal species the balances of both
+// species hold at the solution: -a P_i,xy = (3/2) zeta_i p_i is built in, and the total trace is 3 p.
+TEST(ViscosityMixture, SteadyShearGradOfIdenticalSpeciesIsOneSpecies) {
+  const Mixture same = make_mixture({1.0, 1.0}, {1.0, 1.0}, {0.004, 0.006}, PairMatrix::uniform(2, 0.7), false);
+  const auto mixture = viscosity::steady_shear_grad(same);
+  const auto one = viscosity::steady_shear_grad(0.7);
+  EXPECT_NEAR(mixture.temperature_ratio[0], 1.0, 1e-10);
+  EXPECT_NEAR(mixture.temperature_ratio[1], 1.0, 1e-10);
+  EXPECT_NEAR(mixture.reduced_shear_rate, one.reduced_shear_rate, 1e-10);
+  EXPECT_NEAR(mixture.pressure_xx, one.pressure_xx, 1e-10);
+  EXPECT_NEAR(mixture.pressure_yy, one.pressure_yy, 1e-10);
+  EXPECT_NEAR(mixture.pressure_xy, one.pressure_xy, 1e-10);
+  const Mixture unlike = make_mixture({1.0, 4.0}, {1.0, 1.5}, {0.005, 0.005}, PairMatrix::uniform(2, 0.8), false);
+  const auto u = viscosity::steady_shear_grad(unlike);
+  EXPECT_NEAR(0.5 * (u.temperature_ratio[0] + u.temperature_ratio[1]), 1.0, 1e-12);  // x_i T_i/T adds up to 1
+  EXPECT_NEAR(u.pressure_xx + u.pressure_yy + u.pressure_zz, 3.0, 1e-12);
+  EXPECT_LT(u.temperature_ratio[0], 1.0);  // the light species the colder, as the independent program finds
+  EXPECT_THROW(viscosity::steady_shear_grad(make_mixture({1.0}, {1.0}, {0.01}, PairMatrix::uniform(1, 0.7), false)),
+               std::invalid_argument);
+  // the second method's values of this mixture (validation/independent_reference/usf_binary_alpha0.8.txt):
+  // T_1/T = 0.87371 +- 0.00033; Grad is 0.2 % below
+  EXPECT_NEAR(u.temperature_ratio[0], 0.8737, 0.003);
+}
+
 TEST(ViscosityOneComponent, ElasticLimitAndOrdering) {
   EXPECT_DOUBLE_EQ(viscosity::dilute_reduced_viscosity(1.0, hcs), 1.0);
   EXPECT_DOUBLE_EQ(viscosity::dilute_reduced_viscosity(1.0, hss), 1.0);

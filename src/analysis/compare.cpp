@@ -671,20 +671,38 @@ namespace {
 
 /// The steady shear flow without thermostat of one dilute species: a* and P_ij/p at the last sample beside
 /// Grad's solution (\ref eta_usf_steady "docs/shear-viscosity.md"), the run taken to have reached the steady state.
-void add_steady_shear(Point& pt, const io::config::Config& config, const theory::viscosity::SteadyShear& grad,
+void add_steady_shear(Point& pt, const io::config::Config& config, const theory::viscosity::MixtureSteadyShear& grad,
                       const Measured& m) {
   if (!m.has("reduced_shear_rate") || !m.has("pressure_tensor")) return;
   const auto& rate = m.observables.at("reduced_shear_rate");
   const auto& pressure = m.observables.at("pressure_tensor");
   if (rate.value.empty() || pressure.value.size() < 6) return;
+  // known errors from the second method for one species (the table of docs/shear-viscosity.md); none for mixtures
+  const bool one = grad.temperature_ratio.size() == 1;
   const double alpha = config.mixture().restitution(0, 0);
-  const char* source = "docs/shear-viscosity.md#eta_usf_steady: |Grad - the independent program| at alpha = 0.9, 0.7, 0.5";
+  const std::string source = one ? "docs/shear-viscosity.md#eta_usf_steady: |Grad - the independent program| at alpha = 0.9, 0.7, 0.5"
+                                 : kNone;
   const auto add = [&](const std::string& name, const std::string& label, double value, double error, double theory,
                        std::size_t which) {
-    Quantity q{name, label, "grad", source, {}, 1, {value}, {error}, {theory}, {steady_shear_known_error(alpha, which)}};
+    Quantity q{name, label, "grad", source, {}, 1, {value}, {error}, {theory},
+               {one ? steady_shear_known_error(alpha, which) : kNaN}};
     q.at = "last sample";
     pt.quantities.push_back(std::move(q));
   };
+  if (!one && m.has("temperature") && m.has("total_temperature")) {  // T_k/T of the mixture
+    const auto& t = m.observables.at("temperature");
+    const auto& total = m.observables.at("total_temperature");
+    const std::size_t s = grad.temperature_ratio.size();
+    if (t.value.size() >= s && !total.value.empty()) {
+      const double mean = total.value.back(), mean_error = total.error.empty() ? kNaN : total.error.back();
+      for (std::size_t k = 0; k < s; ++k) {
+        const double tk = t.value[t.value.size() - s + k], tk_error = t.error.empty() ? kNaN : t.error[t.error.size() - s + k];
+        const double ratio = tk / mean;
+        add("steady_shear_temperature_ratio_" + std::to_string(k + 1), "T_" + std::to_string(k + 1) + "/T", ratio,
+            ratio * std::hypot(tk_error / tk, mean_error / mean), grad.temperature_ratio[k], 0);
+      }
+    }
+  }
   add("steady_shear_rate", "a*", rate.value.back(), rate.error.empty() ? kNaN : rate.error.back(),
       grad.reduced_shear_rate, 0);
   // p = tr P/3 of the same sample (the tensor is sampled at the middle of the streaming jump, the temperature

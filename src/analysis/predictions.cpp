@@ -281,6 +281,25 @@ void add_sonine(Predictions& out, const species::Mixture& mix, const std::option
   }
 }
 
+/// The steady shear flow without thermostat in Grad's solution (\ref eta_usf_steady "docs/shear-viscosity.md"): one
+/// dilute species or a dilute binary of smooth spheres.
+void add_steady_shear(Predictions& out, const species::Mixture& mix, bool rough) {
+  namespace vt = viscosity;
+  if (rough || mix.enskog || mix.size() > 2) return;
+  try {
+    if (mix.size() == 1) {
+      const auto one = vt::steady_shear_grad(mix.restitution(0, 0));
+      out.steady_shear_grad = vt::MixtureSteadyShear{{1.0}, one.reduced_shear_rate, one.pressure_xx, one.pressure_yy,
+                                                     one.pressure_zz, one.pressure_xy};
+    } else {
+      out.steady_shear_grad = vt::steady_shear_grad(mix);
+    }
+    out.approximations.emplace_back("steady_shear", "grad");
+  } catch (const std::exception& e) {
+    out.notes.push_back(std::string("steady_shear left out: ") + e.what());
+  }
+}
+
 /// The shear viscosity (below).
 void add_viscosity(Predictions& out, const species::Mixture& mix, const std::optional<species::PairMatrix>& beta) {
   const std::size_t s = mix.size();
@@ -304,10 +323,6 @@ void add_viscosity(Predictions& out, const species::Mixture& mix, const std::opt
         const auto v = vt::enskog_reduced_viscosity(alpha, mix.packing_fraction(), state);
         return {v.total, v.kinetic};
       };
-      if (s == 1 && !mix.enskog) {  // \ref eta_usf_steady "docs/shear-viscosity.md"
-        out.steady_shear_grad = vt::steady_shear_grad(mix.restitution(0, 0));
-        out.approximations.emplace_back("steady_shear", "grad");
-      }
       const auto hcs = reduced(vt::State::homogeneous_cooling);
       const auto hss = reduced(vt::State::gaussian_thermostat);
       out.shear_viscosity_hcs = hcs[0];
@@ -471,6 +486,7 @@ Predictions predict(const io::config::Config& config, const smoluchowski::Stop& 
   add_diffusion(out, config, mix, beta, history);
   add_sonine(out, mix, beta);
   add_viscosity(out, mix, beta);
+  add_steady_shear(out, mix, config.rough() || beta.has_value());
   if (config.thermostat.kind == io::config::ThermostatKind::white_noise) add_white_noise(out, config, mix);
   return out;
 }

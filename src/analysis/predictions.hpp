@@ -87,9 +87,9 @@ struct Predictions {
   /// Binary mixtures: nu eta_0/(n T), which turns eta/eta_0 into Montanero 2003's eta* = nu eta/(n T)
   /// (Figs. 10-12; nu = sqrt(pi) n sigma_12^2 v0); it does not depend on T.
   std::optional<double> shear_viscosity_reduced_factor;
-  /// One dilute species of smooth spheres: the steady shear flow without thermostat in Grad's solution
-  /// (a*, eta/eta_0, P_ij/p; theory/viscosity.hpp steady_shear_grad, \ref eta_usf_steady "docs/shear-viscosity.md").
-  std::optional<theory::viscosity::SteadyShear> steady_shear_grad;
+  /// One dilute species or a dilute binary mixture of smooth spheres: the steady shear flow without thermostat in
+  /// Grad's solution (T_k/T, a*, P_ij/p; theory/viscosity.hpp steady_shear_grad, \ref eta_usf_steady "docs/shear-viscosity.md").
+  std::optional<theory::viscosity::MixtureSteadyShear> steady_shear_grad;
   std::optional<AggFragPrediction> agg_frag;          ///< &agg_frag runs: the Smoluchowski solution
   /// Rough spheres of one species: the Maxwellian HCS theta = T_rot/T_tr and zeta_tr/nu (theory/rough.hpp).
   std::optional<theory::rough::CoolingState> rough_hcs_maxwellian;

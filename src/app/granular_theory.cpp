@@ -62,9 +62,10 @@ const char* kUsage =
     "  shear_viscosity_reduced {hcs, hss} binary mixtures: eta* = nu eta/(n T), nu = sqrt(pi) n sigma_12^2 v0,\n"
     "                       v0 = sqrt(2 T (m1 + m2)/(m1 m2)), the units of Montanero 2003, Figs. 10-12\n"
     "  shear_viscosity_kinetic_reduced {hcs, hss} its kinetic part eta_k*, Enskog binary mixtures (Fig. 10)\n"
-    "  steady_shear         {reduced_shear_rate, viscosity_ratio, pressure_over_p: [xx, yy, zz, xy]} one dilute\n"
-    "                       species: the steady shear flow without thermostat in Grad's solution, a* = a eta_0/(n T),\n"
-    "                       eta/eta_0 and P_ij/(n T) (docs/shear-viscosity.md, \"Steady shear flow without thermostat\")\n"
+    "  steady_shear         {temperature_over_mean, reduced_shear_rate, pressure_over_p: [xx, yy, zz, xy]} one\n"
+    "                       dilute species or a dilute binary: the steady shear flow without thermostat in Grad's\n"
+    "                       solution, T_k/T, a* = a eta_0/(n T) (eta_0 of the elastic gas or mixture) and P_ij/p\n"
+    "                       (docs/shear-viscosity.md, \"Steady shear flow without thermostat\")\n"
     "  diffusion_coefficient_ratio  [D_k/D_1] (Bodrova and Osinsky 2024, eq. (19), docs/diffusion-msd.md); msd {time, value[t][k]} (eq 17)\n"
     "                       when &output track_displacements = .true. (not with msd_start_temperature)\n"
     "With &system roughness (rough spheres, docs/rough-spheres.md), one species: temperature is T_tr, and\n"
@@ -297,8 +298,8 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
   }
   if (p.steady_shear_grad) {
     const auto& u = *p.steady_shear_grad;
-    json << ",\n" << in << "\"steady_shear\": {\"reduced_shear_rate\": " << number(u.reduced_shear_rate)
-         << ", \"viscosity_ratio\": " << number(u.viscosity) << ", \"pressure_over_p\": "
+    json << ",\n" << in << "\"steady_shear\": {\"temperature_over_mean\": " << array(u.temperature_ratio)
+         << ", \"reduced_shear_rate\": " << number(u.reduced_shear_rate) << ", \"pressure_over_p\": "
          << array({u.pressure_xx, u.pressure_yy, u.pressure_zz, u.pressure_xy}) << "}";
   }
   // The approximation behind every key printed (\ref output_theory "docs/output.md"), and the units.

@@ -163,6 +163,43 @@ MixtureViscosity solve_mixture(const species::Mixture& mix, const std::vector<do
   return result;
 }
 
+/// The steady shear flow's two conditions for the mixture at partial temperatures T_i (mixture T = 1):
+/// A_i = a^2 = (3/2) [tau (zeta p)]_i / (p_i + Pi_i,yy), Pi_yy = -tau^-1 (zeta p), one value per species
+/// (\ref eta_usf_steady "docs/shear-viscosity.md"), and the partial stresses of that state.
+struct ShearBalance {
+  std::vector<double> shear_rate2;            ///< A_i: the a^2 species i's balance asks for
+  std::vector<double> pressure_yy, pressure_xy_times_a;  ///< P_i,yy and a P_i,xy = -(3/2) zeta_i p_i
+};
+
+ShearBalance shear_balance(const species::Mixture& mix, const std::vector<double>& temperature) {
+  const std::size_t s = mix.size();
+  const TauSystem system(mix, temperature, 1.0, Variant::state);
+  const species::PairMatrix xi = cooling_rate_matrix(mix, temperature);
+  Eigen::MatrixXd tau(s, s);
+  Eigen::VectorXd loss(s), pressure(s);  // zeta_i p_i, p_i
+  for (std::size_t i = 0; i < s; ++i) {
+    double zeta_i = 0.0;
+    for (std::size_t j = 0; j < s; ++j) {
+      tau(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = system.tau(i, j);
+      zeta_i += xi(i, j);
+    }
+    pressure(static_cast<Eigen::Index>(i)) = mix.number_density[i] * temperature[i];
+    loss(static_cast<Eigen::Index>(i)) = zeta_i * pressure(static_cast<Eigen::Index>(i));
+  }
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> solver(tau);
+  if (!solver.isInvertible()) throw std::runtime_error("viscosity::steady_shear_grad: the tau system is singular");
+  const Eigen::VectorXd traceless_yy = -solver.solve(loss);  // tau Pi_yy = (2/3) a P_xy = -zeta p
+  const Eigen::VectorXd heating = 1.5 * (tau * loss);        // a^2 (p + Pi_yy) = (3/2) tau (zeta p)
+  ShearBalance b;
+  for (std::size_t i = 0; i < s; ++i) {
+    const auto k = static_cast<Eigen::Index>(i);
+    b.pressure_yy.push_back(pressure(k) + traceless_yy(k));
+    b.shear_rate2.push_back(heating(k) / b.pressure_yy.back());
+    b.pressure_xy_times_a.push_back(-1.5 * loss(k));
+  }
+  return b;
+}
+
 }  // namespace
 
 double cooling_coefficient(State state) {
@@ -209,6 +246,45 @@ SteadyShear steady_shear_grad(double alpha) {
   steady.pressure_xx = 1.0 + 2.0 * zeta / nu;
   steady.pressure_xy = -steady.reduced_shear_rate * normal / nu;
   steady.viscosity = normal / nu;
+  return steady;
+}
+
+MixtureSteadyShear steady_shear_grad(const species::Mixture& mix) {
+  if (mix.size() != 2 || mix.enskog)
+    throw std::invalid_argument("viscosity::steady_shear_grad: a dilute binary mixture only");
+  for (double alpha : mix.restitution.values) require_restitution(alpha, "viscosity::steady_shear_grad");
+  // T_1/T_2 = gamma such that both species' balances ask for the same a^2 (bisection in ln gamma), T = 1
+  const auto temperatures = [&](double gamma) {
+    const double x1 = mix.mole_fraction(0), t2 = 1.0 / (1.0 + x1 * (gamma - 1.0));
+    return std::vector<double>{gamma * t2, t2};
+  };
+  const auto mismatch = [&](double log_gamma) {
+    const auto b = shear_balance(mix, temperatures(std::exp(log_gamma)));
+    return b.shear_rate2[0] - b.shear_rate2[1];
+  };
+  double lo = std::log(1e-3), hi = std::log(1e3);
+  const double f_lo = mismatch(lo);
+  if (!(f_lo * mismatch(hi) < 0.0))
+    throw std::runtime_error("viscosity::steady_shear_grad: no temperature ratio in [1e-3, 1e3] balances both species");
+  for (int it = 0; it < 200 && hi - lo > 1e-15; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    ((mismatch(mid) < 0.0) == (f_lo < 0.0) ? lo : hi) = mid;
+  }
+  const auto t = temperatures(std::exp(0.5 * (lo + hi)));
+  const auto b = shear_balance(mix, t);
+  const double a = std::sqrt(0.5 * (b.shear_rate2[0] + b.shear_rate2[1]));
+  const double p = mix.total_density();  // n T at T = 1
+  MixtureSteadyShear steady;
+  steady.temperature_ratio = t;
+  steady.reduced_shear_rate = a * elastic_mixture_viscosity(mix, 1.0) / p;
+  double yy = 0.0, xy = 0.0;
+  for (std::size_t i = 0; i < 2; ++i) {
+    yy += b.pressure_yy[i];
+    xy += b.pressure_xy_times_a[i] / a;
+  }
+  steady.pressure_yy = steady.pressure_zz = yy / p;
+  steady.pressure_xx = 3.0 - 2.0 * steady.pressure_yy;
+  steady.pressure_xy = xy / p;
   return steady;
 }
 

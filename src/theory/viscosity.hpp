@@ -106,8 +106,14 @@
  * Montanero and Garzo 2002, Granular Matter 4, 17), with nu_eta*, zeta* above at a2 = 0:
  *   a*^2 = (3/2) zeta* nu_eta*^2/(nu_eta* - zeta*),  P_yy/p = P_zz/p = 1 - zeta* / nu_eta*,
  *   P_xx/p = 1 + 2 zeta* / nu_eta*,  P_xy/p = -a* (1 - zeta* / nu_eta*)/nu_eta*,  eta/eta_0 = (1 - zeta* / nu_eta*)/nu_eta*.
+ * Binary mixtures (steady_shear_grad(mix); the approach of Montanero and Garzo 2002): each species a Maxwellian at
+ * its T_i times Grad's term, the collisional moment of P_i = -sum_j tau_ij Pi_j - zeta_i p_i I with the tau_ij of
+ * \ref viscosity_mixture and zeta_i = sum_j xi_ij; the steady state: -a P_i,xy = (3/2) zeta_i p_i,
+ * Pi_yy = Pi_zz = -tau^-1 (zeta p) and a^2 (p_i + Pi_i,yy) = (3/2) [tau (zeta p)]_i, one a^2 per species, equal at
+ * the temperature ratio sought (bisection in ln(T_1/T_2)).
  * Its error is measured against the independent program of validation/independent_reference (a* 1.5 % low
- * at alpha = 0.9, 5.5 % at 0.7, 9.3 % at 0.5; validation/shear_viscosity README, "Steady shear flow").
+ * at alpha = 0.9, 5.5 % at 0.7, 9.3 % at 0.5; the binary's T_1/T 0.2 % and a* 3.7 % low; validation/shear_viscosity
+ * README, "Steady shear flow without thermostat").
  *
  * \subsection viscosity_units Units
  * Any consistent units with k_B = 1: eta in mass/(length time), e.g. eta_0 = (5/(16 sigma^2))
@@ -178,6 +184,21 @@ struct SteadyShear {
 
 /// \ref eta_usf_steady "docs/shear-viscosity.md": Grad's steady state at restitution alpha in [0, 1].
 SteadyShear steady_shear_grad(double alpha);
+
+/// The same for a dilute binary mixture (\ref viscosity_usf): the partial temperatures and the mixture's
+/// a* (over the elastic mixture's eta_0) and P_ij/p.
+struct MixtureSteadyShear {
+  std::vector<double> temperature_ratio;  ///< T_i/T
+  double reduced_shear_rate = 0.0;        ///< a* = a eta_0(T)/(n T), eta_0 of the elastic mixture
+  double pressure_xx = 0.0;               ///< P_xx/p
+  double pressure_yy = 0.0;               ///< P_yy/p
+  double pressure_zz = 0.0;               ///< P_zz/p (= P_yy/p)
+  double pressure_xy = 0.0;               ///< P_xy/p
+};
+
+/// \ref eta_usf_steady "docs/shear-viscosity.md": Grad's steady state of a dilute binary mixture; throws
+/// std::invalid_argument for another mixture, std::runtime_error when no temperature ratio balances it.
+MixtureSteadyShear steady_shear_grad(const species::Mixture& mix);
 
 /// One-component Enskog viscosity in units of eta_0 (see \ref viscosity_enskog_one).
 struct EnskogReducedViscosity {
