@@ -326,7 +326,7 @@ std::pair<int, double> interrupt_an_endless_run(
     CliFixture& f, useconds_t wait_us,
     const std::string& output = "  file = 'out.h5', n_samples = 3, checkpoint_every = 0.2",
     const std::string& end = "  t_end = 1e30, allow_long_run = .true., replicas = 1",
-    const std::string& restitution = "  restitution = 0.9") {
+    const std::string& restitution = "  restitution = 0.9", bool quiet = true) {
   // It cools by ~50 decades: its relative speeds drown in round-off and events become ever rarer
   // among the candidates, so a loop that counted events only would not look at the signal again.
   auto lines = gdsmc::test::base_namelist_lines(output);
@@ -344,7 +344,8 @@ std::pair<int, double> interrupt_an_endless_run(
     if (::chdir(f.dir.c_str()) != 0) ::_exit(120);
     if (!std::freopen((f.capture / "stderr").c_str(), "w", stderr)) ::_exit(121);
     const std::string tool = (fs::path(GDSMC_BIN_DIR) / "granular-dsmc").string();
-    ::execl(tool.c_str(), tool.c_str(), "t.nml", "--quiet", static_cast<char*>(nullptr));
+    if (quiet) ::execl(tool.c_str(), tool.c_str(), "t.nml", "--quiet", static_cast<char*>(nullptr));
+    ::execl(tool.c_str(), tool.c_str(), "t.nml", static_cast<char*>(nullptr));
     ::_exit(122);
   }
   ::usleep(wait_us);
@@ -372,6 +373,21 @@ TEST_F(CliDsmc, AnEndlessRunStopsAtSigintLeavingOnlyTheCheckpoint) {
   const std::string err = read_text(capture / "stderr");
   EXPECT_EQ(err, "granular-dsmc: interrupted: no output written; resume with --restart out.checkpoint.h5\n");
   EXPECT_EQ(files(), (std::vector<std::string>{"out.checkpoint.h5", "t.nml"}));
+}
+
+// Without --quiet and with stderr not a terminal (a job script's log), the progress lines end themselves: the
+// interrupt is one line, not an empty line and then the message.
+TEST_F(CliDsmc, AnInterruptIsOneLineInALogFile) {
+  const auto [status, seconds] = interrupt_an_endless_run(*this, 1500000, "  file = 'out.h5', n_samples = 3, checkpoint_every = 0.2",
+                                                          "  t_end = 1e30, allow_long_run = .true., replicas = 1",
+                                                          "  restitution = 0.9", false);
+  EXPECT_EQ(status, 130);
+  const std::string err = read_text(capture / "stderr");
+  const std::string message = "granular-dsmc: interrupted: no output written; resume with --restart out.checkpoint.h5\n";
+  ASSERT_GE(err.size(), message.size()) << err;
+  EXPECT_EQ(err.substr(err.size() - message.size()), message);
+  EXPECT_EQ(err.find("\n\n"), std::string::npos) << err;  // no empty line
+  EXPECT_NE(err.front(), '\n') << err;
 }
 
 // A checkpoint belongs to its run: a fresh run over an interrupted run's checkpoint, another input's,

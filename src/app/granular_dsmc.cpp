@@ -514,7 +514,8 @@ int run(const Arguments& a, const gdsmc::io::config::Config& config, bool root) 
     print_summary(path, summary, a.quiet, root);
   } catch (const gdsmc::simulation::Interrupted& e) {
     if (!root) return 130;
-    std::cerr << (options.progress ? "\n" : "") << "granular-dsmc: " << e.what();
+    // (a terminal's progress line is rewritten in place and needs ending; elsewhere each progress line ends itself)
+    std::cerr << (options.progress && options.progress_terminal ? "\n" : "") << "granular-dsmc: " << e.what();
     // What is left to resume from (the checkpoint of the last safe point, when there is one).
     const std::string checkpoint = gdsmc::simulation::checkpoint_path(path);
     if (std::error_code ec; config.output.checkpoint_every && std::filesystem::exists(checkpoint, ec))
