@@ -656,11 +656,11 @@ Measured read_measured(const std::string& file, const std::string& root) {
 /// alpha = 1); NaN below 0.5, where no estimate was made. `which`: 0 a*, 1-4 P_xx, P_yy, P_zz, P_xy over p.
 double steady_shear_known_error(double alpha, std::size_t which) {
   constexpr double kAlpha[4] = {1.0, 0.9, 0.7, 0.5};
-  constexpr double kGap[5][4] = {{0.0, 0.00538, 0.03682, 0.08371},
-                                 {0.0, 0.00378, 0.00571, 0.00253},
-                                 {0.0, 0.00764, 0.01976, 0.03177},
-                                 {0.0, 0.01144, 0.02547, 0.02923},
-                                 {0.0, 0.00079, 0.00075, 0.00340}};
+  constexpr double kGap[5][4] = {{0.0, 0.00548, 0.03704, 0.08436},
+                                 {0.0, 0.00342, 0.00595, 0.00342},
+                                 {0.0, 0.00773, 0.01970, 0.03183},
+                                 {0.0, 0.01115, 0.02565, 0.02842},
+                                 {0.0, 0.00076, 0.00125, 0.00352}};
   if (!(alpha >= kAlpha[3])) return kNaN;
   for (std::size_t i = 1; i < 4; ++i)
     if (alpha >= kAlpha[i]) return std::max(kGap[which][i - 1], kGap[which][i]);

@@ -283,9 +283,12 @@ void add_sonine(Predictions& out, const species::Mixture& mix, const std::option
 
 /// The steady shear flow without thermostat in Grad's solution (\ref eta_usf_steady "docs/shear-viscosity.md"): one
 /// dilute species or a dilute binary of smooth spheres.
-void add_steady_shear(Predictions& out, const species::Mixture& mix, bool rough) {
+void add_steady_shear(Predictions& out, const species::Mixture& mix, bool rough, bool sheared) {
   namespace vt = viscosity;
   if (rough || mix.enskog || mix.size() > 2) return;
+  bool elastic = true;  // no steady shear flow: the elastic gas heats
+  for (double alpha : mix.restitution.values) elastic = elastic && alpha == 1.0;
+  if (elastic) return;
   try {
     if (mix.size() == 1) {
       const auto one = vt::steady_shear_grad(mix.restitution(0, 0));
@@ -296,7 +299,7 @@ void add_steady_shear(Predictions& out, const species::Mixture& mix, bool rough)
     }
     out.approximations.emplace_back("steady_shear", "grad");
   } catch (const std::exception& e) {
-    out.notes.push_back(std::string("steady_shear left out: ") + e.what());
+    if (sheared) out.notes.push_back(std::string("steady_shear left out: ") + e.what());  // (else no one asked)
   }
 }
 
@@ -486,7 +489,7 @@ Predictions predict(const io::config::Config& config, const smoluchowski::Stop& 
   add_diffusion(out, config, mix, beta, history);
   add_sonine(out, mix, beta);
   add_viscosity(out, mix, beta);
-  add_steady_shear(out, mix, config.rough() || beta.has_value());
+  add_steady_shear(out, mix, config.rough() || beta.has_value(), config.shear.rate.has_value());
   if (config.thermostat.kind == io::config::ThermostatKind::white_noise) add_white_noise(out, config, mix);
   return out;
 }

@@ -252,7 +252,12 @@ SteadyShear steady_shear_grad(double alpha) {
 MixtureSteadyShear steady_shear_grad(const species::Mixture& mix) {
   if (mix.size() != 2 || mix.enskog)
     throw std::invalid_argument("viscosity::steady_shear_grad: a dilute binary mixture only");
-  for (double alpha : mix.restitution.values) require_restitution(alpha, "viscosity::steady_shear_grad");
+  bool elastic = true;
+  for (double alpha : mix.restitution.values) {
+    require_restitution(alpha, "viscosity::steady_shear_grad");
+    elastic = elastic && alpha == 1.0;
+  }
+  if (elastic) throw std::invalid_argument("viscosity::steady_shear_grad: an elastic gas has no steady shear flow (it heats)");
   // T_1/T_2 = gamma such that both species' balances ask for the same a^2 (bisection in ln gamma), T = 1
   const auto temperatures = [&](double gamma) {
     const double x1 = mix.mole_fraction(0), t2 = 1.0 / (1.0 + x1 * (gamma - 1.0));
@@ -262,16 +267,19 @@ MixtureSteadyShear steady_shear_grad(const species::Mixture& mix) {
     const auto b = shear_balance(mix, temperatures(std::exp(log_gamma)));
     return b.shear_rate2[0] - b.shear_rate2[1];
   };
-  double lo = std::log(1e-3), hi = std::log(1e3);
+  double lo = std::log(1e-6), hi = std::log(1e6);
   const double f_lo = mismatch(lo);
   if (!(f_lo * mismatch(hi) < 0.0))
-    throw std::runtime_error("viscosity::steady_shear_grad: no temperature ratio in [1e-3, 1e3] balances both species");
+    throw std::runtime_error("viscosity::steady_shear_grad: no temperature ratio in [1e-6, 1e6] balances both species");
   for (int it = 0; it < 200 && hi - lo > 1e-15; ++it) {
     const double mid = 0.5 * (lo + hi);
     ((mismatch(mid) < 0.0) == (f_lo < 0.0) ? lo : hi) = mid;
   }
   const auto t = temperatures(std::exp(0.5 * (lo + hi)));
   const auto b = shear_balance(mix, t);
+  for (std::size_t i = 0; i < 2; ++i)
+    if (!(b.shear_rate2[i] > 0.0) || !(b.pressure_yy[i] > 0.0))
+      throw std::runtime_error("viscosity::steady_shear_grad: Grad's solution has no positive a^2 and P_yy here");
   const double a = std::sqrt(0.5 * (b.shear_rate2[0] + b.shear_rate2[1]));
   const double p = mix.total_density();  // n T at T = 1
   MixtureSteadyShear steady;

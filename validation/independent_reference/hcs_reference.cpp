@@ -33,6 +33,11 @@
 // one line "phi b low high value se" per bin.
 // --expect-*: compare gamma = T_1/T_2 (or c_1) with a published value at 4 combined SE, print PASS or
 // FAIL and exit 1 on FAIL: how ctest checks this program itself against the literature (README.md).
+//        hcs_reference --shear a --mass ... --diameter ... --density n1,... --alpha a --t-end T --average-from T0
+//                      --sample-every dt [--temperature T0] [--particles N] [--replicas R] [--seed s] [--expect-balance 1]
+// the steady uniform shear flow without thermostat (run_shear): T, T_k/T, P_ij/(n T), the energy balance
+// heating/loss and, for one species, a* = a eta_0(T)/(n T), each "quantity value se" (validation/shear_viscosity);
+// --expect-balance 1: PASS or FAIL of heating/loss = 1 at 4 SE, exit 1 on FAIL.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -672,11 +677,14 @@ std::vector<std::vector<double>> run_in_time(const std::vector<double>& mass, co
 /// largest speed at the epoch's start times 1 + a Delta, raised when a collision leaves a particle faster
 /// than v_max/(1 + a Delta). Every `sample_every` from `average_from` to `t_end` it measures T, T_k/T and the
 /// kinetic pressure tensor over p = n T, sum m V_i V_j/(N T) (V relative to the mean velocity), without
-/// changing the state; the run's result is the mean over those samples.
+/// changing the state; the run's result is the mean over those samples. Over the same stretch it adds up the
+/// viscous heating -a int sum m V_x V_y dt exactly (between collisions sum m V_x V_y falls as -a sum m V_y^2 t) and
+/// the energy the collisions lose: in the steady state their ratio is 1 (heating_over_loss).
 struct ShearResult {
   double temperature = 0.0;
   std::vector<double> ratio;      // T_k/T
   std::vector<double> pressure;   // P_xx/p, P_yy/p, P_zz/p, P_xy/p
+  double heating_over_loss = 0.0;  // the energy balance over the averaged stretch: viscous heating / collisional loss
 };
 
 ShearResult run_shear(const std::vector<double>& mass, const std::vector<double>& diameter,
@@ -697,11 +705,23 @@ ShearResult run_shear(const std::vector<double>& mass, const std::vector<double>
     }
   }
   std::vector<double> vx(n), vy(n), vz(n), t_last(n, 0.0);
+  double px = 0.0, py = 0.0, pz = 0.0, total_mass = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     const double sd = std::sqrt(initial_temperature / mass[kind[i]]);
     vx[i] = sd * rng.normal();
     vy[i] = sd * rng.normal();
     vz[i] = sd * rng.normal();
+    px += mass[kind[i]] * vx[i];
+    py += mass[kind[i]] * vy[i];
+    pz += mass[kind[i]] * vz[i];
+    total_mass += mass[kind[i]];
+  }
+  // Zero total momentum: a mean V_y would shear the mean V_x, u_x(t) = u_x(0) - a u_y t, and the energy of that
+  // growing bulk flow would enter the heating but not the loss (collisions conserve momentum: it stays zero).
+  for (std::size_t i = 0; i < n; ++i) {
+    vx[i] -= px / total_mass;
+    vy[i] -= py / total_mass;
+    vz[i] -= pz / total_mass;
   }
   double sigma_max = 0.0;
   for (double d : diameter) sigma_max = std::max(sigma_max, d);
@@ -717,6 +737,24 @@ ShearResult run_shear(const std::vector<double>& mass, const std::vector<double>
   auto bring = [&](std::size_t i, double t) {  // particle i's velocity at time t
     vx[i] -= shear_rate * vy[i] * (t - t_last[i]);
     t_last[i] = t;
+  };
+  // The energy balance: S_xy = sum m V_x V_y and S_yy = sum m V_y^2 at time `now`, the heating and the loss
+  double s_xy = 0.0, s_yy = 0.0, now = 0.0, heating = 0.0, loss = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    s_xy += mass[kind[i]] * vx[i] * vy[i];
+    s_yy += mass[kind[i]] * vy[i] * vy[i];
+  }
+  auto stream_sums = [&](double t) {  // S_xy to time t, the heating of [now, t] when it is averaged over
+    const double dt = t - now;
+    if (now >= average_from) heating += -shear_rate * (s_xy * dt - 0.5 * shear_rate * s_yy * dt * dt);
+    s_xy -= shear_rate * s_yy * dt;
+    now = t;
+  };
+  auto pair_sums = [&](std::size_t i, double sign) {  // particle i's share of S_xy, S_yy and its energy
+    const double m = mass[kind[i]];
+    s_xy += sign * m * vx[i] * vy[i];
+    s_yy += sign * m * vy[i] * vy[i];
+    return sign * 0.5 * m * (vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i]);
   };
   ShearResult result;
   result.ratio.assign(s, 0.0);
@@ -775,6 +813,7 @@ ShearResult run_shear(const std::vector<double>& mass, const std::vector<double>
       }
       if (t + wait >= epoch_end) {
         t = epoch_end;
+        stream_sums(t);
         break;
       }
       t += wait;
@@ -811,12 +850,16 @@ ShearResult run_shear(const std::vector<double>& mass, const std::vector<double>
       const double ez = ct * hz + st * (std::cos(phi) * oz + std::sin(phi) * qz);
       const double ge = g * ct;
       const double di = fraction_to[a * s + b] * ge, dj = fraction_to[b * s + a] * ge;
+      stream_sums(t);
+      const double before = pair_sums(i, -1.0) + pair_sums(j, -1.0);
       vx[i] -= di * ex;
       vy[i] -= di * ey;
       vz[i] -= di * ez;
       vx[j] += dj * ex;
       vy[j] += dj * ey;
       vz[j] += dj * ez;
+      const double after = pair_sums(i, 1.0) + pair_sums(j, 1.0);
+      if (t >= average_from) loss += -before - after;  // (before is minus the energy before)
       const double fastest = std::max(vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i], vx[j] * vx[j] + vy[j] * vy[j] + vz[j] * vz[j]);
       vmax = std::max(vmax, std::sqrt(fastest) * margin);
     }
@@ -825,6 +868,7 @@ ShearResult run_shear(const std::vector<double>& mass, const std::vector<double>
     measure(next_sample);
     next_sample += sample_every;
   }
+  result.heating_over_loss = heating / loss;
   result.temperature /= samples;
   for (double& r : result.ratio) r /= samples;
   for (double& p : result.pressure) p /= samples;
@@ -836,7 +880,7 @@ ShearResult run_shear(const std::vector<double>& mass, const std::vector<double>
 /// Chapman-Enskog viscosity), of each replica's mean T.
 int shear_mode(const std::vector<double>& mass, const std::vector<double>& diameter, const std::vector<double>& density,
                double alpha, std::size_t n, double shear, double initial_temperature, double t_end, double average_from,
-               double sample_every, std::size_t replicas, std::uint64_t seed, int argc, char** argv) {
+               double sample_every, std::size_t replicas, std::uint64_t seed, bool expect_balance, int argc, char** argv) {
   const std::size_t s = mass.size();
   if (s == 0 || diameter.size() != s || density.size() != s || !(alpha >= 0.0 && alpha < 1.0) || !(shear > 0.0) ||
       !(t_end > 0.0) || !(average_from >= 0.0 && average_from <= t_end) || !(sample_every > 0.0) ||
@@ -869,6 +913,17 @@ int shear_mode(const std::vector<double>& mass, const std::vector<double>& diame
   }
   const char* components[4] = {"pressure_xx", "pressure_yy", "pressure_zz", "pressure_xy"};
   for (std::size_t c = 0; c < 4; ++c) print(components[c], [c](const ShearResult& a) { return a.pressure[c]; });
+  print("heating_over_loss", [](const ShearResult& a) { return a.heating_over_loss; });
+  int status = 0;
+  if (expect_balance) {  // the steady state's energy balance, exact: heating / loss = 1 at 4 SE
+    double mean = 0.0, var = 0.0;
+    for (const auto& a : all) mean += a.heating_over_loss / rep;
+    for (const auto& a : all) var += (a.heating_over_loss - mean) * (a.heating_over_loss - mean);
+    const double se = std::sqrt(var / (rep - 1.0) / rep), z = std::abs(mean - 1.0) / se;
+    std::printf("%s the energy balance: viscous heating / collisional loss = %.5f +- %.5f against 1: %.2f SE (tolerance 4)\n",
+                z <= 4.0 ? "PASS" : "FAIL", mean, se, z);
+    if (z > 4.0) status = 1;
+  }
   if (s == 1) {
     const double pi = 3.14159265358979323846;
     print("reduced_shear_rate", [&](const ShearResult& a) {
@@ -876,7 +931,7 @@ int shear_mode(const std::vector<double>& mass, const std::vector<double>& diame
       return shear * eta0 / (density[0] * a.temperature);
     });
   }
-  return 0;
+  return status;
 }
 }  // namespace
 
@@ -893,6 +948,7 @@ int main(int argc, char** argv) {
   double visco_beta = -1.0, msd_start = -1.0;
   bool want_visco_check = false;
   double shear = -1.0, t_end = -1.0, average_from = -1.0, sample_every = -1.0, initial_temperature = 1.0;
+  bool expect_balance = false;
   for (int i = 1; i + 1 < argc; i += 2) {
     const char* key = argv[i];
     const char* value = argv[i + 1];
@@ -921,6 +977,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(key, "--average-from")) average_from = std::atof(value);
     else if (!std::strcmp(key, "--sample-every")) sample_every = std::atof(value);
     else if (!std::strcmp(key, "--temperature")) initial_temperature = std::atof(value);
+    else if (!std::strcmp(key, "--expect-balance")) expect_balance = std::atoi(value) != 0;
     else {
       std::fprintf(stderr, "hcs_reference: unknown option %s\n", key);
       return 2;
@@ -930,7 +987,7 @@ int main(int argc, char** argv) {
   const std::size_t s = mass.size();
   const bool visco = visco_beta >= 0.0;
   if (shear >= 0.0) return shear_mode(mass, diameter, density, alpha, n, shear, initial_temperature, t_end,
-                                       average_from, sample_every, replicas, seed, argc, argv);
+                                       average_from, sample_every, replicas, seed, expect_balance, argc, argv);
   if (!density.empty()) {  // the time-resolved mode
     if (density.size() != s || diameter.size() != s || log_times.size() != 3 || !(log_times[0] > 0.0) ||
         !(log_times[1] > log_times[0]) || log_times[2] < 3 || !(visco || (alpha >= 0.0 && alpha <= 1.0)) ||
