@@ -162,6 +162,7 @@ TEST(CompareRows, SteadyShearAgainstGrad) {
   EXPECT_NEAR(find(pt, "steady_shear_pressure_zz").value[0], 0.84, 1e-12);
   EXPECT_DOUBLE_EQ(cmp::steady_shear_known_error(0.8, 2), 0.01970);
   EXPECT_DOUBLE_EQ(cmp::steady_shear_known_error(0.95, 0), 0.00548);
+  EXPECT_DOUBLE_EQ(cmp::steady_shear_known_error(0.5, 1), 0.00342);  // a table point: its own gap
   EXPECT_TRUE(std::isnan(cmp::steady_shear_known_error(0.4, 0)));
   // with the Gaussian thermostat the state is another one: no steady-shear rows
   c.thermostat.kind = gdsmc::io::config::ThermostatKind::gaussian;

@@ -652,7 +652,7 @@ Measured read_measured(const std::string& file, const std::string& root) {
 }
 
 /// The known error of Grad's steady shear flow (\ref eta_usf_steady "docs/shear-viscosity.md"): |Grad - the independent
-/// program| at alpha = 0.9, 0.7, 0.5 (the table there), the larger of the two table points around alpha (0 at
+/// program| at alpha = 0.9, 0.7, 0.5 (the table there), at a table point its own, between two the larger (0 at
 /// alpha = 1); NaN below 0.5, where no estimate was made. `which`: 0 a*, 1-4 P_xx, P_yy, P_zz, P_xy over p.
 double steady_shear_known_error(double alpha, std::size_t which) {
   constexpr double kAlpha[4] = {1.0, 0.9, 0.7, 0.5};
@@ -662,8 +662,10 @@ double steady_shear_known_error(double alpha, std::size_t which) {
                                  {0.0, 0.01115, 0.02565, 0.02842},
                                  {0.0, 0.00076, 0.00125, 0.00352}};
   if (!(alpha >= kAlpha[3])) return kNaN;
+  for (std::size_t i = 0; i < 4; ++i)
+    if (alpha == kAlpha[i]) return kGap[which][i];  // a table point: its own gap
   for (std::size_t i = 1; i < 4; ++i)
-    if (alpha >= kAlpha[i]) return std::max(kGap[which][i - 1], kGap[which][i]);
+    if (alpha > kAlpha[i]) return std::max(kGap[which][i - 1], kGap[which][i]);
   return kNaN;
 }
 

@@ -205,7 +205,7 @@ double cumulant_known_error(const species::Mixture& mix);
 /// Known error of the first-Sonine HSS eta/eta_0 relative to the value, NaN where none is stated.
 double shear_viscosity_known_error(const species::Mixture& mix);
 /// Known error of Grad's steady shear flow at restitution alpha (\ref eta_usf_steady "docs/shear-viscosity.md"):
-/// |Grad - the independent program| at the table's alpha = 0.9, 0.7, 0.5, the larger of the two around alpha (0 at
+/// |Grad - the independent program| at the table's alpha = 0.9, 0.7, 0.5 (between two points the larger; 0 at
 /// alpha = 1, where no steady state exists), NaN below 0.5; `which` 0: a*, 1-4: P_xx, P_yy, P_zz, P_xy over p.
 double steady_shear_known_error(double alpha, std::size_t which);
 
