@@ -118,6 +118,34 @@ std::vector<double> contact_values(const std::vector<double>& diameter, const st
   return chi;
 }
 
+/// The collision vector e with density ~ (g.e) on the hemisphere about g (cos theta = sqrt(u) about g, the
+/// azimuth uniform, two draws in this order); returns g.e. g = |(gx, gy, gz)| > 0.
+double contact(Random& rng, double gx, double gy, double gz, double g, double& ex, double& ey, double& ez) {
+  const double ct = std::sqrt(rng.uniform()), st = std::sqrt(1.0 - ct * ct);
+  const double phi = 2.0 * 3.14159265358979323846 * rng.uniform();
+  const double hx = gx / g, hy = gy / g, hz = gz / g;
+  // an orthonormal pair perpendicular to h
+  double px, py, pz;
+  if (std::abs(hx) < 0.9) {
+    px = 0.0;
+    py = hz;
+    pz = -hy;
+  } else {
+    px = -hz;
+    py = 0.0;
+    pz = hx;
+  }
+  const double pn = std::sqrt(px * px + py * py + pz * pz);
+  px /= pn;
+  py /= pn;
+  pz /= pn;
+  const double qx = hy * pz - hz * py, qy = hz * px - hx * pz, qz = hx * py - hy * px;
+  ex = ct * hx + st * (std::cos(phi) * px + std::sin(phi) * qx);
+  ey = ct * hy + st * (std::cos(phi) * py + std::sin(phi) * qy);
+  ez = ct * hz + st * (std::cos(phi) * pz + std::sin(phi) * qz);
+  return g * ct;
+}
+
 struct Result {
   std::vector<double> ratio, cumulant;  // T_k/T, c_k (replica means)
   std::vector<double> phi;              // Phi_1(v*) per bin (replica mean), when asked for
@@ -204,30 +232,8 @@ Result run(const std::vector<double>& mass, const std::vector<double>& diameter,
       const double g = std::sqrt(gx * gx + gy * gy + gz * gz);
       const std::size_t a = kind[i], b = kind[j];
       if (rng.uniform() * 2.0 * vmax >= sigma2[a * s + b] * g) continue;
-      // e with density ~ (g.e) on the hemisphere about g: cos theta = sqrt(u).
-      const double ct = std::sqrt(rng.uniform()), st = std::sqrt(1.0 - ct * ct);
-      const double phi = 2.0 * 3.14159265358979323846 * rng.uniform();
-      const double hx = gx / g, hy = gy / g, hz = gz / g;
-      // an orthonormal pair perpendicular to h
-      double px, py, pz;
-      if (std::abs(hx) < 0.9) {
-        px = 0.0;
-        py = hz;
-        pz = -hy;
-      } else {
-        px = -hz;
-        py = 0.0;
-        pz = hx;
-      }
-      const double pn = std::sqrt(px * px + py * py + pz * pz);
-      px /= pn;
-      py /= pn;
-      pz /= pn;
-      const double qx = hy * pz - hz * py, qy = hz * px - hx * pz, qz = hx * py - hy * px;
-      const double ex = ct * hx + st * (std::cos(phi) * px + std::sin(phi) * qx);
-      const double ey = ct * hy + st * (std::cos(phi) * py + std::sin(phi) * qy);
-      const double ez = ct * hz + st * (std::cos(phi) * pz + std::sin(phi) * qz);
-      const double ge = g * ct;
+      double ex, ey, ez;
+      const double ge = contact(rng, gx, gy, gz, g, ex, ey, ez);
       const double di = fraction_to[a * s + b] * ge, dj = fraction_to[b * s + a] * ge;
       vx[i] -= di * ex;
       vy[i] -= di * ey;
@@ -615,28 +621,8 @@ std::vector<std::vector<double>> run_in_time(const std::vector<double>& mass, co
     const double g = std::sqrt(gx * gx + gy * gy + gz * gz);
     const std::size_t a = kind[i], b = kind[j];
     if (rng.uniform() * 2.0 * vmax >= sigma2[a * s + b] * g) continue;
-    const double ct = std::sqrt(rng.uniform()), st = std::sqrt(1.0 - ct * ct);
-    const double phi = 2.0 * pi * rng.uniform();
-    const double hx = gx / g, hy = gy / g, hz = gz / g;
-    double px, py, pz;
-    if (std::abs(hx) < 0.9) {
-      px = 0.0;
-      py = hz;
-      pz = -hy;
-    } else {
-      px = -hz;
-      py = 0.0;
-      pz = hx;
-    }
-    const double pn = std::sqrt(px * px + py * py + pz * pz);
-    px /= pn;
-    py /= pn;
-    pz /= pn;
-    const double qx = hy * pz - hz * py, qy = hz * px - hx * pz, qz = hx * py - hy * px;
-    const double ex = ct * hx + st * (std::cos(phi) * px + std::sin(phi) * qx);
-    const double ey = ct * hy + st * (std::cos(phi) * py + std::sin(phi) * qy);
-    const double ez = ct * hz + st * (std::cos(phi) * pz + std::sin(phi) * qz);
-    const double ge = g * ct;
+    double ex, ey, ez;
+    const double ge = contact(rng, gx, gy, gz, g, ex, ey, ez);
     double restitution = alpha;
     if (visco) {  // |g.e| of the real velocities is ge / scale
       const double u = sqrt_beta[a * s + b] * std::pow(ge / scale, 0.1);
@@ -826,29 +812,8 @@ ShearResult run_shear(const std::vector<double>& mass, const std::vector<double>
       const double g = std::sqrt(gx * gx + gy * gy + gz * gz);
       const std::size_t a = kind[i], b = kind[j];
       if (rng.uniform() * 2.0 * vmax >= sigma2[a * s + b] * g) continue;
-      // e with density ~ (g.e) on the hemisphere about g (as in run)
-      const double ct = std::sqrt(rng.uniform()), st = std::sqrt(1.0 - ct * ct);
-      const double phi = 2.0 * pi * rng.uniform();
-      const double hx = gx / g, hy = gy / g, hz = gz / g;
-      double ox, oy, oz;
-      if (std::abs(hx) < 0.9) {
-        ox = 0.0;
-        oy = hz;
-        oz = -hy;
-      } else {
-        ox = -hz;
-        oy = 0.0;
-        oz = hx;
-      }
-      const double on = std::sqrt(ox * ox + oy * oy + oz * oz);
-      ox /= on;
-      oy /= on;
-      oz /= on;
-      const double qx = hy * oz - hz * oy, qy = hz * ox - hx * oz, qz = hx * oy - hy * ox;
-      const double ex = ct * hx + st * (std::cos(phi) * ox + std::sin(phi) * qx);
-      const double ey = ct * hy + st * (std::cos(phi) * oy + std::sin(phi) * qy);
-      const double ez = ct * hz + st * (std::cos(phi) * oz + std::sin(phi) * qz);
-      const double ge = g * ct;
+      double ex, ey, ez;
+      const double ge = contact(rng, gx, gy, gz, g, ex, ey, ez);
       const double di = fraction_to[a * s + b] * ge, dj = fraction_to[b * s + a] * ge;
       stream_sums(t);
       const double before = pair_sums(i, -1.0) + pair_sums(j, -1.0);
