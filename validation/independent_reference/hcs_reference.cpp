@@ -118,6 +118,20 @@ std::vector<double> contact_values(const std::vector<double>& diameter, const st
   return chi;
 }
 
+/// The species of each of n particles, in proportion to the number densities (the last species takes the rest).
+std::vector<std::size_t> species_by_density(const std::vector<double>& density, std::size_t n) {
+  const std::size_t s = density.size();
+  double n_total = 0.0;
+  for (double x : density) n_total += x;
+  std::vector<std::size_t> kind(n);
+  std::size_t i = 0;
+  for (std::size_t k = 0; k < s; ++k) {
+    const std::size_t count = k + 1 == s ? n - i : static_cast<std::size_t>(std::llround(n * density[k] / n_total));
+    for (std::size_t c = 0; c < count && i < n; ++c) kind[i++] = k;
+  }
+  return kind;
+}
+
 /// The collision vector e with density ~ (g.e) on the hemisphere about g (cos theta = sqrt(u) about g, the
 /// azimuth uniform, two draws in this order); returns g.e. g = |(gx, gy, gz)| > 0.
 double contact(Random& rng, double gx, double gy, double gz, double g, double& ex, double& ey, double& ez) {
@@ -459,14 +473,7 @@ std::vector<std::vector<double>> run_in_time(const std::vector<double>& mass, co
   Random rng(seed);
   double n_total = 0.0;
   for (double x : density) n_total += x;
-  std::vector<std::size_t> kind(n);
-  {
-    std::size_t i = 0;
-    for (std::size_t k = 0; k < s; ++k) {
-      const std::size_t count = k + 1 == s ? n - i : static_cast<std::size_t>(std::llround(n * density[k] / n_total));
-      for (std::size_t c = 0; c < count && i < n; ++c) kind[i++] = k;
-    }
-  }
+  const std::vector<std::size_t> kind = species_by_density(density, n);
   std::vector<double> vx(n), vy(n), vz(n);
   for (std::size_t i = 0; i < n; ++i) {
     const double sd = 1.0 / std::sqrt(mass[kind[i]]);
@@ -682,14 +689,7 @@ ShearResult run_shear(const std::vector<double>& mass, const std::vector<double>
   Random rng(seed);
   double n_total = 0.0;
   for (double x : density) n_total += x;
-  std::vector<std::size_t> kind(n);
-  {
-    std::size_t i = 0;
-    for (std::size_t k = 0; k < s; ++k) {
-      const std::size_t count = k + 1 == s ? n - i : static_cast<std::size_t>(std::llround(n * density[k] / n_total));
-      for (std::size_t c = 0; c < count && i < n; ++c) kind[i++] = k;
-    }
-  }
+  const std::vector<std::size_t> kind = species_by_density(density, n);
   std::vector<double> vx(n), vy(n), vz(n), t_last(n, 0.0);
   double px = 0.0, py = 0.0, pz = 0.0, total_mass = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
