@@ -373,3 +373,34 @@ TEST(Stages, AForcingActsHalfAStageAtEachEndAndASampleSitsBetweenTheHalves) {
   for (std::size_t k = 0; k < 5; ++k) total += g.kick->times[k];
   EXPECT_NEAR(total, g.collider.time(), 1e-12 * g.collider.time());
 }
+
+// The shear state (thermostat.hpp ShearFlow; docs/output.md "The shear state"): each replica's time average, from
+// average_from on and without the first sample, of a* = a eta_0(T)/(n T) and P_ij/(n T) with T = tr P^k/(3 n) at the
+// middle of the streaming jump (not the sample's temperature, taken after it). By hand: n = 0.01, a = 0.02, eta_0(T)
+// = 2 sqrt(T) (a stand-in), two averaged samples with tr P^k/3 = 0.004 and 0.0025 (T = 0.4, 0.25).
+TEST(ShearFlow, TheShearStateAveragesAStarAndStressesAtTheMiddleOfTheJump) {
+  gdsmc::thermostat::ShearFlow shear(0.02, 10.0, 0.01, false, [](double t) { return 2.0 * std::sqrt(t); });
+  gdsmc::sample::Rows rows;
+  using Sample = gdsmc::thermostat::Forcing::Sample;
+  const auto sample = [](double time, double p, bool averaged) {
+    Sample s;
+    s.time = time;
+    s.total_temperature = 123.0;  // (after the jump: must not enter the shear state)
+    s.kinetic = {1.4 * p, 0.76 * p, 0.84 * p, -0.5 * p, 0.0, 0.0};
+    s.pressure = s.kinetic;
+    s.averaged = averaged;
+    return s;
+  };
+  shear.measure(sample(5.0, 0.003, true), rows);    // before average_from: not averaged
+  shear.measure(sample(10.0, 0.004, true), rows);   // T = 0.4: a* = 0.02 * 2 sqrt(0.4)/0.004
+  shear.measure(sample(20.0, 0.0025, true), rows);  // T = 0.25: a* = 0.02 * 2 * 0.5/0.0025
+  shear.finish(rows);
+  const auto& state = rows.rows.at("shear_state_average");
+  ASSERT_EQ(state.first, 5u);
+  ASSERT_EQ(state.second.size(), 5u);
+  EXPECT_NEAR(state.second[0], 0.5 * (0.04 * std::sqrt(0.4) / 0.004 + 0.04 * 0.5 / 0.0025), 1e-12);
+  EXPECT_NEAR(state.second[1], 1.4, 1e-12);
+  EXPECT_NEAR(state.second[2], 0.76, 1e-12);
+  EXPECT_NEAR(state.second[3], 0.84, 1e-12);
+  EXPECT_NEAR(state.second[4], -0.5, 1e-12);
+}

@@ -217,12 +217,21 @@ void ShearFlow::measure(const Sample& sample, sample::Rows& rows) {
     window_sum_ += eta;
     window_kinetic_sum_ += kinetic_part;
     window_samples_ += 1.0;
+    // T and P at the same point, the middle of the jump (the temperature of `sample` is after it: a dt |P_xy|/(3 n)
+    // higher); a* of that T (\ref eta_usf_steady "docs/shear-viscosity.md")
+    const double temperature = (sample.kinetic[0] + sample.kinetic[1] + sample.kinetic[2]) / (3.0 * density_);
+    const double nt = density_ * temperature;
+    state_sum_[0] += rate_ * elastic_viscosity_(temperature) / nt;
+    for (std::size_t c = 0; c < 4; ++c) state_sum_[c + 1] += sample.pressure[c] / nt;
   }
 }
 
 void ShearFlow::finish(sample::Rows& rows) const {
   if (!(window_samples_ > 0.0)) return;
   rows.add("shear_viscosity_average", 1, {window_sum_ / window_samples_});
+  std::vector<double> state(state_sum_.begin(), state_sum_.end());
+  for (double& x : state) x /= window_samples_;
+  rows.add("shear_state_average", 5, state);
   if (collisional_) rows.add("shear_viscosity_kinetic_average", 1, {window_kinetic_sum_ / window_samples_});
 }
 
@@ -230,12 +239,15 @@ void ShearFlow::save(state::Record& r) const {
   r.put("shear/window_sum", window_sum_);
   r.put("shear/window_kinetic_sum", window_kinetic_sum_);
   r.put("shear/window_samples", window_samples_);
+  r.put("shear/state_sum", std::vector<double>(state_sum_.begin(), state_sum_.end()));
 }
 
 void ShearFlow::restore(const state::Record& r) {
   window_sum_ = r.real("shear/window_sum");
   window_kinetic_sum_ = r.real("shear/window_kinetic_sum");
   window_samples_ = r.real("shear/window_samples");
+  const auto state = r.array("shear/state_sum", state_sum_.size());  // (a checkpoint written before it: refused)
+  std::copy(state.begin(), state.end(), state_sum_.begin());
 }
 
 Stages::Stages(const species::Mixture& mix, particles::System& sys, collide::Collider& collider,

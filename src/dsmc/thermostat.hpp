@@ -274,6 +274,9 @@ class ShearFlow final : public Forcing {
   bool collisional_;
   std::function<double(double)> elastic_viscosity_;
   double window_sum_ = 0.0, window_kinetic_sum_ = 0.0, window_samples_ = 0.0;  ///< the time average's sums
+  /// The same window's sums of a* and P_ij/(n T), T = tr P^k/(3 n) at the middle of the streaming jump
+  /// (shear_state_average: a*, P_xx, P_yy, P_zz, P_xy over n T).
+  std::array<double, 5> state_sum_{};
 };
 
 /// The white-noise thermostat (\ref wn_forcing "docs/white-noise.md"; van Noije and Ernst 1998; mixtures: Barrat

@@ -142,6 +142,24 @@ void write_per_replica(h5md::Writer& writer, const std::string& root, const conf
       if (const auto e = k.standard_error(); !e.empty()) writer.write_attribute(g, "time_average_kinetic_error", e.at(0));
     }
   }
+  if (acc.count("shear_state_average")) {
+    // Each replica's time average of a* and P_ij/(n T) (the steady shear flow), its mean and SE over replicas.
+    const auto& a = acc.at("shear_state_average");
+    const std::string g = root + "/shear_state";
+    writer.write_dataset(g + "/value", a.mean(), {a.columns});
+    writer.write_unit(g + "/value", units::kDimensionless);
+    if (const auto e = a.standard_error(); !e.empty()) {
+      writer.write_dataset(g + "/error", e, {a.columns});
+      writer.write_unit(g + "/error", units::kDimensionless);
+    }
+    writer.write_attribute(g, "columns", std::string("reduced_shear_rate pxx pyy pzz pxy"));
+    writer.write_attribute(g, "average_from", config.shear.average_from.value_or(0.5 * *config.dsmc.t_end));
+    writer.write_attribute(g, "replicas", static_cast<long long>(a.values.size()));
+    writer.write_attribute(g, "description",
+                           std::string("each replica's time average from average_from on of a* = a eta_0(T)/(n T) and "
+                                       "P_ij/(n T), T = tr P^k/(3 n), at the middle of the streaming jump; error: "
+                                       "standard error over the replicas (docs/output.md)"));
+  }
   if (acc.count("msd_start")) {
     // Each replica's start (-1 if it never started); the mean is the time origin of msd.
     std::vector<double> start_times;

@@ -98,6 +98,10 @@ const std::vector<Observable>& table() {
        "a replica's time average of eta/eta_0 from &shear average_from on: the attribute time_average of /observables/shear_viscosity", R::per_replica, kShear},
       {"shear_viscosity_kinetic_average", "1", "1", "the same of the kinetic part: the attribute time_average_kinetic of /observables/shear_viscosity",
        R::per_replica, kShear},
+      {"shear_state_average", "1", "5: reduced_shear_rate pxx pyy pzz pxy",
+       "a replica's time average from &shear average_from on of a* and P_ij/(n T), T = tr P^k/(3 n), both at the middle "
+       "of the streaming jump: /observables/shear_state/value (the steady shear flow, docs/shear-viscosity.md)",
+       R::per_replica, kShear},
       // &agg_frag (docs/agg-frag.md)
       {"size_energy", "energy", "sizes", "kinetic energy about the mean flow of the clusters of each size (for temperature)", R::internal, kAggFrag},
       {"kinetic_energy", "energy", "1", "kinetic energy relative to the mean flow per initial monomer", R::series, kAggFrag},
