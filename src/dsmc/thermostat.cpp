@@ -246,8 +246,15 @@ void ShearFlow::restore(const state::Record& r) {
   window_sum_ = r.real("shear/window_sum");
   window_kinetic_sum_ = r.real("shear/window_kinetic_sum");
   window_samples_ = r.real("shear/window_samples");
-  const auto state = r.array("shear/state_sum", state_sum_.size());  // (a checkpoint written before it: refused)
-  std::copy(state.begin(), state.end(), state_sum_.begin());
+  if (r.has("shear/state_sum")) {
+    const auto state = r.array("shear/state_sum", state_sum_.size());
+    std::copy(state.begin(), state.end(), state_sum_.begin());
+  } else if (window_samples_ > 0.0) {  // a checkpoint of a version without the shear state, its window begun
+    throw state::StateError("'shear/state_sum' is missing: the checkpoint comes from a version of granular-dsmc without "
+                            "the shear state's averages, and its averaging window has begun; start the run again");
+  } else {
+    state_sum_ = {};  // (such a checkpoint before its window: nothing to add up yet)
+  }
 }
 
 Stages::Stages(const species::Mixture& mix, particles::System& sys, collide::Collider& collider,
