@@ -283,9 +283,14 @@ void add_sonine(Predictions& out, const species::Mixture& mix, const std::option
 
 /// The steady shear flow without thermostat in Grad's solution (\ref eta_usf_steady "docs/shear-viscosity.md"): one
 /// dilute species or a dilute binary of smooth spheres.
-void add_steady_shear(Predictions& out, const species::Mixture& mix, bool rough, bool sheared) {
+void add_steady_shear(Predictions& out, const species::Mixture& mix, bool rough, bool sheared) {  // sheared: &shear, no thermostat
   namespace vt = viscosity;
-  if (rough || mix.enskog || mix.size() > 2) return;
+  if (rough || mix.enskog || mix.size() > 2) {
+    if (sheared)
+      out.notes.push_back("steady_shear left out: Grad's steady shear flow is implemented for one dilute species or a "
+                          "dilute binary of smooth spheres (docs/shear-viscosity.md)");
+    return;
+  }
   bool elastic = true;  // no steady shear flow: the elastic gas heats
   for (double alpha : mix.restitution.values) elastic = elastic && alpha == 1.0;
   if (elastic) return;
@@ -489,7 +494,8 @@ Predictions predict(const io::config::Config& config, const smoluchowski::Stop& 
   add_diffusion(out, config, mix, beta, history);
   add_sonine(out, mix, beta);
   add_viscosity(out, mix, beta);
-  add_steady_shear(out, mix, config.rough() || beta.has_value(), config.shear.rate.has_value());
+  add_steady_shear(out, mix, config.rough() || beta.has_value(),
+                   config.shear.rate.has_value() && config.thermostat.kind == io::config::ThermostatKind::none);
   if (config.thermostat.kind == io::config::ThermostatKind::white_noise) add_white_noise(out, config, mix);
   return out;
 }
