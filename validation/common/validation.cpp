@@ -395,6 +395,20 @@ IndependentSeries read_independent_series(const std::string& file, const std::st
   return series;
 }
 
+std::map<std::string, std::pair<double, double>> read_independent_rows(const std::string& file) {
+  std::map<std::string, std::pair<double, double>> rows;
+  std::ifstream in(file);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    std::string name;
+    double value = NAN, se = NAN;
+    if (fields >> name >> value >> se) rows[name] = {value, se};
+  }
+  return rows;
+}
+
 ScalingState read_scaling_state(const std::string& file, const std::string& observables_root, std::size_t species) {
   ScalingState state;
   try {

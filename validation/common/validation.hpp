@@ -14,8 +14,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "run/simulation.hpp"
@@ -135,6 +137,10 @@ struct IndependentSeries {
 /// Reads the `keyword` rows of `file` with `species` value-error pairs each; stops at the first
 /// malformed row. An unreadable file gives no rows.
 IndependentSeries read_independent_series(const std::string& file, const std::string& keyword, std::size_t species);
+
+/// The rows "quantity value se" that validation/independent_reference's program writes in its --shear modes, by
+/// quantity; lines starting with '#' and malformed lines are skipped. An unreadable file gives no rows.
+std::map<std::string, std::pair<double, double>> read_independent_rows(const std::string& file);
 
 /// The scaling state of a run (its `scaling_state` group, docs/output.md): c_k and T_k/T of each replica
 /// averaged over its samples past `&output scaling_start`, then over the replicas, with the standard

@@ -7,9 +7,7 @@
 // and the independent program, fixed when they were measured, as its known error. See README.md in this folder.
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <utility>
 
@@ -20,23 +18,6 @@
 using namespace gdsmc;
 
 namespace {
-
-using Reference = std::map<std::string, std::pair<double, double>>;
-
-/// The rows "quantity value se" of the independent program's --shear output.
-Reference read_independent(const std::string& file) {
-  Reference rows;
-  std::ifstream in(file);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream fields(line);
-    std::string name;
-    double value = NAN, se = NAN;
-    if (fields >> name >> value >> se) rows[name] = {value, se};
-  }
-  return rows;
-}
 
 /// Grad's known errors, measured against the independent program when the theory was written (docs/
 /// shear-viscosity.md, \ref eta_usf_steady): one species, the table of analysis::compare::steady_shear_known_error;
@@ -110,7 +91,7 @@ int main(int argc, char** argv) {
               "4 SE of the two combined");
   if (!report.require("an independent reference file (--independent)", independent_file.has_value()))
     return report.exit_code();
-  const auto reference = read_independent(*independent_file);
+  const auto reference = validation::read_independent_rows(*independent_file);
   report.note("independent reference: " + *independent_file);
   const auto mix = run.config.mixture();
   if (!report.require("one species or a binary mixture, dilute", mix.size() <= 2 && !mix.enskog))
