@@ -271,7 +271,7 @@ double Gas::block_step_end() const {
   const double rate = sampler_.total();
   if (blocks() == 1 || !(rate > 0.0)) return time_;
   // block_steps step_fraction majorant mean free times (N/(2R) each), at most 2^22 candidates (under
-  // a second on one thread at ~0.2 us a candidate: the run notices a Ctrl-C between steps)
+  // a second on one thread at ~0.2 us a candidate; the blocks notice a Ctrl-C every 2^16, advance())
   const double dt = std::min(block_steps * step_fraction_ * static_cast<double>(clusters_) / (2.0 * rate),
                              4194304.0 / rate);
   return time_ + dt;
@@ -497,6 +497,9 @@ bool Gas::advance(double t_target, std::uint64_t event_target) {
     time_ += wait;
     credit_ = 0.0;
     counters_.candidates += 1;
+    // A blocked step holds up to 2^22 candidates per block: an interrupt is noticed every 2^16 (a few ms) and the
+    // step is abandoned (the gathered gas is only discarded); no draw depends on it.
+    if ((counters_.candidates & 0xFFFFu) == 0 && stop_flag_ && stop_flag_->load(std::memory_order_relaxed)) return false;
     const auto [row, column] = sampler_.sample(gen_, totals);
     const Cluster a{static_cast<std::uint32_t>(row + 1), 0}, b0{static_cast<std::uint32_t>(column + 1), 0};
     const auto& list_a = lists_[a.size];
