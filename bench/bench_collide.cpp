@@ -33,6 +33,8 @@
 #include "model/species.hpp"
 #include "io/config.hpp"
 
+#include "bench_args.hpp"
+
 using namespace gdsmc;
 
 namespace {
@@ -110,14 +112,19 @@ double median(std::vector<double> x) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::size_t n = argc > 1 ? std::strtoull(argv[1], nullptr, 10) : 1000000;
-  const double alpha = argc > 2 ? std::atof(argv[2]) : 0.9;
-  const double per_particle = argc > 3 ? std::atof(argv[3]) : 10.0;
+  const bench::Args args(argc, argv,
+                         "usage: bench_collide [N >= 100] [alpha in [0, 1]] [collisions_per_particle > 0] "
+                         "[block_size: 0 or >= 64] [paths|all] [rounds >= 1] [cheaper|scheme]",
+                         7);
+  const std::size_t n = args.whole(1, 1000000, 100);
+  const double alpha = args.real(2, 0.9, 0.0, 1.0);
+  const double per_particle = args.real(3, 10.0, 1e-9);
   // The default of &dsmc block_size; 0 measures the kernels without blocks.
-  const std::size_t block_size = argc > 4 ? std::strtoull(argv[4], nullptr, 10) : io::config::Dsmc{}.block_size;
-  const std::string selected = argc > 5 ? argv[5] : "";
-  const int rounds = argc > 6 ? std::max(1, std::atoi(argv[6])) : 1;
-  const std::string sampler = argc > 7 ? argv[7] : "cheaper";
+  const auto block_size = static_cast<std::size_t>(args.whole(4, io::config::Dsmc{}.block_size));
+  if (block_size != 0 && block_size < 64) args.fail("block_size must be 0 (no blocks) or at least 64");
+  const std::string selected = args.text(5, "");
+  const int rounds = static_cast<int>(args.whole(6, 1, 1, 1000));
+  const std::string sampler = args.text(7, "cheaper");
   if (sampler != "cheaper" && sampler != "scheme") {
     std::fprintf(stderr, "bench_collide: sampler must be 'cheaper' or 'scheme', not '%s'\n", sampler.c_str());
     return 2;

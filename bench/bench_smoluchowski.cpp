@@ -14,6 +14,8 @@
 #include "theory/smoluchowski.hpp"
 #include "theory/theory.hpp"
 
+#include "bench_args.hpp"
+
 namespace smol = gdsmc::theory::smoluchowski;
 
 namespace {
@@ -44,8 +46,12 @@ void run(const char* name, const smol::Parameters& p, double last_time_nu0) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const double sticking_end = argc > 1 ? std::stod(argv[1]) : 16.65;
-  const double full_end = argc > 2 ? std::stod(argv[2]) : 50.0;
+  const gdsmc::bench::Args args(argc, argv,
+                         "usage: bench_smoluchowski [t_end of the sticking run >= 0] [t_end of the full model >= 0] "
+                         "(0: that run skipped)",
+                         2);
+  const double sticking_end = args.real(1, 16.65, 0.0);
+  const double full_end = args.real(2, 50.0, 0.0);
   const double infinity = std::numeric_limits<double>::infinity();
   smol::Parameters full{.monomer_mass = 1.0, .monomer_diameter = 1.0, .monomer_density = 0.1,
                         .initial_temperature = 1.0, .restitution = 0.8,

@@ -26,6 +26,8 @@
 #include "theory/sonine_mixture.hpp"
 #include "theory/theory.hpp"
 
+#include "bench_args.hpp"
+
 namespace theory = gdsmc::theory;
 using gdsmc::species::Mixture;
 using gdsmc::species::PairMatrix;
@@ -86,8 +88,9 @@ void timed(const char* what, F&& f) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const gdsmc::bench::Args args(argc, argv, "usage: bench_theory [number of species >= 1 ...] (default 10 100 1000)", argc);
   std::vector<std::size_t> sizes;
-  for (int i = 1; i < argc; ++i) sizes.push_back(std::stoul(argv[i]));
+  for (int i = 1; i < argc; ++i) sizes.push_back(args.whole(i, 0, 1, 1000000));
   if (sizes.empty()) sizes = {10, 100, 1000};
   const Law laws[] = {{"dilute", 0.01, 1.5, false}, {"enskog", 0.05, 2.0, true}};
   const auto file = std::filesystem::temp_directory_path() /

@@ -18,6 +18,8 @@
 #include "run/simulation.hpp"
 #include "io/config.hpp"
 
+#include "bench_args.hpp"
+
 using namespace gdsmc;
 
 namespace {
@@ -51,9 +53,10 @@ double median(std::vector<double> x) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::size_t n = argc > 1 ? std::strtoull(argv[1], nullptr, 10) : 20000;
-  const double t_end = argc > 2 ? std::atof(argv[2]) : 4230.0;
-  const int rounds = argc > 3 ? std::atoi(argv[3]) : 5;
+  const bench::Args args(argc, argv, "usage: bench_usf [N >= 2] [t_end > 0] [rounds >= 1]", 3);
+  const std::size_t n = args.whole(1, 20000, 2);
+  const double t_end = args.real(2, 4230.0, 1e-9);
+  const int rounds = static_cast<int>(args.whole(3, 5, 1, 1000));
   const std::string stem = "/tmp/bench_usf." + std::to_string(getpid());
   std::vector<double> usf, hcs, ratio;
   std::printf("N = %zu, t_end = %g, one replica, one thread\n%8s %14s %14s %8s\n", n, t_end, "round", "USF coll/s",

@@ -6,7 +6,7 @@ figures (OUT_DIR/<figure>.pdf and .png) and the validation cases they draw:
   seed000_fig1_fig3_haff        Haff cooling T(t)/T_0       haff_cooling_alpha{0.9,0.5}
   seed000_fig2_fig4_collisions  N_c against T/T_0           haff_cooling_alpha{0.9,0.5}
   seed000_fig1_fig2_n2000       Figs 1-2 at N = 2000        haff_cooling_n2000_alpha0.9
-  seed000_fig5_velocity         velocity distribution       velocity_shell, velocity_cube
+  seed000_fig5_velocity         velocity distribution       velocity_shell, velocity_cube, velocity_shell_n2000_quick
   seed000_fig6_polydisperse     polydisperse T_k(t)         polydisperse
 A figure with one of its cases drawn is made (partial); e.g. one Haff run of your own at any restitution:
   seed000.py BUILD_DIR --run haff_cooling_alpha0.9=my-haff.h5 --out OUT_DIR
@@ -114,7 +114,8 @@ START_NAMES = {"shell": "from a speed shell", "cube": "from a uniform cube", "ma
 @figure("seed000_fig5_velocity")
 def velocity_figure():
     fig, ax, ar = with_residuals()
-    styles = {"velocity_shell": ("C0", "o"), "velocity_cube": ("C1", "s")}
+    # velocity_shell_n2000_quick: the paper's N = 2000 after N_c = 1.5e5 collisions (150 per particle)
+    styles = {"velocity_shell": ("C0", "o"), "velocity_cube": ("C1", "s"), "velocity_shell_n2000_quick": ("C2", "^")}
     for case, path in pick_some(list(styles)):
         color, marker = styles[case]
         with h5py.File(path) as f:
@@ -123,10 +124,11 @@ def velocity_figure():
             h = g["species_1/value"][()]
             err = g["species_1/error"][()] if "error" in g["species_1"] else None
             start = f["parameters/initial"].attrs["distribution"]
+            n_particles = int(f["parameters/dsmc"].attrs["n_particles"])
         mid = 0.5 * (edges[1:] + edges[:-1])
         maxwell = np.exp(-mid * mid / 2) / np.sqrt(2 * np.pi)
         ax.errorbar(mid, h[-1], yerr=None if err is None else err[-1], fmt=marker, mfc="none", color=color,
-                    label=f"DSMC, {START_NAMES.get(start, 'from a ' + start + ' start')}")
+                    label=f"DSMC, {START_NAMES.get(start, 'from a ' + start + ' start')}, N = {n_particles}")
         ax.plot(mid, h[0], ":", lw=1, color=color)
         if err is not None:
             residuals(ar, mid, h[-1], err[-1], maxwell, kind="se", fmt=marker, mfc="none", color=color)
