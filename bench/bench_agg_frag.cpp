@@ -77,9 +77,9 @@ void print(const char* name, const Run& r, double plain, double plain_blocked, s
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bench::Args args(argc, argv, "usage: bench_agg_frag [monomers N >= 100] [collisions per monomer > 0]", 2);
-  const std::size_t n = args.whole(1, 1000000, 100);
-  const double per_monomer = args.real(2, 10.0, 1e-9);
+  const bench::Args args(argc, argv, "usage: bench_agg_frag [monomers N: 100..1e9] [collisions per monomer: 0..1e4]", 2);
+  const std::size_t n = args.whole(1, 1000000, 100, 1000000000);
+  const double per_monomer = args.real(2, 10.0, 1e-9, 1e4);
   const double plain = plain_rate(n, 0);
   const double plain_blocked = plain_rate(n, static_cast<std::size_t>(io::config::Dsmc{}.block_size));
   std::printf("N = %zu monomers; plain one-species collisions/s: %.4g unblocked, %.4g with blocks\n", n, plain,

@@ -7,13 +7,22 @@
  */
 #pragma once
 
-#include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
+#include <system_error>
 
 namespace gdsmc::bench {
+
+/// `text` as a whole number in [least, most] (digits only: no sign, no blank, no wrap-around), else nothing.
+inline bool parse_whole(const char* text, unsigned long long least, unsigned long long most, unsigned long long& value) {
+  const char* last = text + std::strlen(text);
+  const auto [end, error] = std::from_chars(text, last, value);
+  return error == std::errc() && end == last && end != text && value >= least && value <= most;
+}
 
 class Args {
  public:
@@ -34,10 +43,8 @@ class Args {
                            unsigned long long most = ~0ull) const {
     if (!given(i)) return fallback;
     const char* text = argv_[i];
-    char* end = nullptr;
-    errno = 0;
-    const unsigned long long value = std::strtoull(text, &end, 10);
-    if (text[0] == '-' || end == text || *end != '\0' || errno == ERANGE || value < least || value > most)
+    unsigned long long value = 0;
+    if (!parse_whole(text, least, most, value))
       fail("argument " + std::to_string(i) + " '" + text + "' is not a whole number " +
            (most == ~0ull ? "of at least " + std::to_string(least)
                           : "in [" + std::to_string(least) + ", " + std::to_string(most) + "]"));
@@ -47,9 +54,10 @@ class Args {
   double real(int i, double fallback, double least = -HUGE_VAL, double most = HUGE_VAL) const {
     if (!given(i)) return fallback;
     const char* text = argv_[i];
-    char* end = nullptr;
-    const double value = std::strtod(text, &end);
-    if (end == text || *end != '\0' || !std::isfinite(value) || value < least || value > most)
+    const char* last = text + std::strlen(text);
+    double value = 0.0;
+    const auto [end, error] = std::from_chars(text, last, value);
+    if (error != std::errc() || end != last || end == text || !std::isfinite(value) || value < least || value > most)
       fail("argument " + std::to_string(i) + " '" + text + "' is not a finite number" +
            (least > -HUGE_VAL ? " of at least " + shortest(least) : std::string()) +
            (most < HUGE_VAL ? " and at most " + shortest(most) : std::string()));

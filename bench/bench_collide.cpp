@@ -113,14 +113,14 @@ double median(std::vector<double> x) {
 
 int main(int argc, char** argv) {
   const bench::Args args(argc, argv,
-                         "usage: bench_collide [N >= 100] [alpha in [0, 1]] [collisions_per_particle > 0] "
-                         "[block_size: 0 or >= 64] [paths|all] [rounds >= 1] [cheaper|scheme]",
+                         "usage: bench_collide [N: 100..1e9] [alpha in [0, 1]] [collisions_per_particle: 0..1e4] "
+                         "[block_size: 0 or >= 64] [paths|all] [rounds: 1..1000] [cheaper|scheme]",
                          7);
-  const std::size_t n = args.whole(1, 1000000, 100);
+  const std::size_t n = args.whole(1, 1000000, 100, 1000000000);
   const double alpha = args.real(2, 0.9, 0.0, 1.0);
-  const double per_particle = args.real(3, 10.0, 1e-9);
+  const double per_particle = args.real(3, 10.0, 1e-9, 1e4);
   // The default of &dsmc block_size; 0 measures the kernels without blocks.
-  const auto block_size = static_cast<std::size_t>(args.whole(4, io::config::Dsmc{}.block_size));
+  const auto block_size = static_cast<std::size_t>(args.whole(4, io::config::Dsmc{}.block_size, 0, 1000000000));
   if (block_size != 0 && block_size < 64) args.fail("block_size must be 0 (no blocks) or at least 64");
   const std::string selected = args.text(5, "");
   const int rounds = static_cast<int>(args.whole(6, 1, 1, 1000));

@@ -47,6 +47,8 @@
 #include "io/config.hpp"
 #include "io/namelist.hpp"
 
+#include "bench_args.hpp"
+
 using namespace gdsmc;
 
 namespace {
@@ -172,9 +174,9 @@ int species_sweep(std::size_t n) {
 
 int main(int argc, char** argv) {
   if (argc >= 2 && std::string(argv[1]) == "--species") {
-    const unsigned long long n = argc >= 3 ? std::strtoull(argv[2], nullptr, 10) : 1000000ull;
-    if (n < 2) {
-      std::fprintf(stderr, "usage: bench_paths --species [N]   (N >= 2; default 1000000)\n");
+    unsigned long long n = 1000000ull;
+    if (argc > 3 || (argc == 3 && !bench::parse_whole(argv[2], 2, 1000000000ull, n))) {
+      std::fprintf(stderr, "usage: bench_paths --species [N]   (N: 2..1e9; default 1000000)\n");
       return 2;
     }
     return species_sweep(n);
@@ -187,16 +189,17 @@ int main(int argc, char** argv) {
       pairs = false;
       continue;
     }
-    if (std::string(argv[i]) == "--repeat" && i + 1 < argc) {
-      repeat = std::max(1, std::atoi(argv[++i]));
+    unsigned long long n = 0, r = 0;
+    if (std::string(argv[i]) == "--repeat" && i + 1 < argc && bench::parse_whole(argv[i + 1], 1, 1000, r)) {
+      repeat = static_cast<int>(r);
+      ++i;
       continue;
     }
-    char* end = nullptr;
-    const unsigned long long n = std::strtoull(argv[i], &end, 10);
-    if (argv[i][0] == '-' || end == argv[i] || *end != '\0' || n < 2) {
-      const bool help = std::string(argv[i]) == "--help";
+    if (!bench::parse_whole(argv[i], 2, 1000000000ull, n)) {
+      const bool help = std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h";
       std::fprintf(help ? stdout : stderr,
-                   "usage: bench_paths [--no-pairs] [--repeat R] [N ...]   (N >= 2; default 100000 1000000)\n");
+                   "usage: bench_paths [--no-pairs] [--repeat R: 1..1000] [N ...]   (N: 2..1e9; default 100000 1000000)\n"
+                   "       bench_paths --species [N]\n");
       return help ? 0 : 2;
     }
     sizes.push_back(n);

@@ -46,9 +46,9 @@ double collisions_per_second(collide::Scheme scheme, std::size_t n, std::size_t 
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bench::Args args(argc, argv, "usage: bench_species [N >= 2] [largest number of species >= 1]", 2);
-  const std::size_t n = args.whole(1, 200000, 2);
-  const std::size_t max_m = args.whole(2, 1000, 1);
+  const bench::Args args(argc, argv, "usage: bench_species [N: 2..1e9] [largest number of species: 1..1e6]", 2);
+  const std::size_t n = args.whole(1, 200000, 2, 1000000000);
+  const std::size_t max_m = args.whole(2, 1000, 1, 1000000);
   std::printf("N = %zu, m_k = k, sigma_k = k^(1/3), equal densities, alpha = 0.9\n", n);
   std::printf("%8s %14s %9s %14s %9s %14s %9s\n", "M", "lowrank /s", "cost", "pairs /s", "cost", "majorant /s", "cost");
   double base[3] = {0, 0, 0};

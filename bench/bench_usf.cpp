@@ -53,9 +53,9 @@ double median(std::vector<double> x) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bench::Args args(argc, argv, "usage: bench_usf [N >= 2] [t_end > 0] [rounds >= 1]", 3);
-  const std::size_t n = args.whole(1, 20000, 2);
-  const double t_end = args.real(2, 4230.0, 1e-9);
+  const bench::Args args(argc, argv, "usage: bench_usf [N: 2..1e9] [t_end: 0..1e7] [rounds: 1..1000]", 3);
+  const std::size_t n = args.whole(1, 20000, 2, 1000000000);
+  const double t_end = args.real(2, 4230.0, 1e-9, 1e7);
   const int rounds = static_cast<int>(args.whole(3, 5, 1, 1000));
   const std::string stem = "/tmp/bench_usf." + std::to_string(getpid());
   std::vector<double> usf, hcs, ratio;

@@ -6,7 +6,7 @@ figures (OUT_DIR/<figure>.pdf and .png) and the validation cases they draw:
   seed000_fig1_fig3_haff        Haff cooling T(t)/T_0       haff_cooling_alpha{0.9,0.5}
   seed000_fig2_fig4_collisions  N_c against T/T_0           haff_cooling_alpha{0.9,0.5}
   seed000_fig1_fig2_n2000       Figs 1-2 at N = 2000        haff_cooling_n2000_alpha0.9
-  seed000_fig5_velocity         velocity distribution       velocity_shell, velocity_cube, velocity_shell_n2000_quick
+  seed000_fig5_velocity         velocity distribution       velocity_shell, velocity_cube, velocity_shell_n2000
   seed000_fig6_polydisperse     polydisperse T_k(t)         polydisperse
 A figure with one of its cases drawn is made (partial); e.g. one Haff run of your own at any restitution:
   seed000.py BUILD_DIR --run haff_cooling_alpha0.9=my-haff.h5 --out OUT_DIR
@@ -114,8 +114,8 @@ START_NAMES = {"shell": "from a speed shell", "cube": "from a uniform cube", "ma
 @figure("seed000_fig5_velocity")
 def velocity_figure():
     fig, ax, ar = with_residuals()
-    # velocity_shell_n2000_quick: the paper's N = 2000 after N_c = 1.5e5 collisions (150 per particle)
-    styles = {"velocity_shell": ("C0", "o"), "velocity_cube": ("C1", "s"), "velocity_shell_n2000_quick": ("C2", "^")}
+    # velocity_shell_n2000(_quick): the paper's N = 2000 after N_c = 1.5e5 collisions (150 per particle)
+    styles = {"velocity_shell": ("C0", "o"), "velocity_cube": ("C1", "s"), "velocity_shell_n2000": ("C2", "^")}
     for case, path in pick_some(list(styles)):
         color, marker = styles[case]
         with h5py.File(path) as f:
