@@ -108,7 +108,7 @@ def small_n_figure():
 
 
 # the legend names the start the file records (&initial distribution), so a user's run is named right
-START_NAMES = {"shell": "from a speed shell", "cube": "from a uniform cube", "maxwell": "from a Maxwellian"}
+START_NAMES = {"shell": "shell start", "cube": "cube start", "maxwell": "Maxwellian start"}
 
 
 @figure("seed000_fig5_velocity")
@@ -128,7 +128,8 @@ def velocity_figure():
         mid = 0.5 * (edges[1:] + edges[:-1])
         maxwell = np.exp(-mid * mid / 2) / np.sqrt(2 * np.pi)
         ax.errorbar(mid, h[-1], yerr=None if err is None else err[-1], fmt=marker, mfc="none", color=color,
-                    label=f"DSMC, {START_NAMES.get(start, 'from a ' + start + ' start')}, N = {n_particles}")
+                    label=f"DSMC, {START_NAMES.get(start, start + ' start')}"
+                    + (f", N = {n_particles}" if n_particles <= 10000 else ""))
         ax.plot(mid, h[0], ":", lw=1, color=color)
         if err is not None:
             residuals(ar, mid, h[-1], err[-1], maxwell, kind="se", fmt=marker, mfc="none", color=color)
