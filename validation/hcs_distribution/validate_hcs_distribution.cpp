@@ -13,6 +13,10 @@ std::vector<double> dataset(const std::string& file, const std::string& path) {
   return io::h5md::read_dataset(file, path).data;
 }
 
+/// A bin measured to 20 %: a positive value with a positive error at most a fifth of it (a bin with a zero
+/// error holds one count or none: not measured).
+bool measured(double value, double error) { return value > 0.0 && error > 0.0 && error <= 0.2 * value; }
+
 /// A point of a weighted straight-line fit: x, y and the standard error of y.
 struct LogPoint {
   double x, y, error;
@@ -50,8 +54,6 @@ void check_tail_against_reference(validation::Report& report, bool require_expon
                                   const std::vector<double>& phi, const std::vector<double>& phi_error,
                                   const std::vector<double>& reference, const std::vector<double>& reference_error) {
   const auto centre = [&](std::size_t b) { return 0.5 * (edges[b] + edges[b + 1]); };
-  // (a bin with a zero error is a bin with one count or none: not measured)
-  const auto measured = [](double value, double error) { return value > 0.0 && error > 0.0 && error <= 0.2 * value; };
   char name[300];
   for (std::size_t b = 0; b + 1 < edges.size(); ++b) {
     const double v = centre(b);
@@ -219,11 +221,10 @@ int main(int argc, char** argv) {
   // Fig 7: G_1 = exp(2 beta v*/zeta*) Phi_1 flattens at large v* (eqs 21, 29-30). Window: beyond the
   // thermal range (lambda v*^2 >= 9) while Phi is still measured to 20 %. Weighted fit of ln G.
   const double tail_rate = 2.0 * beta / zeta;  // eq 21's exponent with this run's zeta*: G = exp(tail_rate v*) Phi
-  const auto measured_to_20 = [](double value, double error) { return value > 0.0 && error <= 0.2 * value; };
   std::vector<std::size_t> tail;  // the bins beyond lambda v*^2 = 9 that this run measures to 20 %
   for (std::size_t b = 0; b + 1 < edges.size(); ++b) {
     const double v = 0.5 * (edges[b] + edges[b + 1]);
-    if (lambda * v * v >= 9.0 && measured_to_20(phi[b], phi_error[b])) tail.push_back(b);
+    if (lambda * v * v >= 9.0 && measured(phi[b], phi_error[b])) tail.push_back(b);
   }
   const auto centre = [&](std::size_t b) { return 0.5 * (edges[b] + edges[b + 1]); };
   const auto run_fit = [&](double from) {
