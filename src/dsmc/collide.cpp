@@ -72,6 +72,15 @@ void Collider::set_lowrank_row(std::size_t k) {
   if (!lowrank_columns_set_) lowrank_.set_column(k, f.column);
 }
 
+void Collider::raise_lowrank_rows() {
+  // O(log M) per raised species, not a rebuild: every tree node is recomputed from its children, so the
+  // sums are those a rebuild would give (segment_tree.hpp, "Round-off").
+  for (std::size_t k : raised_) set_lowrank_row(k);
+  raised_.clear();
+  rate_ = lowrank_.total();
+  pending_filled_ = false;  // drawn from the old A_ik: redraw (header, "Look-ahead")
+}
+
 void Collider::recompute_max_speeds() {
   for (std::size_t k = 0; k < s_; ++k) {
     double max2 = 0.0;
@@ -351,11 +360,8 @@ bool Collider::advance(double t_target, std::uint64_t event_target, bool exact_e
     const double t_stop = std::min(t_target, next_step_time_);
     const int stop = run_loop(scheme_, t_stop, event_target);
     if (stop == static_cast<int>(Stop::bound_raised)) {
-      if (scheme_ == Scheme::lowrank) {  // O(log M) per raised species, not a rebuild
-        for (std::size_t k : raised_) set_lowrank_row(k);
-        raised_.clear();
-        rate_ = lowrank_.total();
-        pending_filled_ = false;  // drawn from the old A_ik: redraw (header, "Look-ahead")
+      if (scheme_ == Scheme::lowrank) {
+        raise_lowrank_rows();
       } else {
         rebuild_bounds();
       }

@@ -110,7 +110,13 @@
  * rebuilds the P rows' table alone, O(P), where the one-word table is rebuilt in O(P^2) (bounds are raised about once
  * per slice's worth of events: above 24 species that rebuild outgrows the candidates); a factored candidate takes two
  * words and two dependent table reads, so up to 24 species the one-word draw costs less. set_lowrank_factor_above()
- * moves the threshold (tests). *The cheaper sampler*: both are exact majorants of one pair law, so at each
+ * moves the threshold (tests). *The separable draw* (more than separable_above = 128 species, `lowrank`, while S K <= N;
+ * \ref sch_separable "docs/schemes.md"): w_i = W_b/sqrt(m_i) with W_b^2 = max m |v|^2 over the block, so that A_ik =
+ * (pi chi_max W_b/(4V)) sum_r u_i^(r) v_k^(r), u_i = N_i (sigma_i^2, 2 sigma_i, 1)/sqrt(m_i), v_k = N_k (1, sigma_k,
+ * sigma_k^2) (Bodrova and Osinsky 2024, eqs. (12)-(14)): the term r, then the row from u^(r) and the column from v^(r),
+ * from six alias tables over the P species present built once per visit; accepted with chi_ik |g| / (chi_max (w_i +
+ * w_k) ||G||). No table holds a speed: a raised W_b changes R_b only. The pair's constants are computed per collision
+ * (no S x S table); set_separable_blocks() forces this draw at any S (tests). *The cheaper sampler*: both are exact majorants of one pair law, so at each
  * step the master gives all blocks `lowrank` when lowrank_candidate_cost (1.15) times sum_ik pi sigma_ik^2 chi_ik
  * vmax_i N_i N_k n/(N - 1) is below N n B/2, else `majorant`, whatever the scheme (part of the State; a step after a
  * change of sampler judges its events from the last step's events per unit time and is 5 mean free times long);
@@ -157,9 +163,10 @@ enum class Scheme { majorant, pairs, lowrank };
 
 /// Per-species-pair event counts are kept for mixtures of at most this many species.
 inline constexpr std::size_t pair_event_limit = 64;
-/// Cache blocks serve mixtures of at most this many species (header "Mixtures in blocks"). Above it the
-/// S x S pair tables read for every collision and the factored draw's column tables, O(P^2) at every
-/// block visit, cost more than the blocks save (docs/performance.md, "Many species in blocks").
+/// Mixtures of at most this many species may run `majorant` in blocks and the one-word or factored
+/// `lowrank` draws (header "Mixtures in blocks"); above it their S x S pair tables and the factored draw's
+/// column tables, O(P^2) at every block visit, cost more than the blocks save (docs/performance.md,
+/// "Many species in blocks"), and only `lowrank` blocks run, by the separable draw.
 inline constexpr std::size_t block_species_limit = 256;
 
 /// The species of a block's i-th particle in the `majorant` mixture kernel: the k with edge[k] <= i <
@@ -220,7 +227,9 @@ class Collider {
            double step_fraction, rules::Rule rule);
 
   /// Cache blocks of about `block_size` particles (header, "Blocks"), for one species or a mixture of
-  /// at most block_species_limit (256) species with the `majorant` or `lowrank` scheme and N >= 2 block_size; otherwise (or
+  /// at most block_species_limit (256) species with the `majorant` or `lowrank` scheme, or of more with
+  /// `lowrank` and a rule with the projection while S K <= N (the separable draw above separable_above
+  /// species), and N >= 2 block_size; otherwise (or
   /// with 0) the whole gas is one block. Call before the first advance().
   void use_blocks(std::size_t block_size);
   std::size_t blocks() const { return block_first_.empty() ? 1 : block_first_.size() - 1; }
@@ -250,12 +259,23 @@ class Collider {
   /// in it, the one-word draw otherwise (header "Mixtures in blocks"; the same process either way; the
   /// measurements that set it: \ref perf_factored "docs/performance.md").
   static constexpr std::size_t lowrank_factor_above = 24;
+  /// A mixture of more than this many species takes the separable draw in `lowrank` blocks (header "Mixtures
+  /// in blocks"): from 129 species on it costs less than the factored draw, whose O(P^2) column tables
+  /// grow (\ref perf_separable "docs/performance.md").
+  static constexpr std::size_t separable_above = 128;
   /// Tests only: blocks with more than `species` species present take the factored draw from the next
   /// block visit on (lowrank_factor_above by default; 0: every block), so that it can be compared with
   /// the one-word draw and the unblocked loops at few species.
   void set_lowrank_factor_above(std::size_t species) {
     factor_above_ = species;
     for (Collider& worker : workers_) worker.factor_above_ = species;
+  }
+  /// Tests only: a mixture's `lowrank` blocks take the separable draw (header "Mixtures in blocks"), which
+  /// blocks of more than separable_above species take, whatever the number of species (call after
+  /// use_blocks(), before the first advance()), so that it can be compared with the other draws.
+  void set_separable_blocks() {
+    separable_blocks_ = lowrank_blocks() && kernels_;
+    for (Collider& worker : workers_) worker.separable_blocks_ = separable_blocks_;
   }
   /// OpenMP threads for the blocks of a step (header, "Threads inside one replica"); 1 by default.
   /// The results do not depend on it, bit for bit. Without blocks it has no effect.
@@ -377,6 +397,8 @@ class Collider {
  private:
   void recompute_max_speeds();
   void rebuild_bounds();
+  /// `lowrank` after a raised bound: the rows of the species in raised_ anew, and rate_.
+  void raise_lowrank_rows();
   bool raise_max_speed(std::size_t particle);
   template <class TryCandidate>
   int run_substep(double t_stop, std::uint64_t event_target, TryCandidate&& try_candidate);
@@ -441,8 +463,10 @@ class Collider {
   /// run_majorant (`Lowrank` false) or run_lowrank (true) on the block's slices in a loop of its own
   /// (header "Mixtures in blocks", the kernel): raised bounds are handled inside. Leaves time_, credit_,
   /// bound_ and rate_ as run_substep does. `Two`: `majorant` with two species (their edge and
-  /// offsets in locals); `Factored`: `lowrank` by the factored draw (block_factored_).
-  template <class Rule, bool Track, bool Lowrank, bool Framed, bool Two = false, bool Factored = false>
+  /// offsets in locals); `Factored`: `lowrank` by the factored draw (block_factored_); `Separable`:
+  /// `lowrank` by the separable draw (separable_blocks_).
+  template <class Rule, bool Track, bool Lowrank, bool Framed, bool Two = false, bool Factored = false,
+            bool Separable = false>
   void run_block_mixture(const Rule& rule, double t_stop);
   /// The mixture kernel's instance for the block's sampler (`lowrank` or `majorant`) and draw.
   template <class Rule, bool Track, bool Framed>
@@ -545,11 +569,71 @@ class Collider {
   /// The factored tables of the current block over its P `present` species (running counts `cum`),
   /// and rate_ = R_b.
   void set_block_factored(const std::uint32_t* present, std::size_t p, const std::size_t* cum);
-  /// Alias cells of c = 32 - m coin bits from the 2^m weights `w` (zero-padded past the P = `p` present
-  /// species), built in pair_alias_: a cell's own outcome is its index, a padding cell's its alias.
-  void fill_factored_cells(const std::vector<double>& w, std::size_t p, FactoredCell* out, double* fraction);
   void build_factored_rows();   ///< the row cells from w_i rho_i ||G||, and rate_ = R_b = sum_i w_i rho_i ||G||
   void raise_block_factored();  ///< after a raised bound: w_i and the rows (the columns hold no speed)
+  /// The separable draw (header "Mixtures in blocks", \ref sch_separable "docs/schemes.md"), for blocks of a
+  /// mixture of more than separable_above species: the rank-3 A_ik of segment_tree.hpp with chi_max and
+  /// w_i = W_b / sqrt(m_i), W_b^2 = max m_k |v|^2 over the block, so that a raised bound scales every row
+  /// alike and no table is rebuilt. A species present in the block, in the order of the tables:
+  struct SeparableSpecies {
+    std::uint32_t first, count;  ///< the species' slice in the block (system indices)
+    std::uint32_t reject;        ///< 2^24 mod count (as FactoredSpecies)
+    std::uint32_t species;       ///< i
+    double inverse_root_mass;    ///< 1/sqrt(m_i): w_i = W_b / sqrt(m_i)
+  };
+  /// An alias cell of the separable draw (FactoredCell with 32-bit outcomes: P may exceed 2^16).
+  struct SeparableCell {
+    std::uint32_t whole, keep, other;
+  };
+  /// The current block's separable tables (set_block_separable), built once per visit: none holds a speed.
+  /// Term r of A_ik = sum_r u_i^(r) v_k^(r) (segment_tree.hpp's hard_sphere_factors) is drawn first, then
+  /// the row from u^(r) and the column from v^(r), independently (two table reads in parallel).
+  struct SeparableTables {
+    std::vector<SeparableSpecies> species;              ///< the P species present
+    std::vector<SeparableCell> rows;                    ///< 3 2^m cells, term r's from r 2^m: N_i (sigma_i^2, 2 sigma_i, 1)_r / sqrt(m_i)
+    std::vector<SeparableCell> columns;                 ///< 3 2^m cells: N_k (1, sigma_k, sigma_k^2)_r
+    std::vector<double> row_fraction, column_fraction;  ///< the cells' fractions
+    double term0 = 1.0, term01 = 1.0;  ///< term r = 0 for a uniform below term0, 1 below term01, else 2
+    double scale = 0.0;    ///< R_b = scale W_b ||G||: pi chi_max/(4V) times the terms' sum
+    double energy2 = 0.0;  ///< W_b^2 = max over the block's species of m_k vmax_k^2
+    unsigned bits = 1;     ///< m: 2^m >= max(P, 2) cells per table
+  };
+  SeparableTables separable_;
+  bool separable_blocks_ = false;  ///< blocks of more than separable_above species (use_blocks): the separable draw
+  struct SeparableView {
+    const SeparableCell *rows, *columns;
+    const double *row_fraction, *column_fraction;
+    const SeparableSpecies* species;
+    double term0, term01;
+    unsigned bits;
+  };
+  SeparableView separable_view() const {
+    return {separable_.rows.data(),    separable_.columns.data(), separable_.row_fraction.data(),
+            separable_.column_fraction.data(), separable_.species.data(), separable_.term0,
+            separable_.term01,         separable_.bits};
+  }
+  /// The separable tables of the current block (running counts `cum`), and rate_ = R_b.
+  void set_block_separable(const std::size_t* cum);
+  /// The candidate rate of the separable blocks summed over them at the gas's bounds max_speed2_ (within
+  /// the slices' rounding; W the largest of the blocks' W_b, so a bound of it).
+  double separable_block_rate() const;
+  /// Alias cells of c = 32 - `bits` coin bits from the 2^bits weights `w` (zero-padded past the `p`
+  /// outcomes), built in pair_alias_: a cell's own outcome is its index, a padding cell's its alias.
+  template <class Cell>
+  void fill_alias_cells(const std::vector<double>& w, std::size_t p, unsigned bits, Cell* out, double* fraction);
+  /// `lowrank`'s separable candidate in a block in two stages, so that its two table cells are prefetched a
+  /// few candidates before they are read: `separable_words` draws its three 64-bit words and prefetches the
+  /// cells they name; `separable_candidate` reads them: particles a, b and the present species' indices
+  /// `row` (of a) and `column` (of b).
+  struct SeparableWords {
+    std::uint64_t cells, particles;       ///< the cells' word, the particles' word
+    std::uint32_t row_index, column_index;  ///< the cells in rows and columns
+  };
+  template <class Gen>
+  static void separable_words(Gen& gen, const SeparableView& tables, SeparableWords& words);
+  template <class Gen>
+  static void separable_candidate(Gen& gen, const SeparableView& tables, const SeparableWords& words,
+                                  std::uint32_t& a, std::uint32_t& b, std::uint32_t& row, std::uint32_t& column);
   /// `lowrank`'s factored candidate in a block from two 64-bit words: particles a, b, the pair i S + k and
   /// the present species' indices of i and k (row_column = row | column << 16, for the acceptance).
   template <class Gen>

@@ -28,12 +28,17 @@ void Collider::use_blocks(std::size_t block_size) {
   const std::size_t n = sys_.size();
   const bool one = s_ == 1 && scheme_ != Scheme::pairs;
   const bool mixture = s_ > 1 && scheme_ != Scheme::pairs && s_ <= block_species_limit && tables_;
-  if (block_size == 0 || !(one || mixture) || n < 2 * block_size) return;
+  // More than separable_above species with `lowrank`: the separable draw, for a rule with the projection,
+  // while the blocks' K x S tables (slices, bounds) hold at most about N entries each (header "Mixtures in blocks").
+  const bool separable = s_ > separable_above && scheme_ == Scheme::lowrank && kernels_ && block_size > 0 &&
+                         s_ * (n / block_size) <= n;
+  if (block_size == 0 || !(one || mixture || separable) || n < 2 * block_size) return;
   if (counters_.steps > 0) throw std::logic_error("collide: use_blocks() after the run has started");
   const std::size_t blocks = n / block_size;
   // A mixture's species with at least min_slice particles a block is dealt in equal slices, a rarer
   // one scattered, each particle to a uniformly random block (header "Mixtures in blocks").
-  for (std::size_t k = 0; k < s_ && mixture; ++k) {
+  separable_blocks_ = separable;
+  for (std::size_t k = 0; k < s_ && (mixture || separable); ++k) {
     scattered_[k] = sys_.count[k] < min_slice * blocks;
     scattered_any_ = scattered_any_ || scattered_[k];
   }
@@ -167,7 +172,7 @@ bool Collider::choose_block_lowrank() const {
   // one lowrank_candidate_cost times a `majorant` one (docs/schemes.md, "The cheaper sampler").
   // Viscoelastic mixtures run the general loops, which follow the scheme.
   if (block_first_.empty() || s_ == 1) return false;
-  if (!kernels_) return lowrank_blocks();
+  if (!kernels_ || separable_blocks_) return lowrank_blocks();
   if (block_sampler_ != BlockSampler::cheaper) return block_sampler_ == BlockSampler::lowrank;
   return lowrank_candidate_cost * block_candidate_rate(true) < block_candidate_rate(false);
 }
@@ -256,8 +261,9 @@ double Collider::blocked_step_rate(bool& sampler_changed) {
   // In a frame the stage loop sizes its stages by candidate_rate(): R of these bounds, as a
   // restored collider computes it (restore()).
   if (framed_) rebuild_bounds();
-  double rate = (s_ == 1 ? 0.5 * n_total * n * 2.0 * cross_section_[0] * max_speed_[0]  // (one species: the tables always exist)
-                         : 0.5 * n_total * n * mixture_bound(max_speed2_.data())) *
+  double rate = (s_ == 1            ? 0.5 * n_total * n * 2.0 * cross_section_[0] * max_speed_[0]  // (one species: the tables always exist)
+                 : separable_blocks_ ? 0.0  // (no `majorant` blocks: the separable draw's rate below)
+                                     : 0.5 * n_total * n * mixture_bound(max_speed2_.data())) *
                 speed_factor_;  // 1 without a frame
   if (lowrank_blocks()) rebuild_bounds();  // the low-rank majorant's own total over these vmax_k (rate_)
   // The blocks' sampler for this step (header "Mixtures in blocks", "The cheaper sampler"), chosen
@@ -271,7 +277,9 @@ double Collider::blocked_step_rate(bool& sampler_changed) {
   block_lowrank_ = choose_block_lowrank();
   sampler_changed = counters_.steps > 0 && block_lowrank_ != was_lowrank;
   if (block_lowrank_)  // the unblocked `lowrank` total (chi_max >= chi_ik) bounds the blocks' own
-    rate = lowrank_blocks() ? rate_ : lowrank_block_rate(max_speed2_.data()) * speed_factor_;
+    rate = separable_blocks_ ? separable_block_rate()
+           : lowrank_blocks() ? rate_
+                              : lowrank_block_rate(max_speed2_.data()) * speed_factor_;
   return rate;
 }
 
@@ -360,8 +368,12 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
     if (whole_step_) {
       const int stop = run_loop(lowrank_blocks() ? Scheme::lowrank : Scheme::majorant, t_stop, any_target);
       if (stop == static_cast<int>(Stop::bound_raised)) {
-        raised_.clear();
-        set_whole_gas_bound();
+        if (lowrank_blocks()) {
+          raise_lowrank_rows();  // the raised rows only (the same sums as a rebuild: segment_tree.hpp)
+        } else {
+          raised_.clear();
+          set_whole_gas_bound();
+        }
       }
       if (stop == static_cast<int>(Stop::reached_events)) return true;
       continue;
@@ -463,6 +475,10 @@ void Collider::set_block_lowrank(double n) {
   // (a scattered species may have no particle there) enter the kernel's tables.
   const std::size_t* cum = slice_cum_.data() + current_block_ * (s_ + 1);
   lowrank_volume_ = static_cast<double>(range_count_ - 1) / n;
+  if (separable_blocks_) {  // more than separable_above species: the separable draw
+    set_block_separable(cum);
+    return;
+  }
   for (std::size_t k = 0; k < s_; ++k) max_speed_[k] = std::sqrt(block_speed2_[k]);
   pending_filled_ = false;  // drawn from the old A_ik: redraw (header, "Look-ahead")
   if (!kernels_) {  // run_lowrank's draw, over all S^2 pairs
@@ -583,21 +599,97 @@ void Collider::set_block_factored(const std::uint32_t* present, std::size_t p, c
     }
     f.rho[a] = static_cast<double>(cum[i + 1] - cum[i]) * sum / lowrank_volume_;
     f.w[a] = max_speed_[i];
-    fill_factored_cells(pair_weights_, p, f.columns.data() + a * cells, f.column_fraction.data() + a * cells);
+    fill_alias_cells(pair_weights_, p, bits, f.columns.data() + a * cells, f.column_fraction.data() + a * cells);
   }
   build_factored_rows();
 }
 
-void Collider::fill_factored_cells(const std::vector<double>& w, std::size_t p, FactoredCell* out, double* fraction) {
+void Collider::set_block_separable(const std::size_t* cum) {
+  // The separable draw (collide.hpp, "Mixtures in blocks"; \ref sch_separable "docs/schemes.md"): A_ik =
+  // pi sigma_ik^2 chi_max w_i N_i N_k / V = sum_r u_i^(r) v_k^(r), sigma_ik^2 = (sigma_i^2 + 2 sigma_i
+  // sigma_k + sigma_k^2)/4, u_i = (pi chi_max w_i N_i/(4V)) (sigma_i^2, 2 sigma_i, 1), v_k = N_k (1, sigma_k,
+  // sigma_k^2) (Bodrova and Osinsky 2024, eqs. (12)-(14); segment_tree.hpp), with w_i = W_b/sqrt(m_i):
+  // the term r with weight (sum_i u_i^(r)) (sum_k v_k^(r)), then i from u^(r) and k from v^(r). W_b is a
+  // common factor of every u_i: no table holds a speed, and a raised W_b changes R_b only.
+  const std::size_t* slice = slice_first_.data() + current_block_ * s_;
+  SeparableTables& t = separable_;
+  t.species.clear();
+  double energy2 = 0.0;
+  bool narrow = true;  // every slice of the block below 2^24 (the 24-bit fields); else every reject is 2^24
+  for (std::size_t k = 0; k < s_; ++k) {
+    const std::size_t count = cum[k + 1] - cum[k];
+    if (count == 0) continue;
+    narrow = narrow && count < (std::size_t{1} << 24);
+    energy2 = std::max(energy2, mix_.mass[k] * block_speed2_[k]);
+    t.species.push_back({static_cast<std::uint32_t>(slice[k]), static_cast<std::uint32_t>(count), 0,
+                         static_cast<std::uint32_t>(k), 1.0 / std::sqrt(mix_.mass[k])});
+  }
+  const std::size_t p = t.species.size();
+  for (SeparableSpecies& x : t.species) x.reject = narrow ? (1u << 24) % x.count : 1u << 24;
+  unsigned bits = 1;  // at least two cells (one species present: it and a zero weight), r >> 64 being undefined
+  while ((std::size_t{1} << bits) < p) ++bits;
+  t.bits = bits;
+  const std::size_t cells = std::size_t{1} << bits;
+  t.rows.resize(3 * cells), t.row_fraction.resize(3 * cells);
+  t.columns.resize(3 * cells), t.column_fraction.resize(3 * cells);
+  double term[3];
+  for (std::size_t r = 0; r < 3; ++r) {
+    double row_sum = 0.0, column_sum = 0.0;
+    pair_weights_.assign(cells, 0.0);  // u^(r) / (pi chi_max W_b/(4V))
+    for (std::size_t a = 0; a < p; ++a) {
+      const double sigma = mix_.diameter[t.species[a].species];
+      pair_weights_[a] = static_cast<double>(t.species[a].count) * t.species[a].inverse_root_mass *
+                         (r == 0 ? sigma * sigma : r == 1 ? 2.0 * sigma : 1.0);
+      row_sum += pair_weights_[a];
+    }
+    fill_alias_cells(pair_weights_, p, bits, t.rows.data() + r * cells, t.row_fraction.data() + r * cells);
+    pair_weights_.assign(cells, 0.0);  // v^(r)
+    for (std::size_t a = 0; a < p; ++a) {
+      const double sigma = mix_.diameter[t.species[a].species];
+      pair_weights_[a] = static_cast<double>(t.species[a].count) * (r == 0 ? 1.0 : r == 1 ? sigma : sigma * sigma);
+      column_sum += pair_weights_[a];
+    }
+    fill_alias_cells(pair_weights_, p, bits, t.columns.data() + r * cells, t.column_fraction.data() + r * cells);
+    term[r] = row_sum * column_sum;
+  }
+  const double sum = term[0] + term[1] + term[2];
+  t.term0 = term[0] / sum, t.term01 = (term[0] + term[1]) / sum;
+  t.energy2 = energy2;
+  t.scale = std::numbers::pi * chi_max_ / (4.0 * lowrank_volume_) * sum;
+  rate_ = t.scale * std::sqrt(energy2) * speed_factor_;  // (in a frame every bound times ||G||: header "Frame")
+}
+
+double Collider::separable_block_rate() const {
+  // set_block_separable's R_b summed over the blocks with the gas's counts, V = (N - 1)/n, and W^2 =
+  // max_k m_k vmax_k^2 (the largest of the blocks' W_b^2: the blocks' bounds make max_speed2_).
+  double energy2 = 0.0, g[3] = {0.0, 0.0, 0.0};
+  for (std::size_t k = 0; k < s_; ++k) {
+    const double count = static_cast<double>(sys_.count[k]), sigma = mix_.diameter[k];
+    g[0] += count, g[1] += count * sigma, g[2] += count * sigma * sigma;
+    energy2 = std::max(energy2, mix_.mass[k] * max_speed2_[k]);
+  }
+  double rows = 0.0;
+  for (std::size_t k = 0; k < s_; ++k) {
+    const double sigma = mix_.diameter[k];
+    rows += static_cast<double>(sys_.count[k]) * (sigma * sigma * g[0] + 2.0 * sigma * g[1] + g[2]) /
+            std::sqrt(mix_.mass[k]);
+  }
+  const double volume = static_cast<double>(sys_.size() - 1) / mix_.total_density();
+  return std::numbers::pi * chi_max_ / (4.0 * volume) * rows * std::sqrt(energy2) * speed_factor_;
+}
+
+template <class Cell>
+void Collider::fill_alias_cells(const std::vector<double>& w, std::size_t p, unsigned bits, Cell* out, double* fraction) {
   // Keep cell c with probability t: with U = (q + V)/2^c (q the c coin bits, V uniform), U < t iff
   // q < floor(t 2^c), or q = floor(t 2^c) and V < t 2^c - floor(t 2^c) (both exact in doubles).
+  using Outcome = decltype(Cell::keep);
   pair_alias_.build(w);
-  const double coin_scale = std::ldexp(1.0, 32 - static_cast<int>(factored_.bits));  // 2^c, c = 32 - m coin bits
+  const double coin_scale = std::ldexp(1.0, 32 - static_cast<int>(bits));  // 2^c, c = 32 - m coin bits
   for (std::size_t c = 0; c < w.size(); ++c) {
     const double scaled = pair_alias_.threshold[c] * coin_scale;
     const double whole = std::floor(scaled);
-    const auto other = static_cast<std::uint16_t>(pair_alias_.alias[c]);
-    out[c] = {static_cast<std::uint32_t>(whole), c < p ? static_cast<std::uint16_t>(c) : other, other};
+    const auto other = static_cast<Outcome>(pair_alias_.alias[c]);
+    out[c] = {static_cast<std::uint32_t>(whole), c < p ? static_cast<Outcome>(c) : other, other};
     fraction[c] = scaled - whole;
   }
 }
@@ -616,7 +708,7 @@ void Collider::build_factored_rows() {
   if (!(rate_ > 0.0)) return;
   f.rows.resize(pair_weights_.size());
   f.row_fraction.resize(pair_weights_.size());
-  fill_factored_cells(pair_weights_, p, f.rows.data(), f.row_fraction.data());
+  fill_alias_cells(pair_weights_, p, f.bits, f.rows.data(), f.row_fraction.data());
 }
 
 void Collider::raise_block_factored() {

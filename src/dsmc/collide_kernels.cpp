@@ -58,8 +58,9 @@ void Collider::run_block_mixture_sampler(const Rule& rule, bool lowrank, double 
   // `lowrank` by the one-word or the factored draw (set_block_lowrank chose it for the block's P);
   // `majorant` with two species: a kernel of its own, whose species and offsets are two locals.
   if (lowrank)
-    block_factored_ ? run_block_mixture<Rule, Track, true, Framed, false, true>(rule, t_stop)
-                    : run_block_mixture<Rule, Track, true, Framed>(rule, t_stop);
+    separable_blocks_ ? run_block_mixture<Rule, Track, true, Framed, false, false, true>(rule, t_stop)
+    : block_factored_ ? run_block_mixture<Rule, Track, true, Framed, false, true>(rule, t_stop)
+                      : run_block_mixture<Rule, Track, true, Framed>(rule, t_stop);
   else
     s_ == 2 ? run_block_mixture<Rule, Track, false, Framed, true>(rule, t_stop)
             : run_block_mixture<Rule, Track, false, Framed>(rule, t_stop);
@@ -204,6 +205,59 @@ template <class Gen>
   a = si.first + x, b = sk.first + y, pair = si.pair_row + sk.species, row_column = row | column << 16;
 }
 
+template <class Gen>
+[[gnu::always_inline]] inline void Collider::separable_words(Gen& gen, const SeparableView& tables,
+                                                             SeparableWords& words) {
+  // The separable draw (set_block_separable; \ref sch_separable "docs/schemes.md"). Word 1: the term r (a
+  // uniform against term0, term01); word 2: the row cell of u^(r)'s table from its top m bits, the column
+  // cell of v^(r)'s from bits 32-m..31 (their coins in the other bits: separable_candidate); word 3: the
+  // particles. The two cells, independent of each other, are prefetched here.
+  const unsigned bits = tables.bits;
+  const double u = gen.uniform();
+  const std::size_t term = static_cast<std::size_t>(u >= tables.term0) + static_cast<std::size_t>(u >= tables.term01);
+  words.cells = gen();
+  words.particles = gen();
+  words.row_index = static_cast<std::uint32_t>((term << bits) + (words.cells >> (64 - bits)));
+  words.column_index = static_cast<std::uint32_t>((term << bits) + (static_cast<std::uint32_t>(words.cells) >> (32 - bits)));
+  __builtin_prefetch(tables.rows + words.row_index);
+  __builtin_prefetch(tables.columns + words.column_index);
+}
+
+template <class Gen>
+[[gnu::always_inline]] inline void Collider::separable_candidate(Gen& gen, const SeparableView& tables,
+                                                                 const SeparableWords& words, std::uint32_t& a,
+                                                                 std::uint32_t& b, std::uint32_t& row,
+                                                                 std::uint32_t& column) {
+  // The cells' coins from the bits their indices left (a further uniform only when a coin ties with its
+  // threshold, one in 2^(32-m)), without a branch on q < whole: a mask selects the outcome.
+  const unsigned bits = tables.bits;
+  const SeparableCell& row_cell = tables.rows[words.row_index];
+  const auto q = static_cast<std::uint32_t>(words.cells >> 32) & ((1u << (32 - bits)) - 1);
+  const std::uint32_t keep_row = 0u - static_cast<std::uint32_t>(q < row_cell.whole);
+  row = (row_cell.keep & keep_row) | (row_cell.other & ~keep_row);
+  if (q == row_cell.whole) [[unlikely]]
+    row = gen.uniform() < tables.row_fraction[words.row_index] ? row_cell.keep : row_cell.other;
+  const SeparableCell& column_cell = tables.columns[words.column_index];
+  const std::uint32_t q2 = static_cast<std::uint32_t>(words.cells) & ((1u << (32 - bits)) - 1);
+  const std::uint32_t keep_column = 0u - static_cast<std::uint32_t>(q2 < column_cell.whole);
+  column = (column_cell.keep & keep_column) | (column_cell.other & ~keep_column);
+  if (q2 == column_cell.whole) [[unlikely]]
+    column = gen.uniform() < tables.column_fraction[words.column_index] ? column_cell.keep : column_cell.other;
+  const SeparableSpecies& si = tables.species[row];
+  const SeparableSpecies& sk = tables.species[column];
+  const std::uint64_t r2 = words.particles;  // the particles, as in lowrank_candidate
+  const std::uint64_t m1 = (r2 & 0xffffffULL) * si.count, m2 = ((r2 >> 24) & 0xffffffULL) * sk.count;
+  std::uint32_t x = static_cast<std::uint32_t>(m1 >> 24), y = static_cast<std::uint32_t>(m2 >> 24);
+  const bool rejected = (static_cast<std::uint32_t>(m1) & 0xffffffu) < si.reject ||
+                        (static_cast<std::uint32_t>(m2) & 0xffffffu) < sk.reject;
+  if (rejected) [[unlikely]] {
+    rng::Xoshiro256pp rare = gen;  // (on a copy: lowrank_candidate)
+    rare.below_pair(si.count, sk.count, x, y);
+    gen = rare;
+  }
+  a = si.first + x, b = sk.first + y;
+}
+
 template <class Rule, bool Framed>
 [[gnu::always_inline]] inline double Collider::kernel_collision(const PairKernel& pk, std::uint32_t i, std::uint32_t k,
                                                                 particles::Vec3& va, particles::Vec3& vb, double g_dot_e2,
@@ -341,7 +395,7 @@ void Collider::run_block_one_species(const Rule& rule, double t_stop) {
   if (!counters_.pair_events.empty()) counters_.pair_events[0] += events;
 }
 
-template <class Rule, bool Track, bool Lowrank, bool Framed, bool Two, bool Factored>
+template <class Rule, bool Track, bool Lowrank, bool Framed, bool Two, bool Factored, bool Separable>
 void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_stop) {
   // The process of run_majorant (or run_lowrank) on the block's slices, with less work per candidate
   // (header "Mixtures in blocks"); the stream in a local copy (its state in registers).
@@ -361,6 +415,7 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
   const double* acceptance = Lowrank ? pair_limit_.data() : pair_cross_section2_.data();
   double* speed2 = block_speed2_;
   std::uint64_t sink = 0, *pair_events = counters_.pair_events.empty() ? &sink : counters_.pair_events.data();
+  [[maybe_unused]] const bool counting_pairs = !counters_.pair_events.empty();
   const BlockIndex index = Lowrank ? BlockIndex{} : block_index(cum, slice, s);
   [[maybe_unused]] const std::uint32_t edge1 = index.edge1, offset0 = index.offset0, offset1 = index.offset1;
   const LowrankCell* cells = lowrank_cells_.data();
@@ -368,22 +423,37 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
   const unsigned cell_bits = lowrank_cell_bits_;
   [[maybe_unused]] FactoredView factored = factored_view();
   [[maybe_unused]] const double speed_factor = speed_factor_;
+  // (separable: W_b^2, and the acceptance's W_b ||G|| chi_max; chi_ik in the Enskog gas only)
+  [[maybe_unused]] const SeparableView separable = separable_view();
+  [[maybe_unused]] double energy2 = separable_.energy2;
+  [[maybe_unused]] double energy_bound = std::sqrt(energy2) * speed_factor * chi_max_;
+  [[maybe_unused]] const double* mass = mix_.mass.data();
+  [[maybe_unused]] const bool enskog = mix_.enskog;
+  [[maybe_unused]] const std::optional<double> alpha_constant = mix_.restitution.constant;
   // The drawn-ahead candidates: particles a, b and the pair i S + k, in three arrays of 32-bit words.
   const std::uint32_t* pair_species = pair_species_.data();
   std::array<std::uint32_t, block_lookahead<Framed>> ahead_a, ahead_b, ahead_pair;
-  [[maybe_unused]] std::array<std::uint32_t, block_lookahead<Framed>> ahead_row_column;  // (factored: row | column<<16)
+  // (factored: row | column<<16; separable: the column, the row in ahead_pair)
+  [[maybe_unused]] std::array<std::uint32_t, block_lookahead<Framed>> ahead_row_column;
+  [[maybe_unused]] std::array<SeparableWords, block_lookahead<Framed>> separable_ahead;  // (separable: words drawn ahead)
   const auto draw = [&](std::size_t slot) __attribute__((always_inline)) {  // (GCC kept the factored draw out of line)
     std::uint32_t a, b, pair;
-    if constexpr (Lowrank && Factored)
+    if constexpr (Lowrank && Separable) {  // (the cells of words drawn block_lookahead candidates earlier)
+      separable_candidate(gen, separable, separable_ahead[slot], a, b, pair, ahead_row_column[slot]);
+      separable_words(gen, separable, separable_ahead[slot]);
+    } else if constexpr (Lowrank && Factored) {
       factored_candidate(gen, factored, a, b, pair, ahead_row_column[slot]);
-    else if constexpr (Lowrank)
+    } else if constexpr (Lowrank) {
       lowrank_candidate(gen, cells, outcomes, cell_bits, a, b, pair);
-    else
+    } else {
       majorant_candidate<Two>(gen, n, s, index, edge1, offset0, offset1, a, b, pair);
+    }
     ahead_a[slot] = a, ahead_b[slot] = b, ahead_pair[slot] = pair;
     prefetch_pair<Track>(v, sys_.r.data(), a, b);
     if constexpr (Rule::kernel_needs_particles) prefetch_pair<false>(spin, nullptr, a, b);  // the rule's own array
   };
+  if constexpr (Separable)
+    for (std::size_t slot = 0; slot < block_lookahead<Framed>; ++slot) separable_words(gen, separable, separable_ahead[slot]);
   for (std::size_t slot = 0; slot < block_lookahead<Framed>; ++slot) draw(slot);
   std::size_t next = 0;
   std::uint64_t events = 0, candidates = 0;
@@ -398,7 +468,7 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
     std::uint64_t c = 0;
     for (; c < n_candidates; ++c) {
       const std::uint32_t a = ahead_a[next], b = ahead_b[next], pair = ahead_pair[next];
-      [[maybe_unused]] const std::uint32_t row_column = Factored ? ahead_row_column[next] : 0;
+      [[maybe_unused]] const std::uint32_t row_column = Factored || Separable ? ahead_row_column[next] : 0;
       draw(next);
       next = (next + 1) % block_lookahead<Framed>;
       if (Lowrank && a == b) continue;  // the self pair is part of the majorant's sum, never a collision
@@ -407,10 +477,17 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
       const double g2 = gx * gx + gy * gy + gz * gz;
       // Accept with |g| / (w_i + w_k) (`lowrank`) or pi sigma_kj^2 chi_kj |g| / B_b (\ref sch_majorant "docs/schemes.md"), squared.
       // (factored: (w_i + w_k) ||G|| from the present species' w, as pair_limit_ holds it for the one-word draw)
-      const double limit = Factored  ? (factored.w[row_column & 0xffffu] + factored.w[row_column >> 16]) * speed_factor
-                           : Lowrank ? acceptance[pair]
-                                     : bound;
-      const double rate2 = Lowrank ? g2 : acceptance[pair] * g2;
+      // (separable: chi_ik |g| / (chi_max W_b ||G|| (1/sqrt(m_i) + 1/sqrt(m_k))))
+      [[maybe_unused]] double chi = 1.0;
+      if constexpr (Separable)
+        if (enskog) chi = mix_.pair_correlation(separable.species[pair].species, separable.species[row_column].species);
+      const double limit =
+          Separable  ? (separable.species[pair].inverse_root_mass + separable.species[row_column].inverse_root_mass) *
+                          energy_bound
+          : Factored ? (factored.w[row_column & 0xffffu] + factored.w[row_column >> 16]) * speed_factor
+          : Lowrank  ? acceptance[pair]
+                     : bound;
+      const double rate2 = Separable ? chi * chi * g2 : Lowrank ? g2 : acceptance[pair] * g2;
       const double threshold = gen.uniform() * limit;
       if (threshold * threshold >= rate2) continue;
       if (rate2 > limit * limit) [[unlikely]] note_overshoot(std::sqrt(rate2) / limit);
@@ -424,15 +501,34 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
       }
       particles::Vec3& va = v[a];
       particles::Vec3& vb = v[b];
-      const PairKernel& pk = kernel[pair];  // (read only for a collision)
-      const std::uint32_t i = pair_species[2 * pair], k = pair_species[2 * pair + 1];
-      if constexpr (Rule::kernel_needs_particles)
+      const std::uint32_t i = Separable ? separable.species[pair].species : pair_species[2 * pair];
+      const std::uint32_t k = Separable ? separable.species[row_column].species : pair_species[2 * pair + 1];
+      if constexpr (Rule::kernel_needs_particles) {
         dissipated += rule.collide_at(sys_, spin, a, b, i, k, g_dot_e2, {px, py, pz}).loss;
-      else
-        dissipated += kernel_collision<Rule, Framed>(pk, i, k, va, vb, g_dot_e2, {px, py, pz}, moments);
+      } else if constexpr (Separable) {  // (no S x S table read at random: the pair's constants computed, rules.hpp)
+        const double alpha = alpha_constant ? *alpha_constant : mix_.restitution(i, k);
+        dissipated += kernel_collision<Rule, Framed>(PairKernel{rules::SmoothRule::make_pair(alpha, mass[i], mass[k]), 0},
+                                                     i, k, va, vb, g_dot_e2, {px, py, pz}, moments);
+      } else {
+        dissipated += kernel_collision<Rule, Framed>(kernel[pair], i, k, va, vb, g_dot_e2, {px, py, pz}, moments);
+      }
       ++events;
-      ++pair_events[pk.event];
-      if (raised_by(va, vb, speed2, i, k)) [[unlikely]] {  // a new sub-step from here
+      if constexpr (Separable)  // (above pair_event_limit species the counts are not kept: the sink)
+        ++pair_events[counting_pairs ? std::min(i, k) * s + std::max(i, k) : 0];
+      else
+        ++pair_events[kernel[pair].event];
+      if constexpr (Separable) {  // the species' bounds follow (the master's rate), W_b^2 is the block's bound
+        const double speed2_a = va.x * va.x + va.y * va.y + va.z * va.z;
+        const double speed2_b = vb.x * vb.x + vb.y * vb.y + vb.z * vb.z;
+        speed2[i] = std::max(speed2[i], speed2_a);
+        speed2[k] = std::max(speed2[k], speed2_b);
+        if (mass[i] * speed2_a > energy2 || mass[k] * speed2_b > energy2) [[unlikely]] {
+          energy2 = std::max({energy2, mass[i] * speed2_a, mass[k] * speed2_b});
+          raised = true;
+          ++c;
+          break;
+        }
+      } else if (raised_by(va, vb, speed2, i, k)) [[unlikely]] {  // a new sub-step from here
         raised = true;
         ++c;
         break;
@@ -442,6 +538,12 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
     credit_ = raised ? 0.0 : available - static_cast<double>(n_candidates) * dt_candidate;
     time_ = raised ? t0 + static_cast<double>(c) * dt_candidate : t_stop;
     if (!raised) break;
+    if constexpr (Separable) {  // only R_b scales with W_b: the drawn-ahead pairs keep their law
+      separable_.energy2 = energy2;
+      energy_bound = std::sqrt(energy2) * speed_factor * chi_max_;
+      rate_ = separable_.scale * std::sqrt(energy2) * speed_factor;
+      continue;
+    }
     after_raise<Lowrank, Framed>(cum, n, speed2);
     if constexpr (Lowrank) {  // the drawn-ahead pairs came from the old A_ik: redrawn
       cells = lowrank_cells_.data();  // (their sizes do not change: the same data)

@@ -155,6 +155,8 @@ class SumTree {
 struct AliasTable {
   std::vector<double> threshold;   ///< probability of keeping cell k rather than its alias
   std::vector<std::size_t> alias;  ///< the other index of cell k
+  std::vector<double> scaled;        ///< build()'s scratch: n w_k / sum w
+  std::vector<std::size_t> small, large;  ///< build()'s scratch: the cells below and above 1
   /// Builds the table of weights `w` (each finite and >= 0); all zero leaves it empty of draws.
   void build(const std::vector<double>& w) {
     const std::size_t n = w.size();
@@ -163,8 +165,8 @@ struct AliasTable {
     double total = 0.0;
     for (double x : w) total += x;
     if (!(total > 0.0)) return;
-    std::vector<double> scaled(n);
-    std::vector<std::size_t> small, large;
+    scaled.resize(n);  // (the scratch arrays kept between builds: the blocks rebuild their tables often)
+    small.clear(), large.clear();
     for (std::size_t k = 0; k < n; ++k) {
       scaled[k] = w[k] * static_cast<double>(n) / total;
       (scaled[k] < 1.0 ? small : large).push_back(k);

@@ -16,7 +16,9 @@ PairMatrix PairMatrix::computed(std::size_t n, std::function<double(std::size_t,
 }
 
 PairMatrix PairMatrix::uniform(std::size_t n, double value) {
-  return computed(n, [value](std::size_t, std::size_t) { return value; });
+  PairMatrix m = computed(n, [value](std::size_t, std::size_t) { return value; });
+  m.constant = value;
+  return m;
 }
 
 void PairMatrix::densify() {
@@ -29,6 +31,7 @@ void PairMatrix::densify() {
 }
 
 double PairMatrix::max() const {
+  if (constant && size > 0) return *constant;
   double m = -std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < size; ++k)
     for (std::size_t j = 0; j < size; ++j) m = std::max(m, (*this)(k, j));
@@ -36,6 +39,7 @@ double PairMatrix::max() const {
 }
 
 double PairMatrix::min() const {
+  if (constant && size > 0) return *constant;
   double m = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < size; ++k)
     for (std::size_t j = 0; j < size; ++j) m = std::min(m, (*this)(k, j));

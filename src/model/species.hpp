@@ -17,6 +17,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <vector>
 
 namespace gdsmc::species {
@@ -27,6 +28,9 @@ struct PairMatrix {
   std::size_t size = 0;        ///< S
   std::vector<double> values;  ///< dense storage, row-major; empty when `rule` computes the entries
   std::function<double(std::size_t, std::size_t)> rule;  ///< entry (k, j) on access; empty when dense
+  /// Set by uniform() (kept by densify(), dropped by a write access): every entry is this value, so
+  /// that max() and min() take O(1), not O(S^2), and the block kernels read no S x S table.
+  std::optional<double> constant;
 
   PairMatrix() = default;
   /// A dense n x n matrix with every entry `fill`.
@@ -45,11 +49,12 @@ struct PairMatrix {
   /// Write access: a computed matrix is first stored densely.
   double& operator()(std::size_t k, std::size_t j) {
     if (rule) densify();
+    constant.reset();  // (the entry may be written)
     return values[k * size + j];
   }
   /// Stores every entry of a computed matrix and drops the rule (S^2 doubles).
   void densify();
-  double max() const;  ///< largest entry (O(S^2) for a computed matrix)
+  double max() const;  ///< largest entry (O(S^2) for a computed matrix other than uniform())
   double min() const;  ///< smallest entry
 };
 
