@@ -131,6 +131,25 @@ template <bool Two>
   return true;
 }
 
+/// The particles a, b of a block's `lowrank` candidate whose slices are `si` and `sk` (first, count,
+/// reject), from the low two 24-bit fields of `word` by the multiply-shift with rejection of
+/// lowrank_candidate (either field rejected: below_pair draws both again, on a copy of the stream, which
+/// thus stays in registers).
+template <class Gen, class Slice>
+[[gnu::always_inline]] inline void slice_particles(Gen& gen, std::uint64_t word, const Slice& si, const Slice& sk,
+                                                   std::uint32_t& a, std::uint32_t& b) {
+  const std::uint64_t m1 = (word & 0xffffffULL) * si.count, m2 = ((word >> 24) & 0xffffffULL) * sk.count;
+  std::uint32_t x = static_cast<std::uint32_t>(m1 >> 24), y = static_cast<std::uint32_t>(m2 >> 24);
+  const bool rejected = (static_cast<std::uint32_t>(m1) & 0xffffffu) < si.reject ||
+                        (static_cast<std::uint32_t>(m2) & 0xffffffu) < sk.reject;
+  if (rejected) [[unlikely]] {
+    rng::Xoshiro256pp rare = gen;
+    rare.below_pair(si.count, sk.count, x, y);
+    gen = rare;
+  }
+  a = si.first + x, b = sk.first + y;
+}
+
 }  // namespace
 
 template <class Gen>
@@ -192,17 +211,8 @@ template <class Gen>
   const FactoredSpecies& si = tables.species[row];
   const FactoredSpecies& sk = tables.species[column];
   // Word 2: the particles from the low two 24-bit fields, as in lowrank_candidate.
-  const std::uint64_t r2 = gen();
-  const std::uint64_t m1 = (r2 & 0xffffffULL) * si.count, m2 = ((r2 >> 24) & 0xffffffULL) * sk.count;
-  std::uint32_t x = static_cast<std::uint32_t>(m1 >> 24), y = static_cast<std::uint32_t>(m2 >> 24);
-  const bool rejected = (static_cast<std::uint32_t>(m1) & 0xffffffu) < si.reject ||
-                        (static_cast<std::uint32_t>(m2) & 0xffffffu) < sk.reject;
-  if (rejected) [[unlikely]] {
-    rng::Xoshiro256pp rare = gen;  // (on a copy: lowrank_candidate)
-    rare.below_pair(si.count, sk.count, x, y);
-    gen = rare;
-  }
-  a = si.first + x, b = sk.first + y, pair = si.pair_row + sk.species, row_column = row | column << 16;
+  slice_particles(gen, gen(), si, sk, a, b);
+  pair = si.pair_row + sk.species, row_column = row | column << 16;
 }
 
 template <class Gen>
@@ -245,17 +255,7 @@ template <class Gen>
     column = gen.uniform() < tables.column_fraction[words.column_index] ? column_cell.keep : column_cell.other;
   const SeparableSpecies& si = tables.species[row];
   const SeparableSpecies& sk = tables.species[column];
-  const std::uint64_t r2 = words.particles;  // the particles, as in lowrank_candidate
-  const std::uint64_t m1 = (r2 & 0xffffffULL) * si.count, m2 = ((r2 >> 24) & 0xffffffULL) * sk.count;
-  std::uint32_t x = static_cast<std::uint32_t>(m1 >> 24), y = static_cast<std::uint32_t>(m2 >> 24);
-  const bool rejected = (static_cast<std::uint32_t>(m1) & 0xffffffu) < si.reject ||
-                        (static_cast<std::uint32_t>(m2) & 0xffffffu) < sk.reject;
-  if (rejected) [[unlikely]] {
-    rng::Xoshiro256pp rare = gen;  // (on a copy: lowrank_candidate)
-    rare.below_pair(si.count, sk.count, x, y);
-    gen = rare;
-  }
-  a = si.first + x, b = sk.first + y;
+  slice_particles(gen, words.particles, si, sk, a, b);  // the particles, as in lowrank_candidate
 }
 
 template <class Rule, bool Framed>

@@ -156,7 +156,8 @@ struct AliasTable {
   std::vector<double> threshold;   ///< probability of keeping cell k rather than its alias
   std::vector<std::size_t> alias;  ///< the other index of cell k
   std::vector<double> scaled;        ///< build()'s scratch: n w_k / sum w
-  std::vector<std::size_t> small, large;  ///< build()'s scratch: the cells below and above 1
+  std::vector<std::size_t> small;    ///< build()'s scratch: the cells below 1
+  std::vector<std::size_t> large;    ///< build()'s scratch: the cells at or above 1
   /// Builds the table of weights `w` (each finite and >= 0); all zero leaves it empty of draws.
   void build(const std::vector<double>& w) {
     const std::size_t n = w.size();
