@@ -30,8 +30,8 @@ void Collider::use_blocks(std::size_t block_size) {
   const bool mixture = s_ > 1 && scheme_ != Scheme::pairs && s_ <= block_species_limit && tables_;
   // More than separable_above species with `lowrank`: the separable draw, for a rule with the projection,
   // while the blocks' K x S tables (slices, bounds) hold at most about N entries each (header "Mixtures in blocks").
-  const bool separable = s_ > separable_above && scheme_ == Scheme::lowrank && kernels_ && block_size > 0 &&
-                         s_ * (n / block_size) <= n;
+  const bool separable = s_ > separable_above && s_ <= separable_species_limit && scheme_ == Scheme::lowrank &&
+                         kernels_ && block_size > 0 && s_ * (n / block_size) <= n;
   if (block_size == 0 || !(one || mixture || separable) || n < 2 * block_size) return;
   if (counters_.steps > 0) throw std::logic_error("collide: use_blocks() after the run has started");
   const std::size_t blocks = n / block_size;
