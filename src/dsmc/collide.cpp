@@ -359,6 +359,7 @@ bool Collider::advance(double t_target, std::uint64_t event_target, bool exact_e
     }
     const double t_stop = std::min(t_target, next_step_time_);
     const int stop = run_loop(scheme_, t_stop, event_target);
+    if (stop_requested()) return false;  // (the loop may have ended inside a step: run_substep)
     if (stop == static_cast<int>(Stop::bound_raised)) {
       if (scheme_ == Scheme::lowrank) {
         raise_lowrank_rows();

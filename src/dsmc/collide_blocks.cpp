@@ -367,6 +367,7 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
     const double t_stop = std::min(t_target, next_step_time_);
     if (whole_step_) {
       const int stop = run_loop(lowrank_blocks() ? Scheme::lowrank : Scheme::majorant, t_stop, any_target);
+      if (stop_requested()) return false;  // (the loop may have ended inside the step: run_substep)
       if (stop == static_cast<int>(Stop::bound_raised)) {
         if (lowrank_blocks()) {
           raise_lowrank_rows();  // the raised rows only (the same sums as a rebuild: segment_tree.hpp)

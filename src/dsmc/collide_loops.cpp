@@ -50,6 +50,14 @@ int Collider::run_substep(double t_stop, std::uint64_t event_target, TryCandidat
   const auto n_candidates = static_cast<std::uint64_t>(available * rate_);
   const double t0 = time_ - credit_;
   for (std::uint64_t c = 0; c < n_candidates; ++c) {
+    // An interrupt (set_stop_flag) seen every 2^16 candidates, however long the step: the run is then
+    // abandoned, so the step may end here (the `pairs` scheme's steps of step_fraction = 100 took over 1 s).
+    if ((c & 0xffffu) == 0xffffu && stop_requested()) [[unlikely]] {
+      counters_.candidates += c;
+      time_ = t0 + static_cast<double>(c) * dt_candidate;
+      credit_ = 0.0;
+      return static_cast<int>(Stop::reached_time);
+    }
     std::size_t a, b;
     if (!try_candidate(a, b, t0 + static_cast<double>(c + 1) * dt_candidate)) continue;
     const bool raised_a = raise_max_speed(a);  // both partners, always
