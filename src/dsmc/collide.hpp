@@ -299,9 +299,10 @@ class Collider {
   bool advance(double t_target, std::uint64_t event_target = UINT64_MAX, bool exact_events = true,
                std::uint64_t event_limit = UINT64_MAX, bool to_step_end = false);
   /// A flag (the caller's interrupt flag, set by a signal handler) that, once set, makes advance()
-  /// return false at the next step start, before its targets: a step is never split, the caller sees
-  /// an unfinished advance and stops. However small `step_fraction` is, a step start comes within one
-  /// O(N) bound recomputation (tests/scale_out/interrupt.sh). Read only; nullptr (the default): never.
+  /// return false at the next step start, before its targets, or within 2^16 candidates of an unblocked
+  /// loop (a long step is then cut: the run is abandoned); the caller sees an unfinished advance and
+  /// stops. However small `step_fraction` is, a step start comes within one O(N) bound recomputation
+  /// (tests/scale_out/interrupt.sh). Read only; nullptr (the default): never.
   void set_stop_flag(const std::atomic<bool>* flag) { stop_flag_ = flag; }
 
   /// The velocities were changed from outside between two advance() calls (the streaming of a
