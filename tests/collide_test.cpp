@@ -1595,120 +1595,124 @@ std::array<double, 3> group_temperatures(const species::Mixture& mix, const part
 }
 }  // namespace
 
-// Blocks for more than pair_event_limit species (up to block_species_limit; collide.hpp, "Mixtures in
-// blocks"): 200 species, m_k = k, sigma_k = k^(1/3), N_k ~ k^-1.5 (N = 17301, N_200 = 2), alpha = 0.8,
-// blocks of 3000 (K = 5: species 1-7 dealt, 193 scattered, most blocks missing some of them, so that
-// the alias table covers the species present only). Blocked and unblocked, `majorant` and `lowrank`,
-// 16 replicas each (8 under the sanitizers): T_1, the temperature of species 2-10 and of 11-200 together and the time at an
-// event target agree within 4 combined SE; the blocked runs make no acceptance overshoot.
-TEST(Collide, ManySpeciesBlocksMatchUnblocked) {
-  const std::size_t s = 200;  // up to block_species_limit
-  std::vector<double> mass(s), diameter(s), density(s), temperature(s, 1.0);
-  std::vector<std::size_t> counts(s);
+namespace {
+
+// The many-species gases of the block tests: S species, m_k = k, sigma_k = k^(1/3), N_k = max(least,
+// round(scale k^-1.5)), alpha = 0.8, total density 0.01, all at T = 1.
+struct PowerLawGas {
+  species::Mixture mix;
+  std::vector<std::size_t> counts;
   std::size_t total = 0;
+};
+
+PowerLawGas power_law_gas(std::size_t s, double scale, std::size_t least) {
+  std::vector<double> mass(s), diameter(s), density(s);
+  PowerLawGas gas;
+  gas.counts.resize(s);
   for (std::size_t k = 0; k < s; ++k) {
     const double kk = static_cast<double>(k + 1);
     mass[k] = kk;
     diameter[k] = std::cbrt(kk);
-    counts[k] = static_cast<std::size_t>(std::llround(7000.0 * std::pow(kk, -1.5)));
-    total += counts[k];
+    gas.counts[k] = std::max(least, static_cast<std::size_t>(std::llround(scale * std::pow(kk, -1.5))));
+    gas.total += gas.counts[k];
   }
-  for (std::size_t k = 0; k < s; ++k) density[k] = 0.01 * static_cast<double>(counts[k]) / static_cast<double>(total);
-  const auto mix = species::make_mixture(mass, diameter, density, species::PairMatrix(s, 0.8), false);
-  const std::size_t replicas = gdsmc::test::replicas(16);  // 8 under the sanitizers
-  for (Scheme scheme : {Scheme::majorant, Scheme::lowrank}) {
-    SCOPED_TRACE(name(scheme));
-    std::vector<std::vector<double>> observed[2];
-    for (int blocked = 0; blocked < 2; ++blocked) {
-      observed[blocked].assign(4, {});
-      for (std::size_t r = 0; r < replicas; ++r) {
-        auto sys = initial(mix, counts, temperature, 400 + r);
-        Collider c(scheme, mix, sys, rng::make_stream(400 + r, 0, rng::Purpose::collisions), 1.0);
-        if (blocked) c.use_blocks(3000);
-        follow_scheme(c, scheme);
-        ASSERT_EQ(c.blocks(), blocked ? total / 3000 : 1u);
-        c.advance(gdsmc::test::sanitized ? 5.0 : 15.0);  // (a third of the time under the sanitizers)
-        c.advance(1e12, c.counters().events + 12000);
-        if (blocked) {
-          EXPECT_EQ(c.counters().overshoots, 0u);
-        }
-        const auto t = group_temperatures(mix, sys);
-        for (int g = 0; g < 3; ++g) observed[blocked][g].push_back(t[g]);
-        observed[blocked][3].push_back(c.time());
-      }
-    }
-    const char* names[] = {"T_1", "T of species 2-10", "T of species 11-200", "time at the target"};
-    for (int q = 0; q < 4; ++q) {
-      const auto [m0, s0] = mean_se(observed[0][q]);
-      const auto [m1, s1] = mean_se(observed[1][q]);
-      std::printf("[ Blocks.ManySpecies ] %s %s: unblocked %.6g +- %.2g, blocked %.6g +- %.2g (%.2f SE)\n",
-                  name(scheme), names[q], m0, s0, m1, s1, (m1 - m0) / std::hypot(s0, s1));
-      EXPECT_LT(std::abs(m1 - m0), 4.0 * std::hypot(s0, s1));
-    }
-  }
+  for (std::size_t k = 0; k < s; ++k)
+    density[k] = 0.01 * static_cast<double>(gas.counts[k]) / static_cast<double>(gas.total);
+  gas.mix = species::make_mixture(mass, diameter, density, species::PairMatrix(s, 0.8), false);
+  return gas;
 }
 
-// Blocks beyond block_species_limit (collide.hpp, "Mixtures in blocks": `lowrank`, the separable draw):
-// 300 species, m_k = k, sigma_k = k^(1/3), N_k = max(2, round(9000 k^-1.5)) (N = 22985), alpha = 0.8,
-// blocks of 3000 (K = 7: species 1-11 dealt, 289 scattered). Blocked and unblocked, 16 replicas each (8
-// under the sanitizers): T_1, the temperature of species 2-10 and of 11-300 together and the time at an
-// event target (met exactly) agree within 4 combined SE (printed); no acceptance overshoot; 2 threads
-// give the same velocities bit for bit as one.
-TEST(Collide, SeparableBlocksBeyondTheSpeciesLimitMatchUnblocked) {
-  const std::size_t s = 300;
-  ASSERT_GT(s, collide::block_species_limit);
-  std::vector<double> mass(s), diameter(s), density(s), temperature(s, 1.0);
-  std::vector<std::size_t> counts(s);
-  std::size_t total = 0;
-  for (std::size_t k = 0; k < s; ++k) {
-    const double kk = static_cast<double>(k + 1);
-    mass[k] = kk;
-    diameter[k] = std::cbrt(kk);
-    counts[k] = std::max<std::size_t>(2, static_cast<std::size_t>(std::llround(9000.0 * std::pow(kk, -1.5))));
-    total += counts[k];
-  }
-  for (std::size_t k = 0; k < s; ++k) density[k] = 0.01 * static_cast<double>(counts[k]) / static_cast<double>(total);
-  const auto mix = species::make_mixture(mass, diameter, density, species::PairMatrix(s, 0.8), false);
-  const std::size_t replicas = gdsmc::test::replicas(16);  // 8 under the sanitizers
+// Blocked (blocks of `block_size`, expected `blocks` of them) against unblocked, 16 replicas each (8 under
+// the sanitizers) from seeds seed + r: T_1, the temperature of species 2-10 and of 11-S together and the time
+// at an event target 12000 events on from t = 15 (5 under the sanitizers) agree within 4 combined SE
+// (printed); the target is met exactly and the blocked runs make no acceptance overshoot.
+void expect_blocks_match_unblocked(const PowerLawGas& gas, Scheme scheme, std::size_t block_size, std::size_t blocks,
+                                   std::uint64_t seed, const char* label) {
+  const std::size_t s = gas.counts.size();
+  const std::vector<double> temperature(s, 1.0);
+  const std::size_t replicas = gdsmc::test::replicas(16);
   std::vector<std::vector<double>> observed[2];
   for (int blocked = 0; blocked < 2; ++blocked) {
     observed[blocked].assign(4, {});
     for (std::size_t r = 0; r < replicas; ++r) {
-      auto sys = initial(mix, counts, temperature, 700 + r);
-      Collider c(Scheme::lowrank, mix, sys, rng::make_stream(700 + r, 0, rng::Purpose::collisions), 1.0);
-      if (blocked) c.use_blocks(3000);
-      follow_scheme(c, Scheme::lowrank);
-      ASSERT_EQ(c.blocks(), blocked ? total / 3000 : 1u);
+      auto sys = initial(gas.mix, gas.counts, temperature, seed + r);
+      Collider c(scheme, gas.mix, sys, rng::make_stream(seed + r, 0, rng::Purpose::collisions), 1.0);
+      if (blocked) c.use_blocks(block_size);
+      follow_scheme(c, scheme);
+      ASSERT_EQ(c.blocks(), blocked ? blocks : 1u);
       c.advance(gdsmc::test::sanitized ? 5.0 : 15.0);
       const std::uint64_t target = c.counters().events + 12000;
       c.advance(1e12, target);
-      EXPECT_EQ(c.counters().events, target);  // met exactly (collide.hpp "Blocks", "Event targets")
+      // met exactly (collide.hpp "Blocks", "Event targets")
+      EXPECT_EQ(c.counters().events, target) << "blocked " << blocked << ", replica " << r;
       EXPECT_EQ(c.counters().overshoots, 0u);
-      const auto t = group_temperatures(mix, sys);
+      const auto t = group_temperatures(gas.mix, sys);
       for (int g = 0; g < 3; ++g) observed[blocked][g].push_back(t[g]);
       observed[blocked][3].push_back(c.time());
     }
   }
-  const char* names[] = {"T_1", "T of species 2-10", "T of species 11-300", "time at the target"};
+  const std::string names[] = {"T_1", "T of species 2-10", "T of species 11-" + std::to_string(s), "time at the target"};
   for (int q = 0; q < 4; ++q) {
     const auto [m0, s0] = mean_se(observed[0][q]);
     const auto [m1, s1] = mean_se(observed[1][q]);
-    std::printf("[ Blocks.Separable300 ] %s: unblocked %.6g +- %.2g, blocked %.6g +- %.2g (%.2f SE)\n", names[q], m0, s0,
-                m1, s1, (m1 - m0) / std::hypot(s0, s1));
+    std::printf("[ %s ] %s %s: unblocked %.6g +- %.2g, blocked %.6g +- %.2g (%.2f SE)\n", label, name(scheme),
+                names[q].c_str(), m0, s0, m1, s1, (m1 - m0) / std::hypot(s0, s1));
     EXPECT_LT(std::abs(m1 - m0), 4.0 * std::hypot(s0, s1));
   }
-  auto run_threads = [&](int threads) {
-    auto sys = initial(mix, counts, temperature, 777);
-    Collider c(Scheme::lowrank, mix, sys, rng::make_stream(777, 0, rng::Purpose::collisions), 1.0);
-    c.use_blocks(3000);
-    c.use_threads(threads);
-    c.advance(1e12, 5 * total);
-    std::vector<double> flat;
-    for (const auto& v : sys.v) flat.insert(flat.end(), {v.x, v.y, v.z});
-    flat.push_back(c.time());
-    return flat;
-  };
-  EXPECT_EQ(run_threads(1), run_threads(2));
+}
+
+// The velocities and the time after 5 collisions per particle of `gas` in blocks of `block_size` on
+// `threads` threads (seed 777).
+std::vector<double> blocked_run(const PowerLawGas& gas, std::size_t block_size, int threads) {
+  auto sys = initial(gas.mix, gas.counts, std::vector<double>(gas.counts.size(), 1.0), 777);
+  Collider c(Scheme::lowrank, gas.mix, sys, rng::make_stream(777, 0, rng::Purpose::collisions), 1.0);
+  c.use_blocks(block_size);
+  c.use_threads(threads);
+  c.advance(1e12, 5 * gas.total);
+  std::vector<double> flat;
+  for (const auto& v : sys.v) flat.insert(flat.end(), {v.x, v.y, v.z});
+  flat.push_back(c.time());
+  return flat;
+}
+
+}  // namespace
+
+// Blocks for more than pair_event_limit species (up to block_species_limit; collide.hpp, "Mixtures in
+// blocks"): 200 species, N_k = round(7000 k^-1.5) (N = 17301, N_200 = 2), blocks of 3000 (K = 5: species 1-7
+// dealt, 193 scattered, most blocks missing some of them, so that the alias table covers the species present
+// only), `majorant` and `lowrank` (expect_blocks_match_unblocked).
+TEST(Collide, ManySpeciesBlocksMatchUnblocked) {
+  const PowerLawGas gas = power_law_gas(200, 7000.0, 0);
+  for (Scheme scheme : {Scheme::majorant, Scheme::lowrank})
+    expect_blocks_match_unblocked(gas, scheme, 3000, gas.total / 3000, 400, "Blocks.ManySpecies");
+}
+
+// Blocks beyond block_species_limit (collide.hpp, "Mixtures in blocks": `lowrank`, the separable draw):
+// 300 species, N_k = max(2, round(9000 k^-1.5)) (N = 22985), blocks of 3000 (K = 7: species 1-11 dealt, 289
+// scattered; expect_blocks_match_unblocked); 2 threads give the same velocities bit for bit as one.
+TEST(Collide, SeparableBlocksBeyondTheSpeciesLimitMatchUnblocked) {
+  const PowerLawGas gas = power_law_gas(300, 9000.0, 2);
+  ASSERT_GT(gas.counts.size(), collide::block_species_limit);
+  expect_blocks_match_unblocked(gas, Scheme::lowrank, 3000, gas.total / 3000, 700, "Blocks.Separable300");
+  EXPECT_EQ(blocked_run(gas, 3000, 1), blocked_run(gas, 3000, 2));
+}
+
+// The separable draw's larger blocks (Collider::separable_block_count): blocks of 200 would hold S K = 34200 >
+// N table entries, so the 300-species gas above runs in K = N div S = 76 blocks of about 300 instead, with the
+// unblocked process (expect_blocks_match_unblocked) and bit for bit on any thread count. Beyond
+// separable_species_limit species the blocks hold at most separable_block_limit particles on average, while
+// S K <= 2 N.
+TEST(Collide, SeparableBlocksGrowWhenTheTablesWouldOutgrowTheGas) {
+  const PowerLawGas gas = power_law_gas(300, 9000.0, 2);
+  ASSERT_GT(300 * (gas.total / 200), gas.total);
+  expect_blocks_match_unblocked(gas, Scheme::lowrank, 200, gas.total / 300, 900, "Blocks.SeparableLarger");
+  EXPECT_EQ(blocked_run(gas, 200, 1), blocked_run(gas, 200, 2));
+  EXPECT_EQ(Collider::separable_block_count(1000, 1000000, 32768), 30u);     // S K <= N: N div block_size
+  EXPECT_EQ(Collider::separable_block_count(100000, 1000000, 32768), 17u);   // ceil(1e6 / 60000)
+  EXPECT_EQ(Collider::separable_block_count(50000, 1000000, 32768), 20u);    // N div S
+  EXPECT_EQ(Collider::separable_block_count(100000, 10000000, 32768), 167u); // ceil(1e7 / 60000), S K <= 2 N
+  EXPECT_EQ(Collider::separable_block_count(200000, 1000000, 32768), 0u);    // S K = 3.4 N: none
+  EXPECT_LT(Collider::separable_block_count(60000, 100000, 64), 2u);         // N div S = 1: none
 }
 
 // The factored `lowrank` draw (collide.hpp, "Mixtures in blocks"; \ref sch_factored "docs/schemes.md"),

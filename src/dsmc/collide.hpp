@@ -66,8 +66,9 @@
  * (`collisions_per_particle`) are met exactly: when fewer events are left than a step could bring (R dt times the last
  * step's acceptance, 1 for a run's first step, plus 10 % and 8 standard deviations) the step is shortened, and when
  * that would leave it fewer than min(N/64, 4 N/K) events it runs on the whole gas as one block with the exact bound of
- * all particles, which samples the unblocked process and stops at the target. Soft targets (progress, checkpoints) are
- * checked at step ends.
+ * all particles, which samples the unblocked process and stops at the target (such a step holds at least 1.25 of the
+ * whole gas's own candidates: it was sized at the blocks' R, which the separable draw's bound makes several times the
+ * whole gas's). Soft targets (progress, checkpoints) are checked at step ends.
  *
  * **The one-species block kernel** (`run_block_one_species`; constant restitution) samples the process of `majorant`
  * (R_b, uniform pairs, acceptance |g| / (2 vmax_b), e of density (g_hat.e)/pi, bounds raised when exceeded, candidate
@@ -110,8 +111,8 @@
  * rebuilds the P rows' table alone, O(P), where the one-word table is rebuilt in O(P^2) (bounds are raised about once
  * per slice's worth of events: above 24 species that rebuild outgrows the candidates); a factored candidate takes two
  * words and two dependent table reads, so up to 24 species the one-word draw costs less. set_lowrank_factor_above()
- * moves the threshold (tests). *The separable draw* (more than separable_above = 128 species, `lowrank`, while S K <= N;
- * \ref sch_separable "docs/schemes.md"): w_i = W_b/sqrt(m_i) with W_b^2 = max m |v|^2 over the block, so that A_ik =
+ * moves the threshold (tests). *The separable draw* (more than separable_above = 128 species, `lowrank`; blocks of
+ * block_size while S K <= N, else K = N div S larger ones, separable_block_count; \ref sch_separable "docs/schemes.md"): w_i = W_b/sqrt(m_i) with W_b^2 = max m |v|^2 over the block, so that A_ik =
  * (pi chi_max W_b/(4V)) sum_r u_i^(r) v_k^(r), u_i = N_i (sigma_i^2, 2 sigma_i, 1)/sqrt(m_i), v_k = N_k (1, sigma_k,
  * sigma_k^2) (Bodrova and Osinsky 2024, eqs. (12)-(14)): the term r, then the row from u^(r) and the column from v^(r),
  * from six alias tables over the P species present built once per visit; accepted with chi_ik |g| / (chi_max (w_i +
@@ -228,11 +229,15 @@ class Collider {
 
   /// Cache blocks of about `block_size` particles (header, "Blocks"), for one species or a mixture of
   /// at most block_species_limit (256) species with the `majorant` or `lowrank` scheme, or of more with
-  /// `lowrank` and a rule with the projection while S K <= N (the separable draw above separable_above
-  /// species), and N >= 2 block_size; otherwise (or
+  /// `lowrank` and a rule with the projection (the separable draw above separable_above species, in
+  /// separable_block_count() blocks: larger ones when S K would exceed N), and N >= 2 block_size; otherwise (or
   /// with 0) the whole gas is one block. Call before the first advance().
   void use_blocks(std::size_t block_size);
   std::size_t blocks() const { return block_first_.empty() ? 1 : block_first_.size() - 1; }
+  /// The number K of the separable draw's blocks of N = `n` particles of `species` species (use_blocks):
+  /// N div block_size while S K <= N, else fewer and larger blocks (at most separable_block_limit particles
+  /// on average beyond separable_species_limit species) while S K <= 2 N; fewer than 2: none.
+  static std::size_t separable_block_count(std::size_t species, std::size_t n, std::size_t block_size);
   /// Which exact sampler a mixture's blocks run (header "Mixtures in blocks", "The cheaper sampler"):
   /// `cheaper` (the default) takes, at each step, the one of the `majorant` and `lowrank` block majorants
   /// whose candidates cost less in all, whatever the scheme; the other two force one (tests, benchmarks).
@@ -588,8 +593,12 @@ class Collider {
     std::uint32_t whole;
     std::uint16_t keep, other;
   };
-  /// More species than this never take the separable draw (SeparableCell's 16-bit outcomes).
+  /// SeparableCell's 16-bit outcomes hold at most this many present species: beyond this many species the
+  /// separable blocks hold at most separable_block_limit particles on average (separable_block_count).
   static constexpr std::size_t separable_species_limit = 65535;
+  /// The separable blocks' mean size beyond separable_species_limit species: a block's count, multinomial
+  /// about its mean when every species is scattered, stays below 2^16 by over 20 standard deviations.
+  static constexpr std::size_t separable_block_limit = 60000;
   /// The current block's separable tables (set_block_separable), built once per visit: none holds a speed.
   /// Term r of A_ik = sum_r u_i^(r) v_k^(r) (segment_tree.hpp's hard_sphere_factors) is drawn first, then
   /// the row from u^(r) and the column from v^(r), independently (two table reads in parallel).
@@ -670,7 +679,17 @@ class Collider {
   double mixture_bound(const double* max_speed2, const std::size_t* cum = nullptr) const;
   /// Slices (header "Blocks"): species k's particles of block j are [slice_first_[j S + k], + count),
   /// count = slice_cum_[j (S+1) + k + 1] - slice_cum_[j (S+1) + k]; cum is the block's running count.
+  /// The master's only (make_workers): a worker reads them through slice_owner_.
   std::vector<std::size_t> slice_first_, slice_cum_;
+  /// The collider whose slices this one's blocks read: its master (run_block), nullptr for the master itself.
+  const Collider* slice_owner_ = nullptr;
+  /// The current block's slice starts (S) and running counts (S + 1), from the slices' owner.
+  const std::size_t* block_slice_first() const {
+    return (slice_owner_ != nullptr ? *slice_owner_ : *this).slice_first_.data() + current_block_ * s_;
+  }
+  const std::size_t* block_slice_cum() const {  ///< (as block_slice_first)
+    return (slice_owner_ != nullptr ? *slice_owner_ : *this).slice_cum_.data() + current_block_ * (s_ + 1);
+  }
   /// A species with at least min_slice K particles is dealt round the K blocks in equal slices; a rarer
   /// one is scattered (header "Mixtures in blocks": each particle to a uniformly random block, anew at
   /// every remix).

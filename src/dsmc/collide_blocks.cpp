@@ -28,13 +28,17 @@ void Collider::use_blocks(std::size_t block_size) {
   const std::size_t n = sys_.size();
   const bool one = s_ == 1 && scheme_ != Scheme::pairs;
   const bool mixture = s_ > 1 && scheme_ != Scheme::pairs && s_ <= block_species_limit && tables_;
-  // More than separable_above species with `lowrank`: the separable draw, for a rule with the projection,
-  // while the blocks' K x S tables (slices, bounds) hold at most about N entries each (header "Mixtures in blocks").
-  const bool separable = s_ > separable_above && s_ <= separable_species_limit && scheme_ == Scheme::lowrank &&
-                         kernels_ && block_size > 0 && s_ * (n / block_size) <= n;
+  // More than separable_above species with `lowrank`: the separable draw, for a rule with the projection
+  // (header "Mixtures in blocks").
+  // (a mixture of at most block_species_limit species whose K x S tables would exceed N entries keeps the
+  // factored draw in blocks of block_size)
+  const std::size_t separable_count = s_ > separable_above && scheme_ == Scheme::lowrank && kernels_ && block_size > 0
+                                          ? separable_block_count(s_, n, block_size)
+                                          : 0;
+  const bool separable = separable_count >= 2 && (!mixture || s_ * (n / block_size) <= n);
   if (block_size == 0 || !(one || mixture || separable) || n < 2 * block_size) return;
   if (counters_.steps > 0) throw std::logic_error("collide: use_blocks() after the run has started");
-  const std::size_t blocks = n / block_size;
+  const std::size_t blocks = separable ? separable_count : n / block_size;
   // A mixture's species with at least min_slice particles a block is dealt in equal slices, a rarer
   // one scattered, each particle to a uniformly random block (header "Mixtures in blocks").
   separable_blocks_ = separable;
@@ -75,6 +79,18 @@ void Collider::use_blocks(std::size_t block_size) {
   sys_.for_each_array([&](const char*, const auto& a) { element = std::max(element, sizeof(a[0])); });
   for (std::size_t k = 0; k < s_; ++k)
     if (!scattered_[k]) remix_workspace_.reserve(sys_.count[k], blocks, element, threads_);
+}
+
+std::size_t Collider::separable_block_count(std::size_t species, std::size_t n, std::size_t block_size) {
+  // The blocks' K x S tables (slices, bounds) hold at most about N entries each: K = N div block_size while
+  // S K <= N, else fewer and larger blocks, K = N div S (blocks of about S particles); with more than
+  // separable_species_limit species, blocks of at most separable_block_limit particles on average (so that the
+  // P species present fit the tables' 16-bit outcomes), while S K <= 2 N. 0: no blocks.
+  std::size_t blocks = n / block_size;
+  if (species * blocks > n) blocks = n / species;
+  if (species > separable_species_limit)
+    blocks = std::max(blocks, (n + separable_block_limit - 1) / separable_block_limit);
+  return species * blocks <= 2 * n ? blocks : 0;
 }
 
 void Collider::set_slices() {
@@ -134,10 +150,13 @@ void Collider::remix() {
 }
 
 void Collider::set_block_max_speed2(std::size_t j, double* out) {
+  const Collider& owner = slice_owner_ != nullptr ? *slice_owner_ : *this;
+  const std::size_t* slice = owner.slice_first_.data() + j * s_;
+  const std::size_t* cum = owner.slice_cum_.data() + j * (s_ + 1);
   for (std::size_t k = 0; k < s_; ++k) {
     double max2 = 0.0;
-    const std::size_t first = slice_first_[j * s_ + k];
-    const std::size_t end = first + slice_cum_[j * (s_ + 1) + k + 1] - slice_cum_[j * (s_ + 1) + k];
+    const std::size_t first = slice[k];
+    const std::size_t end = first + cum[k + 1] - cum[k];
     for (std::size_t i = first; i < end; ++i) {
       const particles::Vec3& v = sys_.v[i];
       max2 = std::max(max2, v.x * v.x + v.y * v.y + v.z * v.z);
@@ -332,6 +351,10 @@ void Collider::begin_blocked_step(double step) {
     set_whole_gas_bound();
     credit_ = 0.0;
     pending_filled_ = false;
+    // approach_target sized the step at the blocks' rate R; the whole gas's own R_w can be several times
+    // less (the separable draw's bound W_b/sqrt(m_i) of every species): at least 1.25 of its candidates,
+    // or a step for the last event could hold none (its credit starts at 0), and so would every next one.
+    if (rate_ > 0.0) step = std::max(step, 1.25 / rate_);
   } else if (counters_.steps > 0) {
     remix();
   }
@@ -376,7 +399,9 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
           set_whole_gas_bound();
         }
       }
-      if (stop == static_cast<int>(Stop::reached_events)) return true;
+      // (a raised bound takes precedence over the target in the loop's stop: the collision that raised it
+      // may have met the target, and the next loop would pass it)
+      if (stop == static_cast<int>(Stop::reached_events) || counters_.events >= any_target) return true;
       continue;
     }
     run_blocks_pass(time_, t_stop);
@@ -400,7 +425,18 @@ void Collider::make_workers() {
   remix_workspace_ = {};
   std::vector<Collider> made;
   made.reserve(static_cast<std::size_t>(threads_));
+  // Nor what only the master holds: a worker reads the slices, bounds and credits of its master's blocks
+  // (run_block), and the whole-gas sampler and the slice counts serve the master's steps and remix.
+  auto slice_first = std::move(slice_first_), slice_cum = std::move(slice_cum_), slice_count = std::move(slice_count_);
+  auto block_max_speed2 = std::move(block_max_speed2_), block_credit = std::move(block_credit_);
+  auto lowrank = std::move(lowrank_);
+  slice_first_ = slice_cum_ = slice_count_ = {};
+  block_max_speed2_ = block_credit_ = {};
+  lowrank_ = segment_tree::LowRankSampler<3>();
   for (int t = 0; t < threads_; ++t) made.push_back(*this);
+  slice_first_ = std::move(slice_first), slice_cum_ = std::move(slice_cum), slice_count_ = std::move(slice_count);
+  block_max_speed2_ = std::move(block_max_speed2), block_credit_ = std::move(block_credit);
+  lowrank_ = std::move(lowrank);
   remix_workspace_ = std::move(remix_workspace);
   workers_ = std::move(made);
   block_counters_.assign(block_first_.size() - 1, counters_);
@@ -414,6 +450,7 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
   std::fill(counters_.pair_events.begin(), counters_.pair_events.end(), 0);
   whole_step_ = false;
   current_block_ = j;
+  slice_owner_ = &master;  // the slices of the master's remix (block_slice_first, block_slice_cum)
   range_first_ = block_first_[j];
   range_count_ = block_first_[j + 1] - block_first_[j];
   pending_filled_ = false;  // the drawn-ahead pairs belong to another block
@@ -440,7 +477,7 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
       // (a mixture: B_b = max_kj pi sigma_kj^2 chi_kj (vmax_bk + vmax_bj) over the block's slices)
       // (in a frame every relative speed bound times ||G||: header "Frame")
       bound_ = (s_ == 1 ? 2.0 * cross_section_[0] * std::sqrt(block_speed2_[0])
-                        : mixture_bound(block_speed2_, slice_cum_.data() + j * (s_ + 1))) *
+                        : mixture_bound(block_speed2_, block_slice_cum())) *
                speed_factor_;
       rate_ = 0.5 * static_cast<double>(range_count_) * n * bound_;
     }
@@ -474,7 +511,7 @@ void Collider::set_block_lowrank(double n) {
   // a candidate then accepted with |g| / (w_i + w_k) (run_lowrank); a pair is drawn from their alias
   // table (one uniform) rather than by the trees' descents. Only the P species present in the block
   // (a scattered species may have no particle there) enter the kernel's tables.
-  const std::size_t* cum = slice_cum_.data() + current_block_ * (s_ + 1);
+  const std::size_t* cum = block_slice_cum();
   lowrank_volume_ = static_cast<double>(range_count_ - 1) / n;
   if (separable_blocks_) {  // more than separable_above species: the separable draw
     set_block_separable(cum);
@@ -546,7 +583,7 @@ void Collider::set_block_one_word(const std::uint32_t* present_species, std::siz
                          c < pairs ? static_cast<std::uint32_t>(c) : other, other};
   }
   lowrank_outcomes_.resize(pairs);
-  const std::size_t* slice = slice_first_.data() + current_block_ * s_;
+  const std::size_t* slice = block_slice_first();
   // Every slice of the block below 2^24 (the one-word draw); else every candidate's reject is 2^24.
   bool narrow = true;
   for (std::size_t i = 0; i < s_; ++i) narrow = narrow && cum[i + 1] - cum[i] < (std::size_t{1} << 24);
@@ -568,7 +605,7 @@ void Collider::set_block_factored(const std::uint32_t* present, std::size_t p, c
   // The factored draw (collide.hpp, "Mixtures in blocks"; \ref sch_factored "docs/schemes.md"): A_ik = w_i
   // rho_i q_k|i over the P species present. The column tables q_k|i hold no speed: built here, once per
   // visit; the rows, w_i rho_i, again at every raised bound (raise_block_factored).
-  const std::size_t* slice = slice_first_.data() + current_block_ * s_;
+  const std::size_t* slice = block_slice_first();
   // Every slice of the block below 2^24 (the 24-bit fields); else every candidate's reject is 2^24.
   bool narrow = true;
   for (std::size_t i = 0; i < s_; ++i) narrow = narrow && cum[i + 1] - cum[i] < (std::size_t{1} << 24);
@@ -612,7 +649,7 @@ void Collider::set_block_separable(const std::size_t* cum) {
   // sigma_k^2) (Bodrova and Osinsky 2024, eqs. (12)-(14); segment_tree.hpp), with w_i = W_b/sqrt(m_i):
   // the term r with weight (sum_i u_i^(r)) (sum_k v_k^(r)), then i from u^(r) and k from v^(r). W_b is a
   // common factor of every u_i: no table holds a speed, and a raised W_b changes R_b only.
-  const std::size_t* slice = slice_first_.data() + current_block_ * s_;
+  const std::size_t* slice = block_slice_first();
   SeparableTables& t = separable_;
   t.species.clear();
   double energy2 = 0.0;
@@ -626,6 +663,9 @@ void Collider::set_block_separable(const std::size_t* cum) {
                          static_cast<std::uint32_t>(k), 1.0 / std::sqrt(mix_.mass[k])});
   }
   const std::size_t p = t.species.size();
+  if (p > separable_species_limit)  // (separable_block_count: over 20 standard deviations beyond a block's mean)
+    throw std::runtime_error("collide: " + std::to_string(p) + " species present in one cache block, more than the " +
+                             "separable draw's " + std::to_string(separable_species_limit));
   for (SeparableSpecies& x : t.species) x.reject = narrow ? (1u << 24) % x.count : 1u << 24;
   unsigned bits = 1;  // at least two cells (one species present: it and a zero weight), r >> 64 being undefined
   while ((std::size_t{1} << bits) < p) ++bits;
@@ -727,12 +767,8 @@ void Collider::raise_block_factored() {
 void Collider::run_blocks_pass(double t_start, double t_stop) {
   if (workers_.size() != static_cast<std::size_t>(threads_)) make_workers();
   const std::size_t blocks = block_first_.size() - 1;
-  if (scattered_any_)  // the slices of this step's remix (the workers are copies made earlier)
-    for (Collider& w : workers_) {
-      w.slice_first_ = slice_first_;
-      w.slice_cum_ = slice_cum_;
-      w.block_first_ = block_first_;
-    }
+  if (scattered_any_)  // the blocks of this step's remix (the workers are copies made earlier; slices: run_block)
+    for (Collider& w : workers_) w.block_first_ = block_first_;
   const std::uint64_t key = gen_();  // this pass's key (header "Threads")
   if (framed_) block_moments_.assign(blocks, std::array<double, 4>{});
   const bool first_visit = t_start == step_start_;

@@ -401,8 +401,8 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
   // (header "Mixtures in blocks"); the stream in a local copy (its state in registers).
   rng::Xoshiro256pp gen = gen_;
   const std::size_t s = s_;
-  const std::size_t* cum = slice_cum_.data() + current_block_ * (s + 1);
-  const std::size_t* slice = slice_first_.data() + current_block_ * s;
+  const std::size_t* cum = block_slice_cum();
+  const std::size_t* slice = block_slice_first();
   const auto n = static_cast<std::uint32_t>(range_count_);
   particles::Vec3* v = sys_.v.data();
   [[maybe_unused]] particles::Vec3* spin = nullptr;

@@ -118,8 +118,8 @@ int Collider::run_majorant(const Rule& rule, double t_stop, std::uint64_t event_
   // A mixture's block is a slice of each species (header "Blocks"): candidate i of the block's N_b is
   // particle i - cum_k of species k's slice, cum_k <= i < cum_k+1.
   const bool sliced = mixture && !block_first_.empty() && !whole_step_;
-  const std::size_t* cum = sliced ? slice_cum_.data() + current_block_ * (s_ + 1) : nullptr;
-  const std::size_t* slice = sliced ? slice_first_.data() + current_block_ * s_ : nullptr;
+  const std::size_t* cum = sliced ? block_slice_cum() : nullptr;
+  const std::size_t* slice = sliced ? block_slice_first() : nullptr;
   const auto to_particle = [&](std::uint32_t i) {
     std::size_t k = 0;
     while (i >= cum[k + 1]) ++k;
@@ -218,8 +218,8 @@ int Collider::run_lowrank(const Rule& rule, double t_stop, std::uint64_t event_t
   particles::Vec3* v = sys_.v.data();
   // In a block (a worker, header "Mixtures in blocks"): the particles of the block's slice of each species.
   const bool sliced = !block_first_.empty() && !whole_step_;
-  const std::size_t* cum = sliced ? slice_cum_.data() + current_block_ * (s_ + 1) : nullptr;
-  const std::size_t* slice = sliced ? slice_first_.data() + current_block_ * s_ : nullptr;
+  const std::size_t* cum = sliced ? block_slice_cum() : nullptr;
+  const std::size_t* slice = sliced ? block_slice_first() : nullptr;
   const auto draw = [&] {
     if (sliced) {  // (i, k) with probability A_ik / R from the block's alias table (set_block_lowrank)
       const std::size_t pair = pair_alias_.sample(gen_.uniform());
