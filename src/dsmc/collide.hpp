@@ -112,7 +112,8 @@
  * per slice's worth of events: above 24 species that rebuild outgrows the candidates); a factored candidate takes two
  * words and two dependent table reads, so up to 24 species the one-word draw costs less. set_lowrank_factor_above()
  * moves the threshold (tests). *The separable draw* (more than separable_above = 128 species, `lowrank`; blocks of
- * block_size while S K <= N, else K = N div S larger ones, separable_block_count; \ref sch_separable "docs/schemes.md"): w_i = W_b/sqrt(m_i) with W_b^2 = max m |v|^2 over the block, so that A_ik =
+ * block_size while S K <= N, else K = N div S larger ones, beyond 65535 species K >= ceil(N/60000), while S K <= 2 N:
+ * separable_block_count; \ref sch_separable "docs/schemes.md"): w_i = W_b/sqrt(m_i) with W_b^2 = max m |v|^2 over the block, so that A_ik =
  * (pi chi_max W_b/(4V)) sum_r u_i^(r) v_k^(r), u_i = N_i (sigma_i^2, 2 sigma_i, 1)/sqrt(m_i), v_k = N_k (1, sigma_k,
  * sigma_k^2) (Bodrova and Osinsky 2024, eqs. (12)-(14)): the term r, then the row from u^(r) and the column from v^(r),
  * from six alias tables over the P species present built once per visit; accepted with chi_ik |g| / (chi_max (w_i +

@@ -389,6 +389,9 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
     }
     const double t_stop = std::min(t_target, next_step_time_);
     if (whole_step_) {
+      // (a call may start inside a whole-gas step with its target already met: a sample's target equal to
+      // the last one's; the loop would only stop after one more event)
+      if (counters_.events >= any_target) return true;
       const int stop = run_loop(lowrank_blocks() ? Scheme::lowrank : Scheme::majorant, t_stop, any_target);
       if (stop_requested()) return false;  // (the loop may have ended inside the step: run_substep)
       if (stop == static_cast<int>(Stop::bound_raised)) {
