@@ -684,13 +684,15 @@ class Collider {
   std::vector<std::size_t> slice_first_, slice_cum_;
   /// The collider whose slices this one's blocks read: its master (run_block), nullptr for the master itself.
   const Collider* slice_owner_ = nullptr;
-  /// The current block's slice starts (S) and running counts (S + 1), from the slices' owner.
-  const std::size_t* block_slice_first() const {
-    return (slice_owner_ != nullptr ? *slice_owner_ : *this).slice_first_.data() + current_block_ * s_;
+  /// Block j's slice starts (S) and running counts (S + 1), from the slices' owner.
+  const std::size_t* slice_first_of(std::size_t j) const {
+    return (slice_owner_ != nullptr ? *slice_owner_ : *this).slice_first_.data() + j * s_;
   }
-  const std::size_t* block_slice_cum() const {  ///< (as block_slice_first)
-    return (slice_owner_ != nullptr ? *slice_owner_ : *this).slice_cum_.data() + current_block_ * (s_ + 1);
+  const std::size_t* slice_cum_of(std::size_t j) const {  ///< (as slice_first_of)
+    return (slice_owner_ != nullptr ? *slice_owner_ : *this).slice_cum_.data() + j * (s_ + 1);
   }
+  const std::size_t* block_slice_first() const { return slice_first_of(current_block_); }  ///< the current block's
+  const std::size_t* block_slice_cum() const { return slice_cum_of(current_block_); }      ///< the current block's
   /// A species with at least min_slice K particles is dealt round the K blocks in equal slices; a rarer
   /// one is scattered (header "Mixtures in blocks": each particle to a uniformly random block, anew at
   /// every remix).

@@ -150,9 +150,8 @@ void Collider::remix() {
 }
 
 void Collider::set_block_max_speed2(std::size_t j, double* out) {
-  const Collider& owner = slice_owner_ != nullptr ? *slice_owner_ : *this;
-  const std::size_t* slice = owner.slice_first_.data() + j * s_;
-  const std::size_t* cum = owner.slice_cum_.data() + j * (s_ + 1);
+  const std::size_t* slice = slice_first_of(j);
+  const std::size_t* cum = slice_cum_of(j);
   for (std::size_t k = 0; k < s_; ++k) {
     double max2 = 0.0;
     const std::size_t first = slice[k];
