@@ -62,11 +62,16 @@ Collider::Collider(Scheme scheme, const species::Mixture& mix, particles::System
   }
 }
 
-void Collider::set_lowrank_row(std::size_t k) {
+segment_tree::HardSphereFactors Collider::lowrank_factors(std::size_t k) const {
   // A_ik = pi sigma_ik^2 chi_max w_i N_i N_k / V in rank-3 form (segment_tree.hpp, \ref sch_lowrank_decomposition "docs/schemes.md")
   auto f = segment_tree::hard_sphere_factors(static_cast<double>(sys_.count[k]), mix_.diameter[k],
                                              max_speed_[k] * speed_factor_, lowrank_volume_);
   for (double& x : f.row) x *= chi_max_;
+  return f;
+}
+
+void Collider::set_lowrank_row(std::size_t k) {
+  const auto f = lowrank_factors(k);
   lowrank_.set_row(k, f.row);
   // v_k depends on N_k and sigma_k only: set once, then sampled from alias tables (segment_tree.hpp).
   if (!lowrank_columns_set_) lowrank_.set_column(k, f.column);
@@ -96,7 +101,15 @@ void Collider::rebuild_bounds() {
   const double n = mix_.total_density();
   const double n_sim = static_cast<double>(sys_.size());
   if (scheme_ == Scheme::lowrank) {
-    for (std::size_t k = 0; k < s_; ++k) set_lowrank_row(k);
+    // Every row at once: O(S) instead of a tree update of O(log S) per row (with 1e5 species, each
+    // whole-gas step near an event target rebuilds them). The same sums (segment_tree.hpp).
+    std::vector<segment_tree::LowRankSampler<3>::Vector> rows(s_);
+    for (std::size_t k = 0; k < s_; ++k) {
+      const auto f = lowrank_factors(k);
+      rows[k] = f.row;
+      if (!lowrank_columns_set_) lowrank_.set_column(k, f.column);
+    }
+    lowrank_.set_rows(rows);
     if (!lowrank_columns_set_) {
       lowrank_.freeze_columns();
       lowrank_columns_set_ = true;

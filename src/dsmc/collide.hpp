@@ -64,11 +64,14 @@
  * unless block_steps is more (N > 5e6; the first step capped too). Viscoelastic restitution and frames keep
  * block_steps. The length sets when bounds are refreshed and blocks remixed, not the process. **Event targets**
  * (`collisions_per_particle`) are met exactly: when fewer events are left than a step could bring (R dt times the last
- * step's acceptance, 1 for a run's first step, plus 10 % and 8 standard deviations) the step is shortened, and when
+ * step's acceptance, 1 for a run's first step, plus 10 % and 8 standard deviations) the step is shortened (and keeps
+ * the blocks of the step before: no remix for a fraction of a step's events), and when
  * that would leave it fewer than min(N/64, 4 N/K) events it runs on the whole gas as one block with the exact bound of
  * all particles, which samples the unblocked process and stops at the target (such a step holds at least 1.25 of the
  * whole gas's own candidates: it was sized at the blocks' R, which the separable draw's bound makes several times the
- * whole gas's). Soft targets (progress, checkpoints) are checked at step ends.
+ * whole gas's; and one that ends short of its target, with fewer than min(N/64, 4 N/K) events left, goes on with its
+ * bounds for 1.5 times what the events left need at its own events per unit time: extend_whole_step). Soft targets
+ * (progress, checkpoints) are checked at step ends.
  *
  * **The one-species block kernel** (`run_block_one_species`; constant restitution) samples the process of `majorant`
  * (R_b, uniform pairs, acceptance |g| / (2 vmax_b), e of density (g_hat.e)/pi, bounds raised when exceeded, candidate
@@ -436,8 +439,14 @@ class Collider {
   /// With blocks: the step of length `step` at rate R shortened near an exact event target, or run on the
   /// whole gas (whole_step_) when too few events are left for a blocked one (header "Blocks").
   double approach_target(double step, double rate, std::uint64_t exact_target, bool sampler_changed);
+  /// With blocks: min(N/64, 4 N/K), the fewest events left to a target that a blocked step approaches.
+  double fewest_block_events() const;
+  /// With blocks: lengthens a whole-gas step that ended short of `exact_target` (true), instead of a new
+  /// step, while fewer than fewest_block_events() are left.
+  bool extend_whole_step(std::uint64_t exact_target);
   /// With blocks: starts the step of length `step` (a remix, or the whole gas's exact bound).
   void begin_blocked_step(double step);
+  bool keeps_blocks_ = false;       ///< with blocks: this step approaches an exact event target and keeps the last step's blocks (no remix)
   bool whole_step_ = false;         ///< with blocks: this step runs on the whole gas (near an event target)
   double step_acceptance_ = 0.0;    ///< with blocks: events per candidate in the last step
   std::uint64_t step_events_start_ = 0, step_candidates_start_ = 0;  ///< counters at this step's start
@@ -719,6 +728,8 @@ class Collider {
   int run_pairs(const Rule& rule, double t_stop, std::uint64_t event_target);
   template <class Rule, bool Framed>
   int run_lowrank(const Rule& rule, double t_stop, std::uint64_t event_target);
+  /// Species k's factors of the low-rank majorant (row scaled by chi_max) at the current vmax_k.
+  segment_tree::HardSphereFactors lowrank_factors(std::size_t species) const;
   void set_lowrank_row(std::size_t species);
   void count_event(std::uint32_t k, std::uint32_t j);
   /// The general loops' collision of particles a (species k) and b (species j) along e with `g_dot_e`

@@ -312,7 +312,7 @@ double Collider::approach_target(double step, double rate, std::uint64_t exact_t
   // target is out of its reach: within a long step the acceptance falls (the gas cools, bounds are
   // raised), so its mean underestimates the next step's, and a step after a long one takes acceptance
   // 1 (a bound) instead; the approach runs steps of block_steps.
-  whole_step_ = false;
+  whole_step_ = keeps_blocks_ = false;
   if (exact_target == UINT64_MAX) return step;
   const double n_total = static_cast<double>(sys_.size());
   const double remaining = static_cast<double>(exact_target - counters_.events);
@@ -321,7 +321,7 @@ double Collider::approach_target(double step, double rate, std::uint64_t exact_t
   const double short_candidates = block_steps * step_fraction_ * n_total / 2.0;
   const auto last_candidates = static_cast<double>(counters_.candidates - step_candidates_start_);
   const bool after_long = last_candidates > 1.01 * short_candidates;
-  const double fewest = std::min(n_total / 64.0, 4.0 * n_total / static_cast<double>(block_first_.size() - 1));
+  const double fewest = fewest_block_events();
   const bool too_few = last_candidates < fewest;
   // After a change of sampler (or a whole-gas step of the other one) the last step's acceptance is
   // another majorant's: its events per unit time instead, which do not depend on the majorant (and
@@ -339,7 +339,12 @@ double Collider::approach_target(double step, double rate, std::uint64_t exact_t
   // the largest mu with 1.1 mu + 8 sqrt(mu) + 16 <= remaining (a quadratic in sqrt(mu))
   const double root = (-8.0 + std::sqrt(std::max(0.0, 64.0 - 4.4 * (16.0 - remaining)))) / 2.2;
   const double fits = root > 0.0 ? root * root : 0.0;
-  if (fits >= fewest) return step * (fits / expected);
+  if (fits >= fewest) {
+    // A shortened step brings a fraction of a step's events: it keeps the blocks of the step before
+    // (whose remix, O(N), and with many species O(N) scattered writes, would cost more than its events).
+    keeps_blocks_ = true;
+    return step * (fits / expected);
+  }
   whole_step_ = true;
   return step * std::min(1.0, 1.5 * remaining / expected);
 }
@@ -354,7 +359,7 @@ void Collider::begin_blocked_step(double step) {
     // less (the separable draw's bound W_b/sqrt(m_i) of every species): at least 1.25 of its candidates,
     // or a step for the last event could hold none (its credit starts at 0), and so would every next one.
     if (rate_ > 0.0) step = std::max(step, 1.25 / rate_);
-  } else if (counters_.steps > 0) {
+  } else if (counters_.steps > 0 && !keeps_blocks_) {
     remix();
   }
   step_events_start_ = counters_.events;
@@ -363,6 +368,27 @@ void Collider::begin_blocked_step(double step) {
   next_step_time_ = time_ + step;
   ++counters_.steps;
   counters_.step_sum += step;
+}
+
+double Collider::fewest_block_events() const {
+  const double n_total = static_cast<double>(sys_.size());
+  return std::min(n_total / 64.0, 4.0 * n_total / static_cast<double>(block_first_.size() - 1));
+}
+
+bool Collider::extend_whole_step(std::uint64_t exact_target) {
+  // A whole-gas step that ended short of its exact target goes on (header "Blocks"), made 1.5 times as
+  // long as the events left need at its own events per unit time: its bounds, only raised, still bound
+  // the gas, and a new step would recompute them (O(N), and O(S) for the low-rank trees) and start
+  // from the blocks' acceptance, whose guess after a short step (1) made it several times too short.
+  if (!whole_step_ || exact_target == UINT64_MAX || counters_.events >= exact_target) return false;
+  // (a target as far as a blocked step could go is left to the blocks: approach_target)
+  if (static_cast<double>(exact_target - counters_.events) >= fewest_block_events()) return false;
+  const double made = static_cast<double>(counters_.events - step_events_start_), elapsed = time_ - step_start_;
+  if (!(made > 0.0 && elapsed > 0.0)) return false;  // (no events yet: a new step, of at least 1.25/R_w)
+  const double more = 1.5 * static_cast<double>(exact_target - counters_.events) * elapsed / made;
+  next_step_time_ = time_ + more;
+  counters_.step_sum += more;
+  return true;
 }
 
 bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool exact_events,
@@ -378,6 +404,7 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
       if (counters_.events >= any_target) return true;
       if (to_step_end && time_ > entry_time) return false;  // one step (or the rest of one) done
       if (stop_requested()) return false;
+      if (extend_whole_step(exact_target)) continue;
       bool sampler_changed = false;
       const double rate = blocked_step_rate(sampler_changed);
       if (rate <= 0.0) {

@@ -234,6 +234,18 @@ class LowRankSampler {
     }
   }
 
+  /// Sets every row u_i (rows.size() == size()) in O(Rank M), each tree summed once from its leaves:
+  /// the same sums as set_row for each i (a node's sum is its children's, however they were set).
+  void set_rows(const std::vector<Vector>& rows) {
+    if (rows.size() != size_)
+      throw std::invalid_argument("segment_tree::LowRankSampler::set_rows: " + std::to_string(rows.size()) +
+                                  " rows for " + std::to_string(size_) + " species");
+    std::vector<double> w(size_);
+    for (std::size_t r = 0; r < Rank; ++r) {
+      for (std::size_t i = 0; i < size_; ++i) w[i] = rows[i][r];
+      u_[r].assign(w);
+    }
+  }
   /// Sets u_i^(r), r = 1..Rank, of species i (each finite and >= 0).
   void set_row(std::size_t i, const Vector& u_i) {
     for (std::size_t r = 0; r < Rank; ++r) u_[r].set(i, u_i[r]);
