@@ -46,6 +46,51 @@ std::string with_line(int line, const std::string& text) {
   return gdsmc::test::with_line(base_lines, line, text);
 }
 
+/// ulimit -v `bytes` (the soft RLIMIT_AS) for the commands run while it lives, until restore() or the end
+/// of its scope; `skip` says why it could not be set (AddressSanitizer reserves terabytes of address
+/// space; a hard limit below `bytes`).
+class AddressSpaceLimit {
+ public:
+  explicit AddressSpaceLimit(rlim_t bytes) {
+    if (gdsmc::test::sanitized) {
+      skip = "AddressSanitizer reserves terabytes of address space: no ulimit -v";
+    } else if (::getrlimit(RLIMIT_AS, &saved_) != 0) {
+      skip = "getrlimit failed";
+    } else if (saved_.rlim_max != RLIM_INFINITY && saved_.rlim_max < bytes) {
+      skip = "hard address-space limit below " + std::to_string(bytes) + " bytes";
+    } else {
+      struct rlimit limited = saved_;
+      limited.rlim_cur = bytes;
+      set_ = ::setrlimit(RLIMIT_AS, &limited) == 0;
+      if (!set_) skip = "setrlimit failed";
+    }
+  }
+  ~AddressSpaceLimit() { restore(); }
+  AddressSpaceLimit(const AddressSpaceLimit&) = delete;
+  AddressSpaceLimit& operator=(const AddressSpaceLimit&) = delete;
+  void restore() {
+    if (set_) ::setrlimit(RLIMIT_AS, &saved_);
+    set_ = false;
+  }
+  std::string skip;
+
+ private:
+  struct rlimit saved_ {};
+  bool set_ = false;
+};
+
+/// `species` species (`lowrank`; masses k, diameters k^(1/3), equal densities), one replica of
+/// `particles`, 0.5 collisions per particle, `samples` samples: n_species on line 2, n_particles on
+/// line 6, n_samples on line 8.
+std::string many_species_namelist(long species, long particles, long samples) {
+  return "&system\n  n_species = " + std::to_string(species) +
+         ", mass = 1.0, diameter = 1.0, number_density = 0.01, restitution = 0.9,\n"
+         "  mass_law = 'linear', diameter_law = 'cube_root', density_law = 'power', density_exponent = 0.0\n/\n"
+         "&initial temperature = 1.0 /\n&dsmc scheme = 'lowrank', n_particles = " + std::to_string(particles) +
+         ", replicas = 1,\n  collisions_per_particle = 0.5 /\n&output file = 'out.h5', n_samples = " +
+         std::to_string(samples) + " /\n";
+}
+
 std::string read_text(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::ostringstream s;
@@ -223,6 +268,15 @@ TEST_F(CliDsmc, DenseGasWithoutEnskogWarns) {
   EXPECT_EQ(dsmc(with_line(5, "  number_density = 0.1, 0.05, enskog = .true.")).err, "");
   std::filesystem::remove(dir / "out.h5");
   EXPECT_EQ(dsmc(base()).err, "");
+  // phi = (pi/6)(1.5 + 0.5) = 1.047: Carnahan-Starling's chi (-4.5e3 here) is no fluid's, and enskog would
+  // refuse the gas (phi >= 0.5): the warning quotes neither.
+  std::filesystem::remove(dir / "out.h5");
+  const Result dense = dsmc(with_line(5, "  number_density = 1.5, 0.5"));
+  EXPECT_EQ(dense.status, 0) << dense.err;
+  EXPECT_EQ(dense.err, "granular-dsmc: warning: t.nml:5: &system: number_density: packing fraction 1.05 without "
+                       "enskog: this runs a dilute (Boltzmann) gas, whose collision rate ignores the density; no "
+                       "Enskog gas is that dense (the Carnahan-Starling fluid ends at 0.5, where enskog stops): "
+                       "check the number densities and diameters (warned above 0.05)\n");
 }
 
 TEST_F(CliDsmc, AggFragRunWritesClusterObservables) {
@@ -388,6 +442,24 @@ TEST_F(CliDsmc, AnInterruptIsOneLineInALogFile) {
   EXPECT_EQ(err.substr(err.size() - message.size()), message);
   EXPECT_EQ(err.find("\n\n"), std::string::npos) << err;  // no empty line
   EXPECT_NE(err.front(), '\n') << err;
+}
+
+// The summary's overall rate is this process's: after --restart the events the checkpoint held (made by
+// the interrupted process) are left out, and the line says so (it divided every event by the resumed
+// process's wall time: an elastic gas of 2000 particles, 4e7 events (about 7 s here), interrupted at its
+// first checkpoint, 0.2 s in).
+TEST_F(CliDsmc, TheOverallRateAfterARestartCountsTheEventsSinceTheRestart) {
+  const auto [status, seconds] = interrupt_an_endless_run(*this, 0, "  file = 'out.h5', n_samples = 3, checkpoint_every = 0.2",
+                                                          "  collisions_per_particle = 40000, replicas = 1",
+                                                          "  restitution = 1.0");
+  ASSERT_EQ(status, 130) << read_text(capture / "stderr");
+  const Result resumed = run("granular-dsmc", "t.nml --restart out.checkpoint.h5");
+  ASSERT_EQ(resumed.status, 0) << resumed.err;
+  EXPECT_TRUE(std::regex_search(resumed.err, std::regex("collisions/s per thread in the collision loop \\([0-9.e+]+/s "
+                                                        "overall since the restart\\)"))) << resumed.err;
+  const Result fresh = run("granular-dsmc", "t.nml --force --set dsmc:collisions_per_particle=100");
+  ASSERT_EQ(fresh.status, 0) << fresh.err;
+  EXPECT_EQ(fresh.err.find("since the restart"), std::string::npos) << fresh.err;
 }
 
 // A checkpoint belongs to its run: a fresh run over an interrupted run's checkpoint, another input's,
@@ -632,19 +704,20 @@ TEST_F(CliDsmc, AFifoOrADeviceIsNeverOpenedOrReplaced) {
 }
 
 // n_particles = 2e9 is allowed, and ended in std::bad_alloc (exit 1) after start; a run whose particles
-// alone cannot fit (here under ulimit -v 4 GB: 1e9 particles x 28 bytes) is refused before any work.
+// and samples alone cannot fit (here under ulimit -v 4 GB: 1e9 particles x 28 bytes) is refused before any work.
 TEST_F(CliDsmc, ARunThatCannotFitInMemoryIsRefusedWithTheEstimate) {
-  if (gdsmc::test::sanitized) GTEST_SKIP() << "AddressSanitizer reserves terabytes of address space: no ulimit -v";
-  struct rlimit saved {};
-  ASSERT_EQ(::getrlimit(RLIMIT_AS, &saved), 0);
-  struct rlimit limited = saved;
-  limited.rlim_cur = 4000000000ull;
-  if (saved.rlim_max != RLIM_INFINITY && saved.rlim_max < limited.rlim_cur) GTEST_SKIP() << "hard limit below 4 GB";
-  ASSERT_EQ(::setrlimit(RLIMIT_AS, &limited), 0);
+  AddressSpaceLimit limit(4000000000ull);
+  if (!limit.skip.empty()) GTEST_SKIP() << limit.skip;
   const Result r = dsmc(base(), "--set dsmc:n_particles=1000000000 --set dsmc:replicas=1");
-  ::setrlimit(RLIMIT_AS, &saved);
+  // The sample rows count too (64 bytes per species and sample, every replica's on rank 0): 1e5 species
+  // and 1000 samples of one replica need 6.4 GB beside 5.6 MB of particles.
+  write("t.nml", many_species_namelist(100000, 200000, 1000));
+  const Result rows = run("granular-dsmc", "t.nml --quiet");
+  limit.restore();
   expect_input_error(r, "granular-dsmc", "--set dsmc:n_particles=1000000000: &dsmc: n_particles: ",
                      {"need about 28 GB", "more than the address-space limit (ulimit -v) (4 GB)"});
+  expect_input_error(rows, "granular-dsmc", "t.nml:8: &output: n_samples: ",
+                     {"need about 5.6 MB, the samples' rows of every replica 6.4 GB", "(4 GB)"});
 }
 
 TEST_F(CliDsmc, EmptyFileBomNulAndRestartDirectory) {
@@ -1402,6 +1475,34 @@ TEST_F(CliTheory, TwoInputFilesAreRefused) {
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(r.out, "");
   EXPECT_EQ(r.err, "granular-theory: one input file only (got 't.nml' and 'u.nml')\n");
+}
+
+// A mixture's theory holds O(S^2) pair tables (run_checks.hpp: 0.2 GB + 60 S^2 bytes): 20000 species need
+// about 24.2 GB, refused under ulimit -v 4 GB before any work, naming n_species, by granular-theory and by
+// granular-dsmc --compare (70000 species ended in std::bad_alloc: granular-theory exit 1, --compare a
+// table line "std::bad_alloc" after the whole run); granular-dsmc without --compare runs. --compare's
+// theory runs beside the particles: their sum is checked.
+TEST_F(CliTheory, TheoryBeyondTheMachinesMemoryIsRefused) {
+  AddressSpaceLimit limit(4000000000ull);
+  if (!limit.skip.empty()) GTEST_SKIP() << limit.skip;
+  write("t.nml", many_species_namelist(20000, 60000, 2));
+  const Result theory = run("granular-theory", "t.nml");
+  const Result compare = run("granular-dsmc", "t.nml --quiet --compare");
+  // Each fits alone, not both: 5000 species' theory 1.7 GB beside 1e8 particles x 28 bytes = 2.8 GB.
+  const Result both = run("granular-dsmc", "t.nml --quiet --compare --set system:n_species=5000 "
+                                           "--set dsmc:n_particles=100000000");
+  limit.restore();
+  const std::vector<std::string> said = {"the theory of 20000 species needs about 24.2 GB",
+                                         "more than the address-space limit (ulimit -v) (4 GB)"};
+  expect_input_error(theory, "granular-theory", "t.nml:2: &system: n_species: ", said);
+  expect_input_error(compare, "granular-dsmc", "--compare: t.nml:2: &system: n_species: ", said);
+  EXPECT_NE(compare.err.find("run without --compare"), std::string::npos) << compare.err;
+  expect_input_error(both, "granular-dsmc", "--set dsmc:n_particles=100000000: &dsmc: n_particles: ",
+                     {"need about 2.8 GB, the samples' rows of every replica 640 kB, --compare's theory beside them 1.7 GB",
+                      "(4 GB)", "or no --compare"});
+  const Result plain = run("granular-dsmc", "t.nml --quiet");
+  EXPECT_EQ(plain.status, 0) << plain.err;
+  EXPECT_TRUE(fs::exists(dir / "out.h5"));
 }
 
 TEST_F(CliTheory, PrintsOneJsonObject) {

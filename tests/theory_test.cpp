@@ -222,6 +222,8 @@ TEST(Theory, XiFormEqualsEquivalentForm) {
   for (std::size_t k = 0; k < 3; ++k) {
     EXPECT_NEAR(rate[k], expected[k], 1e-13 * std::abs(expected[k])) << "species " << k;
     EXPECT_NEAR(rate[k], -T[k] * (xi(k, 0) + xi(k, 1) + xi(k, 2)), 1e-14 * std::abs(rate[k]));
+    // The row sums without the matrix (analysis::predict's cooling_rate): the same sum in the same order.
+    EXPECT_EQ(theory::cooling_rates(mix, T)[k], xi(k, 0) + xi(k, 1) + xi(k, 2));
   }
 }
 
@@ -235,6 +237,9 @@ TEST(Theory, IdenticalSpeciesBehaveAsOneSpecies) {
   for (double r : rate) EXPECT_NEAR(r, -zeta * T0, 1e-13 * zeta * T0);
   const double nu = theory::collision_frequency(n, sigma, 1.0, m, T0);
   EXPECT_NEAR(theory::total_collision_rate(two, {T0, T0}), n * nu / 2.0, 1e-13 * n * nu);
+  // Per species, in O(S) memory: each label suffers the one species's nu and cools at its zeta.
+  for (double f : theory::collision_frequencies(two, {T0, T0})) EXPECT_NEAR(f, nu, 1e-13 * nu);
+  for (double z : theory::cooling_rates(two, {T0, T0})) EXPECT_NEAR(z, zeta, 1e-13 * zeta);
 
   const double t0 = 2.0 / zeta;
   const std::vector<double> times = {0.0, 0.3 * t0, 3.0 * t0, 30.0 * t0};

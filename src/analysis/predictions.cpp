@@ -118,20 +118,17 @@ namespace {
 /// The Maxwellian collision frequencies and cooling rates at t = 0 (\ref cm_mixture_rate "docs/collision-model.md", \ref haff_mixture_odes "docs/haff-and-mixtures.md").
 void add_rates(Predictions& out, const species::Mixture& mix, const std::vector<double>& t0,
                const std::optional<species::PairMatrix>& beta) {
-  const std::size_t s = mix.size();
-  // Collisions suffered by species k per unit volume: 2 P_kk + sum_{j != k} P_kj (\ref cm_mixture_rate "docs/collision-model.md").
-  const auto pair = pair_collision_rate(mix, t0);
-  out.collision_frequency.resize(s);
-  out.cooling_rate.resize(s);
-  const auto xi = beta ? cooling_rate_matrix_viscoelastic(mix, *beta, t0) : cooling_rate_matrix(mix, t0);
-  for (std::size_t k = 0; k < s; ++k) {
-    double suffered = 0.0, z = 0.0;
-    for (std::size_t j = 0; j < s; ++j) {
-      suffered += (j == k ? 2.0 : 1.0) * pair(k, j);
-      z += xi(k, j);
-    }
-    out.collision_frequency[k] = suffered / mix.number_density[k];
-    out.cooling_rate[k] = z;
+  // Collisions suffered by species k per unit volume: 2 P_kk + sum_{j != k} P_kj (\ref cm_mixture_rate
+  // "docs/collision-model.md"), and zeta_k = sum_j xi_kj, in O(S) memory for constant restitution
+  // (viscoelastic restitution keeps its S x S matrix).
+  out.collision_frequency = collision_frequencies(mix, t0);
+  if (beta) {
+    const auto xi = cooling_rate_matrix_viscoelastic(mix, *beta, t0);
+    out.cooling_rate.assign(mix.size(), 0.0);
+    for (std::size_t k = 0; k < mix.size(); ++k)
+      for (std::size_t j = 0; j < mix.size(); ++j) out.cooling_rate[k] += xi(k, j);
+  } else {
+    out.cooling_rate = cooling_rates(mix, t0);
   }
   out.approximations = {{"collision_frequency", "maxwellian"}, {"cooling_rate", "maxwellian"}};
 

@@ -5,6 +5,10 @@
 #include <cstdio>
 #include <string>
 
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include "model/species.hpp"
 #include "theory/run_cost.hpp"
 
 namespace gdsmc::analysis {
@@ -55,6 +59,42 @@ void check_run_cost(const io::config::Config& c) {
                             reason + "; shorten the run, or set &dsmc allow_long_run = .true. to run it anyway");
 }
 
+MemoryLimit memory_limit() {
+  MemoryLimit limit{static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGE_SIZE)),
+                    "this machine's memory"};
+  if (struct rlimit as {}; ::getrlimit(RLIMIT_AS, &as) == 0 && as.rlim_cur != RLIM_INFINITY &&
+                           static_cast<double>(as.rlim_cur) < limit.bytes)
+    limit = {static_cast<double>(as.rlim_cur), "the address-space limit (ulimit -v)"};
+  if (!(limit.bytes > 0.0)) limit.bytes = 0.0;
+  return limit;
+}
+
+double theory_memory_bytes(const io::config::Config& config) {
+  // Up to 1000 species the tables are at most 60 MB: not counted.
+  if (config.has_agg_frag || config.system.n_species <= 1000) return 0.0;
+  // Measured peaks of granular-theory (docs/performance.md#perf_theory): 1300 species 0.25 GB, 2000
+  // 0.41 GB, 3000 0.66 GB, 4000 0.95 GB: 42-67 bytes per added pair of species, above a base of 0.15 GB
+  // (0.2 GB and 60 bytes here, upper estimates).
+  const double s = static_cast<double>(config.system.n_species);
+  return 2e8 + 60.0 * s * s;
+}
+
+void check_theory_memory(const io::config::Config& config, const std::string& remedy) {
+  const double need = theory_memory_bytes(config);
+  const MemoryLimit have = memory_limit();
+  if (!(have.bytes > 0.0) || need <= have.bytes) return;
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "the theory of %ld species needs about %.3g GB (its O(S^2) tables of pairs of species), more than %s "
+                "(%.3g GB); %s",
+                static_cast<long>(config.system.n_species), need / 1e9, have.what.c_str(), have.bytes / 1e9,
+                remedy.c_str());
+  const auto it = config.origin.find("system:n_species");
+  const std::string file = it == config.origin.end() ? config.source_file : it->second.first;
+  const int line = it == config.origin.end() ? 0 : it->second.second;
+  throw io::namelist::Error(file, line, "system", "n_species", text);
+}
+
 std::vector<std::string> input_warnings(const io::config::Config& config) {
   std::vector<std::string> out;
   double densest = 0.0;
@@ -64,12 +104,22 @@ std::vector<std::string> input_warnings(const io::config::Config& config) {
     if (!mix.enskog && !point.has_agg_frag) densest = std::max(densest, mix.packing_fraction());
   }
   if (densest > kDenseWarning) {
-    const double chi = (1.0 - densest / 2.0) / std::pow(1.0 - densest, 3);  // Carnahan-Starling, docs/collision-model.md
     char text[400];
-    std::snprintf(text, sizeof text,
-                  "packing fraction %.3g without enskog: this runs a dilute (Boltzmann) gas, whose collision rate "
-                  "ignores the density (the Enskog gas collides %.3g times as often); set &system enskog = .true. "
-                  "for a dense gas (warned above %g)", densest, chi, kDenseWarning);
+    if (densest < species::carnahan_starling_fluid_limit) {
+      const double chi = (1.0 - densest / 2.0) / std::pow(1.0 - densest, 3);  // Carnahan-Starling, docs/collision-model.md
+      std::snprintf(text, sizeof text,
+                    "packing fraction %.3g without enskog: this runs a dilute (Boltzmann) gas, whose collision rate "
+                    "ignores the density (the Enskog gas collides %.3g times as often); set &system enskog = .true. "
+                    "for a dense gas (warned above %g)", densest, chi, kDenseWarning);
+    } else {
+      // Carnahan-Starling's chi is a fluid's (phi < 0.5; it diverges at phi = 1 and is negative beyond) and enskog refuses
+      // such a gas: quote neither.
+      std::snprintf(text, sizeof text,
+                    "packing fraction %.3g without enskog: this runs a dilute (Boltzmann) gas, whose collision rate "
+                    "ignores the density; no Enskog gas is that dense (the Carnahan-Starling fluid ends at %g, where "
+                    "enskog stops): check the number densities and diameters (warned above %g)",
+                    densest, species::carnahan_starling_fluid_limit, kDenseWarning);
+    }
     const auto it = config.origin.find("system:number_density");
     const std::string file = it == config.origin.end() ? config.source_file : it->second.first;
     const int line = it == config.origin.end() ? 0 : it->second.second;

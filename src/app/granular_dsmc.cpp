@@ -1,5 +1,4 @@
 // granular-dsmc: runs the simulation a namelist describes and writes one H5MD file (\ref output_h5md "docs/output.md").
-#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -299,7 +298,7 @@ int output_error(const Arguments& a, const gdsmc::io::config::Config& config, bo
   return 2;
 }
 
-/// `bytes` as "1.2 GB" (decimal units, 2 significant digits).
+/// `bytes` as "1.23 GB" (decimal units, 3 significant digits).
 std::string format_bytes(double bytes) {
   const char* units[] = {"bytes", "kB", "MB", "GB", "TB", "PB"};
   int u = 0;
@@ -308,32 +307,34 @@ std::string format_bytes(double bytes) {
     ++u;
   }
   char text[32];
-  std::snprintf(text, sizeof text, "%.2g %s", bytes, units[u]);
+  std::snprintf(text, sizeof text, "%.3g %s", bytes, units[u]);
   return text;
 }
 
 /// A run whose particles alone need more memory than the machine has (its physical memory, or the
 /// address-space limit of ulimit -v when lower) is refused before any work, naming n_particles, instead
 /// of failing with std::bad_alloc after start.
-std::optional<int> check_memory(const gdsmc::io::config::Config& config, bool root) {
-  const double need = gdsmc::simulation::estimated_memory_bytes(config, gdsmc::parallel::threads(), gdsmc::parallel::size());
-  double have = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGE_SIZE));
-  std::string what = "this machine's memory";
-  if (struct rlimit limit {}; ::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY &&
-                              static_cast<double>(limit.rlim_cur) < have) {
-    have = static_cast<double>(limit.rlim_cur);
-    what = "the address-space limit (ulimit -v)";
-  }
-  if (!(have > 0.0) || need <= have) return std::nullopt;
-  const auto it = config.origin.find("dsmc:n_particles");
+/// With --compare (`theory`), the theory computed beside the run on rank 0 counts too.
+std::optional<int> check_memory(const gdsmc::io::config::Config& config, bool root, bool theory) {
+  const double total = gdsmc::simulation::estimated_memory_bytes(config, gdsmc::parallel::threads(), gdsmc::parallel::size());
+  const double samples = gdsmc::simulation::estimated_sample_bytes(config), particles = total - samples;
+  const double theory_bytes = theory ? gdsmc::analysis::theory_memory_bytes(config) : 0.0;
+  const auto [have, what] = gdsmc::analysis::memory_limit();
+  if (!(have > 0.0) || total + theory_bytes <= have) return std::nullopt;
+  // The variable named: n_particles, or n_samples when the samples' rows are the most of it.
+  const bool rows = samples > particles;
+  const auto it = config.origin.find(rows ? "output:n_samples" : "dsmc:n_particles");
   const std::string file = it == config.origin.end() ? config.source_file : it->second.first;
   const int line = it == config.origin.end() ? 0 : it->second.second;
+  std::string need = "the particles of the replicas run at once need about " + format_bytes(particles) +
+                     ", the samples' rows of every replica " + format_bytes(samples);
+  if (theory_bytes > 0.0) need += ", --compare's theory beside them " + format_bytes(theory_bytes);
   if (root)
     std::cerr << "granular-dsmc: "
-              << gdsmc::io::namelist::Error(file, line, "dsmc", "n_particles",
-                                            "the particles of the replicas run at once need about " + format_bytes(need) +
-                                                ", more than " + what + " (" + format_bytes(have) +
-                                                "): fewer particles, replicas or threads (OMP_NUM_THREADS), or more MPI ranks")
+              << gdsmc::io::namelist::Error(file, line, rows ? "output" : "dsmc", rows ? "n_samples" : "n_particles",
+                                            need + ", more than " + what + " (" + format_bytes(have) +
+                                                "): fewer particles, replicas, threads (OMP_NUM_THREADS) or samples, or "
+                                                "more MPI ranks" + (theory_bytes > 0.0 ? ", or no --compare" : ""))
                      .what()
               << "\n";
   return 2;
@@ -435,18 +436,36 @@ void print_summary(const std::string& path, const gdsmc::simulation::Summary& su
     if (summary.points.empty())
       std::snprintf(state, sizeof state, "t = %.6g, T = %.6g, %.4g collisions per particle, ", summary.final_time,
                     summary.final_total_temperature, summary.collisions_per_particle);
-    // The rate of the collision loop per thread (what bench/ measures), and the overall one, the progress line's.
+    // The rate of the collision loop per thread (what bench/ measures; a replica's blocks on several
+    // threads count each thread's seconds), and the overall one, the progress line's: this process's
+    // events over its wall time.
+    const double made_here = summary.events - summary.restored_events;
     std::fprintf(stderr,
-                 "granular-dsmc: wrote %s: %s%.3g collisions/s per thread in the collision loop (%.3g/s overall), "
+                 "granular-dsmc: wrote %s: %s%.3g collisions/s per thread in the collision loop (%.3g/s overall%s), "
                  "%.1f s\n",
                  path.c_str(), state, summary.events_per_second,
-                 summary.wall_seconds > 0 ? summary.events / summary.wall_seconds : 0.0, summary.wall_seconds);
+                 summary.wall_seconds > 0 ? made_here / summary.wall_seconds : 0.0,
+                 summary.restored_events > 0 ? " since the restart" : "", summary.wall_seconds);
   }
   if (root && summary.acceptance_overshoots > 0.0)
     std::fprintf(stderr,
                  "granular-dsmc: warning: %.0f candidates had an acceptance probability above 1 (the bound was "
                  "not a majorant; see /observables/acceptance_overshoots): please report this input\n",
                  summary.acceptance_overshoots);
+}
+
+/// The one line of a run stopped by a signal: what is left to resume from (the checkpoint of the last
+/// safe point, when there is one), or how to have one.
+void report_interrupt(const gdsmc::io::config::Config& config, const gdsmc::simulation::Options& options,
+                      const std::string& what) {
+  // (a terminal's progress line is rewritten in place and needs ending; elsewhere each progress line ends itself)
+  std::cerr << (options.progress && options.progress_terminal ? "\n" : "") << "granular-dsmc: " << what;
+  const std::string checkpoint = gdsmc::simulation::checkpoint_path(config.output.file);
+  if (std::error_code ec; config.output.checkpoint_every && std::filesystem::exists(checkpoint, ec))
+    std::cerr << "; resume with --restart " << checkpoint;
+  else if (!config.output.checkpoint_every)
+    std::cerr << " (with &output checkpoint_every = SECONDS an interrupted run leaves a checkpoint to resume)";
+  std::cerr << "\n";
 }
 
 /// Seconds the --compare theory may go on after the run, when the run took less (granular_dsmc.cpp run()).
@@ -513,14 +532,7 @@ int run(const Arguments& a, const gdsmc::io::config::Config& config, bool root) 
     }
     print_summary(path, summary, a.quiet, root);
   } catch (const gdsmc::simulation::Interrupted& e) {
-    if (!root) return 130;
-    // (a terminal's progress line is rewritten in place and needs ending; elsewhere each progress line ends itself)
-    std::cerr << (options.progress && options.progress_terminal ? "\n" : "") << "granular-dsmc: " << e.what();
-    // What is left to resume from (the checkpoint of the last safe point, when there is one).
-    const std::string checkpoint = gdsmc::simulation::checkpoint_path(path);
-    if (std::error_code ec; config.output.checkpoint_every && std::filesystem::exists(checkpoint, ec))
-      std::cerr << "; resume with --restart " << checkpoint;
-    std::cerr << "\n";
+    if (root) report_interrupt(config, options, e.what());
     return 130;
   } catch (const gdsmc::simulation::RestartError& e) {
     if (root) std::cerr << "granular-dsmc: --restart: " << e.what() << "\n";
@@ -529,10 +541,10 @@ int run(const Arguments& a, const gdsmc::io::config::Config& config, bool root) 
     if (!root) return 2;
     return output_error(a, config, root, e.what());
   } catch (const std::bad_alloc&) {
-    std::cerr << "granular-dsmc: out of memory (the particles alone need about "
+    std::cerr << "granular-dsmc: out of memory (the particles and samples alone need about "
               << format_bytes(gdsmc::simulation::estimated_memory_bytes(config, gdsmc::parallel::threads(),
                                                                          gdsmc::parallel::size()))
-              << " on this rank): nothing written; fewer particles, replicas or threads\n";
+              << " on this rank): nothing written; fewer particles, replicas, threads or samples\n";
     return 1;
   } catch (const std::exception& e) {
     std::cerr << "granular-dsmc: " << e.what() << "\n";
@@ -568,7 +580,13 @@ int run_program(int argc, char** argv) {
   // The checks look at this rank's node (its files, its memory; --compare's JSON on rank 0 only): the ranks
   // agree on the largest refusal, so that all of them stop, or none.
   std::optional<int> refused = check_paths(arguments, config, root);
-  if (!refused) refused = check_memory(config, root);
+  if (!refused && arguments.compare && root) try {  // (the theory alone first: its remedy is not the particles')
+      gdsmc::analysis::check_theory_memory(config, "run without --compare (granular-dsmc needs no theory)");
+    } catch (const gdsmc::io::namelist::Error& e) {
+      std::cerr << "granular-dsmc: --compare: " << e.what() << "\n";
+      refused = 2;
+    }
+  if (!refused) refused = check_memory(config, root, arguments.compare && root);
   if (const int agreed = gdsmc::parallel::largest_over_ranks(refused.value_or(0)); agreed != 0) {
     if (root && !refused)
       std::cerr << "granular-dsmc: another MPI rank refused the run before it started (the output's folder or the memory "

@@ -153,7 +153,7 @@ void announce_large_mixture(const gdsmc::io::config::Config& config) {
     std::cerr << "the Maxwellian theory only (hcs.first_sonine stops at " << gdsmc::theory::max_hcs_species
               << " species); ";
   std::cerr << "O(S^2) per step of the partial-temperature ODEs, about " << std::lround(seconds)
-            << " s of one core\n";
+            << " s of one core (more for stiff mass ratios or long runs)\n";
 }
 
 /// The rough-sphere and white-noise keys of one point (rough_hcs, white_noise), each starting with ",\n".
@@ -349,6 +349,7 @@ int main(int argc, char** argv) {
   gdsmc::io::config::Config config;
   try {
     config = gdsmc::io::config::read_file(input, overrides, gdsmc::analysis::check_run_cost);
+    gdsmc::analysis::check_theory_memory(config, "fewer species (granular-dsmc runs the gas without --compare)");
   } catch (const gdsmc::io::namelist::Error& e) {
     std::cerr << "granular-theory: " << e.what() << "\n";
     return 2;

@@ -195,6 +195,8 @@ class Gas {
   void use_blocks(std::size_t block_size, int threads = 1);
   /// Number of blocks the next step would use (1: the whole gas).
   std::size_t blocks() const;
+  /// The threads set by use_blocks (1 by default).
+  int threads() const { return block_threads_; }
   /// End of the blocked step that would start now (block_steps majorant mean free times, at most
   /// 2^22 candidates); the time itself when the next step runs unblocked.
   double block_step_end() const;

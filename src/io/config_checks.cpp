@@ -156,7 +156,7 @@ void check_system(System& sys, const Provenance& prov) {
     double phi = 0.0;
     for (std::size_t k = 0; k < s; ++k) phi += sys.number_density[k] * std::pow(sys.diameter[k], 3);
     phi *= std::acos(-1.0) / 6.0;
-    if (phi >= 0.5)
+    if (phi >= species::carnahan_starling_fluid_limit)
       throw Error(prov.file_of("number_density"),
                   prov.line.count("number_density") ? prov.line.at("number_density") : 0,
                   group, "number_density",

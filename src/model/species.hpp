@@ -61,6 +61,10 @@ struct PairMatrix {
 /// Mixtures with more species than this keep their pair data computed, not stored (S^2 doubles).
 inline constexpr std::size_t dense_pair_limit = 512;
 
+/// Packing fractions from here on are beyond the Carnahan-Starling fluid (\ref cm_chi "docs/collision-model.md"):
+/// enskog refuses them (io/config_checks.cpp), and the dilute gas's warning quotes no chi there.
+inline constexpr double carnahan_starling_fluid_limit = 0.5;
+
 /// A mixture: per-species data and the derived pair data. Built once by make_mixture, then const.
 struct Mixture {
   std::vector<double> mass;            ///< m_k

@@ -153,6 +153,20 @@ const state::Record* CheckpointStore::resume_point(std::size_t unit) const {
   return it == running_.end() ? nullptr : &it->second;
 }
 
+std::uint64_t CheckpointStore::restored_events() const {
+  std::uint64_t events = 0;
+  for (const auto& [unit, result] : done_) events += result.events;
+  // A unit in progress counts its events in its collider's (or cluster gas's) state: result/events is
+  // written when it finishes.
+  for (const auto& [unit, record] : running_)
+    for (const char* name : {"collider/events", "clusters/events"})
+      if (record.has_integers(name)) {  // (a damaged record is reported when its unit resumes)
+        if (const auto& count = record.integer_array(name); count.size() == 1) events += count[0];
+        break;
+      }
+  return events;
+}
+
 void CheckpointStore::finished(std::size_t unit, const ReplicaResult& result) {
   if (every_ <= 0.0) return;
   std::lock_guard<std::mutex> lock(mutex_);

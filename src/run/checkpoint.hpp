@@ -57,6 +57,9 @@ class CheckpointStore {
   const ReplicaResult* finished_result(std::size_t unit) const;
   /// The state of a unit the checkpoint found in progress, or nullptr.
   const state::Record* resume_point(std::size_t unit) const;
+  /// Collision events the loaded checkpoint holds (finished units and those in progress): the work done
+  /// before the restart, which the summary's overall rate leaves out. 0 without a checkpoint.
+  std::uint64_t restored_events() const;
   /// Unit `unit` finished with `result` (kept for the next write).
   void finished(std::size_t unit, const ReplicaResult& result);
   /// A safe point of unit `unit`: when its snapshot is `every` seconds old, a new one (taken by

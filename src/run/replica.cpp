@@ -58,6 +58,11 @@ class Engine {
   virtual void sample(std::size_t i, ReplicaResult& result) = 0;
   /// The end of the replica: the observables of the whole replica, its events and mean step.
   virtual void finish(ReplicaResult& result) = 0;
+  /// The threads the collision loop runs on now: the replica's block threads (at most its blocks) while
+  /// it has cache blocks, else 1. Its collide_seconds are thread-seconds, read at the end of each
+  /// interval, so that the summary's rate is per thread (approximately: the whole-gas steps near event
+  /// targets run on one thread, and a cluster gas can drop its blocks within an interval).
+  virtual int loop_threads() const = 0;
   /// The simulated time.
   virtual double time() const = 0;
   /// The collision events so far.
@@ -124,6 +129,9 @@ class Gas : public Engine {
  public:
   std::size_t samples() const override { return targets_.size(); }
   double time() const override { return collider_.time(); }
+  int loop_threads() const override {
+    return collider_.blocks() > 1 ? static_cast<int>(std::min<std::size_t>(collider_.threads(), collider_.blocks())) : 1;
+  }
   std::uint64_t events() const override { return collider_.counters().events; }
   double sample_time(std::size_t i) const override {
     return config_.dsmc.t_end ? targets_[i] : std::numeric_limits<double>::infinity();
@@ -612,7 +620,7 @@ void ForcedGas::sample(std::size_t i, ReplicaResult& result) {
   const auto t0 = Clock::now();
   stage(last ? stages_.stage_end(std::numeric_limits<double>::infinity()) : stages_.stage_end(targets_[i + 1]), i,
         &result, last);
-  result.collide_seconds += std::chrono::duration<double>(Clock::now() - t0).count();  // its collisions count
+  result.collide_seconds += std::chrono::duration<double>(Clock::now() - t0).count() * loop_threads();  // its collisions count
 }
 
 void ForcedGas::finish(ReplicaResult& result) {
@@ -648,6 +656,9 @@ class Clusters final : public Engine {
   void sample(std::size_t i, ReplicaResult& result) override;
   void finish(ReplicaResult& result) override;
   double time() const override { return gas_.time(); }
+  int loop_threads() const override {
+    return gas_.blocks() > 1 ? static_cast<int>(std::min<std::size_t>(gas_.threads(), gas_.blocks())) : 1;
+  }
   std::uint64_t events() const override { return gas_.counters().events; }
   double fraction_done() const override {
     const double f = time_driven_ ? gas_.time() / targets_.back()
@@ -835,7 +846,7 @@ ReplicaResult run_replica(const io::config::Config& config, std::size_t replica,
       safe_point();
     }
     engine->advance_to_sample(next_sample, between);
-    result.collide_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+    result.collide_seconds += std::chrono::duration<double>(Clock::now() - t0).count() * engine->loop_threads();
     engine->sample(next_sample, result);
     if (resume && next_sample == resumed_at) {
       // Which rows a replica writes depends on the input: a row missing from the record shows in the

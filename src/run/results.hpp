@@ -25,7 +25,7 @@ namespace gdsmc::simulation {
 struct ReplicaResult : sample::Rows {
   double mean_step = 0.0;       ///< mean time step (bound refresh, or stage) of the replica
   std::uint64_t events = 0;     ///< its collision events
-  double collide_seconds = 0.0; ///< wall-clock seconds of its collision loops (the summary's rate)
+  double collide_seconds = 0.0; ///< thread-seconds of its collision loops: wall seconds x the threads its blocks ran on (the summary's rate)
 };
 
 /// What one point (all its replicas) measured.

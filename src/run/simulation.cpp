@@ -303,7 +303,17 @@ double estimated_memory_bytes(const io::config::Config& config, int threads, int
   double units = 0.0;
   for (const auto& point : config.sweep_points()) units += static_cast<double>(point.dsmc.replicas);
   const double at_once = std::min(std::ceil(units / std::max(1, ranks)), static_cast<double>(std::max(1, threads)));
-  return at_once * static_cast<double>(config.dsmc.n_particles) * per_particle;
+  return at_once * static_cast<double>(config.dsmc.n_particles) * per_particle + estimated_sample_bytes(config);
+}
+
+double estimated_sample_bytes(const io::config::Config& config) {
+  // Rank 0 gathers every unit's sample rows: about 64 bytes per species and sample (measured with the
+  // default observables: 1e5 species, 50 samples more, 318 MB more; docs/performance.md#perf_many_samples).
+  double units = 0.0;
+  for (const auto& point : config.sweep_points()) units += static_cast<double>(point.dsmc.replicas);
+  const double samples = static_cast<double>(std::max(config.sample_times().size(), config.sample_collisions().size()));
+  const double species = config.has_agg_frag ? 1.0 : static_cast<double>(config.system.n_species);
+  return units * samples * species * 64.0;
 }
 
 std::string lock_path(const std::string& output_path) { return without_h5(output_path) + ".lock"; }
@@ -348,6 +358,9 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
   if (options.replace_any_file) checkpoints.replace_any_file();
   load_restart(checkpoints, options, rank);
   check_finished_units(checkpoints, points, units, mine);
+  double restored_events = 0.0;  // every rank's, for the summary's overall rate
+  for (const auto& text : parallel::gather_to_root(std::to_string(checkpoints.restored_events())))
+    restored_events += std::stod(text);
   Progress progress(options.progress && rank == 0, options.progress_terminal, point_of, points.size());
   std::vector<ReplicaResult> done;
   char status = 'K';
@@ -374,6 +387,7 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
     summary = write_output(*writer, config, points, results, options);
   }
   checkpoints.remove();  // the run is complete: its checkpoint is stale
+  summary.restored_events = restored_events;
   summary.wall_seconds = std::chrono::duration<double>(Clock::now() - started).count();
   return summary;
 }

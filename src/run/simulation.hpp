@@ -55,8 +55,9 @@ struct Summary {
   double final_total_temperature = 0.0;  ///< its mean final T
   double collisions_per_particle = 0.0;  ///< its mean collisions per particle
   double wall_seconds = 0.0;             ///< the whole run, wall clock
-  double events_per_second = 0.0;        ///< events per second of collision loop, per thread (loops' seconds summed)
+  double events_per_second = 0.0;        ///< events per thread-second of the collision loops (ReplicaResult::collide_seconds)
   double events = 0.0;                   ///< every replica's collision events
+  double restored_events = 0.0;          ///< of those, the ones a --restart checkpoint held (made by an earlier process)
   /// One sweep point's final values (the mean over its replicas).
   struct Point {
     std::string label;                     ///< "variable = value"
@@ -106,8 +107,11 @@ std::string checkpoint_path(const std::string& output_path, int rank = 0);
 /// The memory a rank of this run holds at most, in bytes (a lower bound, to refuse runs that cannot fit):
 /// the particle arrays of the replicas it runs at once (min(its units, threads)) at 28 bytes per particle
 /// (velocity, species), 32 more with displacements, 24 more for rough spheres' angular velocities, and
-/// as much again while a checkpoint or snapshot copies them; &agg_frag clusters as particles.
+/// as much again while a checkpoint or snapshot copies them; &agg_frag clusters as particles; and the
+/// sample rows of its units (all of them on rank 0, which gathers them), 64 bytes per species and sample.
 double estimated_memory_bytes(const io::config::Config& config, int threads, int ranks);
+/// Of that, the sample rows: every unit's (rank 0 gathers them), 64 bytes per species and sample.
+double estimated_sample_bytes(const io::config::Config& config);
 
 /// `<output stem>.lock`: the lock file that keeps two runs off one output and its checkpoint (io/file_lock.hpp).
 std::string lock_path(const std::string& output_path);

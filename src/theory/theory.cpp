@@ -191,6 +191,17 @@ PairMatrix pair_collision_rate(const Mixture& mix, const std::vector<double>& te
   return rate;
 }
 
+std::vector<double> collision_frequencies(const Mixture& mix, const std::vector<double>& temperature) {
+  require_temperatures(mix, temperature, "collision_frequencies");
+  std::vector<double> frequency(mix.size());
+  for (std::size_t k = 0; k < mix.size(); ++k) {
+    double suffered = 0.0;  // \ref cm_mixture_rate "docs/collision-model.md": 2 P_kk + sum_{j != k} P_kj
+    for (std::size_t j = 0; j < mix.size(); ++j) suffered += (j == k ? 2.0 : 1.0) * pair_rate(mix, temperature, k, j);
+    frequency[k] = suffered / mix.number_density[k];
+  }
+  return frequency;
+}
+
 double total_collision_rate(const Mixture& mix, const std::vector<double>& temperature) {
   require_temperatures(mix, temperature, "total_collision_rate");
   return total_rate(mix, temperature);
@@ -203,6 +214,13 @@ PairMatrix cooling_rate_matrix(const Mixture& mix, const std::vector<double>& te
     for (std::size_t j = 0; j < mix.size(); ++j)
       xi(k, j) = cooling_rate_entry(mix, temperature, k, j);
   return xi;
+}
+
+std::vector<double> cooling_rates(const Mixture& mix, const std::vector<double>& temperature) {
+  require_temperatures(mix, temperature, "cooling_rates");
+  std::vector<double> rate(mix.size());
+  cooling_rate_row_sums(mix, temperature, rate);
+  return rate;
 }
 
 std::vector<double> partial_temperature_rates(const Mixture& mix,

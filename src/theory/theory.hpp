@@ -109,12 +109,20 @@ double haff_temperature(double t, double T0, double zeta0);
 /// k != j: n_k n_j pi sigma_kj^2 chi_kj <|g_kj|>; k == j: half of that. Symmetric S x S matrix.
 PairMatrix pair_collision_rate(const Mixture& mix, const std::vector<double>& temperature);
 
+/// \ref cm_mixture_rate "docs/collision-model.md": collisions suffered per particle of species k per unit time,
+/// nu_k = (2 P_kk + sum_{j != k} P_kj)/n_k with P = pair_collision_rate, in O(S) memory (any number of species).
+std::vector<double> collision_frequencies(const Mixture& mix, const std::vector<double>& temperature);
+
 /// Total events per unit volume and time: sum over unordered pairs k <= j of pair_collision_rate.
 /// One species: n nu/2.
 double total_collision_rate(const Mixture& mix, const std::vector<double>& temperature);
 
 /// \ref haff_mixture_odes "docs/haff-and-mixtures.md": the S x S matrix xi_kj (not symmetric), such that dT_k/dt = -T_k sum_j xi_kj.
 PairMatrix cooling_rate_matrix(const Mixture& mix, const std::vector<double>& temperature);
+
+/// \ref haff_mixture_odes "docs/haff-and-mixtures.md": zeta_k = sum_j xi_kj, the row sums of cooling_rate_matrix
+/// in O(S) memory (any number of species).
+std::vector<double> cooling_rates(const Mixture& mix, const std::vector<double>& temperature);
 
 /// \ref haff_mixture_odes "docs/haff-and-mixtures.md": dT_k/dt = -T_k sum_j xi_kj for every species k.
 std::vector<double> partial_temperature_rates(const Mixture& mix,

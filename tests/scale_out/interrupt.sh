@@ -96,6 +96,11 @@ for sf in 1e-300 1e-6 1 100; do
   done
   run_case "mixture-lowrank-$sf" INT "" -- "${mixture[@]}" --set "dsmc:scheme='lowrank'" --set "dsmc:step_fraction=$sf"
 done
+# Without &output checkpoint_every the one line says how to make a run resumable.
+cases=$((cases + 1))
+hint="granular-dsmc: interrupted: no output written (with &output checkpoint_every = SECONDS an interrupted run leaves a checkpoint to resume)"
+if [ "$(cat case-majorant-1/stderr)" = "$hint" ]; then echo "ok   the message without a checkpoint names checkpoint_every"
+else echo "FAIL the message without a checkpoint: $(cat case-majorant-1/stderr)"; failures=$((failures + 1)); fi
 run_case "majorant-no-blocks-1e-300" INT "" -- --set dsmc:block_size=0 --set dsmc:step_fraction=1e-300
 run_case "mixture-majorant-no-blocks-1e-300" INT "" -- "${mixture[@]}" --set dsmc:block_size=0 --set dsmc:step_fraction=1e-300
 run_case "mixture-pairs-1e-300" INT "" -- "${mixture[@]}" --set "dsmc:scheme='pairs'" --set dsmc:step_fraction=1e-300
