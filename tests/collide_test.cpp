@@ -1615,6 +1615,29 @@ TEST(Collide, BlocksMeetARepeatedEventTargetWithoutAnotherEvent) {
   }
 }
 
+// Samples closer than a step make every step a shortened one, which keeps the blocks of the step before:
+// the blocks must still be dealt again, at the latest when a kept step would end beyond two full steps'
+// time of the last remix (collide.hpp "Event targets"); else each block would become a gas of its own.
+// 65536 particles in 4 blocks, targets 3000 events apart (more than N/64 = 1024, so that blocked steps
+// approach them; a full step brings about 5 collisions per particle, 160000 events), 600 targets, about
+// 27 collisions per particle: the blocks were dealt again at least 4 times (without the limit: never after t = 0).
+TEST(Collide, ShortenedStepsStillRemixTheBlocks) {
+  const auto mix = one_species(0.9);
+  auto sys = initial(mix, {65536}, {1.0}, 37);
+  Collider c(Scheme::majorant, mix, sys, rng::make_stream(37, 0, rng::Purpose::collisions), 1.0);
+  c.use_blocks(16384);
+  ASSERT_EQ(c.blocks(), 4u);
+  std::vector<double> remix_times;
+  for (std::uint64_t target = 3000; target <= 1800000; target += 3000) {
+    ASSERT_TRUE(c.advance(1e12, target));
+    ASSERT_EQ(c.counters().events, target);
+    if (remix_times.empty() || c.last_remix_time() != remix_times.back()) remix_times.push_back(c.last_remix_time());
+  }
+  std::printf("[ measured ] %zu distinct remix times over %llu steps, t = %.4g\n", remix_times.size(),
+              static_cast<unsigned long long>(c.counters().steps), c.time());
+  EXPECT_GE(remix_times.size(), 4u);
+}
+
 namespace {
 
 // The many-species gases of the block tests: S species, m_k = k, sigma_k = k^(1/3), N_k = max(least,

@@ -157,6 +157,7 @@ Collider::State Collider::state() const {
   st.block_credit = block_credit_;
   if (scattered_any_) st.slice_counts.assign(slice_count_.begin(), slice_count_.end());
   st.step_start = step_start_;
+  st.remix_time = remix_time_;
   st.whole_step = whole_step_;
   st.step_acceptance = step_acceptance_;
   st.step_events_start = step_events_start_;
@@ -201,6 +202,7 @@ void Collider::restore(const State& st) {
     set_slices();
   }
   step_start_ = st.step_start;
+  remix_time_ = st.remix_time;
   whole_step_ = st.whole_step;
   step_acceptance_ = st.step_acceptance;
   step_events_start_ = st.step_events_start;
@@ -250,6 +252,7 @@ void Collider::save(state::Record& r) const {
   r.put("collider/block_credit", s.block_credit);
   if (!s.slice_counts.empty()) r.put("collider/slice_counts", s.slice_counts);
   r.put("collider/step_start", s.step_start);
+  r.put("collider/remix_time", s.remix_time);
   r.put("collider/step_acceptance", s.step_acceptance);
   r.put_integer("collider/whole_step", s.whole_step);
   r.put_integer("collider/step_events_start", s.step_events_start);
@@ -293,6 +296,8 @@ void Collider::restore(const state::Record& r) {
   s.block_credit = r.array("collider/block_credit");
   if (r.has_integers("collider/slice_counts")) s.slice_counts = r.integer_array("collider/slice_counts");
   s.step_start = r.real("collider/step_start");
+  // (written since 2026-11-30; before, every step but the whole-gas ones remixed: its step's start)
+  s.remix_time = r.has("collider/remix_time") ? r.real("collider/remix_time") : s.step_start;
   s.step_acceptance = r.real("collider/step_acceptance");
   s.whole_step = r.flag("collider/whole_step");
   s.step_events_start = r.integer("collider/step_events_start");

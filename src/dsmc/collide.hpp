@@ -55,7 +55,7 @@
  * B_b = 2 pi sigma^2 chi vmax_b: the pair rate is pi sigma^2 chi |g| n/(N_b - 1), every particle keeps the gas's
  * collision frequency. The blocks run one after another, each from the step's start to its end. Between steps the
  * particles are dealt round the blocks like cards from a random starting point (`remix`, in place: deal.hpp), so that
- * blocks never keep their members. What differs from the unblocked gas is the number of partners between remixes, N_b -
+ * blocks never keep their members (but for a step shortened near an event target: below). What differs from the unblocked gas is the number of partners between remixes, N_b -
  * 1 instead of N - 1: a finite-N effect of order 1/N_b. A block's bound is recomputed exactly at its first visit in a
  * step. **Step length** (block_step_length; \ref sch_blocks "docs/schemes.md", "Step length"): within a step a bound is
  * only raised; one collision per particle dissipates at most gamma = max (1 - alpha_kj^2)/3 of the energy, and a step
@@ -65,7 +65,8 @@
  * block_steps. The length sets when bounds are refreshed and blocks remixed, not the process. **Event targets**
  * (`collisions_per_particle`) are met exactly: when fewer events are left than a step could bring (R dt times the last
  * step's acceptance, 1 for a run's first step, plus 10 % and 8 standard deviations) the step is shortened (and keeps
- * the blocks of the step before: no remix for a fraction of a step's events), and when
+ * the blocks of the step before, no remix for a fraction of a step's events, while it ends within two full steps'
+ * time of the last remix), and when
  * that would leave it fewer than min(N/64, 4 N/K) events it runs on the whole gas as one block with the exact bound of
  * all particles, which samples the unblocked process and stops at the target (such a step holds at least 1.25 of the
  * whole gas's own candidates: it was sized at the blocks' R, which the separable draw's bound makes several times the
@@ -291,6 +292,8 @@ class Collider {
   void use_threads(int threads);
   /// The threads set by use_threads (1 by default).
   int threads() const { return threads_; }
+  /// With blocks: the time the blocks were last dealt (a remix, or the first step; header "Event targets").
+  double last_remix_time() const { return remix_time_; }
   /// Memory the collider holds for the particles besides the System, in bytes: the scratch memory of
   /// the blocks' remix, done in place (deal.hpp; about (2 seg + 1) K elements and N/seg bits).
   std::size_t workspace_bytes() const { return remix_workspace_.bytes(); }
@@ -386,6 +389,7 @@ class Collider {
     std::vector<double> block_max_speed2, block_credit;  ///< with blocks (use_blocks)
     std::vector<std::uint64_t> slice_counts;             ///< with scattered species: each block's counts, K x S
     double step_start = 0.0;                             ///< with blocks: when this step began
+    double remix_time = 0.0;                             ///< with blocks: when the blocks were last dealt
     bool whole_step = false;                             ///< with blocks: the step runs on the whole gas
     double step_acceptance = 0.0;
     std::uint64_t step_events_start = 0, step_candidates_start = 0;
@@ -444,7 +448,7 @@ class Collider {
   /// With blocks: lengthens a whole-gas step that ended short of `exact_target` (true), instead of a new
   /// step, while fewer than fewest_block_events() are left.
   bool extend_whole_step(std::uint64_t exact_target);
-  /// With blocks: starts the step of length `step` (a remix, or the whole gas's exact bound).
+  /// With blocks: starts the step of length `step` (a remix, the whole gas's exact bound, or neither: keeps_blocks_).
   void begin_blocked_step(double step);
   bool keeps_blocks_ = false;       ///< with blocks: this step approaches an exact event target and keeps the last step's blocks (no remix)
   bool whole_step_ = false;         ///< with blocks: this step runs on the whole gas (near an event target)
@@ -682,6 +686,7 @@ class Collider {
   std::vector<LowrankOutcome> lowrank_outcomes_;  ///< P^2 outcomes, the pairs of the P species present in the block
   unsigned lowrank_cell_bits_ = 0;                ///< m
   double step_start_ = 0.0;
+  double remix_time_ = 0.0;  ///< with blocks: when the blocks were last dealt (a remix, or the first step)
   /// Exact vmax_k^2 of block j's slices, read in order, into out[k].
   void set_block_max_speed2(std::size_t block, double* out);
   /// max_kj pi sigma_kj^2 chi_kj (vmax_k + vmax_j), over the species present in a block when its running

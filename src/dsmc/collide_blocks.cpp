@@ -314,6 +314,7 @@ double Collider::approach_target(double step, double rate, std::uint64_t exact_t
   // 1 (a bound) instead; the approach runs steps of block_steps.
   whole_step_ = keeps_blocks_ = false;
   if (exact_target == UINT64_MAX) return step;
+  const double full_step = step;
   const double n_total = static_cast<double>(sys_.size());
   const double remaining = static_cast<double>(exact_target - counters_.events);
   // (and a step after one of fewer than min(N/64, 4 N/K) candidates, e.g. one ended early by a
@@ -341,9 +342,12 @@ double Collider::approach_target(double step, double rate, std::uint64_t exact_t
   const double fits = root > 0.0 ? root * root : 0.0;
   if (fits >= fewest) {
     // A shortened step brings a fraction of a step's events: it keeps the blocks of the step before
-    // (whose remix, O(N), and with many species O(N) scattered writes, would cost more than its events).
-    keeps_blocks_ = true;
-    return step * (fits / expected);
+    // (whose remix, O(N), and with many species O(N) scattered writes, would cost more than its events),
+    // while it ends within two full steps' time of the last remix: with samples closer than a step every
+    // step is shortened, and blocks that were never dealt again would become gases of their own.
+    const double shortened = step * (fits / expected);
+    keeps_blocks_ = time_ + shortened - remix_time_ <= 2.0 * full_step;
+    return shortened;
   }
   whole_step_ = true;
   return step * std::min(1.0, 1.5 * remaining / expected);
@@ -359,8 +363,9 @@ void Collider::begin_blocked_step(double step) {
     // less (the separable draw's bound W_b/sqrt(m_i) of every species): at least 1.25 of its candidates,
     // or a step for the last event could hold none (its credit starts at 0), and so would every next one.
     if (rate_ > 0.0) step = std::max(step, 1.25 / rate_);
-  } else if (counters_.steps > 0 && !keeps_blocks_) {
-    remix();
+  } else if (counters_.steps == 0 || !keeps_blocks_) {
+    if (counters_.steps > 0) remix();
+    remix_time_ = time_;
   }
   step_events_start_ = counters_.events;
   step_candidates_start_ = counters_.candidates;
@@ -386,6 +391,7 @@ bool Collider::extend_whole_step(std::uint64_t exact_target) {
   const double made = static_cast<double>(counters_.events - step_events_start_), elapsed = time_ - step_start_;
   if (!(made > 0.0 && elapsed > 0.0)) return false;  // (no events yet: a new step, of at least 1.25/R_w)
   const double more = 1.5 * static_cast<double>(exact_target - counters_.events) * elapsed / made;
+  if (!(time_ + more > time_)) return false;  // (below the time's resolution: a new step)
   next_step_time_ = time_ + more;
   counters_.step_sum += more;
   return true;
