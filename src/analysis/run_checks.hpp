@@ -37,12 +37,13 @@ namespace gdsmc::analysis {
 /// when the run's estimated work is beyond the caps above and allow_long_run is not set.
 void check_run_cost(const io::config::Config& config);
 
-/// The memory this process can use: the machine's physical memory, or the address-space limit of
-/// ulimit -v when lower (`what` names which, for messages); bytes 0 when unknown.
+/// A limit on the memory this process can use.
 struct MemoryLimit {
-  double bytes = 0.0;
-  std::string what;
+  double bytes = 0.0;  ///< its size in bytes (0 when unknown)
+  std::string what;    ///< which limit it is, for messages ("this machine's memory", ...)
 };
+/// The memory this process can use: the machine's physical memory, or the address-space limit of
+/// ulimit -v when lower.
 MemoryLimit memory_limit();
 
 /// Bytes the theory of `config` (analysis::predict: granular-theory, granular-dsmc --compare) holds at
