@@ -540,3 +540,59 @@ TEST(SegmentTreeLowRank, LargeM) {
               ns_draw, ns_update, rel, checksum);
   EXPECT_LE(rel, 1e-12);
 }
+
+// Walker's alias table (Vose's construction), by hand. w = (1, 3): scaled (0.5, 1.5); cell 0 keeps itself
+// with 0.5 and sends the rest to 1, which is left at 1.0: thresholds (0.5, 1), aliases (1, 1), so that
+// P(0) = 0.5/2. w = (0, 2, 1, 1): scaled (0, 2, 1, 1), small = [0], large = [1, 2, 3] (1.0 is not below 1):
+// cell 0 -> alias 3 (scaled 3 becomes 0: small), cell 3 -> alias 2 (then 0), cell 2 -> alias 1 (then 1):
+// thresholds (0, 1, 0, 0), aliases (3, 1, 1, 2); P = (0, 1/2, 1/4, 1/4). All zero: no cells.
+TEST(SegmentTreeAlias, VoseByHand) {
+  gdsmc::segment_tree::AliasTable t;
+  t.build({1.0, 3.0});
+  EXPECT_EQ(t.threshold, (std::vector<double>{0.5, 1.0}));
+  EXPECT_EQ(t.alias, (std::vector<std::size_t>{1, 1}));
+  t.build({0.0, 2.0, 1.0, 1.0});
+  EXPECT_EQ(t.threshold, (std::vector<double>{0.0, 1.0, 0.0, 0.0}));
+  EXPECT_EQ(t.alias, (std::vector<std::size_t>{3, 1, 1, 2}));
+  EXPECT_EQ(t.sample(0.3), 1u);   // cell 1, kept
+  EXPECT_EQ(t.sample(0.55), 1u);  // cell 2 (x = 2.2), threshold 0: its alias 1
+  EXPECT_EQ(t.sample(0.8), 2u);   // cell 3 (x = 3.2): alias 2
+  EXPECT_EQ(t.sample(0.1), 3u);   // cell 0 (x = 0.4): alias 3
+  int cells = 0;
+  EXPECT_FALSE(t.build_cells({0.0, 0.0, 0.0}, [&](std::size_t, double, std::size_t) { ++cells; }));
+  EXPECT_EQ(cells, 0);
+  t.build({0.0, 0.0});
+  EXPECT_EQ(t.threshold, (std::vector<double>{0.0, 0.0}));
+}
+
+// build_cells hands every cell over exactly once, with build()'s threshold and alias, each threshold in
+// [0, 1] (the blocks take floor(t 2^c) as an integer conversion: collide_blocks.cpp); and the table's
+// probabilities, summed over the cells, are w_k / sum w to round-off. 200 tables of 1..5000 weights, a
+// quarter zero, spanning twelve decades.
+TEST(SegmentTreeAlias, BuildCellsHandsOverBuildsTable) {
+  auto gen = make_stream(77, 0, Purpose::collisions);
+  gdsmc::segment_tree::AliasTable t, u;
+  for (int table = 0; table < 200; ++table) {
+    const std::size_t n = 1 + gen.below(5000);
+    std::vector<double> w(n);
+    for (auto& x : w) x = gen.uniform() < 0.25 ? 0.0 : std::pow(10.0, 12.0 * gen.uniform() - 6.0);
+    w[gen.below(n)] = 1.0;  // (one positive weight at least)
+    t.build(w);
+    std::vector<int> seen(n, 0);
+    std::vector<double> probability(n, 0.0);
+    ASSERT_TRUE(u.build_cells(w, [&](std::size_t k, double threshold, std::size_t alias) {
+      ++seen[k];
+      EXPECT_EQ(threshold, t.threshold[k]);
+      EXPECT_EQ(alias, t.alias[k]);
+      EXPECT_GE(threshold, 0.0);
+      EXPECT_LE(threshold, 1.0);
+      probability[k] += threshold / static_cast<double>(n);
+      probability[alias] += (1.0 - threshold) / static_cast<double>(n);
+    }));
+    const double total = std::accumulate(w.begin(), w.end(), 0.0);
+    for (std::size_t k = 0; k < n; ++k) {
+      ASSERT_EQ(seen[k], 1) << "cell " << k << " of " << n;
+      EXPECT_NEAR(probability[k], w[k] / total, 1e-12) << "outcome " << k << " of " << n;
+    }
+  }
+}

@@ -646,7 +646,8 @@ class Collider {
   /// the slices' rounding; W the largest of the blocks' W_b, so a bound of it).
   double separable_block_rate() const;
   /// Alias cells of c = 32 - `bits` coin bits from the 2^bits weights `w` (zero-padded past the `p`
-  /// outcomes), built in pair_alias_: a cell's own outcome is its index, a padding cell's its alias.
+  /// outcomes), handed over by pair_alias_.build_cells (no table of its own in between): a cell's own
+  /// outcome is its index, a padding cell's its alias.
   template <class Cell>
   void fill_alias_cells(const std::vector<double>& w, std::size_t p, unsigned bits, Cell* out, double* fraction);
   /// `lowrank`'s separable candidate in a block in two stages, so that its two table cells are prefetched a

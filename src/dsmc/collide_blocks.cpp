@@ -604,19 +604,19 @@ void Collider::set_block_one_word(const std::uint32_t* present_species, std::siz
   while ((std::size_t{1} << bits) < pairs) ++bits;
   lowrank_cell_bits_ = bits;
   pair_weights_.resize(std::size_t{1} << bits, 0.0);
-  pair_alias_.build(pair_weights_);
-  pair_weights_.resize(pairs);
   const double coin_scale = std::ldexp(1.0, 16 - static_cast<int>(bits));  // 2^c, c = 16 - m coin bits
   lowrank_cells_.resize(std::size_t{1} << bits);
-  for (std::size_t c = 0; c < lowrank_cells_.size(); ++c) {
-    // Keep cell c with probability t: with U = (q + V)/2^c (q the c coin bits, V uniform), U < t iff
-    // q < floor(t 2^c), or q = floor(t 2^c) and V < t 2^c - floor(t 2^c) (both exact in doubles).
-    const double scaled = pair_alias_.threshold[c] * coin_scale;
-    const double whole = std::floor(scaled);
-    const auto other = static_cast<std::uint32_t>(pair_alias_.alias[c]);
-    lowrank_cells_[c] = {scaled - whole, static_cast<std::uint32_t>(whole),
-                         c < pairs ? static_cast<std::uint32_t>(c) : other, other};
-  }
+  // Keep cell c with probability t: with U = (q + V)/2^c (q the c coin bits, V uniform), U < t iff
+  // q < floor(t 2^c), or q = floor(t 2^c) and V < t 2^c - floor(t 2^c) (both exact in doubles).
+  // (rate_ > 0: a weight is positive, and every cell is built)
+  pair_alias_.build_cells(pair_weights_, [&](std::size_t c, double threshold, std::size_t alias) {
+    const double scaled = threshold * coin_scale;
+    const auto whole = static_cast<std::uint32_t>(scaled);  // floor: 0 <= scaled <= 2^c (Vose's thresholds lie in [0, 1])
+    const auto other = static_cast<std::uint32_t>(alias);
+    lowrank_cells_[c] = {scaled - static_cast<double>(whole), whole, c < pairs ? static_cast<std::uint32_t>(c) : other,
+                         other};
+  });
+  pair_weights_.resize(pairs);
   lowrank_outcomes_.resize(pairs);
   const std::size_t* slice = block_slice_first();
   // Every slice of the block below 2^24 (the one-word draw); else every candidate's reject is 2^24.
@@ -709,9 +709,10 @@ void Collider::set_block_separable(const std::size_t* cum) {
   t.rows.resize(3 * cells), t.row_fraction.resize(3 * cells);
   t.columns.resize(3 * cells), t.column_fraction.resize(3 * cells);
   double term[3];
+  pair_weights_.assign(cells, 0.0);  // (the cells past the p present species stay zero: the six tables' padding)
   for (std::size_t r = 0; r < 3; ++r) {
     double row_sum = 0.0, column_sum = 0.0;
-    pair_weights_.assign(cells, 0.0);  // u^(r) / (pi chi_max W_b/(4V))
+    // u^(r) / (pi chi_max W_b/(4V))
     for (std::size_t a = 0; a < p; ++a) {
       const double sigma = mix_.diameter[t.species[a].species];
       pair_weights_[a] = static_cast<double>(t.species[a].count) * t.species[a].inverse_root_mass *
@@ -719,8 +720,7 @@ void Collider::set_block_separable(const std::size_t* cum) {
       row_sum += pair_weights_[a];
     }
     fill_alias_cells(pair_weights_, p, bits, t.rows.data() + r * cells, t.row_fraction.data() + r * cells);
-    pair_weights_.assign(cells, 0.0);  // v^(r)
-    for (std::size_t a = 0; a < p; ++a) {
+    for (std::size_t a = 0; a < p; ++a) {  // v^(r)
       const double sigma = mix_.diameter[t.species[a].species];
       pair_weights_[a] = static_cast<double>(t.species[a].count) * (r == 0 ? 1.0 : r == 1 ? sigma : sigma * sigma);
       column_sum += pair_weights_[a];
@@ -759,15 +759,16 @@ void Collider::fill_alias_cells(const std::vector<double>& w, std::size_t p, uns
   // Keep cell c with probability t: with U = (q + V)/2^c (q the c coin bits, V uniform), U < t iff
   // q < floor(t 2^c), or q = floor(t 2^c) and V < t 2^c - floor(t 2^c) (both exact in doubles).
   using Outcome = decltype(Cell::keep);
-  pair_alias_.build(w);
   const double coin_scale = std::ldexp(1.0, 32 - static_cast<int>(bits));  // 2^c, c = 32 - m coin bits
-  for (std::size_t c = 0; c < w.size(); ++c) {
-    const double scaled = pair_alias_.threshold[c] * coin_scale;
-    const double whole = std::floor(scaled);
-    const auto other = static_cast<Outcome>(pair_alias_.alias[c]);
-    out[c] = {static_cast<std::uint32_t>(whole), c < p ? static_cast<Outcome>(c) : other, other};
-    fraction[c] = scaled - whole;
-  }
+  const auto cell = [&](std::size_t c, double threshold, std::size_t alias) {
+    const double scaled = threshold * coin_scale;
+    const auto whole = static_cast<std::uint32_t>(scaled);  // floor: 0 <= scaled <= 2^c (Vose's thresholds lie in [0, 1])
+    const auto other = static_cast<Outcome>(alias);
+    out[c] = {whole, c < p ? static_cast<Outcome>(c) : other, other};
+    fraction[c] = scaled - static_cast<double>(whole);
+  };
+  if (!pair_alias_.build_cells(w, cell))  // (all zero: every cell never kept, its own alias)
+    for (std::size_t c = 0; c < w.size(); ++c) cell(c, 0.0, 0);
 }
 
 void Collider::build_factored_rows() {

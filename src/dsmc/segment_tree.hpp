@@ -45,6 +45,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -156,42 +157,53 @@ struct AliasTable {
   std::vector<double> threshold;   ///< probability of keeping cell k rather than its alias
   std::vector<std::size_t> alias;  ///< the other index of cell k
   std::vector<double> scaled;        ///< build()'s scratch: n w_k / sum w
-  std::vector<std::size_t> small;    ///< build()'s scratch: the cells below 1
-  std::vector<std::size_t> large;    ///< build()'s scratch: the cells at or above 1
-  /// Builds the table of weights `w` (each finite and >= 0); all zero leaves it empty of draws.
+  std::vector<std::uint32_t> small;  ///< build()'s scratch: the cells below 1 (a stack)
+  std::vector<std::uint32_t> large;  ///< build()'s scratch: the cells at or above 1 (a stack)
+  /// Builds the table of weights `w` (each finite and >= 0, fewer than 2^32); all zero leaves it empty of draws.
   void build(const std::vector<double>& w) {
+    threshold.resize(w.size());
+    alias.resize(w.size());
+    if (!build_cells(w, [&](std::size_t k, double t, std::size_t a) { threshold[k] = t, alias[k] = a; }))
+      threshold.assign(w.size(), 0.0), alias.assign(w.size(), 0);
+  }
+  /// Vose's construction of the table of `w` (as build()), each cell k handed to `cell(k, threshold_k,
+  /// alias_k)` once, in the order the construction settles them, instead of being stored; false (and no
+  /// cell) when every weight is zero. The blocks turn the cells into their own tables at each visit
+  /// (collide.hpp, "Mixtures in blocks"): no intermediate table, nor its clearing.
+  template <class Cell>
+  bool build_cells(const std::vector<double>& w, Cell&& cell) {
     const std::size_t n = w.size();
-    threshold.assign(n, 0.0);
-    alias.assign(n, 0);
     double total = 0.0;
     for (double x : w) total += x;
-    if (!(total > 0.0)) return;
+    if (!(total > 0.0)) return false;
     scaled.resize(n);  // (the scratch arrays kept between builds: the blocks rebuild their tables often)
-    small.clear(), large.clear();
+    small.resize(n), large.resize(n);
+    std::size_t smalls = 0, larges = 0;  // the stacks' heights
     for (std::size_t k = 0; k < n; ++k) {
       scaled[k] = w[k] * static_cast<double>(n) / total;
-      (scaled[k] < 1.0 ? small : large).push_back(k);
+      const bool below = scaled[k] < 1.0;  // (both written, one kept: no branch on the weights)
+      small[smalls] = large[larges] = static_cast<std::uint32_t>(k);
+      smalls += below, larges += !below;
     }
-    while (!small.empty() && !large.empty()) {
-      const std::size_t s = small.back(), l = large.back();
-      small.pop_back();
-      threshold[s] = scaled[s];
-      alias[s] = l;
+    while (smalls > 0 && larges > 0) {
+      const std::size_t s = small[--smalls], l = large[larges - 1];
+      cell(s, scaled[s], l);
       scaled[l] -= 1.0 - scaled[s];
       if (scaled[l] < 1.0) {
-        large.pop_back();
-        small.push_back(l);
+        --larges;
+        small[smalls++] = static_cast<std::uint32_t>(l);
       }
     }
     // What is left is 1 up to round-off: keep it; a zero weight left over (round-off emptied
     // `large` first) points to a column of positive weight, so it is never drawn.
     std::size_t positive = 0;
     while (!(w[positive] > 0.0)) ++positive;
-    for (std::size_t k : large) threshold[k] = 1.0, alias[k] = k;
-    for (std::size_t k : small) {
-      threshold[k] = w[k] > 0.0 ? 1.0 : 0.0;
-      alias[k] = w[k] > 0.0 ? k : positive;
+    for (std::size_t q = 0; q < larges; ++q) cell(large[q], 1.0, large[q]);
+    for (std::size_t q = 0; q < smalls; ++q) {
+      const std::size_t k = small[q];
+      cell(k, w[k] > 0.0 ? 1.0 : 0.0, w[k] > 0.0 ? k : positive);
     }
+    return true;
   }
   /// The index drawn by a uniform `u` in [0, 1).
   std::size_t sample(double u) const {
