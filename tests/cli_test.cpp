@@ -223,6 +223,39 @@ TEST_F(CliDsmc, WithoutQuietASummaryGoesToStderrNotStdout) {
   EXPECT_NE(r.err.find("wrote out.h5"), std::string::npos) << r.err;
 }
 
+// How the collisions were sampled, in the summary and in /parameters: the binary gas of 200 particles has
+// too few for blocks; in blocks of 64 it has 3 (N div 64) with `majorant` and `lowrank` mixtures' draws;
+// one species in 3 blocks; the whole gas of `pairs` as one block.
+TEST_F(CliDsmc, TheSummaryAndTheFileSayHowTheCollisionsWereSampled) {
+  const auto run_with = [&](const std::string& dsmc_lines) {
+    write("t.nml", with_line(12, "  n_particles = 200, " + dsmc_lines));
+    const Result r = run("granular-dsmc", "t.nml --force");
+    EXPECT_EQ(r.status, 0) << r.err;
+    return r.err;
+  };
+  const auto attributes = [&]() {
+    const std::string file = (dir / "out.h5").string();
+    return std::to_string(std::get<long long>(gdsmc::io::h5md::read_attribute(file, "/parameters", "cache_blocks"))) +
+           " " + gdsmc::io::h5md::read_string_attribute(file, "/parameters", "block_draw");
+  };
+  EXPECT_NE(run_with("block_size = 0").find(" s; no cache blocks\n"), std::string::npos);
+  EXPECT_EQ(attributes(), "1 unblocked");
+  EXPECT_NE(run_with("block_size = 64").find(" s; 3 cache blocks of about 67 particles (majorant)\n"), std::string::npos);
+  EXPECT_EQ(attributes(), "3 majorant");
+  EXPECT_NE(run_with("block_size = 64, scheme = 'lowrank'").find("3 cache blocks of about 67 particles (lowrank)\n"),
+            std::string::npos);
+  EXPECT_EQ(attributes(), "3 lowrank");
+  EXPECT_NE(run_with("block_size = 64, scheme = 'pairs'").find(" s; no cache blocks\n"), std::string::npos);
+  EXPECT_EQ(attributes(), "1 unblocked");
+  write("t.nml", gdsmc::test::join_lines({"&system", "  mass = 1.0", "  diameter = 1.0", "  number_density = 0.01",
+                                         "  restitution = 0.9", "/", "&initial", "  temperature = 1.0", "/", "&dsmc",
+                                         "  n_particles = 200, block_size = 64, t_end = 10.0", "/", "&output",
+                                         "  file = 'out.h5', n_samples = 3", "/"}));
+  const Result one = run("granular-dsmc", "t.nml --force");
+  EXPECT_NE(one.err.find("3 cache blocks of about 67 particles (one species)\n"), std::string::npos) << one.err;
+  EXPECT_EQ(attributes(), "3 one species");
+}
+
 TEST_F(CliDsmc, OutputOptionOverridesTheFile) {
   const Result r = dsmc(base(), "--output other.h5");
   EXPECT_EQ(r.status, 0) << r.err;

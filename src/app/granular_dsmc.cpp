@@ -440,12 +440,21 @@ void print_summary(const std::string& path, const gdsmc::simulation::Summary& su
     // threads count each thread's seconds), and the overall one, the progress line's: this process's
     // events over its wall time.
     const double made_here = summary.events - summary.restored_events;
+    // How a replica sampled its collisions (a run's; a sweep's points may differ: their files say)
+    char blocks[160] = "";
+    const bool clusters = summary.block_draw == "clusters";  // (&agg_frag: its blocks at the first step)
+    if (summary.points.empty() && summary.cache_blocks > 1)
+      std::snprintf(blocks, sizeof blocks, "; %llu cache blocks of about %.0f %s%s%s",
+                    static_cast<unsigned long long>(summary.cache_blocks), summary.particles_per_block,
+                    clusters ? "clusters" : "particles (", clusters ? "" : summary.block_draw.c_str(), clusters ? "" : ")");
+    else if (summary.points.empty() && summary.cache_blocks == 1)
+      std::snprintf(blocks, sizeof blocks, "; no cache blocks");
     std::fprintf(stderr,
                  "granular-dsmc: wrote %s: %s%.3g collisions/s per thread in the collision loop (%.3g/s overall%s), "
-                 "%.1f s\n",
+                 "%.1f s%s\n",
                  path.c_str(), state, summary.events_per_second,
                  summary.wall_seconds > 0 ? made_here / summary.wall_seconds : 0.0,
-                 summary.restored_events > 0 ? " since the restart" : "", summary.wall_seconds);
+                 summary.restored_events > 0 ? " since the restart" : "", summary.wall_seconds, blocks);
   }
   if (root && summary.acceptance_overshoots > 0.0)
     std::fprintf(stderr,

@@ -13,6 +13,18 @@
 
 namespace gdsmc::collide {
 
+const char* Collider::block_draw_name(BlockDraw draw) {
+  switch (draw) {
+    case BlockDraw::one_species: return "one species";
+    case BlockDraw::majorant: return "majorant";
+    case BlockDraw::lowrank: return "lowrank";
+    case BlockDraw::separable: return "separable";
+    case BlockDraw::clusters: return "clusters";
+    case BlockDraw::unblocked: break;
+  }
+  return "unblocked";
+}
+
 Collider::Collider(Scheme scheme, const species::Mixture& mix, particles::System& sys, rng::Xoshiro256pp gen,
                    double step_fraction, rules::Rule rule)
     : scheme_(scheme), mix_(mix), sys_(sys), gen_(gen), step_fraction_(step_fraction),

@@ -479,6 +479,8 @@ void FreeGas::sample(std::size_t i, ReplicaResult& result) {
 void FreeGas::finish(ReplicaResult& result) {
   result.events = collider_.counters().events;
   result.mean_step = collider_.mean_step();
+  result.cache_blocks = collider_.blocks();
+  result.block_draw = static_cast<std::uint64_t>(collider_.block_draw());
   if (track_) result.add("msd_start", 1, {tracking_ ? msd_start_ : -1.0});
   add_scaling_averages(result);
   if (!has_reduced()) return;
@@ -625,6 +627,8 @@ void ForcedGas::sample(std::size_t i, ReplicaResult& result) {
 
 void ForcedGas::finish(ReplicaResult& result) {
   result.events = collider_.counters().events;
+  result.cache_blocks = collider_.blocks();
+  result.block_draw = static_cast<std::uint64_t>(collider_.block_draw());
   result.mean_step = collider_.time() > 0.0 && stages_.count() > 0.0 ? collider_.time() / stages_.count() : 0.0;
   add_scaling_averages(result);
   if (has_reduced() && stages_.count() > 0.0) {
@@ -685,6 +689,7 @@ class Clusters final : public Engine {
   double initial_monomers_, final_events_;
   double energy_limit_;  ///< of a restored gas, per initial monomer (restore())
   agg_frag::Gas gas_;
+  std::size_t initial_blocks_ = 1;  ///< the blocks of the first step (their number falls as clusters stick)
 };
 
 Clusters::Clusters(const io::config::Config& config, std::size_t r, const ReplicaContext& ctx)
@@ -702,6 +707,7 @@ Clusters::Clusters(const io::config::Config& config, std::size_t r, const Replic
     note_idle_threads(ctx, "this aggregation run has no cache blocks (they need N >= 2 block_size clusters)");
   // Cache blocks (agg_frag.hpp, "Cache blocks"): while N >= 2 block_size clusters, on the block threads.
   gas_.use_blocks(static_cast<std::size_t>(config.dsmc.block_size), ctx.block_threads);
+  initial_blocks_ = gas_.blocks();
   gas_.set_stop_flag(ctx.options.interrupt);
 }
 
@@ -760,6 +766,9 @@ void Clusters::finish(ReplicaResult& result) {
   pad_size_rows(result, targets_.size());
   result.events = gas_.counters().events;
   result.mean_step = gas_.mean_step();
+  result.cache_blocks = initial_blocks_;
+  result.block_draw = static_cast<std::uint64_t>(initial_blocks_ > 1 ? collide::Collider::BlockDraw::clusters
+                                                                     : collide::Collider::BlockDraw::unblocked);
 }
 
 std::unique_ptr<Engine> make_engine(const io::config::Config& config, std::size_t r, const ReplicaContext& ctx) {

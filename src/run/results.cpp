@@ -31,6 +31,8 @@ void pack(std::string& out, std::uint64_t unit, const ReplicaResult& r) {
   put(out, r.mean_step);
   put(out, r.events);
   put(out, r.collide_seconds);
+  put(out, r.cache_blocks);
+  put(out, r.block_draw);
   put(out, static_cast<std::uint64_t>(r.rows.size()));
   for (const auto& [name, entry] : r.rows) {
     put(out, static_cast<std::uint64_t>(name.size()));
@@ -47,6 +49,8 @@ ReplicaResult unpack(const std::string& in, std::size_t& pos, std::uint64_t& uni
   r.mean_step = take<double>(in, pos);
   r.events = take<std::uint64_t>(in, pos);
   r.collide_seconds = take<double>(in, pos);
+  r.cache_blocks = take<std::uint64_t>(in, pos);
+  r.block_draw = take<std::uint64_t>(in, pos);
   const auto n = take<std::uint64_t>(in, pos);
   for (std::uint64_t k = 0; k < n; ++k) {
     const auto length = take<std::uint64_t>(in, pos);
@@ -72,6 +76,8 @@ void save(const ReplicaResult& r, state::Record& record) {
   record.put("result/mean_step", r.mean_step);
   record.put("result/collide_seconds", r.collide_seconds);
   record.put_integer("result/events", r.events);
+  record.put_integer("result/cache_blocks", r.cache_blocks);
+  record.put_integer("result/block_draw", r.block_draw);
 }
 
 ReplicaResult load_result(const state::Record& record) {
@@ -85,6 +91,9 @@ ReplicaResult load_result(const state::Record& record) {
   r.mean_step = record.real("result/mean_step");
   r.collide_seconds = record.real("result/collide_seconds");
   r.events = record.integer("result/events");
+  // (checkpoints written before these were kept: not known)
+  if (record.has_integers("result/cache_blocks")) r.cache_blocks = record.integer("result/cache_blocks");
+  if (record.has_integers("result/block_draw")) r.block_draw = record.integer("result/block_draw");
   return r;
 }
 
@@ -139,6 +148,7 @@ PointResult reduce_point(std::vector<ReplicaResult>& replicas) {
       a.values.push_back(std::move(entry.second));
     }
     mean_step_sum += replicas[r].mean_step;
+    if (point.cache_blocks == 0) point.cache_blocks = replicas[r].cache_blocks, point.block_draw = replicas[r].block_draw;
     point.events += replicas[r].events;
     point.collide_seconds += replicas[r].collide_seconds;
   }

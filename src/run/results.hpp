@@ -26,6 +26,8 @@ struct ReplicaResult : sample::Rows {
   double mean_step = 0.0;       ///< mean time step (bound refresh, or stage) of the replica
   std::uint64_t events = 0;     ///< its collision events
   double collide_seconds = 0.0; ///< thread-seconds of its collision loops: wall seconds x the threads its blocks ran on (the summary's rate)
+  std::uint64_t cache_blocks = 0;  ///< its cache blocks (collide::Collider::blocks(); 1: the whole gas; 0: not known)
+  std::uint64_t block_draw = 0;    ///< their draw (collide::Collider::BlockDraw as a number)
 };
 
 /// What one point (all its replicas) measured.
@@ -34,6 +36,8 @@ struct PointResult {
   double mean_step = 0.0;        ///< the mean over the replicas of their mean step
   std::uint64_t events = 0;      ///< all replicas' events
   double collide_seconds = 0.0;  ///< all replicas' collision seconds
+  std::uint64_t cache_blocks = 0;  ///< the replicas' cache blocks (the first that knows them; 0: none does)
+  std::uint64_t block_draw = 0;    ///< and their draw (collide::Collider::BlockDraw)
 };
 
 /// Appends `result` of work unit `unit` to `out` (bytes of this machine: for another rank of the same run).

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "analysis/sweep_table.hpp"
+#include "dsmc/collide.hpp"
 #include "dsmc/particles.hpp"
 #include "dsmc/sample.hpp"
 #include "io/h5md.hpp"
@@ -216,6 +217,15 @@ io::output::Point output_point(const io::config::Config& config, PointResult& re
   return point;
 }
 
+/// How the point's collisions were sampled (\ref output_h5md "docs/output.md"): @cache_blocks, the blocks
+/// of a replica (1: the whole gas), and @block_draw, their draw (collide.hpp BlockDraw), when known.
+void write_blocks(io::h5md::Writer& writer, const std::string& group, const PointResult& result) {
+  if (result.cache_blocks == 0) return;  // (a checkpoint from before they were kept)
+  writer.write_attribute(group, "cache_blocks", static_cast<long long>(result.cache_blocks));
+  writer.write_attribute(group, "block_draw",
+                         collide::Collider::block_draw_name(static_cast<collide::Collider::BlockDraw>(result.block_draw)));
+}
+
 /// Writes every point (and a sweep's table) to the output and commits it; the summary of the run.
 Summary write_output(io::h5md::Writer& writer, const io::config::Config& config,
                      const std::vector<io::config::Config>& points, std::vector<PointResult>& results,
@@ -256,12 +266,18 @@ Summary write_output(io::h5md::Writer& writer, const io::config::Config& config,
       writer.write_attribute(group, "variable", config.sweep.names());
       writer.write_attribute(group, "value", io::config::Sweep::row_text(sweep_rows[k]));
       writer.write_attribute(group, "mean_time_step", results[k].mean_step);
+      write_blocks(writer, group, results[k]);
       // Each point is an H5MD root of its own (h5md + observables): a reader opened at the group
       // reads it as a file (docs/output.md "Sweeps").
       writer.write_hard_link("/h5md", group + "/h5md");
     } else {
       writer.write_attribute("/parameters", "mean_time_step", results[k].mean_step);
+      write_blocks(writer, "/parameters", results[k]);
     }
+    summary.cache_blocks = results[k].cache_blocks;
+    summary.block_draw = collide::Collider::block_draw_name(static_cast<collide::Collider::BlockDraw>(results[k].block_draw));
+    summary.particles_per_block =
+        results[k].cache_blocks > 0 ? static_cast<double>(points[k].dsmc.n_particles) / static_cast<double>(results[k].cache_blocks) : 0.0;
   }
   if (config.is_sweep()) {
     writer.write_attribute("/sweep", "variable", config.sweep.names());
