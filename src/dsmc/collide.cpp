@@ -20,9 +20,10 @@ const char* Collider::block_draw_name(BlockDraw draw) {
     case BlockDraw::lowrank: return "lowrank";
     case BlockDraw::separable: return "separable";
     case BlockDraw::clusters: return "clusters";
-    case BlockDraw::unblocked: break;
+    case BlockDraw::cheaper: return "majorant or lowrank, the cheaper at each step";
+    case BlockDraw::unblocked: return "unblocked";
   }
-  return "unblocked";
+  return nullptr;
 }
 
 Collider::Collider(Scheme scheme, const species::Mixture& mix, particles::System& sys, rng::Xoshiro256pp gen,

@@ -239,25 +239,29 @@ class Collider {
   /// with 0) the whole gas is one block. Call before the first advance().
   void use_blocks(std::size_t block_size);
   std::size_t blocks() const { return block_first_.empty() ? 1 : block_first_.size() - 1; }
-  /// How the blocks draw their candidates (header "Blocks", "Mixtures in blocks"), for the output's record
-  /// of a run (run/simulation.cpp: /parameters@block_draw).
+  /// How the blocks draw their candidates (header "Blocks", "Mixtures in blocks", "The cheaper sampler"), for
+  /// the output's record of a run (run/simulation.cpp: /parameters@block_draw). The numbers are kept in
+  /// checkpoints: a new draw takes the next number.
   enum class BlockDraw : std::uint8_t {
     unblocked,    ///< the whole gas is one block (no use_blocks, too few particles, `pairs`, ...)
-    one_species,  ///< one species: the one-species kernel (or the general loops for a rule without the projection)
-    majorant,     ///< a mixture with `majorant`: uniform pairs of a block
-    lowrank,      ///< a mixture with `lowrank` up to 256 species: each step the cheaper of the block's
-                  ///< low-rank (one-word or factored) and majorant draws
-    separable,    ///< `lowrank` beyond 128 species: the separable draw
+    one_species,  ///< one species: the one-species kernel (the general loops for a rule without the projection)
+    majorant,     ///< a mixture's blocks always draw `majorant`'s uniform pairs
+    lowrank,      ///< a mixture's blocks always draw from the low-rank majorant (one-word or factored table)
+    separable,    ///< `lowrank` beyond separable_above species: the separable draw
     clusters,     ///< &agg_frag's cluster blocks (agg_frag.hpp)
+    cheaper,      ///< a mixture's blocks take, at each step, the cheaper of the `majorant` and low-rank draws
   };
-  /// Its name in the output: "unblocked", "one species", "majorant", "lowrank", "separable", "clusters".
+  /// Its name in the output ("unblocked", "one species", "majorant", "lowrank", "separable", "clusters",
+  /// "majorant or lowrank, the cheaper at each step"); nullptr for a number that is none of them.
   static const char* block_draw_name(BlockDraw draw);
-  /// The draw of this collider's blocks (use_blocks).
+  /// The draw of this collider's blocks (use_blocks; as choose_block_lowrank decides at each step).
   BlockDraw block_draw() const {
     if (block_first_.empty()) return BlockDraw::unblocked;
     if (s_ == 1) return BlockDraw::one_species;
     if (separable_blocks_) return BlockDraw::separable;
-    return scheme_ == Scheme::lowrank ? BlockDraw::lowrank : BlockDraw::majorant;
+    if (!kernels_) return scheme_ == Scheme::lowrank ? BlockDraw::lowrank : BlockDraw::majorant;  // (the scheme's own)
+    if (block_sampler_ == BlockSampler::cheaper) return BlockDraw::cheaper;
+    return block_sampler_ == BlockSampler::lowrank ? BlockDraw::lowrank : BlockDraw::majorant;
   }
   /// The number K of the separable draw's blocks of N = `n` particles of `species` species (use_blocks):
   /// N div block_size while S K <= N, else fewer and larger blocks (at most separable_block_limit particles

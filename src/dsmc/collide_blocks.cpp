@@ -767,7 +767,7 @@ void Collider::fill_alias_cells(const std::vector<double>& w, std::size_t p, uns
     out[c] = {whole, c < p ? static_cast<Outcome>(c) : other, other};
     fraction[c] = scaled - static_cast<double>(whole);
   };
-  if (!pair_alias_.build_cells(w, cell))  // (all zero: every cell never kept, its own alias)
+  if (!pair_alias_.build_cells(w, cell))  // (all zero: no cell kept, each sends to outcome 0)
     for (std::size_t c = 0; c < w.size(); ++c) cell(c, 0.0, 0);
 }
 

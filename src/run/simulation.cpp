@@ -217,13 +217,19 @@ io::output::Point output_point(const io::config::Config& config, PointResult& re
   return point;
 }
 
+/// The name of the point's block draw (collide.hpp BlockDraw), nullptr when the number is none.
+const char* block_draw_name(const PointResult& result) {
+  if (result.block_draw > 255) return nullptr;
+  return collide::Collider::block_draw_name(static_cast<collide::Collider::BlockDraw>(result.block_draw));
+}
+
 /// How the point's collisions were sampled (\ref output_h5md "docs/output.md"): @cache_blocks, the blocks
 /// of a replica (1: the whole gas), and @block_draw, their draw (collide.hpp BlockDraw), when known.
 void write_blocks(io::h5md::Writer& writer, const std::string& group, const PointResult& result) {
-  if (result.cache_blocks == 0) return;  // (a checkpoint from before they were kept)
+  const char* draw = block_draw_name(result);
+  if (result.cache_blocks == 0 || draw == nullptr) return;  // (a checkpoint from before they were kept)
   writer.write_attribute(group, "cache_blocks", static_cast<long long>(result.cache_blocks));
-  writer.write_attribute(group, "block_draw",
-                         collide::Collider::block_draw_name(static_cast<collide::Collider::BlockDraw>(result.block_draw)));
+  writer.write_attribute(group, "block_draw", draw);
 }
 
 /// Writes every point (and a sweep's table) to the output and commits it; the summary of the run.
@@ -274,8 +280,9 @@ Summary write_output(io::h5md::Writer& writer, const io::config::Config& config,
       writer.write_attribute("/parameters", "mean_time_step", results[k].mean_step);
       write_blocks(writer, "/parameters", results[k]);
     }
-    summary.cache_blocks = results[k].cache_blocks;
-    summary.block_draw = collide::Collider::block_draw_name(static_cast<collide::Collider::BlockDraw>(results[k].block_draw));
+    const char* draw = block_draw_name(results[k]);
+    summary.cache_blocks = draw != nullptr ? results[k].cache_blocks : 0;
+    summary.block_draw = draw != nullptr ? draw : "";
     summary.particles_per_block =
         results[k].cache_blocks > 0 ? static_cast<double>(points[k].dsmc.n_particles) / static_cast<double>(results[k].cache_blocks) : 0.0;
   }
