@@ -240,7 +240,7 @@ class Collider {
   void use_blocks(std::size_t block_size);
   std::size_t blocks() const { return block_first_.empty() ? 1 : block_first_.size() - 1; }
   /// How the blocks draw their candidates (header "Blocks", "Mixtures in blocks", "The cheaper sampler"), for
-  /// the output's record of a run (run/simulation.cpp: /parameters@block_draw). The numbers are kept in
+  /// the output's record of a run (run/simulation.cpp: the attribute block_draw of /parameters). The numbers are kept in
   /// checkpoints: a new draw takes the next number.
   enum class BlockDraw : std::uint8_t {
     unblocked,    ///< the whole gas is one block (no use_blocks, too few particles, `pairs`, ...)

@@ -223,8 +223,8 @@ const char* block_draw_name(const PointResult& result) {
   return collide::Collider::block_draw_name(static_cast<collide::Collider::BlockDraw>(result.block_draw));
 }
 
-/// How the point's collisions were sampled (\ref output_h5md "docs/output.md"): @cache_blocks, the blocks
-/// of a replica (1: the whole gas), and @block_draw, their draw (collide.hpp BlockDraw), when known.
+/// How the point's collisions were sampled (\ref output_h5md "docs/output.md"): the attributes cache_blocks,
+/// the blocks of a replica (1: the whole gas), and block_draw, their draw (collide.hpp BlockDraw), when known.
 void write_blocks(io::h5md::Writer& writer, const std::string& group, const PointResult& result) {
   const char* draw = block_draw_name(result);
   if (result.cache_blocks == 0 || draw == nullptr) return;  // (a checkpoint from before they were kept)

@@ -69,11 +69,9 @@ struct Summary {
   /// Candidates of all replicas whose acceptance probability exceeded 1 (collide.hpp
   /// Counters::overshoots; also the observable `acceptance_overshoots`): 0 in a correct run.
   double acceptance_overshoots = 0.0;
-  /// The last point's cache blocks of a replica (1: the whole gas; 0: not known), their draw
-  /// (collide.hpp BlockDraw's name) and the particles (or initial clusters) of a block.
-  std::uint64_t cache_blocks = 0;
-  std::string block_draw;
-  double particles_per_block = 0.0;
+  std::uint64_t cache_blocks = 0;    ///< the last point's cache blocks of a replica (1: the whole gas; 0: not known)
+  std::string block_draw;            ///< their draw (collide.hpp BlockDraw's name)
+  double particles_per_block = 0.0;  ///< the particles (or, with &agg_frag, initial clusters) of a block
 };
 
 
