@@ -7,8 +7,8 @@
 //   --species: the species sweep, M = 1, 2, 8, 32, 100, 128, 129, 256, 257, 1e3, 1e4, 1e5 species, `lowrank`
 //               (masses k, diameters k^(1/3), equal number densities adding up to 0.01, alpha = 0.9,
 //               collisions_per_particle = 10, one replica, one thread), each in a child process: its
-//               collision-loop rate, ns per collision, ratio to M = 1, the whole process's wall seconds and
-//               its peak memory (maximum resident set) in bytes per particle.
+//               collision-loop rate, ns per collision, ratio to M = 1, the whole process's wall seconds,
+//               its peak memory (maximum resident set) in bytes per particle, its cache blocks and their draw.
 //   --no-pairs: skip the two `pairs` rows (about 25 s each at N = 1e6), e.g. to repeat the others often.
 //   --repeat R: R rounds (R >= 2) in which every path runs right after a run of the reference (one species,
 //               t_end), its ratio taken against that run: on a machine whose speed drifts from second to
@@ -30,6 +30,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
@@ -114,13 +115,20 @@ simulation::Summary run(const std::string& text, int threads) {
   return s;
 }
 
+/// What a sweep's child sends back: its collision loop's rate, and its blocks and their draw (Summary).
+struct ChildReport {
+  double rate;
+  std::uint64_t blocks;
+  char draw[64];
+};
+
 /// The species sweep (usage above): each M in a child process, so that its peak memory is its own.
 int species_sweep(std::size_t n) {
   const std::vector<long> counts = {1, 2, 8, 32, 100, 128, 129, 256, 257, 1000, 10000, 100000};
   std::printf("species sweep: N = %zu, lowrank, masses k, diameters k^(1/3), equal densities (0.01 in all), "
               "alpha = 0.9, 10 collisions per particle, one replica, one thread\n", n);
-  std::printf("%8s %14s %12s %8s %10s %14s\n", "species", "collisions/s", "ns/collision", "ratio", "seconds",
-              "bytes/particle");
+  std::printf("%8s %14s %12s %8s %10s %14s %7s  %s\n", "species", "collisions/s", "ns/collision", "ratio", "seconds",
+              "bytes/particle", "blocks", "draw");
   double reference = 0.0;
   for (long m : counts) {
     if (static_cast<std::size_t>(2 * m) > n) break;  // at least 2 particles a species
@@ -140,31 +148,37 @@ int species_sweep(std::size_t n) {
     if (child < 0) return 1;
     if (child == 0) {
       ::close(channel[0]);
-      double rate = 0.0;
+      ChildReport report{};
       try {
-        rate = run(text, 1).events_per_second;
+        const simulation::Summary s = run(text, 1);
+        report.rate = s.events_per_second;
+        report.blocks = s.cache_blocks;
+        std::snprintf(report.draw, sizeof report.draw, "%s", s.block_draw.c_str());
       } catch (const std::exception& e) {  // one line, and no temporary output left (run() removes it)
         std::fprintf(stderr, "bench_paths: %ld species: %s\n", m, e.what());
         ::_exit(1);
       }
-      const ssize_t written = ::write(channel[1], &rate, sizeof rate);
-      ::_exit(written == sizeof rate ? 0 : 1);
+      const ssize_t written = ::write(channel[1], &report, sizeof report);
+      ::_exit(written == sizeof report ? 0 : 1);
     }
     ::close(channel[1]);
-    double rate = 0.0;
-    const ssize_t got = ::read(channel[0], &rate, sizeof rate);
+    ChildReport report{};
+    const ssize_t got = ::read(channel[0], &report, sizeof report);
     ::close(channel[0]);
+    const double rate = report.rate;
     int status = 0;
     rusage usage{};
     ::wait4(child, &status, 0, &usage);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (got != sizeof rate || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    if (got != sizeof report || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
       std::printf("%8ld %14s\n", m, "(failed)");
       continue;
     }
     if (reference == 0.0) reference = rate;
     const double bytes = 1024.0 * static_cast<double>(usage.ru_maxrss) / static_cast<double>(n);  // ru_maxrss: KiB
-    std::printf("%8ld %14.4g %12.1f %8.2f %10.2f %14.0f\n", m, rate, 1e9 / rate, rate / reference, wall, bytes);
+    report.draw[sizeof report.draw - 1] = '\0';
+    std::printf("%8ld %14.4g %12.1f %8.2f %10.2f %14.0f %7llu  %s\n", m, rate, 1e9 / rate, rate / reference, wall, bytes,
+                static_cast<unsigned long long>(report.blocks), report.draw);
     std::fflush(stdout);
   }
   return 0;
