@@ -256,6 +256,17 @@ TEST_F(CliDsmc, TheSummaryAndTheFileSayHowTheCollisionsWereSampled) {
   const Result one = run("granular-dsmc", "t.nml --force");
   EXPECT_NE(one.err.find("3 cache blocks of about 67 particles (one species)\n"), std::string::npos) << one.err;
   EXPECT_EQ(attributes(), "3 one species");
+  // A sweep over N: each point's line and group says its own (120 particles: none; 200: 3 blocks).
+  write("t.nml", read_text(dir / "t.nml") + "&sweep\n  variable = 'dsmc:n_particles'\n  values = 120, 200\n/\n");
+  const Result sweep = run("granular-dsmc", "t.nml --force");
+  EXPECT_NE(sweep.err.find("point 1 (n_particles = 120): "), std::string::npos) << sweep.err;
+  EXPECT_NE(sweep.err.find(" collisions per particle; no cache blocks\ngranular-dsmc: point 2 (n_particles = 200): "),
+            std::string::npos) << sweep.err;
+  EXPECT_NE(sweep.err.find(" collisions per particle; 3 cache blocks of about 67 particles (one species)\ngranular-dsmc: wrote"),
+            std::string::npos) << sweep.err;
+  const std::string file = (dir / "out.h5").string();
+  EXPECT_EQ(std::get<long long>(gdsmc::io::h5md::read_attribute(file, "/sweep/point_2", "cache_blocks")), 3);
+  EXPECT_EQ(gdsmc::io::h5md::read_string_attribute(file, "/sweep/point_1", "block_draw"), "unblocked");
 }
 
 TEST_F(CliDsmc, OutputOptionOverridesTheFile) {

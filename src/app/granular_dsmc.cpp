@@ -423,14 +423,30 @@ std::optional<int> check_paths(const Arguments& a, const gdsmc::io::config::Conf
   return std::nullopt;
 }
 
+/// How a replica sampled its collisions, for the summary: "; K cache blocks of about N_b particles (draw)",
+/// "; K cache blocks of about N_b clusters" (&agg_frag, at its first step), "; no cache blocks", or "" (not known).
+std::string blocks_words(std::uint64_t cache_blocks, const std::string& draw, double per_block) {
+  char words[160] = "";
+  if (cache_blocks > 1 && draw == "clusters")
+    std::snprintf(words, sizeof words, "; %llu cache blocks of about %.0f clusters",
+                  static_cast<unsigned long long>(cache_blocks), per_block);
+  else if (cache_blocks > 1)
+    std::snprintf(words, sizeof words, "; %llu cache blocks of about %.0f particles (%s)",
+                  static_cast<unsigned long long>(cache_blocks), per_block, draw.c_str());
+  else if (cache_blocks == 1)
+    std::snprintf(words, sizeof words, "; no cache blocks");
+  return words;
+}
+
 /// The line after a run, and its warning when a bound was not a majorant.
 void print_summary(const std::string& path, const gdsmc::simulation::Summary& summary, bool quiet, bool root) {
   if (!quiet && root) {
     // A sweep: a line per point, then the file; a run: its final state on the line of the file.
     for (std::size_t k = 0; k < summary.points.size(); ++k) {
       const auto& p = summary.points[k];
-      std::fprintf(stderr, "granular-dsmc: point %zu (%s): t = %.6g, T = %.6g, %.4g collisions per particle\n", k + 1,
-                   p.label.c_str(), p.final_time, p.final_total_temperature, p.collisions_per_particle);
+      std::fprintf(stderr, "granular-dsmc: point %zu (%s): t = %.6g, T = %.6g, %.4g collisions per particle%s\n", k + 1,
+                   p.label.c_str(), p.final_time, p.final_total_temperature, p.collisions_per_particle,
+                   blocks_words(p.cache_blocks, p.block_draw, p.particles_per_block).c_str());
     }
     char state[160] = "";
     if (summary.points.empty())
@@ -440,21 +456,15 @@ void print_summary(const std::string& path, const gdsmc::simulation::Summary& su
     // threads count each thread's seconds), and the overall one, the progress line's: this process's
     // events over its wall time.
     const double made_here = summary.events - summary.restored_events;
-    // How a replica sampled its collisions (a run's; a sweep's points may differ: their files say)
-    char blocks[160] = "";
-    const bool clusters = summary.block_draw == "clusters";  // (&agg_frag: its blocks at the first step)
-    if (summary.points.empty() && summary.cache_blocks > 1)
-      std::snprintf(blocks, sizeof blocks, "; %llu cache blocks of about %.0f %s%s%s",
-                    static_cast<unsigned long long>(summary.cache_blocks), summary.particles_per_block,
-                    clusters ? "clusters" : "particles (", clusters ? "" : summary.block_draw.c_str(), clusters ? "" : ")");
-    else if (summary.points.empty() && summary.cache_blocks == 1)
-      std::snprintf(blocks, sizeof blocks, "; no cache blocks");
     std::fprintf(stderr,
                  "granular-dsmc: wrote %s: %s%.3g collisions/s per thread in the collision loop (%.3g/s overall%s), "
                  "%.1f s%s\n",
                  path.c_str(), state, summary.events_per_second,
                  summary.wall_seconds > 0 ? made_here / summary.wall_seconds : 0.0,
-                 summary.restored_events > 0 ? " since the restart" : "", summary.wall_seconds, blocks);
+                 summary.restored_events > 0 ? " since the restart" : "", summary.wall_seconds,
+                 summary.points.empty()
+                     ? blocks_words(summary.cache_blocks, summary.block_draw, summary.particles_per_block).c_str()
+                     : "");  // (a sweep's points have theirs on their lines)
   }
   if (root && summary.acceptance_overshoots > 0.0)
     std::fprintf(stderr,

@@ -253,9 +253,7 @@ Summary write_output(io::h5md::Writer& writer, const io::config::Config& config,
     summary.final_time = acc.at("time").mean().back();
     summary.final_total_temperature = acc.at("total_temperature").mean().back();
     summary.collisions_per_particle = acc.at("collisions_per_particle").mean().back();
-    if (config.is_sweep())
-      summary.points.push_back({config.sweep.row_label(sweep_rows[k]), summary.final_time,
-                                summary.final_total_temperature, summary.collisions_per_particle});
+
     if (acc.count("acceptance_overshoots"))
       summary.acceptance_overshoots +=
           acc.at("acceptance_overshoots").mean().back() * static_cast<double>(points[k].dsmc.replicas);
@@ -285,6 +283,10 @@ Summary write_output(io::h5md::Writer& writer, const io::config::Config& config,
     summary.block_draw = draw != nullptr ? draw : "";
     summary.particles_per_block =
         results[k].cache_blocks > 0 ? static_cast<double>(points[k].dsmc.n_particles) / static_cast<double>(results[k].cache_blocks) : 0.0;
+    if (config.is_sweep())
+      summary.points.push_back({config.sweep.row_label(sweep_rows[k]), summary.final_time,
+                                summary.final_total_temperature, summary.collisions_per_particle, summary.cache_blocks,
+                                summary.block_draw, summary.particles_per_block});
   }
   if (config.is_sweep()) {
     writer.write_attribute("/sweep", "variable", config.sweep.names());

@@ -64,6 +64,9 @@ struct Summary {
     double final_time = 0.0;               ///< t
     double final_total_temperature = 0.0;  ///< T
     double collisions_per_particle = 0.0;  ///< collisions per particle
+    std::uint64_t cache_blocks = 0;        ///< a replica's cache blocks (as Summary::cache_blocks)
+    std::string block_draw;                ///< their draw
+    double particles_per_block = 0.0;      ///< the particles (initial clusters) of a block
   };
   std::vector<Point> points;  ///< every point of a sweep (empty for a single run)
   /// Candidates of all replicas whose acceptance probability exceeded 1 (collide.hpp
