@@ -152,8 +152,8 @@ int species_sweep(std::size_t n) {
       try {
         const simulation::Summary s = run(text, 1);
         report.rate = s.events_per_second;
-        report.blocks = s.cache_blocks;
-        std::snprintf(report.draw, sizeof report.draw, "%s", s.block_draw.c_str());
+        report.blocks = s.blocks.count;
+        std::snprintf(report.draw, sizeof report.draw, "%s", s.blocks.draw.c_str());
       } catch (const std::exception& e) {  // one line, and no temporary output left (run() removes it)
         std::fprintf(stderr, "bench_paths: %ld species: %s\n", m, e.what());
         ::_exit(1);

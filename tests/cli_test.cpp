@@ -304,25 +304,26 @@ TEST_F(CliDsmc, PrintDefaults) {
 TEST_F(CliDsmc, DenseGasWithoutEnskogWarns) {
   // phi = (pi/6)(0.1 + 0.05) = 0.0785 > 0.05 without enskog (chi = (1 - phi/2)/(1 - phi)^3 = 1.228 by hand): one warning line naming where the density is
   // set, and the run goes on; with enskog, or at the base densities (phi = 0.016), no warning.
-  const Result r = dsmc(with_line(5, "  number_density = 0.1, 0.05"));
-  EXPECT_EQ(r.status, 0) << r.err;
-  EXPECT_EQ(r.err, "granular-dsmc: warning: t.nml:5: &system: number_density: packing fraction 0.0785 without "
-                   "enskog: this runs a dilute (Boltzmann) gas, whose collision rate ignores the density (the Enskog "
-                   "gas collides 1.23 times as often); set &system enskog = .true. for a dense gas (warned above "
-                   "0.05)\n");
+  // (the run goes on, and stderr is exactly the warning: its start, the words `rest`, its end)
+  const auto expect_warning = [&](const std::string& densities, const std::string& rest) {
+    std::filesystem::remove(dir / "out.h5");
+    const Result r = dsmc(with_line(5, "  number_density = " + densities));
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err, "granular-dsmc: warning: t.nml:5: &system: number_density: packing fraction " + rest +
+                         " (warned above 0.05)\n");
+  };
+  expect_warning("0.1, 0.05", "0.0785 without enskog: this runs a dilute (Boltzmann) gas, whose collision rate "
+                              "ignores the density (the Enskog gas collides 1.23 times as often); set &system "
+                              "enskog = .true. for a dense gas");
   std::filesystem::remove(dir / "out.h5");
   EXPECT_EQ(dsmc(with_line(5, "  number_density = 0.1, 0.05, enskog = .true.")).err, "");
   std::filesystem::remove(dir / "out.h5");
   EXPECT_EQ(dsmc(base()).err, "");
   // phi = (pi/6)(1.5 + 0.5) = 1.047: Carnahan-Starling's chi (-4.5e3 here) is no fluid's, and enskog would
   // refuse the gas (phi >= 0.5): the warning quotes neither.
-  std::filesystem::remove(dir / "out.h5");
-  const Result dense = dsmc(with_line(5, "  number_density = 1.5, 0.5"));
-  EXPECT_EQ(dense.status, 0) << dense.err;
-  EXPECT_EQ(dense.err, "granular-dsmc: warning: t.nml:5: &system: number_density: packing fraction 1.05 without "
-                       "enskog: this runs a dilute (Boltzmann) gas, whose collision rate ignores the density; no "
-                       "Enskog gas is that dense (the Carnahan-Starling fluid ends at 0.5, where enskog stops): "
-                       "check the number densities and diameters (warned above 0.05)\n");
+  expect_warning("1.5, 0.5", "1.05 without enskog: this runs a dilute (Boltzmann) gas, whose collision rate ignores "
+                             "the density; no Enskog gas is that dense (the Carnahan-Starling fluid ends at 0.5, where "
+                             "enskog stops): check the number densities and diameters");
 }
 
 TEST_F(CliDsmc, AggFragRunWritesClusterObservables) {

@@ -1599,11 +1599,23 @@ std::array<double, 3> group_temperatures(const species::Mixture& mix, const part
 // (collide.hpp "Blocks", "Event targets"): two samples' targets can be equal (logarithmic spacing, small N).
 // 30 targets 400-548 events apart in a gas of 4096 particles in 4 blocks (the last 64 or fewer events of
 // each on the whole gas, whose step outlasts its target), each asked for twice.
+namespace {
+/// One species (alpha = 0.9, T = 1) of `n` particles with `majorant` in blocks of `block_size`, seeded `seed`.
+struct BlockedOneSpecies {
+  BlockedOneSpecies(std::size_t n, std::size_t block_size, std::uint64_t seed)
+      : mix(one_species(0.9)), sys(initial(mix, {n}, {1.0}, seed)),
+        collider(Scheme::majorant, mix, sys, rng::make_stream(seed, 0, rng::Purpose::collisions), 1.0) {
+    collider.use_blocks(block_size);
+  }
+  species::Mixture mix;
+  particles::System sys;
+  Collider collider;
+};
+}  // namespace
+
 TEST(Collide, BlocksMeetARepeatedEventTargetWithoutAnotherEvent) {
-  const auto mix = one_species(0.9);
-  auto sys = initial(mix, {4096}, {1.0}, 31);
-  Collider c(Scheme::majorant, mix, sys, rng::make_stream(31, 0, rng::Purpose::collisions), 1.0);
-  c.use_blocks(1024);
+  BlockedOneSpecies gas(4096, 1024, 31);
+  Collider& c = gas.collider;
   ASSERT_EQ(c.blocks(), 4u);
   std::uint64_t target = 0;
   for (std::uint64_t i = 0; i < 30; ++i) {
@@ -1622,10 +1634,8 @@ TEST(Collide, BlocksMeetARepeatedEventTargetWithoutAnotherEvent) {
 // approach them; a full step brings about 5 collisions per particle, 160000 events), 600 targets, about
 // 27 collisions per particle: the blocks were dealt again at least 4 times (without the limit: never after t = 0).
 TEST(Collide, ShortenedStepsStillRemixTheBlocks) {
-  const auto mix = one_species(0.9);
-  auto sys = initial(mix, {65536}, {1.0}, 37);
-  Collider c(Scheme::majorant, mix, sys, rng::make_stream(37, 0, rng::Purpose::collisions), 1.0);
-  c.use_blocks(16384);
+  BlockedOneSpecies gas(65536, 16384, 37);
+  Collider& c = gas.collider;
   ASSERT_EQ(c.blocks(), 4u);
   std::vector<double> remix_times;
   for (std::uint64_t target = 3000; target <= 1800000; target += 3000) {

@@ -425,15 +425,15 @@ std::optional<int> check_paths(const Arguments& a, const gdsmc::io::config::Conf
 
 /// How a replica sampled its collisions, for the summary: "; K cache blocks of about N_b particles (draw)",
 /// "; K cache blocks of about N_b clusters" (&agg_frag, at its first step), "; no cache blocks", or "" (not known).
-std::string blocks_words(std::uint64_t cache_blocks, const std::string& draw, double per_block) {
+std::string blocks_words(const gdsmc::simulation::Summary::Blocks& blocks) {
   char words[160] = "";
-  if (cache_blocks > 1 && draw == "clusters")
+  if (blocks.count > 1 && blocks.draw == "clusters")
     std::snprintf(words, sizeof words, "; %llu cache blocks of about %.0f clusters",
-                  static_cast<unsigned long long>(cache_blocks), per_block);
-  else if (cache_blocks > 1)
+                  static_cast<unsigned long long>(blocks.count), blocks.per_block);
+  else if (blocks.count > 1)
     std::snprintf(words, sizeof words, "; %llu cache blocks of about %.0f particles (%s)",
-                  static_cast<unsigned long long>(cache_blocks), per_block, draw.c_str());
-  else if (cache_blocks == 1)
+                  static_cast<unsigned long long>(blocks.count), blocks.per_block, blocks.draw.c_str());
+  else if (blocks.count == 1)
     std::snprintf(words, sizeof words, "; no cache blocks");
   return words;
 }
@@ -446,7 +446,7 @@ void print_summary(const std::string& path, const gdsmc::simulation::Summary& su
       const auto& p = summary.points[k];
       std::fprintf(stderr, "granular-dsmc: point %zu (%s): t = %.6g, T = %.6g, %.4g collisions per particle%s\n", k + 1,
                    p.label.c_str(), p.final_time, p.final_total_temperature, p.collisions_per_particle,
-                   blocks_words(p.cache_blocks, p.block_draw, p.particles_per_block).c_str());
+                   blocks_words(p.blocks).c_str());
     }
     char state[160] = "";
     if (summary.points.empty())
@@ -463,7 +463,7 @@ void print_summary(const std::string& path, const gdsmc::simulation::Summary& su
                  summary.wall_seconds > 0 ? made_here / summary.wall_seconds : 0.0,
                  summary.restored_events > 0 ? " since the restart" : "", summary.wall_seconds,
                  summary.points.empty()
-                     ? blocks_words(summary.cache_blocks, summary.block_draw, summary.particles_per_block).c_str()
+                     ? blocks_words(summary.blocks).c_str()
                      : "");  // (a sweep's points have theirs on their lines)
   }
   if (root && summary.acceptance_overshoots > 0.0)

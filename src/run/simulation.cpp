@@ -278,15 +278,14 @@ Summary write_output(io::h5md::Writer& writer, const io::config::Config& config,
       writer.write_attribute("/parameters", "mean_time_step", results[k].mean_step);
       write_blocks(writer, "/parameters", results[k]);
     }
-    const char* draw = block_draw_name(results[k]);
-    summary.cache_blocks = draw != nullptr ? results[k].cache_blocks : 0;
-    summary.block_draw = draw != nullptr ? draw : "";
-    summary.particles_per_block =
-        results[k].cache_blocks > 0 ? static_cast<double>(points[k].dsmc.n_particles) / static_cast<double>(results[k].cache_blocks) : 0.0;
+    if (const char* draw = block_draw_name(results[k]); draw != nullptr && results[k].cache_blocks > 0)
+      summary.blocks = {results[k].cache_blocks, draw,
+                        static_cast<double>(points[k].dsmc.n_particles) / static_cast<double>(results[k].cache_blocks)};
+    else
+      summary.blocks = {};
     if (config.is_sweep())
       summary.points.push_back({config.sweep.row_label(sweep_rows[k]), summary.final_time,
-                                summary.final_total_temperature, summary.collisions_per_particle, summary.cache_blocks,
-                                summary.block_draw, summary.particles_per_block});
+                                summary.final_total_temperature, summary.collisions_per_particle, summary.blocks});
   }
   if (config.is_sweep()) {
     writer.write_attribute("/sweep", "variable", config.sweep.names());

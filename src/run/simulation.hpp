@@ -58,23 +58,25 @@ struct Summary {
   double events_per_second = 0.0;        ///< events per thread-second of the collision loops (ReplicaResult::collide_seconds)
   double events = 0.0;                   ///< every replica's collision events
   double restored_events = 0.0;          ///< of those, the ones a --restart checkpoint held (made by an earlier process)
+  /// How a replica sampled its collisions (/parameters attributes cache_blocks and block_draw).
+  struct Blocks {
+    std::uint64_t count = 0;   ///< its cache blocks (1: the whole gas; 0: not known)
+    std::string draw;          ///< their draw (collide.hpp BlockDraw's name)
+    double per_block = 0.0;    ///< the particles (with &agg_frag, initial clusters) of a block
+  };
   /// One sweep point's final values (the mean over its replicas).
   struct Point {
     std::string label;                     ///< "variable = value"
     double final_time = 0.0;               ///< t
     double final_total_temperature = 0.0;  ///< T
     double collisions_per_particle = 0.0;  ///< collisions per particle
-    std::uint64_t cache_blocks = 0;        ///< a replica's cache blocks (as Summary::cache_blocks)
-    std::string block_draw;                ///< their draw
-    double particles_per_block = 0.0;      ///< the particles (initial clusters) of a block
+    Blocks blocks;                         ///< its replicas' cache blocks
   };
   std::vector<Point> points;  ///< every point of a sweep (empty for a single run)
   /// Candidates of all replicas whose acceptance probability exceeded 1 (collide.hpp
   /// Counters::overshoots; also the observable `acceptance_overshoots`): 0 in a correct run.
   double acceptance_overshoots = 0.0;
-  std::uint64_t cache_blocks = 0;    ///< the last point's cache blocks of a replica (1: the whole gas; 0: not known)
-  std::string block_draw;            ///< their draw (collide.hpp BlockDraw's name)
-  double particles_per_block = 0.0;  ///< the particles (or, with &agg_frag, initial clusters) of a block
+  Blocks blocks;  ///< the last point's cache blocks
 };
 
 
