@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -19,6 +20,7 @@
 #include "dsmc/particles.hpp"
 #include "dsmc/rng.hpp"
 #include "dsmc/rules.hpp"
+#include "dsmc/state.hpp"
 #include "model/restitution.hpp"
 #include "run/model.hpp"
 #include "model/species.hpp"
@@ -1176,14 +1178,66 @@ TEST(Collide, ManyBlocksMeetEventTargetsExactly) {
   expect_event_targets_met(0.8, 24000, 400, 60, 7, {5000, 12000, 30000, 48000, 120000});
 }
 
-// Long blocked steps near exact targets (header "Blocks", "Step length"): a strongly inelastic gas
-// (alpha = 0.3: steps of sqrt(2/gamma) = 2.5 collisions per particle, over which the acceptance falls
-// by about a fifth) large enough that the margins of 10 % and 8 standard deviations are small: each
-// target is met exactly. (The first step after a long one takes acceptance 1, a bound; this case also
-// passes without that rule, since the approach's steps of 5 mean free times measure the acceptance
-// again before the last, shortened one.)
+// Long blocked steps near exact targets (header "Blocks", "Step length", "Event targets"): a strongly
+// inelastic gas (alpha = 0.3: steps of sqrt(2/gamma) = 2.5 collisions per particle, over which the
+// acceptance falls by about a fifth) large enough that the margins of 10 % and 8 standard deviations are
+// small: each target is met exactly. (The step after a long one takes the acceptance of the long one's
+// first 5 mean free times, its probe, and long steps are shortened to fit a target.)
 TEST(Collide, LongBlockedStepsMeetEventTargetsExactly) {
   expect_event_targets_met(0.3, 200000, 10000, 20, 8, {1000000, 2000000, 2500000});
+}
+
+// The probe of a long step (header "Event targets"; docs/schemes.md, "Event targets"): one species,
+// alpha = 0.9 (steps of 5.6 collisions per particle), N = 1e5 in 20 blocks, to an exact target of 10
+// collisions per particle. With the probe the step after a long one starts from the acceptance of the
+// long one's first 5 mean free times, and a long step is shortened to fit: 8 steps (9 when the step after
+// a long one takes acceptance 1 instead, tests/mutation 86). The target is met
+// exactly, the same on 2 threads, and a collider restored (through a checkpoint's Record) after each of
+// the first four steps, whose probes it must keep, continues bitwise as the uninterrupted one.
+TEST(Collide, LongStepsProbeTheirAcceptance) {
+  const auto mix = one_species(0.9);
+  const std::uint64_t target = 500000;
+  struct Run {
+    std::vector<particles::Vec3> v;
+    collide::Counters counters;
+    double time;
+  };
+  // Step by step (advance's to_step_end), restored after step `restart` (0: never).
+  auto run = [&](int threads, std::uint64_t restart) {
+    auto sys = initial(mix, {100000}, {1.0}, 21);
+    auto c = std::make_unique<Collider>(Scheme::majorant, mix, sys, rng::make_stream(21, 0, rng::Purpose::collisions), 1.0);
+    c->use_blocks(5000);
+    c->use_threads(threads);
+    EXPECT_EQ(c->blocks(), 20u);
+    while (c->counters().events < target) {
+      c->advance(1e12, target, true, target, true);
+      if (c->counters().steps == restart) {
+        state::Record record;
+        c->save(record);
+        auto fresh = std::make_unique<Collider>(Scheme::majorant, mix, sys, rng::make_stream(1, 0, rng::Purpose::collisions), 1.0);
+        fresh->use_blocks(5000);
+        fresh->use_threads(threads);
+        fresh->restore(record);
+        c = std::move(fresh);
+      }
+    }
+    return Run{{sys.v.begin(), sys.v.end()}, c->counters(), c->time()};
+  };
+  const Run serial = run(1, 0);
+  std::printf("[ measured ] %llu steps to %llu events, t = %.6g\n", static_cast<unsigned long long>(serial.counters.steps),
+              static_cast<unsigned long long>(serial.counters.events), serial.time);
+  EXPECT_EQ(serial.counters.events, target);
+  EXPECT_EQ(serial.counters.overshoots, 0u);
+  EXPECT_LE(serial.counters.steps, 8u);
+  for (const auto& [threads, restart] : {std::pair{2, 0}, {1, 1}, {1, 2}, {1, 3}, {2, 4}}) {
+    SCOPED_TRACE(std::to_string(threads) + " threads, restored after step " + std::to_string(restart));
+    const Run other = run(threads, static_cast<std::uint64_t>(restart));
+    EXPECT_EQ(other.v, serial.v);
+    EXPECT_EQ(other.counters.events, serial.counters.events);
+    EXPECT_EQ(other.counters.candidates, serial.counters.candidates);
+    EXPECT_EQ(other.counters.steps, serial.counters.steps);
+    EXPECT_EQ(other.time, serial.time);
+  }
 }
 
 // Mixtures in blocks (header "Blocks": a slice of each species per block). Binary mixture (masses 1

@@ -175,6 +175,10 @@ Collider::State Collider::state() const {
   st.step_acceptance = step_acceptance_;
   st.step_events_start = step_events_start_;
   st.step_candidates_start = step_candidates_start_;
+  st.probe = static_cast<int>(probe_);
+  st.probe_time = probe_time_;
+  st.probe_events = probe_events_;
+  st.probe_candidates = probe_candidates_;
   st.block_lowrank = block_lowrank_ ? 1 : 0;
   st.framed = framed_;
   st.frame_scale = frame_scale_;
@@ -220,6 +224,11 @@ void Collider::restore(const State& st) {
   step_acceptance_ = st.step_acceptance;
   step_events_start_ = st.step_events_start;
   step_candidates_start_ = st.step_candidates_start;
+  if (st.probe < 0 || st.probe > 2) throw std::invalid_argument("collide: the saved state's probe is not 0, 1 or 2");
+  probe_ = static_cast<Probe>(st.probe);
+  probe_time_ = st.probe_time;
+  probe_events_ = st.probe_events;
+  probe_candidates_ = st.probe_candidates;
   framed_ = st.framed;
   frame_scale_ = st.frame_scale;
   frame_inverse_scale_ = 1.0 / frame_scale_;
@@ -270,6 +279,10 @@ void Collider::save(state::Record& r) const {
   r.put_integer("collider/whole_step", s.whole_step);
   r.put_integer("collider/step_events_start", s.step_events_start);
   r.put_integer("collider/step_candidates_start", s.step_candidates_start);
+  r.put_integer("collider/probe", static_cast<std::uint64_t>(s.probe));
+  r.put("collider/probe_time", s.probe_time);
+  r.put_integer("collider/probe_events", s.probe_events);
+  r.put_integer("collider/probe_candidates", s.probe_candidates);
   // (the step's block sampler: 0 `majorant`, 1 `lowrank`, 2 unknown, i.e. the scheme's)
   r.put_integer("collider/block_sampler", s.block_lowrank < 0 ? 2 : static_cast<std::uint64_t>(s.block_lowrank));
   r.put_integer("collider/framed", s.framed);
@@ -315,6 +328,15 @@ void Collider::restore(const state::Record& r) {
   s.whole_step = r.flag("collider/whole_step");
   s.step_events_start = r.integer("collider/step_events_start");
   s.step_candidates_start = r.integer("collider/step_candidates_start");
+  // (written since 2026-11-30; before, no step had a probe)
+  if (r.has_integers("collider/probe")) {
+    const std::uint64_t probe = r.integer("collider/probe");
+    if (probe > 2) throw state::StateError("'collider/probe' is " + std::to_string(probe) + ", not 0, 1 or 2");
+    s.probe = static_cast<int>(probe);
+    s.probe_time = r.real("collider/probe_time");
+    s.probe_events = r.integer("collider/probe_events");
+    s.probe_candidates = r.integer("collider/probe_candidates");
+  }
   const std::uint64_t sampler = r.integer("collider/block_sampler");
   if (sampler > 2) throw state::StateError("'collider/block_sampler' is " + std::to_string(sampler) + ", not 0, 1 or 2");
   s.block_lowrank = sampler == 2 ? -1 : static_cast<int>(sampler);

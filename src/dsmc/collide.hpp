@@ -64,9 +64,10 @@
  * unless block_steps is more (N > 5e6; the first step capped too). Viscoelastic restitution and frames keep
  * block_steps. The length sets when bounds are refreshed and blocks remixed, not the process. **Event targets**
  * (`collisions_per_particle`) are met exactly: when fewer events are left than a step could bring (R dt times the last
- * step's acceptance, 1 for a run's first step, plus 10 % and 8 standard deviations) the step is shortened (and keeps
- * the blocks of the step before, no remix for a fraction of a step's events, while it ends within two full steps'
- * time of the last remix), and when
+ * step's acceptance, 1 for a run's first step, plus 10 % and 8 standard deviations) the step is shortened (and, when
+ * no longer than block_steps, keeps the blocks of the step before, no remix for a fraction of a step's events, while
+ * it ends within two full steps' time of the last remix); after a step longer than block_steps the acceptance is that
+ * of its first block_steps mean free times (its probe, taken at bounds as tight as a new step's), and when
  * that would leave it fewer than min(N/64, 4 N/K) events it runs on the whole gas as one block with the exact bound of
  * all particles, which samples the unblocked process and stops at the target (such a step holds at least 1.25 of the
  * whole gas's own candidates: it was sized at the blocks' R, which the separable draw's bound makes several times the
@@ -417,6 +418,10 @@ class Collider {
     bool whole_step = false;                             ///< with blocks: the step runs on the whole gas
     double step_acceptance = 0.0;
     std::uint64_t step_events_start = 0, step_candidates_start = 0;
+    int probe = 0;                     ///< with blocks: the step's probe (Probe: 0 none, 1 pending, 2 measured)
+    double probe_time = 0.0;           ///< when the probe is taken
+    std::uint64_t probe_events = 0;    ///< the step's events up to the probe, once measured
+    std::uint64_t probe_candidates = 0;  ///< the step's candidates up to the probe, once measured
     int block_lowrank = -1;  ///< with blocks: the step's sampler (1 `lowrank`, 0 `majorant`; -1 unknown: the scheme's)
     bool framed = false;                                 ///< set_frame: the frame and its moments
     double frame_scale = 1.0, frame_shear = 0.0;
@@ -472,12 +477,22 @@ class Collider {
   /// With blocks: lengthens a whole-gas step that ended short of `exact_target` (true), instead of a new
   /// step, while fewer than fewest_block_events() are left.
   bool extend_whole_step(std::uint64_t exact_target);
-  /// With blocks: starts the step of length `step` (a remix, the whole gas's exact bound, or neither: keeps_blocks_).
-  void begin_blocked_step(double step);
+  /// With blocks: starts the step of length `step` at candidate rate `rate` (a remix, the whole gas's exact
+  /// bound, or neither: keeps_blocks_), and its probe when it is long and `exact_target` is set.
+  void begin_blocked_step(double step, double rate, bool exact_target);
   bool keeps_blocks_ = false;       ///< with blocks: this step approaches an exact event target and keeps the last step's blocks (no remix)
   bool whole_step_ = false;         ///< with blocks: this step runs on the whole gas (near an event target)
   double step_acceptance_ = 0.0;    ///< with blocks: events per candidate in the last step
   std::uint64_t step_events_start_ = 0, step_candidates_start_ = 0;  ///< counters at this step's start
+  /// With blocks, a step longer than block_steps mean free times (header "Event targets"): its probe, the
+  /// counts of its first block_steps mean free times, taken at probe_time_ (none, pending, measured).
+  enum class Probe { none, pending, measured };
+  Probe probe_ = Probe::none;
+  double probe_time_ = 0.0;
+  std::uint64_t probe_events_ = 0, probe_candidates_ = 0;  ///< since the step's start, once measured
+  std::vector<std::array<std::uint64_t, 2>> block_probe_;  ///< the pass holding probe_time_: each block's events, candidates before it
+  /// The probe's events per candidate, if the last step measured one with events; else 0.
+  double probe_acceptance() const;
   void remix();
   // Blocks (empty block_first_: none). Candidates are drawn in [range_first_, + range_count_).
   std::vector<std::size_t> block_first_;  ///< K + 1 boundaries
@@ -495,8 +510,9 @@ class Collider {
   void make_workers();
   /// On a worker: block j of `master` over [t_start, t_stop), drawing from the stream (key, j); its
   /// counts go to master.block_counters_[j], its bounds and credit to the master's arrays.
+  /// `probe`: inside (t_start, t_stop), the block's counts at that time go to master.block_probe_[j].
   void run_block(Collider& master, std::size_t j, double t_start, double t_stop, bool first_visit,
-                 std::uint64_t key);
+                 std::uint64_t key, double probe);
   void run_blocks_pass(double t_start, double t_stop);  ///< every block once, on the threads
   /// On a worker: the current block of one species with constant restitution up to t_stop, the
   /// `majorant` process of run_majorant in a loop of its own (header "Blocks", the kernel): raised

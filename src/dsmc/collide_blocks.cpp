@@ -309,9 +309,10 @@ double Collider::approach_target(double step, double rate, std::uint64_t exact_t
   // 4 blocks' worth, N 4/K, when that is less), the step runs instead on the whole gas, which stops at
   // the target itself, and is made about 1.5 times as long as the events left need (\ref sch_blocks "docs/schemes.md").
   // A step longer than block_steps mean free times (block_step_length) is taken only while an exact
-  // target is out of its reach: within a long step the acceptance falls (the gas cools, bounds are
-  // raised), so its mean underestimates the next step's, and a step after a long one takes acceptance
-  // 1 (a bound) instead; the approach runs steps of block_steps.
+  // target is out of its reach, or shortened to fit it: within a long step the acceptance falls (the gas
+  // cools, bounds are raised), so its mean underestimates the next step's, and a step after a long one
+  // takes the acceptance of the long step's first block_steps mean free times instead (its probe,
+  // measured at bounds as tight as the next step's), 1 (a bound) when it has none.
   whole_step_ = keeps_blocks_ = false;
   if (exact_target == UINT64_MAX) return step;
   const double full_step = step;
@@ -331,29 +332,39 @@ double Collider::approach_target(double step, double rate, std::uint64_t exact_t
   const double changed_acceptance =
       last_elapsed > 0.0 ? std::min(1.0, static_cast<double>(counters_.events - step_events_start_) / last_elapsed / rate)
                          : 1.0;
-  const double acceptance = step_acceptance_ > 0.0 && !after_long && !too_few
-                                ? (sampler_changed ? changed_acceptance : step_acceptance_)
-                                : 1.0;
-  if (may_reach(acceptance * rate * step, remaining)) step = std::min(step, short_candidates / rate);  // (never longer)
+  double acceptance = 1.0;
+  if (step_acceptance_ > 0.0 && !too_few) {
+    if (!after_long)
+      acceptance = sampler_changed ? changed_acceptance : step_acceptance_;
+    else if (!sampler_changed && probe_acceptance() > 0.0)
+      acceptance = probe_acceptance();
+  }
   const double expected = acceptance * rate * step;
   if (!may_reach(expected, remaining)) return step;
   // the largest mu with 1.1 mu + 8 sqrt(mu) + 16 <= remaining (a quadratic in sqrt(mu))
   const double root = (-8.0 + std::sqrt(std::max(0.0, 64.0 - 4.4 * (16.0 - remaining)))) / 2.2;
   const double fits = root > 0.0 ? root * root : 0.0;
   if (fits >= fewest) {
-    // A shortened step brings a fraction of a step's events: it keeps the blocks of the step before
-    // (whose remix, O(N), and with many species O(N) scattered writes, would cost more than its events),
-    // while it ends within two full steps' time of the last remix: with samples closer than a step every
-    // step is shortened, and blocks that were never dealt again would become gases of their own.
+    // A step shortened to at most block_steps mean free times brings a fraction of a step's events: it
+    // keeps the blocks of the step before (whose remix, O(N), and with many species O(N) scattered writes,
+    // would cost more than its events), while it ends within two full steps' time of the last remix: with
+    // samples closer than a step every step is shortened, and blocks that were never dealt again would
+    // become gases of their own. (a longer one, which has a probe, is dealt anew as a full step is)
     const double shortened = step * (fits / expected);
-    keeps_blocks_ = time_ + shortened - remix_time_ <= 2.0 * full_step;
+    keeps_blocks_ = shortened * rate <= 1.01 * short_candidates && time_ + shortened - remix_time_ <= 2.0 * full_step;
     return shortened;
   }
   whole_step_ = true;
   return step * std::min(1.0, 1.5 * remaining / expected);
 }
 
-void Collider::begin_blocked_step(double step) {
+double Collider::probe_acceptance() const {
+  return probe_ == Probe::measured && probe_events_ > 0
+             ? static_cast<double>(probe_events_) / static_cast<double>(probe_candidates_)
+             : 0.0;
+}
+
+void Collider::begin_blocked_step(double step, double rate, bool exact_target) {
   if (whole_step_) {
     recompute_max_speeds();  // exact, O(N): the bound of the whole gas
     set_whole_gas_bound();
@@ -371,6 +382,12 @@ void Collider::begin_blocked_step(double step) {
   step_candidates_start_ = counters_.candidates;
   step_start_ = time_;
   next_step_time_ = time_ + step;
+  // A blocked step longer than block_steps mean free times, on the way to an exact target, measures the
+  // acceptance of its first ones (approach_target; run_blocks_pass).
+  const double short_candidates = block_steps * step_fraction_ * static_cast<double>(sys_.size()) / 2.0;
+  probe_ = exact_target && !whole_step_ && step * rate > 1.01 * short_candidates ? Probe::pending : Probe::none;
+  probe_time_ = probe_ == Probe::pending ? time_ + short_candidates / rate : 0.0;
+  probe_events_ = probe_candidates_ = 0;
   ++counters_.steps;
   counters_.step_sum += step;
 }
@@ -417,7 +434,8 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
         time_ = t_target;
         return false;
       }
-      begin_blocked_step(approach_target(block_step_length(rate, sampler_changed), rate, exact_target, sampler_changed));
+      begin_blocked_step(approach_target(block_step_length(rate, sampler_changed), rate, exact_target, sampler_changed),
+                         rate, exact_target != UINT64_MAX);
     }
     const double t_stop = std::min(t_target, next_step_time_);
     if (whole_step_) {
@@ -478,7 +496,7 @@ void Collider::make_workers() {
 }
 
 void Collider::run_block(Collider& master, std::size_t j, double t_start, double t_stop, bool first_visit,
-                         std::uint64_t key) {
+                         std::uint64_t key, double probe) {
   gen_ = rng::Xoshiro256pp::substream(key, j);  // keyed by (seed, replica, pass, block): header "Threads"
   counters_.events = counters_.candidates = counters_.overshoots = 0;
   counters_.largest_acceptance = counters_.dissipated = 0.0;
@@ -504,6 +522,12 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
   credit_ = master.block_credit_[j];
   const double n = mix_.total_density();
   const bool lowrank = master.block_lowrank_;  // the step's sampler (advance_blocks: choose_block_lowrank)
+  // (a probe inside the visit: the block runs to it, its counts noted, then on to t_stop)
+  double stop = probe > t_start && probe < t_stop ? probe : t_stop;
+  const auto note_probe = [&] {
+    master.block_probe_[j] = {counters_.events, counters_.candidates};
+    stop = t_stop;
+  };
   for (;;) {
     if (lowrank) {
       set_block_lowrank(n);
@@ -518,11 +542,17 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
     }
     if (rate_ <= 0.0) break;
     if (kernels_) {  // the block kernels of a rule with the projection (rules.hpp): raised bounds handled inside
-      run_block_kernels(lowrank, t_stop);
+      run_block_kernels(lowrank, stop);
+      if (stop < t_stop) {
+        note_probe();
+        run_block_kernels(lowrank, stop);
+      }
       break;
     }
-    const int stop = run_loop(lowrank ? Scheme::lowrank : Scheme::majorant, t_stop, UINT64_MAX);
-    if (stop != static_cast<int>(Stop::bound_raised)) break;
+    if (run_loop(lowrank ? Scheme::lowrank : Scheme::majorant, stop, UINT64_MAX) == static_cast<int>(Stop::bound_raised))
+      continue;
+    if (stop == t_stop) break;
+    note_probe();
   }
   master.block_credit_[j] = rate_ > 0.0 ? credit_ : 0.0;
   if (framed_) master.block_moments_[j] = moments_;
@@ -808,6 +838,10 @@ void Collider::run_blocks_pass(double t_start, double t_stop) {
   const std::uint64_t key = gen_();  // this pass's key (header "Threads")
   if (framed_) block_moments_.assign(blocks, std::array<double, 4>{});
   const bool first_visit = t_start == step_start_;
+  // The pass that holds a pending probe: each block's counts at probe_time_ (run_block).
+  const bool probing = probe_ == Probe::pending && probe_time_ > t_start && probe_time_ < t_stop;
+  if (probing) block_probe_.assign(blocks, {0, 0});
+  const std::uint64_t events_before = counters_.events, candidates_before = counters_.candidates;
   std::vector<std::exception_ptr> failure(blocks);  // exceptions must not leave an OpenMP region
   const auto n_blocks = static_cast<std::ptrdiff_t>(blocks);
 #pragma omp parallel for num_threads(threads_) schedule(dynamic, 1) if (threads_ > 1)
@@ -818,7 +852,8 @@ void Collider::run_blocks_pass(double t_start, double t_stop) {
     const std::size_t t = 0;
 #endif
     try {
-      workers_[t].run_block(*this, static_cast<std::size_t>(j), t_start, t_stop, first_visit, key);
+      workers_[t].run_block(*this, static_cast<std::size_t>(j), t_start, t_stop, first_visit, key,
+                            probing ? probe_time_ : t_stop);
     } catch (...) {
       failure[static_cast<std::size_t>(j)] = std::current_exception();
     }
@@ -836,6 +871,16 @@ void Collider::run_blocks_pass(double t_start, double t_stop) {
     for (std::size_t p = 0; p < c.pair_events.size(); ++p) counters_.pair_events[p] += c.pair_events[p];
     if (framed_)
       for (std::size_t q = 0; q < 4; ++q) moments_[q] += block_moments_[j][q];
+  }
+  if (probe_ == Probe::pending && probe_time_ <= t_stop) {  // the step's counts up to the probe, in block order
+    probe_ = Probe::measured;
+    probe_events_ = counters_.events - step_events_start_;
+    probe_candidates_ = counters_.candidates - step_candidates_start_;
+    if (probing) {
+      probe_events_ = events_before - step_events_start_;
+      probe_candidates_ = candidates_before - step_candidates_start_;
+      for (const auto& [events, candidates] : block_probe_) probe_events_ += events, probe_candidates_ += candidates;
+    }
   }
   time_ = t_stop;
 }
