@@ -1190,7 +1190,7 @@ TEST(Collide, LongBlockedStepsMeetEventTargetsExactly) {
 // The probe of a long step (header "Event targets"; docs/schemes.md, "Event targets"): one species,
 // alpha = 0.9 (steps of 5.6 collisions per particle), N = 1e5 in 20 blocks, to an exact target of 10
 // collisions per particle. With the probe the step after a long one starts from the acceptance of the
-// long one's first 5 mean free times, and a long step is shortened to fit: 8 steps (9 when the step after
+// long one's first 5 mean free times, and a long step is shortened to fit: 8 steps (10 when the step after
 // a long one takes acceptance 1 instead, tests/mutation 86). The target is met
 // exactly, the same on 2 threads, and a collider restored (through a checkpoint's Record) after each of
 // the first four steps, whose probes it must keep, continues bitwise as the uninterrupted one.
@@ -1237,6 +1237,59 @@ TEST(Collide, LongStepsProbeTheirAcceptance) {
     EXPECT_EQ(other.counters.candidates, serial.counters.candidates);
     EXPECT_EQ(other.counters.steps, serial.counters.steps);
     EXPECT_EQ(other.time, serial.time);
+  }
+}
+
+// The probe when a step spans several passes (the simulation's chunks end passes at any time): chunks of
+// 3.7 time units (about a twentieth of a long step), or ending exactly at the probe, or restored from a
+// checkpoint while the probe is pending. The probe's counts lie between the step's counts at the start
+// and the end of the pass that held it, equal the latter when the pass ends at the probe, and the target
+// of 10 collisions per particle (N = 1e5, 20 blocks) is met exactly.
+TEST(Collide, ProbeOverSeveralPasses) {
+  const auto mix = one_species(0.9);
+  const std::uint64_t target = 500000;
+  for (int mode = 0; mode < 3; ++mode) {
+    SCOPED_TRACE(mode == 0 ? "chunks" : mode == 1 ? "a chunk ends at the probe" : "restored while the probe is pending");
+    auto sys = initial(mix, {100000}, {1.0}, 21);
+    auto c = std::make_unique<Collider>(Scheme::majorant, mix, sys, rng::make_stream(21, 0, rng::Purpose::collisions), 1.0);
+    c->use_blocks(5000);
+    int measured = 0, restored = 0;
+    while (c->counters().events < target) {
+      const Collider::State before = c->state();
+      const bool pending = before.probe == 1;
+      const double t = mode == 1 && pending ? before.probe_time : c->time() + 3.7;
+      c->advance(t, target, true, target, false);
+      const Collider::State after = c->state();
+      if (pending && after.probe == 2) {
+        ++measured;
+        ASSERT_EQ(after.step_events_start, before.step_events_start);
+        EXPECT_GE(after.probe_events, before.counters.events - before.step_events_start);
+        EXPECT_LE(after.probe_events, after.counters.events - after.step_events_start);
+        EXPECT_GE(after.probe_candidates, before.counters.candidates - before.step_candidates_start);
+        EXPECT_LE(after.probe_candidates, after.counters.candidates - after.step_candidates_start);
+        if (mode == 1) {
+          EXPECT_EQ(after.probe_events, after.counters.events - after.step_events_start);
+        }
+      }
+      if (mode == 2 && after.probe == 1) {  // a checkpoint inside the step, its probe pending
+        state::Record record;
+        c->save(record);
+        auto fresh = std::make_unique<Collider>(Scheme::majorant, mix, sys, rng::make_stream(1, 0, rng::Purpose::collisions), 1.0);
+        fresh->use_blocks(5000);
+        fresh->restore(record);
+        EXPECT_EQ(fresh->state().probe, 1);
+        EXPECT_EQ(fresh->state().probe_time, after.probe_time);
+        c = std::move(fresh);
+        ++restored;
+      }
+    }
+    std::printf("[ measured ] %d probes measured, %d restores, %llu steps\n", measured, restored,
+                static_cast<unsigned long long>(c->counters().steps));
+    EXPECT_GE(measured, 2);
+    if (mode == 2) {
+      EXPECT_GE(restored, 2);
+    }
+    EXPECT_EQ(c->counters().events, target);
   }
 }
 

@@ -67,7 +67,9 @@
  * step's acceptance, 1 for a run's first step, plus 10 % and 8 standard deviations) the step is shortened (and, when
  * no longer than block_steps, keeps the blocks of the step before, no remix for a fraction of a step's events, while
  * it ends within two full steps' time of the last remix); after a step longer than block_steps the acceptance is that
- * of its first block_steps mean free times (its probe, taken at bounds as tight as a new step's), and when
+ * of its first block_steps mean free times (its probe, taken at bounds as tight as a new step's) if its events per unit
+ * time fell after the probe, else 1, and only after such a probe may a step near a target be longer than
+ * block_steps (in a heating gas the events per unit time rise within a step), and when
  * that would leave it fewer than min(N/64, 4 N/K) events it runs on the whole gas as one block with the exact bound of
  * all particles, which samples the unblocked process and stops at the target (such a step holds at least 1.25 of the
  * whole gas's own candidates: it was sized at the blocks' R, which the separable draw's bound makes several times the
@@ -491,8 +493,11 @@ class Collider {
   double probe_time_ = 0.0;
   std::uint64_t probe_events_ = 0, probe_candidates_ = 0;  ///< since the step's start, once measured
   std::vector<std::array<std::uint64_t, 2>> block_probe_;  ///< the pass holding probe_time_: each block's events, candidates before it
-  /// The probe's events per candidate, if the last step measured one with events; else 0.
-  double probe_acceptance() const;
+  /// With blocks: the acceptance a step near an exact target expects (approach_target), at candidate rate
+  /// `rate`; `cooling_probe`: from the last step's probe, its events per unit time having fallen after it.
+  double approach_acceptance(double rate, bool sampler_changed, bool& cooling_probe) const;
+  double short_step_candidates() const;                ///< block_steps mean free times' candidates, N block_steps step_fraction / 2
+  bool is_long_step(double candidates) const;          ///< more than 1.01 short_step_candidates()
   void remix();
   // Blocks (empty block_first_: none). Candidates are drawn in [range_first_, + range_count_).
   std::vector<std::size_t> block_first_;  ///< K + 1 boundaries

@@ -302,67 +302,76 @@ double Collider::blocked_step_rate(bool& sampler_changed) {
 }
 
 double Collider::approach_target(double step, double rate, std::uint64_t exact_target, bool sampler_changed) {
-  // Near an exact event target (header "Blocks"): a blocked step is shortened so that its events
-  // (its candidates R dt times the last step's acceptance, plus 10 % and 8 standard deviations)
-  // stay below those left; the first step, with no acceptance measured yet, takes acceptance 1,
-  // which bounds it (every candidate an event). When that leaves less than N/64 events for it (or
-  // 4 blocks' worth, N 4/K, when that is less), the step runs instead on the whole gas, which stops at
-  // the target itself, and is made about 1.5 times as long as the events left need (\ref sch_blocks "docs/schemes.md").
-  // A step longer than block_steps mean free times (block_step_length) is taken only while an exact
-  // target is out of its reach, or shortened to fit it: within a long step the acceptance falls (the gas
-  // cools, bounds are raised), so its mean underestimates the next step's, and a step after a long one
-  // takes the acceptance of the long step's first block_steps mean free times instead (its probe,
-  // measured at bounds as tight as the next step's), 1 (a bound) when it has none.
+  // Near an exact event target (header "Event targets"): a blocked step is shortened so that its events
+  // (its candidates R dt times an acceptance, approach_acceptance, plus 10 % and 8 standard deviations)
+  // stay below those left. When that leaves less than N/64 events for it (or 4 blocks' worth, N 4/K, when
+  // that is less), the step runs instead on the whole gas, which stops at the target itself, and is made
+  // about 1.5 times as long as the events left need (\ref sch_blocks "docs/schemes.md").
   whole_step_ = keeps_blocks_ = false;
   if (exact_target == UINT64_MAX) return step;
   const double full_step = step;
-  const double n_total = static_cast<double>(sys_.size());
   const double remaining = static_cast<double>(exact_target - counters_.events);
-  // (and a step after one of fewer than min(N/64, 4 N/K) candidates, e.g. one ended early by a
-  // target given inside it, whose acceptance is too uncertain: also acceptance 1)
-  const double short_candidates = block_steps * step_fraction_ * n_total / 2.0;
-  const auto last_candidates = static_cast<double>(counters_.candidates - step_candidates_start_);
-  const bool after_long = last_candidates > 1.01 * short_candidates;
-  const double fewest = fewest_block_events();
-  const bool too_few = last_candidates < fewest;
-  // After a change of sampler (or a whole-gas step of the other one) the last step's acceptance is
-  // another majorant's: its events per unit time instead, which do not depend on the majorant (and
-  // only fall as the gas cools), over this step's R (\ref sch_blocks "docs/schemes.md", "The cheaper sampler").
-  const double last_elapsed = time_ - step_start_;
-  const double changed_acceptance =
-      last_elapsed > 0.0 ? std::min(1.0, static_cast<double>(counters_.events - step_events_start_) / last_elapsed / rate)
-                         : 1.0;
-  double acceptance = 1.0;
-  if (step_acceptance_ > 0.0 && !too_few) {
-    if (!after_long)
-      acceptance = sampler_changed ? changed_acceptance : step_acceptance_;
-    else if (!sampler_changed && probe_acceptance() > 0.0)
-      acceptance = probe_acceptance();
-  }
+  bool cooling_probe = false;
+  const double acceptance = approach_acceptance(rate, sampler_changed, cooling_probe);
+  // A step longer than block_steps mean free times (block_step_length) near the target only after a
+  // probe in a gas whose events per unit time fell: its acceptance is then one step old, and within a
+  // step of a heating gas (rough spheres with a hot rotation) the events per unit time rise.
+  if (!cooling_probe && may_reach(acceptance * rate * step, remaining))
+    step = std::min(step, short_step_candidates() / rate);  // (never longer)
   const double expected = acceptance * rate * step;
   if (!may_reach(expected, remaining)) return step;
   // the largest mu with 1.1 mu + 8 sqrt(mu) + 16 <= remaining (a quadratic in sqrt(mu))
   const double root = (-8.0 + std::sqrt(std::max(0.0, 64.0 - 4.4 * (16.0 - remaining)))) / 2.2;
   const double fits = root > 0.0 ? root * root : 0.0;
-  if (fits >= fewest) {
+  if (fits >= fewest_block_events()) {
     // A step shortened to at most block_steps mean free times brings a fraction of a step's events: it
     // keeps the blocks of the step before (whose remix, O(N), and with many species O(N) scattered writes,
     // would cost more than its events), while it ends within two full steps' time of the last remix: with
     // samples closer than a step every step is shortened, and blocks that were never dealt again would
-    // become gases of their own. (a longer one, which has a probe, is dealt anew as a full step is)
+    // become gases of their own. (a longer one, which takes a probe, is dealt anew as a full step is)
     const double shortened = step * (fits / expected);
-    keeps_blocks_ = shortened * rate <= 1.01 * short_candidates && time_ + shortened - remix_time_ <= 2.0 * full_step;
+    keeps_blocks_ = !is_long_step(shortened * rate) && time_ + shortened - remix_time_ <= 2.0 * full_step;
     return shortened;
   }
   whole_step_ = true;
   return step * std::min(1.0, 1.5 * remaining / expected);
 }
 
-double Collider::probe_acceptance() const {
-  return probe_ == Probe::measured && probe_events_ > 0
-             ? static_cast<double>(probe_events_) / static_cast<double>(probe_candidates_)
-             : 0.0;
+double Collider::approach_acceptance(double rate, bool sampler_changed, bool& cooling_probe) const {
+  // The events per candidate a step near a target expects (header "Event targets"): the last step's; 1,
+  // a bound, for the first step and after one of fewer than min(N/64, 4 N/K) candidates (e.g. ended early
+  // by a target given inside it), whose acceptance is too uncertain. After a change of sampler (or a
+  // whole-gas step of the other one) the last step's acceptance is another majorant's: its events per
+  // unit time instead, which do not depend on the majorant, over this step's R (\ref sch_blocks
+  // "docs/schemes.md", "The cheaper sampler"). Within a long step the acceptance falls (the gas cools,
+  // bounds are raised), so its mean underestimates the next step's: after one, the acceptance of its
+  // first block_steps mean free times (its probe, at bounds as tight as the next step's) when its events
+  // per unit time fell after the probe, else 1.
+  cooling_probe = false;
+  const auto last_candidates = static_cast<double>(counters_.candidates - step_candidates_start_);
+  if (!(step_acceptance_ > 0.0) || last_candidates < fewest_block_events()) return 1.0;
+  const double last_elapsed = time_ - step_start_;
+  const auto last_events = static_cast<double>(counters_.events - step_events_start_);
+  if (probe_ != Probe::measured && !is_long_step(last_candidates)) {
+    if (!sampler_changed) return step_acceptance_;
+    return last_elapsed > 0.0 ? std::min(1.0, last_events / last_elapsed / rate) : 1.0;
+  }
+  if (sampler_changed || probe_ != Probe::measured || probe_events_ == 0 || !(time_ > probe_time_) ||
+      !(probe_time_ > step_start_))
+    return 1.0;
+  const auto probe_events = static_cast<double>(probe_events_);
+  const double before = probe_events / (probe_time_ - step_start_);
+  const double after = (last_events - probe_events) / (time_ - probe_time_);
+  if (!(after <= before)) return 1.0;
+  cooling_probe = true;
+  return probe_events / static_cast<double>(probe_candidates_);
 }
+
+double Collider::short_step_candidates() const {
+  return block_steps * step_fraction_ * static_cast<double>(sys_.size()) / 2.0;
+}
+
+bool Collider::is_long_step(double candidates) const { return candidates > 1.01 * short_step_candidates(); }
 
 void Collider::begin_blocked_step(double step, double rate, bool exact_target) {
   if (whole_step_) {
@@ -384,9 +393,8 @@ void Collider::begin_blocked_step(double step, double rate, bool exact_target) {
   next_step_time_ = time_ + step;
   // A blocked step longer than block_steps mean free times, on the way to an exact target, measures the
   // acceptance of its first ones (approach_target; run_blocks_pass).
-  const double short_candidates = block_steps * step_fraction_ * static_cast<double>(sys_.size()) / 2.0;
-  probe_ = exact_target && !whole_step_ && step * rate > 1.01 * short_candidates ? Probe::pending : Probe::none;
-  probe_time_ = probe_ == Probe::pending ? time_ + short_candidates / rate : 0.0;
+  probe_ = exact_target && !whole_step_ && is_long_step(step * rate) ? Probe::pending : Probe::none;
+  probe_time_ = probe_ == Probe::pending ? time_ + short_step_candidates() / rate : 0.0;
   probe_events_ = probe_candidates_ = 0;
   ++counters_.steps;
   counters_.step_sum += step;
@@ -551,7 +559,7 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
     }
     if (run_loop(lowrank ? Scheme::lowrank : Scheme::majorant, stop, UINT64_MAX) == static_cast<int>(Stop::bound_raised))
       continue;
-    if (stop == t_stop) break;
+    if (stop == t_stop || time_ < stop) break;  // (time_ < stop: interrupted, stop_requested)
     note_probe();
   }
   master.block_credit_[j] = rate_ > 0.0 ? credit_ : 0.0;
@@ -872,15 +880,15 @@ void Collider::run_blocks_pass(double t_start, double t_stop) {
     if (framed_)
       for (std::size_t q = 0; q < 4; ++q) moments_[q] += block_moments_[j][q];
   }
-  if (probe_ == Probe::pending && probe_time_ <= t_stop) {  // the step's counts up to the probe, in block order
+  if (probing) {  // the step's counts up to the probe: those before this pass and the blocks', in block order
+    probe_ = Probe::measured;
+    probe_events_ = events_before - step_events_start_;
+    probe_candidates_ = candidates_before - step_candidates_start_;
+    for (const auto& [events, candidates] : block_probe_) probe_events_ += events, probe_candidates_ += candidates;
+  } else if (probe_ == Probe::pending && probe_time_ <= t_stop) {  // (a pass that ends at the probe)
     probe_ = Probe::measured;
     probe_events_ = counters_.events - step_events_start_;
     probe_candidates_ = counters_.candidates - step_candidates_start_;
-    if (probing) {
-      probe_events_ = events_before - step_events_start_;
-      probe_candidates_ = candidates_before - step_candidates_start_;
-      for (const auto& [events, candidates] : block_probe_) probe_events_ += events, probe_candidates_ += candidates;
-    }
   }
   time_ = t_stop;
 }
