@@ -326,30 +326,30 @@ TEST_F(CliDsmc, DenseGasWithoutEnskogWarns) {
                              "enskog stops): check the number densities and diameters");
 }
 
-// A sample taken past its exact event target is never silent (src/run/replica.cpp, advance_to_sample;
-// docs/schemes.md "Event targets"): an elastic binary with 1 % of its particles at T = 100 and the rest at
-// 0.001, N = 1e5 in 20 blocks, to 2 collisions per particle. Within its blocked steps the cold species'
-// bounds rise a hundredfold and the collisions outrun the approach's bound, so the sample is taken past
-// 100000 collisions; whenever it is, stderr says so once per replica, naming the replica and the count.
+// A sample taken past its exact event target is never silent (src/run/replica.cpp, FreeGas::sample; the
+// summary's warning; docs/schemes.md "Event targets"): an elastic binary with 1 % of its particles at
+// T = 100 and the rest at 0.001, N = 1e5 in 20 blocks, to 2 collisions per particle. Within its blocked
+// steps the cold species' bounds rise a hundredfold and the collisions outrun the approach's bound, so the
+// sample is taken past 100000 collisions (this test is to change when that is fixed), and the run ends with
+// one warning that counts such samples and says by how much.
 TEST_F(CliDsmc, ASamplePastItsEventTargetIsSaid) {
-  const Result r = dsmc(
+  const std::string text =
       "&system\n n_species = 2\n mass = 1.0, 1.0\n diameter = 1.0, 1.0\n number_density = 0.0099, 0.0001\n"
       " restitution = 1.0\n/\n&initial\n temperature = 0.001, 100.0\n/\n&dsmc\n scheme = 'majorant'\n"
       " n_particles = 100000\n replicas = 1\n seed = 1\n collisions_per_particle = 2.0\n block_size = 5000\n/\n"
-      "&output\n n_samples = 2\n file = 'out.h5'\n/\n");
+      "&output\n n_samples = 2\n file = 'out.h5'\n/\n";
+  const Result r = dsmc(text);
   ASSERT_EQ(r.status, 0) << r.err;
   const auto collisions = gdsmc::io::h5md::read_observable((dir / "out.h5").string(), "collisions").value;
   ASSERT_EQ(collisions.size(), 2u);
   std::printf("[ measured ] the sample at 2 collisions per particle taken at %.0f collisions (target 100000)\n",
               collisions[1]);
-  if (collisions[1] > 100000.0) {
-    EXPECT_NE(r.err.find("granular-dsmc: warning: replica 1: its sample at 2 collisions per particle was taken " +
-                         std::to_string(static_cast<long long>(collisions[1]) - 100000) + " collisions past its target"),
-              std::string::npos)
-        << r.err;
-  } else {
-    EXPECT_EQ(r.err, "");
-  }
+  ASSERT_GT(collisions[1], 100000.0);
+  EXPECT_EQ(r.err, "granular-dsmc: warning: 1 sample was taken past its event target, by up to " +
+                       std::to_string(static_cast<long long>(collisions[1]) - 100000) +
+                       " collisions (see /observables/collisions): a cache-blocked step's collisions outran the "
+                       "bound of its length, as in a gas far from equilibrium; &dsmc block_size = 0 meets every "
+                       "target exactly (docs/schemes.md, \"Event targets\")\n");
 }
 
 TEST_F(CliDsmc, AggFragRunWritesClusterObservables) {

@@ -471,6 +471,16 @@ void print_summary(const std::string& path, const gdsmc::simulation::Summary& su
                  "granular-dsmc: warning: %.0f candidates had an acceptance probability above 1 (the bound was "
                  "not a majorant; see /observables/acceptance_overshoots): please report this input\n",
                  summary.acceptance_overshoots);
+  if (root && summary.samples_past_target > 0)
+    std::fprintf(stderr,
+                 "granular-dsmc: warning: %llu %s taken past %s event target%s, by up to %llu collisions (see "
+                 "/observables/collisions): a cache-blocked step's collisions outran the bound of its length, as in "
+                 "a gas far from equilibrium; &dsmc block_size = 0 meets every target exactly (docs/schemes.md, "
+                 "\"Event targets\")\n",
+                 static_cast<unsigned long long>(summary.samples_past_target),
+                 summary.samples_past_target == 1 ? "sample was" : "samples were",
+                 summary.samples_past_target == 1 ? "its" : "their", summary.samples_past_target == 1 ? "" : "s",
+                 static_cast<unsigned long long>(summary.most_past_target));
 }
 
 /// The one line of a run stopped by a signal: what is left to resume from (the checkpoint of the last

@@ -227,8 +227,9 @@ void Collider::restore(const State& st) {
   if (st.probe < 0 || st.probe > 2) throw std::invalid_argument("collide: the saved state's probe is not 0, 1 or 2");
   if (st.probe == 1 && !(st.probe_time > st.step_start && st.probe_time <= st.next_step_time))
     throw std::invalid_argument("collide: the saved state's pending probe is not inside its step");
-  if (st.probe == 2 && st.probe_events > st.probe_candidates)
-    throw std::invalid_argument("collide: the saved state's probe has more events than candidates");
+  if (st.probe == 2 && (st.probe_events > st.probe_candidates || st.step_events_start > st.counters.events ||
+                        st.probe_events > st.counters.events - st.step_events_start))
+    throw std::invalid_argument("collide: the saved state's probe has more events than its candidates or its step");
   probe_ = static_cast<Probe>(st.probe);
   probe_time_ = st.probe_time;
   probe_events_ = st.probe_events;

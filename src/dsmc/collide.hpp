@@ -494,8 +494,12 @@ class Collider {
   std::uint64_t probe_events_ = 0, probe_candidates_ = 0;  ///< since the step's start, once measured
   std::vector<std::array<std::uint64_t, 2>> block_probe_;  ///< the pass holding probe_time_: each block's events, candidates before it
   /// With blocks: the acceptance a step near an exact target expects (approach_target), at candidate rate
-  /// `rate`; `cooling_probe`: from the last step's probe, its events per unit time having fallen after it.
-  double approach_acceptance(double rate, bool sampler_changed, bool& cooling_probe) const;
+  /// `rate`; `cooling_probe`: taken from the last step's probe, its events per unit time having fallen after it.
+  struct ApproachAcceptance {
+    double value;
+    bool cooling_probe;
+  };
+  ApproachAcceptance approach_acceptance(double rate, bool sampler_changed) const;
   double short_step_candidates() const;                ///< block_steps mean free times' candidates, N block_steps step_fraction / 2
   bool is_long_step(double candidates) const;          ///< more than 1.01 short_step_candidates()
   void remix();

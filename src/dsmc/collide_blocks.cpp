@@ -241,7 +241,8 @@ void Collider::end_step_at_target(std::uint64_t exact_target) {
   // where every block is at time_, unless the rest of it surely stays below the target: its events at
   // the step's rate so far (which only falls within a step), that rate taken from the events so far
   // plus 8 standard deviations and 16 (few events bound it loosely, so that a step only begun ends),
-  // plus the margins below. The next step then takes acceptance 1 (its last step was short).
+  // plus the margins below. The next step then takes approach_acceptance's estimate after a step this
+  // short (1 when it had fewer than min(N/64, 4 N/K) candidates).
   if (exact_target == UINT64_MAX || counters_.steps == 0 || whole_step_ || !(time_ > step_start_) ||
       !(time_ < next_step_time_) || counters_.events >= exact_target)
     return;
@@ -311,8 +312,7 @@ double Collider::approach_target(double step, double rate, std::uint64_t exact_t
   if (exact_target == UINT64_MAX) return step;
   const double full_step = step;
   const double remaining = static_cast<double>(exact_target - counters_.events);
-  bool cooling_probe = false;
-  const double acceptance = approach_acceptance(rate, sampler_changed, cooling_probe);
+  const auto [acceptance, cooling_probe] = approach_acceptance(rate, sampler_changed);
   // A step longer than block_steps mean free times (block_step_length) near the target only after a
   // probe in a gas whose events per unit time fell: its acceptance is then one step old, and within a
   // step of a heating gas (rough spheres with a hot rotation) the events per unit time rise.
@@ -337,7 +337,7 @@ double Collider::approach_target(double step, double rate, std::uint64_t exact_t
   return step * std::min(1.0, 1.5 * remaining / expected);
 }
 
-double Collider::approach_acceptance(double rate, bool sampler_changed, bool& cooling_probe) const {
+Collider::ApproachAcceptance Collider::approach_acceptance(double rate, bool sampler_changed) const {
   // The events per candidate a step near a target expects (header "Event targets"): the last step's; 1,
   // a bound, for the first step and after one of fewer than min(N/64, 4 N/K) candidates (e.g. ended early
   // by a target given inside it), whose acceptance is too uncertain. After a change of sampler (or a
@@ -346,25 +346,25 @@ double Collider::approach_acceptance(double rate, bool sampler_changed, bool& co
   // "docs/schemes.md", "The cheaper sampler"). Within a long step the acceptance falls (the gas cools,
   // bounds are raised), so its mean underestimates the next step's: after one, the acceptance of its
   // first block_steps mean free times (its probe, at bounds as tight as the next step's) when its events
-  // per unit time fell after the probe, else 1.
-  cooling_probe = false;
+  // per unit time fell after the probe (by more than 3 standard deviations of the events after it, of which
+  // at least min(N/64, 4 N/K): a noisy rate is not taken for a falling one), else 1.
   const auto last_candidates = static_cast<double>(counters_.candidates - step_candidates_start_);
-  if (!(step_acceptance_ > 0.0) || last_candidates < fewest_block_events()) return 1.0;
+  if (!(step_acceptance_ > 0.0) || last_candidates < fewest_block_events()) return {1.0, false};
   const double last_elapsed = time_ - step_start_;
   const auto last_events = static_cast<double>(counters_.events - step_events_start_);
   if (probe_ != Probe::measured && !is_long_step(last_candidates)) {
-    if (!sampler_changed) return step_acceptance_;
-    return last_elapsed > 0.0 ? std::min(1.0, last_events / last_elapsed / rate) : 1.0;
+    if (!sampler_changed) return {step_acceptance_, false};
+    return {last_elapsed > 0.0 ? std::min(1.0, last_events / last_elapsed / rate) : 1.0, false};
   }
   if (sampler_changed || probe_ != Probe::measured || probe_events_ == 0 || !(time_ > probe_time_) ||
       !(probe_time_ > step_start_))
-    return 1.0;
+    return {1.0, false};
   const auto probe_events = static_cast<double>(probe_events_);
-  const double before = probe_events / (probe_time_ - step_start_);
-  const double after = (last_events - probe_events) / (time_ - probe_time_);
-  if (!(after <= before)) return 1.0;
-  cooling_probe = true;
-  return probe_events / static_cast<double>(probe_candidates_);
+  const double events_after = last_events - probe_events;
+  const double at_probe_rate = probe_events / (probe_time_ - step_start_) * (time_ - probe_time_);
+  if (events_after < fewest_block_events() || !(events_after + 3.0 * std::sqrt(events_after) <= at_probe_rate))
+    return {1.0, false};
+  return {probe_events / static_cast<double>(probe_candidates_), true};
 }
 
 double Collider::short_step_candidates() const {

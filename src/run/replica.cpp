@@ -363,13 +363,11 @@ class FreeGas final : public Gas {
   bool in_sample_ = false;  ///< the current sample's msd start handling is done, its chunks are running
   bool tracking_ = false;
   double msd_start_ = 0.0;
-  std::size_t replica_;
-  bool said_target_passed_ = false;  ///< a sample taken past its event target was said (advance_to_sample)
 };
 
 FreeGas::FreeGas(const io::config::Config& config, std::size_t r, const ReplicaContext& ctx)
     : Gas(config, r, true), time_driven_(config.dsmc.t_end.has_value()),
-      track_(config.output.track_displacements), replica_(r) {
+      track_(config.output.track_displacements) {
   final_events_ = time_driven_ ? 0.0 : std::ceil(targets_.back() * static_cast<double>(sys_.size()) / 2.0);
   // Cache blocks (collide.hpp "Blocks"): in collision-driven runs the steps near each sample's event
   // target run on the whole gas and stop at it exactly.
@@ -437,20 +435,6 @@ void FreeGas::advance_to_sample(std::size_t i, const Between& between) {
     if (collider_.time() >= t_target || collider_.counters().events >= event_target) break;
     between();
   }
-  // A blocked step whose collisions outran the bound its length was given passes the target (collide.hpp
-  // "Event targets": a gas far from equilibrium, whose bounds rise many times within a step): the sample
-  // is taken at the collisions it reports; said once per replica, never silently.
-  const std::uint64_t events = collider_.counters().events;
-  if (!time_driven_ && events > event_target && !said_target_passed_) {
-    said_target_passed_ = true;
-    std::fprintf(stderr,
-                 "granular-dsmc: warning: replica %zu: its sample at %.6g collisions per particle was taken %llu "
-                 "collisions past its target (at %.6g per particle): a cache-blocked step's collisions outran the "
-                 "bound of its length (a gas far from equilibrium); &dsmc block_size = 0 meets every target exactly "
-                 "(docs/schemes.md, \"Event targets\")\n",
-                 replica_ + 1, targets_[i], static_cast<unsigned long long>(events - event_target),
-                 2.0 * static_cast<double>(events) / static_cast<double>(sys_.size()));
-  }
 }
 
 void FreeGas::advance_to_time(double t, const Between& between) {
@@ -465,6 +449,16 @@ void FreeGas::advance_to_time(double t, const Between& between) {
 }
 
 void FreeGas::sample(std::size_t i, ReplicaResult& result) {
+  // A blocked step whose collisions outran the bound its length was given passes the sample's exact
+  // target (collide.hpp "Event targets": a gas far from equilibrium, whose bounds rise many times within
+  // a step): the sample is taken at the collisions it reports, and the run's summary says so.
+  if (!time_driven_) {
+    const auto target = static_cast<std::uint64_t>(std::ceil(targets_[i] * static_cast<double>(sys_.size()) / 2.0));
+    if (const std::uint64_t events = collider_.counters().events; events > target) {
+      ++result.samples_past_target;
+      result.most_past_target = std::max(result.most_past_target, events - target);
+    }
+  }
   const sample::Moments m = measure_common(result);
   check_energy_does_not_grow(result, config_.rough() ? "total_energy" : "total_temperature");
   const auto& counters = collider_.counters();

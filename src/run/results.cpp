@@ -33,6 +33,8 @@ void pack(std::string& out, std::uint64_t unit, const ReplicaResult& r) {
   put(out, r.collide_seconds);
   put(out, r.cache_blocks);
   put(out, r.block_draw);
+  put(out, r.samples_past_target);
+  put(out, r.most_past_target);
   put(out, static_cast<std::uint64_t>(r.rows.size()));
   for (const auto& [name, entry] : r.rows) {
     put(out, static_cast<std::uint64_t>(name.size()));
@@ -51,6 +53,8 @@ ReplicaResult unpack(const std::string& in, std::size_t& pos, std::uint64_t& uni
   r.collide_seconds = take<double>(in, pos);
   r.cache_blocks = take<std::uint64_t>(in, pos);
   r.block_draw = take<std::uint64_t>(in, pos);
+  r.samples_past_target = take<std::uint64_t>(in, pos);
+  r.most_past_target = take<std::uint64_t>(in, pos);
   const auto n = take<std::uint64_t>(in, pos);
   for (std::uint64_t k = 0; k < n; ++k) {
     const auto length = take<std::uint64_t>(in, pos);
@@ -78,6 +82,8 @@ void save(const ReplicaResult& r, state::Record& record) {
   record.put_integer("result/events", r.events);
   record.put_integer("result/cache_blocks", r.cache_blocks);
   record.put_integer("result/block_draw", r.block_draw);
+  record.put_integer("result/samples_past_target", r.samples_past_target);
+  record.put_integer("result/most_past_target", r.most_past_target);
 }
 
 ReplicaResult load_result(const state::Record& record) {
@@ -94,6 +100,10 @@ ReplicaResult load_result(const state::Record& record) {
   // (checkpoints written before these were kept: not known)
   if (record.has_integers("result/cache_blocks")) r.cache_blocks = record.integer("result/cache_blocks");
   if (record.has_integers("result/block_draw")) r.block_draw = record.integer("result/block_draw");
+  if (record.has_integers("result/samples_past_target")) {
+    r.samples_past_target = record.integer("result/samples_past_target");
+    r.most_past_target = record.integer("result/most_past_target");
+  }
   return r;
 }
 
@@ -151,6 +161,8 @@ PointResult reduce_point(std::vector<ReplicaResult>& replicas) {
     if (point.cache_blocks == 0) point.cache_blocks = replicas[r].cache_blocks, point.block_draw = replicas[r].block_draw;
     point.events += replicas[r].events;
     point.collide_seconds += replicas[r].collide_seconds;
+    point.samples_past_target += replicas[r].samples_past_target;
+    point.most_past_target = std::max(point.most_past_target, replicas[r].most_past_target);
   }
   point.mean_step = mean_step_sum / static_cast<double>(replicas.size());
   return point;

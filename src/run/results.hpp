@@ -28,6 +28,8 @@ struct ReplicaResult : sample::Rows {
   double collide_seconds = 0.0; ///< thread-seconds of its collision loops: wall seconds x the threads its blocks ran on (the summary's rate)
   std::uint64_t cache_blocks = 0;  ///< its cache blocks (collide::Collider::blocks(); 1: the whole gas; 0: not known)
   std::uint64_t block_draw = 0;    ///< their draw (collide::Collider::BlockDraw as a number)
+  std::uint64_t samples_past_target = 0;  ///< samples taken past their exact event target (replica.cpp, FreeGas::sample)
+  std::uint64_t most_past_target = 0;     ///< the largest number of collisions past one
 };
 
 /// What one point (all its replicas) measured.
@@ -38,6 +40,8 @@ struct PointResult {
   double collide_seconds = 0.0;  ///< all replicas' collision seconds
   std::uint64_t cache_blocks = 0;  ///< the replicas' cache blocks (the first that knows them; 0: none does)
   std::uint64_t block_draw = 0;    ///< and their draw (collide::Collider::BlockDraw)
+  std::uint64_t samples_past_target = 0;  ///< the replicas' samples taken past their exact event target
+  std::uint64_t most_past_target = 0;     ///< the largest number of collisions past one
 };
 
 /// Appends `result` of work unit `unit` to `out` (bytes of this machine: for another rank of the same run).

@@ -259,6 +259,8 @@ Summary write_output(io::h5md::Writer& writer, const io::config::Config& config,
           acc.at("acceptance_overshoots").mean().back() * static_cast<double>(points[k].dsmc.replicas);
     events += results[k].events;
     collide_seconds += results[k].collide_seconds;
+    summary.samples_past_target += results[k].samples_past_target;
+    summary.most_past_target = std::max(summary.most_past_target, results[k].most_past_target);
     // A sweep point lives in /sweep/point_K (K from 1) with the value it applies.
     const std::string group = config.is_sweep() ? "/sweep/point_" + std::to_string(k + 1) : "";
     // /particles (&output snapshot_times), before output_point takes the rows

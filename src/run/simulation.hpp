@@ -76,6 +76,10 @@ struct Summary {
   /// Candidates of all replicas whose acceptance probability exceeded 1 (collide.hpp
   /// Counters::overshoots; also the observable `acceptance_overshoots`): 0 in a correct run.
   double acceptance_overshoots = 0.0;
+  /// Samples taken past their exact event target, over every replica and point (collide.hpp "Event
+  /// targets": a blocked step whose collision rate rose many times within it)
+  std::uint64_t samples_past_target = 0;
+  std::uint64_t most_past_target = 0;  ///< the largest number of collisions past one
   Blocks blocks;  ///< the last point's cache blocks
 };
 
