@@ -1187,6 +1187,26 @@ TEST(Collide, LongBlockedStepsMeetEventTargetsExactly) {
   expect_event_targets_met(0.3, 200000, 10000, 20, 8, {1000000, 2000000, 2500000});
 }
 
+// A checkpoint's collider holds its blocks, whose count N, S and block_size fix: a record another rule wrote
+// (20 blocks restored where the gas makes 10; the separable draw's blocks grew on 2026-12-01) is refused as
+// a mismatch (replica.cpp: "does not fit this build"), not read as damage nor run.
+TEST(Collide, ARecordOfOtherBlocksIsRefused) {
+  const auto mix = one_species(0.9);
+  auto sys = initial(mix, {100000}, {1.0}, 21);
+  Collider c(Scheme::majorant, mix, sys, rng::make_stream(21, 0, rng::Purpose::collisions), 1.0);
+  c.use_blocks(5000);
+  c.advance(1e12, 50000, true, 50000, true);
+  state::Record record;
+  c.save(record);
+  Collider other(Scheme::majorant, mix, sys, rng::make_stream(21, 0, rng::Purpose::collisions), 1.0);
+  other.use_blocks(10000);
+  ASSERT_EQ(other.blocks(), 10u);
+  EXPECT_THROW(other.restore(record), state::StateMismatch);
+  Collider same(Scheme::majorant, mix, sys, rng::make_stream(21, 0, rng::Purpose::collisions), 1.0);
+  same.use_blocks(5000);
+  EXPECT_NO_THROW(same.restore(record));
+}
+
 // The probe of a long step (header "Event targets"; docs/schemes.md, "Event targets"): one species,
 // alpha = 0.9 (steps of 5.6 collisions per particle), N = 1e5 in 20 blocks, to an exact target of 10
 // collisions per particle. With the probe the step after a long one starts from the acceptance of the
@@ -1857,19 +1877,23 @@ TEST(Collide, SeparableBlocksBeyondTheSpeciesLimitMatchUnblocked) {
   EXPECT_EQ(blocked_run(gas, 3000, 1), blocked_run(gas, 3000, 2));
 }
 
-// The separable draw's larger blocks (Collider::separable_block_count): blocks of 200 would hold S K = 33600 >
-// N table entries, so the 300-species gas above runs in K = N div S = 74 blocks of about 300 instead, with the
-// unblocked process (expect_blocks_match_unblocked) and bit for bit on any thread count. Beyond
-// separable_species_limit species the blocks hold at most separable_block_limit particles on average, while
-// S K <= 2 N.
+// The separable draw's larger blocks (Collider::separable_block_count): blocks of 200 would each rebuild six
+// tables of about S = 300 cells per visit for 200 particles (and hold S K = 33600 > N table entries), so
+// the 300-species gas above runs in K = N div (8 S) = 9 blocks of about 2400 instead, with the unblocked
+// process (expect_blocks_match_unblocked) and bit for bit on any thread count. At least 4 blocks, and
+// K = N div S where 4 blocks would hold S K > N; beyond separable_species_limit species the blocks hold at
+// most separable_block_limit particles on average, while S K <= 2 N.
 TEST(Collide, SeparableBlocksGrowWhenTheTablesWouldOutgrowTheGas) {
   const PowerLawGas gas = power_law_gas(300, 9000.0, 2);
   ASSERT_GT(300 * (gas.total / 200), gas.total);
-  expect_blocks_match_unblocked(gas, Scheme::lowrank, 200, gas.total / 300, 900, "Blocks.SeparableLarger");
+  expect_blocks_match_unblocked(gas, Scheme::lowrank, 200, gas.total / (8 * 300), 900, "Blocks.SeparableLarger");
   EXPECT_EQ(blocked_run(gas, 200, 1), blocked_run(gas, 200, 2));
   EXPECT_EQ(Collider::separable_block_count(1000, 1000000, 32768), 30u);     // S K <= N: N div block_size
   EXPECT_EQ(Collider::separable_block_count(100000, 1000000, 32768), 17u);   // ceil(1e6 / 60000)
-  EXPECT_EQ(Collider::separable_block_count(50000, 1000000, 32768), 20u);    // N div S
+  EXPECT_EQ(Collider::separable_block_count(50000, 1000000, 32768), 4u);     // N div 8 S = 2: at least 4
+  EXPECT_EQ(Collider::separable_block_count(10000, 1000000, 32768), 12u);    // N div 8 S
+  EXPECT_EQ(Collider::separable_block_count(4000, 1000000, 32768), 30u);     // N div block_size < N div 8 S
+  EXPECT_EQ(Collider::separable_block_count(60000, 200000, 32768), 3u);      // 4 blocks: S K > N, N div S
   EXPECT_EQ(Collider::separable_block_count(100000, 10000000, 32768), 167u); // ceil(1e7 / 60000), S K <= 2 N
   EXPECT_EQ(Collider::separable_block_count(200000, 1000000, 32768), 0u);    // S K = 3.4 N: none
   EXPECT_LT(Collider::separable_block_count(60000, 100000, 64), 2u);         // N div S = 1: none

@@ -119,8 +119,8 @@
  * per slice's worth of events: above 24 species that rebuild outgrows the candidates); a factored candidate takes two
  * words and two dependent table reads, so up to 24 species the one-word draw costs less. set_lowrank_factor_above()
  * moves the threshold (tests). *The separable draw* (more than separable_above = 128 species, `lowrank`; blocks of
- * block_size while S K <= N, else K = N div S larger ones, beyond 65535 species K >= ceil(N/60000), while S K <= 2 N:
- * separable_block_count; \ref sch_separable "docs/schemes.md"): w_i = W_b/sqrt(m_i) with W_b^2 = max m |v|^2 over the block, so that A_ik =
+ * block_size, but of at least 8 S particles where that leaves at least 4 blocks, and while S K <= N (else K = N div
+ * S), beyond 65535 species K >= ceil(N/60000), while S K <= 2 N: separable_block_count; \ref sch_separable "docs/schemes.md"): w_i = W_b/sqrt(m_i) with W_b^2 = max m |v|^2 over the block, so that A_ik =
  * (pi chi_max W_b/(4V)) sum_r u_i^(r) v_k^(r), u_i = N_i (sigma_i^2, 2 sigma_i, 1)/sqrt(m_i), v_k = N_k (1, sigma_k,
  * sigma_k^2) (Bodrova and Osinsky 2024, eqs. (12)-(14)): the term r, then the row from u^(r) and the column from v^(r),
  * from six alias tables over the P species present built once per visit; accepted with chi_ik |g| / (chi_max (w_i +
@@ -238,7 +238,8 @@ class Collider {
   /// Cache blocks of about `block_size` particles (header, "Blocks"), for one species or a mixture of
   /// at most block_species_limit (256) species with the `majorant` or `lowrank` scheme, or of more with
   /// `lowrank` and a rule with the projection (the separable draw above separable_above species, in
-  /// separable_block_count() blocks: larger ones when S K would exceed N), and N >= 2 block_size; otherwise (or
+  /// separable_block_count() blocks: of at least 8 S particles where that leaves 4 blocks, larger ones when
+  /// S K would exceed N), and N >= 2 block_size; otherwise (or
   /// with 0) the whole gas is one block. Call before the first advance().
   void use_blocks(std::size_t block_size);
   std::size_t blocks() const { return block_first_.empty() ? 1 : block_first_.size() - 1; }
@@ -267,8 +268,9 @@ class Collider {
     return block_sampler_ == BlockSampler::lowrank ? BlockDraw::lowrank : BlockDraw::majorant;
   }
   /// The number K of the separable draw's blocks of N = `n` particles of `species` species (use_blocks):
-  /// N div block_size while S K <= N, else fewer and larger blocks (at most separable_block_limit particles
-  /// on average beyond separable_species_limit species) while S K <= 2 N; fewer than 2: none.
+  /// N div block_size, at most N div (separable_particles_per_species S) but at least separable_min_blocks,
+  /// and N div S where S K would exceed N (at most separable_block_limit particles on average beyond
+  /// separable_species_limit species) while S K <= 2 N; fewer than 2: none.
   static std::size_t separable_block_count(std::size_t species, std::size_t n, std::size_t block_size);
   /// Which exact sampler a mixture's blocks run (header "Mixtures in blocks", "The cheaper sampler"):
   /// `cheaper` (the default) takes, at each step, the one of the `majorant` and `lowrank` block majorants
@@ -649,6 +651,7 @@ class Collider {
     std::uint32_t reject;        ///< 2^24 mod count (as FactoredSpecies)
     std::uint32_t species;       ///< i
     double inverse_root_mass;    ///< 1/sqrt(m_i): w_i = W_b / sqrt(m_i)
+    double mass;                 ///< m_i (32 bytes in all: two entries to a cache line)
   };
   /// An alias cell of the separable draw in 8 bytes, as FactoredCell (use_blocks: P <= S < 2^16), so that the
   /// six tables of 10000 species (0.8 MB) stay in a 1 MiB L2 beside the block.
@@ -662,6 +665,14 @@ class Collider {
   /// The separable blocks' mean size beyond separable_species_limit species: a block's count, multinomial
   /// about its mean when every species is scattered, stays below 2^16 by over 20 standard deviations.
   static constexpr std::size_t separable_block_limit = 60000;
+  /// The separable blocks hold at least this many particles per species on average (separable_block_count):
+  /// a visit builds six tables of about S cells, which blocks of fewer particles would rebuild more often.
+  static constexpr std::size_t separable_particles_per_species = 8;
+  /// ... but there are at least this many blocks (for the threads), where N div block_size allows them.
+  static constexpr std::size_t separable_min_blocks = 4;
+  /// Beyond this many present species a block's separable draw reads the species' entries a stage after
+  /// the cells (separable_cells); up to it, with them.
+  static constexpr std::size_t separable_deep_above = 4096;
   /// The current block's separable tables (set_block_separable), built once per visit: none holds a speed.
   /// Term r of A_ik = sum_r u_i^(r) v_k^(r) (segment_tree.hpp's hard_sphere_factors) is drawn first, then
   /// the row from u^(r) and the column from v^(r), independently (two table reads in parallel).
@@ -699,19 +710,25 @@ class Collider {
   /// outcome is its index, a padding cell's its alias.
   template <class Cell>
   void fill_alias_cells(const std::vector<double>& w, std::size_t p, unsigned bits, Cell* out, double* fraction);
-  /// `lowrank`'s separable candidate in a block in two stages, so that its two table cells are prefetched a
-  /// few candidates before they are read: `separable_words` draws its three 64-bit words and prefetches the
-  /// cells they name; `separable_candidate` reads them: particles a, b and the present species' indices
-  /// `row` (of a) and `column` (of b).
+  /// `lowrank`'s separable candidate in a block in three stages, so that what each reads at random was
+  /// prefetched a few candidates before: `separable_words` draws its three 64-bit words and prefetches the
+  /// two table cells they name; `separable_cells` reads them (the present species' indices `row`, of a,
+  /// and `column`, of b) and prefetches the two species' entries; `separable_candidate` reads those: the
+  /// particles a and b. The entries are read a stage after the cells beyond separable_deep_above present
+  /// species, where tables and entries outgrow the core's L2; with the cells below, where the further
+  /// stage costs more than it saves (docs/performance.md, perf_separable_sized).
   struct SeparableWords {
     std::uint64_t cells, particles;       ///< the cells' word, the particles' word
     std::uint32_t row_index, column_index;  ///< the cells in rows and columns
+    std::uint32_t row, column;              ///< the present species drawn from them (separable_cells)
   };
   template <class Gen>
   static void separable_words(Gen& gen, const SeparableView& tables, SeparableWords& words);
   template <class Gen>
+  static void separable_cells(Gen& gen, const SeparableView& tables, SeparableWords& words);
+  template <class Gen>
   static void separable_candidate(Gen& gen, const SeparableView& tables, const SeparableWords& words,
-                                  std::uint32_t& a, std::uint32_t& b, std::uint32_t& row, std::uint32_t& column);
+                                  std::uint32_t& a, std::uint32_t& b);
   /// `lowrank`'s factored candidate in a block from two 64-bit words: particles a, b, the pair i S + k and
   /// the present species' indices of i and k (row_column = row | column << 16, for the acceptance).
   template <class Gen>

@@ -82,11 +82,14 @@ void Collider::use_blocks(std::size_t block_size) {
 }
 
 std::size_t Collider::separable_block_count(std::size_t species, std::size_t n, std::size_t block_size) {
-  // The blocks' K x S tables (slices, bounds) hold at most about N entries each: K = N div block_size while
-  // S K <= N, else fewer and larger blocks, K = N div S (blocks of about S particles); with more than
-  // separable_species_limit species, blocks of at most separable_block_limit particles on average (so that the
-  // P species present fit the tables' 16-bit outcomes), while S K <= 2 N. 0: no blocks.
-  std::size_t blocks = n / block_size;
+  // Each visit of a block builds six tables of about S cells, so that blocks of fewer than
+  // separable_particles_per_species S particles spend more on their tables than on their candidates: K =
+  // N div block_size, at most N div (separable_particles_per_species S) but at least separable_min_blocks;
+  // the blocks' K x S tables (slices, bounds) hold at most about N entries each (K <= N div S); with more
+  // than separable_species_limit species, blocks of at most separable_block_limit particles on average (so
+  // that the P species present fit the tables' 16-bit outcomes), while S K <= 2 N. 0: no blocks.
+  if (species == 0 || block_size == 0) return 0;
+  std::size_t blocks = std::min(n / block_size, std::max(separable_min_blocks, n / (separable_particles_per_species * species)));
   if (species * blocks > n) blocks = n / species;
   if (species > separable_species_limit)
     blocks = std::max(blocks, (n + separable_block_limit - 1) / separable_block_limit);
@@ -733,7 +736,7 @@ void Collider::set_block_separable(const std::size_t* cum) {
     narrow = narrow && count < (std::size_t{1} << 24);
     energy2 = std::max(energy2, mix_.mass[k] * block_speed2_[k]);
     t.species.push_back({static_cast<std::uint32_t>(slice[k]), static_cast<std::uint32_t>(count), 0,
-                         static_cast<std::uint32_t>(k), 1.0 / std::sqrt(mix_.mass[k])});
+                         static_cast<std::uint32_t>(k), 1.0 / std::sqrt(mix_.mass[k]), mix_.mass[k]});
   }
   const std::size_t p = t.species.size();
   if (p > separable_species_limit)  // (separable_block_count: over 20 standard deviations beyond a block's mean)

@@ -220,7 +220,7 @@ template <class Gen>
                                                              SeparableWords& words) {
   // The separable draw (set_block_separable; \ref sch_separable "docs/schemes.md"). Word 1: the term r (a
   // uniform against term0, term01); word 2: the row cell of u^(r)'s table from its top m bits, the column
-  // cell of v^(r)'s from bits 32-m..31 (their coins in the other bits: separable_candidate); word 3: the
+  // cell of v^(r)'s from bits 32-m..31 (their coins in the other bits: separable_cells); word 3: the
   // particles. The two cells, independent of each other, are prefetched here.
   const unsigned bits = tables.bits;
   const double u = gen.uniform();
@@ -234,28 +234,33 @@ template <class Gen>
 }
 
 template <class Gen>
-[[gnu::always_inline]] inline void Collider::separable_candidate(Gen& gen, const SeparableView& tables,
-                                                                 const SeparableWords& words, std::uint32_t& a,
-                                                                 std::uint32_t& b, std::uint32_t& row,
-                                                                 std::uint32_t& column) {
+[[gnu::always_inline]] inline void Collider::separable_cells(Gen& gen, const SeparableView& tables,
+                                                             SeparableWords& words) {
   // The cells' coins from the bits their indices left (a further uniform only when a coin ties with its
-  // threshold, one in 2^(32-m)), without a branch on q < whole: a mask selects the outcome.
+  // threshold, one in 2^(32-m)), without a branch on q < whole: a mask selects the outcome. The two
+  // present species' entries are prefetched here, their particles drawn a stage later.
   const unsigned bits = tables.bits;
   const SeparableCell& row_cell = tables.rows[words.row_index];
   const auto q = static_cast<std::uint32_t>(words.cells >> 32) & ((1u << (32 - bits)) - 1);
   const std::uint32_t keep_row = 0u - static_cast<std::uint32_t>(q < row_cell.whole);
-  row = (row_cell.keep & keep_row) | (row_cell.other & ~keep_row);
+  words.row = (row_cell.keep & keep_row) | (row_cell.other & ~keep_row);
   if (q == row_cell.whole) [[unlikely]]
-    row = gen.uniform() < tables.row_fraction[words.row_index] ? row_cell.keep : row_cell.other;
+    words.row = gen.uniform() < tables.row_fraction[words.row_index] ? row_cell.keep : row_cell.other;
   const SeparableCell& column_cell = tables.columns[words.column_index];
   const std::uint32_t q2 = static_cast<std::uint32_t>(words.cells) & ((1u << (32 - bits)) - 1);
   const std::uint32_t keep_column = 0u - static_cast<std::uint32_t>(q2 < column_cell.whole);
-  column = (column_cell.keep & keep_column) | (column_cell.other & ~keep_column);
+  words.column = (column_cell.keep & keep_column) | (column_cell.other & ~keep_column);
   if (q2 == column_cell.whole) [[unlikely]]
-    column = gen.uniform() < tables.column_fraction[words.column_index] ? column_cell.keep : column_cell.other;
-  const SeparableSpecies& si = tables.species[row];
-  const SeparableSpecies& sk = tables.species[column];
-  slice_particles(gen, words.particles, si, sk, a, b);  // the particles, as in lowrank_candidate
+    words.column = gen.uniform() < tables.column_fraction[words.column_index] ? column_cell.keep : column_cell.other;
+  __builtin_prefetch(tables.species + words.row);
+  __builtin_prefetch(tables.species + words.column);
+}
+
+template <class Gen>
+[[gnu::always_inline]] inline void Collider::separable_candidate(Gen& gen, const SeparableView& tables,
+                                                                 const SeparableWords& words, std::uint32_t& a,
+                                                                 std::uint32_t& b) {
+  slice_particles(gen, words.particles, tables.species[words.row], tables.species[words.column], a, b);  // as lowrank_candidate
 }
 
 template <class Rule, bool Framed>
@@ -427,7 +432,6 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
   [[maybe_unused]] const SeparableView separable = separable_view();
   [[maybe_unused]] double energy2 = separable_.energy2;
   [[maybe_unused]] double energy_bound = std::sqrt(energy2) * speed_factor * chi_max_;
-  [[maybe_unused]] const double* mass = mix_.mass.data();
   [[maybe_unused]] const bool enskog = mix_.enskog;
   [[maybe_unused]] const std::optional<double> alpha_constant = mix_.restitution.constant;
   // The drawn-ahead candidates: particles a, b and the pair i S + k, in three arrays of 32-bit words.
@@ -435,12 +439,26 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
   std::array<std::uint32_t, block_lookahead<Framed>> ahead_a, ahead_b, ahead_pair;
   // (factored: row | column<<16; separable: the column, the row in ahead_pair)
   [[maybe_unused]] std::array<std::uint32_t, block_lookahead<Framed>> ahead_row_column;
-  [[maybe_unused]] std::array<SeparableWords, block_lookahead<Framed>> separable_ahead;  // (separable: words drawn ahead)
+  // (separable: the words of the candidates L and 2L ahead, L = block_lookahead: their species read, their cells;
+  // the species read with the cells, L ahead, up to separable_deep_above present species)
+  [[maybe_unused]] std::array<SeparableWords, block_lookahead<Framed>> separable_species, separable_cells_ahead;
+  [[maybe_unused]] const bool deep = separable_.species.size() > separable_deep_above;
   const auto draw = [&](std::size_t slot) __attribute__((always_inline)) {  // (GCC kept the factored draw out of line)
     std::uint32_t a, b, pair;
-    if constexpr (Lowrank && Separable) {  // (the cells of words drawn block_lookahead candidates earlier)
-      separable_candidate(gen, separable, separable_ahead[slot], a, b, pair, ahead_row_column[slot]);
-      separable_words(gen, separable, separable_ahead[slot]);
+    if constexpr (Lowrank && Separable) {
+      if (deep) {  // (three stages, L = block_lookahead candidates apart: the particles of the words whose
+        // species' entries were prefetched L candidates ago, the species of those whose cells were
+        // prefetched 2L ago, new words)
+        separable_candidate(gen, separable, separable_species[slot], a, b);
+        pair = separable_species[slot].row, ahead_row_column[slot] = separable_species[slot].column;
+        separable_cells(gen, separable, separable_cells_ahead[slot]);
+        separable_species[slot] = separable_cells_ahead[slot];
+      } else {  // (two: the cells of the words drawn L candidates ago, then their species at once)
+        separable_cells(gen, separable, separable_cells_ahead[slot]);
+        separable_candidate(gen, separable, separable_cells_ahead[slot], a, b);
+        pair = separable_cells_ahead[slot].row, ahead_row_column[slot] = separable_cells_ahead[slot].column;
+      }
+      separable_words(gen, separable, separable_cells_ahead[slot]);
     } else if constexpr (Lowrank && Factored) {
       factored_candidate(gen, factored, a, b, pair, ahead_row_column[slot]);
     } else if constexpr (Lowrank) {
@@ -452,8 +470,14 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
     prefetch_pair<Track>(v, sys_.r.data(), a, b);
     if constexpr (Rule::kernel_needs_particles) prefetch_pair<false>(spin, nullptr, a, b);  // the rule's own array
   };
-  if constexpr (Separable)
-    for (std::size_t slot = 0; slot < block_lookahead<Framed>; ++slot) separable_words(gen, separable, separable_ahead[slot]);
+  if constexpr (Separable) {
+    for (std::size_t slot = 0; slot < block_lookahead<Framed>; ++slot) separable_words(gen, separable, separable_cells_ahead[slot]);
+    for (std::size_t slot = 0; deep && slot < block_lookahead<Framed>; ++slot) {
+      separable_cells(gen, separable, separable_cells_ahead[slot]);
+      separable_species[slot] = separable_cells_ahead[slot];
+      separable_words(gen, separable, separable_cells_ahead[slot]);
+    }
+  }
   for (std::size_t slot = 0; slot < block_lookahead<Framed>; ++slot) draw(slot);
   std::size_t next = 0;
   std::uint64_t events = 0, candidates = 0;
@@ -503,11 +527,15 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
       particles::Vec3& vb = v[b];
       const std::uint32_t i = Separable ? separable.species[pair].species : pair_species[2 * pair];
       const std::uint32_t k = Separable ? separable.species[row_column].species : pair_species[2 * pair + 1];
+      // (separable: the masses from the present species' entries, read for the particles, not from the S
+      // masses at random; a frame's moments still read them: kernel_collision)
+      [[maybe_unused]] const double mass_i = Separable ? separable.species[pair].mass : 0.0;
+      [[maybe_unused]] const double mass_k = Separable ? separable.species[row_column].mass : 0.0;
       if constexpr (Rule::kernel_needs_particles) {
         dissipated += rule.collide_at(sys_, spin, a, b, i, k, g_dot_e2, {px, py, pz}).loss;
       } else if constexpr (Separable) {  // (no S x S table read at random: the pair's constants computed, rules.hpp)
         const double alpha = alpha_constant ? *alpha_constant : mix_.restitution(i, k);
-        dissipated += kernel_collision<Rule, Framed>(PairKernel{rules::SmoothRule::make_pair(alpha, mass[i], mass[k]), 0},
+        dissipated += kernel_collision<Rule, Framed>(PairKernel{rules::SmoothRule::make_pair(alpha, mass_i, mass_k), 0},
                                                      i, k, va, vb, g_dot_e2, {px, py, pz}, moments);
       } else {
         dissipated += kernel_collision<Rule, Framed>(kernel[pair], i, k, va, vb, g_dot_e2, {px, py, pz}, moments);
@@ -522,8 +550,8 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
         const double speed2_b = vb.x * vb.x + vb.y * vb.y + vb.z * vb.z;
         speed2[i] = std::max(speed2[i], speed2_a);
         speed2[k] = std::max(speed2[k], speed2_b);
-        if (mass[i] * speed2_a > energy2 || mass[k] * speed2_b > energy2) [[unlikely]] {
-          energy2 = std::max({energy2, mass[i] * speed2_a, mass[k] * speed2_b});
+        if (mass_i * speed2_a > energy2 || mass_k * speed2_b > energy2) [[unlikely]] {
+          energy2 = std::max({energy2, mass_i * speed2_a, mass_k * speed2_b});
           raised = true;
           ++c;
           break;

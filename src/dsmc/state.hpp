@@ -34,6 +34,12 @@ struct StateError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A whole record that another build's rules wrote (another number of cache blocks for the same gas, say):
+/// refused as a StateError is, in words of its own.
+struct StateMismatch : StateError {
+  using StateError::StateError;
+};
+
 /// Named arrays of reals and of exact integers: one module's state, or many modules' under their prefixes.
 struct Record {
   std::map<std::string, std::vector<double>> reals;           ///< name -> values

@@ -814,7 +814,9 @@ ReplicaResult run_replica(const io::config::Config& config, std::size_t replica,
                                 std::to_string(taken) + " samples of " + std::to_string(engine->samples()));
       check_rows(result, taken, false);
       engine->restore(*resume);
-    } catch (const state::StateError& e) {  // exit status 2 with --restart's name (simulation.hpp)
+    } catch (const state::StateMismatch& e) {  // exit status 2 with --restart's name (simulation.hpp)
+      throw RestartError(std::string("the checkpoint does not fit this build: ") + e.what());
+    } catch (const state::StateError& e) {
       throw RestartError(std::string("the checkpoint is damaged: ") + e.what());
     }
   } else {
