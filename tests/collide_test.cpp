@@ -1879,21 +1879,22 @@ TEST(Collide, SeparableBlocksBeyondTheSpeciesLimitMatchUnblocked) {
 
 // The separable draw's larger blocks (Collider::separable_block_count): blocks of 200 would each rebuild six
 // tables of about S = 300 cells per visit for 200 particles (and hold S K = 33600 > N table entries), so
-// the 300-species gas above runs in K = N div (8 S) = 9 blocks of about 2400 instead, with the unblocked
-// process (expect_blocks_match_unblocked) and bit for bit on any thread count. At least 4 blocks, and
-// K = N div S where 4 blocks would hold S K > N; beyond separable_species_limit species the blocks hold at
+// the 300-species gas above runs in 16 blocks of about 1400 instead (N div (8 S) = 9, at least 16), with the
+// unblocked process (expect_blocks_match_unblocked) and bit for bit on any thread count. K = N div S where
+// 16 blocks would hold S K > N; beyond separable_species_limit species the blocks hold at
 // most separable_block_limit particles on average, while S K <= 2 N.
 TEST(Collide, SeparableBlocksGrowWhenTheTablesWouldOutgrowTheGas) {
   const PowerLawGas gas = power_law_gas(300, 9000.0, 2);
   ASSERT_GT(300 * (gas.total / 200), gas.total);
-  expect_blocks_match_unblocked(gas, Scheme::lowrank, 200, gas.total / (8 * 300), 900, "Blocks.SeparableLarger");
+  expect_blocks_match_unblocked(gas, Scheme::lowrank, 200, 16, 900, "Blocks.SeparableLarger");
   EXPECT_EQ(blocked_run(gas, 200, 1), blocked_run(gas, 200, 2));
   EXPECT_EQ(Collider::separable_block_count(1000, 1000000, 32768), 30u);     // S K <= N: N div block_size
   EXPECT_EQ(Collider::separable_block_count(100000, 1000000, 32768), 17u);   // ceil(1e6 / 60000)
-  EXPECT_EQ(Collider::separable_block_count(50000, 1000000, 32768), 4u);     // N div 8 S = 2: at least 4
-  EXPECT_EQ(Collider::separable_block_count(10000, 1000000, 32768), 12u);    // N div 8 S
+  EXPECT_EQ(Collider::separable_block_count(50000, 1000000, 32768), 16u);    // N div 8 S = 2: at least 16
+  EXPECT_EQ(Collider::separable_block_count(10000, 1000000, 32768), 16u);    // N div 8 S = 12: at least 16
+  EXPECT_EQ(Collider::separable_block_count(5000, 1000000, 32768), 25u);     // N div 8 S
   EXPECT_EQ(Collider::separable_block_count(4000, 1000000, 32768), 30u);     // N div block_size < N div 8 S
-  EXPECT_EQ(Collider::separable_block_count(60000, 200000, 32768), 3u);      // 4 blocks: S K > N, N div S
+  EXPECT_EQ(Collider::separable_block_count(60000, 200000, 32768), 3u);      // 6 blocks: S K > N, N div S
   EXPECT_EQ(Collider::separable_block_count(100000, 10000000, 32768), 167u); // ceil(1e7 / 60000), S K <= 2 N
   EXPECT_EQ(Collider::separable_block_count(200000, 1000000, 32768), 0u);    // S K = 3.4 N: none
   EXPECT_LT(Collider::separable_block_count(60000, 100000, 64), 2u);         // N div S = 1: none

@@ -119,7 +119,7 @@
  * per slice's worth of events: above 24 species that rebuild outgrows the candidates); a factored candidate takes two
  * words and two dependent table reads, so up to 24 species the one-word draw costs less. set_lowrank_factor_above()
  * moves the threshold (tests). *The separable draw* (more than separable_above = 128 species, `lowrank`; blocks of
- * block_size, but of at least 8 S particles where that leaves at least 4 blocks, and while S K <= N (else K = N div
+ * block_size, but of at least 8 S particles where that leaves at least 16 blocks, and while S K <= N (else K = N div
  * S), beyond 65535 species K >= ceil(N/60000), while S K <= 2 N: separable_block_count; \ref sch_separable "docs/schemes.md"): w_i = W_b/sqrt(m_i) with W_b^2 = max m |v|^2 over the block, so that A_ik =
  * (pi chi_max W_b/(4V)) sum_r u_i^(r) v_k^(r), u_i = N_i (sigma_i^2, 2 sigma_i, 1)/sqrt(m_i), v_k = N_k (1, sigma_k,
  * sigma_k^2) (Bodrova and Osinsky 2024, eqs. (12)-(14)): the term r, then the row from u^(r) and the column from v^(r),
@@ -238,7 +238,7 @@ class Collider {
   /// Cache blocks of about `block_size` particles (header, "Blocks"), for one species or a mixture of
   /// at most block_species_limit (256) species with the `majorant` or `lowrank` scheme, or of more with
   /// `lowrank` and a rule with the projection (the separable draw above separable_above species, in
-  /// separable_block_count() blocks: of at least 8 S particles where that leaves 4 blocks, larger ones when
+  /// separable_block_count() blocks: of at least 8 S particles where that leaves 16 blocks, larger ones when
   /// S K would exceed N), and N >= 2 block_size; otherwise (or
   /// with 0) the whole gas is one block. Call before the first advance().
   void use_blocks(std::size_t block_size);
@@ -668,8 +668,9 @@ class Collider {
   /// The separable blocks hold at least this many particles per species on average (separable_block_count):
   /// a visit builds six tables of about S cells, which blocks of fewer particles would rebuild more often.
   static constexpr std::size_t separable_particles_per_species = 8;
-  /// ... but there are at least this many blocks (for the threads), where N div block_size allows them.
-  static constexpr std::size_t separable_min_blocks = 4;
+  /// ... but there are at least this many blocks, where N div block_size allows them: so many threads
+  /// share a replica's blocks (the count cannot follow the threads: a checkpoint resumes on any number).
+  static constexpr std::size_t separable_min_blocks = 16;
   /// Beyond this many present species a block's separable draw reads the species' entries a stage after
   /// the cells (separable_cells); up to it, with them.
   static constexpr std::size_t separable_deep_above = 4096;

@@ -87,7 +87,7 @@ const std::vector<Field<Dsmc>>& dsmc_fields() {
        "time step (bound refresh) in units of the majorant mean free time", Range{0, 100, true}},
       {"block_size", &Dsmc::block_size, "",
        "particles per cache block (majorant or lowrank up to 256 species; lowrank beyond, in blocks of at "
-       "least 8 S particles while there are 4 or more, of S to 2S when species x blocks would exceed N; "
+       "least 8 S particles while there are 16 or more, of S to 2S when species x blocks would exceed N; "
        "N >= 2 block_size; with "
        "&agg_frag, clusters per block while N >= 2 block_size); at least 64, or 0: none",
        Range{0, 2e9}},
