@@ -1842,11 +1842,13 @@ void expect_blocks_match_unblocked(const PowerLawGas& gas, Scheme scheme, std::s
 }
 
 // The velocities and the time after 5 collisions per particle of `gas` in blocks of `block_size` on
-// `threads` threads (seed 777).
-std::vector<double> blocked_run(const PowerLawGas& gas, std::size_t block_size, int threads) {
+// `threads` threads (seed 777), the separable draw in three stages beyond `deep_above` present species.
+std::vector<double> blocked_run(const PowerLawGas& gas, std::size_t block_size, int threads,
+                                std::size_t deep_above = Collider::separable_deep_above) {
   auto sys = initial(gas.mix, gas.counts, std::vector<double>(gas.counts.size(), 1.0), 777);
   Collider c(Scheme::lowrank, gas.mix, sys, rng::make_stream(777, 0, rng::Purpose::collisions), 1.0);
   c.use_blocks(block_size);
+  c.set_separable_deep_above(deep_above);
   c.use_threads(threads);
   c.advance(1e12, 5 * gas.total);
   std::vector<double> flat;
@@ -1875,6 +1877,10 @@ TEST(Collide, SeparableBlocksBeyondTheSpeciesLimitMatchUnblocked) {
   ASSERT_GT(gas.counts.size(), collide::block_species_limit);
   expect_blocks_match_unblocked(gas, Scheme::lowrank, 3000, gas.total / 3000, 700, "Blocks.Separable300");
   EXPECT_EQ(blocked_run(gas, 3000, 1), blocked_run(gas, 3000, 2));
+  // in three stages (as beyond separable_deep_above present species): another stream, the same on 2 threads
+  const std::vector<double> deep = blocked_run(gas, 3000, 1, 0);
+  EXPECT_EQ(deep, blocked_run(gas, 3000, 2, 0));
+  EXPECT_NE(deep, blocked_run(gas, 3000, 1));
 }
 
 // The separable draw's larger blocks (Collider::separable_block_count): blocks of 200 would each rebuild six
@@ -1982,7 +1988,8 @@ std::vector<double> factored_observables(const species::Mixture& mix, const part
 }
 
 // One replica of `gas` with `lowrank`: unblocked (draw 0), in 4 blocks by the one-word draw (1), by
-// the factored draw forced (2) or by the separable draw forced (3); time-driven to t_mid, then 20000
+// the factored draw forced (2), by the separable draw forced (3) or by it in three stages (4: the species'
+// entries read a stage after the cells, as beyond separable_deep_above present species); time-driven to t_mid, then 20000
 // events to an exact target.
 std::vector<double> run_factored_case(const FactoredCase& gas, int draw, std::uint64_t seed,
                                       std::vector<std::string>& names) {
@@ -1991,7 +1998,8 @@ std::vector<double> run_factored_case(const FactoredCase& gas, int draw, std::ui
   if (draw > 0) c.use_blocks(3000);
   follow_scheme(c, Scheme::lowrank);
   if (draw == 2) c.set_lowrank_factor_above(0);
-  if (draw == 3) c.set_separable_blocks();
+  if (draw >= 3) c.set_separable_blocks();
+  if (draw == 4) c.set_separable_deep_above(0);
   EXPECT_EQ(c.blocks(), draw > 0 ? 4u : 1u);
   if (gas.frame_scale != 1.0 || gas.frame_shear != 0.0) c.set_frame(gas.frame_scale, gas.frame_shear);
   c.advance(gas.t_mid);
@@ -2043,8 +2051,9 @@ TEST(Collide, FactoredDrawMatchesOneWordDrawAndUnblocked) {
 // which blocks of more than block_species_limit species take, forced on the seven gases of
 // FactoredDrawMatchesOneWordDrawAndUnblocked (P = 2, 3, 20; dilute and Enskog, where chi_ik/chi_max enters
 // the acceptance; a sheared frame) by Collider::set_separable_blocks(): it samples the process of the
-// one-word draw and of the unblocked loop. The same observables and tolerance (4 combined SE, printed),
-// 16 replicas each (8 under the sanitizers), no acceptance overshoot. Rows without 1/sqrt(m_i) (every
+// one-word draw and of the unblocked loop, in two stages (as up to separable_deep_above present species)
+// and in three (forced by set_separable_deep_above(0)). The same observables and tolerance (4 combined SE,
+// printed), 16 replicas each (8 under the sanitizers), no acceptance overshoot. Rows without 1/sqrt(m_i) (every
 // species given the lightest one's speed bound, the rate kept right) move the binary gas's shares of the
 // 1-1 and 2-2 events by about 100 and 150 SE (mutant 81).
 TEST(Collide, SeparableDrawMatchesOneWordDrawAndUnblocked) {
@@ -2053,24 +2062,27 @@ TEST(Collide, SeparableDrawMatchesOneWordDrawAndUnblocked) {
   for (const FactoredCase& gas : factored_cases()) {
     SCOPED_TRACE(gas.label);
     std::vector<std::string> names;
-    std::vector<std::vector<double>> observed[3];  // [unblocked, one-word, separable][observable][replica]
-    for (int draw : {0, 1, 3})
+    // [unblocked, one-word, separable, separable in three stages][observable][replica]
+    std::vector<std::vector<double>> observed[4];
+    for (int draw : {0, 1, 3, 4})
       for (std::size_t r = 0; r < replicas; ++r) {
         const auto x = run_factored_case(gas, draw, 600 + r, names);
-        auto& to = observed[draw == 3 ? 2 : draw];
+        auto& to = observed[draw >= 3 ? draw - 1 : draw];
         to.resize(x.size());
         for (std::size_t q = 0; q < x.size(); ++q) to[q].push_back(x[q]);
       }
-    for (std::size_t q = 0; q < names.size(); ++q) {
-      const auto [m2, s2] = mean_se(observed[2][q]);
-      for (int reference : {0, 1}) {
-        const auto [m0, s0] = mean_se(observed[reference][q]);
-        std::printf("[ Blocks.Separable ] %s %s: %s %.6g +- %.2g, separable %.6g +- %.2g (%.2f SE)\n",
-                    gas.label.c_str(), names[q].c_str(), draw_name[reference], m0, s0, m2, s2,
-                    (m2 - m0) / std::hypot(s0, s2));
-        EXPECT_LT(std::abs(m2 - m0), 4.0 * std::hypot(s0, s2)) << names[q] << " against " << draw_name[reference];
+    for (std::size_t q = 0; q < names.size(); ++q)
+      for (int tested : {2, 3}) {
+        const auto [m2, s2] = mean_se(observed[tested][q]);
+        for (int reference : {0, 1}) {
+          const auto [m0, s0] = mean_se(observed[reference][q]);
+          std::printf("[ Blocks.Separable ] %s %s: %s %.6g +- %.2g, separable%s %.6g +- %.2g (%.2f SE)\n",
+                      gas.label.c_str(), names[q].c_str(), draw_name[reference], m0, s0,
+                      tested == 3 ? " in three stages" : "", m2, s2, (m2 - m0) / std::hypot(s0, s2));
+          EXPECT_LT(std::abs(m2 - m0), 4.0 * std::hypot(s0, s2))
+              << names[q] << " against " << draw_name[reference] << (tested == 3 ? ", three stages" : "");
+        }
       }
-    }
   }
 }
 

@@ -302,6 +302,10 @@ class Collider {
   /// in blocks"): from 129 species on it costs less than the factored draw, whose O(P^2) column tables
   /// grow (\ref perf_separable "docs/performance.md").
   static constexpr std::size_t separable_above = 128;
+  /// Beyond this many present species a block's separable draw reads the species' entries a stage after
+  /// the cells (separable_cells), where tables and entries outgrow the core's L2; up to it, with them
+  /// (\ref perf_separable_sized "docs/performance.md").
+  static constexpr std::size_t separable_deep_above = 4096;
   /// Tests only: blocks with more than `species` species present take the factored draw from the next
   /// block visit on (lowrank_factor_above by default; 0: every block), so that it can be compared with
   /// the one-word draw and the unblocked loops at few species.
@@ -315,6 +319,13 @@ class Collider {
   void set_separable_blocks() {
     separable_blocks_ = lowrank_blocks() && kernels_;
     for (Collider& worker : workers_) worker.separable_blocks_ = separable_blocks_;
+  }
+  /// Tests only: separable blocks with more than `species` species present read the species' entries a
+  /// stage after the cells (separable_deep_above by default; 0: every block), so that the three-stage
+  /// draw can be checked at few species.
+  void set_separable_deep_above(std::size_t species) {
+    deep_above_ = species;
+    for (Collider& worker : workers_) worker.deep_above_ = species;
   }
   /// OpenMP threads for the blocks of a step (header, "Threads inside one replica"); 1 by default.
   /// The results do not depend on it, bit for bit. Without blocks it has no effect.
@@ -624,6 +635,7 @@ class Collider {
   FactoredTables factored_;
   bool block_factored_ = false;  ///< the current block's `lowrank` draw is the factored one (set_block_lowrank)
   std::size_t factor_above_ = lowrank_factor_above;  ///< set_lowrank_factor_above (tests)
+  std::size_t deep_above_ = separable_deep_above;    ///< set_separable_deep_above (tests)
   const std::atomic<bool>* stop_flag_ = nullptr;     ///< set_stop_flag
   bool stop_requested() const { return stop_flag_ && stop_flag_->load(std::memory_order_relaxed); }
   /// The factored tables as the kernel reads them (pointers into factored_; taken anew after a raise).
@@ -671,9 +683,6 @@ class Collider {
   /// ... but there are at least this many blocks, where N div block_size allows them: so many threads
   /// share a replica's blocks (the count cannot follow the threads: a checkpoint resumes on any number).
   static constexpr std::size_t separable_min_blocks = 16;
-  /// Beyond this many present species a block's separable draw reads the species' entries a stage after
-  /// the cells (separable_cells); up to it, with them.
-  static constexpr std::size_t separable_deep_above = 4096;
   /// The current block's separable tables (set_block_separable), built once per visit: none holds a speed.
   /// Term r of A_ik = sum_r u_i^(r) v_k^(r) (segment_tree.hpp's hard_sphere_factors) is drawn first, then
   /// the row from u^(r) and the column from v^(r), independently (two table reads in parallel).

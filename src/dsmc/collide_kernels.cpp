@@ -442,7 +442,7 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
   // (separable: the words of the candidates L and 2L ahead, L = block_lookahead: their species read, their cells;
   // the species read with the cells, L ahead, up to separable_deep_above present species)
   [[maybe_unused]] std::array<SeparableWords, block_lookahead<Framed>> separable_species, separable_cells_ahead;
-  [[maybe_unused]] const bool deep = separable_.species.size() > separable_deep_above;
+  [[maybe_unused]] const bool deep = separable_.species.size() > deep_above_;
   const auto draw = [&](std::size_t slot) __attribute__((always_inline)) {  // (GCC kept the factored draw out of line)
     std::uint32_t a, b, pair;
     if constexpr (Lowrank && Separable) {
