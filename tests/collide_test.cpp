@@ -1188,7 +1188,7 @@ TEST(Collide, LongBlockedStepsMeetEventTargetsExactly) {
 }
 
 // A checkpoint's collider holds its blocks, whose count N, S and block_size fix: a record another rule wrote
-// (20 blocks restored where the gas makes 10; the separable draw's blocks grew on 2026-12-01) is refused as
+// (20 blocks restored where the gas makes 10, as from a build whose separable block count differs) is refused as
 // a mismatch (replica.cpp: "does not fit this build"), not read as damage nor run.
 TEST(Collide, ARecordOfOtherBlocksIsRefused) {
   const auto mix = one_species(0.9);

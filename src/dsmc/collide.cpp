@@ -327,8 +327,8 @@ void Collider::restore(const state::Record& r) {
   s.block_credit = r.array("collider/block_credit");
   if (s.block_credit.size() != block_credit_.size())  // (the count follows from N, S and block_size alone)
     throw state::StateMismatch("it holds " + std::to_string(s.block_credit.size()) + " cache blocks where this build makes " +
-                               std::to_string(block_credit_.size()) + " of the same gas (the blocks of more than 128 " +
-                               "species with lowrank were made larger on 2026-12-01): resume it with the build that wrote it");
+                               std::to_string(block_credit_.size()) + " of the same gas (its rule for the blocks of lowrank mixtures of more than 128 " +
+                               "species differs): resume it with the build that wrote it");
   if (r.has_integers("collider/slice_counts")) s.slice_counts = r.integer_array("collider/slice_counts");
   s.step_start = r.real("collider/step_start");
   // (written since 2026-11-30; before, every step but the whole-gas ones remixed: its step's start)
