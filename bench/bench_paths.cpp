@@ -3,12 +3,14 @@
 // measured in one process one after another on the same machine.
 //
 // usage: bench_paths [--no-pairs] [--repeat R] [N ...]   (default: 100000 1000000; add 10000000 for the large case)
-//        bench_paths --species [N]   (default N = 1000000)
+//        bench_paths --species [--threads T] [N]   (default N = 1000000)
 //   --species: the species sweep, M = 1, 2, 8, 32, 100, 128, 129, 256, 257, 1e3, 1e4, 1e5 species, `lowrank`
 //               (masses k, diameters k^(1/3), equal number densities adding up to 0.01, alpha = 0.9,
 //               collisions_per_particle = 10, one replica, one thread), each in a child process: its
 //               collision-loop rate, ns per collision, ratio to M = 1, the whole process's wall seconds,
-//               its peak memory (maximum resident set) in bytes per particle, its cache blocks and their draw.
+//               its peak memory (maximum resident set) in bytes per particle, its cache blocks and their draw;
+//               with --threads T each M runs again on T threads right after, and the speed-up of its
+//               collision loop (events per wall second on T threads over those on one) follows the draw.
 //   --no-pairs: skip the two `pairs` rows (about 25 s each at N = 1e6), e.g. to repeat the others often.
 //   --repeat R: R rounds (R >= 2) in which every path runs right after a run of the reference (one species,
 //               t_end), its ratio taken against that run: on a machine whose speed drifts from second to
@@ -122,13 +124,52 @@ struct ChildReport {
   char draw[64];
 };
 
-/// The species sweep (usage above): each M in a child process, so that its peak memory is its own.
-int species_sweep(std::size_t n) {
+/// One run of the species sweep in a child process, so that its peak memory is its own: its report,
+/// its peak resident memory in KiB and its wall seconds (whole process); false if it failed.
+bool sweep_child(const std::string& text, long m, int threads, ChildReport& report, long& peak_kib, double& wall) {
+  int channel[2];
+  if (::pipe(channel) != 0) return false;
+  std::fflush(stdout);  // (the child must not print the parent's buffer again)
+  const auto start = std::chrono::steady_clock::now();
+  const pid_t child = ::fork();
+  if (child < 0) return false;
+  if (child == 0) {
+    ::close(channel[0]);
+    ChildReport mine{};
+    try {
+      const simulation::Summary s = run(text, threads);
+      mine.rate = s.events_per_second;
+      mine.blocks = s.blocks.count;
+      std::snprintf(mine.draw, sizeof mine.draw, "%s", s.blocks.draw.c_str());
+    } catch (const std::exception& e) {  // one line, and no temporary output left (run() removes it)
+      std::fprintf(stderr, "bench_paths: %ld species: %s\n", m, e.what());
+      ::_exit(1);
+    }
+    const ssize_t written = ::write(channel[1], &mine, sizeof mine);
+    ::_exit(written == sizeof mine ? 0 : 1);
+  }
+  ::close(channel[1]);
+  report = ChildReport{};
+  const ssize_t got = ::read(channel[0], &report, sizeof report);
+  ::close(channel[0]);
+  int status = 0;
+  rusage usage{};
+  ::wait4(child, &status, 0, &usage);
+  wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  peak_kib = usage.ru_maxrss;
+  report.draw[sizeof report.draw - 1] = '\0';
+  return got == sizeof report && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+/// The species sweep (usage above); with `threads` > 1 each M also runs on that many threads, right after
+/// its one-thread run, and the speed-up of its collision loop (wall-clock rates) is printed.
+int species_sweep(std::size_t n, int threads) {
   const std::vector<long> counts = {1, 2, 8, 32, 100, 128, 129, 256, 257, 1000, 10000, 100000};
   std::printf("species sweep: N = %zu, lowrank, masses k, diameters k^(1/3), equal densities (0.01 in all), "
-              "alpha = 0.9, 10 collisions per particle, one replica, one thread\n", n);
+              "alpha = 0.9, 10 collisions per particle, one replica, one thread%s\n", n,
+              threads > 1 ? (", and on " + std::to_string(threads) + " threads").c_str() : "");
   std::printf("%8s %14s %12s %8s %10s %14s %7s  %s\n", "species", "collisions/s", "ns/collision", "ratio", "seconds",
-              "bytes/particle", "blocks", "draw");
+              "bytes/particle", "blocks", threads > 1 ? "draw, speed-up" : "draw");
   double reference = 0.0;
   for (long m : counts) {
     if (static_cast<std::size_t>(2 * m) > n) break;  // at least 2 particles a species
@@ -140,45 +181,27 @@ int species_sweep(std::size_t n) {
         " density_law = 'power'\n density_exponent = 0.0\n restitution = 0.9\n/\n&initial\n temperature = 1.0\n/\n"
         "&dsmc\n scheme = 'lowrank'\n n_particles = " + std::to_string(n) +
         "\n replicas = 1\n seed = 1\n collisions_per_particle = 10.0\n allow_long_run = .true.\n/\n&output\n n_samples = 2\n/\n";
-    int channel[2];
-    if (::pipe(channel) != 0) return 1;
-    std::fflush(stdout);  // (the child must not print the parent's buffer again)
-    const auto start = std::chrono::steady_clock::now();
-    const pid_t child = ::fork();
-    if (child < 0) return 1;
-    if (child == 0) {
-      ::close(channel[0]);
-      ChildReport report{};
-      try {
-        const simulation::Summary s = run(text, 1);
-        report.rate = s.events_per_second;
-        report.blocks = s.blocks.count;
-        std::snprintf(report.draw, sizeof report.draw, "%s", s.blocks.draw.c_str());
-      } catch (const std::exception& e) {  // one line, and no temporary output left (run() removes it)
-        std::fprintf(stderr, "bench_paths: %ld species: %s\n", m, e.what());
-        ::_exit(1);
-      }
-      const ssize_t written = ::write(channel[1], &report, sizeof report);
-      ::_exit(written == sizeof report ? 0 : 1);
-    }
-    ::close(channel[1]);
     ChildReport report{};
-    const ssize_t got = ::read(channel[0], &report, sizeof report);
-    ::close(channel[0]);
-    const double rate = report.rate;
-    int status = 0;
-    rusage usage{};
-    ::wait4(child, &status, 0, &usage);
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (got != sizeof report || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    long peak_kib = 0;
+    double wall = 0.0;
+    if (!sweep_child(text, m, 1, report, peak_kib, wall)) {
       std::printf("%8ld %14s\n", m, "(failed)");
       continue;
     }
+    const double rate = report.rate;
     if (reference == 0.0) reference = rate;
-    const double bytes = 1024.0 * static_cast<double>(usage.ru_maxrss) / static_cast<double>(n);  // ru_maxrss: KiB
-    report.draw[sizeof report.draw - 1] = '\0';
-    std::printf("%8ld %14.4g %12.1f %8.2f %10.2f %14.0f %7llu  %s\n", m, rate, 1e9 / rate, rate / reference, wall, bytes,
+    const double bytes = 1024.0 * static_cast<double>(peak_kib) / static_cast<double>(n);
+    std::printf("%8ld %14.4g %12.1f %8.2f %10.2f %14.0f %7llu  %s", m, rate, 1e9 / rate, rate / reference, wall, bytes,
                 static_cast<unsigned long long>(report.blocks), report.draw);
+    if (threads > 1) {
+      ChildReport threaded{};
+      double threaded_wall = 0.0;
+      if (sweep_child(text, m, threads, threaded, peak_kib, threaded_wall))
+        std::printf(", %.2f", threads * threaded.rate / rate);  // (rates per thread-second: Summary)
+      else
+        std::printf(", (failed)");
+    }
+    std::printf("\n");
     std::fflush(stdout);
   }
   return 0;
@@ -188,12 +211,18 @@ int species_sweep(std::size_t n) {
 
 int main(int argc, char** argv) {
   if (argc >= 2 && std::string(argv[1]) == "--species") {
-    unsigned long long n = 1000000ull;
-    if (argc > 3 || (argc == 3 && !bench::parse_whole(argv[2], 2, 1000000000ull, n))) {
-      std::fprintf(stderr, "usage: bench_paths --species [N]   (N: 2..1e9; default 1000000)\n");
-      return 2;
+    unsigned long long n = 1000000ull, threads = 1;
+    bool sized = false;
+    for (int i = 2; i < argc; ++i) {
+      const bool ok = std::string(argv[i]) == "--threads"
+                          ? i + 1 < argc && bench::parse_whole(argv[++i], 1, 1024, threads)
+                          : !sized && (sized = bench::parse_whole(argv[i], 2, 1000000000ull, n));
+      if (!ok) {
+        std::fprintf(stderr, "usage: bench_paths --species [--threads T: 1..1024] [N]   (N: 2..1e9; default 1000000)\n");
+        return 2;
+      }
     }
-    return species_sweep(n);
+    return species_sweep(n, static_cast<int>(threads));
   }
   std::vector<std::size_t> sizes;
   bool pairs = true;
@@ -213,7 +242,7 @@ int main(int argc, char** argv) {
       const bool help = std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h";
       std::fprintf(help ? stdout : stderr,
                    "usage: bench_paths [--no-pairs] [--repeat R: 1..1000] [N ...]   (N: 2..1e9; default 100000 1000000)\n"
-                   "       bench_paths --species [N]\n");
+                   "       bench_paths --species [--threads T] [N]\n");
       return help ? 0 : 2;
     }
     sizes.push_back(n);
