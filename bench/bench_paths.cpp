@@ -9,8 +9,9 @@
 //               collisions_per_particle = 10, one replica, one thread), each in a child process: its
 //               collision-loop rate, ns per collision, ratio to M = 1, the whole process's wall seconds,
 //               its peak memory (maximum resident set) in bytes per particle, its cache blocks and their draw;
-//               with --threads T each M runs again on T threads right after, and the speed-up of its
-//               collision loop (events per wall second on T threads over those on one) follows the draw.
+//               with --threads T (T >= 2) each M runs again on T threads right after, and the speed-up of
+//               its collision loop (events per wall second on T threads over those on one; a run of one
+//               block, unblocked, uses one thread: about 1) follows the draw.
 //   --no-pairs: skip the two `pairs` rows (about 25 s each at N = 1e6), e.g. to repeat the others often.
 //   --repeat R: R rounds (R >= 2) in which every path runs right after a run of the reference (one species,
 //               t_end), its ratio taken against that run: on a machine whose speed drifts from second to
@@ -132,7 +133,10 @@ bool sweep_child(const std::string& text, long m, int threads, ChildReport& repo
   std::fflush(stdout);  // (the child must not print the parent's buffer again)
   const auto start = std::chrono::steady_clock::now();
   const pid_t child = ::fork();
-  if (child < 0) return false;
+  if (child < 0) {
+    ::close(channel[0]), ::close(channel[1]);
+    return false;
+  }
   if (child == 0) {
     ::close(channel[0]);
     ChildReport mine{};
@@ -196,10 +200,14 @@ int species_sweep(std::size_t n, int threads) {
     if (threads > 1) {
       ChildReport threaded{};
       double threaded_wall = 0.0;
-      if (sweep_child(text, m, threads, threaded, peak_kib, threaded_wall))
-        std::printf(", %.2f", threads * threaded.rate / rate);  // (rates per thread-second: Summary)
-      else
+      if (sweep_child(text, m, threads, threaded, peak_kib, threaded_wall)) {
+        // (Summary's rate is per thread-second of the collision loop, which runs on min(T, blocks) threads
+        // with more than one block, else on one: its rate per wall second is that many times it)
+        const auto loop_threads = threaded.blocks > 1 ? std::min<std::uint64_t>(threads, threaded.blocks) : 1;
+        std::printf(", %.2f", static_cast<double>(loop_threads) * threaded.rate / rate);
+      } else {
         std::printf(", (failed)");
+      }
     }
     std::printf("\n");
     std::fflush(stdout);
@@ -211,14 +219,19 @@ int species_sweep(std::size_t n, int threads) {
 
 int main(int argc, char** argv) {
   if (argc >= 2 && std::string(argv[1]) == "--species") {
+    const char* usage = "usage: bench_paths --species [--threads T: 1..1024] [N]   (N: 2..1e9; default 1000000)\n";
     unsigned long long n = 1000000ull, threads = 1;
-    bool sized = false;
+    bool sized = false, threaded = false;
     for (int i = 2; i < argc; ++i) {
-      const bool ok = std::string(argv[i]) == "--threads"
-                          ? i + 1 < argc && bench::parse_whole(argv[++i], 1, 1024, threads)
-                          : !sized && (sized = bench::parse_whole(argv[i], 2, 1000000000ull, n));
+      const std::string arg = argv[i];
+      if (arg == "--help" || arg == "-h") {
+        std::printf("%s", usage);
+        return 0;
+      }
+      const bool ok = arg == "--threads" ? !threaded && i + 1 < argc && (threaded = bench::parse_whole(argv[++i], 1, 1024, threads))
+                                         : !sized && (sized = bench::parse_whole(argv[i], 2, 1000000000ull, n));
       if (!ok) {
-        std::fprintf(stderr, "usage: bench_paths --species [--threads T: 1..1024] [N]   (N: 2..1e9; default 1000000)\n");
+        std::fprintf(stderr, "bench_paths: bad or repeated argument '%s'\n%s", argv[i], usage);
         return 2;
       }
     }
