@@ -654,6 +654,27 @@ void forge_checkpoint(const std::string& file, const std::string& unit, const st
   set_string_attribute(file, "/checkpoint", "checksum", gdsmc::simulation::content_checksum(file));
 }
 
+// A --restart with other options than the interrupted run's is refused in one line that names both sets
+// of options (the checkpoint's fingerprint holds them), or says that the namelist text differs; the
+// interrupt's line of a run given options names them, shell-quoted, as the resumed run needs them.
+TEST_F(CliDsmc, ARestartWithOtherOptionsSaysWhichDiffer) {
+  ASSERT_EQ(interrupt_an_endless_run(*this, 1500000).first, 130);
+  const Result other = run("granular-dsmc", "t.nml --quiet --restart out.checkpoint.h5 --set dsmc:seed=9", 60);
+  EXPECT_EQ(other.status, 2) << other.err;
+  EXPECT_EQ(other.err, "granular-dsmc: --restart: checkpoint 'out.checkpoint.h5' was written for a different input: it "
+                       "was written with no --set or --output, this run has --set dsmc:seed=9\n");
+  write("t.nml", read_text(dir / "t.nml") + "! a comment\n");
+  const Result text = run("granular-dsmc", "t.nml --quiet --restart out.checkpoint.h5", 60);
+  EXPECT_EQ(text.status, 2) << text.err;
+  EXPECT_EQ(text.err, "granular-dsmc: --restart: checkpoint 'out.checkpoint.h5' was written for a different input: "
+                      "the namelist text differs\n");
+  EXPECT_EQ(gdsmc::simulation::override_options({"dsmc:seed=9", "output:file='my run.h5'", "a:b=\"$x\""}),
+            "--set dsmc:seed=9 --set \"output:file='my run.h5'\" --set \"a:b=\\\"\\$x\\\"\"");
+  EXPECT_EQ(gdsmc::simulation::shell_word("out.checkpoint.h5"), "out.checkpoint.h5");
+  EXPECT_EQ(gdsmc::simulation::shell_word("my run.checkpoint.h5"), "\"my run.checkpoint.h5\"");
+  EXPECT_EQ(gdsmc::simulation::shell_word(""), "\"\"");
+}
+
 // Checkpoints with a valid checksum but a forged field: velocities of 1e300 (the restart never ended),
 // a next_sample beyond the samples recorded (an output of NaN errors), a missing array. Each is refused
 // in one line with exit 2 before the unit runs.
@@ -1021,7 +1042,22 @@ TEST_F(CliDsmc, UnwritableOutputInTheFileWithAnotherOverride) {
 
 TEST_F(CliDsmc, BadOverride) {
   expect_input_error(dsmc(base(), "--set dsmc:n_particles=1.5"), "granular-dsmc",
-                     "--set dsmc:n_particles=1.5: &dsmc: n_particles: ", {"expected an integer"});
+                     "--set dsmc:n_particles=1.5: &dsmc: n_particles: expected an integer, got a real number '1.5'\n",
+                     {});
+  // A whole number written as a real says the integer to write; an unquoted string, the form a shell
+  // passes on (its quotes in quotes); in a namelist file, the quoted value alone.
+  const Result real = dsmc(base(), "--set dsmc:n_particles=1e4");
+  EXPECT_EQ(real.err, "granular-dsmc: --set dsmc:n_particles=1e4: &dsmc: n_particles: expected an integer, got a real "
+                      "number '1e4' (write 10000)\n");
+  const Result word = dsmc(base(), "--set dsmc:scheme=lowrank");
+  EXPECT_EQ(word.err, "granular-dsmc: --set dsmc:scheme=lowrank: &dsmc: scheme: bad value 'lowrank': an unquoted word is "
+                      "not a value (strings need quotes: 'lowrank', on a command line --set \"dsmc:scheme='lowrank'\"; "
+                      "logicals are .true. or .false.)\n");
+  const Result in_file = dsmc(with_line(12, "  n_particles = 200, scheme = majorant"));
+  EXPECT_NE(in_file.err.find("bad value 'majorant': an unquoted word is not a value (strings need quotes: 'majorant'; "
+                             "logicals"),
+            std::string::npos)
+      << in_file.err;
 }
 
 TEST_F(CliDsmc, MissingInputFile) {

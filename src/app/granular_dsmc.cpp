@@ -19,6 +19,7 @@
 #include <system_error>
 #include <vector>
 
+#include "run/checkpoint.hpp"
 #include "run/parallel.hpp"
 #include "run/simulation.hpp"
 #include "analysis/compare.hpp"
@@ -490,8 +491,12 @@ void report_interrupt(const gdsmc::io::config::Config& config, const gdsmc::simu
   // (a terminal's progress line is rewritten in place and needs ending; elsewhere each progress line ends itself)
   std::cerr << (options.progress && options.progress_terminal ? "\n" : "") << "granular-dsmc: " << what;
   const std::string checkpoint = gdsmc::simulation::checkpoint_path(config.output.file);
-  if (std::error_code ec; config.output.checkpoint_every && std::filesystem::exists(checkpoint, ec))
-    std::cerr << "; resume with --restart " << checkpoint;
+  if (std::error_code ec; config.output.checkpoint_every && std::filesystem::exists(checkpoint, ec)) {
+    std::cerr << "; resume with --restart " << gdsmc::simulation::shell_word(checkpoint);
+    // (the checkpoint holds the overrides in its fingerprint: a resumed run must be given them again)
+    if (!config.overrides.empty())
+      std::cerr << " and the same options (" << gdsmc::simulation::override_options(config.overrides) << ")";
+  }
   else if (!config.output.checkpoint_every)
     std::cerr << " (with &output checkpoint_every = SECONDS an interrupted run leaves a checkpoint to resume)";
   std::cerr << "\n";

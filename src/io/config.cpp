@@ -67,8 +67,13 @@ struct Assigner {
   }
   void operator()(long long& out) const {
     const auto& v = one_value();
-    if (v.kind != namelist::Value::Kind::Integer)
-      throw r.error(v.line, name, "expected an integer, got " + std::string(kind_name(v.kind)) + " '" + v.text + "'");
+    if (v.kind != namelist::Value::Kind::Integer) {
+      // (a whole number written as a real, 1e5: the integer to write instead)
+      const bool whole = v.kind == namelist::Value::Kind::Real && std::isfinite(v.real) && v.real == std::floor(v.real) &&
+                         std::fabs(v.real) < 1e15;
+      throw r.error(v.line, name, "expected an integer, got " + std::string(kind_name(v.kind)) + " '" + v.text + "'" +
+                                      (whole ? " (write " + std::to_string(static_cast<long long>(v.real)) + ")" : ""));
+    }
     if (!range.contains(static_cast<double>(v.integer)))
       throw r.error(v.line, name, name + " = " + v.text + " is outside " + range.text());
     out = v.integer;

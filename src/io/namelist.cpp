@@ -443,11 +443,16 @@ class Parser {
       v.kind = Value::Kind::Real;
       return v;
     }
-    if (is_letter(token.front()))
+    if (is_letter(token.front())) {
+      // (on a shell's command line the quotes of --set need quotes of their own: the form to type)
+      const std::string quoted = "'" + v.text + "'";
+      const std::string typed = file_.rfind("--set ", 0) == 0
+                                    ? ", on a command line --set \"" + g.name + ":" + a.name + "=" + quoted + "\""
+                                    : "";
       fail(line, g.name, a.name,
-           "bad value '" + v.text +
-               "': an unquoted word is not a value (strings need quotes, logicals are .true. or "
-               ".false.)");
+           "bad value '" + v.text + "': an unquoted word is not a value (strings need quotes: " + quoted + typed +
+               "; logicals are .true. or .false.)");
+    }
     fail(line, g.name, a.name, "bad value '" + v.text + "'");
   }
 };

@@ -104,6 +104,44 @@ FileContent read_content(const std::string& file) {
 
 std::string content_checksum(const std::string& file) { return read_content(file).checksum; }
 
+std::string shell_word(const std::string& word) {
+  if (!word.empty() && word.find_first_of("'\" $`\\\t;&|<>()*?[]#~!{}") == std::string::npos) return word;
+  std::string quoted = "\"";
+  for (char c : word) quoted += (c == '"' || c == '$' || c == '`' || c == '\\') ? std::string("\\") + c : std::string(1, c);
+  return quoted + "\"";
+}
+
+std::string override_options(const std::vector<std::string>& overrides) {
+  std::string shown;
+  for (const std::string& o : overrides) shown += (shown.empty() ? "--set " : " --set ") + shell_word(o);
+  return shown;
+}
+
+std::string fingerprint_difference(const std::string& stored, const std::string& current) {
+  const std::string marker = fingerprint_overrides_marker;
+  const auto split = [&](const std::string& f) {
+    const std::size_t at = f.find(marker);
+    return at == std::string::npos ? std::pair{f, std::string()} : std::pair{f.substr(0, at), f.substr(at + marker.size())};
+  };
+  const auto [stored_text, stored_overrides] = split(stored);
+  const auto [current_text, current_overrides] = split(current);
+  const auto options = [](const std::string& lines) {
+    std::vector<std::string> overrides;
+    std::size_t start = 0;
+    for (std::size_t end; (end = lines.find('\n', start)) != std::string::npos; start = end + 1)
+      overrides.push_back(lines.substr(start, end - start));
+    return overrides.empty() ? std::string("no --set or --output") : override_options(overrides);
+  };
+  if (stored_text != current_text)
+    return stored_overrides == current_overrides ? "the namelist text differs"
+                                                 : "the namelist text differs, and the options: it was written with " +
+                                                       options(stored_overrides) + ", this run has " +
+                                                       options(current_overrides);
+  const bool output = (stored_overrides + current_overrides).find("output:file=") != std::string::npos;
+  return "it was written with " + options(stored_overrides) + ", this run has " + options(current_overrides) +
+         (output ? " (--output PATH is --set output:file='PATH')" : "");
+}
+
 void CheckpointStore::load(const std::string& file) {
   namespace h5 = io::h5md;
   FileContent content = read_content(file);
@@ -117,8 +155,8 @@ void CheckpointStore::load(const std::string& file) {
     throw std::runtime_error("checkpoint '" + file + "' is damaged: its content does not match the checksum "
                              "written with it (a partial copy, or a disk error)");
   if (fingerprint != fingerprint_)
-    throw std::runtime_error("checkpoint '" + file +
-                             "' was written for a different input (namelist text, --set or --output differ)");
+    throw std::runtime_error("checkpoint '" + file + "' was written for a different input: " +
+                             fingerprint_difference(fingerprint, fingerprint_));
   if (layout != 1.0 && layout != static_cast<double>(state::layout)) {
     char text[64];
     std::snprintf(text, sizeof text, "%g", layout);

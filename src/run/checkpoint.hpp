@@ -38,6 +38,22 @@ std::string rank_file(const std::string& path, int rank);
 /// refused for its content. Throws std::runtime_error for a file that is no checkpoint.
 std::string content_checksum(const std::string& file);
 
+/// The line between the namelist text and the overrides (--set, and what --output became) in an input's
+/// fingerprint (simulation.cpp fingerprint_of): the text, the marker, then one override a line.
+inline constexpr const char* fingerprint_overrides_marker = "\n--overrides--\n";
+
+/// `word` as a shell reads it back: itself, or in double quotes where a shell would change it (quotes,
+/// blanks, $, `, \; those three and " escaped), for the commands that messages suggest.
+std::string shell_word(const std::string& word);
+
+/// The overrides as command-line options for a message: `--set V` each (V a shell_word), e.g.
+/// --set "output:file='x.h5'"; "" for none.
+std::string override_options(const std::vector<std::string>& overrides);
+
+/// What differs between the fingerprint a checkpoint holds and that of this run's input, for the line of
+/// a refused --restart: the namelist text, or the overrides each was given (`--set V` as on the command line).
+std::string fingerprint_difference(const std::string& stored, const std::string& current);
+
 /// A random token (16 hex digits) that tells the checkpoint files of one run from those of another.
 std::string new_run_token();
 

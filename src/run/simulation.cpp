@@ -60,7 +60,7 @@ void open_output(std::optional<io::h5md::Writer>& writer, const io::config::Conf
 
 /// The input's fingerprint in a checkpoint: the namelist text and the overrides.
 std::string fingerprint_of(const io::config::Config& config) {
-  std::string joined = config.namelist_text + "\n--overrides--\n";
+  std::string joined = config.namelist_text + fingerprint_overrides_marker;
   for (const auto& o : config.overrides) joined += o + "\n";
   return joined;
 }
