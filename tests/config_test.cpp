@@ -940,6 +940,10 @@ TEST(ConfigError, SweepShapeMistakesNameTheVariable) {
       {"&sweep variable = 'system:mass(2)', 'dsmc:seed', grid = .true., values = 1.0, 2.0 /",
        "&sweep: grid: grid = .true. takes one list per variable"},
       {"&sweep variable = 'system:mass(2)', values(2,1) = 1.0 /", "values(1,v) = ..."},
+      // (the run's output file and checkpoint interval: one for every point, never a point's own)
+      {"&sweep variable = 'output:file', values = 'a.h5', 'b.h5' /",
+       "t.nml:18: &sweep: variable: 'output:file' belongs to the run, not to a point"},
+      {"&sweep variable = 'output:checkpoint_every', values = 1.0, 2.0 /", "'output:checkpoint_every' belongs to the run"},
   };
   for (const auto& [group, expected] : cases) {
     try {

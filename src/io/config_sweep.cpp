@@ -172,6 +172,10 @@ void check_sweep(const Config& c, const Provenance& prov, const namelist::Docume
       throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
                   "'" + written + "' is not 'group:name' (or 'group:name(i)', 'group:name(i,j)') of a variable of "
                   "&system, &initial, &dsmc, &output, &agg_frag, &thermostat or &shear");
+    if (t.group == "output" && (t.name == "file" || t.name == "checkpoint_every"))  // (read from the run's Config only)
+      throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
+                  "'" + written + "' belongs to the run, not to a point: one output file (and one checkpoint) holds "
+                  "every point of a sweep");
     for (std::size_t w = 0; w < v; ++w)
       if (parse_target(sweep.variable[w]).group == t.group && parse_target(sweep.variable[w]).name == t.name &&
           parse_target(sweep.variable[w]).index == t.index)
