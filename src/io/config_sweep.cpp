@@ -36,6 +36,24 @@ struct SweepTarget {
   bool ok = false;
 };
 
+/// The swept variable closest to `written` (its index dropped) among "group:name" of every group a sweep
+/// may set, for "did you mean"; "" when none is near.
+std::string closest_target(const std::string& written) {
+  std::vector<std::string> names;
+  const auto add = [&](const char* group, const auto& fields) {
+    for (const auto& f : fields) names.push_back(std::string(group) + ":" + f.name);
+  };
+  add("system", system_fields()), add("initial", initial_fields()), add("dsmc", dsmc_fields());
+  add("output", output_fields()), add("agg_frag", agg_frag_fields()), add("thermostat", thermostat_fields());
+  add("shear", shear_fields());
+  std::string text;
+  for (char ch : written.substr(0, written.find('(')))
+    if (ch != ' ') text += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  if (const std::string home = owning_group(text); text.find(':') == std::string::npos && !home.empty() && home != "sweep")
+    return home + ":" + text;  // (the group left out)
+  return namelist::closest_name(text, names);
+}
+
 SweepTarget parse_target(const std::string& written) {
   SweepTarget t;
   std::string text;
@@ -168,10 +186,13 @@ void check_sweep(const Config& c, const Provenance& prov, const namelist::Docume
   for (std::size_t v = 0; v < sweep.variable.size(); ++v) {
     const std::string& written = sweep.variable[v];
     const SweepTarget t = parse_target(written);
-    if (!t.ok || t.group == "sweep" || owning_group(t.name) != t.group)
+    if (!t.ok || t.group == "sweep" || owning_group(t.name) != t.group) {
+      const std::string hint = closest_target(written);
       throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
                   "'" + written + "' is not 'group:name' (or 'group:name(i)', 'group:name(i,j)') of a variable of "
-                  "&system, &initial, &dsmc, &output, &agg_frag, &thermostat or &shear");
+                  "&system, &initial, &dsmc, &output, &agg_frag, &thermostat or &shear" +
+                      (hint.empty() ? std::string() : " (did you mean '" + hint + "'?)"));
+    }
     if (t.group == "output" && (t.name == "file" || t.name == "checkpoint_every"))  // (read from the run's Config only)
       throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
                   "'" + written + "' belongs to the run, not to a point: one output file (and one checkpoint) holds "
