@@ -670,9 +670,10 @@ TEST_F(CliDsmc, ARestartWithOtherOptionsSaysWhichDiffer) {
                       "the namelist text differs\n");
   EXPECT_EQ(gdsmc::simulation::override_options({"dsmc:seed=9", "output:file='my run.h5'", "a:b=\"$x\""}),
             "--set dsmc:seed=9 --set \"output:file='my run.h5'\" --set \"a:b=\\\"\\$x\\\"\"");
-  EXPECT_EQ(gdsmc::simulation::shell_word("out.checkpoint.h5"), "out.checkpoint.h5");
-  EXPECT_EQ(gdsmc::simulation::shell_word("my run.checkpoint.h5"), "\"my run.checkpoint.h5\"");
-  EXPECT_EQ(gdsmc::simulation::shell_word(""), "\"\"");
+  EXPECT_EQ(gdsmc::io::namelist::shell_word("out.checkpoint.h5"), "out.checkpoint.h5");
+  EXPECT_EQ(gdsmc::io::namelist::shell_word("my run.checkpoint.h5"), "\"my run.checkpoint.h5\"");
+  EXPECT_EQ(gdsmc::io::namelist::shell_word(""), "\"\"");
+  EXPECT_EQ(gdsmc::io::namelist::shell_word("output:author='a b!'"), R"('output:author='\''a b!'\''')");
 }
 
 // Checkpoints with a valid checksum but a forged field: velocities of 1e300 (the restart never ended),
@@ -1051,10 +1052,10 @@ TEST_F(CliDsmc, BadOverride) {
                       "number '1e4' (write 10000)\n");
   const Result word = dsmc(base(), "--set dsmc:scheme=lowrank");
   EXPECT_EQ(word.err, "granular-dsmc: --set dsmc:scheme=lowrank: &dsmc: scheme: bad value 'lowrank': an unquoted word is "
-                      "not a value (strings need quotes: 'lowrank', on a command line --set \"dsmc:scheme='lowrank'\"; "
+                      "not a value (a string needs quotes: 'lowrank', on a command line --set \"dsmc:scheme='lowrank'\"; "
                       "logicals are .true. or .false.)\n");
   const Result in_file = dsmc(with_line(12, "  n_particles = 200, scheme = majorant"));
-  EXPECT_NE(in_file.err.find("bad value 'majorant': an unquoted word is not a value (strings need quotes: 'majorant'; "
+  EXPECT_NE(in_file.err.find("bad value 'majorant': an unquoted word is not a value (a string needs quotes: 'majorant'; "
                              "logicals"),
             std::string::npos)
       << in_file.err;

@@ -944,9 +944,11 @@ TEST(ConfigError, SweepShapeMistakesNameTheVariable) {
       {"&sweep variable = 'output:file', values = 'a.h5', 'b.h5' /",
        "t.nml:18: &sweep: variable: 'output:file' belongs to the run, not to a point"},
       {"&sweep variable = 'output:checkpoint_every', values = 1.0, 2.0 /", "'output:checkpoint_every' belongs to the run"},
+      {"&sweep variable = 'output:author', values = 'a', 'b' /", "'output:author' belongs to the run"},
       // (a misspelt or group-less variable: the nearest one that a sweep sets)
       {"&sweep variable = 'system:restitutoin', values = 0.5 /", "(did you mean 'system:restitution'?)"},
       {"&sweep variable = 'restitution', values = 0.5 /", "(did you mean 'system:restitution'?)"},
+      {"&sweep variable = 'system:restitutoin(1,1)', values = 0.5 /", "(did you mean 'system:restitution(1,1)'?)"},
   };
   for (const auto& [group, expected] : cases) {
     try {

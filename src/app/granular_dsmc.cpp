@@ -267,6 +267,10 @@ std::optional<int> parse_arguments(int argc, char** argv, Arguments& a) {
       }
     } else if (arg == "--set") {
       a.overrides.push_back(next());
+      if (a.overrides.back().find_first_of("\n\r") != std::string::npos) {  // (one override a line: the fingerprint)
+        std::cerr << "granular-dsmc: --set: a value with a line break is not accepted\n";
+        return 2;
+      }
     } else if (!arg.empty() && arg[0] == '-') {
       std::cerr << "granular-dsmc: unknown option " << gdsmc::io::namelist::printable(arg) << " (granular-dsmc --help lists the options)\n";
       return 2;
@@ -492,7 +496,7 @@ void report_interrupt(const gdsmc::io::config::Config& config, const gdsmc::simu
   std::cerr << (options.progress && options.progress_terminal ? "\n" : "") << "granular-dsmc: " << what;
   const std::string checkpoint = gdsmc::simulation::checkpoint_path(config.output.file);
   if (std::error_code ec; config.output.checkpoint_every && std::filesystem::exists(checkpoint, ec)) {
-    std::cerr << "; resume with --restart " << gdsmc::simulation::shell_word(checkpoint);
+    std::cerr << "; resume with --restart " << gdsmc::io::namelist::shell_word(checkpoint);
     // (the checkpoint holds the overrides in its fingerprint: a resumed run must be given them again)
     if (!config.overrides.empty())
       std::cerr << " and the same options (" << gdsmc::simulation::override_options(config.overrides) << ")";

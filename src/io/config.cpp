@@ -70,7 +70,7 @@ struct Assigner {
     if (v.kind != namelist::Value::Kind::Integer) {
       // (a whole number written as a real, 1e5: the integer to write instead)
       const bool whole = v.kind == namelist::Value::Kind::Real && std::isfinite(v.real) && v.real == std::floor(v.real) &&
-                         std::fabs(v.real) < 1e15;
+                         std::fabs(v.real) < 1e15 && range.contains(v.real);
       throw r.error(v.line, name, "expected an integer, got " + std::string(kind_name(v.kind)) + " '" + v.text + "'" +
                                       (whole ? " (write " + std::to_string(static_cast<long long>(v.real)) + ")" : ""));
     }

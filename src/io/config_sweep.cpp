@@ -36,12 +36,19 @@ struct SweepTarget {
   bool ok = false;
 };
 
-/// The swept variable closest to `written` (its index dropped) among "group:name" of every group a sweep
-/// may set, for "did you mean"; "" when none is near.
+/// The variables of &output that belong to the run, not to a point (read from the run's Config only: one
+/// output file and one checkpoint hold every point).
+bool run_only(const std::string& group, const std::string& name) {
+  return group == "output" && (name == "file" || name == "checkpoint_every" || name == "author");
+}
+
+/// The swept variable closest to `written` among "group:name" of every variable a sweep may set, with
+/// `written`'s index, for "did you mean"; "" when none is near.
 std::string closest_target(const std::string& written) {
   std::vector<std::string> names;
   const auto add = [&](const char* group, const auto& fields) {
-    for (const auto& f : fields) names.push_back(std::string(group) + ":" + f.name);
+    for (const auto& f : fields)
+      if (!run_only(group, f.name)) names.push_back(std::string(group) + ":" + f.name);
   };
   add("system", system_fields()), add("initial", initial_fields()), add("dsmc", dsmc_fields());
   add("output", output_fields()), add("agg_frag", agg_frag_fields()), add("thermostat", thermostat_fields());
@@ -49,9 +56,13 @@ std::string closest_target(const std::string& written) {
   std::string text;
   for (char ch : written.substr(0, written.find('(')))
     if (ch != ' ') text += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-  if (const std::string home = owning_group(text); text.find(':') == std::string::npos && !home.empty() && home != "sweep")
-    return home + ":" + text;  // (the group left out)
-  return namelist::closest_name(text, names);
+  const std::size_t open = written.find('(');
+  const std::string index = open == std::string::npos ? "" : written.substr(open);
+  if (const std::string home = owning_group(text);
+      text.find(':') == std::string::npos && !home.empty() && home != "sweep" && !run_only(home, text))
+    return home + ":" + text + index;  // (the group left out)
+  const std::string hint = namelist::closest_name(text, names);
+  return hint.empty() ? hint : hint + index;
 }
 
 SweepTarget parse_target(const std::string& written) {
@@ -193,7 +204,7 @@ void check_sweep(const Config& c, const Provenance& prov, const namelist::Docume
                   "&system, &initial, &dsmc, &output, &agg_frag, &thermostat or &shear" +
                       (hint.empty() ? std::string() : " (did you mean '" + hint + "'?)"));
     }
-    if (t.group == "output" && (t.name == "file" || t.name == "checkpoint_every"))  // (read from the run's Config only)
+    if (run_only(t.group, t.name))
       throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
                   "'" + written + "' belongs to the run, not to a point: one output file (and one checkpoint) holds "
                   "every point of a sweep");

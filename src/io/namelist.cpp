@@ -17,6 +17,19 @@
 
 namespace gdsmc::io::namelist {
 
+std::string shell_word(std::string_view word) {
+  if (!word.empty() && word.find_first_of("'\" $`\\\t;&|<>()*?[]#~!{}") == std::string_view::npos) return std::string(word);
+  std::string quoted;
+  if (word.find('!') != std::string_view::npos) {
+    quoted = "'";
+    for (char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return quoted + "'";
+  }
+  quoted = "\"";
+  for (char c : word) quoted += (c == '"' || c == '$' || c == '`' || c == '\\') ? std::string("\\") + c : std::string(1, c);
+  return quoted + "\"";
+}
+
 std::string printable(std::string_view text, std::size_t limit) {
   std::string out;
   for (std::size_t i = 0; i < text.size(); ++i) {
@@ -446,11 +459,15 @@ class Parser {
     if (is_letter(token.front())) {
       // (on a shell's command line the quotes of --set need quotes of their own: the form to type)
       const std::string quoted = "'" + v.text + "'";
-      const std::string typed = file_.rfind("--set ", 0) == 0
-                                    ? ", on a command line --set \"" + g.name + ":" + a.name + "=" + quoted + "\""
-                                    : "";
+      std::string index;
+      for (std::size_t i = 0; i < a.index.size(); ++i) index += (i ? "," : "(") + std::to_string(a.index[i]);
+      if (!index.empty()) index += ")";
+      const std::string typed =
+          file_.rfind("--set ", 0) == 0
+              ? ", on a command line --set " + shell_word(g.name + ":" + a.name + index + "=" + quoted)
+              : "";
       fail(line, g.name, a.name,
-           "bad value '" + v.text + "': an unquoted word is not a value (strings need quotes: " + quoted + typed +
+           "bad value '" + v.text + "': an unquoted word is not a value (a string needs quotes: " + quoted + typed +
                "; logicals are .true. or .false.)");
     }
     fail(line, g.name, a.name, "bad value '" + v.text + "'");

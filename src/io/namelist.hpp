@@ -115,6 +115,11 @@ Document parse_file(const std::string& path);
 /// equally close candidates wins.
 std::string closest_name(std::string_view name, const std::vector<std::string>& candidates);
 
+/// `word` as a shell reads it back, for the commands that messages suggest: itself when no character is
+/// special to a shell, else in double quotes ($, `, \ and " escaped), or in single quotes (' written '\'')
+/// when it holds a ! (which an interactive bash expands even in double quotes).
+std::string shell_word(std::string_view word);
+
 /// `text` for a one-line message: control characters (a newline, a NUL) written as escapes (`\n`,
 /// `\x00`), cut after `limit` characters with "..." (an absurdly long name, value or argument).
 std::string printable(std::string_view text, std::size_t limit = 200);

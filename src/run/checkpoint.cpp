@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "io/h5md.hpp"
+#include "io/namelist.hpp"
 #include "io/version.hpp"
 #include "run/simulation.hpp"
 
@@ -104,23 +105,16 @@ FileContent read_content(const std::string& file) {
 
 std::string content_checksum(const std::string& file) { return read_content(file).checksum; }
 
-std::string shell_word(const std::string& word) {
-  if (!word.empty() && word.find_first_of("'\" $`\\\t;&|<>()*?[]#~!{}") == std::string::npos) return word;
-  std::string quoted = "\"";
-  for (char c : word) quoted += (c == '"' || c == '$' || c == '`' || c == '\\') ? std::string("\\") + c : std::string(1, c);
-  return quoted + "\"";
-}
-
 std::string override_options(const std::vector<std::string>& overrides) {
   std::string shown;
-  for (const std::string& o : overrides) shown += (shown.empty() ? "--set " : " --set ") + shell_word(o);
+  for (const std::string& o : overrides) shown += (shown.empty() ? "--set " : " --set ") + io::namelist::shell_word(o);
   return shown;
 }
 
 std::string fingerprint_difference(const std::string& stored, const std::string& current) {
   const std::string marker = fingerprint_overrides_marker;
   const auto split = [&](const std::string& f) {
-    const std::size_t at = f.find(marker);
+    const std::size_t at = f.rfind(marker);  // (the last: a namelist may hold the marker's text as a line)
     return at == std::string::npos ? std::pair{f, std::string()} : std::pair{f.substr(0, at), f.substr(at + marker.size())};
   };
   const auto [stored_text, stored_overrides] = split(stored);
@@ -132,7 +126,7 @@ std::string fingerprint_difference(const std::string& stored, const std::string&
       overrides.push_back(lines.substr(start, end - start));
     return overrides.empty() ? std::string("no --set or --output") : override_options(overrides);
   };
-  if (stored_text != current_text)
+  if (stored_text != current_text || stored_overrides == current_overrides)
     return stored_overrides == current_overrides ? "the namelist text differs"
                                                  : "the namelist text differs, and the options: it was written with " +
                                                        options(stored_overrides) + ", this run has " +

@@ -42,11 +42,7 @@ std::string content_checksum(const std::string& file);
 /// fingerprint (simulation.cpp fingerprint_of): the text, the marker, then one override a line.
 inline constexpr const char* fingerprint_overrides_marker = "\n--overrides--\n";
 
-/// `word` as a shell reads it back: itself, or in double quotes where a shell would change it (quotes,
-/// blanks, $, `, \; those three and " escaped), for the commands that messages suggest.
-std::string shell_word(const std::string& word);
-
-/// The overrides as command-line options for a message: `--set V` each (V a shell_word), e.g.
+/// The overrides as command-line options for a message: `--set V` each (V an io::namelist::shell_word), e.g.
 /// --set "output:file='x.h5'"; "" for none.
 std::string override_options(const std::vector<std::string>& overrides);
 
