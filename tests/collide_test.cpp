@@ -2055,9 +2055,9 @@ TEST(Collide, FactoredDrawMatchesOneWordDrawAndUnblocked) {
 // the acceptance; a sheared frame) by Collider::set_separable_blocks(): it samples the process of the
 // one-word draw and of the unblocked loop, in two stages (as up to separable_deep_above present species)
 // and in three (forced by set_separable_deep_above(0)). The same observables and tolerance (4 combined SE,
-// printed), 16 replicas each (8 under the sanitizers, against the unblocked loop only), no acceptance overshoot. Rows without 1/sqrt(m_i) (every
-// species given the lightest one's speed bound, the rate kept right) move the binary gas's shares of the
-// 1-1 and 2-2 events by about 100 and 150 SE (mutant 81).
+// printed), 16 replicas each (8 under the sanitizers, against the unblocked loop only), no acceptance
+// overshoot. Rows without 1/sqrt(m_i) (every species given the lightest one's speed bound, the rate kept
+// right) move the binary gas's shares of the 1-1 and 2-2 events by about 100 and 150 SE (mutant 81).
 TEST(Collide, SeparableDrawMatchesOneWordDrawAndUnblocked) {
   const std::size_t replicas = gdsmc::test::replicas(16);  // 8 under the sanitizers
   const char* draw_name[] = {"unblocked", "one-word"};

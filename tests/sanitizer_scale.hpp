@@ -9,7 +9,8 @@
 /// paths. There the longest Monte Carlo tests (about 240 of the sanitizer run's 490 CPU
 /// seconds) take a smaller sample: the same code, the same assertions, the tolerances still in
 /// measured standard errors, only a weaker test of the physics, which the optimised build's run
-/// checks in full.
+/// checks in full. (The factored and separable draws' tests of collide_test.cpp also leave out their
+/// second reference, the one-word draw, there: they compare with the unblocked loop only.)
 
 #include <algorithm>
 #include <cmath>
