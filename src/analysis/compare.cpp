@@ -1072,16 +1072,22 @@ void write(io::h5md::Writer& writer, const Comparison& comparison) {
     if (!pt.notes.empty()) writer.write_attribute(base, "notes", pt.notes);
     const double threshold = statistical_threshold(pt.replicas);
     writer.write_attribute(base, "replicas", static_cast<long long>(pt.replicas));
-    writer.write_attribute(base, "statistical_threshold", threshold);
+    // What is not given (z_R below 4 replicas, a standard error of one replica, a known error none
+    // states) is left out, never written as NaN (docs/physics.md "Comparison with theory"); the JSON
+    // and the marks keep it entry by entry.
+    const auto given = [](const std::vector<double>& x) {
+      return std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); });
+    };
+    if (std::isfinite(threshold)) writer.write_attribute(base, "statistical_threshold", threshold);
     for (const auto& q : pt.quantities) {
       const std::string g = base + "/" + q.name;
       std::vector<std::size_t> shape;
       if (!q.time.empty()) shape.push_back(q.time.size());
       if (q.time.empty() || q.columns > 1) shape.push_back(q.columns);
       writer.write_dataset(g + "/value", q.value, shape);
-      writer.write_dataset(g + "/error", q.error, shape);
+      if (given(q.error)) writer.write_dataset(g + "/error", q.error, shape);
       writer.write_dataset(g + "/theory", q.theory, shape);
-      writer.write_dataset(g + "/known_error", q.known_error, shape);
+      if (given(q.known_error)) writer.write_dataset(g + "/known_error", q.known_error, shape);
       writer.write_attribute(g, "approximation", q.approximation);
       writer.write_attribute(g, "known_error_source", q.known_error_source);
       writer.write_attribute(g, "label", q.label);

@@ -178,10 +178,13 @@ void write(io::h5md::Writer& writer, const Table& t) {
   for (const auto& r : t.results) {
     const std::string g = "/sweep/results/" + r.name;
     writer.write_dataset(g + "/value", r.value, {t.points, r.columns});
-    writer.write_dataset(g + "/error", r.error, {t.points, r.columns});
     // The unit of the quantity (\ref output_units "docs/output.md"), as on its observable.
     writer.write_unit(g + "/value", io::units::of_observable(r.name));
-    writer.write_unit(g + "/error", io::units::of_observable(r.name));
+    // (no standard error at all, as with one replica: left out, not written as NaN)
+    if (std::any_of(r.error.begin(), r.error.end(), [](double e) { return std::isfinite(e); })) {
+      writer.write_dataset(g + "/error", r.error, {t.points, r.columns});
+      writer.write_unit(g + "/error", io::units::of_observable(r.name));
+    }
     writer.write_attribute(g, "at", r.at);
     writer.write_attribute(g, "description", r.description);
     quantities.push_back(r.name);
@@ -232,10 +235,10 @@ Table read(const std::string& file) {
     Result r;
     r.name = name;
     const auto v = io::h5md::read_dataset(file, "/sweep/results/" + name + "/value");
-    const auto e = io::h5md::read_dataset(file, "/sweep/results/" + name + "/error");
     r.columns = v.shape.size() > 1 ? v.shape[1] : 1;
     r.value = v.data;
-    r.error = e.data;
+    r.error.assign(r.value.size(), kNaN);  // (left out where no point has one: one replica)
+    if (auto e = io::h5md::read_dataset_if_present(file, "/sweep/results/" + name + "/error")) r.error = std::move(e->data);
     t.results.push_back(std::move(r));
   }
   return t;

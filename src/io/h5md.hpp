@@ -67,6 +67,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -214,6 +215,9 @@ struct ArrayData {
 };
 /// The dataset at `path` of `file`.
 ArrayData read_dataset(const std::string& file, const std::string& path);
+/// The dataset at `path` of `file`, or nothing when its group has no such link (a dataset left out,
+/// as a standard error of one replica is).
+std::optional<ArrayData> read_dataset_if_present(const std::string& file, const std::string& path);
 /// A uint64 dataset written by Writer::write_integers, flattened.
 std::vector<std::uint64_t> read_integers(const std::string& file, const std::string& path);
 
