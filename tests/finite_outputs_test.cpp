@@ -3,7 +3,9 @@
 // elastic and inelastic, sweeps, agg/frag, thermostats and shear, white noise, rough spheres,
 // viscoelastic, Enskog, one replica, snapshots, displacements, --compare) are written, and every
 // floating-point dataset and attribute of every file is scanned: not one NaN or Inf, /comparison and the
-// sweep table included (what is not given there is left out). An elastic run wrote G = +Inf in every bin of
+// sweep table included (what is not given at all there is left out; docs/output.md and docs/physics.md
+// keep NaN for a sweep value that is not one number, cluster sizes past a point's own and the entries not
+// given of a dataset that has some, none of which these inputs make). An elastic run wrote G = +Inf in every bin of
 // its reduced distribution before; /comparison wrote NaN for a standard error of one replica, a known error
 // none states and z_R below 4 replicas, /sweep/results a standard error of one replica.
 #include <gtest/gtest.h>

@@ -1072,11 +1072,11 @@ void write(io::h5md::Writer& writer, const Comparison& comparison) {
     if (!pt.notes.empty()) writer.write_attribute(base, "notes", pt.notes);
     const double threshold = statistical_threshold(pt.replicas);
     writer.write_attribute(base, "replicas", static_cast<long long>(pt.replicas));
-    // What is not given (z_R below 4 replicas, a standard error of one replica, a known error none
-    // states) is left out, never written as NaN (docs/physics.md "Comparison with theory"); the JSON
-    // and the marks keep it entry by entry.
+    // What is not given at all (z_R below 4 replicas, the standard errors of one replica, a known error
+    // none states) is left out, not written as NaN (docs/physics.md "Comparison with theory"); a dataset
+    // with some entries given keeps NaN for the others, as the JSON keeps null.
     const auto given = [](const std::vector<double>& x) {
-      return std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); });
+      return std::any_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); });
     };
     if (std::isfinite(threshold)) writer.write_attribute(base, "statistical_threshold", threshold);
     for (const auto& q : pt.quantities) {

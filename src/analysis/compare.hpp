@@ -69,11 +69,13 @@
  *
  * \section compare_layout Output
  * `/comparison/<quantity>` (sweeps: `/comparison/point_K/<quantity>`, K from 1) with float64 datasets
- * `value`, `error` (NaN when the run has one replica), `theory`, `known_error` (NaN: none stated), shaped
- * [columns] or [samples][columns] (columns = species, or cluster sizes), attributes `approximation`,
+ * `value`, `error` (left out when the run has one replica), `theory`, `known_error` (left out when none
+ * is stated; NaN for the entries without one of a dataset that has some), shaped [columns] or
+ * [samples][columns] (columns = species, or cluster sizes), attributes `approximation`,
  * `known_error_source`, `label`, `mark` (strings, row-major as `value`) and `time` (float64 [samples])
  * for a trajectory; `/comparison` (or `point_K`) attributes `notes`, `replicas` and
- * `statistical_threshold`. The JSON holds the same numbers (NaN as null) and `mark`, shaped as `value`.
+ * `statistical_threshold` (left out below 4 replicas). The JSON holds every entry (null where not
+ * given) and `mark`, shaped as `value`.
  * Checked by tests/compare_test.cpp and tests/cli_test.cpp (CliCompare.*, CliDsmc.Compare*).
  */
 #pragma once
