@@ -4,8 +4,8 @@
 // viscoelastic, Enskog, one replica, snapshots, displacements, --compare) are written, and every
 // floating-point dataset and attribute of every file is scanned: not one NaN or Inf, /comparison and the
 // sweep table included (what is not given at all there is left out; docs/output.md and docs/physics.md
-// keep NaN for a sweep value that is not one number, cluster sizes past a point's own and the entries not
-// given of a dataset that has some, none of which these inputs make). An elastic run wrote G = +Inf in every bin of
+// keep NaN for a sweep value that is not one number and for the entries not given of a dataset that has
+// some, neither of which these inputs make; an agg/frag sweep's cluster sizes past a point's own are 0). An elastic run wrote G = +Inf in every bin of
 // its reduced distribution before; /comparison wrote NaN for a standard error of one replica, a known error
 // none states and z_R below 4 replicas, /sweep/results a standard error of one replica.
 #include <gtest/gtest.h>
@@ -117,6 +117,17 @@ std::vector<Kind> kinds() {
                                      "&sweep\n  variable = 'system:restitution'\n  values = 0.9, 0.5\n/\n"),
        "--compare --set dsmc:replicas=1"},
       {"three-replicas", namelist(dilute, "  t_end = 50.0", "  n_samples = 5"), "--compare --set dsmc:replicas=3"},
+      // points of different largest clusters (the table padded), with 4 replicas and with one
+      {"agg-frag-sweep",
+       namelist(one + ", number_density = 0.1, restitution = 0.8", "  t_end = 10.0, scheme = 'lowrank'", "  n_samples = 3",
+                "&agg_frag\n  aggregation_energy = 0.5\n/\n&sweep\n  variable = 'agg_frag:aggregation_energy'\n"
+                "  values = 0.2, 3.0\n/\n"),
+       ""},
+      {"agg-frag-sweep-one-replica",
+       namelist(one + ", number_density = 0.1, restitution = 0.8", "  t_end = 10.0, scheme = 'lowrank'", "  n_samples = 3",
+                "&agg_frag\n  aggregation_energy = 0.5\n/\n&sweep\n  variable = 'agg_frag:aggregation_energy'\n"
+                "  values = 0.2, 3.0\n/\n"),
+       "--set dsmc:replicas=1"},
       {"agg-frag", namelist(one + ", number_density = 0.1, restitution = 0.8", "  t_end = 10.0, scheme = 'lowrank'", "  sample_times = 0.5, 2.0, 10.0",
                             "&agg_frag\n  aggregation_energy = 0.5, fragmentation_energy = 1.5, fragment_restitution = 0.5\n/\n"),
        "--compare"},
