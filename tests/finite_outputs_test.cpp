@@ -3,10 +3,11 @@
 // elastic and inelastic, sweeps, agg/frag, thermostats and shear, white noise, rough spheres,
 // viscoelastic, Enskog, one replica, snapshots, displacements, --compare) are written, and every
 // floating-point dataset and attribute of every file is scanned: not one NaN or Inf, /comparison and the
-// sweep table included (what is not given at all there is left out; docs/output.md and docs/physics.md
-// keep NaN for a sweep value that is not one number and for the entries not given of a dataset that has
-// some, neither of which these inputs make; an agg/frag sweep's cluster sizes past a point's own are 0). An elastic run wrote G = +Inf in every bin of
-// its reduced distribution before; /comparison wrote NaN for a standard error of one replica, a known error
+// sweep table included, and every dataset of /comparison has its unit. What is not given at all there is
+// left out; docs/output.md and docs/physics.md keep NaN for a sweep value that is not one number and for
+// the entries not given of a dataset that has some, neither of which these inputs make, and an agg/frag
+// sweep's cluster sizes past a point's own are 0. An elastic run wrote G = +Inf in every bin of its
+// reduced distribution before; /comparison wrote NaN for a standard error of one replica, a known error
 // none states and z_R below 4 replicas, /sweep/results a standard error of one replica.
 #include <gtest/gtest.h>
 #include <hdf5.h>
@@ -60,6 +61,8 @@ herr_t scan_object(hid_t root, const char* name, const H5O_info_t* info, void* d
   std::pair<Scan*, std::string> context{&scan, path};
   H5Aiterate2(object, H5_INDEX_NAME, H5_ITER_NATIVE, nullptr, scan_attribute, &context);
   if (info->type == H5O_TYPE_DATASET) {
+    // Every dataset of /comparison in its quantity's unit, as the observables are (docs/output.md).
+    if (path.rfind("/comparison/", 0) == 0 && H5Aexists(object, "unit") <= 0) scan.found.push_back(path + ": no unit");
     const hid_t type = H5Dget_type(object);
     if (H5Tget_class(type) == H5T_FLOAT) {
       const hid_t space = H5Dget_space(object);

@@ -14,6 +14,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "io/units.hpp"
+#include "model/observables.hpp"
 #include "theory/theory.hpp"
 
 namespace gdsmc::analysis::compare {
@@ -1055,6 +1057,24 @@ std::string json(const Comparison& comparison) {
   return out + "\n  ]\n}\n";
 }
 
+namespace {
+
+/// The unit of a compared quantity (io/units.hpp): an observable's own (the table of observables,
+/// model/observables.hpp), else that of the quantities only --compare makes, all ratios or reduced
+/// values but the white-noise steady temperature; empty for a name neither knows (then no attribute;
+/// FiniteOutputs.EveryDatasetOfEveryKindOfOutputIsFinite checks that every compared quantity has one).
+std::string unit_of(const std::string& name) {
+  for (const auto& o : observables::table())
+    if (o.name == name) return o.unit;
+  if (name == "white_noise_temperature") return io::units::kEnergy;
+  for (const char* prefix : {"diffusion_coefficient_ratio", "rough_temperature_over_mean", "rough_theta", "steady_shear_",
+                             "temperature_ratio", "theta", "white_noise_a", "white_noise_theta", "zeta_star"})
+    if (name.rfind(prefix, 0) == 0) return io::units::kDimensionless;
+  return {};
+}
+
+}  // namespace
+
 void write(io::h5md::Writer& writer, const Comparison& comparison) {
   writer.write_group("/comparison");
   writer.write_attribute("/comparison", "description",
@@ -1084,10 +1104,16 @@ void write(io::h5md::Writer& writer, const Comparison& comparison) {
       std::vector<std::size_t> shape;
       if (!q.time.empty()) shape.push_back(q.time.size());
       if (q.time.empty() || q.columns > 1) shape.push_back(q.columns);
-      writer.write_dataset(g + "/value", q.value, shape);
-      if (given(q.error)) writer.write_dataset(g + "/error", q.error, shape);
-      writer.write_dataset(g + "/theory", q.theory, shape);
-      if (given(q.known_error)) writer.write_dataset(g + "/known_error", q.known_error, shape);
+      // (each dataset in the quantity's unit, as the observables' and the sweep table's)
+      const std::string unit = unit_of(q.name);
+      const auto put = [&](const char* dataset, const std::vector<double>& x) {
+        writer.write_dataset(g + "/" + dataset, x, shape);
+        if (!unit.empty()) writer.write_unit(g + "/" + dataset, unit);
+      };
+      put("value", q.value);
+      if (given(q.error)) put("error", q.error);
+      put("theory", q.theory);
+      if (given(q.known_error)) put("known_error", q.known_error);
       writer.write_attribute(g, "approximation", q.approximation);
       writer.write_attribute(g, "known_error_source", q.known_error_source);
       writer.write_attribute(g, "label", q.label);

@@ -70,7 +70,8 @@
  * \section compare_layout Output
  * `/comparison/<quantity>` (sweeps: `/comparison/point_K/<quantity>`, K from 1) with float64 datasets
  * `value`, `error` (left out when the run has one replica), `theory`, `known_error` (left out when none
- * is stated; NaN for the entries without one of a dataset that has some), shaped [columns] or
+ * is stated; NaN for the entries without one of a dataset that has some), each with the quantity's
+ * `unit` (io/units.hpp), shaped [columns] or
  * [samples][columns] (columns = species, or cluster sizes), attributes `approximation`,
  * `known_error_source`, `label`, `mark` (strings, row-major as `value`) and `time` (float64 [samples])
  * for a trajectory; `/comparison` (or `point_K`) attributes `notes`, `replicas` and
