@@ -792,6 +792,11 @@ TEST_F(CliDsmc, AFifoOrADeviceIsNeverOpenedOrReplaced) {
                      {"out.h5", "t.nml"});
   expect_input_error(dsmc(base(), "--output /dev/null"), "granular-dsmc",
                      "--output /dev/null: &output: file: cannot write output file '/dev/null': it is a device, not a regular file", {}, {"out.h5", "t.nml"});
+  // A folder that takes no new file (procfs, even for root) gave HDF5's own report: the system's reason now.
+  expect_input_error(dsmc(base(), "--output /proc/x.h5"), "granular-dsmc",
+                     "--output /proc/x.h5: &output: file: cannot write output file '/proc/x.h5': cannot create a file in "
+                     "'/proc': ",
+                     {}, {"out.h5", "t.nml"});
   expect_input_error(dsmc(base(), "--restart out.h5 --output x.h5"), "granular-dsmc",
                      "--restart: 'out.h5' is a FIFO (named pipe), not a checkpoint file", {}, {"out.h5", "t.nml"});
   expect_input_error(dsmc(base(), "--output x.h5 --compare=out.h5"), "granular-dsmc",

@@ -606,18 +606,30 @@ void remove_stale_temporaries(const std::string& path) {
 
 /// Creates `path` as an empty regular file of this process, exclusively and not through a link: a
 /// link planted at the name, or a leftover of a killed process with this pid, is removed first (only
-/// the link: never its target). Other failures are left to H5Fcreate to report.
-void create_exclusively(const std::string& path) {
+/// the link: never its target). Returns 0, or the errno of a failure (a name still there after its
+/// removal: EEXIST, left to H5Fcreate to report).
+int create_exclusively(const std::string& path) {
   for (int attempt = 0; attempt < 2; ++attempt) {
     const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
     if (fd >= 0) {
       ::close(fd);
-      return;
+      return 0;
     }
-    if (errno != EEXIST) return;
+    if (errno != EEXIST) return errno;
     std::error_code ec;
     fs::remove(path, ec);
   }
+  return EEXIST;
+}
+
+/// Why a file cannot be created in the folder of `path`: the folder missing or not one, else the
+/// system's reason (`error`, an errno), one line without HDF5's internals.
+std::string cannot_create(const std::string& path, int error) {
+  const std::string directory = parent_directory(path);
+  std::error_code ec;
+  if (!fs::exists(directory, ec)) return "directory '" + directory + "' does not exist";
+  if (!fs::is_directory(directory, ec)) return "'" + directory + "' is not a directory";
+  return "cannot create a file in '" + directory + "': " + std::strerror(error);
 }
 
 /// `<final stem>.kept-<pid>.h5`: where commit() keeps a complete file it must not rename onto the final path.
@@ -656,7 +668,8 @@ Writer::Writer(std::string final_path, std::string author, std::string creator_n
   d.creator = creator_name;
   with_context(d.context(), [&] {
     if (d.final_path.empty()) throw std::runtime_error("the path is empty");
-    create_exclusively(d.temp_path);
+    if (const int error = create_exclusively(d.temp_path); error != 0 && error != EEXIST)
+      throw std::runtime_error(cannot_create(d.temp_path, error));
     Handle fapl = file_access(d.temp_path);
     // TRUNC, not EXCL: a leftover from a killed run with the same pid (common in containers)
     // must not block the next run; HDF5 itself refuses a file this process still has open.
@@ -670,10 +683,8 @@ Writer::Writer(std::string final_path, std::string author, std::string creator_n
       fs::remove(d.temp_path, removed);
       const std::string directory = parent_directory(d.temp_path);
       std::error_code ec;
-      if (!fs::exists(directory, ec))
-        throw std::runtime_error("directory '" + directory + "' does not exist");
-      if (!fs::is_directory(directory, ec))
-        throw std::runtime_error("'" + directory + "' is not a directory");
+      if (!fs::exists(directory, ec) || !fs::is_directory(directory, ec))
+        throw std::runtime_error(cannot_create(d.temp_path, ENOENT));
       throw std::runtime_error("H5Fcreate failed for '" + d.temp_path + "': " + detail);
     }
     d.file = Handle(id, H5Fclose);
