@@ -1195,6 +1195,36 @@ TEST_F(CliTable, NamedQuantitiesWithTheTheoryOfCompare) {
   EXPECT_NE(rows[0].find("temperature_over_mean_2,"), std::string::npos) << rows[0];
 }
 
+// The columns of a table do not depend on the number of replicas: time_error for a collision-driven run
+// only (NaN with one replica; a time-driven run's times differ by the round-off of a mean of equal times,
+// which put the column in with 3 replicas and not with 4), and the reduced distribution of one replica
+// (no error datasets in the file) with NaN errors; it failed to read the missing error before.
+TEST_F(CliTable, TheColumnsDoNotDependOnTheReplicas) {
+  for (const char* replicas : {"1", "3", "4"}) {
+    SCOPED_TRACE(std::string("replicas = ") + replicas);
+    ASSERT_EQ(dsmc(base(), std::string("--set dsmc:replicas=") + replicas).status, 0);
+    const Result timed = run("granular-dsmc", "--table out.h5 total_temperature");
+    ASSERT_EQ(timed.status, 0) << timed.err;
+    EXPECT_EQ(lines_of(timed.out).at(0), "time,total_temperature,total_temperature_error");
+    ASSERT_EQ(dsmc(with_line(13, "  collisions_per_particle = 4.0"), std::string("--force --set dsmc:replicas=") + replicas)
+                  .status,
+              0);
+    const Result driven = run("granular-dsmc", "--table out.h5 total_temperature");
+    ASSERT_EQ(driven.status, 0) << driven.err;
+    const auto lines = lines_of(driven.out);
+    EXPECT_EQ(lines.at(0), "time,time_error,total_temperature,total_temperature_error");
+    EXPECT_EQ(fields_of(lines.at(2)).at(1) == "nan", std::string(replicas) == "1") << lines.at(2);
+    const Result reduced = run("granular-dsmc", std::string(GDSMC_EXAMPLES_DIR) + "/haff.nml --quiet --force --output h.h5 "
+                                                "--set dsmc:n_particles=2000 --set dsmc:replicas=" + replicas);
+    ASSERT_EQ(reduced.status, 0) << reduced.err;
+    const Result table = run("granular-dsmc", "--table h.h5 reduced_distribution");
+    ASSERT_EQ(table.status, 0) << table.err;
+    const auto rows = lines_of(table.out);
+    ASSERT_GE(rows.size(), 3u);
+    EXPECT_EQ(rows[0], "v_star,phi_1,phi_1_error,delta_1,delta_1_error,g_1,g_1_error");
+  }
+}
+
 TEST_F(CliTable, RequestsThatCannotBeAnsweredAreRefusedInOneLine) {
   ASSERT_EQ(dsmc(base()).status, 0);
   const std::vector<std::string> both{"out.h5", "t.nml"};

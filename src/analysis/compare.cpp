@@ -121,7 +121,12 @@ void add_scaling_state(Point& pt, const io::config::Config& config, const analys
     return;
   }
   char text[300];
-  if (per_replica)
+  const bool no_error = std::none_of(state.cumulant_error.begin(), state.cumulant_error.end(),
+                                     [](double e) { return std::isfinite(e); });
+  if (no_error)  // one replica: neither the replicas' nor the samples' SE exists
+    std::snprintf(text, sizeof text, "T_k/T, c_k: averages of the %zu samples past scaling_start = %g collisions per "
+                  "particle; no SE (one replica)", count, start);
+  else if (per_replica)
     std::snprintf(text, sizeof text, "T_k/T, c_k: each replica's average over its samples past scaling_start = %g "
                   "collisions per particle (%zu samples), averaged over the replicas; SE over the replicas", start, count);
   else

@@ -139,6 +139,16 @@ void add_columns(std::vector<csv::Column>& columns, const Series& series, const 
   }
 }
 
+/// Whether the run of `file` was collision-driven (&dsmc collisions_per_particle, as /parameters/dsmc holds it).
+bool collision_driven(const std::string& file) {
+  try {
+    (void)io::h5md::read_attribute(file, "/parameters/dsmc", "collisions_per_particle");
+    return true;
+  } catch (const std::runtime_error&) {
+    return false;
+  }
+}
+
 Printed trajectories(const Request& r, const std::string& root) {
   std::vector<Series> series;
   if (r.quantities.empty()) series = every_series(r.file, root);
@@ -151,9 +161,12 @@ Printed trajectories(const Request& r, const std::string& root) {
       throw std::invalid_argument("'" + series.front().name + "' has " + std::to_string(rows) + " samples and '" + s.name +
                                   "' " + std::to_string(s.data.time.size()) + ": ask for them in two tables");
   std::vector<csv::Column> columns{{"time", series.front().data.time, {}}};
-  if (const auto time = io::h5md::read_observable(r.file, root + "/time"); !time.error.empty() &&
-      std::any_of(time.error.begin(), time.error.end(), [](double e) { return std::isfinite(e) && e != 0.0; }))
-    columns.push_back({"time_error", time.error, {}});  // collision-driven: the sample times differ between replicas
+  // A collision-driven run's sample times differ between replicas: time_error, NaN with one replica (a
+  // time-driven run's is zero but for the round-off of a mean of equal times: no column).
+  if (collision_driven(r.file)) {
+    const auto time = io::h5md::read_observable(r.file, root + "/time");
+    columns.push_back({"time_error", time.error.empty() ? std::vector<double>(rows, std::nan("")) : time.error, {}});
+  }
   std::map<std::string, Trajectory> theory;
   if (r.theory) theory = theory_of(r, printed.notes);
   for (const auto& s : series) {
@@ -186,7 +199,8 @@ Printed distribution(const std::string& file, const std::string& root) {
         const std::string dataset = quantity == "phi" ? "value" : quantity;
         const std::string error = quantity == "phi" ? "error" : dataset + "_error";
         columns.push_back({quantity + suffix, io::h5md::read_dataset(file, species + "/" + dataset).data, {}});
-        columns.push_back({quantity + suffix + "_error", io::h5md::read_dataset(file, species + "/" + error).data, {}});
+        const auto e = io::h5md::read_dataset_if_present(file, species + "/" + error);  // (none with one replica)
+        columns.push_back({quantity + suffix + "_error", e ? e->data : std::vector<double>(bins, std::nan("")), {}});
       }
     } catch (const std::runtime_error&) {
       if (k == 1) throw;
