@@ -1590,6 +1590,9 @@ TEST_F(CliDsmc, FindingsOfTheCommandLineFuzzer) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_NE(r.err.find("a file name with a line break is not accepted"), std::string::npos) << r.err;
   }
+  // An empty --output was reported as a --set output:file='' the user never typed.
+  expect_input_error(run("granular-dsmc", "t.nml --quiet --output ''"), "granular-dsmc",
+                     "--output '': &output: file: file must not be empty", {}, {"notes.json", "t.nml"});
   // A 255-character name passed the checks and failed in H5Fcreate with HDF5's internals.
   const std::string long_name(252, 'L');
   expect_input_error(run("granular-dsmc", "t.nml --quiet --output " + long_name + ".h5"), "granular-dsmc",

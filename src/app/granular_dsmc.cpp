@@ -244,7 +244,7 @@ std::optional<int> parse_arguments(int argc, char** argv, Arguments& a) {
       std::string quoted;
       for (char c : path) quoted += (c == '\'') ? std::string("''") : std::string(1, c);
       a.overrides.push_back("output:file='" + quoted + "'");
-      a.output_option = "--output " + path;
+      a.output_option = "--output " + (path.empty() ? std::string("''") : path);
       a.output_override = "--set " + a.overrides.back();
     } else if (arg == "--compare") {
       a.compare = true;
@@ -600,7 +600,11 @@ int run_program(int argc, char** argv) {
   try {
     config = gdsmc::io::config::read_file(arguments.input, arguments.overrides, gdsmc::analysis::check_run_cost);
   } catch (const gdsmc::io::namelist::Error& e) {
-    if (root) std::cerr << "granular-dsmc: " << e.what() << "\n";
+    // (an error of the override --output became is named by the option the user typed)
+    std::string message = e.what();
+    if (!arguments.output_override.empty() && message.rfind(arguments.output_override + ":", 0) == 0)
+      message = arguments.output_option + message.substr(arguments.output_override.size());
+    if (root) std::cerr << "granular-dsmc: " << message << "\n";
     return 2;
   }
   // The lock first (rank 0 takes it, every rank learns the answer): the checks below then see no other
