@@ -1222,6 +1222,7 @@ TEST_F(CliTable, TheColumnsDoNotDependOnTheReplicas) {
     const auto rows = lines_of(table.out);
     ASSERT_GE(rows.size(), 3u);
     EXPECT_EQ(rows[0], "v_star,phi_1,phi_1_error,delta_1,delta_1_error,g_1,g_1_error");
+    EXPECT_EQ(fields_of(rows[1]).at(2) == "nan", std::string(replicas) == "1") << rows[1];
   }
 }
 

@@ -1072,9 +1072,12 @@ std::string unit_of(const std::string& name) {
   for (const auto& o : observables::table())
     if (o.name == name) return o.unit;
   if (name == "white_noise_temperature") return io::units::kEnergy;
-  for (const char* prefix : {"diffusion_coefficient_ratio", "rough_temperature_over_mean", "rough_theta", "steady_shear_",
-                             "temperature_ratio", "theta", "white_noise_a", "white_noise_theta", "zeta_star"})
-    if (name.rfind(prefix, 0) == 0) return io::units::kDimensionless;
+  for (const char* ratio : {"diffusion_coefficient_ratio", "rough_temperature_over_mean", "rough_theta", "steady_shear_rate",
+                            "temperature_ratio", "theta", "theta_sonine", "white_noise_a20", "white_noise_a02",
+                            "white_noise_a11", "white_noise_theta", "zeta_star", "zeta_star_sonine"})
+    if (name == ratio) return io::units::kDimensionless;
+  for (const char* family : {"steady_shear_pressure_", "steady_shear_temperature_ratio_"})  // P_ij/p, T_k/T
+    if (name.rfind(family, 0) == 0) return io::units::kDimensionless;
   return {};
 }
 
@@ -1109,7 +1112,7 @@ void write(io::h5md::Writer& writer, const Comparison& comparison) {
       std::vector<std::size_t> shape;
       if (!q.time.empty()) shape.push_back(q.time.size());
       if (q.time.empty() || q.columns > 1) shape.push_back(q.columns);
-      // (each dataset in the quantity's unit, as the observables' and the sweep table's)
+      // (a unit on every dataset, as on the observables and the sweep table: a reader needs none of the others)
       const std::string unit = unit_of(q.name);
       const auto put = [&](const char* dataset, const std::vector<double>& x) {
         writer.write_dataset(g + "/" + dataset, x, shape);

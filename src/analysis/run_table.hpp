@@ -9,7 +9,8 @@
  *   model/observables.hpp) and each of its columns the value and `<column>_error` (the standard error
  *   over replicas; `nan` with one replica). Columns are named from the observable's shape: one column
  *   `<quantity>`; species and cluster sizes `<quantity>_<k>`, k from 1; species pairs
- *   `<quantity>_<i>_<j>`, i <= j; tensors `<quantity>_xx` ... . A collision-driven run adds `time_error`.
+ *   `<quantity>_<i>_<j>`, i <= j; tensors `<quantity>_xx` ... . A collision-driven run adds `time_error`
+ *   (`nan` with one replica); a time-driven run has none.
  *   With `--theory`, every column the theory predicts a trajectory for (analysis::trajectories, what
  *   granular-theory prints for the input stored in the file, on the run's sample points) gets
  *   `<column>_theory` beside it.
@@ -17,7 +18,8 @@
  *   (analysis/sweep_table.hpp: final temperatures, the scaling state's T_k/T and c_k, zeta*, the time
  *   average of eta/eta_0).
  * - `reduced_distribution`: one row per bin of v*, `v_star` (the bin centre), then per species k
- *   `phi_k`, `delta_k`, `g_k` and their `_error` (\ref son_reduced_distributions "docs/sonine.md").
+ *   `phi_k`, `delta_k`, `g_k` and their `_error` (`nan` with one replica; \ref son_reduced_distributions
+ *   "docs/sonine.md").
  * - a sweep without `--point`: the sweep table (one row per point), as sweep_table::csv.
  * A request that cannot be answered (an unknown quantity, a quantity the run did not measure, a
  * point out of range, trajectories of different sample times) throws std::invalid_argument with one

@@ -136,14 +136,17 @@ Table tabulate(Table t, const std::vector<io::config::Config>& points, const std
     if (width == 0) continue;  // no point has this result
     // What each quantity is: the table of observables' definition (model/observables.hpp).
     Result r{names[q].first, names[q].second, observables::find(names[q].first).description, width, {}, {}};
-    // Cluster sizes past a point's largest: 0, as the observables give a size no replica has
-    // (\ref af_observables "docs/agg-frag.md"); NaN only for a point without the result at all.
-    // (the padding's error 0 where the point has standard errors: with one replica none has one)
-    for (const auto& p : per[q]) {
+    // An &agg_frag point's cluster sizes past its largest: 0, as the observables give a size no replica
+    // has (\ref af_observables "docs/agg-frag.md"), with error 0 where the point has standard errors (with
+    // one replica none has one); NaN for a point without the result, or without a species another has
+    // (a sweep over n_species: the species is not there, its temperature is no number).
+    for (std::size_t k = 0; k < t.points; ++k) {
+      const PointValues& p = per[q][k];
+      const bool sizes = points[k].has_agg_frag;
       const bool errors = std::any_of(p.error.begin(), p.error.end(), [](double e) { return std::isfinite(e); });
       for (std::size_t c = 0; c < width; ++c) {
-        r.value.push_back(!p.present ? kNaN : c < p.value.size() ? p.value[c] : 0.0);
-        r.error.push_back(!p.present ? kNaN : c < p.error.size() ? p.error[c] : errors ? 0.0 : kNaN);
+        r.value.push_back(!p.present ? kNaN : c < p.value.size() ? p.value[c] : sizes ? 0.0 : kNaN);
+        r.error.push_back(!p.present ? kNaN : c < p.error.size() ? p.error[c] : sizes && errors ? 0.0 : kNaN);
       }
     }
     t.results.push_back(std::move(r));

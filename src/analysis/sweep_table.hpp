@@ -10,9 +10,9 @@
  *   is NaN there; attribute `texts` (strings, [points * variables], point after point) holds every value
  *   as written, and `/sweep/point_K@value` the point's values.
  * - `/sweep/results/<quantity>/value` and `/error`: float64 [points][columns], columns = species (or
- *   cluster sizes of &agg_frag, padded with 0 to the widest point, as the observables give a size no replica has; one column for scalars); error =
- *   standard error over replicas (the dataset left out with one replica); NaN where a point has no such
- *   result.
+ *   cluster sizes of &agg_frag, padded with 0, error 0, to the widest point, as the observables give a
+ *   size no replica has; one column for scalars); error = standard error over replicas (the dataset left
+ *   out with one replica); NaN where a point has no such result or not the species another has.
  *   Attributes `at` (where the value is taken) and `description`; `/sweep/results@quantities` lists
  *   the quantities in table order, `/sweep/results@scaling_samples` (float64 [points]) the number of
  *   samples averaged for the scaling-state quantities of each point (0: the last sample is used).

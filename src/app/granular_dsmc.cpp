@@ -601,9 +601,10 @@ int run_program(int argc, char** argv) {
     config = gdsmc::io::config::read_file(arguments.input, arguments.overrides, gdsmc::analysis::check_run_cost);
   } catch (const gdsmc::io::namelist::Error& e) {
     // (an error of the override --output became is named by the option the user typed)
-    std::string message = e.what();
-    if (!arguments.output_override.empty() && message.rfind(arguments.output_override + ":", 0) == 0)
-      message = arguments.output_option + message.substr(arguments.output_override.size());
+    const std::string message =
+        !arguments.output_override.empty() && e.file == arguments.output_override
+            ? gdsmc::io::namelist::Error(arguments.output_option, e.line, e.group, e.variable, e.message).what()
+            : e.what();
     if (root) std::cerr << "granular-dsmc: " << message << "\n";
     return 2;
   }

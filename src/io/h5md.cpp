@@ -617,7 +617,7 @@ int create_exclusively(const std::string& path) {
     }
     if (errno != EEXIST) return errno;
     std::error_code ec;
-    fs::remove(path, ec);
+    if (!fs::remove(path, ec) && ec) return ec.value();  // (a leftover that cannot be removed: its reason)
   }
   return EEXIST;
 }
@@ -629,6 +629,8 @@ std::string cannot_create(const std::string& path, int error) {
   std::error_code ec;
   if (!fs::exists(directory, ec)) return "directory '" + directory + "' does not exist";
   if (!fs::is_directory(directory, ec)) return "'" + directory + "' is not a directory";
+  // (ENOENT for a folder that exists: one of the system's own, as /proc, that takes no file)
+  if (error == ENOENT) return "cannot create a file in '" + directory + "': the folder takes no new files";
   return "cannot create a file in '" + directory + "': " + std::strerror(error);
 }
 
