@@ -15,7 +15,6 @@
 #include <string>
 
 #include "io/units.hpp"
-#include "model/observables.hpp"
 #include "theory/theory.hpp"
 
 namespace gdsmc::analysis::compare {
@@ -1069,8 +1068,10 @@ namespace {
 /// values but the white-noise steady temperature; empty for a name neither knows (then no attribute;
 /// FiniteOutputs.EveryDatasetOfEveryKindOfOutputIsFinite checks that every compared quantity has one).
 std::string unit_of(const std::string& name) {
-  for (const auto& o : observables::table())
-    if (o.name == name) return o.unit;
+  try {
+    return io::units::of_observable(name);
+  } catch (const std::out_of_range&) {  // (not an observable: one of --compare's own quantities)
+  }
   if (name == "white_noise_temperature") return io::units::kEnergy;
   for (const char* ratio : {"diffusion_coefficient_ratio", "rough_temperature_over_mean", "rough_theta", "steady_shear_rate",
                             "temperature_ratio", "theta", "theta_sonine", "white_noise_a20", "white_noise_a02",

@@ -937,33 +937,29 @@ ObservableData read_observable(const std::string& file, const std::string& name)
   });
 }
 
-ArrayData read_dataset(const std::string& file, const std::string& path) {
-  return with_context(read_context(file), [&] {
-    const std::vector<std::string> parts = split_path(path);
-    if (parts.empty()) throw std::runtime_error("dataset path '" + path + "' names no dataset");
-    const Handle f = open_for_reading(file);
-    const std::string parent = join_path(parts, parts.size() - 1);
-    const Handle group =
-        make(H5Gopen2(f.get(), parent.c_str(), H5P_DEFAULT), H5Gclose, "H5Gopen2", parent);
-    ArrayData out;
-    out.data =
-        read_numbers<double>(group.get(), parent, parts.back(), H5T_NATIVE_DOUBLE, &out.shape);
-    return out;
-  });
-}
-
-std::optional<ArrayData> read_dataset_if_present(const std::string& file, const std::string& path) {
+namespace {
+/// The dataset at `path` of `file`; with `optional`, nothing when its group has no such link (else
+/// HDF5's failure to open it is the error).
+std::optional<ArrayData> read_array(const std::string& file, const std::string& path, bool optional) {
   return with_context(read_context(file), [&]() -> std::optional<ArrayData> {
     const std::vector<std::string> parts = split_path(path);
     if (parts.empty()) throw std::runtime_error("dataset path '" + path + "' names no dataset");
     const Handle f = open_for_reading(file);
     const std::string parent = join_path(parts, parts.size() - 1);
     const Handle group = make(H5Gopen2(f.get(), parent.c_str(), H5P_DEFAULT), H5Gclose, "H5Gopen2", parent);
-    if (check(H5Lexists(group.get(), parts.back().c_str(), H5P_DEFAULT), "H5Lexists", path) <= 0) return std::nullopt;
+    if (optional && check(H5Lexists(group.get(), parts.back().c_str(), H5P_DEFAULT), "H5Lexists", path) <= 0)
+      return std::nullopt;
     ArrayData out;
     out.data = read_numbers<double>(group.get(), parent, parts.back(), H5T_NATIVE_DOUBLE, &out.shape);
     return out;
   });
+}
+}  // namespace
+
+ArrayData read_dataset(const std::string& file, const std::string& path) { return *read_array(file, path, false); }
+
+std::optional<ArrayData> read_dataset_if_present(const std::string& file, const std::string& path) {
+  return read_array(file, path, true);
 }
 
 std::vector<std::uint64_t> read_integers(const std::string& file, const std::string& path) {
