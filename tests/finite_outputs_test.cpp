@@ -7,8 +7,7 @@
 // left out; docs/output.md and docs/physics.md keep NaN for a sweep value that is not one number and for
 // the entries not given of a dataset that has some, neither of which these inputs make, and an agg/frag
 // sweep's cluster sizes past a point's own are 0. An elastic run wrote G = +Inf in every bin of its
-// reduced distribution before; /comparison wrote NaN for a standard error of one replica, a known error
-// none states and z_R below 4 replicas, /sweep/results a standard error of one replica.
+// reduced distribution before.
 #include <gtest/gtest.h>
 #include <hdf5.h>
 #include <unistd.h>
