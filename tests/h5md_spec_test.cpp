@@ -42,6 +42,7 @@
 #include "run/simulation.hpp"
 #include "io/config.hpp"
 #include "io/namelist.hpp"
+#include "scratch_dir.hpp"
 
 namespace fs = std::filesystem;
 
@@ -447,8 +448,7 @@ class H5mdChecker {
 };
 
 std::string scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("gdsmc_h5md_spec_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  static const gdsmc::test::ScratchDir dir("gdsmc_h5md_spec_test_");  // removed when the test process ends
   return (dir / name).string();
 }
 

@@ -12,6 +12,7 @@
 #include "io/h5md.hpp"
 #include "io/namelist.hpp"
 #include "run/replica.hpp"
+#include "scratch_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace gdsmc;
@@ -29,8 +30,7 @@ io::config::Config config_of(const std::string& text) {
 }
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("gdsmc_simulation_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  static const test::ScratchDir dir("gdsmc_simulation_test_");  // removed when the test process ends
   return dir / name;
 }
 
