@@ -67,6 +67,7 @@ const std::array<double, square_terms + 1>& half_gamma() {
 // ---------------------------------------------------------------------------------------------
 
 using detail::require_temperatures;  // theory/input_checks.hpp
+using detail::thermal_speed_sum;     // s_ki = T_k/m_k + T_i/m_i
 
 void require_beta(const Mixture& mix, const PairMatrix& beta, const char* caller) {
   if (beta.size != mix.size() || beta.values.size() != mix.size() * mix.size())
@@ -91,12 +92,6 @@ void require_times(const std::vector<double>& times, const char* caller) {
 // ---------------------------------------------------------------------------------------------
 // Pair kernels on raw temperature arrays (no input checks)
 // ---------------------------------------------------------------------------------------------
-
-/// s_ki = T_k/m_k + T_i/m_i.
-double thermal_speed_sum(const Mixture& mix, std::span<const double> T, std::size_t k,
-                         std::size_t i) {
-  return T[k] / mix.mass[k] + T[i] / mix.mass[i];
-}
 
 /// \ref haff_mixture_odes "docs/haff-and-mixtures.md", \ref dif_correlation_time "docs/diffusion-msd.md": X_ki = (T_k m_i + T_i m_k)/(T_k (m_i + m_k)).
 double x_factor(const Mixture& mix, std::span<const double> T, std::size_t k, std::size_t i) {

@@ -50,16 +50,11 @@ static_assert(std::is_same_v<sunrealtype, double>, "SUNDIALS must be built in do
 // ---------------------------------------------------------------------------------------------
 
 using detail::require_temperatures;  // theory/input_checks.hpp
+using detail::thermal_speed_sum;     // s_kj, theory/input_checks.hpp
 
 // ---------------------------------------------------------------------------------------------
 // Kernels on raw temperature arrays (no checks; the CVODE right-hand sides call these)
 // ---------------------------------------------------------------------------------------------
-
-/// s_kj = T_k/m_k + T_j/m_j (\ref cm_notation "docs/collision-model.md").
-double thermal_speed_sum(const Mixture& mix, std::span<const double> temperature, std::size_t k,
-                         std::size_t j) {
-  return temperature[k] / mix.mass[k] + temperature[j] / mix.mass[j];
-}
 
 /// \ref cm_mixture_rate "docs/collision-model.md": events per unit volume and time between species k and j (half for k == j).
 double pair_rate(const Mixture& mix, std::span<const double> temperature, std::size_t k,
