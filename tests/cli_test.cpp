@@ -324,6 +324,16 @@ TEST_F(CliDsmc, DenseGasWithoutEnskogWarns) {
   expect_warning("1.5, 0.5", "1.05 without enskog: this runs a dilute (Boltzmann) gas, whose collision rate ignores "
                              "the density; no Enskog gas is that dense (the Carnahan-Starling fluid ends at 0.5, where "
                              "enskog stops): check the number densities and diameters");
+  // A sweep that makes the gas dense is blamed on its values line, naming the densest point, as the sweep's own
+  // errors name a point (the base namelist has 17 lines: the &sweep group is lines 18-21).
+  std::filesystem::remove(dir / "out.h5");
+  const Result swept = dsmc(base() + "&sweep\n variable = 'system:number_density'\n"
+                                     " values = '0.01, 0.005', '0.1, 0.05', '0.02, 0.01'\n/\n");
+  EXPECT_EQ(swept.status, 0) << swept.err;
+  EXPECT_EQ(swept.err, "granular-dsmc: warning: t.nml:20: &sweep: values: point 2 (number_density = '0.1, 0.05'): "
+                       "packing fraction 0.0785 without enskog: this runs a dilute (Boltzmann) gas, whose collision "
+                       "rate ignores the density (the Enskog gas collides 1.23 times as often); set &system enskog = "
+                       ".true. for a dense gas (warned above 0.05)\n");
 }
 
 // A sample taken past its exact event target is never silent (src/run/replica.cpp, FreeGas::sample; the

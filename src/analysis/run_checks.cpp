@@ -98,10 +98,15 @@ void check_theory_memory(const io::config::Config& config, const std::string& re
 std::vector<std::string> input_warnings(const io::config::Config& config) {
   std::vector<std::string> out;
   double densest = 0.0;
-  for (const auto& point : config.sweep_points()) {
-    const auto mix = point.mixture();
+  std::size_t densest_point = 0;  // (of a sweep: the point named in the warning)
+  const auto points = config.sweep_points();
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const auto mix = points[k].mixture();
     // (&agg_frag is the dilute cluster gas by definition, docs/agg-frag.md: enskog cannot be set there)
-    if (!mix.enskog && !point.has_agg_frag) densest = std::max(densest, mix.packing_fraction());
+    if (!mix.enskog && !points[k].has_agg_frag && mix.packing_fraction() > densest) {
+      densest = mix.packing_fraction();
+      densest_point = k;
+    }
   }
   if (densest > kDenseWarning) {
     char text[400];
@@ -120,10 +125,20 @@ std::vector<std::string> input_warnings(const io::config::Config& config) {
                     "enskog stops): check the number densities and diameters (warned above %g)",
                     densest, species::carnahan_starling_fluid_limit, kDenseWarning);
     }
-    const auto it = config.origin.find("system:number_density");
+    // The gas as &system writes it, or else the densest point of the sweep that made it dense, named as the
+    // sweep's own errors name a point (io/config_sweep.cpp).
+    const auto base = config.mixture();
+    const bool by_sweep = config.is_sweep() && !(base.packing_fraction() > kDenseWarning && !base.enskog);
+    const std::string key = by_sweep ? "sweep:values" : "system:number_density";
+    const std::string message =
+        by_sweep ? "point " + std::to_string(densest_point + 1) + " (" +
+                       config.sweep.row_label(config.sweep.table()[densest_point]) + "): " + text
+                 : std::string(text);
+    const auto it = config.origin.find(key);
     const std::string file = it == config.origin.end() ? config.source_file : it->second.first;
     const int line = it == config.origin.end() ? 0 : it->second.second;
-    out.emplace_back(io::namelist::Error(file, line, "system", "number_density", text).what());
+    out.emplace_back(io::namelist::Error(file, line, by_sweep ? "sweep" : "system", by_sweep ? "values" : "number_density",
+                                         message).what());
   }
   return out;
 }
