@@ -277,6 +277,34 @@ TEST(AggFrag, BlockThreadsAreBitwiseTheSameAndTargetsExact) {
   EXPECT_GT(one.counters().fragmentations, 0u);
 }
 
+// The deal and the bounds' pass share the threads of the blocks (agg_frag.cpp, deal_blocks and
+// recompute_bounds): with lists long enough for both (140000 monomers, over 2 MiB: dealt in chunks of
+// 2 MiB; over 2^16 clusters: the bounds' pass in parts), 7 blocks on 1, 2 and 3 threads (3 owning 3, 2 and 2
+// blocks) make the same gas, bit for bit, over two blocked steps.
+TEST(AggFrag, LongListsAreDealtAndBoundedAlikeOnAnyThreadCount) {
+  const Model m = model(0.2, 1.0, 0.9, 0.98);
+  auto run = [&](int threads) {
+    Gas gas(m, 140000, 2.0, gdsmc::particles::InitialDistribution::maxwell,
+            rng::make_stream(6, 1, rng::Purpose::initial_state), rng::make_stream(6, 1, rng::Purpose::collisions), 1.0);
+    gas.use_blocks(20000, threads);
+    gas.advance(gas.block_step_end());
+    gas.advance(gas.block_step_end());
+    return gas;
+  };
+  const Gas one = run(1);
+  EXPECT_EQ(one.blocked_steps(), 2u);
+  EXPECT_GT(one.counters().aggregations, 0u);
+  EXPECT_TRUE(one.bounds_hold());
+  for (int threads : {2, 3}) {
+    const Gas other = run(threads);
+    EXPECT_EQ(other.time(), one.time()) << threads;
+    EXPECT_EQ(other.counters().events, one.counters().events) << threads;
+    EXPECT_EQ(other.counters().candidates, one.counters().candidates) << threads;
+    EXPECT_EQ(all_clusters(other), all_clusters(one)) << threads;
+    EXPECT_EQ(other.candidate_rate(), one.candidate_rate()) << threads;
+  }
+}
+
 // A checkpoint between blocked steps continues bit for bit (the blocks' streams are keyed by draws
 // of the gas's own stream, which the State holds).
 TEST(AggFrag, BlockedRestoredStateContinuesBitwise) {

@@ -19,6 +19,15 @@ namespace {
 
 using particles::Vec3;
 
+/// This thread's number in the OpenMP team (0 outside one, or without OpenMP).
+int thread_index() {
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
 /// Two unit vectors: a uniform on the sphere and b uniform among the unit vectors perpendicular to a.
 template <class Gen>
 void perpendicular_pair(Gen& gen, Vec3& a, Vec3& b) {
@@ -159,8 +168,13 @@ void Gas::recompute_bounds() {
       continue;
     }
     if (list.capacity() > 4 * list.size() + 64) particles::ParticleArray<Vec3>(list.begin(), list.end()).swap(list);
+    // (a long list on the threads of the blocks, in parts: the largest of the parts' largest is the same number)
+    const int threads = list.size() >= (std::size_t{1} << 16) ? block_threads_ : 1;
     double w2 = 0.0;
-    for (const Vec3& v : list) w2 = std::max(w2, v.x * v.x + v.y * v.y + v.z * v.z);
+#ifdef _OPENMP
+#pragma omp parallel for num_threads(threads) if (threads > 1) reduction(max : w2) schedule(static)
+#endif
+    for (std::size_t i = 0; i < list.size(); ++i) w2 = std::max(w2, list[i].x * list[i].x + list[i].y * list[i].y + list[i].z * list[i].z);
     double w = std::sqrt(w2);
     if (w * w < w2) w = std::nextafter(w, INFINITY);  // w >= |v| exactly
     if (w != max_speed_[k]) {
@@ -329,32 +343,75 @@ void Gas::deal_blocks() {
   for (std::size_t i = n - 1; i > 0; --i) std::swap(labels_[i], labels_[gen_.below(i + 1)]);
   if (blocks_.size() < k_blocks) blocks_.resize(k_blocks, Gas(model_));
   for (std::size_t b = 0; b < k_blocks; ++b) blocks_[b].reset_as_block(*this);
-  // Deal: the clusters size by size, each list in order, to the block of their label. The clusters
-  // are held about once, not twice (header, "Memory"): each block's list is reserved at its count
-  // plus an eighth (room for the step's new clusters), and the pages of the whole gas's list already
-  // dealt are returned to the system as the deal goes (every 64 KiB, or every 2 MiB in a list of 2
-  // MiB or more, which allocate_bytes gives huge pages: not split), the list freed at its end.
-  at = 0;
-  std::vector<std::size_t> count(k_blocks);
-  for (std::size_t k = 1; k <= capacity_; ++k) {
-    auto& list = lists_[k];
-    if (list.empty()) continue;
-    std::fill(count.begin(), count.end(), 0);
-    for (std::size_t i = 0; i < list.size(); ++i) ++count[labels_[at + i]];
-    for (std::size_t b = 0; b < k_blocks; ++b)
-      if (count[b] > 0) blocks_[b].lists_[k].reserve(count[b] + count[b] / 8);
-    const char* released = reinterpret_cast<const char*>(list.data());
-    const std::size_t release_bytes = list.capacity() * sizeof(Vec3) >= (std::size_t{1} << 21) ? std::size_t{1} << 21
-                                                                                                : std::size_t{1} << 16;
-    const std::size_t release_every = release_bytes / sizeof(Vec3);
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      Gas& block = blocks_[labels_[at++]];
-      block.lists_[k].push_back(list[i]);
-      block.initial_monomers_ += k;
-      if ((i + 1) % release_every == 0)
-        released = particles::release_pages(released, reinterpret_cast<const char*>(list.data() + i + 1));
+  // Deal: the clusters size by size, each list in order, to the block of their label (size k's
+  // labels are labels_[first[k] ...]). On T threads thread t fills the blocks b = t mod T, each
+  // reading every label, so that every block list gets its clusters in the same order on any thread
+  // count. The clusters are held about once, not twice (header, "Memory"): first every block's list is
+  // reserved at its count plus an eighth (room for the step's new clusters; the only allocation, so
+  // that nothing throws in the second pass), then the clusters are copied in chunks, and after each
+  // chunk its pages of the whole gas's list are returned to the system (every 64 KiB, or every 2 MiB in
+  // a list of 2 MiB or more, which allocate_bytes gives huge pages: not split), the list freed at its end.
+  std::vector<std::size_t> first(capacity_ + 2, 0);
+  for (std::size_t k = 1; k <= capacity_; ++k) first[k + 1] = first[k] + lists_[k].size();
+  const int threads = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(block_threads_), k_blocks));
+  std::vector<std::exception_ptr> failure(static_cast<std::size_t>(threads));
+#ifdef _OPENMP
+#pragma omp parallel num_threads(threads) if (threads > 1)
+#endif
+  {
+    const auto t = static_cast<std::size_t>(thread_index());
+    try {
+      std::vector<std::size_t> count(k_blocks);
+      for (std::size_t k = 1; k <= capacity_; ++k) {
+        if (lists_[k].empty()) continue;
+        std::fill(count.begin(), count.end(), 0);
+        for (std::size_t i = first[k]; i < first[k + 1]; ++i)
+          if (labels_[i] % static_cast<std::uint32_t>(threads) == t) ++count[labels_[i]];
+        for (std::size_t b = t; b < k_blocks; b += static_cast<std::size_t>(threads))
+          if (count[b] > 0) {
+            blocks_[b].lists_[k].reserve(count[b] + count[b] / 8);
+            blocks_[b].initial_monomers_ += k * count[b];
+          }
+      }
+    } catch (...) {
+      failure[t] = std::current_exception();  // (an exception must not leave an OpenMP region)
     }
-    particles::ParticleArray<Vec3>().swap(list);
+  }
+  for (const auto& f : failure)
+    if (f) std::rethrow_exception(f);
+  const char* released = nullptr;  // (shared: set in the single sections below)
+#ifdef _OPENMP
+#pragma omp parallel num_threads(threads) if (threads > 1)
+#endif
+  {
+    const auto t = static_cast<std::uint32_t>(thread_index());
+    for (std::size_t k = 1; k <= capacity_; ++k) {
+      auto& list = lists_[k];
+      if (list.empty()) continue;
+      const std::size_t release_bytes = list.capacity() * sizeof(Vec3) >= (std::size_t{1} << 21) ? std::size_t{1} << 21
+                                                                                                  : std::size_t{1} << 16;
+      const std::size_t chunk = release_bytes / sizeof(Vec3), n = list.size();
+#ifdef _OPENMP
+#pragma omp single
+#endif
+      released = reinterpret_cast<const char*>(list.data());
+      for (std::size_t start = 0; start < n; start += chunk) {
+        const std::size_t end = std::min(start + chunk, n);
+        for (std::size_t i = start; i < end; ++i) {
+          const std::uint32_t b = labels_[first[k] + i];
+          if (b % static_cast<std::uint32_t>(threads) == t) blocks_[b].lists_[k].push_back(list[i]);  // (reserved)
+        }
+#ifdef _OPENMP
+#pragma omp barrier
+#pragma omp single
+#endif
+        if (end % chunk == 0) released = particles::release_pages(released, reinterpret_cast<const char*>(list.data() + end));
+      }
+#ifdef _OPENMP
+#pragma omp single
+#endif
+      particles::ParticleArray<Vec3>().swap(list);
+    }
   }
 }
 
