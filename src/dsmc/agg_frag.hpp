@@ -68,7 +68,10 @@
  * (it would need the candidate rate to double within the step and nearly every candidate accepted). **Threads:** the blocks of a step are independent; block b draws from
  * rng::Xoshiro256pp::substream(key, b), the key one draw of the gas's own stream per step, and the
  * counters and clusters are gathered in block order, so the output is bit for bit the same on any
- * thread count (AggFrag.BlockThreadsAreBitwiseTheSame, scale_out.reproducibility_agg_frag). **Memory:**
+ * thread count (AggFrag.BlockThreadsAreBitwiseTheSame, scale_out.reproducibility_agg_frag). The deal runs
+ * on the same threads (thread t fills the blocks b = t mod T, each in label order), and so does the pass
+ * that recomputes the bounds of a list of 2^16 clusters or more (in parts; the largest of the parts' largest)
+ * (AggFrag.LongListsAreDealtAndBoundedAlikeOnAnyThreadCount). **Memory:**
  * the clusters are held about once at every moment (24 bytes each, plus 4 for the labels): each
  * block's list is reserved at its count plus an eighth, the pages of a whole-gas list already dealt are
  * returned to the system as the deal goes (every 64 KiB, 2 MiB in huge-page lists) (particles::release_pages) and the list freed at
