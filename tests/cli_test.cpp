@@ -26,6 +26,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -510,6 +511,77 @@ TEST_F(CliDsmc, AnEndlessRunStopsAtSigintLeavingOnlyTheCheckpoint) {
   const std::string err = read_text(capture / "stderr");
   EXPECT_EQ(err, "granular-dsmc: interrupted: no output written; resume with --restart out.checkpoint.h5\n");
   EXPECT_EQ(files(), (std::vector<std::string>{"out.checkpoint.h5", "t.nml"}));
+}
+
+/// Zeroes the 16-byte header of object `object` (from 1) of the first global heap collection ("GCOL", the
+/// strings of the attributes) of an HDF5 file: the HDF5 library then loops without end when it loads that
+/// collection (found by fuzzing --table; io/read_guard.hpp).
+void damage_global_heap(const fs::path& file, int object) {
+  std::string bytes = read_text(file);
+  const std::size_t heap = bytes.find("GCOL");
+  ASSERT_NE(heap, std::string::npos) << file;
+  std::size_t at = heap + 16;  // (signature, version, reserved, collection size)
+  for (int k = 1; k < object; ++k) {
+    std::uint64_t size = 0;
+    ASSERT_LT(at + 16, bytes.size());
+    std::memcpy(&size, bytes.data() + at + 8, sizeof size);
+    at += 16 + (size + 7) / 8 * 8;
+  }
+  ASSERT_LT(at + 16, bytes.size());
+  std::fill(bytes.begin() + static_cast<std::ptrdiff_t>(at), bytes.begin() + static_cast<std::ptrdiff_t>(at + 16), '\0');
+  std::ofstream(file, std::ios::binary) << bytes;
+}
+
+/// GDSMC_READ_LIMIT=`seconds` for the programs run while it lives (io/read_guard.hpp).
+class ReadLimit {
+ public:
+  explicit ReadLimit(const char* seconds) { ::setenv("GDSMC_READ_LIMIT", seconds, 1); }
+  ~ReadLimit() { ::unsetenv("GDSMC_READ_LIMIT"); }
+};
+
+// A checkpoint whose global heap makes HDF5 loop (damage_global_heap) is refused after the read limit in
+// one line, exit status 2, with nothing left behind (no temporary output, no lock file), by --restart and by
+// a fresh run that would replace it; Ctrl-C during such a read ends it within a second (status 130).
+TEST_F(CliDsmc, ADamagedCheckpointThatLoopsHdf5IsRefusedInTime) {
+  ASSERT_EQ(interrupt_an_endless_run(*this, 0).first, 130) << read_text(capture / "stderr");
+  damage_global_heap(dir / "out.checkpoint.h5", 4);
+  const std::vector<std::string> left{"out.checkpoint.h5", "t.nml"};
+  const std::string unfinished = "the HDF5 library had not finished reading it after 1 s: the file is damaged, or on a "
+                                 "very slow disk (GDSMC_READ_LIMIT=SECONDS allows longer)";
+  {
+    const ReadLimit limit("1");
+    const Result resumed = run("granular-dsmc", "t.nml --quiet --restart out.checkpoint.h5", 60);
+    EXPECT_EQ(resumed.status, 2);
+    EXPECT_EQ(resumed.err, "granular-dsmc: --restart: checkpoint 'out.checkpoint.h5': " + unfinished + "\n");
+    EXPECT_EQ(files(), left);
+    const Result fresh = run("granular-dsmc", "t.nml --quiet", 60);
+    EXPECT_EQ(fresh.status, 2);
+    EXPECT_EQ(fresh.err, "granular-dsmc: t.nml:16: &output: file: 'out.checkpoint.h5' (the checkpoint this run would "
+                         "replace): " + unfinished + "; give --force to replace it unread\n");
+    EXPECT_EQ(files(), left);
+  }
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    if (::chdir(dir.c_str()) != 0 || !std::freopen((capture / "stderr").c_str(), "w", stderr)) ::_exit(120);
+    const std::string tool = (fs::path(GDSMC_BIN_DIR) / "granular-dsmc").string();
+    ::execl(tool.c_str(), tool.c_str(), "t.nml", "--quiet", "--restart", "out.checkpoint.h5", static_cast<char*>(nullptr));
+    ::_exit(122);
+  }
+  ::usleep(500000);  // (the read loops by then: the limit is 20 s)
+  const auto sent = std::chrono::steady_clock::now();
+  ::kill(pid, SIGINT);
+  int status = 0;
+  pid_t done = 0;
+  while ((done = ::waitpid(pid, &status, WNOHANG)) == 0 && std::chrono::steady_clock::now() - sent < std::chrono::seconds(10))
+    ::usleep(10000);
+  if (done == 0) ::kill(pid, SIGKILL), ::waitpid(pid, &status, 0);
+  ASSERT_NE(done, 0) << "still reading 10 s after SIGINT";
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count(), 1.0);
+  EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 130);
+  EXPECT_EQ(read_text(capture / "stderr"),
+            "granular-dsmc: interrupted while reading the checkpoint 'out.checkpoint.h5': nothing written\n");
+  EXPECT_EQ(files(), left);
 }
 
 // Without --quiet and with stderr not a terminal (a job script's log), the progress lines end themselves: the
@@ -1109,6 +1181,19 @@ TEST_F(CliDsmc, UnknownOptionOrNoInput) {
 // ---------------------------------------------------------------------------------------------
 
 class CliTable : public CliFixture {};
+
+// An output file whose global heap makes HDF5 loop (damage_global_heap, the case fuzzing found) is refused by
+// --table after the read limit in one line, exit status 2, nothing on stdout.
+TEST_F(CliTable, ADamagedFileThatLoopsHdf5IsRefusedInTime) {
+  ASSERT_EQ(dsmc(base()).status, 0);
+  damage_global_heap(dir / "out.h5", 10);
+  const ReadLimit limit("1");
+  const Result r = run("granular-dsmc", "--table out.h5", 60);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err, "granular-dsmc: --table out.h5: the HDF5 library had not finished reading it after 1 s: the file "
+                   "is damaged, or on a very slow disk (GDSMC_READ_LIMIT=SECONDS allows longer)\n");
+}
 
 TEST_F(CliTable, ElementSweepGivesANumericTableAndCsv) {
   const Result r = dsmc(base() + "&sweep variable = 'system:restitution(1,2)', 'system:mass(2)'\n"

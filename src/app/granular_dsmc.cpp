@@ -28,6 +28,7 @@
 #include "io/file_lock.hpp"
 #include "io/h5md.hpp"
 #include "io/namelist.hpp"
+#include "io/read_guard.hpp"
 #include "analysis/run_table.hpp"
 #include "io/version.hpp"
 #include "model/observables.hpp"
@@ -162,6 +163,15 @@ struct Arguments {
   std::string output_override;  ///< the override --output became
 };
 
+/// What a ReadGuard says of a read of `limit` seconds that did not finish (io/read_guard.hpp).
+std::string unfinished_read(double limit) {
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "the HDF5 library had not finished reading it after %.0f s: the file is damaged, or on a very slow "
+                "disk (GDSMC_READ_LIMIT=SECONDS allows longer)", limit);
+  return text;
+}
+
 /// `--table FILE.h5 [QUANTITY...] [--point K] [--theory]` from argv[first] on: the CSV on stdout, notes
 /// on stderr; exit status 2 with one line for a request that cannot be answered.
 int print_table(int argc, char** argv, int first) {
@@ -191,7 +201,14 @@ int print_table(int argc, char** argv, int first) {
   }
   if (request.file.empty()) return refuse("no output file named");
   try {
-    const auto printed = gdsmc::analysis::run_table::print(request);
+    std::optional<gdsmc::analysis::run_table::Printed> read;
+    {  // (a damaged file can loop inside HDF5: the guard ends the process then; io/read_guard.hpp)
+      const double limit = gdsmc::io::ReadGuard::limit_seconds(request.file);
+      const gdsmc::io::ReadGuard guard(limit, nullptr,
+                                       {"granular-dsmc: --table " + request.file + ": " + unfinished_read(limit), "", {}});
+      read = gdsmc::analysis::run_table::print(request);
+    }
+    const auto& printed = *read;
     std::cout << printed.csv << std::flush;
     for (const auto& note : printed.notes) std::cerr << "granular-dsmc: --table " << request.file << ": " << note << "\n";
   } catch (const std::exception& e) {
@@ -291,15 +308,19 @@ std::optional<int> parse_arguments(int argc, char** argv, Arguments& a) {
   return std::nullopt;
 }
 
-/// An output path that cannot be written is an input error: named where it was set (the namelist
-/// line, --set or --output; the namelist file itself for the default). Exit status 2.
-int output_error(const Arguments& a, const gdsmc::io::config::Config& config, bool root, const std::string& message) {
+/// The line of output_error (without its newline).
+std::string output_error_line(const Arguments& a, const gdsmc::io::config::Config& config, const std::string& message) {
   const auto it = config.origin.find("output:file");
   const bool set = it != config.origin.end();
   const std::string where = !set ? a.input : it->second.first == a.output_override ? a.output_option : it->second.first;
-  if (root)
-    std::cerr << "granular-dsmc: "
-              << gdsmc::io::namelist::Error(where, set ? it->second.second : 0, "output", "file", message).what() << "\n";
+  return std::string("granular-dsmc: ") +
+         gdsmc::io::namelist::Error(where, set ? it->second.second : 0, "output", "file", message).what();
+}
+
+/// An output path that cannot be written is an input error: named where it was set (the namelist
+/// line, --set or --output; the namelist file itself for the default). Exit status 2.
+int output_error(const Arguments& a, const gdsmc::io::config::Config& config, bool root, const std::string& message) {
+  if (root) std::cerr << output_error_line(a, config, message) << "\n";
   return 2;
 }
 
@@ -353,7 +374,17 @@ std::optional<int> check_checkpoint(const Arguments& a, const gdsmc::io::config:
   const std::string& path = config.output.file;
   const std::string checkpoint = gdsmc::simulation::checkpoint_path(path);
   if (a.force || (!a.restart.empty() && same_file(a.restart, checkpoint))) return std::nullopt;
-  switch (gdsmc::simulation::find_checkpoint(config, path)) {
+  gdsmc::simulation::CheckpointFound found;
+  {  // (a damaged file can loop inside HDF5: the guard ends the process then; io/read_guard.hpp)
+    const double limit = gdsmc::io::ReadGuard::limit_seconds(checkpoint);
+    const gdsmc::io::ReadGuard guard(
+        limit, nullptr,
+        {output_error_line(a, config, "'" + checkpoint + "' (the checkpoint this run would replace): " +
+                                          unfinished_read(limit) + "; give --force to replace it unread"),
+         "", {gdsmc::simulation::lock_path(path)}});
+    found = gdsmc::simulation::find_checkpoint(config, path);
+  }
+  switch (found) {
     case CheckpointFound::none: return std::nullopt;
     case CheckpointFound::this_input:  // resuming this input from a copy elsewhere replaces it: as asked
       if (!a.restart.empty()) return std::nullopt;

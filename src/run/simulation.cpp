@@ -18,6 +18,7 @@
 #include "dsmc/particles.hpp"
 #include "dsmc/sample.hpp"
 #include "io/h5md.hpp"
+#include "io/read_guard.hpp"
 #include "io/output.hpp"
 #include "io/snapshot.hpp"
 #include "io/units.hpp"
@@ -65,12 +66,24 @@ std::string fingerprint_of(const io::config::Config& config) {
   return joined;
 }
 
-/// Reads the checkpoint of --restart on every rank; the first rank's error stops all of them.
-void load_restart(CheckpointStore& checkpoints, const Options& options, int rank) {
+/// Reads the checkpoint of --restart on every rank; the first rank's error stops all of them. A damaged file
+/// that loops inside HDF5, or an interrupt during the read, ends the process with one line, the temporary
+/// output and the lock file (`leave_nothing`, empty on other ranks) removed (io/read_guard.hpp).
+void load_restart(CheckpointStore& checkpoints, const Options& options, int rank, std::vector<std::string> leave_nothing) {
   std::string restart_error;
   if (!options.restart_path.empty()) {
+    const std::string file = rank_file(options.restart_path, rank);
     try {
-      checkpoints.load(rank_file(options.restart_path, rank));
+      const double limit = io::ReadGuard::limit_seconds(file);
+      char after[160];
+      std::snprintf(after, sizeof after,
+                    "the HDF5 library had not finished reading it after %.0f s: the file is damaged, or on a very "
+                    "slow disk (GDSMC_READ_LIMIT=SECONDS allows longer)", limit);
+      const io::ReadGuard guard(limit, options.interrupt,
+                                {"granular-dsmc: --restart: checkpoint '" + file + "': " + after,
+                                 "granular-dsmc: interrupted while reading the checkpoint '" + file + "': nothing written",
+                                 std::move(leave_nothing)});
+      checkpoints.load(file);
     } catch (const std::exception& e) {
       restart_error = e.what();
     }
@@ -382,7 +395,8 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
   CheckpointStore checkpoints(checkpoint_path(output_path, rank), config.output.checkpoint_every.value_or(0.0),
                               fingerprint_of(config), ranks, units.size());
   if (options.replace_any_file) checkpoints.replace_any_file();
-  load_restart(checkpoints, options, rank);
+  load_restart(checkpoints, options, rank,
+               writer ? std::vector<std::string>{writer->temporary_path(), lock_path(output_path)} : std::vector<std::string>{});
   check_finished_units(checkpoints, points, units, mine);
   double restored_events = 0.0;  // every rank's, for the summary's overall rate
   for (const auto& text : parallel::gather_to_root(std::to_string(checkpoints.restored_events())))

@@ -1,0 +1,54 @@
+#include "io/read_guard.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <system_error>
+
+namespace gdsmc::io {
+
+ReadGuard::ReadGuard(double seconds, const std::atomic<bool>* interrupt, Exit exit)
+    : exit_(std::move(exit)), thread_([this, seconds, interrupt] { watch(seconds, interrupt); }) {}
+
+ReadGuard::~ReadGuard() {
+  {
+    std::lock_guard<std::mutex> hold(mutex_);
+    done_ = true;
+  }
+  wake_.notify_one();
+  thread_.join();
+}
+
+void ReadGuard::watch(double seconds, const std::atomic<bool>* interrupt) {
+  using Clock = std::chrono::steady_clock;
+  const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+  std::unique_lock<std::mutex> hold(mutex_);
+  for (;;) {
+    if (wake_.wait_for(hold, std::chrono::milliseconds(50), [this] { return done_; })) return;
+    const bool interrupted = interrupt && interrupt->load();
+    if (!interrupted && Clock::now() < deadline) continue;
+    // The reading thread is inside the library and cannot be stopped: the process ends from here, without
+    // running destructors (they would wait for that thread), after removing what it must not leave behind.
+    for (const auto& path : exit_.remove) {
+      std::error_code ignored;
+      std::filesystem::remove(path, ignored);
+    }
+    std::fprintf(stderr, "%s\n", interrupted ? exit_.interrupt_line.c_str() : exit_.timeout_line.c_str());
+    std::fflush(stderr);
+    std::_Exit(interrupted ? 130 : 2);
+  }
+}
+
+double ReadGuard::limit_seconds(const std::string& file) {
+  if (const char* set = std::getenv("GDSMC_READ_LIMIT")) {
+    char* end = nullptr;
+    const double seconds = std::strtod(set, &end);
+    if (end != set && *end == '\0' && seconds > 0.0 && seconds < 1e9) return seconds;
+  }
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(file, ec);
+  return ec ? 20.0 : 20.0 + static_cast<double>(bytes) / 1e7;
+}
+
+}  // namespace gdsmc::io
