@@ -584,6 +584,23 @@ TEST_F(CliDsmc, ADamagedCheckpointThatLoopsHdf5IsRefusedInTime) {
   EXPECT_EQ(files(), left);
 }
 
+// An earlier output whose global heap makes HDF5 loop is neither replaced nor waited for: whether it is
+// granular-dsmc's cannot be read, so the run is refused after the read limit, the file left as it was.
+TEST_F(CliDsmc, ADamagedEarlierOutputThatLoopsHdf5IsRefusedInTime) {
+  ASSERT_EQ(dsmc(base()).status, 0);
+  damage_global_heap(dir / "out.h5", 10);
+  const std::string before = read_text(dir / "out.h5");
+  const ReadLimit limit("1");
+  const Result again = run("granular-dsmc", "t.nml --quiet", 60);
+  EXPECT_EQ(again.status, 2);
+  EXPECT_EQ(again.err, "granular-dsmc: t.nml:16: &output: file: 'out.h5' exists, and whether it is an output of "
+                       "granular-dsmc is not known: the HDF5 library had not finished reading it after 1 s: the file is "
+                       "damaged, or on a very slow disk (GDSMC_READ_LIMIT=SECONDS allows longer); choose another file, "
+                       "or give --force to replace it\n");
+  EXPECT_EQ(read_text(dir / "out.h5"), before);
+  EXPECT_EQ(files(), (std::vector<std::string>{"out.h5", "t.nml"}));
+}
+
 // Without --quiet and with stderr not a terminal (a job script's log), the progress lines end themselves: the
 // interrupt is one line, not an empty line and then the message.
 TEST_F(CliDsmc, AnInterruptIsOneLineInALogFile) {

@@ -434,8 +434,19 @@ std::optional<int> check_paths(const Arguments& a, const gdsmc::io::config::Conf
     return output_error(a, config, root, "the output file '" + path + "' is the input namelist: it would be overwritten");
   if (!a.restart.empty() && std::filesystem::equivalent(path, a.restart, ec))
     return output_error(a, config, root, "the output file '" + path + "' is the checkpoint given to --restart");
-  // (a link counts as what is at the path, also when it leads nowhere: never replaced without --force)
-  if (!a.force && std::filesystem::exists(std::filesystem::symlink_status(path, ec)) && !is_earlier_output(path))
+  // (a link counts as what is at the path, also when it leads nowhere: never replaced without --force; a damaged
+  // file can loop inside HDF5: the guard ends the process then, io/read_guard.hpp)
+  bool replaceable = a.force || !std::filesystem::exists(std::filesystem::symlink_status(path, ec));
+  if (!replaceable) {
+    const double limit = gdsmc::io::ReadGuard::limit_seconds(path);
+    const gdsmc::io::ReadGuard guard(
+        limit, nullptr,
+        {output_error_line(a, config, "'" + path + "' exists, and whether it is an output of granular-dsmc is not known: " +
+                                          unfinished_read(limit) + "; choose another file, or give --force to replace it"),
+         "", {gdsmc::simulation::lock_path(path)}});
+    replaceable = is_earlier_output(path);
+  }
+  if (!replaceable)
     return output_error(a, config, root,
                         "'" + path + "' exists and is not an output of granular-dsmc: choose another file, or "
                         "give --force to replace it");
