@@ -74,7 +74,8 @@ Temperatures temperatures(const State& state, const species::Mixture& mix) {
   }
   Temperatures t;
   t.translational.assign(s, 0.0);
-  if (!state.angular_velocity.empty()) t.rotational.assign(s, 0.0);
+  // (a smooth run started from a rough run's snapshot has no moments of inertia: its angular velocities are not read)
+  if (!state.angular_velocity.empty() && mix.moment_of_inertia.size() == s) t.rotational.assign(s, 0.0);
   std::vector<double> count(s, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t k = state.species[i] - 1;

@@ -65,7 +65,7 @@ struct State {
 
 /// The temperatures of a snapshot (k_B = 1): T_k = m_k <|v - u|^2>_k / 3 about the mass-weighted mean
 /// velocity u, as dsmc/sample.cpp measures them, and T_rot,k = I_k <|w|^2>_k / 3 (empty without
-/// angular velocities).
+/// angular velocities, or when `mix` is smooth).
 struct Temperatures {
   std::vector<double> translational;  ///< T_k
   std::vector<double> rotational;     ///< T_rot,k
