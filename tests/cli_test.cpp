@@ -1590,6 +1590,14 @@ TEST_F(CliSnapshot, RequestsThatCannotBeMetAreRefusedInOneLine) {
                      "t.nml:9: &initial: from_file: ", {"has 133 particles of species 1, this run 200"}, {"a.h5", "t.nml"});
   expect_input_error(dsmc(with_line(9, "  temperature = 2.0, from_file = 'a.h5'")), "granular-dsmc",
                      "t.nml:9: &initial: temperature: ", {"not used with from_file"}, {"a.h5", "t.nml"});
+  // The output that would replace its own starting snapshot (it read the snapshot, then wrote over it).
+  const std::string snapshot_before = read_text(dir / "a.h5");
+  std::string self = with_line(9, "  from_file = 'a.h5'");
+  self.replace(self.find("  file = 'out.h5'"), std::string("  file = 'out.h5'").size(), "  file = 'a.h5'");
+  expect_input_error(dsmc(self), "granular-dsmc", "t.nml:16: &output: file: ",
+                     {"the output file 'a.h5' is the snapshot of &initial from_file: it would be overwritten"},
+                     {"a.h5", "t.nml"});
+  EXPECT_EQ(read_text(dir / "a.h5"), snapshot_before);
   expect_input_error(dsmc(with_line(9, "  from_file = 'a.h5'"), "--set \"system:mass=1.0, 5.0\""), "granular-dsmc",
                      "t.nml:9: &initial: from_file: ", {"masses", "another gas"}, {"a.h5", "t.nml"});
   // The gas with forcings is refused, not written wrong (its velocities live in a moving frame).

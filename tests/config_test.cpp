@@ -1298,13 +1298,28 @@ TEST(ConfigRough, RoughnessFillsKappaAndRotationalTemperature) {
   EXPECT_FALSE(read_text(base()).rough());
 }
 
+// Values that ran without end or wrote infinities are refused where they are written: a log spacing from a
+// subnormal first sample (never reached its first sample), a histogram range whose bin edges overflow, and an
+// element far beyond any array (mass(2000000000) grew the array to 16 GB before its check).
+TEST(ConfigError, ValuesThatRanWithoutEndOrOverflowedAreRefused) {
+  expect_error(error_of(with_line(16, "  n_samples = 5, spacing = 'log', first_sample = 1e-310")), 16, "output",
+               "first_sample", {"first_sample = 1e-310 is outside [1e-100, 1e+100]"});
+  expect_error(error_of(with_line(16, "  histogram_range = 1e308")), 16, "output", "histogram_range",
+               {"histogram_range = 1e308 is outside (0, 1e+06]"});
+  expect_error(error_of(with_line(3, "  mass(2000000000) = 1.0")), 3, "system", "mass",
+               {"mass element 2000000000 is beyond any array of the input (at most 1000000 elements)"});
+}
+
 TEST(ConfigError, RoughnessOutOfRangeOrWithoutItsModel) {
   expect_error(error_of(with_line(6, "  restitution = 0.5, roughness = 1.5")), 6, "system", "roughness",
                {"roughness = 1.5 is outside [-1, 1]"});
   expect_error(error_of(with_line(6, "  restitution = 0.5, roughness = 0.0, moment_of_inertia = 0.7")), 6, "system",
-               "moment_of_inertia", {"outside (0, 0.666"});
+               "moment_of_inertia", {"outside [1e-10, 0.666"});
   expect_error(error_of(with_line(6, "  restitution = 0.5, roughness = 0.0, moment_of_inertia = 0.0")), 6, "system",
-               "moment_of_inertia", {"outside (0"});
+               "moment_of_inertia", {"outside [1e-10"});
+  // (1e-200 ran with NaN cumulants, 1e-310 never ended: a spin that takes no inertia)
+  expect_error(error_of(with_line(6, "  restitution = 0.5, roughness = 0.0, moment_of_inertia = 1e-200")), 6, "system",
+               "moment_of_inertia", {"outside [1e-10"});
   expect_error(error_of(with_line(6, "  restitution = 0.5, moment_of_inertia = 0.3")), 6, "system", "moment_of_inertia",
                {"only used with roughness"});
   expect_error(error_of(with_line(9, "  temperature = 1.0, rotational_temperature = 2.0")), 9, "initial",

@@ -434,6 +434,9 @@ std::optional<int> check_paths(const Arguments& a, const gdsmc::io::config::Conf
     return output_error(a, config, root, "the output file '" + path + "' is the input namelist: it would be overwritten");
   if (!a.restart.empty() && std::filesystem::equivalent(path, a.restart, ec))
     return output_error(a, config, root, "the output file '" + path + "' is the checkpoint given to --restart");
+  if (!config.initial.from_file.empty() && std::filesystem::equivalent(path, config.initial.from_file, ec))
+    return output_error(a, config, root, "the output file '" + path + "' is the snapshot of &initial from_file: "
+                        "it would be overwritten (choose another output file)");
   // (a link counts as what is at the path, also when it leads nowhere: never replaced without --force; a damaged
   // file can loop inside HDF5: the guard ends the process then, io/read_guard.hpp)
   bool replaceable = a.force || !std::filesystem::exists(std::filesystem::symlink_status(path, ec));

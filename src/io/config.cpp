@@ -17,6 +17,10 @@
 #include "io/config_detail.hpp"
 
 namespace gdsmc::io::config {
+
+/// The largest element index an assignment may name: above the most species (about 1.2e5), sample times (1e5)
+/// and sweep values any input holds, below what an array that grows to it would take in memory.
+constexpr long long kLargestIndex = 1000000;
 namespace detail {
 
 std::string lower(std::string s) {
@@ -180,6 +184,11 @@ void read_group(G& target, const std::vector<Field<G>>& fields, const namelist::
   std::map<std::string, int> assigned;
   for (const auto& a : group.assignments) {
     if (a.index.empty()) continue;
+    // (an element far beyond any array of the input: refused before the array grows to it)
+    for (long long i : a.index)
+      if (i > kLargestIndex)
+        throw reader.error(a.line, a.name, a.name + " element " + std::to_string(i) + " is beyond any array of the input (at most " +
+                                               std::to_string(kLargestIndex) + " elements)");
     std::string key = a.name;
     for (long long i : a.index) {
       key += ',';

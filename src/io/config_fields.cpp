@@ -48,7 +48,7 @@ const std::vector<Field<System>>& system_fields() {
       {"moment_of_inertia", &System::moment_of_inertia, "",
        "kappa_k = 4 I_k/(m_k sigma_k^2) of rough spheres, one per species or one for all (default 0.4, a "
        "uniform sphere)",
-       Range{0, 2.0 / 3.0, true, false}},
+       Range{1e-10, 2.0 / 3.0}},  // (below: I_k so small that the spin's moments overflow and its cost has no bound)
   };
   return fields;
 }
@@ -135,7 +135,8 @@ const std::vector<Field<Output>>& output_fields() {
        Range{2, 1e5}},
       {"spacing", &Output::spacing, "", "'linear' or 'log' spacing of the sample times"},
       {"first_sample", &Output::first_sample, "time (or collisions per particle)",
-       "first sample after 0 with spacing = 'log' (default: end / 1000)", kPositive},
+       "first sample after 0 with spacing = 'log' (default: end / 1000)",
+       Range{1e-100, 1e100}},  // (as the unit checks: log spacing from a subnormal first sample never ends)
       {"histogram_bins", &Output::histogram_bins, "", "bins of the velocity histograms",
        Range{1, 1e5}},
       {"reduced_bins", &Output::reduced_bins, "",
@@ -155,7 +156,8 @@ const std::vector<Field<Output>>& output_fields() {
       {"msd_start_temperature", &Output::msd_start_temperature, "energy",
        "... or from the first sample at which the total temperature is at or below this value", kPositive},
       {"histogram_range", &Output::histogram_range, "sqrt(T_k/m_k)",
-       "velocity histograms cover [-range, range] in thermal units", kPositive},
+       "velocity histograms cover [-range, range] in thermal units",
+       Range{0, 1e6, true, false}},  // (beyond: bin edges overflow to infinity)
       {"sample_times", &Output::sample_times, "time (or collisions per particle)",
        "explicit sample points after 0, increasing; overrides n_samples and spacing (t = 0 is always "
        "sampled, and the end of the run too)",
