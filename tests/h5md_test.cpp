@@ -326,6 +326,38 @@ TEST(H5md, InconsistentArgumentsAreRejected) {
   EXPECT_THROW(writer.commit(), std::logic_error);
 }
 
+// A series whose datasets do not make one time series (an error dataset of another length, as a hand-edited or
+// damaged file may hold) is NotAsWritten, not "not measured" and not read past its end (--table printed
+// memory beyond a 1-element error, and crashed on an empty value).
+TEST(H5md, ASeriesNotAsWrittenIsSaidSo) {
+  const TempDir dir;
+  const std::string path = dir.file("out.h5");
+  {
+    Writer writer(path, "me", "granular-dsmc", "0.1.0");
+    writer.write_observable("temperature", temperature_series());
+    writer.commit();
+  }
+  EXPECT_EQ(read_observable(path, "temperature").error.size(), 6u);
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  ASSERT_GE(H5Ldelete(file, "/observables/temperature/error", H5P_DEFAULT), 0);
+  const hsize_t one = 1;
+  const hid_t space = H5Screate_simple(1, &one, nullptr);
+  const hid_t set = H5Dcreate2(file, "/observables/temperature/error", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT,
+                               H5P_DEFAULT, H5P_DEFAULT);
+  const double x = 0.5;
+  EXPECT_GE(H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &x), 0);
+  H5Dclose(set), H5Sclose(space), H5Fclose(file);
+  try {
+    read_observable(path, "temperature");
+    ADD_FAILURE() << "read";
+  } catch (const NotAsWritten& e) {
+    EXPECT_NE(std::string(e.what()).find("/observables/temperature is not a time series as granular-dsmc writes it: 3 "
+                                         "times, 3 steps, a value of 2 dimensions and 3 rows, 1 errors for 6 values"),
+              std::string::npos) << e.what();
+  }
+}
+
 TEST(H5md, EmptySeriesRoundTrip) {
   const TempDir dir;
   const std::string path = dir.file("out.h5");

@@ -62,6 +62,8 @@ Series resolve(const std::string& file, const std::string& root, const std::stri
     ObservableData data;
     try {
       data = io::h5md::read_observable(file, root + "/" + o.name);
+    } catch (const io::h5md::NotAsWritten&) {
+      throw;
     } catch (const std::runtime_error&) {
       continue;
     }
@@ -87,6 +89,8 @@ ObservableData read_series(const std::string& file, const std::string& root, con
                                 " summary' prints the scaling state and the time averages");
   try {
     return io::h5md::read_observable(file, root + "/" + name);
+  } catch (const io::h5md::NotAsWritten&) {
+    throw;
   } catch (const std::runtime_error&) {
     throw std::invalid_argument("'" + name + "' was not measured in this run (" + file + " has no " + root + "/" + name +
                                 "; '--table " + file + "' alone prints every time series it has)");
@@ -100,6 +104,8 @@ std::vector<Series> every_series(const std::string& file, const std::string& roo
     if (!is_trajectory(o) || std::string(o.name) == "time") continue;
     try {
       out.push_back({o.name, io::h5md::read_observable(file, root + "/" + o.name), std::nullopt});
+    } catch (const io::h5md::NotAsWritten&) {
+      throw;  // damaged: the table is refused, not printed without it
     } catch (const std::runtime_error&) {
       // not measured in this run
     }

@@ -920,21 +920,32 @@ const std::string& Writer::final_path() const { return impl_->final_path; }
 // ---- reading ----
 
 ObservableData read_observable(const std::string& file, const std::string& name) {
-  return with_context(read_context(file), [&] {
+  std::string path;
+  ObservableData out = with_context(read_context(file), [&] {
     const std::vector<std::string> parts = split_path(name);
     if (parts.empty()) throw std::runtime_error("empty observable name");
     const Handle f = open_for_reading(file);
-    const std::string path = observable_path(name, parts);
+    path = observable_path(name, parts);
     const Handle group =
         make(H5Gopen2(f.get(), path.c_str(), H5P_DEFAULT), H5Gclose, "H5Gopen2", path);
-    ObservableData out;
-    out.time = read_numbers<double>(group.get(), path, "time", H5T_NATIVE_DOUBLE);
-    out.step = read_numbers<long long>(group.get(), path, "step", H5T_NATIVE_LLONG);
-    out.value = read_numbers<double>(group.get(), path, "value", H5T_NATIVE_DOUBLE, &out.shape);
+    ObservableData read;
+    read.time = read_numbers<double>(group.get(), path, "time", H5T_NATIVE_DOUBLE);
+    read.step = read_numbers<long long>(group.get(), path, "step", H5T_NATIVE_LLONG);
+    read.value = read_numbers<double>(group.get(), path, "value", H5T_NATIVE_DOUBLE, &read.shape);
     if (check(H5Lexists(group.get(), "error", H5P_DEFAULT), "H5Lexists", path + "/error") > 0)
-      out.error = read_numbers<double>(group.get(), path, "error", H5T_NATIVE_DOUBLE);
-    return out;
+      read.error = read_numbers<double>(group.get(), path, "error", H5T_NATIVE_DOUBLE);
+    return read;
   });
+  // A time series as Writer::write_observable writes it, or none: its readers index value and error by the
+  // rows of time (a dataset cut or reshaped by hand crashed --table, or printed memory past its end).
+  const std::size_t rows = out.shape.empty() ? 0 : out.shape[0];
+  if (out.shape.empty() || out.shape.size() > 2 || rows != out.time.size() || out.step.size() != out.time.size() ||
+      (!out.error.empty() && out.error.size() != out.value.size()))
+    throw NotAsWritten(read_context(file) + ": " + path + " is not a time series as granular-dsmc writes it: " +
+                       std::to_string(out.time.size()) + " times, " + std::to_string(out.step.size()) + " steps, a value of " +
+                       std::to_string(out.shape.size()) + " dimensions and " + std::to_string(rows) + " rows, " +
+                       std::to_string(out.error.size()) + " errors for " + std::to_string(out.value.size()) + " values");
+  return out;
 }
 
 namespace {

@@ -205,7 +205,14 @@ struct ObservableData {
   std::vector<std::size_t> shape;         ///< shape of value: {Nt} or {Nt, S}
   std::vector<long long> step;            ///< H5MD step of each sample
 };
-/// `name` as for Writer::write_observable: relative to /observables, or an absolute path.
+/// A file's dataset is there but not as granular-dsmc writes it (a damaged or hand-edited file): unlike a
+/// missing one, not to be taken for "not measured".
+struct NotAsWritten : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+/// `name` as for Writer::write_observable: relative to /observables, or an absolute path. Throws NotAsWritten
+/// when its time, step, value and error do not make one time series (rows of value = times = steps, error
+/// as value).
 ObservableData read_observable(const std::string& file, const std::string& name);
 
 /// A float64 (or any numeric) dataset, flattened row-major, with its shape.
