@@ -1284,6 +1284,12 @@ TEST(ConfigRough, RoughnessFillsKappaAndRotationalTemperature) {
   EXPECT_EQ(c.system.roughness(0, 1), 0.2);
   EXPECT_EQ(c.system.moment_of_inertia, (std::vector<double>{0.3, 0.3}));
   EXPECT_EQ(c.initial.rotational_temperature, (std::vector<double>{1.0, 1.0}));  // = temperature
+  // 0 starts without rotation, as docs/rough-spheres.md says (the scale check of positive values refused it)
+  auto spinless = base_lines;
+  spinless[5] = "  restitution = 0.5, roughness = 0.2";
+  EXPECT_EQ(read_text(gdsmc::test::with_line(spinless, 9, "  temperature = 1.0, rotational_temperature = 0.0, 1.0"))
+                .initial.rotational_temperature,
+            (std::vector<double>{0.0, 1.0}));
   const auto mix = c.mixture();
   EXPECT_TRUE(mix.rough());
   EXPECT_NEAR(mix.inertia(1), 0.25 * 0.3 * 10.0, 1e-15);

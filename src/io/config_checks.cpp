@@ -298,7 +298,8 @@ void check_scales(const Config& c, std::map<std::string, Provenance>& prov) {
     // times longer than the later ones, whose time steps then vanish in the round-off of the clock.
     const auto& spin = c.initial.rotational_temperature;
     if (k < spin.size() && c.rough()) {
-      if (!inside(spin[k])) refuse("initial", "rotational_temperature", k, spin[k], "rotational_temperature");
+      // (0 exactly: no rotation at the start, docs/rough-spheres.md)
+      if (spin[k] != 0.0 && !inside(spin[k])) refuse("initial", "rotational_temperature", k, spin[k], "rotational_temperature");
       if (!(spin[k] / t <= 1e20)) {
         char text[320];
         std::snprintf(text, sizeof text,
