@@ -317,6 +317,20 @@ std::string output_error_line(const Arguments& a, const gdsmc::io::config::Confi
          gdsmc::io::namelist::Error(where, set ? it->second.second : 0, "output", "file", message).what();
 }
 
+/// `read()` of the HDF5 file `file` before the run, under a ReadGuard (a damaged file can loop inside HDF5;
+/// io/read_guard.hpp): a read that does not finish ends the process with the output error "'FILE' `what`:
+/// (not finished after N s); `remedy`", exit status 2, the lock file removed.
+template <class Read>
+auto read_before_run(const Arguments& a, const gdsmc::io::config::Config& config, const std::string& file,
+                     const std::string& what, const std::string& remedy, Read&& read) {
+  const double limit = gdsmc::io::ReadGuard::limit_seconds(file);
+  const gdsmc::io::ReadGuard guard(
+      limit, nullptr,
+      {output_error_line(a, config, "'" + file + "' " + what + ": " + unfinished_read(limit) + "; " + remedy), "",
+       {gdsmc::simulation::lock_path(config.output.file)}});
+  return read();
+}
+
 /// An output path that cannot be written is an input error: named where it was set (the namelist
 /// line, --set or --output; the namelist file itself for the default). Exit status 2.
 int output_error(const Arguments& a, const gdsmc::io::config::Config& config, bool root, const std::string& message) {
@@ -374,16 +388,9 @@ std::optional<int> check_checkpoint(const Arguments& a, const gdsmc::io::config:
   const std::string& path = config.output.file;
   const std::string checkpoint = gdsmc::simulation::checkpoint_path(path);
   if (a.force || (!a.restart.empty() && same_file(a.restart, checkpoint))) return std::nullopt;
-  gdsmc::simulation::CheckpointFound found;
-  {  // (a damaged file can loop inside HDF5: the guard ends the process then; io/read_guard.hpp)
-    const double limit = gdsmc::io::ReadGuard::limit_seconds(checkpoint);
-    const gdsmc::io::ReadGuard guard(
-        limit, nullptr,
-        {output_error_line(a, config, "'" + checkpoint + "' (the checkpoint this run would replace): " +
-                                          unfinished_read(limit) + "; give --force to replace it unread"),
-         "", {gdsmc::simulation::lock_path(path)}});
-    found = gdsmc::simulation::find_checkpoint(config, path);
-  }
+  const auto found = read_before_run(a, config, checkpoint, "(the checkpoint this run would replace)",
+                                     "give --force to replace it unread",
+                                     [&] { return gdsmc::simulation::find_checkpoint(config, path); });
   switch (found) {
     case CheckpointFound::none: return std::nullopt;
     case CheckpointFound::this_input:  // resuming this input from a copy elsewhere replaces it: as asked
@@ -437,19 +444,10 @@ std::optional<int> check_paths(const Arguments& a, const gdsmc::io::config::Conf
   if (!config.initial.from_file.empty() && std::filesystem::equivalent(path, config.initial.from_file, ec))
     return output_error(a, config, root, "the output file '" + path + "' is the snapshot of &initial from_file: "
                         "it would be overwritten (choose another output file)");
-  // (a link counts as what is at the path, also when it leads nowhere: never replaced without --force; a damaged
-  // file can loop inside HDF5: the guard ends the process then, io/read_guard.hpp)
-  bool replaceable = a.force || !std::filesystem::exists(std::filesystem::symlink_status(path, ec));
-  if (!replaceable) {
-    const double limit = gdsmc::io::ReadGuard::limit_seconds(path);
-    const gdsmc::io::ReadGuard guard(
-        limit, nullptr,
-        {output_error_line(a, config, "'" + path + "' exists, and whether it is an output of granular-dsmc is not known: " +
-                                          unfinished_read(limit) + "; choose another file, or give --force to replace it"),
-         "", {gdsmc::simulation::lock_path(path)}});
-    replaceable = is_earlier_output(path);
-  }
-  if (!replaceable)
+  // (a link counts as what is at the path, also when it leads nowhere: never replaced without --force)
+  if (!a.force && std::filesystem::exists(std::filesystem::symlink_status(path, ec)) &&
+      !read_before_run(a, config, path, "exists, and whether it is an output of granular-dsmc is not known",
+                       "choose another file, or give --force to replace it", [&] { return is_earlier_output(path); }))
     return output_error(a, config, root,
                         "'" + path + "' exists and is not an output of granular-dsmc: choose another file, or "
                         "give --force to replace it");
