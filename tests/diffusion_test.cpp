@@ -630,6 +630,32 @@ TEST(DiffusionViscoelastic, OneSpeciesCoolsAsTimeToMinusFiveThirds) {
   }
 }
 
+// A collision-driven run of viscoelastic spheres is compared at the time its own history reaches the
+// collisions (analysis/predictions.cpp): times_for_collisions with the viscoelastic ODEs. Checked by integrating
+// those ODEs to the times it gives: 2 x events/n = 1, 10 (within the interpolation of its grid), where the
+// constant-restitution map (alpha = 1 here: no cooling at all) gave times too short for them (the run of the
+// bug report: 141 instead of 199).
+TEST(DiffusionViscoelastic, TimesForCollisionsFollowTheirOwnCooling) {
+  const Mixture mix = one_species(1.0);
+  const PairMatrix beta = theory::viscoelastic_beta(mix, 0.2);
+  const std::vector<double> targets = {0.0, 1.0, 10.0};
+  const auto integrate = [&](const std::vector<double>& grid) {
+    return theory::integrate_partial_temperatures_viscoelastic(mix, beta, {1.0}, grid);
+  };
+  const std::vector<double> times = theory::times_for_collisions(mix, {1.0}, targets, integrate);
+  ASSERT_EQ(times.size(), 3u);
+  EXPECT_EQ(times[0], 0.0);
+  const auto history = integrate(times);
+  const double n = mix.total_density();
+  for (std::size_t i : {1u, 2u}) {
+    std::printf("[info] %g collisions per particle at t = %.4f: the ODEs give %.6f\n", targets[i], times[i],
+                2.0 * history.collisions[i] / n);
+    EXPECT_NEAR(2.0 * history.collisions[i] / n, targets[i], 1e-3 * targets[i]);
+  }
+  const std::vector<double> elastic = theory::times_for_collisions(mix, {1.0}, targets);
+  EXPECT_LT(elastic[2], 0.9 * times[2]);  // (the elastic gas does not cool: its 10 collisions come sooner)
+}
+
 TEST(DiffusionViscoelastic, MixtureApproachesEquipartition) {
   // Bodrova and Osinsky 2024, Sec. II, \ref sch_lowrank "docs/schemes.md": with viscoelastic restitution the collisions become elastic as T -> 0 and
   // T2/T1 drifts towards 1 (slowly, the inelasticity falls like T^(1/10)).

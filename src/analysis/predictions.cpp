@@ -143,7 +143,14 @@ theory::TemperatureHistory add_history(Predictions& out, const io::config::Confi
   const double n = mix.total_density();
   std::vector<double> times = config.sample_times();
   if (times.empty())
-    times = over_the_run(config, [&] { return times_for_collisions(mix, t0, config.sample_collisions()); });
+    times = over_the_run(config, [&] {
+      // (the history's own cooling maps collisions to times: viscoelastic spheres cool more slowly)
+      if (beta)
+        return times_for_collisions(mix, t0, config.sample_collisions(), [&](const std::vector<double>& grid) {
+          return integrate_partial_temperatures_viscoelastic(mix, *beta, t0, grid);
+        });
+      return times_for_collisions(mix, t0, config.sample_collisions());
+    });
   const auto history = over_the_run(config, [&] {
     return beta ? integrate_partial_temperatures_viscoelastic(mix, *beta, t0, times)
                 : integrate_partial_temperatures(mix, t0, times);

@@ -482,20 +482,27 @@ std::vector<double> asymptotic_temperature_ratios(const Mixture& mix) {
 
 std::vector<double> times_for_collisions(const Mixture& mix, const std::vector<double>& t0,
                                          const std::vector<double>& targets) {
+  return times_for_collisions(mix, t0, targets,
+                              [&](const std::vector<double>& times) { return integrate_partial_temperatures(mix, t0, times); });
+}
+
+std::vector<double> times_for_collisions(const Mixture& mix, const std::vector<double>& t0,
+                                         const std::vector<double>& targets,
+                                         const std::function<TemperatureHistory(const std::vector<double>&)>& integrate) {
   const double n = mix.total_density();
   // Bracket the last target on a doubling time scale, then tabulate densely and interpolate.
   double horizon = 1.0;
   const double rate0 = total_collision_rate(mix, t0);
   horizon = std::max(horizon, targets.back() * n / (2.0 * rate0));
   for (int guard = 0; guard < 200; ++guard) {
-    const auto h = integrate_partial_temperatures(mix, t0, {0.0, horizon});
+    const auto h = integrate({0.0, horizon});
     if (2.0 * h.collisions.back() / n >= targets.back()) break;
     horizon *= 2.0;
   }
   const std::size_t grid = 20000;
   std::vector<double> t(grid);
   for (std::size_t i = 0; i < grid; ++i) t[i] = horizon * static_cast<double>(i) / (grid - 1);
-  const auto h = integrate_partial_temperatures(mix, t0, t);
+  const auto h = integrate(t);
   std::vector<double> out;
   std::size_t i = 1;
   for (double c : targets) {

@@ -66,6 +66,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <functional>
 #include <vector>
 
 #include "model/species.hpp"
@@ -150,6 +151,11 @@ TemperatureHistory integrate_partial_temperatures(const Mixture& mix,
 /// a horizon doubled until it holds the last target, then interpolated linearly.
 std::vector<double> times_for_collisions(const Mixture& mix, const std::vector<double>& initial_temperature,
                                          const std::vector<double>& targets);
+/// The same for the history `integrate(times)` gives (the viscoelastic ODEs of diffusion.hpp, say: their
+/// cooling, not the constant restitution's, sets when the collisions are reached).
+std::vector<double> times_for_collisions(const Mixture& mix, const std::vector<double>& initial_temperature,
+                                         const std::vector<double>& targets,
+                                         const std::function<TemperatureHistory(const std::vector<double>&)>& integrate);
 
 /**
  * Long-time ratios T_k/T_1 (entry 0 is 1) for constant restitution (\ref haff_ratios "docs/haff-and-mixtures.md"). Because every
