@@ -202,12 +202,16 @@ int print_table(int argc, char** argv, int first) {
   if (request.file.empty()) return refuse("no output file named");
   try {
     std::optional<gdsmc::analysis::run_table::Printed> read;
-    {  // (a damaged file can loop inside HDF5: the guard ends the process then; io/read_guard.hpp)
+    {  // (a damaged file can loop inside HDF5: the guard ends the process then, io/read_guard.hpp; the theory of
+       // --theory, which may take long, is computed after the guard, from a file read once under it)
       const double limit = gdsmc::io::ReadGuard::limit_seconds(request.file);
       const gdsmc::io::ReadGuard guard(limit, nullptr,
                                        {"granular-dsmc: --table " + request.file + ": " + unfinished_read(limit), "", {}});
-      read = gdsmc::analysis::run_table::print(request);
+      auto file_only = request;
+      file_only.theory = false;
+      read = gdsmc::analysis::run_table::print(file_only);
     }
+    if (request.theory) read = gdsmc::analysis::run_table::print(request);
     const auto& printed = *read;
     std::cout << printed.csv << std::flush;
     for (const auto& note : printed.notes) std::cerr << "granular-dsmc: --table " << request.file << ": " << note << "\n";
@@ -324,10 +328,11 @@ template <class Read>
 auto read_before_run(const Arguments& a, const gdsmc::io::config::Config& config, const std::string& file,
                      const std::string& what, const std::string& remedy, Read&& read) {
   const double limit = gdsmc::io::ReadGuard::limit_seconds(file);
+  const bool root = gdsmc::parallel::rank() == 0;  // (the lock is rank 0's: another rank leaves it)
   const gdsmc::io::ReadGuard guard(
       limit, nullptr,
       {output_error_line(a, config, "'" + file + "' " + what + ": " + unfinished_read(limit) + "; " + remedy), "",
-       {gdsmc::simulation::lock_path(config.output.file)}});
+       root ? std::vector<std::string>{gdsmc::simulation::lock_path(config.output.file)} : std::vector<std::string>{}});
   return read();
 }
 

@@ -27,6 +27,15 @@ int thread_index() {
   return 0;
 #endif
 }
+/// The threads of this OpenMP team (1 outside one): OpenMP may give fewer than asked for (OMP_DYNAMIC,
+/// OMP_THREAD_LIMIT), so work is split by this, not by the request.
+std::uint32_t team_size() {
+#ifdef _OPENMP
+  return static_cast<std::uint32_t>(omp_get_num_threads());
+#else
+  return 1;
+#endif
+}
 
 /// Two unit vectors: a uniform on the sphere and b uniform among the unit vectors perpendicular to a.
 template <class Gen>
@@ -360,14 +369,15 @@ void Gas::deal_blocks() {
 #endif
   {
     const auto t = static_cast<std::size_t>(thread_index());
+    const std::uint32_t team = team_size();
     try {
       std::vector<std::size_t> count(k_blocks);
       for (std::size_t k = 1; k <= capacity_; ++k) {
         if (lists_[k].empty()) continue;
         std::fill(count.begin(), count.end(), 0);
         for (std::size_t i = first[k]; i < first[k + 1]; ++i)
-          if (labels_[i] % static_cast<std::uint32_t>(threads) == t) ++count[labels_[i]];
-        for (std::size_t b = t; b < k_blocks; b += static_cast<std::size_t>(threads))
+          if (labels_[i] % team == t) ++count[labels_[i]];
+        for (std::size_t b = t; b < k_blocks; b += team)
           if (count[b] > 0) {
             blocks_[b].lists_[k].reserve(count[b] + count[b] / 8);
             blocks_[b].initial_monomers_ += k * count[b];
@@ -385,21 +395,22 @@ void Gas::deal_blocks() {
 #endif
   {
     const auto t = static_cast<std::uint32_t>(thread_index());
+    const std::uint32_t team = team_size();
     for (std::size_t k = 1; k <= capacity_; ++k) {
       auto& list = lists_[k];
       if (list.empty()) continue;
       const std::size_t release_bytes = list.capacity() * sizeof(Vec3) >= (std::size_t{1} << 21) ? std::size_t{1} << 21
                                                                                                   : std::size_t{1} << 16;
-      const std::size_t chunk = release_bytes / sizeof(Vec3), n = list.size();
+      const std::size_t chunk = release_bytes / sizeof(Vec3), count = list.size();
 #ifdef _OPENMP
 #pragma omp single
 #endif
       released = reinterpret_cast<const char*>(list.data());
-      for (std::size_t start = 0; start < n; start += chunk) {
-        const std::size_t end = std::min(start + chunk, n);
+      for (std::size_t start = 0; start < count; start += chunk) {
+        const std::size_t end = std::min(start + chunk, count);
         for (std::size_t i = start; i < end; ++i) {
           const std::uint32_t b = labels_[first[k] + i];
-          if (b % static_cast<std::uint32_t>(threads) == t) blocks_[b].lists_[k].push_back(list[i]);  // (reserved)
+          if (b % team == t) blocks_[b].lists_[k].push_back(list[i]);  // (reserved)
         }
 #ifdef _OPENMP
 #pragma omp barrier

@@ -48,7 +48,7 @@ double ReadGuard::limit_seconds(const std::string& file) {
   }
   std::error_code ec;
   const auto bytes = std::filesystem::file_size(file, ec);
-  return ec ? 20.0 : 20.0 + static_cast<double>(bytes) / 1e7;
+  return ec ? 60.0 : 60.0 + static_cast<double>(bytes) / 1e7;
 }
 
 }  // namespace gdsmc::io

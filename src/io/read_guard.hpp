@@ -8,7 +8,7 @@
  * flag; when the read outlasts its limit it removes the files the caller names (a temporary output: nothing
  * half-written is left), writes the caller's one line and ends the process with exit status 2 (a damaged
  * file: bad input); when the flag is set (Ctrl-C, SIGTERM) it does the same with its interrupt line and status
- * 130 (docs/output.md, "Reading files back"). The limit (limit_seconds) is 20 s and 1 s more per 10 MB of the
+ * 130 (docs/output.md, "Reading files back"). The limit (limit_seconds) is 60 s and 1 s more per 10 MB of the
  * file, or the environment's `GDSMC_READ_LIMIT` seconds, read that long by no intact file of this program's.
  * Destroying the guard (the read done) dismisses it. Checked by CliTable.ADamagedFileThatLoopsHdf5IsRefusedInTime
  * and CliDsmc.ADamagedCheckpointThatLoopsHdf5IsRefusedInTime.
@@ -41,8 +41,8 @@ class ReadGuard {
   ReadGuard(const ReadGuard&) = delete;
   ReadGuard& operator=(const ReadGuard&) = delete;
 
-  /// The limit for reading `file`: `GDSMC_READ_LIMIT` seconds when set to a positive number, else 20 s and
-  /// 1 s more per 10 MB of the file (20 s when its size cannot be read).
+  /// The limit for reading `file`: `GDSMC_READ_LIMIT` seconds when set to a positive number, else 60 s and
+  /// 1 s more per 10 MB of the file (60 s when its size cannot be read).
   static double limit_seconds(const std::string& file);
 
  private:
