@@ -1616,6 +1616,7 @@ TEST_F(CliSnapshot, RequestsThatCannotBeMetAreRefusedInOneLine) {
                        {"cannot start from it: the HDF5 library had not finished reading it after 1 s"},
                        {"a.h5", "bad.h5", "t.nml"});
   }
+  fs::remove(dir / "bad.h5");
   expect_input_error(dsmc(with_line(9, "  from_file = 'a.h5'"), "--set \"system:mass=1.0, 5.0\""), "granular-dsmc",
                      "t.nml:9: &initial: from_file: ", {"masses", "another gas"}, {"a.h5", "t.nml"});
   // The gas with forcings is refused, not written wrong (its velocities live in a moving frame).
