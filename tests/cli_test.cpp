@@ -515,7 +515,7 @@ TEST_F(CliDsmc, AnEndlessRunStopsAtSigintLeavingOnlyTheCheckpoint) {
 
 /// Zeroes the 16-byte header of object `object` (from 1) of the first global heap collection ("GCOL", the
 /// strings of the attributes) of an HDF5 file: the HDF5 library then loops without end when it loads that
-/// collection (found by fuzzing --table; io/read_guard.hpp).
+/// collection (found by fuzzing --table; io/file_guard.hpp).
 void damage_global_heap(const fs::path& file, int object) {
   std::string bytes = read_text(file);
   const std::size_t heap = bytes.find("GCOL");
@@ -532,7 +532,7 @@ void damage_global_heap(const fs::path& file, int object) {
   std::ofstream(file, std::ios::binary) << bytes;
 }
 
-/// GDSMC_READ_LIMIT=`seconds` for the programs run while it lives (io/read_guard.hpp).
+/// GDSMC_READ_LIMIT=`seconds` for the programs run while it lives (io/file_guard.hpp).
 class ReadLimit {
  public:
   explicit ReadLimit(const char* seconds) { ::setenv("GDSMC_READ_LIMIT", seconds, 1); }

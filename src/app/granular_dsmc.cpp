@@ -28,7 +28,7 @@
 #include "io/file_lock.hpp"
 #include "io/h5md.hpp"
 #include "io/namelist.hpp"
-#include "io/read_guard.hpp"
+#include "io/file_guard.hpp"
 #include "analysis/run_table.hpp"
 #include "io/version.hpp"
 #include "model/observables.hpp"
@@ -163,7 +163,7 @@ struct Arguments {
   std::string output_override;  ///< the override --output became
 };
 
-/// What a ReadGuard says of a read of `limit` seconds that did not finish (io/read_guard.hpp).
+/// What a FileGuard says of a read of `limit` seconds that did not finish (io/file_guard.hpp).
 std::string unfinished_read(double limit) {
   char text[200];
   std::snprintf(text, sizeof text,
@@ -202,10 +202,10 @@ int print_table(int argc, char** argv, int first) {
   if (request.file.empty()) return refuse("no output file named");
   try {
     std::optional<gdsmc::analysis::run_table::Printed> read;
-    {  // (a damaged file can loop inside HDF5: the guard ends the process then, io/read_guard.hpp; the theory of
+    {  // (a damaged file can loop inside HDF5: the guard ends the process then, io/file_guard.hpp; the theory of
        // --theory, which may take long, is computed after the guard, from a file read once under it)
-      const double limit = gdsmc::io::ReadGuard::limit_seconds(request.file);
-      const gdsmc::io::ReadGuard guard(limit, nullptr,
+      const double limit = gdsmc::io::FileGuard::limit_seconds(request.file);
+      const gdsmc::io::FileGuard guard(limit, nullptr,
                                        {"granular-dsmc: --table " + request.file + ": " + unfinished_read(limit), "", {}});
       auto file_only = request;
       file_only.theory = false;
@@ -321,15 +321,15 @@ std::string output_error_line(const Arguments& a, const gdsmc::io::config::Confi
          gdsmc::io::namelist::Error(where, set ? it->second.second : 0, "output", "file", message).what();
 }
 
-/// `read()` of the HDF5 file `file` before the run, under a ReadGuard (a damaged file can loop inside HDF5;
-/// io/read_guard.hpp): a read that does not finish ends the process with the output error "'FILE' `what`:
+/// `read()` of the HDF5 file `file` before the run, under a FileGuard (a damaged file can loop inside HDF5;
+/// io/file_guard.hpp): a read that does not finish ends the process with the output error "'FILE' `what`:
 /// (not finished after N s); `remedy`", exit status 2, the lock file removed.
 template <class Read>
 auto read_before_run(const Arguments& a, const gdsmc::io::config::Config& config, const std::string& file,
                      const std::string& what, const std::string& remedy, Read&& read) {
-  const double limit = gdsmc::io::ReadGuard::limit_seconds(file);
+  const double limit = gdsmc::io::FileGuard::limit_seconds(file);
   const bool root = gdsmc::parallel::rank() == 0;  // (the lock is rank 0's: another rank leaves it)
-  const gdsmc::io::ReadGuard guard(
+  const gdsmc::io::FileGuard guard(
       limit, nullptr,
       {output_error_line(a, config, "'" + file + "' " + what + ": " + unfinished_read(limit) + "; " + remedy), "",
        root ? std::vector<std::string>{gdsmc::simulation::lock_path(config.output.file)} : std::vector<std::string>{}});
@@ -536,22 +536,22 @@ void print_summary(const std::string& path, const gdsmc::simulation::Summary& su
                  static_cast<unsigned long long>(summary.most_past_target));
 }
 
-/// The one line of a run stopped by a signal: what is left to resume from (the checkpoint of the last
-/// safe point, when there is one), or how to have one.
-void report_interrupt(const gdsmc::io::config::Config& config, const gdsmc::simulation::Options& options,
-                      const std::string& what) {
+/// The one line of a run stopped by a signal (without its newline): what is left to resume from (the
+/// checkpoint of the last safe point, when there is one), or how to have one.
+std::string interrupt_report(const gdsmc::io::config::Config& config, const gdsmc::simulation::Options& options,
+                             const std::string& what) {
   // (a terminal's progress line is rewritten in place and needs ending; elsewhere each progress line ends itself)
-  std::cerr << (options.progress && options.progress_terminal ? "\n" : "") << "granular-dsmc: " << what;
+  std::string line = (options.progress && options.progress_terminal ? "\n" : "") + std::string("granular-dsmc: ") + what;
   const std::string checkpoint = gdsmc::simulation::checkpoint_path(config.output.file);
   if (std::error_code ec; config.output.checkpoint_every && std::filesystem::exists(checkpoint, ec)) {
-    std::cerr << "; resume with --restart " << gdsmc::io::namelist::shell_word(checkpoint);
+    line += "; resume with --restart " + gdsmc::io::namelist::shell_word(checkpoint);
     // (the checkpoint holds the overrides in its fingerprint: a resumed run must be given them again)
     if (!config.overrides.empty())
-      std::cerr << " and the same options (" << gdsmc::simulation::override_options(config.overrides) << ")";
+      line += " and the same options (" + gdsmc::simulation::override_options(config.overrides) + ")";
   }
   else if (!config.output.checkpoint_every)
-    std::cerr << " (with &output checkpoint_every = SECONDS an interrupted run leaves a checkpoint to resume)";
-  std::cerr << "\n";
+    line += " (with &output checkpoint_every = SECONDS an interrupted run leaves a checkpoint to resume)";
+  return line;
 }
 
 /// Seconds the --compare theory may go on after the run, when the run took less (granular_dsmc.cpp run()).
@@ -567,6 +567,9 @@ int run(const Arguments& a, const gdsmc::io::config::Config& config, bool root) 
   options.progress = !a.quiet && root;
   options.progress_terminal = isatty(STDERR_FILENO) != 0;
   options.interrupt = &g_interrupted;
+  options.interrupt_line = [&config, &options] {
+    return interrupt_report(config, options, gdsmc::simulation::Interrupted().what());
+  };
   options.restart_path = a.restart;
   options.replace_any_file = a.force;
   const std::string& path = config.output.file;
@@ -618,7 +621,7 @@ int run(const Arguments& a, const gdsmc::io::config::Config& config, bool root) 
     }
     print_summary(path, summary, a.quiet, root);
   } catch (const gdsmc::simulation::Interrupted& e) {
-    if (root) report_interrupt(config, options, e.what());
+    if (root) std::cerr << interrupt_report(config, options, e.what()) << "\n";
     return 130;
   } catch (const gdsmc::simulation::RestartError& e) {
     if (root) std::cerr << "granular-dsmc: --restart: " << e.what() << "\n";

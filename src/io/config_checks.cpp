@@ -10,7 +10,7 @@
 
 #include "io/config.hpp"
 #include "io/config_detail.hpp"
-#include "io/read_guard.hpp"
+#include "io/file_guard.hpp"
 #include "io/snapshot.hpp"
 #include "model/restitution.hpp"
 
@@ -563,14 +563,14 @@ void check_from_file(Config& c, Provenance& ini) {
   const auto counts = species::particle_counts(static_cast<std::size_t>(c.dsmc.n_particles), mix);
   std::vector<snapshot::State> states;
   try {
-    // (a damaged file can loop inside HDF5: the guard ends the process then, io/read_guard.hpp)
-    const double limit = ReadGuard::limit_seconds(c.initial.from_file);
+    // (a damaged file can loop inside HDF5: the guard ends the process then, io/file_guard.hpp)
+    const double limit = FileGuard::limit_seconds(c.initial.from_file);
     char after[200];
     std::snprintf(after, sizeof after,
                   "cannot start from it: the HDF5 library had not finished reading it after %.0f s: the file is "
                   "damaged, or on a very slow disk (GDSMC_READ_LIMIT=SECONDS allows longer)", limit);
     const std::string v = "from_file";
-    const ReadGuard guard(limit, nullptr,
+    const FileGuard guard(limit, nullptr,
                           {std::string(program_invocation_short_name) + ": " + Error(ini.file_of(v), ini.line.count(v) ? ini.line.at(v) : ini.group_line,
                                                              "initial", v, after).what(),
                            "", {}});

@@ -200,7 +200,8 @@ std::uint64_t CheckpointStore::restored_events() const {
 }
 
 void CheckpointStore::finished(std::size_t unit, const ReplicaResult& result) {
-  if (every_ <= 0.0) return;
+  // (after an interrupt no checkpoint is written again: the copy, of a gigabyte with snapshots, is not needed)
+  if (every_ <= 0.0 || (stop_ && stop_->load())) return;
   std::lock_guard<std::mutex> lock(mutex_);
   done_[unit] = result;
   running_.erase(unit);
@@ -248,6 +249,9 @@ void CheckpointStore::write() const {
   for (const auto& [u, snap] : running_) running_units += std::to_string(u) + " ";
   // The checksum covers the content in the order load() reads it (ContentHash).
   ContentHash hash;
+  const auto stop_if_interrupted = [this] {
+    if (stop_ && stop_->load()) throw Interrupted();  // (w's destructor removes the temporary file)
+  };
   auto put_unit = [&](const std::string& group, const state::Record& snap) {
     std::string reals, integers;
     for (const auto& [name, values] : snap.reals) reals += name + "\n";
@@ -255,6 +259,7 @@ void CheckpointStore::write() const {
     hash.add(reals);
     hash.add(integers);
     for (const auto& [name, values] : snap.reals) {
+      stop_if_interrupted();
       w.write_dataset(group + "/" + name, values, {});
       hash.add(values);
     }
@@ -267,6 +272,7 @@ void CheckpointStore::write() const {
   };
   hash.add(done_units);
   for (const auto& [u, result] : done_) {
+    stop_if_interrupted();
     state::Record snap;
     save(result, snap);
     put_unit("/checkpoint/done/unit_" + std::to_string(u), snap);
@@ -286,6 +292,7 @@ void CheckpointStore::write() const {
                     std::string("granular-dsmc checkpoint: finished work units (point-major replica index) "
                                 "and the state of those in progress; resume with granular-dsmc FILE.nml "
                                 "--restart THIS_FILE"));
+  stop_if_interrupted();
   w.commit();
   written_ = true;
 }

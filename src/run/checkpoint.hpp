@@ -16,6 +16,7 @@
  */
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -83,6 +84,10 @@ class CheckpointStore {
   void remove() const;
   /// Its files replace whatever is at the path (--force; io/h5md.hpp Writer::commit).
   void replace_any_file() { replace_any_ = true; }
+  /// A flag (the caller's interrupt flag) that, once set, abandons a file being written between two of its
+  /// datasets (a checkpoint of a gigabyte takes seconds): its temporary removed, the last checkpoint kept,
+  /// and Interrupted thrown. nullptr (the default): never.
+  void set_stop_flag(const std::atomic<bool>* stop) { stop_ = stop; }
 
  private:
   void write() const;
@@ -93,6 +98,7 @@ class CheckpointStore {
   std::string resumed_path_;             ///< the file load() read
   mutable bool written_ = false;         ///< write() has written path_
   bool replace_any_ = false;             ///< replace_any_file()
+  const std::atomic<bool>* stop_ = nullptr;  ///< set_stop_flag()
   double every_;
   std::string fingerprint_;
   int ranks_;

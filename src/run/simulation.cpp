@@ -9,6 +9,7 @@
 #include <cmath>
 #include <exception>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,7 +19,7 @@
 #include "dsmc/particles.hpp"
 #include "dsmc/sample.hpp"
 #include "io/h5md.hpp"
-#include "io/read_guard.hpp"
+#include "io/file_guard.hpp"
 #include "io/output.hpp"
 #include "io/snapshot.hpp"
 #include "io/units.hpp"
@@ -68,18 +69,18 @@ std::string fingerprint_of(const io::config::Config& config) {
 
 /// Reads the checkpoint of --restart on every rank; the first rank's error stops all of them. A damaged file
 /// that loops inside HDF5, or an interrupt during the read, ends the process with one line, the temporary
-/// output and the lock file (`leave_nothing`, empty on other ranks) removed (io/read_guard.hpp).
+/// output and the lock file (`leave_nothing`, empty on other ranks) removed (io/file_guard.hpp).
 void load_restart(CheckpointStore& checkpoints, const Options& options, int rank, std::vector<std::string> leave_nothing) {
   std::string restart_error;
   if (!options.restart_path.empty()) {
     const std::string file = rank_file(options.restart_path, rank);
     try {
-      const double limit = io::ReadGuard::limit_seconds(file);
+      const double limit = io::FileGuard::limit_seconds(file);
       char after[160];
       std::snprintf(after, sizeof after,
                     "the HDF5 library had not finished reading it after %.0f s: the file is damaged, or on a very "
                     "slow disk (GDSMC_READ_LIMIT=SECONDS allows longer)", limit);
-      const io::ReadGuard guard(limit, options.interrupt,
+      const io::FileGuard guard(limit, options.interrupt,
                                 {"granular-dsmc: --restart: checkpoint '" + file + "': " + after,
                                  "granular-dsmc: interrupted while reading the checkpoint '" + file + "': nothing written",
                                  std::move(leave_nothing)});
@@ -181,11 +182,14 @@ std::vector<ReplicaResult> run_units(const std::vector<io::config::Config>& poin
 std::vector<std::vector<ReplicaResult>> gather_results(const std::vector<io::config::Config>& points,
                                                        const std::vector<Unit>& units, const std::vector<std::size_t>& mine,
                                                        std::vector<ReplicaResult>&& done, char status, const std::string& failure) {
+  // One rank keeps its results where they are: packing them into one string and back would copy every
+  // snapshot twice (seconds for a gigabyte, where an interrupt is not looked at).
+  const bool one_rank = parallel::size() == 1;
   std::string packed(1, status);
   if (status == 'F' || status == 'R') packed += failure;
-  else if (status == 'K')
+  else if (status == 'K' && !one_rank)
     for (std::size_t k = 0; k < mine.size(); ++k) pack(packed, mine[k], done[k]);
-  done.clear();
+  if (!one_rank) done.clear();
   const std::vector<std::string> gathered = parallel::gather_to_root(packed);
   std::string verdict;
   if (parallel::rank() == 0)
@@ -198,6 +202,10 @@ std::vector<std::vector<ReplicaResult>> gather_results(const std::vector<io::con
   std::vector<std::vector<ReplicaResult>> by_point(points.size());
   if (parallel::rank() != 0) return by_point;
   for (std::size_t p = 0; p < points.size(); ++p) by_point[p].resize(static_cast<std::size_t>(points[p].dsmc.replicas));
+  if (one_rank) {
+    for (std::size_t k = 0; k < mine.size(); ++k) by_point[units[mine[k]].point][units[mine[k]].replica] = std::move(done[k]);
+    return by_point;
+  }
   for (const auto& g : gathered) {
     std::size_t pos = 1;
     while (pos < g.size()) {
@@ -245,7 +253,13 @@ void write_blocks(io::h5md::Writer& writer, const std::string& group, const Poin
   writer.write_attribute(group, "block_draw", draw);
 }
 
-/// Writes every point (and a sweep's table) to the output and commits it; the summary of the run.
+/// Throws Interrupted when the caller's flag is set (the writing phase looks between groups).
+void stop_if_interrupted(const Options& options) {
+  if (options.interrupt && options.interrupt->load()) throw Interrupted();
+}
+
+/// Writes every point (and a sweep's table) to the output, not yet committed; the summary of the run.
+/// Throws Interrupted when the flag is set between two points (or before the table and --compare).
 Summary write_output(io::h5md::Writer& writer, const io::config::Config& config,
                      const std::vector<io::config::Config>& points, std::vector<PointResult>& results,
                      const Options& options) {
@@ -262,6 +276,7 @@ Summary write_output(io::h5md::Writer& writer, const io::config::Config& config,
   double collide_seconds = 0.0;
   const auto sweep_rows = config.sweep.table();
   for (std::size_t k = 0; k < points.size(); ++k) {
+    stop_if_interrupted(options);
     auto& acc = results[k].observables;
     summary.final_time = acc.at("time").mean().back();
     summary.final_total_temperature = acc.at("total_temperature").mean().back();
@@ -302,6 +317,7 @@ Summary write_output(io::h5md::Writer& writer, const io::config::Config& config,
       summary.points.push_back({config.sweep.row_label(sweep_rows[k]), summary.final_time,
                                 summary.final_total_temperature, summary.collisions_per_particle, summary.blocks});
   }
+  stop_if_interrupted(options);
   if (config.is_sweep()) {
     writer.write_attribute("/sweep", "variable", config.sweep.names());
     std::vector<std::string> texts;
@@ -311,10 +327,34 @@ Summary write_output(io::h5md::Writer& writer, const io::config::Config& config,
     // the points just written.
     analysis::sweep_table::write(writer, analysis::sweep_table::build(config, writer.temporary_path()));
   }
+  stop_if_interrupted(options);
   if (options.before_commit) options.before_commit(writer);
-  writer.commit();
+  stop_if_interrupted(options);
   summary.events_per_second = collide_seconds > 0 ? static_cast<double>(events) / collide_seconds : 0.0;
   summary.events = static_cast<double>(events);
+  return summary;
+}
+
+/// Reduces the replicas of every point, writes them and commits the file (rank 0). The writing is watched
+/// (io/file_guard.hpp): an interrupt it does not see between groups within half a second (inside one large
+/// write of the HDF5 library) ends the process with the caller's line, `leave_nothing` removed.
+Summary write_and_commit(io::h5md::Writer& writer, const io::config::Config& config,
+                         const std::vector<io::config::Config>& points, std::vector<std::vector<ReplicaResult>> by_point,
+                         const Options& options, std::vector<std::string> leave_nothing) {
+  Summary summary;
+  {
+    const io::FileGuard watch(std::numeric_limits<double>::infinity(), options.interrupt,
+                              {"", options.interrupt_line ? options.interrupt_line() : Interrupted().what(),
+                               std::move(leave_nothing), 0.25});
+    std::vector<PointResult> results;
+    for (std::size_t p = 0; p < points.size(); ++p) {
+      stop_if_interrupted(options);
+      if (points[p].has_agg_frag) pad_size_columns(by_point[p]);
+      results.push_back(reduce_point(by_point[p]));
+    }
+    summary = write_output(writer, config, points, results, options);
+  }
+  writer.commit();
   return summary;
 }
 
@@ -395,6 +435,7 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
   CheckpointStore checkpoints(checkpoint_path(output_path, rank), config.output.checkpoint_every.value_or(0.0),
                               fingerprint_of(config), ranks, units.size());
   if (options.replace_any_file) checkpoints.replace_any_file();
+  checkpoints.set_stop_flag(options.interrupt);
   load_restart(checkpoints, options, rank,
                writer ? std::vector<std::string>{writer->temporary_path(), lock_path(output_path)} : std::vector<std::string>{});
   check_finished_units(checkpoints, points, units, mine);
@@ -418,14 +459,20 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
   }
   std::vector<std::vector<ReplicaResult>> by_point = gather_results(points, units, mine, std::move(done), status, failure);
   Summary summary;
+  std::exception_ptr write_failure;
   if (rank == 0) {
-    std::vector<PointResult> results;
-    for (std::size_t p = 0; p < points.size(); ++p) {
-      if (points[p].has_agg_frag) pad_size_columns(by_point[p]);
-      results.push_back(reduce_point(by_point[p]));
+    try {
+      summary = write_and_commit(*writer, config, points, std::move(by_point), options,
+                                 {writer->temporary_path(), lock_path(output_path)});
+    } catch (...) {
+      write_failure = std::current_exception();
     }
-    summary = write_output(*writer, config, points, results, options);
   }
+  // Every rank keeps its checkpoint unless rank 0's output is complete: an interrupt (or a full disk)
+  // while writing leaves the run to resume.
+  const std::string written = parallel::broadcast_from_root(write_failure ? "no" : "yes");
+  if (write_failure) std::rethrow_exception(write_failure);
+  if (written != "yes") throw Interrupted();
   checkpoints.remove();  // the run is complete: its checkpoint is stale
   summary.restored_events = restored_events;
   summary.wall_seconds = std::chrono::duration<double>(Clock::now() - started).count();

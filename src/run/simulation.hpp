@@ -40,6 +40,9 @@ struct Options {
   /// stderr is a terminal: the line is rewritten in place; otherwise a full line every 10 s.
   bool progress_terminal = true;
   const std::atomic<bool>* interrupt = nullptr;  ///< set by a signal handler: stop, write nothing
+  /// The line an interrupt while the output is written ends the process with, when the writing cannot see
+  /// it (inside one write of the HDF5 library): the caller's (what to resume from); unset: Interrupted's.
+  std::function<std::string()> interrupt_line;
   std::string restart_path;                      ///< continue from this checkpoint (empty: from the start)
   /// The output and the checkpoints replace whatever is at their paths at the end (--force); otherwise a
   /// file that is not granular-dsmc's and appeared during the run is kept (io/h5md.hpp Writer::commit).

@@ -1,4 +1,4 @@
-#include "io/read_guard.hpp"
+#include "io/file_guard.hpp"
 
 #include <chrono>
 #include <cstdio>
@@ -8,10 +8,10 @@
 
 namespace gdsmc::io {
 
-ReadGuard::ReadGuard(double seconds, const std::atomic<bool>* interrupt, Exit exit)
+FileGuard::FileGuard(double seconds, const std::atomic<bool>* interrupt, Exit exit)
     : exit_(std::move(exit)), thread_([this, seconds, interrupt] { watch(seconds, interrupt); }) {}
 
-ReadGuard::~ReadGuard() {
+FileGuard::~FileGuard() {
   {
     std::lock_guard<std::mutex> hold(mutex_);
     done_ = true;
@@ -20,14 +20,19 @@ ReadGuard::~ReadGuard() {
   thread_.join();
 }
 
-void ReadGuard::watch(double seconds, const std::atomic<bool>* interrupt) {
+void FileGuard::watch(double seconds, const std::atomic<bool>* interrupt) {
   using Clock = std::chrono::steady_clock;
-  const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+  const auto after = [](double s) { return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s)); };
+  const auto deadline = seconds < 1e9 ? Clock::now() + after(seconds) : Clock::time_point::max();
+  auto interrupt_deadline = Clock::time_point::max();  // set when the flag is first seen
   std::unique_lock<std::mutex> hold(mutex_);
   for (;;) {
     if (wake_.wait_for(hold, std::chrono::milliseconds(50), [this] { return done_; })) return;
-    const bool interrupted = interrupt && interrupt->load();
-    if (!interrupted && Clock::now() < deadline) continue;
+    const auto now = Clock::now();
+    if (interrupt && interrupt->load() && interrupt_deadline == Clock::time_point::max())
+      interrupt_deadline = now + after(exit_.interrupt_grace_seconds);
+    const bool interrupted = now >= interrupt_deadline;
+    if (!interrupted && now < deadline) continue;
     // The reading thread is inside the library and cannot be stopped: the process ends from here, without
     // running destructors (they would wait for that thread), after removing what it must not leave behind.
     for (const auto& path : exit_.remove) {
@@ -40,7 +45,7 @@ void ReadGuard::watch(double seconds, const std::atomic<bool>* interrupt) {
   }
 }
 
-double ReadGuard::limit_seconds(const std::string& file) {
+double FileGuard::limit_seconds(const std::string& file) {
   if (const char* set = std::getenv("GDSMC_READ_LIMIT")) {
     char* end = nullptr;
     const double seconds = std::strtod(set, &end);
