@@ -470,6 +470,7 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
     }
     run_blocks_pass(time_, t_stop);
     time_ = t_stop;
+    if (stop_requested()) return false;
   }
   range_first_ = 0;
   range_count_ = sys_.size();
@@ -862,6 +863,7 @@ void Collider::run_blocks_pass(double t_start, double t_stop) {
 #else
     const std::size_t t = 0;
 #endif
+    if (stop_requested()) continue;  // (interrupted: the run is abandoned, the blocks left are not visited)
     try {
       workers_[t].run_block(*this, static_cast<std::size_t>(j), t_start, t_stop, first_visit, key,
                             probing ? probe_time_ : t_stop);
