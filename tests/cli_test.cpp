@@ -216,6 +216,21 @@ TEST_F(CliDsmc, TinyRunWritesTheFileQuietly) {
   EXPECT_EQ(read_text(dir / "out.h5").substr(0, 8), std::string("\x89HDF\r\n\x1a\n", 8));
 }
 
+// Tracked displacements that never start (msd_start_temperature below every T the run reaches) are all
+// zeros: said in a warning, even with --quiet; none when they start (the first sample's T is below 100).
+TEST_F(CliDsmc, DisplacementsThatNeverStartAreWarnedOf) {
+  const std::string output = "  file = 'out.h5', n_samples = 3, track_displacements = .true., ";
+  Result r = dsmc(with_line(16, output + "msd_start_temperature = 1e-6"));
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.rfind("granular-dsmc: warning: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("replicas never reached T <= msd_start_temperature = 1e-06"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("/observables/msd/start_time is -1"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  r = dsmc(with_line(16, output + "msd_start_temperature = 100.0"));
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+}
+
 TEST_F(CliDsmc, WithoutQuietASummaryGoesToStderrNotStdout) {
   write("t.nml", base());
   const Result r = run("granular-dsmc", "t.nml");

@@ -491,8 +491,11 @@ std::string blocks_words(const gdsmc::simulation::Summary::Blocks& blocks) {
   return words;
 }
 
-/// The line after a run, and its warning when a bound was not a majorant.
-void print_summary(const std::string& path, const gdsmc::simulation::Summary& summary, bool quiet, bool root) {
+/// The line after a run, and its warnings: a bound that was not a majorant, samples past their targets,
+/// displacements never tracked.
+void print_summary(const gdsmc::io::config::Config& config, const gdsmc::simulation::Summary& summary, bool quiet,
+                   bool root) {
+  const std::string& path = config.output.file;
   if (!quiet && root) {
     // A sweep: a line per point, then the file; a run: its final state on the line of the file.
     for (std::size_t k = 0; k < summary.points.size(); ++k) {
@@ -524,6 +527,21 @@ void print_summary(const std::string& path, const gdsmc::simulation::Summary& su
                  "granular-dsmc: warning: %.0f candidates had an acceptance probability above 1 (the bound was "
                  "not a majorant; see /observables/acceptance_overshoots): please report this input\n",
                  summary.acceptance_overshoots);
+  if (root && summary.msd_never_started > 0) {
+    const auto& out = config.output;
+    char start[160];
+    if (out.msd_start_temperature)
+      std::snprintf(start, sizeof start, "T <= msd_start_temperature = %g (a higher one, or a longer run, starts them)",
+                    *out.msd_start_temperature);
+    else
+      std::snprintf(start, sizeof start, "msd_start_time = %g (an earlier one, or a longer run, starts them)",
+                    out.msd_start_time.value_or(0.0));
+    std::fprintf(stderr,
+                 "granular-dsmc: warning: %llu of %llu replicas never reached %s: their msd is 0 at every sample and "
+                 "their /observables/msd/start_time is -1\n",
+                 static_cast<unsigned long long>(summary.msd_never_started),
+                 static_cast<unsigned long long>(summary.msd_replicas), start);
+  }
   if (root && summary.samples_past_target > 0)
     std::fprintf(stderr,
                  "granular-dsmc: warning: %llu %s taken past %s event target%s, by up to %llu collisions (see "
@@ -619,7 +637,7 @@ int run(const Arguments& a, const gdsmc::io::config::Config& config, bool root) 
           return 1;
         }
     }
-    print_summary(path, summary, a.quiet, root);
+    print_summary(config, summary, a.quiet, root);
   } catch (const gdsmc::simulation::Interrupted& e) {
     if (root) std::cerr << interrupt_report(config, options, e.what()) << "\n";
     return 130;

@@ -288,6 +288,11 @@ Summary write_output(io::h5md::Writer& writer, const io::config::Config& config,
     events += results[k].events;
     collide_seconds += results[k].collide_seconds;
     summary.samples_past_target += results[k].samples_past_target;
+    if (const auto start = acc.find("msd_start"); start != acc.end())
+      for (const auto& row : start->second.values) {
+        ++summary.msd_replicas;
+        if (row[0] < 0.0) ++summary.msd_never_started;  // (replica.cpp: -1 when tracking never began)
+      }
     summary.most_past_target = std::max(summary.most_past_target, results[k].most_past_target);
     // A sweep point lives in /sweep/point_K (K from 1) with the value it applies.
     const std::string group = config.is_sweep() ? "/sweep/point_" + std::to_string(k + 1) : "";

@@ -83,6 +83,10 @@ struct Summary {
   /// targets": a blocked step whose collision rate rose many times within it)
   std::uint64_t samples_past_target = 0;
   std::uint64_t most_past_target = 0;  ///< the largest number of collisions past one
+  /// Replicas (of every point) with tracked displacements that never reached msd_start_time or
+  /// msd_start_temperature: their msd is zero at every sample, their /observables/msd/start_time -1
+  std::uint64_t msd_never_started = 0;
+  std::uint64_t msd_replicas = 0;  ///< the replicas with tracked displacements
   Blocks blocks;  ///< the last point's cache blocks
 };
 
