@@ -1738,6 +1738,17 @@ TEST_F(CliDsmc, FindingsOfTheCommandLineFuzzer) {
   expect_input_error(run("granular-dsmc", "t.nml --quiet --set dsmc:step_fraction=1e-12"), "granular-dsmc",
                      "--set dsmc:step_fraction=1e-12: &dsmc: step_fraction: step_fraction = 1e-12 makes at least",
                      {"time steps", "allow_long_run"}, {"notes.json", "t.nml"});
+  // The same of a thermostat's stages (stage_step = 1e-300 never ended), and a white noise that heats the gas
+  // (noise_strength = 1e20 from T = 1, to about 3e14: its collisions grow as sqrt(T); 1e13 events to t = 1e5).
+  write("t.nml", base() + "&thermostat\n  kind = 'gaussian'\n/\n");
+  expect_input_error(run("granular-dsmc", "t.nml --quiet --set dsmc:stage_step=1e-300"), "granular-dsmc",
+                     "--set dsmc:stage_step=1e-300: &dsmc: stage_step: stage_step = 1e-300 makes at least",
+                     {"stages", "allow_long_run"}, {"notes.json", "t.nml"});
+  write("t.nml", base() + "&thermostat\n  kind = 'white_noise', noise_strength = 1e20\n/\n");
+  expect_input_error(run("granular-dsmc", "t.nml --quiet --set dsmc:t_end=1e5"), "granular-dsmc", "--set dsmc:t_end=1e5:",
+                     {"&dsmc: t_end: kinetic theory estimates", "the white noise heating the gas up to", "allow_long_run"},
+                     {"notes.json", "t.nml"});
+  write("t.nml", base());
   // Line breaks in --restart, --compare= and --table names were echoed raw (a message of 2-3 lines).
   for (const char* args : {"t.nml --restart 'a\nb.h5'", "t.nml --compare='a\nb.json'", "--table 'a\nb.h5'"}) {
     const Result r = run("granular-dsmc", args);

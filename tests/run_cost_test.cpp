@@ -81,3 +81,19 @@ TEST(RunCost, RoughSpheresCoolByTheirRotation) {
   EXPECT_NEAR(std::log(cost.temperature_ratio), -r * 2000.0, 1e-9 * r * 2000.0);
   EXPECT_LT(cost.temperature_ratio, 1e-40);
 }
+
+TEST(RunCost, WhiteNoiseHeatsTowardsTheDrivenStateOrByItsEnergy) {
+  // By hand (run_cost.hpp): m = sigma = 1, n = 0.01, T_0 = 1, chi^2 = 1: nu_0 = 4 n sqrt(pi) = 0.0708981540362,
+  // r = (1 - 0.81)/3 = 0.0633333; (T_st/T_0)^(3/2) = 1/(r nu_0): T_st = 36.7413534715 T_0.
+  const auto inelastic = one_species(0.9);
+  EXPECT_NEAR(theory::white_noise_heating(inelastic, {1.0}, {1.0}, 1e6), 36.7413534715, 1e-8);
+  // Short runs: the noise's energy kept, T_0 + m chi^2 t_end (11 after t = 10), below the steady state.
+  EXPECT_NEAR(theory::white_noise_heating(inelastic, {1.0}, {1.0}, 10.0), 11.0, 1e-12);
+  // Elastic: no steady state, the energy bound alone; T_0 = 2 halves the factor's growth.
+  EXPECT_NEAR(theory::white_noise_heating(one_species(1.0), {2.0}, {1.0}, 1e6), 1.0 + 1e6 / 2.0, 1e-6);
+  // A noise too weak to hold T_0 (the gas cools towards a colder steady state): never below 1.
+  EXPECT_EQ(theory::white_noise_heating(inelastic, {1.0}, {1e-6}, 1e6), 1.0);
+  // Mixture (m = 1, 4; x = 1/2 each): P = max m_k chi^2_k = 4 x 0.5 = 2, T_0 = (1 + 3)/2 = 2: P t/T_0 = 1 at t = 1.
+  const auto binary = species::make_mixture({1.0, 4.0}, {1.0, 1.0}, {0.01, 0.01}, species::PairMatrix::uniform(2, 1.0), false);
+  EXPECT_NEAR(theory::white_noise_heating(binary, {1.0, 3.0}, {0.1, 0.5}, 1.0), 2.0, 1e-12);
+}

@@ -19,7 +19,14 @@ void check_run_cost(const io::config::Config& c) {
   const theory::Cooling cooling = c.staged() ? theory::Cooling::held
                                   : c.system.restitution_model == io::config::RestitutionModel::viscoelastic ? theory::Cooling::viscoelastic
                                                                                  : theory::Cooling::haff;
-  const theory::RunCost cost = theory::estimate_run_cost(c.mixture(), c.initial.temperature, c.dsmc.t_end,
+  // A white noise heats the gas (its collisions grow as sqrt(T)): the estimate at the hottest it can be.
+  std::vector<double> temperature = c.initial.temperature;
+  double heating = 1.0;
+  if (c.thermostat.kind == io::config::ThermostatKind::white_noise && c.dsmc.t_end) {
+    heating = theory::white_noise_heating(c.mixture(), temperature, c.thermostat.noise_strength, *c.dsmc.t_end);
+    for (double& t : temperature) t *= heating;
+  }
+  const theory::RunCost cost = theory::estimate_run_cost(c.mixture(), temperature, c.dsmc.t_end,
                                                          c.dsmc.collisions_per_particle, cooling);
   const double events = cost.collisions_per_particle * static_cast<double>(c.dsmc.n_particles) / 2.0;
   const char* variable = c.dsmc.t_end ? "t_end" : "collisions_per_particle";
@@ -29,7 +36,11 @@ void check_run_cost(const io::config::Config& c) {
     return std::string(text);
   };
   const std::string estimate = "kinetic theory estimates " + number(events) + " collision events per replica (" +
-                               number(cost.collisions_per_particle) + " collisions per particle)";
+                               number(cost.collisions_per_particle) + " collisions per particle" +
+                               (heating > 1.0 ? ", the white noise heating the gas up to " + number(heating) +
+                                                    " times its initial temperature"
+                                              : "") +
+                               ")";
   std::string reason;
   if (!(cost.temperature_ratio >= kMinTemperatureRatio))
     reason = estimate + ", and a cooling to " + number(cost.temperature_ratio) +
@@ -49,6 +60,19 @@ void check_run_cost(const io::config::Config& c) {
                                   " time steps of N = " + number(static_cast<double>(c.dsmc.n_particles)) +
                                   " particles each (" + estimate + "), beyond 1e13 particle updates (a day or more); "
                                   "a larger step_fraction (1 is the default), or &dsmc allow_long_run = .true.");
+  }
+  // A thermostat's or shear flow's stage (thermostat.hpp) passes over all N particles once per stage_step
+  // majorant mean free times, at most stage_step collisions per particle: the same bound.
+  const double stages = cost.collisions_per_particle / c.dsmc.stage_step;
+  if (reason.empty() && c.staged() && !(stages * static_cast<double>(c.dsmc.n_particles) <= 10.0 * kMaxEvents)) {
+    const auto it = c.origin.find("dsmc:stage_step");
+    throw io::namelist::Error(it == c.origin.end() ? c.source_file : it->second.first,
+                              it == c.origin.end() ? 0 : it->second.second, "dsmc", "stage_step",
+                              "stage_step = " + number(c.dsmc.stage_step) + " makes at least " + number(stages) +
+                                  " stages of N = " + number(static_cast<double>(c.dsmc.n_particles)) +
+                                  " particles each (" + estimate + "), beyond 1e13 particle updates (a day or more); "
+                                  "a larger stage_step (0.125 is the default, 1 with the white noise), or &dsmc "
+                                  "allow_long_run = .true.");
   }
   if (reason.empty()) return;
   // Where the variable was set (exactly one of the two is required, so it was).

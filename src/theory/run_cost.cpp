@@ -77,4 +77,30 @@ RunCost estimate_run_cost(const species::Mixture& mix, const std::vector<double>
   return cost;
 }
 
+double white_noise_heating(const species::Mixture& mix, const std::vector<double>& initial_temperature,
+                           const std::vector<double>& strength, double t_end) {
+  const std::size_t s = mix.size();
+  const double n = mix.total_density();
+  double power = 0.0, temperature = 0.0;  // P = max_k m_k chi^2_k, T_0 = sum_k x_k T_k
+  for (std::size_t k = 0; k < s; ++k) {
+    power = std::max(power, mix.mass[k] * (k < strength.size() ? strength[k] : 0.0));
+    temperature += mix.number_density[k] / n * initial_temperature[k];
+  }
+  if (!(power > 0.0) || !(temperature > 0.0)) return 1.0;
+  double r = 0.0;  // the least loss per collision over the pairs (rough.hpp driven_state)
+  if (s <= exact_species) {
+    r = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < s; ++k)
+      for (std::size_t j = 0; j < s; ++j)
+        r = std::min(r, rough::driven_state(mix.restitution(k, j), mix.rough() ? mix.roughness(k, j) : -1.0,
+                                            mix.rough() ? mix.moment_of_inertia[k] : 0.4)
+                            .cooling_rate_reduced);
+  }
+  const double nu0 = rates(mix, initial_temperature, Cooling::held).first;
+  const double kept = 1.0 + power * t_end / temperature;  // no loss at all
+  const double steady = r > 0.0 && nu0 > 0.0 ? std::pow(power / (r * nu0 * temperature), 2.0 / 3.0)
+                                             : std::numeric_limits<double>::infinity();
+  return std::max(1.0, std::min(kept, steady));
+}
+
 }  // namespace gdsmc::theory

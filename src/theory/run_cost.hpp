@@ -15,6 +15,12 @@
  * instead of the O(S^2) sums: nu_0 <= n pi sigma_max^2 chi_max sqrt(16 max_k(T_k/m_k)/pi)
  * (<|g_kj|> = sqrt(8 s_kj/pi), \ref cm_mean_speed "docs/collision-model.md") and r = (1 - alpha_max^2)/3, the one-species ratio of the
  * Haff rate to nu (\ref cm_pair_rate "docs/collision-model.md", \ref haff_law "docs/haff-and-mixtures.md") at the largest restitution, which cools slowest.
+ * A white noise of strengths chi^2_k heats the gas (dT_k/dt = m_k chi^2_k, \ref wn_forcing "docs/white-noise.md")
+ * towards its steady state, where P = max_k m_k chi^2_k balances the least translational loss per collision r
+ * (rough.hpp driven_state: (1 - alpha^2)/3 smooth, (4/3)(A - B theta) rough) at nu(T) = nu_0 sqrt(T/T_0):
+ *   (T_st/T_0)^(3/2) = P/(r nu_0 T_0),   and never above the noise's energy kept: T <= T_0 + P t_end,
+ * with T_0 the mean initial temperature; the estimate of a held gas is then taken at T_0 times that factor
+ * (white_noise_heating; more than `exact_species` species: r = 0, the energy bound alone).
  * Checked by tests/run_cost_test.cpp.
  */
 #pragma once
@@ -47,5 +53,10 @@ inline constexpr std::size_t exact_species = 64;
 RunCost estimate_run_cost(const species::Mixture& mix, const std::vector<double>& initial_temperature,
                           std::optional<double> t_end, std::optional<double> collisions_per_particle,
                           Cooling cooling);
+
+/// The factor (at least 1) by which a white noise of strengths `strength` (chi^2_k, per species) can raise
+/// the temperatures `initial_temperature` in a run to `t_end` (header).
+double white_noise_heating(const species::Mixture& mix, const std::vector<double>& initial_temperature,
+                           const std::vector<double>& strength, double t_end);
 
 }  // namespace gdsmc::theory
