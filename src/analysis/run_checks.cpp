@@ -13,8 +13,46 @@
 
 namespace gdsmc::analysis {
 
+namespace {
+
+constexpr double kMaxEvents = 1e12, kMinTemperatureRatio = 1e-40;
+
+std::string number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", x);
+  return text;
+}
+
+/// Where &dsmc `variable` was set (file, line), or the input file when it was not.
+std::pair<std::string, int> origin_of(const io::config::Config& c, const std::string& variable) {
+  const auto it = c.origin.find("dsmc:" + variable);
+  return it == c.origin.end() ? std::pair<std::string, int>{c.source_file, 0} : it->second;
+}
+
+/// Refuses the run for `reason`, naming &dsmc `variable` (t_end or collisions_per_particle).
+[[noreturn]] void refuse_run(const io::config::Config& c, const std::string& variable, const std::string& reason) {
+  const auto [file, line] = origin_of(c, variable);
+  throw io::namelist::Error(file, line, "dsmc", variable,
+                            reason + "; shorten the run, or set &dsmc allow_long_run = .true. to run it anyway");
+}
+
+/// Refuses passes over all N particles (each `value` majorant mean free times long, at most `value` collisions
+/// per particle, so at least C/value of them) beyond 1e13 particle updates, naming &dsmc `variable`.
+void check_passes(const io::config::Config& c, const std::string& variable, double value, double collisions_per_particle,
+                  const std::string& passes_name, const std::string& estimate, const std::string& larger) {
+  const double passes = collisions_per_particle / value, n = static_cast<double>(c.dsmc.n_particles);
+  if (passes * n <= 10.0 * kMaxEvents) return;
+  const auto [file, line] = origin_of(c, variable);
+  throw io::namelist::Error(file, line, "dsmc", variable,
+                            variable + " = " + number(value) + " makes at least " + number(passes) + " " + passes_name +
+                                " of N = " + number(n) + " particles each (" + estimate +
+                                "), beyond 1e13 particle updates (a day or more); " + larger +
+                                ", or &dsmc allow_long_run = .true.");
+}
+
+}  // namespace
+
 void check_run_cost(const io::config::Config& c) {
-  constexpr double kMaxEvents = 1e12, kMinTemperatureRatio = 1e-40;
   if (c.dsmc.allow_long_run) return;
   const theory::Cooling cooling = c.staged() ? theory::Cooling::held
                                   : c.system.restitution_model == io::config::RestitutionModel::viscoelastic ? theory::Cooling::viscoelastic
@@ -30,11 +68,6 @@ void check_run_cost(const io::config::Config& c) {
                                                          c.dsmc.collisions_per_particle, cooling);
   const double events = cost.collisions_per_particle * static_cast<double>(c.dsmc.n_particles) / 2.0;
   const char* variable = c.dsmc.t_end ? "t_end" : "collisions_per_particle";
-  const auto number = [](double x) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.3g", x);
-    return std::string(text);
-  };
   const std::string estimate = "kinetic theory estimates " + number(events) + " collision events per replica (" +
                                number(cost.collisions_per_particle) + " collisions per particle" +
                                (heating > 1.0 ? ", the white noise heating the gas up to " + number(heating) +
@@ -48,39 +81,17 @@ void check_run_cost(const io::config::Config& c) {
              "round-off of the conserved momentum, almost every candidate is rejected and the run would not end";
   else if (!(events <= kMaxEvents))
     reason = estimate + ", beyond 1e12 (a day or more)";
+  if (!reason.empty()) refuse_run(c, variable, reason);
   // Each time step recomputes the speed bounds over all N particles (collide.hpp "Time"), and a step is
   // step_fraction majorant mean free times, at most step_fraction collisions per particle: a tiny
   // step_fraction makes the steps the whole run (1e-9 at N = 2000: years), whatever the events.
-  const double steps = cost.collisions_per_particle / c.dsmc.step_fraction;
-  if (reason.empty() && !(steps * static_cast<double>(c.dsmc.n_particles) <= 10.0 * kMaxEvents)) {
-    const auto it = c.origin.find("dsmc:step_fraction");
-    throw io::namelist::Error(it == c.origin.end() ? c.source_file : it->second.first,
-                              it == c.origin.end() ? 0 : it->second.second, "dsmc", "step_fraction",
-                              "step_fraction = " + number(c.dsmc.step_fraction) + " makes at least " + number(steps) +
-                                  " time steps of N = " + number(static_cast<double>(c.dsmc.n_particles)) +
-                                  " particles each (" + estimate + "), beyond 1e13 particle updates (a day or more); "
-                                  "a larger step_fraction (1 is the default), or &dsmc allow_long_run = .true.");
-  }
+  check_passes(c, "step_fraction", c.dsmc.step_fraction, cost.collisions_per_particle, "time steps", estimate,
+               "a larger step_fraction (1 is the default)");
   // A thermostat's or shear flow's stage (thermostat.hpp) passes over all N particles once per stage_step
   // majorant mean free times, at most stage_step collisions per particle: the same bound.
-  const double stages = cost.collisions_per_particle / c.dsmc.stage_step;
-  if (reason.empty() && c.staged() && !(stages * static_cast<double>(c.dsmc.n_particles) <= 10.0 * kMaxEvents)) {
-    const auto it = c.origin.find("dsmc:stage_step");
-    throw io::namelist::Error(it == c.origin.end() ? c.source_file : it->second.first,
-                              it == c.origin.end() ? 0 : it->second.second, "dsmc", "stage_step",
-                              "stage_step = " + number(c.dsmc.stage_step) + " makes at least " + number(stages) +
-                                  " stages of N = " + number(static_cast<double>(c.dsmc.n_particles)) +
-                                  " particles each (" + estimate + "), beyond 1e13 particle updates (a day or more); "
-                                  "a larger stage_step (0.125 is the default, 1 with the white noise), or &dsmc "
-                                  "allow_long_run = .true.");
-  }
-  if (reason.empty()) return;
-  // Where the variable was set (exactly one of the two is required, so it was).
-  const auto it = c.origin.find(std::string("dsmc:") + variable);
-  const std::string file = it == c.origin.end() ? c.source_file : it->second.first;
-  const int line = it == c.origin.end() ? 0 : it->second.second;
-  throw io::namelist::Error(file, line, "dsmc", variable,
-                            reason + "; shorten the run, or set &dsmc allow_long_run = .true. to run it anyway");
+  if (c.staged())
+    check_passes(c, "stage_step", c.dsmc.stage_step, cost.collisions_per_particle, "stages", estimate,
+                 "a larger stage_step (0.125 is the default, 1 with the white noise)");
 }
 
 MemoryLimit memory_limit() {
