@@ -134,8 +134,8 @@ TEST(CompareKnownError, SonineRateAndViscosity) {
   EXPECT_NEAR(cmp::shear_viscosity_known_error(mix), 0.016 + 0.0033, 1e-15);
 }
 
-// The steady shear flow without thermostat (\ref eta_usf_steady "docs/shear-viscosity.md"): a* and P_ij/p at the
-// last sample (p = tr P/3) against Grad's solution, the known error |Grad - independent| of the table (alpha = 0.7: a* 0.03704,
+// The steady shear flow without thermostat (\ref eta_usf_steady "docs/shear-viscosity.md"): a* and P_ij/p, the time
+// averages of /observables/shear_state or, in a file without them, at the last sample (p = tr P/3), against Grad's solution, the known error |Grad - independent| of the table (alpha = 0.7: a* 0.03704,
 // between 0.7 and 0.9 the larger of the two: P_yy 0.01970).
 TEST(CompareRows, SteadyShearAgainstGrad) {
   auto c = read_text(
@@ -164,6 +164,18 @@ TEST(CompareRows, SteadyShearAgainstGrad) {
   EXPECT_DOUBLE_EQ(cmp::steady_shear_known_error(0.95, 0), 0.00548);
   EXPECT_DOUBLE_EQ(cmp::steady_shear_known_error(0.5, 1), 0.00342);  // a table point: its own gap
   EXPECT_TRUE(std::isnan(cmp::steady_shear_known_error(0.4, 0)));
+  EXPECT_EQ(rate.at, "last sample");
+  // A file with /observables/shear_state (docs/output.md): its time averages and their SE, not the last sample.
+  m.arrays["shear_state/value"] = {0.661, 1.43, 0.77, 0.80, -0.503};
+  m.arrays["shear_state/error"] = {0.001, 0.002, 0.003, 0.004, 0.005};
+  const auto averaged = cmp::compare_point(c, theory, m);
+  EXPECT_EQ(find(averaged, "steady_shear_rate").at, "time average");
+  EXPECT_DOUBLE_EQ(find(averaged, "steady_shear_rate").value[0], 0.661);
+  EXPECT_DOUBLE_EQ(find(averaged, "steady_shear_rate").error[0], 0.001);
+  EXPECT_DOUBLE_EQ(find(averaged, "steady_shear_pressure_zz").value[0], 0.80);
+  EXPECT_DOUBLE_EQ(find(averaged, "steady_shear_pressure_xy").error[0], 0.005);
+  EXPECT_DOUBLE_EQ(find(averaged, "steady_shear_pressure_xy").known_error[0], xy.known_error[0]);
+  m.arrays.clear();
   // with the Gaussian thermostat the state is another one: no steady-shear rows
   c.thermostat.kind = gdsmc::io::config::ThermostatKind::gaussian;
   for (const auto& q : cmp::compare_point(c, theory, m).quantities) EXPECT_NE(q.name, "steady_shear_rate");

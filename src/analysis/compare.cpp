@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <cstdio>
 #include <limits>
 #include <sstream>
@@ -647,6 +648,13 @@ Measured read_measured(const std::string& file, const std::string& root) {
     } catch (const std::runtime_error&) {
     }
   }
+  for (const char* name : {"value", "error"}) {
+    try {
+      m.arrays[std::string("shear_state/") + name] = io::h5md::read_dataset(file, root + "/shear_state/" + name).data;
+    } catch (const std::runtime_error&) {
+      // runs without &shear, or one replica (no error)
+    }
+  }
   for (const char* name : {"sonine_c", "sonine_c_error", "temperature_over_mean", "temperature_over_mean_error"}) {
     try {
       m.arrays[std::string("scaling_state/") + name] = io::h5md::read_dataset(file, root + "/scaling_state/" + name).data;
@@ -677,8 +685,28 @@ double steady_shear_known_error(double alpha, std::size_t which) {
 
 namespace {
 
-/// The steady shear flow without thermostat of one dilute species: a* and P_ij/p at the last sample beside
-/// Grad's solution (\ref eta_usf_steady "docs/shear-viscosity.md"), the run taken to have reached the steady state.
+/// a* and P_ij/p of the steady shear flow from /observables/shear_state (docs/output.md): each replica's time
+/// average from &shear average_from on, and the SE over the replicas; false when the file has none (or the
+/// gas is dense: its P/(nT) there is the kinetic part's, not the P_ij/p of Grad's solution).
+bool add_steady_shear_average(const std::function<void(const std::string&, const std::string&, double, double, double,
+                                                       std::size_t)>& add,
+                              const io::config::Config& config, const theory::viscosity::MixtureSteadyShear& grad,
+                              const Measured& m) {
+  const auto value = m.arrays.find("shear_state/value"), error = m.arrays.find("shear_state/error");
+  if (config.system.enskog || value == m.arrays.end() || value->second.size() != 5) return false;
+  const auto se = [&](std::size_t c) { return error == m.arrays.end() || error->second.size() != 5 ? kNaN : error->second[c]; };
+  add("steady_shear_rate", "a*", value->second[0], se(0), grad.reduced_shear_rate, 0);
+  const double theory[4] = {grad.pressure_xx, grad.pressure_yy, grad.pressure_zz, grad.pressure_xy};
+  const char* component[4] = {"xx", "yy", "zz", "xy"};
+  for (std::size_t c = 0; c < 4; ++c)  // (dilute: p = n T, with T = tr P/(3 n) as shear_state's)
+    add(std::string("steady_shear_pressure_") + component[c], std::string("P_") + component[c] + "/p",
+        value->second[c + 1], se(c + 1), theory[c], c + 1);
+  return true;
+}
+
+/// The steady shear flow without thermostat of one dilute species: a* and P_ij/p, time averages of the steady
+/// state (/observables/shear_state; in files without it, at the last sample), beside Grad's solution (\ref
+/// eta_usf_steady "docs/shear-viscosity.md"); a mixture's T_k/T at the last sample.
 void add_steady_shear(Point& pt, const io::config::Config& config, const theory::viscosity::MixtureSteadyShear& grad,
                       const Measured& m) {
   if (!m.has("reduced_shear_rate") || !m.has("pressure_tensor")) return;
@@ -690,11 +718,12 @@ void add_steady_shear(Point& pt, const io::config::Config& config, const theory:
   const double alpha = config.mixture().restitution(0, 0);
   const std::string source = one ? "docs/shear-viscosity.md#eta_usf_steady: |Grad - the independent program| at alpha = 0.9, 0.7, 0.5"
                                  : kNone;
+  std::string at = "last sample";
   const auto add = [&](const std::string& name, const std::string& label, double value, double error, double theory,
                        std::size_t which) {
     Quantity q{name, label, "grad", source, {}, 1, {value}, {error}, {theory},
                {one ? steady_shear_known_error(alpha, which) : kNaN}};
-    q.at = "last sample";
+    q.at = at;
     pt.quantities.push_back(std::move(q));
   };
   if (!one && m.has("temperature") && m.has("total_temperature")) {  // T_k/T of the mixture
@@ -711,6 +740,9 @@ void add_steady_shear(Point& pt, const io::config::Config& config, const theory:
       }
     }
   }
+  at = "time average";
+  if (add_steady_shear_average(add, config, grad, m)) return;
+  at = "last sample";
   add("steady_shear_rate", "a*", rate.value.back(), rate.error.empty() ? kNaN : rate.error.back(),
       grad.reduced_shear_rate, 0);
   // p = tr P/3 of the same sample (the tensor is sampled at the middle of the streaming jump, the temperature
