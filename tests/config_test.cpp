@@ -937,6 +937,9 @@ TEST(ConfigError, SweepShapeMistakesNameTheVariable) {
       {"&sweep variable = 'system:mass(2)', 'system:restitution(1,2)'\n values(1,1) = 1.0, 2.0 /",
        "no list for variable 2 ('system:restitution(1,2)')"},
       {"&sweep variable = 'system:mass(2)', 'system:mass(2)', values = 1.0, 2.0 /", "is swept twice"},
+      // (one element of a symmetric matrix, whose second value set both: the point said (1,2) = 0.5 and ran 0.6)
+      {"&sweep variable = 'system:restitution(1,2)', 'system:restitution(2,1)', values = 0.5, 0.6 /",
+       "'system:restitution(2,1)' is swept twice (as 'system:restitution(1,2)': the matrix is symmetric)"},
       {"&sweep variable = 'system:mass(2)', 'dsmc:seed', grid = .true., values = 1.0, 2.0 /",
        "&sweep: grid: grid = .true. takes one list per variable"},
       {"&sweep variable = 'system:mass(2)', values(2,1) = 1.0 /", "values(1,v) = ..."},

@@ -208,10 +208,17 @@ void check_sweep(const Config& c, const Provenance& prov, const namelist::Docume
       throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
                   "'" + written + "' belongs to the run, not to a point: one output file (and one checkpoint) holds "
                   "every point of a sweep");
+    // (the matrices are symmetric: (i,j) and (j,i) are one element, which the second would set over the first)
+    const auto element = [](std::vector<long long> index) {
+      if (index.size() == 2 && index[0] > index[1]) std::swap(index[0], index[1]);
+      return index;
+    };
     for (std::size_t w = 0; w < v; ++w)
-      if (parse_target(sweep.variable[w]).group == t.group && parse_target(sweep.variable[w]).name == t.name &&
-          parse_target(sweep.variable[w]).index == t.index)
-        throw Error(prov.file_of("variable"), line_of("variable"), group, "variable", "'" + written + "' is swept twice");
+      if (const SweepTarget other = parse_target(sweep.variable[w]);
+          other.group == t.group && other.name == t.name && element(other.index) == element(t.index))
+        throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
+                    "'" + written + "' is swept twice" +
+                        (other.index == t.index ? std::string() : " (as '" + sweep.variable[w] + "': the matrix is symmetric)"));
     const int rank = variable_rank(t.group, t.name);
     if (!t.index.empty() && static_cast<int>(t.index.size()) != rank)
       throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
