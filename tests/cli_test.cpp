@@ -1833,7 +1833,9 @@ TEST_F(CliTheory, PrintsOneJsonObject) {
   for (const char* key : {"\"cooling_rate\"", "\"collision_frequency\"", "\"temperature\"",
                           "\"hcs\": {\"first_sonine\": {\"temperature_over_mean\"", "\"sonine_c\"",
                           "\"maxwellian\": {\"temperature_over_mean\"", "\"approximations\": {",
-                          "\"cooling_rate\": \"maxwellian\"", "\"hcs.first_sonine\": \"first_sonine\""})
+                          "\"cooling_rate\": \"maxwellian\"", "\"hcs.first_sonine\": \"first_sonine\"",
+                          // (the agg/frag theory's rates: events per volume and time, and d ln N_1/dt; were "1")
+                          "\"initial_rates\": \"length-3 time-1\"", "\"log_monomer_rate\": \"time-1\""})
     EXPECT_NE(out.find(key), std::string::npos) << key;
   EXPECT_EQ(std::count(out.begin(), out.end(), '{'), std::count(out.begin(), out.end(), '}'));
   EXPECT_EQ(std::count(out.begin(), out.end(), '['), std::count(out.begin(), out.end(), ']'));

@@ -28,12 +28,14 @@
 namespace {
 
 /// The units of the keys (the unit system "namelist" of docs/output.md: time, energy, length, mass;
-/// "1" dimensionless); a {time, value} pair has its time in `time`.
+/// "1" dimensionless); a {time, value} pair has its time in `time`; initial_rates are events per unit volume
+/// and time, except its log_monomer_rate (d ln N_1/dt).
 const char* kUnitsJson =
     "\"units\": {\"time\": \"time\", \"collision_frequency\": \"time-1\", \"cooling_rate\": \"time-1\", "
     "\"temperature\": \"energy\", \"total_temperature\": \"energy\", \"rotational_temperature\": \"energy\", "
     "\"translational_temperature\": \"energy\", \"kinetic_energy\": \"energy\", \"msd\": \"length+2\", "
-    "\"cooling_rate_sonine\": \"time-1\", \"tail_decay_rate\": \"1\", \"other_keys\": \"1\"}";
+    "\"cooling_rate_sonine\": \"time-1\", \"tail_decay_rate\": \"1\", \"initial_rates\": \"length-3 time-1\", "
+    "\"log_monomer_rate\": \"time-1\", \"other_keys\": \"1\"}";
 
 const char* kUsage =
     "usage: granular-theory FILE.nml [--set group:variable=value]...   (or --help, --version)\n"
