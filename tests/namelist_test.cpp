@@ -660,6 +660,19 @@ TEST(NamelistError, EndOutsideGroup) {
   EXPECT_NE(std::string(e.what()).find("'&end' outside a group"), std::string::npos);
 }
 
+// Free text outside the groups is a comment (Fortran's rule), but a line that starts with an assignment is a
+// variable no group reads (a '/' ended its group early): refused, naming the group before it.
+TEST(NamelistError, AssignmentOutsideAnyGroup) {
+  Error e = error_of("&dsmc n_particles = 200\n/\n  t_end = 10.0\n&output /\n");
+  EXPECT_EQ(e.line, 3);
+  EXPECT_EQ(e.variable, "t_end");
+  EXPECT_STREQ(e.what(), "test.nml:3: t_end: an assignment outside any group is not read (&dsmc of line 1 ended "
+                         "before it: a '/' too early?)");
+  e = error_of("mass(2) = 1.0\n&system /\n");
+  EXPECT_EQ(e.line, 1);
+  EXPECT_NE(std::string(e.what()).find("(no group has begun: &name first)"), std::string::npos) << e.what();
+}
+
 TEST(NamelistError, StrayAmpersand) {
   const Error e = error_of("&g a = 1\n & /");
   EXPECT_EQ(e.line, 2);

@@ -133,7 +133,7 @@ class Parser {
 
   std::vector<Group> run() {
     std::vector<Group> groups;
-    while (find_group_start()) {
+    while (find_group_start(groups.empty() ? nullptr : &groups.back())) {
       const int line = line_;
       advance();  // '&' or '$'
       std::string name = lowered(read_name());
@@ -183,14 +183,42 @@ class Parser {
     return text_.substr(start, pos_ - start);
   }
 
-  // Skips free text up to the next `&name`/`$name`; false at the end of the text.
-  bool find_group_start() {
+  // Whether the text at pos_ is `name =` or `name(...) =`: an assignment.
+  bool assignment_at() const {
+    std::size_t p = pos_;
+    while (p < text_.size() && is_name_char(text_[p])) ++p;
+    while (p < text_.size() && is_blank(text_[p]) && text_[p] != '\n') ++p;
+    if (p < text_.size() && text_[p] == '(') {
+      while (p < text_.size() && text_[p] != ')' && text_[p] != '\n') ++p;
+      if (p < text_.size() && text_[p] == ')') ++p;
+      while (p < text_.size() && is_blank(text_[p]) && text_[p] != '\n') ++p;
+    }
+    return p < text_.size() && text_[p] == '=' && (p + 1 >= text_.size() || text_[p + 1] != '=');
+  }
+
+  // Skips free text up to the next `&name`/`$name`; false at the end of the text. Free text is a comment
+  // (Fortran's rule), but a line that starts with an assignment is a variable the groups would not read (a
+  // '/' that ended the group above early): refused, where Fortran would skip it silently. `previous`: the
+  // group before the text (nullptr: none).
+  bool find_group_start(const Group* previous) {
+    bool line_start = pos_ == 0 || text_[pos_ - 1] == '\n';  // only blanks since the line began
     while (!at_end()) {
       const char c = peek();
       if (c == '!') {
         skip_comment();
         continue;
       }
+      if (line_start && is_letter(c) && assignment_at()) {
+        const int line = line_;
+        const std::string name(read_name());
+        fail(line, "", name,
+             "an assignment outside any group is not read" +
+                 (previous ? " (&" + previous->name + " of line " + std::to_string(previous->line) +
+                                 " ended before it: a '/' too early?)"
+                           : std::string(" (no group has begun: &name first)")));
+      }
+      if (c == '\n') line_start = true;
+      else if (!is_blank(c)) line_start = false;
       if ((c == '&' || c == '$') && is_letter(peek(1))) {
         const char before = pos_ == 0 ? '\n' : text_[pos_ - 1];
         if (is_blank(before) || before == '/') return true;
