@@ -528,19 +528,13 @@ void print_summary(const gdsmc::io::config::Config& config, const gdsmc::simulat
                  "not a majorant; see /observables/acceptance_overshoots): please report this input\n",
                  summary.acceptance_overshoots);
   if (root && summary.msd_never_started > 0) {
-    const auto& out = config.output;
-    char start[160];
-    if (out.msd_start_temperature)
-      std::snprintf(start, sizeof start, "T <= msd_start_temperature = %g (a higher one, or a longer run, starts them)",
-                    *out.msd_start_temperature);
-    else
-      std::snprintf(start, sizeof start, "msd_start_time = %g (an earlier one, or a longer run, starts them)",
-                    out.msd_start_time.value_or(0.0));
+    const bool by_temperature = summary.msd_start_missed.rfind("T <=", 0) == 0;
     std::fprintf(stderr,
-                 "granular-dsmc: warning: %llu of %llu replicas never reached %s: their msd is 0 at every sample and "
-                 "their /observables/msd/start_time is -1\n",
+                 "granular-dsmc: warning: %llu of %llu replicas never reached %s (%s, or a longer run, starts them): "
+                 "their msd is 0 at every sample and their /observables/msd/start_time is -1\n",
                  static_cast<unsigned long long>(summary.msd_never_started),
-                 static_cast<unsigned long long>(summary.msd_replicas), start);
+                 static_cast<unsigned long long>(summary.msd_replicas), summary.msd_start_missed.c_str(),
+                 by_temperature ? "a higher one" : "an earlier one");
   }
   if (root && summary.samples_past_target > 0)
     std::fprintf(stderr,
@@ -556,10 +550,9 @@ void print_summary(const gdsmc::io::config::Config& config, const gdsmc::simulat
 
 /// The one line of a run stopped by a signal (without its newline): what is left to resume from (the
 /// checkpoint of the last safe point, when there is one), or how to have one.
-std::string interrupt_report(const gdsmc::io::config::Config& config, const gdsmc::simulation::Options& options,
-                             const std::string& what) {
-  // (a terminal's progress line is rewritten in place and needs ending; elsewhere each progress line ends itself)
-  std::string line = (options.progress && options.progress_terminal ? "\n" : "") + std::string("granular-dsmc: ") + what;
+std::string interrupt_report(const gdsmc::io::config::Config& config, const std::string& what) {
+  // (the progress line was ended by the run: Progress::finish)
+  std::string line = "granular-dsmc: " + what;
   const std::string checkpoint = gdsmc::simulation::checkpoint_path(config.output.file);
   if (std::error_code ec; config.output.checkpoint_every && std::filesystem::exists(checkpoint, ec)) {
     line += "; resume with --restart " + gdsmc::io::namelist::shell_word(checkpoint);
@@ -585,9 +578,7 @@ int run(const Arguments& a, const gdsmc::io::config::Config& config, bool root) 
   options.progress = !a.quiet && root;
   options.progress_terminal = isatty(STDERR_FILENO) != 0;
   options.interrupt = &g_interrupted;
-  options.interrupt_line = [&config, &options] {
-    return interrupt_report(config, options, gdsmc::simulation::Interrupted().what());
-  };
+  options.interrupt_line = [&config] { return interrupt_report(config, gdsmc::simulation::Interrupted().what()); };
   options.restart_path = a.restart;
   options.replace_any_file = a.force;
   const std::string& path = config.output.file;
@@ -639,11 +630,13 @@ int run(const Arguments& a, const gdsmc::io::config::Config& config, bool root) 
     }
     print_summary(config, summary, a.quiet, root);
   } catch (const gdsmc::simulation::Interrupted& e) {
-    if (root) std::cerr << interrupt_report(config, options, e.what()) << "\n";
+    if (root) std::cerr << interrupt_report(config, e.what()) << "\n";
     return 130;
   } catch (const gdsmc::simulation::RestartError& e) {
     if (root) std::cerr << "granular-dsmc: --restart: " << e.what() << "\n";
     return 2;
+  } catch (const gdsmc::simulation::RootFailed&) {  // (another rank: rank 0 says why)
+    return 1;
   } catch (const gdsmc::simulation::OutputPathError& e) {
     if (!root) return 2;
     return output_error(a, config, root, e.what());

@@ -491,8 +491,8 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
     bool raised = false, stopped = false;
     std::uint64_t c = 0;
     for (; c < n_candidates; ++c) {
-      // An interrupt seen every 2^16 candidates: a step of many species takes seconds (5.7x a candidate
-      // of one species at 1e5 species), and an abandoned run may end its block here.
+      // An interrupt seen every 2^16 candidates: a candidate of many species costs several of one species',
+      // so a step can take seconds; an abandoned run may end its block here.
       if ((c & 0xffffu) == 0xffffu && stop_requested()) [[unlikely]] {
         stopped = true;
         break;

@@ -10,11 +10,11 @@
  * file: bad input); when the flag has been set (Ctrl-C, SIGTERM) for the caller's grace it does the same with
  * its interrupt line and status 130. Reads (docs/output.md, "Reading files back") have no grace and the limit
  * of limit_seconds: 60 s and 1 s more per 10 MB of the file, or the environment's `GDSMC_READ_LIMIT` seconds,
- * read that long by no intact file of this program's. The writing of a run's output (run/simulation.cpp) has
- * no limit and a quarter of a second's grace, in which its own look at the flag between groups ends it with the usual
- * line. Destroying the guard (the work done) dismisses it. Checked by
+ * read that long by no intact file of this program's. The writing of a run's output on one rank
+ * (run/simulation.cpp) has no limit and a quarter of a second's grace, in which its own look at the flag
+ * between points ends it with the usual line. Destroying the guard (the work done) dismisses it. Checked by
  * CliTable.ADamagedFileThatLoopsHdf5IsRefusedInTime, CliDsmc.ADamagedCheckpointThatLoopsHdf5IsRefusedInTime and
- * CliDsmc.CtrlCWhileALargeOutputIsWrittenEndsTheRunWithinASecond.
+ * tests/scale_out/interrupt.sh (writing-a-sweep).
  */
 #pragma once
 

@@ -210,6 +210,7 @@ void CheckpointStore::finished(std::size_t unit, const ReplicaResult& result) {
 void CheckpointStore::safe_point(std::size_t unit, const std::function<state::Record()>& snapshot) {
   // last_saved_[unit] is touched only by the thread running that unit.
   if (every_ <= 0.0 || std::chrono::duration<double>(Clock::now() - last_saved_[unit]).count() < every_) return;
+  if (stop_ && stop_->load()) throw Interrupted();  // (not the copy of a gigabyte first)
   state::Record fresh = snapshot();  // outside the lock: other threads keep running
   std::lock_guard<std::mutex> lock(mutex_);
   running_[unit] = std::move(fresh);
@@ -264,6 +265,7 @@ void CheckpointStore::write() const {
       hash.add(values);
     }
     for (const auto& [name, values] : snap.integers) {
+      stop_if_interrupted();
       w.write_integers(group + "/" + name, values);
       hash.add(values);
     }

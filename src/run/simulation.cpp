@@ -177,11 +177,16 @@ std::vector<ReplicaResult> run_units(const std::vector<io::config::Config>& poin
   return done;
 }
 
-/// Every rank's status and results to rank 0, which decides for all: the results of every point in
-/// replica order on rank 0 (empty elsewhere). Throws Interrupted or the failure of any rank.
-std::vector<std::vector<ReplicaResult>> gather_results(const std::vector<io::config::Config>& points,
-                                                       const std::vector<Unit>& units, const std::vector<std::size_t>& mine,
-                                                       std::vector<ReplicaResult>&& done, char status, const std::string& failure) {
+/// What rank 0 gathered: every rank's packed results, or (one rank) its own results unpacked.
+struct Gathered {
+  std::vector<std::string> packed;
+  std::vector<ReplicaResult> own;
+};
+
+/// Every rank's status and results to rank 0, which decides for all: throws Interrupted or the failure of any
+/// rank on every rank; else rank 0's Gathered (empty elsewhere), for results_by_point.
+Gathered gather_results(const std::vector<std::size_t>& mine, std::vector<ReplicaResult>&& done, char status,
+                        const std::string& failure) {
   // One rank keeps its results where they are: packing them into one string and back would copy every
   // snapshot twice (seconds for a gigabyte, where an interrupt is not looked at).
   const bool one_rank = parallel::size() == 1;
@@ -189,24 +194,31 @@ std::vector<std::vector<ReplicaResult>> gather_results(const std::vector<io::con
   if (status == 'F' || status == 'R') packed += failure;
   else if (status == 'K' && !one_rank)
     for (std::size_t k = 0; k < mine.size(); ++k) pack(packed, mine[k], done[k]);
-  if (!one_rank) done.clear();
-  const std::vector<std::string> gathered = parallel::gather_to_root(packed);
+  Gathered gathered{parallel::gather_to_root(packed), {}};
   std::string verdict;
   if (parallel::rank() == 0)
-    for (const auto& g : gathered)
+    for (const auto& g : gathered.packed)
       if (g[0] != 'K' && verdict.empty()) verdict = g;
   verdict = parallel::broadcast_from_root(verdict);
   if (!verdict.empty() && verdict[0] == 'I') throw Interrupted();
   if (!verdict.empty() && verdict[0] == 'R') throw RestartError(verdict.substr(1));
   if (!verdict.empty()) throw std::runtime_error(verdict.substr(1));
+  if (one_rank) gathered.own = std::move(done);
+  return gathered;
+}
+
+/// The results of every point in replica order (rank 0), from gather_results.
+std::vector<std::vector<ReplicaResult>> results_by_point(const std::vector<io::config::Config>& points,
+                                                         const std::vector<Unit>& units,
+                                                         const std::vector<std::size_t>& mine, Gathered&& gathered) {
   std::vector<std::vector<ReplicaResult>> by_point(points.size());
-  if (parallel::rank() != 0) return by_point;
   for (std::size_t p = 0; p < points.size(); ++p) by_point[p].resize(static_cast<std::size_t>(points[p].dsmc.replicas));
-  if (one_rank) {
-    for (std::size_t k = 0; k < mine.size(); ++k) by_point[units[mine[k]].point][units[mine[k]].replica] = std::move(done[k]);
+  if (parallel::size() == 1) {
+    for (std::size_t k = 0; k < mine.size(); ++k)
+      by_point[units[mine[k]].point][units[mine[k]].replica] = std::move(gathered.own[k]);
     return by_point;
   }
-  for (const auto& g : gathered) {
+  for (const auto& g : gathered.packed) {
     std::size_t pos = 1;
     while (pos < g.size()) {
       std::uint64_t u = 0;
@@ -253,7 +265,17 @@ void write_blocks(io::h5md::Writer& writer, const std::string& group, const Poin
   writer.write_attribute(group, "block_draw", draw);
 }
 
-/// Throws Interrupted when the caller's flag is set (the writing phase looks between groups).
+/// The start of the displacements of point `k` (for the warning when it was never reached).
+std::string msd_start_text(const io::config::Config& point, bool sweep, std::size_t k) {
+  char text[96];
+  if (point.output.msd_start_temperature)
+    std::snprintf(text, sizeof text, "T <= msd_start_temperature = %g", *point.output.msd_start_temperature);
+  else
+    std::snprintf(text, sizeof text, "msd_start_time = %g", point.output.msd_start_time.value_or(0.0));
+  return std::string(text) + (sweep ? " (point " + std::to_string(k + 1) + ")" : "");
+}
+
+/// Throws Interrupted when the caller's flag is set (the writing phase looks between points).
 void stop_if_interrupted(const Options& options) {
   if (options.interrupt && options.interrupt->load()) throw Interrupted();
 }
@@ -291,7 +313,9 @@ Summary write_output(io::h5md::Writer& writer, const io::config::Config& config,
     if (const auto start = acc.find("msd_start"); start != acc.end())
       for (const auto& row : start->second.values) {
         ++summary.msd_replicas;
-        if (row[0] < 0.0) ++summary.msd_never_started;  // (replica.cpp: -1 when tracking never began)
+        if (row[0] >= 0.0) continue;
+        ++summary.msd_never_started;  // (replica.cpp: -1 when tracking never began)
+        if (summary.msd_start_missed.empty()) summary.msd_start_missed = msd_start_text(points[k], config.is_sweep(), k);
       }
     summary.most_past_target = std::max(summary.most_past_target, results[k].most_past_target);
     // A sweep point lives in /sweep/point_K (K from 1) with the value it applies.
@@ -341,14 +365,17 @@ Summary write_output(io::h5md::Writer& writer, const io::config::Config& config,
 }
 
 /// Reduces the replicas of every point, writes them and commits the file (rank 0). The writing is watched
-/// (io/file_guard.hpp): an interrupt it does not see between groups within half a second (inside one large
-/// write of the HDF5 library) ends the process with the caller's line, `leave_nothing` removed.
+/// (io/file_guard.hpp): an interrupt it does not see between points within a quarter of a second (inside one
+/// large write of the HDF5 library) ends the process with the caller's line, `leave_nothing` removed.
 Summary write_and_commit(io::h5md::Writer& writer, const io::config::Config& config,
                          const std::vector<io::config::Config>& points, std::vector<std::vector<ReplicaResult>> by_point,
                          const Options& options, std::vector<std::string> leave_nothing) {
   Summary summary;
   {
-    const io::FileGuard watch(std::numeric_limits<double>::infinity(), options.interrupt,
+    // (one rank only: under MPI the others wait for rank 0's status, and an exit from the guard would leave
+    // them to mpirun's abort; they see the flag between points)
+    const bool one_rank = parallel::size() == 1;
+    const io::FileGuard watch(std::numeric_limits<double>::infinity(), one_rank ? options.interrupt : nullptr,
                               {"", options.interrupt_line ? options.interrupt_line() : Interrupted().what(),
                                std::move(leave_nothing), 0.25});
     std::vector<PointResult> results;
@@ -462,22 +489,28 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
     status = 'F';
     failure = e.what();
   }
-  std::vector<std::vector<ReplicaResult>> by_point = gather_results(points, units, mine, std::move(done), status, failure);
+  Gathered gathered = gather_results(mine, std::move(done), status, failure);
   Summary summary;
   std::exception_ptr write_failure;
+  char written = 'K';  // rank 0's output: complete, interrupted (I) or failed (F)
   if (rank == 0) {
     try {
-      summary = write_and_commit(*writer, config, points, std::move(by_point), options,
-                                 {writer->temporary_path(), lock_path(output_path)});
+      summary = write_and_commit(*writer, config, points, results_by_point(points, units, mine, std::move(gathered)),
+                                 options, {writer->temporary_path(), lock_path(output_path)});
+    } catch (const Interrupted&) {
+      write_failure = std::current_exception();
+      written = 'I';
     } catch (...) {
       write_failure = std::current_exception();
+      written = 'F';
     }
   }
   // Every rank keeps its checkpoint unless rank 0's output is complete: an interrupt (or a full disk)
-  // while writing leaves the run to resume.
-  const std::string written = parallel::broadcast_from_root(write_failure ? "no" : "yes");
+  // while writing leaves the run to resume. The other ranks end as rank 0 does (parallel.hpp: its status).
+  written = parallel::broadcast_from_root(std::string(1, written))[0];
   if (write_failure) std::rethrow_exception(write_failure);
-  if (written != "yes") throw Interrupted();
+  if (written == 'I') throw Interrupted();
+  if (written == 'F') throw RootFailed();
   checkpoints.remove();  // the run is complete: its checkpoint is stale
   summary.restored_events = restored_events;
   summary.wall_seconds = std::chrono::duration<double>(Clock::now() - started).count();

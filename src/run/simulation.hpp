@@ -87,6 +87,7 @@ struct Summary {
   /// msd_start_temperature: their msd is zero at every sample, their /observables/msd/start_time -1
   std::uint64_t msd_never_started = 0;
   std::uint64_t msd_replicas = 0;  ///< the replicas with tracked displacements
+  std::string msd_start_missed;    ///< the first such replica's start, e.g. "msd_start_time = 5 (point 2)"
   Blocks blocks;  ///< the last point's cache blocks
 };
 
@@ -95,6 +96,11 @@ struct Summary {
 /// The output file could not be created: an input error (the path), raised before any work.
 struct OutputPathError : std::runtime_error {
   using std::runtime_error::runtime_error;
+};
+
+/// Thrown on the other ranks when rank 0 could not write the output (rank 0 says why; exit status 1).
+struct RootFailed : std::runtime_error {
+  RootFailed() : std::runtime_error("rank 0 could not write the output") {}
 };
 
 /// The checkpoint given to --restart cannot be used (unreadable, or written for another input).

@@ -88,7 +88,11 @@ double white_noise_heating(const species::Mixture& mix, const std::vector<double
   }
   if (!(power > 0.0) || !(temperature > 0.0)) return 1.0;
   double r = 0.0;  // the least loss per collision over the pairs (rough.hpp driven_state)
-  if (s <= exact_species) {
+  if (s > exact_species && !mix.rough()) {  // (1 - alpha_max^2)/3, as rates() bounds a smooth gas
+    const auto& a = mix.restitution;
+    const double alpha = a.is_dense() ? *std::max_element(a.values.begin(), a.values.end()) : a(0, 0);
+    r = (1.0 - alpha * alpha) / 3.0;
+  } else if (s <= exact_species) {
     r = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < s; ++k)
       for (std::size_t j = 0; j < s; ++j)

@@ -20,7 +20,8 @@
  * (rough.hpp driven_state: (1 - alpha^2)/3 smooth, (4/3)(A - B theta) rough) at nu(T) = nu_0 sqrt(T/T_0):
  *   (T_st/T_0)^(3/2) = P/(r nu_0 T_0),   and never above the noise's energy kept: T <= T_0 + P t_end,
  * with T_0 the mean initial temperature; the estimate of a held gas is then taken at T_0 times that factor
- * (white_noise_heating; more than `exact_species` species: r = 0, the energy bound alone).
+ * (white_noise_heating; more than `exact_species` species: r = (1 - alpha_max^2)/3 if smooth, else r = 0, the
+ * energy bound alone).
  * Checked by tests/run_cost_test.cpp.
  */
 #pragma once

@@ -102,8 +102,7 @@ hint="granular-dsmc: interrupted: no output written (with &output checkpoint_eve
 if [ "$(cat case-majorant-1/stderr)" = "$hint" ]; then echo "ok   the message without a checkpoint names checkpoint_every"
 else echo "FAIL the message without a checkpoint: $(cat case-majorant-1/stderr)"; failures=$((failures + 1)); fi
 # 1e5 species in cache blocks (the separable draw): a candidate costs several times one species', so the
-# blocks look at the signal every 2^16 candidates, and a pass visits no block after it (before: 1.3-1.4 s
-# at 4e6 particles signalled 1.2 s in, 2-9 s later in the run).
+# blocks look at the signal every 2^16 candidates, and a pass visits no block after it.
 run_case "lowrank-100000-species" INT "" -- --set system:n_species=100000 --set "system:mass_law='linear'" \
   --set "system:diameter_law='cube_root'" --set "system:density_law='power'" --set system:density_exponent=0 \
   --set "dsmc:scheme='lowrank'" --set dsmc:n_particles=4000000
