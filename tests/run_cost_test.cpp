@@ -96,4 +96,12 @@ TEST(RunCost, WhiteNoiseHeatsTowardsTheDrivenStateOrByItsEnergy) {
   // Mixture (m = 1, 4; x = 1/2 each): P = max m_k chi^2_k = 4 x 0.5 = 2, T_0 = (1 + 3)/2 = 2: P t/T_0 = 1 at t = 1.
   const auto binary = species::make_mixture({1.0, 4.0}, {1.0, 1.0}, {0.01, 0.01}, species::PairMatrix::uniform(2, 1.0), false);
   EXPECT_NEAR(theory::white_noise_heating(binary, {1.0, 3.0}, {0.1, 0.5}, 1.0), 2.0, 1e-12);
+  // 65 equal smooth species (beyond exact_species: the O(S) bound nu_0 = n pi sigma^2 sqrt(16 T/(pi m)), the
+  // same 4 n sqrt(pi) here, and r = (1 - alpha_max^2)/3): the one species' 36.74, not the energy bound 1e6 + 1.
+  const std::size_t s = theory::exact_species + 1;
+  const auto many = species::make_mixture(std::vector<double>(s, 1.0), std::vector<double>(s, 1.0),
+                                          std::vector<double>(s, 0.01 / static_cast<double>(s)),
+                                          species::PairMatrix::uniform(s, 0.9), false);
+  EXPECT_NEAR(theory::white_noise_heating(many, std::vector<double>(s, 1.0), std::vector<double>(s, 1.0), 1e6),
+              36.7413534715, 1e-8);
 }
