@@ -12,6 +12,14 @@ namespace gdsmc::theory {
 
 namespace {
 
+/// (1 - alpha_max^2)/3: the one-species ratio of the Haff rate to nu at the largest restitution, which cools
+/// slowest (the O(S) bound of the header).
+double slowest_cooling_ratio(const species::Mixture& mix) {
+  const auto& a = mix.restitution;
+  const double alpha = a.is_dense() ? *std::max_element(a.values.begin(), a.values.end()) : a(0, 0);
+  return (1.0 - alpha * alpha) / 3.0;
+}
+
 /// nu_0 and r = zeta_0/nu_0 of the header: exact sums for a few species, O(S) bounds for many.
 std::pair<double, double> rates(const species::Mixture& mix, const std::vector<double>& t0, Cooling cooling) {
   const std::size_t s = mix.size();
@@ -49,9 +57,7 @@ std::pair<double, double> rates(const species::Mixture& mix, const std::vector<d
   const double sigma = mix.diameter[largest], chi = mix.pair_correlation(largest, largest);
   const double nu0 = n * std::numbers::pi * sigma * sigma * chi * std::sqrt(16.0 * speed2 / std::numbers::pi);
   if (cooling != Cooling::haff) return {nu0, 0.0};
-  const auto& a = mix.restitution;
-  const double alpha = a.is_dense() ? *std::max_element(a.values.begin(), a.values.end()) : a(0, 0);
-  return {nu0, (1.0 - alpha * alpha) / 3.0};
+  return {nu0, slowest_cooling_ratio(mix)};
 }
 
 }  // namespace
@@ -88,10 +94,8 @@ double white_noise_heating(const species::Mixture& mix, const std::vector<double
   }
   if (!(power > 0.0) || !(temperature > 0.0)) return 1.0;
   double r = 0.0;  // the least loss per collision over the pairs (rough.hpp driven_state)
-  if (s > exact_species && !mix.rough()) {  // (1 - alpha_max^2)/3, as rates() bounds a smooth gas
-    const auto& a = mix.restitution;
-    const double alpha = a.is_dense() ? *std::max_element(a.values.begin(), a.values.end()) : a(0, 0);
-    r = (1.0 - alpha * alpha) / 3.0;
+  if (s > exact_species && !mix.rough()) {  // as rates() bounds a smooth gas
+    r = slowest_cooling_ratio(mix);
   } else if (s <= exact_species) {
     r = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < s; ++k)
