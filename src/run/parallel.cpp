@@ -171,23 +171,29 @@ std::vector<std::string> gather_to_root(const std::string& mine) {
   if (size() == 1) return {mine};
 #ifdef GDSMC_HAVE_MPI
   const int n = size(), me = rank();
-  int length = static_cast<int>(mine.size());
-  if (mine.size() > static_cast<std::size_t>(INT32_MAX)) throw std::runtime_error("MPI: result too large to send");
-  std::vector<int> lengths(me == 0 ? n : 0);
-  check(MPI_Gather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, MPI_COMM_WORLD), "MPI_Gather");
-  std::vector<int> offsets(lengths.size(), 0);
+  // The lengths as 64-bit numbers and the verdict on their sum broadcast: every rank refuses a gather
+  // beyond MPI's int counts together (one rank throwing alone would leave the others waiting in it).
+  long long length = static_cast<long long>(mine.size());
+  std::vector<long long> lengths(me == 0 ? n : 0);
+  check(MPI_Gather(&length, 1, MPI_LONG_LONG, lengths.data(), 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD), "MPI_Gather");
   long long total = 0;
+  for (long long l : lengths) total += l;
+  check(MPI_Bcast(&total, 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD), "MPI_Bcast");
+  if (total > INT32_MAX)
+    throw std::runtime_error("MPI: the ranks' results (" + std::to_string(total) +
+                             " bytes) exceed the 2147483647 bytes one gather to rank 0 carries: nothing written; "
+                             "fewer samples, snapshots or sweep points per run");
+  std::vector<int> counts(lengths.size()), offsets(lengths.size(), 0);
   for (std::size_t k = 0; k < lengths.size(); ++k) {
-    offsets[k] = static_cast<int>(total);
-    total += lengths[k];
+    counts[k] = static_cast<int>(lengths[k]);
+    if (k > 0) offsets[k] = offsets[k - 1] + counts[k - 1];
   }
-  if (total > INT32_MAX) throw std::runtime_error("MPI: results too large to gather");
-  std::string all(static_cast<std::size_t>(total), '\0');
-  check(MPI_Gatherv(mine.data(), length, MPI_CHAR, all.data(), lengths.data(), offsets.data(), MPI_CHAR, 0,
-                    MPI_COMM_WORLD),
+  std::string all(static_cast<std::size_t>(me == 0 ? total : 0), '\0');
+  check(MPI_Gatherv(mine.data(), static_cast<int>(length), MPI_CHAR, all.data(), counts.data(), offsets.data(),
+                    MPI_CHAR, 0, MPI_COMM_WORLD),
         "MPI_Gatherv");
   std::vector<std::string> out;
-  for (std::size_t k = 0; k < lengths.size(); ++k) out.push_back(all.substr(offsets[k], lengths[k]));
+  for (std::size_t k = 0; k < counts.size(); ++k) out.push_back(all.substr(offsets[k], counts[k]));
   return out;
 #else
   return {mine};
