@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs what granular-dsmc needs to build, test and document itself, from Debian's packages.
-# Idempotent: packages already present are skipped, so a second run costs one dpkg query.
+# Installs what granular-dsmc needs to build, test and document itself, from Debian's packages;
+# with --clang also the clang toolchain of scripts/clang-fuzz.sh (sanitizers, libFuzzer), which CI
+# does not run. Idempotent: packages already present are skipped, so a second run costs one dpkg query.
 set -euo pipefail
 
 packages=(
@@ -13,9 +14,11 @@ packages=(
   doxygen graphviz      # `cmake --build build --target docs`
   python3-matplotlib python3-h5py python3-numpy  # paper-figures/
   libopenmpi-dev openmpi-bin  # mpirun: replicas and sweep points over ranks
-  clang libclang-rt-dev # scripts/clang-fuzz.sh: the clang build, sanitizers, libFuzzer (tests/fuzz)
   procps                # pkill, pgrep: tests/scale_out (restart.sh, interrupt.sh) signal the runs they start
 )
+if [ "${1:-}" = "--clang" ]; then
+  packages+=(clang libclang-rt-dev)  # scripts/clang-fuzz.sh: the clang build, sanitizers, libFuzzer (tests/fuzz)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

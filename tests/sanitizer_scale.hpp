@@ -2,9 +2,9 @@
 /// \file
 /// Sample sizes of the longest Monte Carlo unit tests in the sanitizer build.
 ///
-/// CI runs the unit tests twice (README "Tests"): in the optimised GCC build, where every statistical
-/// test takes its full sample and has the power its comment states, and in the clang build with
-/// AddressSanitizer and UndefinedBehaviorSanitizer (scripts/clang-fuzz.sh), where the code runs 5-10
+/// The unit tests run twice (README "Two commands"): in CI's optimised GCC build, where every statistical
+/// test takes its full sample and has the power its comment states, and before a change lands in the clang
+/// build with AddressSanitizer and UndefinedBehaviorSanitizer (scripts/clang-fuzz.sh), where the code runs 5-10
 /// times slower and the run is there to catch memory errors and undefined behaviour on the same code
 /// paths. There the longest Monte Carlo tests (about 240 of the sanitizer run's 490 CPU
 /// seconds) take a smaller sample: the same code, the same assertions, the tolerances still in
