@@ -40,13 +40,11 @@ const char* kMaxwellianOdeSource =
     "integrated over ln T, plus 15 % (docs/sonine.md)";
 const char* kNone = "none stated";
 
-std::string species_label(const std::string& label, std::size_t k) {  // k: 0-based index
-  const std::string key = "{k}";
-  const auto at = label.find(key);
-  if (at == std::string::npos) return label;
-  std::string out = label.substr(0, at);
-  out += std::to_string(k + 1);
-  out += label.substr(at + key.size());
+std::string species_label(const std::string& label, std::size_t k) {  // k: 0-based index; every {k}
+  const std::string key = "{k}", index = std::to_string(k + 1);
+  std::string out = label;
+  for (auto at = out.find(key); at != std::string::npos; at = out.find(key, at + index.size()))
+    out.replace(at, key.size(), index);
   return out;
 }
 
@@ -303,9 +301,9 @@ void add_rough_mixture(Point& pt, const theory::rough::MixtureCoolingState& hcs,
   if (t.value.size() < s || r.value.size() != t.value.size() || total.value.empty()) return;
   const std::size_t row = t.value.size() - s;  // the last sample
   const double mean = total.value.back(), mean_error = total.error.empty() ? kNaN : total.error.back();
-  Quantity share{"rough_temperature_over_mean", "T_k/T", "maxwellian", std::string(kNone) + " (the Maxwellian HCS of rough mixtures)",
+  Quantity share{"rough_temperature_over_mean", "T_{k}/T", "maxwellian", std::string(kNone) + " (the Maxwellian HCS of rough mixtures)",
                  {}, s, {}, {}, hcs.translational_over_mean, std::vector<double>(s, kNaN)};
-  Quantity theta{"rough_theta", "T_rot,k/T_k", "maxwellian", std::string(kNone) + " (the Maxwellian HCS of rough mixtures)",
+  Quantity theta{"rough_theta", "T_rot,{k}/T_{k}", "maxwellian", std::string(kNone) + " (the Maxwellian HCS of rough mixtures)",
                  {}, s, {}, {}, hcs.theta, std::vector<double>(s, kNaN)};
   for (std::size_t k = 0; k < s; ++k) {
     const double tk = t.value[row + k], rk = r.value[row + k];
@@ -368,7 +366,7 @@ void add_white_noise_mixture(Point& pt, const theory::rough::MixtureDrivenState&
   const std::size_t row = t.value.size() - s;
   const std::string source = std::string(kNone) + " (the Maxwellian theory of the driven mixture; docs/white-noise.md)";
   const std::string sonine_source = std::string(kNone) + " (the first-Sonine theory of the driven mixture; docs/white-noise.md)";
-  Quantity q{"white_noise_temperature", "T_k", sonine ? "first_sonine" : "maxwellian", sonine ? sonine_source : source, {}, s,
+  Quantity q{"white_noise_temperature", "T_{k}", sonine ? "first_sonine" : "maxwellian", sonine ? sonine_source : source, {}, s,
              {}, {}, sonine ? sonine->temperature : w.translational, std::vector<double>(s, kNaN)};
   for (std::size_t k = 0; k < s; ++k) {
     q.value.push_back(t.value[row + k]);
@@ -379,7 +377,7 @@ void add_white_noise_mixture(Point& pt, const theory::rough::MixtureDrivenState&
   if (w.theta.empty() || !m.has("rotational_temperature")) return;
   const auto& r = m.observables.at("rotational_temperature");
   if (r.value.size() != t.value.size()) return;
-  Quantity theta{"white_noise_theta", "T_rot,k/T_k", "maxwellian", source, {}, s, {}, {}, w.theta, std::vector<double>(s, kNaN)};
+  Quantity theta{"white_noise_theta", "T_rot,{k}/T_{k}", "maxwellian", source, {}, s, {}, {}, w.theta, std::vector<double>(s, kNaN)};
   for (std::size_t k = 0; k < s; ++k) {
     const double tk = t.value[row + k], rk = r.value[row + k];
     const double et = t.error.empty() ? kNaN : t.error[row + k], er = r.error.empty() ? kNaN : r.error[row + k];

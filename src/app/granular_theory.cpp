@@ -227,8 +227,9 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
   const std::size_t s = p.n_species;
   std::ostringstream json;
   json << indent << "{\n" << in << "\"n_species\": " << s << ",\n";
-  json << in << "\"collision_frequency\": " << array(p.collision_frequency) << ",\n";
-  json << in << "\"cooling_rate\": " << array(p.cooling_rate);
+  json << in << "\"collision_frequency\": " << array(p.collision_frequency);
+  // (keys that do not apply are left out, not written empty: a rough mixture has neither of these two)
+  if (!p.cooling_rate.empty()) json << ",\n" << in << "\"cooling_rate\": " << array(p.cooling_rate);
   if (p.has_history) {
     json << ",\n" << in << "\"temperature\": {\"time\": " << array(p.time) << ", \"value\": [";
     for (std::size_t i = 0; i < p.time.size(); ++i) json << (i ? ", " : "") << array(p.temperature[i]);
@@ -242,7 +243,8 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
            << array(p.rotational_temperature) << "}";
   }
   json << rough_json(p, in);
-  json << ",\n" << in << "\"diffusion_coefficient_ratio\": " << array(p.diffusion_coefficient_ratio);
+  if (!p.diffusion_coefficient_ratio.empty() || s == 1)  // (one species: D_k/D_1 for no k)
+    json << ",\n" << in << "\"diffusion_coefficient_ratio\": " << array(p.diffusion_coefficient_ratio);
   if (p.msd) {
     json << ",\n" << in << "\"msd\": {\"time\": " << array(p.msd->time) << ", \"value\": [";
     for (std::size_t i = 0; i < p.msd->value.size(); ++i) json << (i ? ", " : "") << array(p.msd->value[i]);
