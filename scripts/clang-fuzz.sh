@@ -8,7 +8,7 @@
 # trace, build with -DGDSMC_FUZZ_DEBUG_INFO=ON (the default).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/install-deps.sh --clang
+bash scripts/install-deps.sh && bash scripts/install-deps.sh --clang  # (the build's packages, then clang)
 cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
       -DGDSMC_FUZZ=ON -DGDSMC_FUZZ_DEBUG_INFO=OFF -DGDSMC_MPI=OFF
 cmake --build build-fuzz -j "$(nproc)" --target namelist_fuzz granular-dsmc granular-theory unit_tests

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs what granular-dsmc needs to build, test and document itself, from Debian's packages;
-# with --clang also the clang toolchain of scripts/clang-fuzz.sh (sanitizers, libFuzzer), which CI
+# with --clang only the clang toolchain of scripts/clang-fuzz.sh (sanitizers, libFuzzer), which CI
 # does not run. Idempotent: packages already present are skipped, so a second run costs one dpkg query.
 set -euo pipefail
 
@@ -16,9 +16,11 @@ packages=(
   libopenmpi-dev openmpi-bin  # mpirun: replicas and sweep points over ranks
   procps                # pkill, pgrep: tests/scale_out (restart.sh, interrupt.sh) signal the runs they start
 )
-if [ "${1:-}" = "--clang" ]; then
-  packages+=(clang libclang-rt-dev)  # scripts/clang-fuzz.sh: the clang build, sanitizers, libFuzzer (tests/fuzz)
-fi
+case "${1:-}" in
+  "") ;;
+  --clang) packages=(clang libclang-rt-dev) ;;  # only these: scripts/clang-fuzz.sh (sanitizers, libFuzzer; tests/fuzz)
+  *) echo "install-deps: unknown option '$1' (none, or --clang)" >&2; exit 2 ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1922,6 +1922,7 @@ TEST_F(CliTheory, RoughSpheresGiveThetaAndTheRotationalTemperature) {
                           "\"rough_hcs.maxwellian\": \"maxwellian\"", "\"rough_hcs.sonine\": \"first_sonine\""})
     EXPECT_NE(r.out.find(key), std::string::npos) << key << " in " << r.out;
   EXPECT_EQ(r.out.find("sonine_a2"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("[]"), std::string::npos) << r.out;  // (no key written empty: D_k/D_1 is not computed)
   write("t.nml",
         "&system mass = 1.0, diameter = 1.0, number_density = 0.01, restitution = 0.5, roughness = -0.5 /\n"
         "&dsmc n_particles = 1000, collisions_per_particle = 10.0 /\n&output n_samples = 3 /\n");

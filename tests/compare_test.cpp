@@ -319,6 +319,24 @@ TEST(CompareRows, RoughMixtureRowsNameTheirSpecies) {
       }
     EXPECT_TRUE(seen) << label << " is not a row of\n" << cmp::table(cmp::Comparison{{pt}, false, ""});
   }
+  // the same gas driven by the white noise: T_k and T_rot,k/T_k at the last sample
+  const auto driven = read_text(
+      "&system\n n_species = 2\n mass = 1.0, 2.0\n diameter = 1.0, 1.2\n number_density = 0.005, 0.005\n"
+      " restitution = 0.9\n roughness = 0.5\n moment_of_inertia = 0.4\n/\n&dsmc\n n_particles = 1000\n"
+      " t_end = 100.0\n replicas = 4\n/\n&output\n n_samples = 2\n/\n"
+      "&thermostat\n kind = 'white_noise'\n noise_strength = 0.001\n/\n");
+  const auto noise = cmp::compare_point(driven, gdsmc::analysis::predict(driven), m);
+  const auto noise_rows = cmp::rows(cmp::Comparison{{noise}, false, ""});
+  for (const auto& [label, value] : std::vector<std::pair<std::string, double>>{
+           {"T_1", 0.6}, {"T_2", 0.5}, {"T_rot,1/T_1", 0.45 / 0.6}, {"T_rot,2/T_2", 0.4 / 0.5}}) {
+    bool seen = false;
+    for (const auto& r : noise_rows)
+      if (r.quantity == label) {
+        seen = true;
+        EXPECT_DOUBLE_EQ(r.value, value) << label;
+      }
+    EXPECT_TRUE(seen) << label << " is not a row of\n" << cmp::table(cmp::Comparison{{noise}, false, ""});
+  }
 }
 
 TEST(CompareRows, NoTheorySaysSoInsteadOfFailing) {

@@ -225,6 +225,25 @@ int print_table(int argc, char** argv, int first) {
 
 /// Reads the command line into `a`; an exit status when the program is done (an option that prints and
 /// exits, or a bad command line), nothing when a run follows.
+/// The options that print something and end the program (--help, --version, the references): whether `arg` is one
+/// (then it has printed).
+bool prints_and_ends(const std::string& arg) {
+  if (arg == "--help" || arg == "-h") std::cout << kUsage;
+  else if (arg == "--version") std::cout << "granular-dsmc " << gdsmc::io::build_version() << "\n";
+  else if (arg == "--print-defaults") std::cout << gdsmc::io::config::defaults_template();
+  else if (arg == "--print-reference") std::cout << gdsmc::io::config::reference_markdown();  // Markdown, for docs/
+  else if (arg == "--print-observables") std::cout << gdsmc::observables::markdown();  // model/observables.hpp, for docs/
+  else return false;
+  return true;
+}
+
+/// Whether `value` of `option` holds a line break, which is refused (said on stderr): one name or override a line.
+bool has_line_break(const std::string& option, const std::string& value, const char* what) {
+  if (value.find_first_of("\n\r") == std::string::npos) return false;
+  std::cerr << "granular-dsmc: " << option << ": " << what << " with a line break is not accepted\n";
+  return true;
+}
+
 std::optional<int> parse_arguments(int argc, char** argv, Arguments& a) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -235,20 +254,7 @@ std::optional<int> parse_arguments(int argc, char** argv, Arguments& a) {
       }
       return argv[++i];
     };
-    if (arg == "--help" || arg == "-h") {
-      std::cout << kUsage;
-      return 0;
-    } else if (arg == "--version") {
-      std::cout << "granular-dsmc " << gdsmc::io::build_version() << "\n";
-      return 0;
-    } else if (arg == "--print-defaults") {
-      std::cout << gdsmc::io::config::defaults_template();
-      return 0;
-    } else if (arg == "--print-reference") {  // Markdown input reference, for docs/
-      std::cout << gdsmc::io::config::reference_markdown();
-      return 0;
-    } else if (arg == "--print-observables") {  // the table of observables (model/observables.hpp), for docs/
-      std::cout << gdsmc::observables::markdown();
+    if (prints_and_ends(arg)) {
       return 0;
     } else if (arg == "--table") {  // any output file as CSV (analysis/run_table.hpp)
       return print_table(argc, argv, i + 1);
@@ -258,10 +264,7 @@ std::optional<int> parse_arguments(int argc, char** argv, Arguments& a) {
       a.force = true;
     } else if (arg == "--output" || arg == "-o") {
       std::string path = next();
-      if (path.find_first_of("\n\r") != std::string::npos) {
-        std::cerr << "granular-dsmc: " << arg << ": a file name with a line break is not accepted\n";
-        return 2;
-      }
+      if (has_line_break(arg, path, "a file name")) return 2;
       std::string quoted;
       for (char c : path) quoted += (c == '\'') ? std::string("''") : std::string(1, c);
       a.overrides.push_back("output:file='" + quoted + "'");
@@ -276,22 +279,13 @@ std::optional<int> parse_arguments(int argc, char** argv, Arguments& a) {
         std::cerr << "granular-dsmc: --compare=: no JSON file named (give --compare alone for the table only)\n";
         return 2;
       }
-      if (a.compare_json.find_first_of("\n\r") != std::string::npos) {
-        std::cerr << "granular-dsmc: --compare=: a file name with a line break is not accepted\n";
-        return 2;
-      }
+      if (has_line_break("--compare=", a.compare_json, "a file name")) return 2;
     } else if (arg == "--restart") {
       a.restart = next();
-      if (a.restart.find_first_of("\n\r") != std::string::npos) {
-        std::cerr << "granular-dsmc: --restart: a file name with a line break is not accepted\n";
-        return 2;
-      }
+      if (has_line_break(arg, a.restart, "a file name")) return 2;
     } else if (arg == "--set") {
       a.overrides.push_back(next());
-      if (a.overrides.back().find_first_of("\n\r") != std::string::npos) {  // (one override a line: the fingerprint)
-        std::cerr << "granular-dsmc: --set: a value with a line break is not accepted\n";
-        return 2;
-      }
+      if (has_line_break(arg, a.overrides.back(), "a value")) return 2;  // (one override a line: the fingerprint)
     } else if (!arg.empty() && arg[0] == '-') {
       std::cerr << "granular-dsmc: unknown option " << gdsmc::io::namelist::printable(arg) << " (granular-dsmc --help lists the options)\n";
       return 2;
@@ -571,9 +565,8 @@ constexpr double theory_allowance_seconds = 30.0;
 /// Runs the input, with --compare's theory in a thread of its own (the theory depends on the input
 /// only: computed while the DSMC runs, so that --compare adds almost nothing to the wall time); the
 /// program's exit status.
-int run(const Arguments& a, const gdsmc::io::config::Config& config, bool root) {
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
+/// The simulation's options from the command line: progress, the interrupt flag and its line, --restart, --force.
+gdsmc::simulation::Options run_options(const Arguments& a, const gdsmc::io::config::Config& config, bool root) {
   gdsmc::simulation::Options options;
   options.progress = !a.quiet && root;
   options.progress_terminal = isatty(STDERR_FILENO) != 0;
@@ -581,6 +574,26 @@ int run(const Arguments& a, const gdsmc::io::config::Config& config, bool root) 
   options.interrupt_line = [&config] { return interrupt_report(config, gdsmc::simulation::Interrupted().what()); };
   options.restart_path = a.restart;
   options.replace_any_file = a.force;
+  return options;
+}
+
+/// After a complete run with --compare (rank 0): the table on stdout and, with --compare=FILE.json, the JSON
+/// file; 1 when that file cannot be written, else 0.
+int print_comparison(const Arguments& a, const gdsmc::analysis::compare::Comparison& comparison,
+                     const std::string& path) {
+  std::cout << gdsmc::analysis::compare::table(comparison) << std::flush;
+  if (a.compare_json.empty()) return 0;
+  const std::string reason = write_atomically(a.compare_json, gdsmc::analysis::compare::json(comparison));
+  if (reason.empty()) return 0;
+  std::cerr << "granular-dsmc: --compare=" << a.compare_json << ": cannot write the JSON file: " << reason
+            << " (the run's output " << path << " is complete)\n";
+  return 1;
+}
+
+int run(const Arguments& a, const gdsmc::io::config::Config& config, bool root) {
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  gdsmc::simulation::Options options = run_options(a, config, root);
   const std::string& path = config.output.file;
   gdsmc::analysis::compare::Comparison comparison;
   // The theory stops at an interrupt, and once the run is done it may take as long again as the run
@@ -618,16 +631,8 @@ int run(const Arguments& a, const gdsmc::io::config::Config& config, bool root) 
   }
   try {
     const auto summary = gdsmc::simulation::run(config, path, options);
-    if (a.compare && root) {
-      std::cout << gdsmc::analysis::compare::table(comparison) << std::flush;
-      if (!a.compare_json.empty())
-        if (const std::string reason = write_atomically(a.compare_json, gdsmc::analysis::compare::json(comparison));
-            !reason.empty()) {
-          std::cerr << "granular-dsmc: --compare=" << a.compare_json << ": cannot write the JSON file: " << reason
-                    << " (the run's output " << path << " is complete)\n";
-          return 1;
-        }
-    }
+    if (a.compare && root)
+      if (const int status = print_comparison(a, comparison, path)) return status;
     print_summary(config, summary, a.quiet, root);
   } catch (const gdsmc::simulation::Interrupted& e) {
     if (root) std::cerr << interrupt_report(config, e.what()) << "\n";

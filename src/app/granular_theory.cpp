@@ -243,7 +243,7 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
            << array(p.rotational_temperature) << "}";
   }
   json << rough_json(p, in);
-  if (!p.diffusion_coefficient_ratio.empty() || s == 1)  // (one species: D_k/D_1 for no k)
+  if (!p.diffusion_coefficient_ratio.empty())
     json << ",\n" << in << "\"diffusion_coefficient_ratio\": " << array(p.diffusion_coefficient_ratio);
   if (p.msd) {
     json << ",\n" << in << "\"msd\": {\"time\": " << array(p.msd->time) << ", \"value\": [";

@@ -203,10 +203,13 @@ std::vector<std::string> gather_to_root(const std::string& mine) {
 std::string broadcast_from_root(const std::string& value) {
   if (size() == 1) return value;
 #ifdef GDSMC_HAVE_MPI
-  int length = static_cast<int>(value.size());
-  check(MPI_Bcast(&length, 1, MPI_INT, 0, MPI_COMM_WORLD), "MPI_Bcast");
+  // (the length as a 64-bit number: beyond MPI's int counts every rank refuses, as in gather_to_root)
+  long long length = static_cast<long long>(value.size());
+  check(MPI_Bcast(&length, 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD), "MPI_Bcast");
+  if (length > INT32_MAX)
+    throw std::runtime_error("MPI: rank 0's " + std::to_string(length) + " bytes exceed the 2147483647 one broadcast carries");
   std::string out = rank() == 0 ? value : std::string(static_cast<std::size_t>(length), '\0');
-  check(MPI_Bcast(out.data(), length, MPI_CHAR, 0, MPI_COMM_WORLD), "MPI_Bcast");
+  check(MPI_Bcast(out.data(), static_cast<int>(length), MPI_CHAR, 0, MPI_COMM_WORLD), "MPI_Bcast");
   return out;
 #else
   return value;

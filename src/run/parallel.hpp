@@ -56,7 +56,7 @@ ThreadSplit split_threads(std::size_t units);
 /// Rank 0 receives every rank's buffer, in rank order (its own first); other ranks get an empty list.
 /// Collective: beyond 2^31 - 1 bytes in all (MPI's int counts) every rank throws std::runtime_error.
 std::vector<std::string> gather_to_root(const std::string& mine);
-/// Rank 0's value, on every rank.
+/// Rank 0's value, on every rank (collective: beyond 2^31 - 1 bytes every rank throws std::runtime_error).
 std::string broadcast_from_root(const std::string& value);
 /// The largest of every rank's `value`, on every rank (collective: every rank must call it).
 int largest_over_ranks(int value);
