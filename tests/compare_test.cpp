@@ -294,21 +294,8 @@ TEST(CompareRows, BinaryScalingStateAverages) {
   EXPECT_TRUE(seen);
 }
 
-TEST(CompareRows, RoughMixtureRowsNameTheirSpecies) {
-  // A binary rough mixture: T_k/T and T_rot,k/T_k at the last sample, one row per species, each row named by its
-  // species (they were all "T_k/T" and "T_rot,k/T_k"); the values by hand from the last sample.
-  const auto c = read_text(
-      "&system\n n_species = 2\n mass = 1.0, 2.0\n diameter = 1.0, 1.2\n number_density = 0.005, 0.005\n"
-      " restitution = 0.9\n roughness = 0.5\n moment_of_inertia = 0.4\n/\n&dsmc\n n_particles = 1000\n"
-      " collisions_per_particle = 5.0\n replicas = 4\n/\n&output\n n_samples = 2\n/\n");
-  cmp::Measured m;
-  const std::vector<double> times{0.0, 50.0};
-  m.observables["temperature"] = series(times, {1.0, 1.0, 0.6, 0.5}, {0.0, 0.0, 0.01, 0.02}, 2);
-  m.observables["rotational_temperature"] = series(times, {1.0, 1.0, 0.45, 0.4}, {0.0, 0.0, 0.01, 0.01}, 2);
-  m.observables["total_temperature"] = series(times, {1.0, 0.55}, {0.0, 0.01}, 1);
-  const auto pt = cmp::compare_point(c, gdsmc::analysis::predict(c), m);
-  std::vector<std::pair<std::string, double>> expected{
-      {"T_1/T", 0.6 / 0.55}, {"T_2/T", 0.5 / 0.55}, {"T_rot,1/T_1", 0.45 / 0.6}, {"T_rot,2/T_2", 0.4 / 0.5}};
+/// Every (label, value) of `expected` is a row of `pt`'s table, with that value.
+void expect_rows(const cmp::Point& pt, const std::vector<std::pair<std::string, double>>& expected) {
   const auto table_rows = cmp::rows(cmp::Comparison{{pt}, false, ""});
   for (const auto& [label, value] : expected) {
     bool seen = false;
@@ -319,24 +306,27 @@ TEST(CompareRows, RoughMixtureRowsNameTheirSpecies) {
       }
     EXPECT_TRUE(seen) << label << " is not a row of\n" << cmp::table(cmp::Comparison{{pt}, false, ""});
   }
-  // the same gas driven by the white noise: T_k and T_rot,k/T_k at the last sample
-  const auto driven = read_text(
+}
+
+TEST(CompareRows, RoughMixtureRowsNameTheirSpecies) {
+  // A binary rough mixture: T_k/T and T_rot,k/T_k at the last sample, one row per species, each row named by its
+  // species (they were all "T_k/T" and "T_rot,k/T_k"); the values by hand from the last sample.
+  const std::string gas =
       "&system\n n_species = 2\n mass = 1.0, 2.0\n diameter = 1.0, 1.2\n number_density = 0.005, 0.005\n"
-      " restitution = 0.9\n roughness = 0.5\n moment_of_inertia = 0.4\n/\n&dsmc\n n_particles = 1000\n"
-      " t_end = 100.0\n replicas = 4\n/\n&output\n n_samples = 2\n/\n"
-      "&thermostat\n kind = 'white_noise'\n noise_strength = 0.001\n/\n");
-  const auto noise = cmp::compare_point(driven, gdsmc::analysis::predict(driven), m);
-  const auto noise_rows = cmp::rows(cmp::Comparison{{noise}, false, ""});
-  for (const auto& [label, value] : std::vector<std::pair<std::string, double>>{
-           {"T_1", 0.6}, {"T_2", 0.5}, {"T_rot,1/T_1", 0.45 / 0.6}, {"T_rot,2/T_2", 0.4 / 0.5}}) {
-    bool seen = false;
-    for (const auto& r : noise_rows)
-      if (r.quantity == label) {
-        seen = true;
-        EXPECT_DOUBLE_EQ(r.value, value) << label;
-      }
-    EXPECT_TRUE(seen) << label << " is not a row of\n" << cmp::table(cmp::Comparison{{noise}, false, ""});
-  }
+      " restitution = 0.9\n roughness = 0.5\n moment_of_inertia = 0.4\n/\n&output\n n_samples = 2\n/\n";
+  const auto c = read_text(gas + "&dsmc\n n_particles = 1000\n collisions_per_particle = 5.0\n replicas = 4\n/\n");
+  cmp::Measured m;
+  const std::vector<double> times{0.0, 50.0};
+  m.observables["temperature"] = series(times, {1.0, 1.0, 0.6, 0.5}, {0.0, 0.0, 0.01, 0.02}, 2);
+  m.observables["rotational_temperature"] = series(times, {1.0, 1.0, 0.45, 0.4}, {0.0, 0.0, 0.01, 0.01}, 2);
+  m.observables["total_temperature"] = series(times, {1.0, 0.55}, {0.0, 0.01}, 1);
+  expect_rows(cmp::compare_point(c, gdsmc::analysis::predict(c), m),
+              {{"T_1/T", 0.6 / 0.55}, {"T_2/T", 0.5 / 0.55}, {"T_rot,1/T_1", 0.45 / 0.6}, {"T_rot,2/T_2", 0.4 / 0.5}});
+  // the same gas driven by the white noise: T_k and T_rot,k/T_k at the last sample
+  const auto driven = read_text(gas + "&dsmc\n n_particles = 1000\n t_end = 100.0\n replicas = 4\n/\n"
+                                      "&thermostat\n kind = 'white_noise'\n noise_strength = 0.001\n/\n");
+  expect_rows(cmp::compare_point(driven, gdsmc::analysis::predict(driven), m),
+              {{"T_1", 0.6}, {"T_2", 0.5}, {"T_rot,1/T_1", 0.45 / 0.6}, {"T_rot,2/T_2", 0.4 / 0.5}});
 }
 
 TEST(CompareRows, NoTheorySaysSoInsteadOfFailing) {
