@@ -3,7 +3,7 @@
 # the clang build (the library, both programs and the unit tests) with AddressSanitizer,
 # UndefinedBehaviorSanitizer and libFuzzer instrumentation; the unit tests (which run the programs
 # too) under the sanitizers, and a minute of fuzzing the namelist path on the repository's namelists
-# (tests/fuzz/README.md). About 15 minutes on the 2-core machine. Installs clang when it is missing
+# (tests/fuzz/README.md). About 15 minutes on the 2-core CI VM. Installs clang when it is missing
 # (install-deps.sh --clang). Without debug information (time): to see file and line in a stack
 # trace, build with -DGDSMC_FUZZ_DEBUG_INFO=ON (the default).
 set -euo pipefail
