@@ -2012,6 +2012,20 @@ TEST_F(CliTheory, AFailedIntegrationNamesTheEndOfTheRun) {
                      {"the theory cannot integrate to t_end = 1e+300", "CVode"});
 }
 
+TEST_F(CliTheory, APartOfTheTheoryThatFailsIsLeftOutWithAWordWhy) {
+  // A mass ratio of 1e20: the HCS ratios' ODE (CVODE) gives up, which ended the whole program (exit 1, no JSON)
+  // when it was reached through D_k/D_1; now D_k/D_1 is left out with a note, as the HCS keys were, and the
+  // temperatures over the run are printed.
+  write("t.nml",
+        "&system n_species = 2, mass = 1.0, 1e20, diameter = 1.0, 1.0, number_density = 0.005, 0.005,\n"
+        "  restitution = 0.9 /\n&dsmc n_particles = 2000, t_end = 100.0 /\n&output n_samples = 3 /\n");
+  const Result r = run("granular-theory", "t.nml");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\"temperature\": {\"time\": [0, 50, 100]"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("\"diffusion_coefficient_ratio\""), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("diffusion_coefficient_ratio left out: SUNDIALS call CVode failed"), std::string::npos) << r.err;
+}
+
 TEST_F(CliTheory, RefusesWhatTheSimulationRefusesTheSameWay) {
   auto lines = base_lines;
   lines[12] = "  t_end = 1e300";

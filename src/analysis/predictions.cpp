@@ -185,9 +185,14 @@ void add_diffusion(Predictions& out, const io::config::Config& config, const spe
   const auto& t0 = config.initial.temperature;
   // D_k/D_1 at long times (constant alpha) or at the end
   // of the run (viscoelastic, where the ratios drift), and eq 17's MSD when displacements are tracked.
-  out.diffusion_coefficient_ratio = beta ? diffusion_coefficient_ratio(mix, history.temperature.back(), &*beta)
-                                         : diffusion_coefficient_ratio(mix);
-  out.approximations.emplace_back("diffusion_coefficient_ratio", "maxwellian");
+  try {
+    out.diffusion_coefficient_ratio = beta ? diffusion_coefficient_ratio(mix, history.temperature.back(), &*beta)
+                                           : diffusion_coefficient_ratio(mix);
+    out.approximations.emplace_back("diffusion_coefficient_ratio", "maxwellian");
+  } catch (const std::exception& e) {  // e.g. the HCS ratios' ODE at a mass ratio of 1e20: left out, with a word why
+    out.diffusion_coefficient_ratio.clear();
+    out.notes.push_back(std::string("diffusion_coefficient_ratio left out: ") + e.what());
+  }
   if (config.output.track_displacements) {
     // The MSD counts from msd_start_time (or t = 0), starting from the theory's temperatures then.
     const double start = config.output.msd_start_time.value_or(0.0);
