@@ -1239,6 +1239,10 @@ TEST(ConfigRepeated, OneSetAssignsOneVariable) {
   const std::string m2 = error_of(base(), {"dsmc:seed=3, replicas=2"});
   expect_contains(m2, {"one --set assigns one variable"});
   EXPECT_EQ(read_text(base(), {"dsmc:seed=3"}).dsmc.seed, 3);
+  // blanks around the group's name, as a shell quote may leave them (they read as a second variable before)
+  EXPECT_EQ(read_text(base(), {" dsmc :seed=4"}).dsmc.seed, 4);
+  for (const char* bad : {":seed=3", "ds mc:seed=3", "  :seed=3"})
+    expect_contains(error_of(base(), {bad}), {"--set", "is not of the form group:variable=value"});
 }
 
 TEST(ConfigRepeated, SampleCountIsCapped) {

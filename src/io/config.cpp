@@ -232,7 +232,11 @@ namelist::Document parse_override(const std::string& text) {
   const auto equal = text.find('=');
   if (colon == std::string::npos || equal == std::string::npos || colon > equal)
     throw Error("--set", 0, "", "", "'" + text + "' is not of the form group:variable=value");
-  const std::string group = text.substr(0, colon);
+  // (blanks around the group's name are dropped: " system : mass = 2" is system:mass=2, as in a file)
+  const auto first = text.find_first_not_of(" \t"), last = text.find_last_not_of(" \t", colon - 1);
+  const std::string group = first < colon && last != std::string::npos ? text.substr(first, last + 1 - first) : "";
+  if (group.empty() || group.find_first_of(" \t") != std::string::npos)
+    throw Error("--set", 0, "", "", "'" + text + "' is not of the form group:variable=value");
   // One command-line argument, not a file: its messages and origins carry no line number.
   namelist::Document doc;
   try {
