@@ -178,7 +178,7 @@ void Gas::recompute_bounds() {
     }
     if (list.capacity() > 4 * list.size() + 64) particles::ParticleArray<Vec3>(list.begin(), list.end()).swap(list);
     // (a long list on the threads of the blocks, in parts: the largest of the parts' largest is the same number)
-    const int threads = list.size() >= (std::size_t{1} << 16) ? block_threads_ : 1;
+    [[maybe_unused]] const int threads = list.size() >= (std::size_t{1} << 16) ? block_threads_ : 1;
     double w2 = 0.0;
 #ifdef _OPENMP
 #pragma omp parallel for num_threads(threads) if (threads > 1) reduction(max : w2) schedule(static)
