@@ -1883,6 +1883,28 @@ TEST(Collide, SeparableBlocksBeyondTheSpeciesLimitMatchUnblocked) {
   EXPECT_NE(deep, blocked_run(gas, 3000, 1));
 }
 
+// The set-up of the blocks looks at the interrupt (particles::SetUpCheck) every 1024 species: 3000 species
+// (N = 29,000 in 9 blocks) call it at species 0, 1024 and 2048; the run is the same as without the check,
+// and a check that throws abandons the set-up.
+TEST(Collide, BlocksSetUpLooksAtTheInterrupt) {
+  const PowerLawGas gas = power_law_gas(3000, 9000.0, 2);
+  const auto run = [&gas](const particles::SetUpCheck& check) {
+    auto sys = initial(gas.mix, gas.counts, std::vector<double>(gas.counts.size(), 1.0), 778);
+    Collider c(Scheme::lowrank, gas.mix, sys, rng::make_stream(778, 0, rng::Purpose::collisions), 1.0);
+    c.use_blocks(200, check);
+    EXPECT_EQ(c.blocks(), 9u);
+    c.advance(1e12, gas.total);
+    return sys.v;
+  };
+  int calls = 0;
+  const auto checked = run([&calls] { ++calls; });
+  EXPECT_EQ(calls, 3);
+  EXPECT_EQ(checked, run({}));
+  auto sys = initial(gas.mix, gas.counts, std::vector<double>(gas.counts.size(), 1.0), 778);
+  Collider c(Scheme::lowrank, gas.mix, sys, rng::make_stream(778, 0, rng::Purpose::collisions), 1.0);
+  EXPECT_THROW(c.use_blocks(200, [] { throw std::runtime_error("interrupted"); }), std::runtime_error);
+}
+
 // The separable draw's larger blocks (Collider::separable_block_count): blocks of 200 would each rebuild six
 // tables of about S = 300 cells per visit for 200 particles (and hold S K = 33600 > N table entries), so
 // the 300-species gas above runs in 16 blocks of about 1400 instead (N div (8 S) = 9, at least 16), with the

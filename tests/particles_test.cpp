@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <stdexcept>
 #include <vector>
 #if defined(__linux__)
 #include <unistd.h>
@@ -137,6 +138,37 @@ TEST(Particles, MakeSystemIsReproducible) {
   const auto a = particles::make_system(mix, {500, 300}, {1.0, 1.0}, InitialDistribution::maxwell, g1);
   const auto b = particles::make_system(mix, {500, 300}, {1.0, 1.0}, InitialDistribution::maxwell, g2);
   EXPECT_EQ(a.v, b.v);
+}
+
+// The set-up's look at the interrupt flag (particles::SetUpCheck): make_system calls it at particles 0,
+// 65536, 131072 and 196608 of 200,000 (every set_up_stride, across the species), draws the same
+// velocities as without it, and a check that throws abandons the set-up (what an interrupt does).
+TEST(Particles, MakeSystemLooksAtTheInterruptEverySetUpStride) {
+  const auto mix = binary();
+  auto g1 = rng::make_stream(3, 1, rng::Purpose::initial_state);
+  auto g2 = rng::make_stream(3, 1, rng::Purpose::initial_state);
+  int calls = 0;
+  const auto a = particles::make_system(mix, {120000, 80000}, {1.0, 1.0}, InitialDistribution::maxwell, g1,
+                                        [&calls] { ++calls; });
+  const auto b = particles::make_system(mix, {120000, 80000}, {1.0, 1.0}, InitialDistribution::maxwell, g2);
+  EXPECT_EQ(calls, 4);
+  EXPECT_EQ(a.v, b.v);
+  auto g3 = rng::make_stream(3, 1, rng::Purpose::initial_state);
+  int before_throw = 0;
+  EXPECT_THROW(particles::make_system(mix, {120000, 80000}, {1.0, 1.0}, InitialDistribution::maxwell, g3,
+                                      [&before_throw] {
+                                        if (++before_throw == 2) throw std::runtime_error("interrupted");
+                                      }),
+               std::runtime_error);
+  EXPECT_EQ(before_throw, 2);
+  auto g4 = rng::make_stream(3, 1, rng::Purpose::initial_state);
+  particles::System rough = particles::make_system(mix, {120000, 80000}, {1.0, 1.0}, InitialDistribution::maxwell, g4);
+  int spin_calls = 0;
+  species::Mixture rough_mix = mix;  // (rough spheres: beta = 0.5, uniform spheres)
+  rough_mix.roughness = species::PairMatrix(2, 0.5);
+  rough_mix.moment_of_inertia = {0.4, 0.4};
+  particles::add_angular_velocities(rough, rough_mix, {1.0, 1.0}, "w", g3, [&spin_calls] { ++spin_calls; });
+  EXPECT_EQ(spin_calls, 4);
 }
 
 // 'shell': every velocity is drawn with speed 1, then the species' sample mean u is subtracted and

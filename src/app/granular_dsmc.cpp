@@ -591,8 +591,6 @@ int print_comparison(const Arguments& a, const gdsmc::analysis::compare::Compari
 }
 
 int run(const Arguments& a, const gdsmc::io::config::Config& config, bool root) {
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
   gdsmc::simulation::Options options = run_options(a, config, root);
   const std::string& path = config.output.file;
   gdsmc::analysis::compare::Comparison comparison;
@@ -663,6 +661,12 @@ int run_program(int argc, char** argv) {
   const bool root = gdsmc::parallel::rank() == 0;
   Arguments arguments;
   if (const auto done = parse_arguments(argc, argv, arguments)) return *done;
+  // Ctrl-C from here on sets the flag that the set-up and the loops look at (a run ends within a second
+  // with status 130 and no output). Before the input is read, not in run(): a signal that came before
+  // the handler was lost to a run started in the background by a script (such shells ignore SIGINT for
+  // it), and that run went on to t_end.
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
   gdsmc::io::config::Config config;
   try {
     config = gdsmc::io::config::read_file(arguments.input, arguments.overrides, gdsmc::analysis::check_run_cost);

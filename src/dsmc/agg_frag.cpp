@@ -57,7 +57,8 @@ void perpendicular_pair(Gen& gen, Vec3& a, Vec3& b) {
 }  // namespace
 
 Gas::Gas(const Model& model, std::size_t monomers, double temperature, particles::InitialDistribution distribution,
-         rng::Xoshiro256pp initial, rng::Xoshiro256pp collisions, double step_fraction)
+         rng::Xoshiro256pp initial, rng::Xoshiro256pp collisions, double step_fraction,
+         const particles::SetUpCheck& check)
     : model_(model),
       initial_monomers_(monomers),
       volume_(static_cast<double>(monomers - 1) / model.monomer_density),
@@ -67,7 +68,7 @@ Gas::Gas(const Model& model, std::size_t monomers, double temperature, particles
   const species::Mixture monomer = species::make_mixture(
       {model.monomer_mass}, {model.monomer_diameter}, {model.monomer_density},
       species::PairMatrix(1, model.restitution), false);
-  particles::System sys = particles::make_system(monomer, {monomers}, {temperature}, distribution, initial);
+  particles::System sys = particles::make_system(monomer, {monomers}, {temperature}, distribution, initial, check);
   grow_to(1);
   lists_[1] = std::move(sys.v);  // reserved for exactly N_0 monomers
   clusters_ = monomers;

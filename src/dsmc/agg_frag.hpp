@@ -172,9 +172,11 @@ struct Measurement {
 class Gas {
  public:
   /// N_0 = `monomers` monomers with velocities from `distribution` at `temperature` (zero total
-  /// momentum, exact kinetic temperature: particles.hpp), drawn from `initial`.
+  /// momentum, exact kinetic temperature: particles.hpp), drawn from `initial`; `check`: the caller's look
+  /// at its interrupt flag during the draws (particles::SetUpCheck), which may throw.
   Gas(const Model& model, std::size_t monomers, double temperature, particles::InitialDistribution distribution,
-      rng::Xoshiro256pp initial, rng::Xoshiro256pp collisions, double step_fraction);
+      rng::Xoshiro256pp initial, rng::Xoshiro256pp collisions, double step_fraction,
+      const particles::SetUpCheck& check = {});
   /// An empty gas of `model`: a cache block's, filled by the gas that owns it (header, "Cache blocks").
   explicit Gas(const Model& model) : model_(model), volume_(0.0), step_fraction_(1.0), gen_(0) {}
   /// Explicit clusters (unit tests): sizes and velocities, listed in this order within each size;

@@ -21,7 +21,7 @@ namespace {
 bool may_reach(double mu, double remaining) { return 1.1 * mu + 8.0 * std::sqrt(mu) + 16.0 > remaining; }
 }  // namespace
 
-void Collider::use_blocks(std::size_t block_size) {
+void Collider::use_blocks(std::size_t block_size, const particles::SetUpCheck& check) {
   block_first_.clear();
   scattered_.assign(s_, 0);
   scattered_any_ = false;
@@ -63,13 +63,17 @@ void Collider::use_blocks(std::size_t block_size) {
   slice_first_.assign(blocks * s_, 0);
   slice_cum_.assign(blocks * (s_ + 1), 0);
   slice_count_.assign(blocks * s_, 0);
-  for (std::size_t k = 0; k < s_; ++k)
-    for (std::size_t j = 0; j < blocks && !scattered_[k]; ++j)
-      slice_count_[j * s_ + k] = (sys_.count[k] - j + blocks - 1) / blocks;
-  for (std::size_t k = 0; k < s_; ++k)
+  // (the K x S arrays row by row: at 1e5 species they hold millions of entries; the set-up looks at the
+  // interrupt every set_up_stride / 64 species, each of which draws fewer than min_slice K blocks)
+  for (std::size_t j = 0; j < blocks; ++j)
+    for (std::size_t k = 0; k < s_; ++k)
+      if (!scattered_[k]) slice_count_[j * s_ + k] = (sys_.count[k] - j + blocks - 1) / blocks;
+  for (std::size_t k = 0; k < s_; ++k) {
+    if (k % (particles::set_up_stride / min_slice) == 0 && check) check();
     if (scattered_[k]) {
       for (std::size_t i = 0; i < sys_.count[k]; ++i) ++slice_count_[gen_.below(blocks) * s_ + k];
     }
+  }
   set_slices();
   block_max_speed2_.assign(blocks * s_, 0.0);
   block_credit_.assign(blocks, 0.0);
@@ -98,16 +102,20 @@ std::size_t Collider::separable_block_count(std::size_t species, std::size_t n, 
 
 void Collider::set_slices() {
   // Species k's slices lie in its own range in block order: slice j starts after the counts of blocks < j.
+  // (block by block, so that the K x S arrays are written in order: at 1e5 species they do not fit a cache)
   const std::size_t blocks = block_first_.size() - 1;
-  for (std::size_t k = 0; k < s_; ++k) {
-    std::size_t first = sys_.first[k];
-    for (std::size_t j = 0; j < blocks; ++j) {
-      slice_first_[j * s_ + k] = first;
-      slice_cum_[j * (s_ + 1) + k + 1] = slice_cum_[j * (s_ + 1) + k] + slice_count_[j * s_ + k];
-      first += slice_count_[j * s_ + k];
+  std::vector<std::size_t> next(sys_.first.begin(), sys_.first.end());  // species k's next slice
+  for (std::size_t j = 0; j < blocks; ++j) {
+    const std::size_t* count = slice_count_.data() + j * s_;
+    std::size_t* first = slice_first_.data() + j * s_;
+    std::size_t* cum = slice_cum_.data() + j * (s_ + 1);
+    for (std::size_t k = 0; k < s_; ++k) {
+      first[k] = next[k];
+      next[k] += count[k];
+      cum[k + 1] = cum[k] + count[k];
     }
+    block_first_[j + 1] = block_first_[j] + cum[s_];
   }
-  for (std::size_t j = 0; j < blocks; ++j) block_first_[j + 1] = block_first_[j] + slice_cum_[j * (s_ + 1) + s_];
 }
 
 void Collider::scatter(std::size_t k) {

@@ -46,7 +46,7 @@ const char* release_pages(const char* begin, const char* end) {
 
 System make_system(const species::Mixture& mix, const std::vector<std::size_t>& counts,
                    const std::vector<double>& temperature, InitialDistribution distribution,
-                   rng::Xoshiro256pp& gen) {
+                   rng::Xoshiro256pp& gen, const SetUpCheck& check) {
   System sys;
   const std::size_t s = counts.size();
   sys.first.resize(s);
@@ -63,6 +63,7 @@ System make_system(const species::Mixture& mix, const std::vector<std::size_t>& 
     const std::size_t begin = sys.first[k], end = begin + counts[k];
     // Any scale will do: the velocities are rescaled to T_k below.
     for (std::size_t i = begin; i < end; ++i) {
+      if (i % set_up_stride == 0 && check) check();
       sys.species[i] = static_cast<std::uint32_t>(k);
       switch (distribution) {
         case InitialDistribution::maxwell:
@@ -107,12 +108,13 @@ System make_system(const species::Mixture& mix, const std::vector<std::size_t>& 
 }
 
 void add_angular_velocities(System& sys, const species::Mixture& mix, const std::vector<double>& rotational_temperature,
-                            const std::string& name, rng::Xoshiro256pp& gen) {
+                            const std::string& name, rng::Xoshiro256pp& gen, const SetUpCheck& check) {
   auto& w = sys.add_array<Vec3>(name);
   for (std::size_t k = 0; k < sys.n_species(); ++k) {
     const std::size_t begin = sys.first[k], end = begin + sys.count[k];
     double sum_sq = 0.0;
     for (std::size_t i = begin; i < end; ++i) {
+      if (i % set_up_stride == 0 && check) check();
       w[i] = {gen.normal(), gen.normal(), gen.normal()};
       sum_sq += w[i].x * w[i].x + w[i].y * w[i].y + w[i].z * w[i].z;
     }

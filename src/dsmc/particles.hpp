@@ -30,6 +30,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <deque>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <variant>
@@ -174,12 +175,19 @@ void save(const System& sys, state::Record& record);
 /// be those the input gives); a "particles/displacement" starts the tracking. Throws state::StateError.
 void restore(System& sys, const state::Record& record);
 
+/// The caller's look at its interrupt flag during a set-up whose time grows with N (make_system,
+/// add_angular_velocities, collide::Collider::use_blocks): called about every set_up_stride particles, it
+/// may throw to abandon the set-up (run/replica.cpp throws simulation::Interrupted), so that Ctrl-C is
+/// noticed within a second however large the gas. Empty (the default): never called.
+using SetUpCheck = std::function<void()>;
+inline constexpr std::size_t set_up_stride = std::size_t{1} << 16;
+
 /// Adds the array `name` of angular velocities of rough spheres: Gaussian components, scaled per species
 /// so that I_k <|w|^2>/3 is exactly T_rot,k (I_k = mix.inertia(k)); the mean is not removed (angular
 /// velocities have no conserved mean). Drawn from `gen` (its own stream: the velocities' draws stay those of
 /// the smooth gas).
 void add_angular_velocities(System& sys, const species::Mixture& mix, const std::vector<double>& rotational_temperature,
-                            const std::string& name, rng::Xoshiro256pp& gen);
+                            const std::string& name, rng::Xoshiro256pp& gen, const SetUpCheck& check = {});
 
 /// Starts (or restarts) displacement tracking at time t: R = 0 and t_last = t for every particle.
 void start_tracking(System& sys, double t);
@@ -198,6 +206,6 @@ inline void flush_free_flight(System& sys, std::size_t i, double t) {
 /// Particles with the given counts and velocities drawn from `distribution` at temperatures T_k.
 System make_system(const species::Mixture& mix, const std::vector<std::size_t>& counts,
                    const std::vector<double>& temperature, InitialDistribution distribution,
-                   rng::Xoshiro256pp& gen);
+                   rng::Xoshiro256pp& gen, const SetUpCheck& check = {});
 
 }  // namespace gdsmc::particles

@@ -110,14 +110,29 @@ void start_from_snapshot(particles::System& sys, const std::string& file, std::s
   }
 }
 
+/// Whether the replica must stop: the run's interrupt flag, or another unit's failure (ReplicaContext::abandon).
+bool interrupted(const ReplicaContext& ctx) {
+  return (ctx.options.interrupt && ctx.options.interrupt->load()) || (ctx.abandon && ctx.abandon->load());
+}
+
+/// The set-up's look at the same (particles::SetUpCheck): throws Interrupted, so that a set-up whose time
+/// grows with N is left within a second (tests/scale_out/interrupt.sh).
+particles::SetUpCheck set_up_check(const ReplicaContext& ctx) {
+  return [&ctx] {
+    if (interrupted(ctx)) throw Interrupted();
+  };
+}
+
 /// Replica r's particles, drawn from its stream (seed, r, initial_state).
 particles::System initial_system(const io::config::Config& config, const species::Mixture& mix,
-                                 const std::vector<std::size_t>& counts, std::size_t r) {
+                                 const std::vector<std::size_t>& counts, std::size_t r, const ReplicaContext& ctx) {
   auto stream = rng::make_stream(static_cast<std::uint64_t>(config.dsmc.seed), r, rng::Purpose::initial_state);
-  particles::System sys = particles::make_system(mix, counts, config.initial.temperature, initial_distribution(config), stream);
+  particles::System sys = particles::make_system(mix, counts, config.initial.temperature, initial_distribution(config),
+                                                 stream, set_up_check(ctx));
   if (mix.rough()) {  // the angular velocities from a stream of their own (the smooth gas's draws unchanged)
     auto spin = rng::make_stream(static_cast<std::uint64_t>(config.dsmc.seed), r, rng::Purpose::rotation);
-    particles::add_angular_velocities(sys, mix, config.initial.rotational_temperature, rules::RoughRule::angular_velocity, spin);
+    particles::add_angular_velocities(sys, mix, config.initial.rotational_temperature, rules::RoughRule::angular_velocity, spin,
+                                      set_up_check(ctx));
   }
   if (!config.initial.from_file.empty()) start_from_snapshot(sys, config.initial.from_file, r);
   return sys;
@@ -140,10 +155,10 @@ class Gas : public Engine {
 
  protected:
   /// `reduced`: the replica accumulates the reduced speed distributions Phi_i(v*) of its scaling state.
-  Gas(const io::config::Config& config, std::size_t r, bool reduced)
+  Gas(const io::config::Config& config, std::size_t r, bool reduced, const ReplicaContext& ctx)
       : reduced_(reduced && config.system.n_species <= 2), config_(config), mix_(config.mixture()), s_(mix_.size()),
         counts_(species::particle_counts(static_cast<std::size_t>(config.dsmc.n_particles), mix_)),
-        sys_(initial_system(config, mix_, counts_, r)),
+        sys_(initial_system(config, mix_, counts_, r, ctx)),
         collider_(scheme(config), mix_, sys_,
                   rng::make_stream(static_cast<std::uint64_t>(config.dsmc.seed), r, rng::Purpose::collisions),
                   config.dsmc.step_fraction, make_rule(config, mix_)),
@@ -366,12 +381,12 @@ class FreeGas final : public Gas {
 };
 
 FreeGas::FreeGas(const io::config::Config& config, std::size_t r, const ReplicaContext& ctx)
-    : Gas(config, r, true), time_driven_(config.dsmc.t_end.has_value()),
+    : Gas(config, r, true, ctx), time_driven_(config.dsmc.t_end.has_value()),
       track_(config.output.track_displacements) {
   final_events_ = time_driven_ ? 0.0 : std::ceil(targets_.back() * static_cast<double>(sys_.size()) / 2.0);
   // Cache blocks (collide.hpp "Blocks"): in collision-driven runs the steps near each sample's event
   // target run on the whole gas and stop at it exactly.
-  collider_.use_blocks(static_cast<std::size_t>(config.dsmc.block_size));
+  collider_.use_blocks(static_cast<std::size_t>(config.dsmc.block_size), set_up_check(ctx));
   collider_.use_threads(ctx.block_threads);
   collider_.set_stop_flag(ctx.options.interrupt);  // a step start notices it (collide.hpp)
   if (collider_.blocks() == 1)
@@ -580,13 +595,13 @@ thermostat::Stages make_stages(const io::config::Config& config, const species::
 }
 
 ForcedGas::ForcedGas(const io::config::Config& config, std::size_t r, const ReplicaContext& ctx)
-    : Gas(config, r, hss_of_gaussian_thermostat(config)),
+    : Gas(config, r, hss_of_gaussian_thermostat(config), ctx),
       // (the centre-of-mass velocity sum m V / sum m removed first: \ref eta_thermostat "docs/shear-viscosity.md")
       stages_((thermostat::remove_mean_flow(mix_, sys_), make_stages(config, mix_, sys_, collider_, r))) {
   // Cache blocks with `majorant` or `lowrank` (collide.hpp, "Frame": frames in blocks): a pass over the
   // blocks per stage, on the block threads.
   if (staged_blocks(config)) {
-    collider_.use_blocks(static_cast<std::size_t>(config.dsmc.block_size));
+    collider_.use_blocks(static_cast<std::size_t>(config.dsmc.block_size), set_up_check(ctx));
     collider_.use_threads(ctx.block_threads);
   } else {
     note_idle_threads(ctx, "a thermostat or shear flow has cache blocks only with 'majorant' or 'lowrank' (the "
@@ -712,7 +727,7 @@ Clusters::Clusters(const io::config::Config& config, std::size_t r, const Replic
            initial_distribution(config),
            rng::make_stream(static_cast<std::uint64_t>(config.dsmc.seed), r, rng::Purpose::initial_state),
            rng::make_stream(static_cast<std::uint64_t>(config.dsmc.seed), r, rng::Purpose::collisions),
-           config.dsmc.step_fraction) {
+           config.dsmc.step_fraction, set_up_check(ctx)) {
   if (config.dsmc.block_size == 0 || config.dsmc.n_particles < 2 * config.dsmc.block_size)
     note_idle_threads(ctx, "this aggregation run has no cache blocks (they need N >= 2 block_size clusters)");
   // Cache blocks (agg_frag.hpp, "Cache blocks"): while N >= 2 block_size clusters, on the block threads.
@@ -837,17 +852,14 @@ ReplicaResult run_replica(const io::config::Config& config, std::size_t replica,
     engine->save(record);
     return record;
   };
-  const auto interrupted = [&] {
-    return (ctx.options.interrupt && ctx.options.interrupt->load()) || (ctx.abandon && ctx.abandon->load());
-  };
   // A stop flag ends an advance early (collide.hpp set_stop_flag), so every safe point looks at the
   // flag first: an unfinished advance or stage is never checkpointed, and never written.
   const auto safe_point = [&] {
-    if (interrupted()) throw Interrupted();
+    if (interrupted(ctx)) throw Interrupted();
     ctx.safe_point(snapshot);
   };
   const Engine::Between between = [&] {
-    if (interrupted()) throw Interrupted();
+    if (interrupted(ctx)) throw Interrupted();
     report(std::min(engine->fraction_done(), 0.999));
     safe_point();
   };
@@ -858,7 +870,7 @@ ReplicaResult run_replica(const io::config::Config& config, std::size_t replica,
   const auto taken = result.rows.find("snapshot_time");
   std::size_t next_snapshot = taken == result.rows.end() ? 0 : taken->second.second.size() / 2;
   for (; next_sample < n_samples; ++next_sample, safe_point()) {
-    if (interrupted()) throw Interrupted();
+    if (interrupted(ctx)) throw Interrupted();
     const auto t0 = Clock::now();
     for (; next_snapshot < snapshot_times.size() && snapshot_times[next_snapshot] <= engine->sample_time(next_sample);
          ++next_snapshot) {  // the snapshots up to this sample's time (io/snapshot.hpp)
