@@ -180,7 +180,7 @@ std::vector<std::string> gather_to_root(const std::string& mine) {
   for (long long l : lengths) total += l;
   check(MPI_Bcast(&total, 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD), "MPI_Bcast");
   if (total > INT32_MAX)
-    throw std::runtime_error("MPI: the ranks' results (" + std::to_string(total) +
+    throw AgreedFailure("MPI: the ranks' results (" + std::to_string(total) +
                              " bytes) exceed the 2147483647 bytes one gather to rank 0 carries: nothing written; "
                              "fewer samples, snapshots or sweep points per run");
   std::vector<int> counts(lengths.size()), offsets(lengths.size(), 0);
@@ -207,7 +207,7 @@ std::string broadcast_from_root(const std::string& value) {
   long long length = static_cast<long long>(value.size());
   check(MPI_Bcast(&length, 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD), "MPI_Bcast");
   if (length > INT32_MAX)
-    throw std::runtime_error("MPI: rank 0's " + std::to_string(length) + " bytes exceed the 2147483647 one broadcast carries");
+    throw AgreedFailure("MPI: rank 0's " + std::to_string(length) + " bytes exceed the 2147483647 one broadcast carries");
   std::string out = rank() == 0 ? value : std::string(static_cast<std::size_t>(length), '\0');
   check(MPI_Bcast(out.data(), static_cast<int>(length), MPI_CHAR, 0, MPI_COMM_WORLD), "MPI_Bcast");
   return out;

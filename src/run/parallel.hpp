@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstddef>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -53,10 +54,16 @@ struct ThreadSplit {
 /// The split of this rank's threads() over `units` work units (see ThreadSplit).
 ThreadSplit split_threads(std::size_t units);
 
+/// A failure that every rank throws alike, the ranks having agreed on it (a refused gather or broadcast
+/// below, a run's failure on any rank: simulation.cpp): the program reports it once, on rank 0.
+struct AgreedFailure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 /// Rank 0 receives every rank's buffer, in rank order (its own first); other ranks get an empty list.
-/// Collective: beyond 2^31 - 1 bytes in all (MPI's int counts) every rank throws std::runtime_error.
+/// Collective: beyond 2^31 - 1 bytes in all (MPI's int counts) every rank throws AgreedFailure.
 std::vector<std::string> gather_to_root(const std::string& mine);
-/// Rank 0's value, on every rank (collective: beyond 2^31 - 1 bytes every rank throws std::runtime_error).
+/// Rank 0's value, on every rank (collective: beyond 2^31 - 1 bytes every rank throws AgreedFailure).
 std::string broadcast_from_root(const std::string& value);
 /// The largest of every rank's `value`, on every rank (collective: every rank must call it).
 int largest_over_ranks(int value);

@@ -183,8 +183,9 @@ struct Gathered {
   std::vector<ReplicaResult> own;
 };
 
-/// Every rank's status and results to rank 0, which decides for all: throws Interrupted or the failure of any
-/// rank on every rank; else rank 0's Gathered (empty elsewhere), for results_by_point.
+/// Every rank's status and results to rank 0, which decides for all: throws Interrupted, RestartError or the
+/// failure of any rank (parallel::AgreedFailure) on every rank; else rank 0's Gathered (empty elsewhere), for
+/// results_by_point.
 Gathered gather_results(const std::vector<std::size_t>& mine, std::vector<ReplicaResult>&& done, char status,
                         const std::string& failure) {
   // One rank keeps its results where they are: packing them into one string and back would copy every
@@ -202,7 +203,7 @@ Gathered gather_results(const std::vector<std::size_t>& mine, std::vector<Replic
   verdict = parallel::broadcast_from_root(verdict);
   if (!verdict.empty() && verdict[0] == 'I') throw Interrupted();
   if (!verdict.empty() && verdict[0] == 'R') throw RestartError(verdict.substr(1));
-  if (!verdict.empty()) throw std::runtime_error(verdict.substr(1));
+  if (!verdict.empty()) throw parallel::AgreedFailure(verdict.substr(1));
   if (one_rank) gathered.own = std::move(done);
   return gathered;
 }

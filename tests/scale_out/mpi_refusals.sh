@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Refusals under MPI end every rank, at once, with rank 0's status (parallel.hpp Session::finish): a check
 # that only rank 0 makes (the --compare JSON's folder) once left the other ranks waiting in the run's first
-# collective for ever; a bad input is reported once, not once per rank.
+# collective for ever; a bad input is reported once, not once per rank, and so is a run's failure that
+# every rank has (parallel::AgreedFailure: each rank's replica of a sticking gas aggregated into one cluster).
 # usage: mpi_refusals.sh GRANULAR_DSMC WORKDIR MPIEXEC   (MPIEXEC none: skipped, exit 77)
 set -uo pipefail
 exe=$1 work=$2 mpiexec=${3:-none}
@@ -18,6 +19,20 @@ cat > in.nml <<'NML'
 /
 &output
   file = 'out.h5', n_samples = 3
+/
+NML
+cat > sticky.nml <<'NML'
+&system
+  n_species = 1, mass = 1.0, diameter = 1.0, number_density = 0.1, restitution = 1.0
+/
+&dsmc
+  scheme = 'lowrank', n_particles = 200, collisions_per_particle = 50, replicas = 2, seed = 1
+/
+&output
+  file = 'sticky.h5', n_samples = 3
+/
+&agg_frag
+  aggregation_energy = 100.0, fragmentation_energy = 1000.0, fragment_restitution = 0.5
 /
 NML
 failures=0
@@ -38,6 +53,8 @@ expect() {
 }
 expect "compare-json-folder-missing" 2 "cannot write the JSON file" -- in.nml --quiet --compare="$PWD/no-such-folder/x.json"
 expect "bad-input" 2 "n_particles = -3 is outside" -- in.nml --quiet --set dsmc:n_particles=-3
+expect "a-failure-of-every-rank" 1 "aggregated into one cluster" -- sticky.nml --quiet
+[ -e sticky.h5 ] && { echo "FAIL a-failure-of-every-rank: sticky.h5 written"; failures=$((failures + 1)); }
 expect "a-run" 0 "" -- in.nml --quiet --force
 [ -f out.h5 ] || { echo "FAIL a-run: no out.h5"; failures=$((failures + 1)); }
 [ $failures -eq 0 ]
