@@ -276,11 +276,15 @@ void check_output(Output& out, const Dsmc& d, const Provenance& prov) {
 void check_scales(const Config& c, std::map<std::string, Provenance>& prov) {
   constexpr double low = 1e-100, high = 1e100;
   const auto inside = [](double x) { return x >= low && x <= high; };
+  // The temperatures a snapshot gave (&initial from_file, check_from_file) are refused as from_file's.
+  const bool from_file = !c.initial.from_file.empty();
   const auto refuse = [&](const std::string& group, const std::string& variable, std::size_t k, double value,
                           const std::string& what) {
-    char text[160];
-    std::snprintf(text, sizeof text, "%s(%zu) = %.6g is outside [1e-100, 1e100]", what.c_str(), k + 1, value);
-    refuse_variable(prov[group], group, variable,
+    const bool of_file = from_file && group == "initial" && !prov[group].line.count(variable);
+    char text[200];
+    std::snprintf(text, sizeof text, "%s%s(%zu) = %.6g is outside [1e-100, 1e100]",
+                  of_file ? "its snapshot's velocities give " : "", what.c_str(), k + 1, value);
+    refuse_variable(prov[group], group, of_file ? "from_file" : variable,
                     std::string(text) + ": the code computes in the input's units, where the velocities' fourth moments "
                     "(T/m)^2 and the collision rates must stay far inside double range; choose units in which these "
                     "are nearer 1 (docs/output.md \"Units\")");
