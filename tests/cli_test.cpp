@@ -1636,7 +1636,7 @@ TEST_F(CliSnapshot, RequestsThatCannotBeMetAreRefusedInOneLine) {
                      "t.nml:9: &initial: from_file: ", {"masses", "another gas"}, {"a.h5", "t.nml"});
   // A snapshot whose velocities overflow the temperature is refused as from_file's (the input sets no
   // temperature), not as temperature's.
-  std::filesystem::copy_file(dir / "a.h5", dir / "hot.h5");
+  fs::copy_file(dir / "a.h5", dir / "hot.h5");
   {
     const hid_t f = H5Fopen((dir / "hot.h5").string().c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
     const hid_t d = H5Dopen2(f, "/particles/replica_1/velocity/value", H5P_DEFAULT);
@@ -1651,7 +1651,7 @@ TEST_F(CliSnapshot, RequestsThatCannotBeMetAreRefusedInOneLine) {
   expect_input_error(dsmc(with_line(9, "  from_file = 'hot.h5'")), "granular-dsmc", "t.nml:9: &initial: from_file: ",
                      {"its snapshot's velocities give temperature(", ") = inf is outside [1e-100, 1e100]"},
                      {"a.h5", "hot.h5", "t.nml"});
-  std::filesystem::remove(dir / "hot.h5");
+  fs::remove(dir / "hot.h5");
   // The gas with forcings is refused, not written wrong (its velocities live in a moving frame).
   expect_input_error(dsmc(with_line(16, "  file = 'b.h5', snapshot_times = 5.0") + "&thermostat kind = 'gaussian' /\n"),
                      "granular-dsmc", "t.nml:16: &output: snapshot_times: ", {"not with &thermostat or &shear"},

@@ -114,7 +114,19 @@ std::string write_atomically(const std::string& path, const std::string& text) {
 }
 
 std::atomic<bool> g_interrupted{false};  // written only by the signal handler
-extern "C" void on_signal(int) { g_interrupted.store(true); }
+std::atomic<bool> g_run_started{false};  // set by run(): from then on a signal only sets g_interrupted
+/// SIGINT, SIGTERM: once the run has started, the flag that its set-up and loops look at (the run ends
+/// within a second, status 130, no output); before, while the input and the files it names are read (HDF5
+/// calls that look at no flag), the signal's default action, at once. Installed as the input is read, so
+/// that a run started in the background by a script, whose shell ignores SIGINT for it, still ends on one.
+extern "C" void on_signal(int signal) {
+  if (g_run_started.load()) {
+    g_interrupted.store(true);
+    return;
+  }
+  std::signal(signal, SIG_DFL);  // (async-signal-safe; the raised signal is delivered as this handler returns)
+  std::raise(signal);
+}
 
 const char* kUsage =
     "usage: granular-dsmc FILE.nml [--output PATH] [--quiet] [--compare[=FILE.json]] [--restart CHECKPOINT]\n"
@@ -591,6 +603,7 @@ int print_comparison(const Arguments& a, const gdsmc::analysis::compare::Compari
 }
 
 int run(const Arguments& a, const gdsmc::io::config::Config& config, bool root) {
+  g_run_started.store(true);  // a signal now sets g_interrupted (on_signal)
   gdsmc::simulation::Options options = run_options(a, config, root);
   const std::string& path = config.output.file;
   gdsmc::analysis::compare::Comparison comparison;
@@ -664,11 +677,7 @@ int run_program(int argc, char** argv) {
   const bool root = gdsmc::parallel::rank() == 0;
   Arguments arguments;
   if (const auto done = parse_arguments(argc, argv, arguments)) return *done;
-  // Ctrl-C from here on sets the flag that the set-up and the loops look at (a run ends within a second
-  // with status 130 and no output). Before the input is read, not in run(): a signal that came before
-  // the handler was lost to a run started in the background by a script (such shells ignore SIGINT for
-  // it), and that run went on to t_end.
-  std::signal(SIGINT, on_signal);
+  std::signal(SIGINT, on_signal);  // (on_signal: the default action until run() starts)
   std::signal(SIGTERM, on_signal);
   gdsmc::io::config::Config config;
   try {

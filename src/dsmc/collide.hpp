@@ -241,7 +241,8 @@ class Collider {
   /// separable_block_count() blocks: of at least 8 S particles where that leaves 16 blocks, larger ones when
   /// S K would exceed N), and N >= 2 block_size; otherwise (or
   /// with 0) the whole gas is one block. Call before the first advance(). `check`: the caller's look at
-  /// its interrupt flag (particles::SetUpCheck), which may throw.
+  /// its interrupt flag (particles::SetUpCheck); when it throws, the collider is half set up and must be
+  /// discarded.
   void use_blocks(std::size_t block_size, const particles::SetUpCheck& check = {});
   std::size_t blocks() const { return block_first_.empty() ? 1 : block_first_.size() - 1; }
   /// How the blocks draw their candidates (header "Blocks", "Mixtures in blocks", "The cheaper sampler"), for

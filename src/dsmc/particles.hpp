@@ -177,8 +177,8 @@ void restore(System& sys, const state::Record& record);
 
 /// The caller's look at its interrupt flag during a set-up whose time grows with N (make_system,
 /// add_angular_velocities, collide::Collider::use_blocks): called about every set_up_stride particles, it
-/// may throw to abandon the set-up (run/replica.cpp throws simulation::Interrupted), so that Ctrl-C is
-/// noticed within a second however large the gas. Empty (the default): never called.
+/// may throw to abandon the set-up, whose partial result is then discarded, so that Ctrl-C is noticed
+/// within a second however large the gas. Empty (the default): never called.
 using SetUpCheck = std::function<void()>;
 inline constexpr std::size_t set_up_stride = std::size_t{1} << 16;
 

@@ -307,13 +307,15 @@ void check_scales(const Config& c, std::map<std::string, Provenance>& prov) {
       // (0 exactly: no rotation at the start, docs/rough-spheres.md)
       if (spin[k] != 0.0 && !inside(spin[k])) refuse("initial", "rotational_temperature", k, spin[k], "rotational_temperature");
       if (!(spin[k] / t <= 1e20)) {
-        char text[320];
+        const bool of_file = from_file && !prov["initial"].line.count("rotational_temperature");
+        char text[360];
         std::snprintf(text, sizeof text,
-                      "rotational_temperature(%zu)/temperature(%zu) = %.3g is beyond 1e20: the first collisions would take "
-                      "%.3g times as long as the later ones, whose time steps vanish in the clock's round-off (the run "
-                      "would not end); start the translation warmer",
-                      k + 1, k + 1, spin[k] / t, std::sqrt(spin[k] / t));
-        refuse_variable(prov["initial"], "initial", "rotational_temperature", text);
+                      "%srotational_temperature(%zu)/temperature(%zu) = %.3g is beyond 1e20: the first collisions would "
+                      "take %.3g times as long as the later ones, whose time steps vanish in the clock's round-off (the "
+                      "run would not end)%s",
+                      of_file ? "its snapshot's velocities give " : "", k + 1, k + 1, spin[k] / t, std::sqrt(spin[k] / t),
+                      of_file ? "" : "; start the translation warmer");
+        refuse_variable(prov["initial"], "initial", of_file ? "from_file" : "rotational_temperature", text);
       }
     }
   }

@@ -181,8 +181,8 @@ std::vector<std::string> gather_to_root(const std::string& mine) {
   check(MPI_Bcast(&total, 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD), "MPI_Bcast");
   if (total > INT32_MAX)
     throw AgreedFailure("MPI: the ranks' results (" + std::to_string(total) +
-                             " bytes) exceed the 2147483647 bytes one gather to rank 0 carries: nothing written; "
-                             "fewer samples, snapshots or sweep points per run");
+                        " bytes) exceed the 2147483647 bytes one gather to rank 0 carries: nothing written; "
+                        "fewer samples, snapshots or sweep points per run");
   std::vector<int> counts(lengths.size()), offsets(lengths.size(), 0);
   for (std::size_t k = 0; k < lengths.size(); ++k) {
     counts[k] = static_cast<int>(lengths[k]);

@@ -2,7 +2,8 @@
 # Refusals under MPI end every rank, at once, with rank 0's status (parallel.hpp Session::finish): a check
 # that only rank 0 makes (the --compare JSON's folder) once left the other ranks waiting in the run's first
 # collective for ever; a bad input is reported once, not once per rank, and so is a run's failure that
-# every rank has (parallel::AgreedFailure: each rank's replica of a sticking gas aggregated into one cluster).
+# every rank has (parallel::AgreedFailure: each rank's replica of a sticking gas aggregated into one cluster)
+# or one rank has (a two-point sweep whose second point, run by rank 1, sticks).
 # usage: mpi_refusals.sh GRANULAR_DSMC WORKDIR MPIEXEC   (MPIEXEC none: skipped, exit 77)
 set -uo pipefail
 exe=$1 work=$2 mpiexec=${3:-none}
@@ -35,6 +36,8 @@ cat > sticky.nml <<'NML'
   aggregation_energy = 100.0, fragmentation_energy = 1000.0, fragment_restitution = 0.5
 /
 NML
+{ sed 's/sticky.h5/sticky2.h5/; s/replicas = 2/replicas = 1/' sticky.nml
+  printf '%s\n' "&sweep" "  variable = 'agg_frag:aggregation_energy', values = 1e-9, 100.0" "/"; } > sticky2.nml
 failures=0
 # expect NAME STATUS MESSAGE -- ARGS...: the exit status, the message (if any) exactly once, within 15 s
 expect() {
@@ -55,6 +58,8 @@ expect "compare-json-folder-missing" 2 "cannot write the JSON file" -- in.nml --
 expect "bad-input" 2 "n_particles = -3 is outside" -- in.nml --quiet --set dsmc:n_particles=-3
 expect "a-failure-of-every-rank" 1 "aggregated into one cluster" -- sticky.nml --quiet
 [ -e sticky.h5 ] && { echo "FAIL a-failure-of-every-rank: sticky.h5 written"; failures=$((failures + 1)); }
+expect "a-failure-of-rank-1" 1 "aggregated into one cluster" -- sticky2.nml --quiet
+[ -e sticky2.h5 ] && { echo "FAIL a-failure-of-rank-1: sticky2.h5 written"; failures=$((failures + 1)); }
 expect "a-run" 0 "" -- in.nml --quiet --force
 [ -f out.h5 ] || { echo "FAIL a-run: no out.h5"; failures=$((failures + 1)); }
 [ $failures -eq 0 ]
