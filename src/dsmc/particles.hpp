@@ -180,6 +180,7 @@ void restore(System& sys, const state::Record& record);
 /// may throw to abandon the set-up, whose partial result is then discarded, so that Ctrl-C is noticed
 /// within a second however large the gas. Empty (the default): never called.
 using SetUpCheck = std::function<void()>;
+/// Particles between two calls of a SetUpCheck: a few milliseconds of velocity draws.
 inline constexpr std::size_t set_up_stride = std::size_t{1} << 16;
 
 /// Adds the array `name` of angular velocities of rough spheres: Gaussian components, scaled per species
