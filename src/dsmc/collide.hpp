@@ -292,9 +292,8 @@ class Collider {
     return lowrank ? lowrank_block_rate(max_speed2_.data())
                    : 0.5 * static_cast<double>(sys_.size()) * mix_.total_density() * mixture_bound(max_speed2_.data());
   }
-  /// A `lowrank` block candidate's cost over a `majorant` one's, both in the mixture kernel (binary
-  /// gases at N = 1e6: 1.09 on 2026-11-27, 1.06-1.20 per bench_collide round and 1.18-1.19 from whole
-  /// processes on 2026-11-28; docs/schemes.md "The cheaper sampler").
+  /// A `lowrank` block candidate's cost over a `majorant` one's, both in the mixture kernel, as measured on
+  /// binary gases at N = 1e6 (\ref perf_cheaper_sampler "docs/performance.md", docs/schemes.md "The cheaper sampler").
   static constexpr double lowrank_candidate_cost = 1.15;
   /// A block's `lowrank` sampler takes the factored draw when more than this many species are present
   /// in it, the one-word draw otherwise (header "Mixtures in blocks"; the same process either way; the
