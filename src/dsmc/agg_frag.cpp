@@ -294,11 +294,25 @@ std::size_t Gas::blocks() const {
 double Gas::block_step_end() const {
   const double rate = sampler_.total();
   if (blocks() == 1 || !(rate > 0.0)) return time_;
-  // block_steps step_fraction majorant mean free times (N/(2R) each), at most 2^22 candidates (under
-  // a second on one thread at ~0.2 us a candidate; the blocks notice a Ctrl-C every 2^16, advance())
+  // block_steps step_fraction majorant mean free times (N/(2R) each), at most max_block_step_candidates
+  // (the blocks notice a Ctrl-C every 2^16 of their candidates: advance())
   const double dt = std::min(block_steps * step_fraction_ * static_cast<double>(clusters_) / (2.0 * rate),
-                             4194304.0 / rate);
+                             max_block_step_candidates / rate);
   return time_ + dt;
+}
+
+double Gas::target_step_candidates(std::uint64_t events_left) const {
+  // Header, "Cache blocks": the expected events p C of C candidates, p twice the run's events per candidate
+  // so far (1 before its first candidate: events never exceed candidates), plus 10 % and 8 standard
+  // deviations, at most the events left: 1.1 x + 8 sqrt(x) + 16 <= left for x = p C.
+  const double left = static_cast<double>(events_left);
+  if (left <= 16.0) return 0.0;
+  const double so_far = counters_.candidates > 0
+                            ? static_cast<double>(counters_.events) / static_cast<double>(counters_.candidates)
+                            : 0.5;
+  const double acceptance = std::min(1.0, 2.0 * so_far);
+  const double root = (-8.0 + std::sqrt(64.0 + 4.4 * (left - 16.0))) / 2.2;
+  return root * root / acceptance;
 }
 
 double Gas::blocked_step_end(double t_target, std::uint64_t event_target) const {
@@ -306,10 +320,9 @@ double Gas::blocked_step_end(double t_target, std::uint64_t event_target) const 
   if (blocks() == 1 || !(rate > 0.0) || counters_.events >= event_target) return -1.0;
   const double free_time = static_cast<double>(clusters_) / (2.0 * rate);  // majorant mean free time
   double end = std::min(block_step_end(), t_target);
-  // Towards an event target: expected candidates at most half the events left (events never
-  // exceed candidates; header, "Cache blocks").
+  // Towards an event target: a step whose events surely stay below it (target_step_candidates).
   if (event_target != UINT64_MAX)
-    end = std::min(end, time_ + 0.5 * static_cast<double>(event_target - counters_.events) / rate);
+    end = std::min(end, time_ + target_step_candidates(event_target - counters_.events) / rate);
   // A step shorter than half a mean free time runs on the whole gas (a deal costs O(N)).
   return end - time_ >= 0.5 * free_time ? end : -1.0;
 }
@@ -566,7 +579,7 @@ bool Gas::advance(double t_target, std::uint64_t event_target) {
     time_ += wait;
     credit_ = 0.0;
     counters_.candidates += 1;
-    // A blocked step holds up to 2^22 candidates per block: an interrupt is noticed every 2^16 (a few ms) and the
+    // A blocked step holds up to 2^24 candidates: an interrupt is noticed every 2^16 (a few ms) and the
     // step is abandoned (the gathered gas is only discarded); no draw depends on it.
     if ((counters_.candidates & 0xFFFFu) == 0 && stop_flag_ && stop_flag_->load(std::memory_order_relaxed)) return false;
     const auto [row, column] = sampler_.sample(gen_, totals);

@@ -58,14 +58,18 @@
  * (N_1, aggregations, fragmentations, kinetic energy over replicas, within 4 combined standard errors)
  * and by the Smoluchowski validation, whose runs of 2e5 to 1e6 monomers are blocked. A block starts its
  * candidate clock at a uniformly random phase (credit u/R_b), so that its expected candidate count over
- * the step is R_b dt, not one less. A blocked step is block_steps (5) majorant mean free times of the
- * whole gas, at most 2^22 candidates (a Ctrl-C is seen within a second), ending at t_target; after it
- * the clusters are gathered back block by block in order, the bounds recomputed exactly and the
- * sampler rebuilt. Event targets: a blocked step is cut so that its expected candidates are at most
- * half the events left to the target (events never exceed candidates, and about one candidate in
- * four is accepted), and one shorter than half a mean free time runs on the whole gas instead, which
- * stops at the target exactly. A blocked step that passed the target would be reported as an error
- * (it would need the candidate rate to double within the step and nearly every candidate accepted). **Threads:** the blocks of a step are independent; block b draws from
+ * the step is R_b dt, not one less. A blocked step is block_steps (20) majorant mean free times of the
+ * whole gas, at most max_block_step_candidates (2^24; each block notices a Ctrl-C every 2^16 of its
+ * candidates), ending at t_target; after it the clusters are gathered back block by block in order, the
+ * bounds recomputed exactly and the sampler rebuilt. Within a block the bounds are exact again at every
+ * step_fraction mean free times of its own, so the blocked step's length sets only how often the gas is
+ * dealt (an O(N) pass: \ref perf_agg_frag "docs/performance.md"), not the acceptance. Event targets: a
+ * blocked step is cut so that its events surely stay below the target (target_step_candidates: C
+ * candidates with 1.1 p C + 8 sqrt(p C) + 16 at most the events left, p twice the run's events per
+ * candidate so far, 1 before its first candidate), and one shorter than half a mean free time runs on
+ * the whole gas instead, which stops at the target exactly. A blocked step that passed the target would
+ * be reported as an error (it would need the acceptance to more than double against the run's so far,
+ * and an 8 standard deviation excess). **Threads:** the blocks of a step are independent; block b draws from
  * rng::Xoshiro256pp::substream(key, b), the key one draw of the gas's own stream per step, and the
  * counters and clusters are gathered in block order, so the output is bit for bit the same on any
  * thread count (AggFrag.BlockThreadsAreBitwiseTheSame, scale_out.reproducibility_agg_frag). The deal runs
@@ -191,7 +195,7 @@ class Gas {
   bool advance(double t_target, std::uint64_t event_target = UINT64_MAX);
   /// A flag (the caller's interrupt flag) that, once set, makes advance() return false at the next
   /// step start, before its targets (as collide::Collider::set_stop_flag); the blocks of a blocked
-  /// step (at most 2^22 candidates) stop as early, and the gas is then fit only to be discarded.
+  /// step (at most 2^24 candidates) stop as early, and the gas is then fit only to be discarded.
   /// nullptr (the default): never.
   void set_stop_flag(const std::atomic<bool>* flag) { stop_flag_ = flag; }
 
@@ -203,12 +207,14 @@ class Gas {
   /// The threads set by use_blocks (1 by default).
   int threads() const { return block_threads_; }
   /// End of the blocked step that would start now (block_steps majorant mean free times, at most
-  /// 2^22 candidates); the time itself when the next step runs unblocked.
+  /// max_block_step_candidates); the time itself when the next step runs unblocked.
   double block_step_end() const;
   /// Blocked steps run so far.
   std::uint64_t blocked_steps() const { return blocked_steps_; }
   /// Majorant mean free times in a blocked step.
-  static constexpr double block_steps = 5.0;
+  static constexpr double block_steps = 20.0;
+  /// The most candidates a blocked step holds (2^24).
+  static constexpr double max_block_step_candidates = 16777216.0;
 
   /// A cluster: its size and its place in the list of that size.
   struct Cluster {
@@ -291,6 +297,8 @@ class Gas {
   /// End of the blocked step that may run now towards t_target and `event_target` (header, "Cache
   /// blocks"), or -1 when the next step runs on the whole gas.
   double blocked_step_end(double t_target, std::uint64_t event_target) const;
+  /// The most candidates a blocked step may hold with `events_left` to an event target (header, "Cache blocks").
+  double target_step_candidates(std::uint64_t events_left) const;
   /// One blocked step from time_ to `end`: deal, run the blocks, gather.
   void blocked_step(double end);
   /// The deal of a blocked step: the clusters to the blocks of a uniformly random partition.
