@@ -243,7 +243,7 @@ double Collider::block_step_length(double rate, bool acceptance_unknown) const {
   const double n_total = static_cast<double>(sys_.size());
   const double short_step = block_steps * step_fraction_ * n_total / (2.0 * rate);
   if (counters_.steps == 0) return std::min(short_step, max_block_step_candidates / rate);
-  if (framed_ || acceptance_unknown || block_step_collisions_ <= 0.0 || step_acceptance_ <= 0.0) return short_step;
+  if (acceptance_unknown || block_step_collisions_ <= 0.0 || step_acceptance_ <= 0.0) return short_step;
   const double long_step = block_step_collisions_ / step_acceptance_ * step_fraction_ * n_total / (2.0 * rate);
   return std::max(short_step, std::min(long_step, max_block_step_candidates / rate));
 }
