@@ -206,8 +206,8 @@ TEST(AggFrag, RestoredStateContinuesBitwise) {
 // unblocked one. 48 replicas each (independent seeds) of 16384 monomers at T_0 = 0.5 in 8 blocks of
 // 2048, all three outcomes active (E_agg = 0.3, E_frag = 0.6, eps_f = 0.9, alpha = 0.9), to t = 8 (about
 // 3 collisions per monomer), blocked in two ways: in 8 calls (a blocked step ends at each, so the gas is
-// dealt 8 times) and in one (one blocked step of block_steps mean free times: products meet only their
-// block's members all along). N_1, N, aggregations, fragmentations and the kinetic energy of each agree
+// dealt 8 times) and in one (one blocked step, cut at t = 8 after about 15 of its block_steps mean free
+// times: products meet only their block's members all along). N_1, N, aggregations, fragmentations and the kinetic energy of each agree
 // with the unblocked runs' within 4 combined standard errors. The blocks' own effect is of order 1/n_b =
 // 5e-4 relative; the standard errors are 0.03 % (kinetic energy) to 0.5 % (fragmentations).
 TEST(AggFrag, BlockedMatchesUnblocked) {
@@ -253,6 +253,47 @@ TEST(AggFrag, BlockedMatchesUnblocked) {
           << names[q] << ": blocked (" << mode_names[mode] << ") " << mean[1] << ", unblocked " << mean[0]
           << ", combined SE " << se;
     }
+}
+
+// Event targets in blocks of small gases (agg_frag.hpp, "Cache blocks"; target_step_candidates), each
+// target run as the run layer does (Clusters::advance_to_sample: a blocked step per call): 300 replicas of
+// 128 monomers in 2 blocks of 64, step_fraction 0.1 (short whole-gas steps, whose first may make no event
+// at all), ten targets 0.3 collisions per monomer apart; and 40 replicas of 1024 monomers in blocks of 64,
+// step_fraction 0.05, ten targets 1.0 apart. Every target is met exactly and no blocked step passes one.
+// Sized at the acceptance of the run's first few events, 28 of the first 300 replicas threw.
+TEST(AggFrag, SmallBlockedGasesMeetEveryEventTarget) {
+  const Model m = model(0.3, 0.6, 0.9, 0.9);
+  struct Case {
+    std::size_t monomers, replicas;
+    double step_fraction, target_spacing;
+    int targets;
+  };
+  for (const Case c : {Case{128, 300, 0.1, 0.3, 10}, Case{1024, 40, 0.05, 1.0, 10}}) {
+    std::uint64_t blocked_steps = 0;
+    for (std::size_t r = 0; r < c.replicas; ++r) {
+      Gas gas(m, c.monomers, 0.5, gdsmc::particles::InitialDistribution::maxwell,
+              rng::make_stream(100 + r, 0, rng::Purpose::initial_state),
+              rng::make_stream(100 + r, 0, rng::Purpose::collisions), c.step_fraction);
+      gas.use_blocks(64);
+      for (int i = 1; i <= c.targets && gas.clusters() >= 2; ++i) {
+        const auto target =
+            static_cast<std::uint64_t>(std::ceil(c.target_spacing * i * static_cast<double>(c.monomers) / 2.0));
+        while (gas.counters().events < target && gas.clusters() >= 2) {
+          const double t_stop = gas.blocks() > 1 ? gas.block_step_end() : kInf;
+          ASSERT_NO_THROW(gas.advance(t_stop, target)) << c.monomers << " monomers, replica " << r << ", target " << target;
+        }
+        if (gas.clusters() >= 2) {
+          ASSERT_EQ(gas.counters().events, target) << c.monomers << " monomers, replica " << r;
+        }
+      }
+      blocked_steps += gas.blocked_steps();
+    }
+    std::printf("%zu monomers: %llu blocked steps in %zu replicas\n", c.monomers,
+                static_cast<unsigned long long>(blocked_steps), c.replicas);
+    if (c.monomers == 1024) {
+      EXPECT_GE(blocked_steps, c.replicas) << "the larger gases must have run blocked steps";
+    }
+  }
 }
 
 // The blocks of a step on 1 or 2 threads: the same clusters, counters and time bit for bit; the

@@ -303,14 +303,14 @@ double Gas::block_step_end() const {
 
 double Gas::target_step_candidates(std::uint64_t events_left) const {
   // Header, "Cache blocks": the expected events p C of C candidates, p twice the run's events per candidate
-  // so far (1 before its first candidate: events never exceed candidates), plus 10 % and 8 standard
-  // deviations, at most the events left: 1.1 x + 8 sqrt(x) + 16 <= left for x = p C.
+  // once it has made min_events_for_acceptance events, else 1 (events never exceed candidates), plus 10 %
+  // and 8 standard deviations, at most the events left: 1.1 x + 8 sqrt(x) + 16 <= left for x = p C (the
+  // margins of the particle blocks' steps near a target: collide.hpp, "Event targets").
   const double left = static_cast<double>(events_left);
   if (left <= 16.0) return 0.0;
-  const double so_far = counters_.candidates > 0
-                            ? static_cast<double>(counters_.events) / static_cast<double>(counters_.candidates)
-                            : 0.5;
-  const double acceptance = std::min(1.0, 2.0 * so_far);
+  double acceptance = 1.0;
+  if (counters_.events >= min_events_for_acceptance)
+    acceptance = std::min(1.0, 2.0 * static_cast<double>(counters_.events) / static_cast<double>(counters_.candidates));
   const double root = (-8.0 + std::sqrt(64.0 + 4.4 * (left - 16.0))) / 2.2;
   return root * root / acceptance;
 }

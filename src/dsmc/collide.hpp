@@ -61,8 +61,10 @@
  * only raised; one collision per particle dissipates at most gamma = max (1 - alpha_kj^2)/3 of the energy, and a step
  * brings c = min(sqrt(2/gamma), 6) collisions per particle: c/p majorant mean free times at the last step's acceptance
  * p, never less than block_steps = 5, times step_fraction, at most max_block_step_candidates = 3/4 of 2^24 candidates
- * unless block_steps is more (N > 5e6; the first step capped too). Viscoelastic restitution keeps block_steps; a frame
- * does not (it maps every velocity alike: the stored ones cool by the collisions alone). The length sets when bounds are refreshed and blocks remixed, not the process. **Event targets**
+ * unless block_steps is more (N > 5e6; the first step capped too). Viscoelastic restitution keeps block_steps; the stage
+ * loop's runs do not (thermostat, shear, white noise, rough spheres: a frame maps every velocity alike, so the stored
+ * ones cool by the collisions alone, and an action on each particle is followed by a pass that makes the bounds exact
+ * again, reset_frame). The length sets when bounds are refreshed and blocks remixed, not the process. **Event targets**
  * (`collisions_per_particle`) are met exactly: when fewer events are left than a step could bring (R dt times the last
  * step's acceptance, 1 for a run's first step, plus 10 % and 8 standard deviations) the step is shortened (and, when
  * no longer than block_steps, keeps the blocks of the step before, no remix for a fraction of a step's events, while

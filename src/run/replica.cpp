@@ -745,7 +745,7 @@ void Clusters::advance_to_sample(std::size_t i, const Between& between) {
   constexpr std::uint64_t kChunk = 1u << 19;
   for (;;) {
     const std::uint64_t done = gas_.counters().events;
-    // With blocks a chunk is one blocked step (at most 2^23 candidates, its own event margin).
+    // With blocks a chunk is one blocked step (at most 2^24 candidates, its own event margin).
     const bool blocked = gas_.blocks() > 1;
     const std::uint64_t chunk_end = blocked || event_target - done <= kChunk ? event_target : done + kChunk;
     // ... and at most ~1e5 candidates (chunk_end_time); one cluster left or nothing moving: the
