@@ -70,8 +70,8 @@
  * has made min_events_for_acceptance events, else 1), and one shorter than half a mean free time runs on
  * the whole gas instead, which stops at the target exactly. A blocked step that passed the target would
  * be reported as an error: it would need the step's events per candidate at more than about 2.2 times the
- * run's so far, or an excess of 8 standard deviations (the largest ratio measured over 72 gases, three
- * initial distributions and two step_fraction: 1.27, \ref perf_agg_frag "docs/performance.md"). **Threads:** the blocks of a step are independent; block b draws from
+ * run's so far, or an excess of 8 standard deviations (the ratio measured over many gases: \ref perf_agg_frag
+ * "docs/performance.md"). **Threads:** the blocks of a step are independent; block b draws from
  * rng::Xoshiro256pp::substream(key, b), the key one draw of the gas's own stream per step, and the
  * counters and clusters are gathered in block order, so the output is bit for bit the same on any
  * thread count (AggFrag.BlockThreadsAreBitwiseTheSame, scale_out.reproducibility_agg_frag). The deal runs
@@ -217,7 +217,7 @@ class Gas {
   static constexpr double block_steps = 20.0;
   /// The most candidates a blocked step holds (2^24).
   static constexpr double max_block_step_candidates = 16777216.0;
-  /// The events after which a step towards an event target is sized at the run's acceptance (before: at 1).
+  /// The events after which a step towards an event target is sized at the run's acceptance (below them: at 1).
   static constexpr std::uint64_t min_events_for_acceptance = 1024;
 
   /// A cluster: its size and its place in the list of that size.
