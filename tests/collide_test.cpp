@@ -4,6 +4,7 @@
 // Statistical tests use fixed seeds; each tolerance is set as for a random seed (5 Poisson sigma or
 // 5 standard errors, as stated above each test), and the measured numbers are printed.
 #include "dsmc/collide.hpp"
+#include "dsmc/event_margin.hpp"
 
 #include <gtest/gtest.h>
 
@@ -2326,4 +2327,22 @@ TEST(Collide, TheSpeedBoundIsRaisedAboveTheStartingSpeeds) {
     EXPECT_GT(largest, 1.5);
     EXPECT_EQ(c.counters().overshoots, 0u);
   }
+}
+
+// The margin of a blocked step near an exact event target (event_margin.hpp), against values computed by
+// hand: 100 events left allow a step expected to bring 33.9733 (sqrt = (-8 + sqrt(433.6))/2.2 = 5.828665;
+// 1.1 x 33.9733 + 8 x 5.828665 + 16 = 100.000), 17 allow 0.0151099, 16 or fewer none; 33.97 may not reach
+// 100 (99.994), 34.0 may (100.047). At 1e6 the two functions agree to the last digit either side.
+TEST(EventMargin, HandComputedValues) {
+  using namespace gdsmc::event_margin;
+  EXPECT_NEAR(largest_safe_mean(100.0), 33.97334, 1e-5);
+  EXPECT_NEAR(largest_safe_mean(17.0), 0.0151099, 1e-7);
+  EXPECT_EQ(largest_safe_mean(16.0), 0.0);
+  EXPECT_EQ(largest_safe_mean(3.0), 0.0);
+  EXPECT_FALSE(may_reach(33.97, 100.0));
+  EXPECT_TRUE(may_reach(34.0, 100.0));
+  const double mean = largest_safe_mean(1e6);
+  EXPECT_NEAR(mean, 902168.54, 0.01);
+  EXPECT_FALSE(may_reach(mean * (1.0 - 1e-9), 1e6));
+  EXPECT_TRUE(may_reach(mean * (1.0 + 1e-9), 1e6));
 }

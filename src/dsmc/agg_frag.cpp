@@ -1,4 +1,5 @@
 #include "dsmc/agg_frag.hpp"
+#include "dsmc/event_margin.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -302,17 +303,13 @@ double Gas::block_step_end() const {
 }
 
 double Gas::target_step_candidates(std::uint64_t events_left) const {
-  // Header, "Cache blocks": the expected events p C of C candidates, p twice the run's events per candidate
-  // once it has made min_events_for_acceptance events, else 1 (events never exceed candidates), plus 10 %
-  // and 8 standard deviations, at most the events left: 1.1 x + 8 sqrt(x) + 16 <= left for x = p C (the
-  // margins of the particle blocks' steps near a target: collide.hpp, "Event targets").
-  const double left = static_cast<double>(events_left);
-  if (left <= 16.0) return 0.0;
+  // Header, "Cache blocks": C candidates are expected to bring p C events, p twice the run's events per
+  // candidate once it has made min_events_for_acceptance events, else 1 (events never exceed candidates);
+  // p C is the largest that may not reach the events left (event_margin.hpp).
   double acceptance = 1.0;
   if (counters_.events >= min_events_for_acceptance)
     acceptance = std::min(1.0, 2.0 * static_cast<double>(counters_.events) / static_cast<double>(counters_.candidates));
-  const double root = (-8.0 + std::sqrt(64.0 + 4.4 * (left - 16.0))) / 2.2;
-  return root * root / acceptance;
+  return event_margin::largest_safe_mean(static_cast<double>(events_left)) / acceptance;
 }
 
 double Gas::blocked_step_end(double t_target, std::uint64_t event_target) const {
@@ -320,7 +317,7 @@ double Gas::blocked_step_end(double t_target, std::uint64_t event_target) const 
   if (blocks() == 1 || !(rate > 0.0) || counters_.events >= event_target) return -1.0;
   const double free_time = static_cast<double>(clusters_) / (2.0 * rate);  // majorant mean free time
   double end = std::min(block_step_end(), t_target);
-  // Towards an event target: a step whose events surely stay below it (target_step_candidates).
+  // Towards an event target: a step whose events stay below it with margins (target_step_candidates).
   if (event_target != UINT64_MAX)
     end = std::min(end, time_ + target_step_candidates(event_target - counters_.events) / rate);
   // A step shorter than half a mean free time runs on the whole gas (a deal costs O(N)).

@@ -1,6 +1,7 @@
 // The cache blocks of the collider (collide.hpp "Blocks", "Mixtures in blocks", "Threads inside one replica"): the
 // blocks, their remix, their steps and their bounds, the workers that run them on threads.
 #include "dsmc/collide.hpp"
+#include "dsmc/event_margin.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,11 +16,7 @@
 
 namespace gdsmc::collide {
 
-namespace {
-/// Near an exact event target with blocks (header "Blocks"): whether a step expected to bring mu
-/// events could reach the `remaining` ones, with 10 % and 8 standard deviations and 16 to spare.
-bool may_reach(double mu, double remaining) { return 1.1 * mu + 8.0 * std::sqrt(mu) + 16.0 > remaining; }
-}  // namespace
+using event_margin::may_reach;  // near an exact event target with blocks (header "Blocks")
 
 void Collider::use_blocks(std::size_t block_size, const particles::SetUpCheck& check) {
   block_first_.clear();
