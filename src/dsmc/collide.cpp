@@ -387,7 +387,8 @@ void Collider::set_frame(double scale, double shear) {
   if (rate_ > 0.0) rebuild_bounds();
 }
 
-void Collider::reset_frame(const std::array<double, 4>& moments, const std::vector<double>& max_speed2) {
+void Collider::reset_frame(const std::array<double, 4>& moments, const std::vector<double>& max_speed2,
+                           bool block_bounds_set) {
   framed_ = true;  // (a rule without frames runs its unframed loops in this identity frame: collide_kernels.cpp)
   frame_scale_ = 1.0;
   frame_inverse_scale_ = 1.0;
@@ -395,7 +396,8 @@ void Collider::reset_frame(const std::array<double, 4>& moments, const std::vect
   speed_factor_ = 1.0;
   moments_ = moments;
   set_max_speeds(max_speed2);
-  // In blocks: each block's exact bound again (the velocities were all replaced).
+  // In blocks: each block's exact bound again (the velocities were all replaced), unless map_blocks kept them.
+  if (block_bounds_set) return;
   for (std::size_t j = 0; j + 1 < block_first_.size(); ++j) set_block_max_speed2(j, block_max_speed2_.data() + j * s_);
 }
 

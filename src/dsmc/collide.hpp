@@ -96,8 +96,9 @@
  * loop (G back to 1 whenever |c| > 0.04 and at every sample). The moments Q = sum m u u^T (xx, yy, zz, xy) are kept
  * collision by collision: the kinetic energy is S^2 (Q_xx + 2 c Q_xy + c^2 Q_yy + Q_yy + Q_zz)/2 without a pass.
  * Constant restitution, no displacements. **Frames in blocks**: every block of a pass uses the master's G, the block
- * kernels take the frame as a template parameter, and each block's change of Q is added in block order after the pass;
- * reset_frame recomputes each block's bound by a pass over it.
+ * kernels take the frame as a template parameter, and each block's change of Q is added in block order after the pass.
+ * The stage loop's pass that brings G back to 1 runs block by block on the block threads (`map_blocks`: each block's
+ * bound kept from it, the sums added in block order); reset_frame after another pass recomputes each block's bound.
  *
  * **Mixtures in blocks.** Block j holds a slice of every species: species k's particles are dealt round K slices inside
  * k's range, ceil((N_k - j)/K) in block j, when N_k >= min_slice K (min_slice = 64). A rarer species is *scattered*: at
@@ -390,8 +391,23 @@ class Collider {
   void set_frame(double scale, double shear);
   /// The stored u were just replaced by the actual velocities (the frame was applied to them in a
   /// pass that also computed `moments` = sum m V V^T (xx, yy, zz, xy) and the largest speed^2 of
-  /// each species): G = 1 again, and the bounds exact (with blocks, each block's by a pass over it).
-  void reset_frame(const std::array<double, 4>& moments, const std::vector<double>& max_speed2);
+  /// each species): G = 1 again, and the bounds exact (with blocks, each block's by a pass over it,
+  /// unless `block_bounds_set`: the pass was map_blocks(), which kept them).
+  void reset_frame(const std::array<double, 4>& moments, const std::vector<double>& max_speed2,
+                   bool block_bounds_set = false);
+  /// The sums of map_blocks(), block by block in block order.
+  struct BlockPass {
+    double mass = 0.0;                           ///< sum m
+    particles::Vec3 momentum{0.0, 0.0, 0.0};     ///< sum m V
+    std::array<double, 4> moments{};             ///< sum m V V^T: xx, yy, zz, xy
+    std::vector<double> max_speed2;              ///< the largest |V|^2 of each species
+  };
+  /// With blocks, the pass of thermostat.hpp's stage loop ("Cost: the frame") on the block threads:
+  /// V = (s u_x + sc u_y, s u_y, s u_z) + b for every particle, block by block; each block's largest
+  /// |V|^2 of each species is its exact bound (for reset_frame(..., true)), and the blocks' sums are
+  /// added in block order, so they are the same on any number of threads. Throws std::logic_error
+  /// without blocks.
+  BlockPass map_blocks(double s, double sc, const particles::Vec3& b);
   bool framed() const { return framed_; }
   double frame_scale() const { return frame_scale_; }
   double frame_shear() const { return frame_shear_; }

@@ -82,6 +82,17 @@ Energy frame_energy(const std::array<double, 4>& q, const particles::Vec3& p, do
   return e;
 }
 
+namespace {
+
+/// The kinetic energy about the mean flow and the mean flow of a pass, from its sums and the momentum.
+void finish_pass(StageStart& out, const particles::Vec3& p) {
+  const double mass = out.total_mass;
+  out.kinetic = 0.5 * (out.moments[0] + out.moments[1] + out.moments[2] - (p.x * p.x + p.y * p.y + p.z * p.z) / mass);
+  out.mean_flow = {p.x / mass, p.y / mass, p.z / mass};
+}
+
+}  // namespace
+
 StageStart materialise(const species::Mixture& mix, particles::System& sys, const Frame& f) {
   StageStart out;
   out.max_speed2.assign(sys.n_species(), 0.0);
@@ -115,9 +126,7 @@ StageStart materialise(const species::Mixture& mix, particles::System& sys, cons
     out.moments[3] += m * sxy;
     out.max_speed2[k] = max2;
   }
-  const double mass = out.total_mass;
-  out.kinetic = 0.5 * (out.moments[0] + out.moments[1] + out.moments[2] - (px * px + py * py + pz * pz) / mass);
-  out.mean_flow = {px / mass, py / mass, pz / mass};
+  finish_pass(out, {px, py, pz});
   return out;
 }
 
@@ -303,14 +312,26 @@ void Stages::begin(double dt, bool sample) {
   // only measure (the identity frame) and the second follows.
   const bool identity = frame_.scale == 1.0 && frame_.shear == 0.0 && frame_.offset.x == 0.0 &&
                         frame_.offset.y == 0.0 && frame_.offset.z == 0.0;
-  StageStart pass = identity && acts_now ? StageStart{} : materialise(mix_, sys_, frame_);
+  StageStart first = identity && acts_now ? StageStart{} : materialise_pass(frame_);
   frame_ = Frame{};
   if (sample && acts_) deferred_act_ = first_half;  // after the sample (measure())
   if (acts_now) {
     act(sample ? second_half : second_half + first_half);
     return;
   }
-  start_from(pass);
+  start_from(first);
+}
+
+StageStart Stages::materialise_pass(const Frame& f) {
+  if (collider_.blocks() <= 1) return materialise(mix_, sys_, f);
+  collide::Collider::BlockPass sums = collider_.map_blocks(f.scale, f.scale * f.shear, f.offset);
+  StageStart out;
+  out.total_mass = sums.mass;
+  out.moments = sums.moments;
+  out.max_speed2 = std::move(sums.max_speed2);
+  out.block_bounds = true;
+  finish_pass(out, sums.momentum);
+  return out;
 }
 
 void Stages::act(double dt) {
@@ -320,12 +341,12 @@ void Stages::act(double dt) {
       const particles::Vec3 u = f->act(sys_, dt, gen_);
       shift.offset = {shift.offset.x + u.x, shift.offset.y + u.y, shift.offset.z + u.z};
     }
-  start_from(materialise(mix_, sys_, shift));
+  start_from(materialise_pass(shift));
 }
 
 void Stages::start_from(const StageStart& pass) {
   momentum_ = {pass.mean_flow.x * total_mass_, pass.mean_flow.y * total_mass_, pass.mean_flow.z * total_mass_};
-  collider_.reset_frame(pass.moments, pass.max_speed2);
+  collider_.reset_frame(pass.moments, pass.max_speed2, pass.block_bounds);
   start_ = {pass.kinetic, pass.mean_flow};
 }
 

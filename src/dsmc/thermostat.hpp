@@ -57,7 +57,9 @@
  * particles (`materialise`: V = G u + b, with the energy, the mean flow, the moments and the largest
  * speeds) brings the frame back to the identity at every sample and whenever |c| > frame_shear_limit,
  * which keeps the collider's bounds within 2 % of exact (collide.hpp) and the u well conditioned, or
- * S leaves [1/2, 2]. bench/bench_usf.cpp measures the stage loop against the plain loop of the same
+ * S leaves [1/2, 2]. In cache blocks the pass runs block by block on the block threads (Collider::map_blocks),
+ * which also gives each block its exact bound; its sums are added in block order, so they do not depend on
+ * the number of threads. bench/bench_usf.cpp measures the stage loop against the plain loop of the same
  * gas (\ref perf_frames "docs/performance.md").
  *
  * **Forcings that act on each particle** (the white noise). Their action over a stage is split in
@@ -108,6 +110,7 @@ struct StageStart {
   std::vector<double> max_speed2;   ///< largest |V|^2 of each species, after the pass
   std::array<double, 4> moments{};  ///< sum m V V^T after the pass: xx, yy, zz, xy
   double total_mass = 0.0;          ///< sum m
+  bool block_bounds = false;        ///< the pass also set the collider's block bounds (Collider::map_blocks)
 };
 
 /// The map from the stored velocities u to the actual ones (header, "Cost: the frame"):
@@ -351,6 +354,8 @@ class Stages {
   void act(double dt);
   /// The stage's start values from a pass: momentum, the collider's exact bounds, energy and mean flow.
   void start_from(const StageStart& pass);
+  /// materialise(mix_, sys_, frame), or with cache blocks the same pass on the block threads (Collider::map_blocks).
+  StageStart materialise_pass(const Frame& frame);
   rng::Xoshiro256pp gen_;
   double total_mass_ = 0.0;
   Frame frame_;
