@@ -71,7 +71,18 @@ Gas::Gas(const Model& model, std::size_t monomers, double temperature, particles
       species::PairMatrix(1, model.restitution), false);
   particles::System sys = particles::make_system(monomer, {monomers}, {temperature}, distribution, initial, check);
   grow_to(1);
-  lists_[1] = std::move(sys.v);  // reserved for exactly N_0 monomers
+  // Exactly N_0 monomers, copied in chunks of 2 MiB whose pages are returned as they go (held about once:
+  // header, "Memory").
+  ClusterList& list = lists_[1];
+  list.resize(monomers);
+  const std::size_t chunk = (std::size_t{1} << 21) / sizeof(Vec3);
+  const char* released = reinterpret_cast<const char*>(sys.v.data());
+  for (std::size_t start = 0; start < monomers; start += chunk) {
+    const std::size_t stop = std::min(start + chunk, monomers);
+    std::copy(sys.v.begin() + static_cast<std::ptrdiff_t>(start), sys.v.begin() + static_cast<std::ptrdiff_t>(stop),
+              list.begin() + static_cast<std::ptrdiff_t>(start));
+    released = particles::release_pages(released, reinterpret_cast<const char*>(sys.v.data() + stop));
+  }
   clusters_ = monomers;
   recompute_bounds();
   rebuild_sampler();
@@ -175,10 +186,10 @@ void Gas::recompute_bounds() {
   for (std::size_t k = 1; k <= capacity_; ++k) {
     auto& list = lists_[k];
     if (list.empty()) {
-      if (list.capacity() > 0) particles::ParticleArray<Vec3>().swap(list);
+      if (list.capacity() > 0) ClusterList().swap(list);
       continue;
     }
-    if (list.capacity() > 4 * list.size() + 64) particles::ParticleArray<Vec3>(list.begin(), list.end()).swap(list);
+    if (list.capacity() > 4 * list.size() + 64) ClusterList(list.begin(), list.end()).swap(list);
     // (a long list on the threads of the blocks, in parts: the largest of the parts' largest is the same number)
     [[maybe_unused]] const int threads = list.size() >= (std::size_t{1} << 16) ? block_threads_ : 1;
     double w2 = 0.0;
@@ -363,76 +374,113 @@ void Gas::deal_blocks() {
   for (std::size_t i = n - 1; i > 0; --i) std::swap(labels_[i], labels_[gen_.below(i + 1)]);
   if (blocks_.size() < k_blocks) blocks_.resize(k_blocks, Gas(model_));
   for (std::size_t b = 0; b < k_blocks; ++b) blocks_[b].reset_as_block(*this);
-  // Deal: the clusters size by size, each list in order, to the block of their label (size k's
-  // labels are labels_[first[k] ...]). On T threads thread t fills the blocks b = t mod T, each
-  // reading every label, so that every block list gets its clusters in the same order on any thread
-  // count. The clusters are held about once, not twice (header, "Memory"): first every block's list is
-  // reserved at its count plus an eighth (room for the step's new clusters; the only allocation, so
-  // that nothing throws in the second pass), then the clusters are copied in chunks, and after each
-  // chunk its pages of the whole gas's list are returned to the system (every 64 KiB, or every 2 MiB in
-  // a list of 2 MiB or more, which allocate_bytes gives huge pages: not split), the list freed at its end.
+  // Deal: the clusters size by size, each list in order, to the block of their label (size k's labels
+  // are labels_[first[k] ...]). The gas's order [0, N) is cut into one part per thread; the clusters of
+  // size k that a part sends to block b take the places after those that the parts before it send
+  // there (counted first), so that every block list holds its clusters in the gas's order, on any
+  // number of threads. The clusters are held about once, not twice (header, "Memory"): every block
+  // list is sized at its count (its pages not yet touched: particles::FillLaterArray) and reserved at
+  // its count plus an eighth (room for the step's new clusters; the only allocation, so that nothing
+  // throws while copying), and each part returns the pages of the gas's lists it has copied to the
+  // system as it goes (every 64 KiB, or every 2 MiB in a list of 2 MiB or more, which allocate_bytes
+  // gives huge pages: not split), the lists freed at the end.
   std::vector<std::size_t> first(capacity_ + 2, 0);
   for (std::size_t k = 1; k <= capacity_; ++k) first[k + 1] = first[k] + lists_[k].size();
+  std::vector<std::uint32_t> present;  // the sizes present, and a size's index among them
+  std::vector<std::uint32_t> index(capacity_ + 1, 0);
+  for (std::size_t k = 1; k <= capacity_; ++k)
+    if (!lists_[k].empty()) index[k] = static_cast<std::uint32_t>(present.size()), present.push_back(static_cast<std::uint32_t>(k));
+  const std::size_t sizes = present.size();
   const int threads = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(block_threads_), k_blocks));
+  std::vector<std::size_t> place;  // part x size present x block: counts, then the part's first places
   std::vector<std::exception_ptr> failure(static_cast<std::size_t>(threads));
+  bool failed = false;
 #ifdef _OPENMP
 #pragma omp parallel num_threads(threads) if (threads > 1)
 #endif
   {
     const auto t = static_cast<std::size_t>(thread_index());
-    const std::uint32_t team = team_size();
-    try {
-      std::vector<std::size_t> count(k_blocks);
-      for (std::size_t k = 1; k <= capacity_; ++k) {
-        if (lists_[k].empty()) continue;
-        std::fill(count.begin(), count.end(), 0);
-        for (std::size_t i = first[k]; i < first[k + 1]; ++i)
-          if (labels_[i] % team == t) ++count[labels_[i]];
-        for (std::size_t b = t; b < k_blocks; b += team)
-          if (count[b] > 0) {
-            blocks_[b].lists_[k].reserve(count[b] + count[b] / 8);
-            blocks_[b].initial_monomers_ += k * count[b];
-          }
-      }
-    } catch (...) {
-      failure[t] = std::current_exception();  // (an exception must not leave an OpenMP region)
+    const std::size_t team = team_size();
+#ifdef _OPENMP
+#pragma omp single
+#endif
+    place.assign(team * sizes * k_blocks, 0);
+    const std::size_t lo = n * t / team, hi = n * (t + 1) / team;  // this thread's part
+    std::size_t* mine = place.data() + t * sizes * k_blocks;
+    for (std::size_t s = 0; s < sizes; ++s) {
+      const std::size_t k = present[s];
+      std::size_t* count = mine + s * k_blocks;
+      for (std::size_t i = std::max(lo, first[k]); i < std::min(hi, first[k + 1]); ++i) ++count[labels_[i]];
     }
+#ifdef _OPENMP
+#pragma omp barrier
+#endif
+    // The parts' first places (the counts of the parts before), and each block list sized by the thread of its block.
+    for (std::size_t b = t; b < k_blocks; b += team) {
+      try {
+        for (std::size_t s = 0; s < sizes; ++s) {
+          std::size_t total = 0;
+          for (std::size_t p = 0; p < team; ++p) {
+            std::size_t& at = place[(p * sizes + s) * k_blocks + b];
+            const std::size_t count = at;
+            at = total;
+            total += count;
+          }
+          if (total == 0) continue;
+          auto& list = blocks_[b].lists_[present[s]];
+          list.reserve(total + total / 8);
+          list.resize(total);
+          blocks_[b].initial_monomers_ += present[s] * total;
+        }
+      } catch (...) {
+        failure[t] = std::current_exception();  // (an exception must not leave an OpenMP region)
+#ifdef _OPENMP
+#pragma omp atomic write
+#endif
+        failed = true;
+      }
+    }
+#ifdef _OPENMP
+#pragma omp barrier
+#endif
+    bool stop = false;
+#ifdef _OPENMP
+#pragma omp atomic read
+#endif
+    stop = failed;
+    if (!stop) deal_part(first, present, mine, lo, hi);
   }
   for (const auto& f : failure)
     if (f) std::rethrow_exception(f);
-  const char* released = nullptr;  // (shared: set in the single sections below)
-#ifdef _OPENMP
-#pragma omp parallel num_threads(threads) if (threads > 1)
-#endif
-  {
-    const auto t = static_cast<std::uint32_t>(thread_index());
-    const std::uint32_t team = team_size();
-    for (std::size_t k = 1; k <= capacity_; ++k) {
-      auto& list = lists_[k];
-      if (list.empty()) continue;
-      const std::size_t release_bytes = list.capacity() * sizeof(Vec3) >= (std::size_t{1} << 21) ? std::size_t{1} << 21
-                                                                                                  : std::size_t{1} << 16;
-      const std::size_t chunk = release_bytes / sizeof(Vec3), count = list.size();
-#ifdef _OPENMP
-#pragma omp single
-#endif
-      released = reinterpret_cast<const char*>(list.data());
-      for (std::size_t start = 0; start < count; start += chunk) {
-        const std::size_t end = std::min(start + chunk, count);
-        for (std::size_t i = start; i < end; ++i) {
-          const std::uint32_t b = labels_[first[k] + i];
-          if (b % team == t) blocks_[b].lists_[k].push_back(list[i]);  // (reserved)
-        }
-#ifdef _OPENMP
-#pragma omp barrier
-#pragma omp single
-#endif
-        if (end % chunk == 0) released = particles::release_pages(released, reinterpret_cast<const char*>(list.data() + end));
-      }
-#ifdef _OPENMP
-#pragma omp single
-#endif
-      particles::ParticleArray<Vec3>().swap(list);
+  for (std::size_t k = 1; k <= capacity_; ++k) ClusterList().swap(lists_[k]);
+}
+
+void Gas::deal_part(const std::vector<std::size_t>& first, const std::vector<std::uint32_t>& present,
+                    std::size_t* place, std::size_t lo, std::size_t hi) {
+  const std::size_t k_blocks = blocks();
+  std::vector<Vec3*> to(k_blocks);
+  for (std::size_t s = 0; s < present.size(); ++s) {
+    const std::size_t k = present[s];
+    const std::size_t begin = std::max(lo, first[k]), end = std::min(hi, first[k + 1]);
+    if (begin >= end) continue;
+    for (std::size_t b = 0; b < k_blocks; ++b) to[b] = blocks_[b].lists_[k].data() + place[s * k_blocks + b];
+    const ClusterList& list = lists_[k];
+    const std::size_t release_bytes =
+        list.capacity() * sizeof(Vec3) >= (std::size_t{1} << 21) ? std::size_t{1} << 21 : std::size_t{1} << 16;
+    const auto base = reinterpret_cast<std::uintptr_t>(list.data());
+    // (whole chunks of the list from its start, so that a huge page is released whole or not at all)
+    const auto chunk_after = [&](std::size_t i) {
+      const std::uintptr_t at = base + i * sizeof(Vec3);
+      return reinterpret_cast<const char*>(base + (at - base + release_bytes - 1) / release_bytes * release_bytes);
+    };
+    const char* released = chunk_after(begin - first[k]);
+    const std::size_t chunk = release_bytes / sizeof(Vec3);
+    for (std::size_t start = begin - first[k]; start < end - first[k]; start += chunk) {
+      const std::size_t stop = std::min(start + chunk, end - first[k]);
+      const std::uint32_t* label = labels_.data() + first[k];
+      for (std::size_t i = start; i < stop; ++i) *to[label[i]]++ = list[i];
+      const char* done = reinterpret_cast<const char*>(base + (stop * sizeof(Vec3)) / release_bytes * release_bytes);
+      if (done > released) released = particles::release_pages(released, done);
     }
   }
 }
@@ -456,34 +504,46 @@ void Gas::run_block(std::size_t b, double end, std::uint64_t key, double volume_
 }
 
 void Gas::gather_blocks() {
-  // In block order: the lists, the counters, the largest size.
+  // In block order: the lists, the counters, the largest size. Each list of the gas is sized at its
+  // total (its pages not yet touched: particles::FillLaterArray), and block b's clusters of size k go
+  // to the places after those of the blocks before it, copied by the thread of block b; each block
+  // list is released as soon as it is copied (its pages first: a freed small array may stay in the
+  // heap), so that the clusters are again held about once (header, "Memory").
   const std::size_t k_blocks = blocks();
   std::size_t largest = 1;
   for (std::size_t b = 0; b < k_blocks; ++b) largest = std::max(largest, blocks_[b].capacity_);
   grow_to(largest);
+  std::vector<std::size_t> place(k_blocks * (capacity_ + 1), 0);  // block x size: the block's first place
   clusters_ = 0;
   for (std::size_t k = 1; k <= capacity_; ++k) {
     std::size_t total = 0;
-    for (std::size_t b = 0; b < k_blocks; ++b)
-      if (k <= blocks_[b].capacity_) total += blocks_[b].lists_[k].size();
-    if (total == 0) continue;
-    // Each block's list released once copied (its pages first: a freed small array may stay in the
-    // heap), so that the clusters are again held about once (header, "Memory").
-    auto& list = lists_[k];
-    list.reserve(total);
     for (std::size_t b = 0; b < k_blocks; ++b) {
-      if (k > blocks_[b].capacity_) continue;
-      auto& from = blocks_[b].lists_[k];
-      list.insert(list.end(), from.begin(), from.end());
-      const char* data = reinterpret_cast<const char*>(from.data());
-      particles::release_pages(data, data + from.capacity() * sizeof(Vec3));
-      particles::ParticleArray<Vec3>().swap(from);
+      place[b * (capacity_ + 1) + k] = total;
+      if (k <= blocks_[b].capacity_) total += blocks_[b].lists_[k].size();
     }
+    if (lists_[k].size() != 0) throw std::logic_error("agg_frag: a list of the gas is not empty at the gather");
+    lists_[k].resize(total);
     clusters_ += total;
   }
+  const int threads = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(block_threads_), k_blocks));
+  const auto n_blocks = static_cast<std::ptrdiff_t>(k_blocks);
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static, 1) num_threads(threads) if (threads > 1)
+#endif
+  for (std::ptrdiff_t bb = 0; bb < n_blocks; ++bb) {
+    const auto b = static_cast<std::size_t>(bb);
+    Gas& block = blocks_[b];
+    for (std::size_t k = 1; k <= block.capacity_; ++k) {
+      auto& from = block.lists_[k];
+      if (!from.empty()) {
+        std::copy(from.begin(), from.end(), lists_[k].begin() + static_cast<std::ptrdiff_t>(place[b * (capacity_ + 1) + k]));
+        const char* data = reinterpret_cast<const char*>(from.data());
+        particles::release_pages(data, data + from.capacity() * sizeof(Vec3));
+      }
+      if (from.capacity() > 0) ClusterList().swap(from);  // memory follows the gas
+    }
+  }
   for (std::size_t b = 0; b < k_blocks; ++b) {
-    for (auto& list : blocks_[b].lists_)
-      if (list.capacity() > 0) particles::ParticleArray<Vec3>().swap(list);  // memory follows the gas
     const Counters& c = blocks_[b].counters_;
     counters_.events += c.events;
     counters_.aggregations += c.aggregations;

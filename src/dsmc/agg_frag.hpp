@@ -75,11 +75,14 @@
  * rng::Xoshiro256pp::substream(key, b), the key one draw of the gas's own stream per step, and the
  * counters and clusters are gathered in block order, so the output is bit for bit the same on any
  * thread count (AggFrag.BlockThreadsAreBitwiseTheSame, scale_out.reproducibility_agg_frag). The deal runs
- * on the same threads (thread t fills the blocks b = t mod T, each in label order), and so does the pass
+ * on the same threads (the gas's order cut into one part per thread; a part's clusters take the places in
+ * a block list after those of the parts before it, counted first), so does the gather (block b's clusters
+ * after those of the blocks before it), and so does the pass
  * that recomputes the bounds of a list of 2^16 clusters or more (in parts; the largest of the parts' largest)
  * (AggFrag.LongListsAreDealtAndBoundedAlikeOnAnyThreadCount). **Memory:**
  * the clusters are held about once at every moment (24 bytes each, plus 4 for the labels): each
- * block's list is reserved at its count plus an eighth, the pages of a whole-gas list already dealt are
+ * block's list is sized at its count and reserved at its count plus an eighth, its pages touched only as
+ * they are written (particles::FillLaterArray), the pages of a whole-gas list already dealt are
  * returned to the system as the deal goes (every 64 KiB, 2 MiB in huge-page lists) (particles::release_pages) and the list freed at
  * its end, and at the gather each block's list is released as soon as it is copied (peak and cost
  * measured: \ref perf_agg_frag "docs/performance.md").
@@ -307,6 +310,10 @@ class Gas {
   void blocked_step(double end);
   /// The deal of a blocked step: the clusters to the blocks of a uniformly random partition.
   void deal_blocks();
+  /// The deal's copy of the gas's clusters [lo, hi) (in the order of the lists `present`, list k from
+  /// first[k]) to the block lists, from the places `place` (size present x block) on.
+  void deal_part(const std::vector<std::size_t>& first, const std::vector<std::uint32_t>& present, std::size_t* place,
+                 std::size_t lo, std::size_t hi);
   /// Block b of a blocked step up to `end`, with the stream substream(key, b) and the volume of its members.
   void run_block(std::size_t b, double end, std::uint64_t key, double volume_per_partner);
   /// The gather of a blocked step: the blocks' lists and counters back into the gas, in block order.
@@ -318,7 +325,9 @@ class Gas {
   std::size_t initial_monomers_ = 0;
   double volume_;  ///< V = (N_0 - 1)/n_1
   double step_fraction_;
-  std::vector<particles::ParticleArray<particles::Vec3>> lists_;  ///< lists_[k]: velocities of size k
+  /// A list of clusters: sized first and filled later by the deal and the gather (particles.hpp FillLaterArray).
+  using ClusterList = particles::FillLaterArray<particles::Vec3>;
+  std::vector<ClusterList> lists_;  ///< lists_[k]: velocities of size k
   std::size_t clusters_ = 0;                                      ///< N
   std::vector<double> max_speed_;                                 ///< w_k (index k; 0 unused)
   std::vector<double> diameter_;                                  ///< sigma_k (index k)

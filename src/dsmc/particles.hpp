@@ -33,6 +33,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -82,6 +83,29 @@ struct LargePageAllocator {
 /// A per-particle array on LargePageAllocator.
 template <class T>
 using ParticleArray = std::vector<T, LargePageAllocator<T>>;
+
+/// LargePageAllocator whose resize() default-initialises: for a trivial T the new elements are left
+/// unwritten, so that an array sized first and filled later (by several threads, at places computed in
+/// advance) touches each page only when it writes it (agg_frag.hpp, "Memory").
+template <class T>
+struct FillLaterAllocator : LargePageAllocator<T> {
+  FillLaterAllocator() = default;
+  /// Rebinding copy (stateless).
+  template <class U>
+  FillLaterAllocator(const FillLaterAllocator<U>&) {}
+  /// Default-initialises without arguments, as placement new with them otherwise.
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    if constexpr (sizeof...(Args) == 0)
+      ::new (static_cast<void*>(p)) U;
+    else
+      ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+/// An array on FillLaterAllocator: resize() leaves trivial elements unwritten.
+template <class T>
+using FillLaterArray = std::vector<T, FillLaterAllocator<T>>;
 
 /// A velocity (or any 3-vector) in the user's units.
 struct Vec3 {
