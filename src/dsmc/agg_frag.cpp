@@ -28,6 +28,13 @@ int thread_index() {
   return 0;
 #endif
 }
+/// The first cluster after cluster i of a list that starts at or past the next multiple of `bytes` from
+/// the list's start: a copy that stops there may release the pages before that multiple whole.
+std::size_t next_release_point(std::size_t i, std::size_t bytes) {
+  const std::size_t boundary = (i * sizeof(Vec3) / bytes + 1) * bytes;
+  return (boundary + sizeof(Vec3) - 1) / sizeof(Vec3);
+}
+
 /// The threads of this OpenMP team (1 outside one): OpenMP may give fewer than asked for (OMP_DYNAMIC,
 /// OMP_THREAD_LIMIT), so work is split by this, not by the request.
 std::uint32_t team_size() {
@@ -73,15 +80,19 @@ Gas::Gas(const Model& model, std::size_t monomers, double temperature, particles
   grow_to(1);
   // Exactly N_0 monomers, copied in chunks of 2 MiB whose pages are returned as they go (held about once:
   // header, "Memory").
+  decltype(sys.species)().swap(sys.species);  // (one species: not needed, and freed before the copy)
   ClusterList& list = lists_[1];
   list.resize(monomers);
-  const std::size_t chunk = (std::size_t{1} << 21) / sizeof(Vec3);
-  const char* released = reinterpret_cast<const char*>(sys.v.data());
-  for (std::size_t start = 0; start < monomers; start += chunk) {
-    const std::size_t stop = std::min(start + chunk, monomers);
+  constexpr std::size_t release_bytes = std::size_t{1} << 21;  // (whole huge pages of sys.v: not split)
+  const char* const base = reinterpret_cast<const char*>(sys.v.data());
+  const char* released = base;
+  for (std::size_t start = 0; start < monomers;) {
+    const std::size_t stop = std::min(next_release_point(start, release_bytes), monomers);
     std::copy(sys.v.begin() + static_cast<std::ptrdiff_t>(start), sys.v.begin() + static_cast<std::ptrdiff_t>(stop),
               list.begin() + static_cast<std::ptrdiff_t>(start));
-    released = particles::release_pages(released, reinterpret_cast<const char*>(sys.v.data() + stop));
+    const char* done = base + stop * sizeof(Vec3) / release_bytes * release_bytes;
+    if (done > released) released = particles::release_pages(released, done);
+    start = stop;
   }
   clusters_ = monomers;
   recompute_bounds();
@@ -362,16 +373,21 @@ void Gas::reset_as_block(const Gas& whole) {
   touched_.clear();
 }
 
-void Gas::deal_blocks() {
-  const std::size_t n = clusters_, k_blocks = blocks();
+void Gas::draw_labels() {
   // The partition: labels of K - N mod K blocks of N div K and N mod K of one more, shuffled
   // (Fisher-Yates with the gas's own stream): every partition with these block sizes equally likely.
+  const std::size_t n = clusters_, k_blocks = blocks();
   labels_.resize(n);
   const std::size_t q = n / k_blocks, r = n % k_blocks;
   std::size_t at = 0;
   for (std::size_t b = 0; b < k_blocks; ++b)
     for (std::size_t i = 0, size = q + (b < r ? 1 : 0); i < size; ++i) labels_[at++] = static_cast<std::uint32_t>(b);
   for (std::size_t i = n - 1; i > 0; --i) std::swap(labels_[i], labels_[gen_.below(i + 1)]);
+}
+
+void Gas::deal_blocks() {
+  const std::size_t n = clusters_, k_blocks = blocks();
+  draw_labels();
   if (blocks_.size() < k_blocks) blocks_.resize(k_blocks, Gas(model_));
   for (std::size_t b = 0; b < k_blocks; ++b) blocks_[b].reset_as_block(*this);
   // Deal: the clusters size by size, each list in order, to the block of their label (size k's labels
@@ -386,13 +402,14 @@ void Gas::deal_blocks() {
   // gives huge pages: not split), the lists freed at the end.
   std::vector<std::size_t> first(capacity_ + 2, 0);
   for (std::size_t k = 1; k <= capacity_; ++k) first[k + 1] = first[k] + lists_[k].size();
-  std::vector<std::uint32_t> present;  // the sizes present, and a size's index among them
-  std::vector<std::uint32_t> index(capacity_ + 1, 0);
+  std::vector<std::uint32_t> present;  // the sizes present
   for (std::size_t k = 1; k <= capacity_; ++k)
-    if (!lists_[k].empty()) index[k] = static_cast<std::uint32_t>(present.size()), present.push_back(static_cast<std::uint32_t>(k));
+    if (!lists_[k].empty()) present.push_back(static_cast<std::uint32_t>(k));
   const std::size_t sizes = present.size();
   const int threads = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(block_threads_), k_blocks));
-  std::vector<std::size_t> place;  // part x size present x block: counts, then the part's first places
+  // part x size present x block: counts, then the part's first places (for the threads OpenMP gives, at most these)
+  std::vector<std::size_t> place(static_cast<std::size_t>(threads) * sizes * k_blocks, 0);
+  std::vector<Vec3*> to(static_cast<std::size_t>(threads) * k_blocks);  // each part's next place in each block
   std::vector<std::exception_ptr> failure(static_cast<std::size_t>(threads));
   bool failed = false;
 #ifdef _OPENMP
@@ -401,10 +418,6 @@ void Gas::deal_blocks() {
   {
     const auto t = static_cast<std::size_t>(thread_index());
     const std::size_t team = team_size();
-#ifdef _OPENMP
-#pragma omp single
-#endif
-    place.assign(team * sizes * k_blocks, 0);
     const std::size_t lo = n * t / team, hi = n * (t + 1) / team;  // this thread's part
     std::size_t* mine = place.data() + t * sizes * k_blocks;
     for (std::size_t s = 0; s < sizes; ++s) {
@@ -415,23 +428,9 @@ void Gas::deal_blocks() {
 #ifdef _OPENMP
 #pragma omp barrier
 #endif
-    // The parts' first places (the counts of the parts before), and each block list sized by the thread of its block.
     for (std::size_t b = t; b < k_blocks; b += team) {
       try {
-        for (std::size_t s = 0; s < sizes; ++s) {
-          std::size_t total = 0;
-          for (std::size_t p = 0; p < team; ++p) {
-            std::size_t& at = place[(p * sizes + s) * k_blocks + b];
-            const std::size_t count = at;
-            at = total;
-            total += count;
-          }
-          if (total == 0) continue;
-          auto& list = blocks_[b].lists_[present[s]];
-          list.reserve(total + total / 8);
-          list.resize(total);
-          blocks_[b].initial_monomers_ += present[s] * total;
-        }
+        size_block_lists(b, team, present, place.data());
       } catch (...) {
         failure[t] = std::current_exception();  // (an exception must not leave an OpenMP region)
 #ifdef _OPENMP
@@ -448,17 +447,35 @@ void Gas::deal_blocks() {
 #pragma omp atomic read
 #endif
     stop = failed;
-    if (!stop) deal_part(first, present, mine, lo, hi);
+    if (!stop) deal_part(first, present, mine, to.data() + t * k_blocks, lo, hi);  // (allocates nothing: cannot throw)
   }
   for (const auto& f : failure)
     if (f) std::rethrow_exception(f);
   for (std::size_t k = 1; k <= capacity_; ++k) ClusterList().swap(lists_[k]);
 }
 
+void Gas::size_block_lists(std::size_t b, std::size_t parts, const std::vector<std::uint32_t>& present,
+                           std::size_t* place) {
+  const std::size_t k_blocks = blocks(), sizes = present.size();
+  for (std::size_t s = 0; s < sizes; ++s) {
+    std::size_t total = 0;  // the parts' first places: the counts of the parts before
+    for (std::size_t p = 0; p < parts; ++p) {
+      std::size_t& at = place[(p * sizes + s) * k_blocks + b];
+      const std::size_t count = at;
+      at = total;
+      total += count;
+    }
+    if (total == 0) continue;
+    auto& list = blocks_[b].lists_[present[s]];
+    list.reserve(total + total / 8);
+    list.resize(total);
+    blocks_[b].initial_monomers_ += present[s] * total;
+  }
+}
+
 void Gas::deal_part(const std::vector<std::size_t>& first, const std::vector<std::uint32_t>& present,
-                    std::size_t* place, std::size_t lo, std::size_t hi) {
+                    const std::size_t* place, Vec3** to, std::size_t lo, std::size_t hi) {
   const std::size_t k_blocks = blocks();
-  std::vector<Vec3*> to(k_blocks);
   for (std::size_t s = 0; s < present.size(); ++s) {
     const std::size_t k = present[s];
     const std::size_t begin = std::max(lo, first[k]), end = std::min(hi, first[k + 1]);
@@ -467,20 +484,19 @@ void Gas::deal_part(const std::vector<std::size_t>& first, const std::vector<std
     const ClusterList& list = lists_[k];
     const std::size_t release_bytes =
         list.capacity() * sizeof(Vec3) >= (std::size_t{1} << 21) ? std::size_t{1} << 21 : std::size_t{1} << 16;
+    // (whole multiples of release_bytes from the list's start, so that a huge page goes whole or not at all;
+    // the pages before the part's first multiple, and a page it shares with the next part, go with the list)
     const auto base = reinterpret_cast<std::uintptr_t>(list.data());
-    // (whole chunks of the list from its start, so that a huge page is released whole or not at all)
-    const auto chunk_after = [&](std::size_t i) {
-      const std::uintptr_t at = base + i * sizeof(Vec3);
-      return reinterpret_cast<const char*>(base + (at - base + release_bytes - 1) / release_bytes * release_bytes);
-    };
-    const char* released = chunk_after(begin - first[k]);
-    const std::size_t chunk = release_bytes / sizeof(Vec3);
-    for (std::size_t start = begin - first[k]; start < end - first[k]; start += chunk) {
-      const std::size_t stop = std::min(start + chunk, end - first[k]);
-      const std::uint32_t* label = labels_.data() + first[k];
+    const std::size_t part_begin = begin - first[k], part_end = end - first[k];
+    const char* released = reinterpret_cast<const char*>(
+        base + (part_begin * sizeof(Vec3) + release_bytes - 1) / release_bytes * release_bytes);
+    const std::uint32_t* label = labels_.data() + first[k];
+    for (std::size_t start = part_begin; start < part_end;) {
+      const std::size_t stop = std::min(next_release_point(start, release_bytes), part_end);
       for (std::size_t i = start; i < stop; ++i) *to[label[i]]++ = list[i];
       const char* done = reinterpret_cast<const char*>(base + (stop * sizeof(Vec3)) / release_bytes * release_bytes);
       if (done > released) released = particles::release_pages(released, done);
+      start = stop;
     }
   }
 }
@@ -513,6 +529,8 @@ void Gas::gather_blocks() {
   std::size_t largest = 1;
   for (std::size_t b = 0; b < k_blocks; ++b) largest = std::max(largest, blocks_[b].capacity_);
   grow_to(largest);
+  for (std::size_t k = 1; k <= capacity_; ++k)
+    if (!lists_[k].empty()) throw std::logic_error("agg_frag: a list of the gas is not empty at the gather");
   std::vector<std::size_t> place(k_blocks * (capacity_ + 1), 0);  // block x size: the block's first place
   clusters_ = 0;
   for (std::size_t k = 1; k <= capacity_; ++k) {
@@ -521,7 +539,6 @@ void Gas::gather_blocks() {
       place[b * (capacity_ + 1) + k] = total;
       if (k <= blocks_[b].capacity_) total += blocks_[b].lists_[k].size();
     }
-    if (lists_[k].size() != 0) throw std::logic_error("agg_frag: a list of the gas is not empty at the gather");
     lists_[k].resize(total);
     clusters_ += total;
   }

@@ -83,7 +83,7 @@
  * the clusters are held about once at every moment (24 bytes each, plus 4 for the labels): each
  * block's list is sized at its count and reserved at its count plus an eighth, its pages touched only as
  * they are written (particles::FillLaterArray), the pages of a whole-gas list already dealt are
- * returned to the system as the deal goes (every 64 KiB, 2 MiB in huge-page lists) (particles::release_pages) and the list freed at
+ * returned to the system as the deal goes (every 64 KiB, 2 MiB in huge-page lists) (particles::release_pages) and the lists freed at
  * its end, and at the gather each block's list is released as soon as it is copied (peak and cost
  * measured: \ref perf_agg_frag "docs/performance.md").
  *
@@ -310,10 +310,16 @@ class Gas {
   void blocked_step(double end);
   /// The deal of a blocked step: the clusters to the blocks of a uniformly random partition.
   void deal_blocks();
+  /// The deal's labels: a uniformly random partition of the clusters into blocks of the sizes of deal_blocks().
+  void draw_labels();
+  /// Block b's lists sized for the deal: each size's count over the `parts` parts, whose counts in
+  /// `place` (part x size present x block) become the parts' first places in them.
+  void size_block_lists(std::size_t b, std::size_t parts, const std::vector<std::uint32_t>& present, std::size_t* place);
   /// The deal's copy of the gas's clusters [lo, hi) (in the order of the lists `present`, list k from
-  /// first[k]) to the block lists, from the places `place` (size present x block) on.
-  void deal_part(const std::vector<std::size_t>& first, const std::vector<std::uint32_t>& present, std::size_t* place,
-                 std::size_t lo, std::size_t hi);
+  /// first[k]) to the block lists, from the places `place` (size present x block) on; `to`: room for K
+  /// pointers (no allocation here).
+  void deal_part(const std::vector<std::size_t>& first, const std::vector<std::uint32_t>& present,
+                 const std::size_t* place, particles::Vec3** to, std::size_t lo, std::size_t hi);
   /// Block b of a blocked step up to `end`, with the stream substream(key, b) and the volume of its members.
   void run_block(std::size_t b, double end, std::uint64_t key, double volume_per_partner);
   /// The gather of a blocked step: the blocks' lists and counters back into the gas, in block order.

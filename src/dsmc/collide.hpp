@@ -98,7 +98,7 @@
  * Constant restitution, no displacements. **Frames in blocks**: every block of a pass uses the master's G, the block
  * kernels take the frame as a template parameter, and each block's change of Q is added in block order after the pass.
  * The stage loop's pass that brings G back to 1 runs block by block on the block threads (`map_blocks`: each block's
- * bound kept from it, the sums added in block order); reset_frame after another pass recomputes each block's bound.
+ * bound kept from it, the sums added in block order); reset_frame after a caller's own pass (tests) recomputes each block's bound.
  *
  * **Mixtures in blocks.** Block j holds a slice of every species: species k's particles are dealt round K slices inside
  * k's range, ceil((N_k - j)/K) in block j, when N_k >= min_slice K (min_slice = 64). A rarer species is *scattered*: at

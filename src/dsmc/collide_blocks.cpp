@@ -179,6 +179,7 @@ Collider::BlockPass Collider::map_blocks(double s, double sc, const particles::V
     double mass = 0.0;
     std::array<double, 3> momentum{};
     std::array<double, 4> moments{};
+    std::size_t particles = 0;
   };
   const std::size_t blocks = block_first_.size() - 1;
   std::vector<Sums> part(blocks);
@@ -202,6 +203,7 @@ Collider::BlockPass Collider::map_blocks(double s, double sc, const particles::V
         max2 = std::max(max2, w.x * w.x + w.y * w.y + w.z * w.z);  // (set_block_max_speed2's expression)
       }
       bound[k] = max2;
+      sums.particles += count;
       const double m = mix_.mass[k];
       sums.mass += m * static_cast<double>(count);
       sums.momentum[0] += m * sx, sums.momentum[1] += m * sy, sums.momentum[2] += m * sz;
@@ -210,13 +212,16 @@ Collider::BlockPass Collider::map_blocks(double s, double sc, const particles::V
   }
   BlockPass out;
   out.max_speed2.assign(s_, 0.0);
+  std::size_t visited = 0;
   for (std::size_t j = 0; j < blocks; ++j) {  // in block order: the same sums on any number of threads
     const Sums& p = part[j];
+    visited += p.particles;
     out.mass += p.mass;
     out.momentum.x += p.momentum[0], out.momentum.y += p.momentum[1], out.momentum.z += p.momentum[2];
     for (std::size_t q = 0; q < 4; ++q) out.moments[q] += p.moments[q];
     for (std::size_t k = 0; k < s_; ++k) out.max_speed2[k] = std::max(out.max_speed2[k], block_max_speed2_[j * s_ + k]);
   }
+  if (visited != sys_.size()) throw std::logic_error("collide: map_blocks() did not visit every particle once");
   return out;
 }
 

@@ -31,6 +31,7 @@
 #include <cstdlib>
 #include <deque>
 #include <functional>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <utility>

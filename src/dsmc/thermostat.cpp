@@ -326,7 +326,7 @@ StageStart Stages::materialise_pass(const Frame& f) {
   if (collider_.blocks() <= 1) return materialise(mix_, sys_, f);
   collide::Collider::BlockPass sums = collider_.map_blocks(f.scale, f.scale * f.shear, f.offset);
   StageStart out;
-  out.total_mass = sums.mass;
+  out.total_mass = total_mass_;  // (as materialise's: the sum over species, not over blocks)
   out.moments = sums.moments;
   out.max_speed2 = std::move(sums.max_speed2);
   out.block_bounds = true;
