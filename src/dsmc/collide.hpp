@@ -224,6 +224,33 @@ struct Counters {
   double largest_acceptance = 0.0;
 };
 
+/// The mass-weighted sums of a frame pass (thermostat.hpp, "Cost: the frame"; Collider::map_blocks).
+struct FramePassSums {
+  double mass = 0.0;                    ///< sum m
+  std::array<double, 3> momentum{};     ///< sum m V
+  std::array<double, 4> moments{};      ///< sum m V V^T: xx, yy, zz, xy
+};
+
+/// The frame pass over `count` velocities of one species of mass `m` from `v` on: each u becomes
+/// V = (s u_x + sc u_y, s u_y, s u_z) + b, their sums times m are added to `sums`, and the largest
+/// |V|^2 (the expression of the blocks' exact bounds) is returned. Shared by thermostat::materialise
+/// (species by species) and Collider::map_blocks (slice by slice), so both sum in the same way.
+inline double map_velocities(particles::Vec3* v, std::size_t count, double m, double s, double sc,
+                             const particles::Vec3& b, FramePassSums& sums) {
+  double sx = 0.0, sy = 0.0, sz = 0.0, sxx = 0.0, syy = 0.0, szz = 0.0, sxy = 0.0, max2 = 0.0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const particles::Vec3 w{s * v[i].x + sc * v[i].y + b.x, s * v[i].y + b.y, s * v[i].z + b.z};
+    v[i] = w;
+    sx += w.x, sy += w.y, sz += w.z;
+    sxx += w.x * w.x, syy += w.y * w.y, szz += w.z * w.z, sxy += w.x * w.y;
+    max2 = std::max(max2, w.x * w.x + w.y * w.y + w.z * w.z);
+  }
+  sums.mass += m * static_cast<double>(count);
+  sums.momentum[0] += m * sx, sums.momentum[1] += m * sy, sums.momentum[2] += m * sz;
+  sums.moments[0] += m * sxx, sums.moments[1] += m * syy, sums.moments[2] += m * szz, sums.moments[3] += m * sxy;
+  return max2;
+}
+
 /// The collision stage of one replica: particles, pair constants, bounds, clock and generator.
 class Collider {
  public:

@@ -175,47 +175,27 @@ void Collider::set_block_max_speed2(std::size_t j, double* out) {
 
 Collider::BlockPass Collider::map_blocks(double s, double sc, const particles::Vec3& b) {
   if (block_first_.empty()) throw std::logic_error("collide: map_blocks() without blocks");
-  struct Sums {
-    double mass = 0.0;
-    std::array<double, 3> momentum{};
-    std::array<double, 4> moments{};
-    std::size_t particles = 0;
-  };
   const std::size_t blocks = block_first_.size() - 1;
-  std::vector<Sums> part(blocks);
+  std::vector<FramePassSums> part(blocks);
+  std::vector<std::size_t> visited_in(blocks, 0);
   const auto n_blocks = static_cast<std::ptrdiff_t>(blocks);
 #pragma omp parallel for num_threads(threads_) schedule(static) if (threads_ > 1)
   for (std::ptrdiff_t jj = 0; jj < n_blocks; ++jj) {
     const auto j = static_cast<std::size_t>(jj);
     const std::size_t* slice = slice_first_of(j);
     const std::size_t* cum = slice_cum_of(j);
-    double* bound = block_max_speed2_.data() + j * s_;
-    Sums& sums = part[j];
     for (std::size_t k = 0; k < s_; ++k) {
-      double sx = 0.0, sy = 0.0, sz = 0.0, sxx = 0.0, syy = 0.0, szz = 0.0, sxy = 0.0, max2 = 0.0;
       const std::size_t count = cum[k + 1] - cum[k];
-      for (std::size_t i = slice[k]; i < slice[k] + count; ++i) {
-        particles::Vec3& v = sys_.v[i];
-        const particles::Vec3 w{s * v.x + sc * v.y + b.x, s * v.y + b.y, s * v.z + b.z};
-        v = w;
-        sx += w.x, sy += w.y, sz += w.z;
-        sxx += w.x * w.x, syy += w.y * w.y, szz += w.z * w.z, sxy += w.x * w.y;
-        max2 = std::max(max2, w.x * w.x + w.y * w.y + w.z * w.z);  // (set_block_max_speed2's expression)
-      }
-      bound[k] = max2;
-      sums.particles += count;
-      const double m = mix_.mass[k];
-      sums.mass += m * static_cast<double>(count);
-      sums.momentum[0] += m * sx, sums.momentum[1] += m * sy, sums.momentum[2] += m * sz;
-      sums.moments[0] += m * sxx, sums.moments[1] += m * syy, sums.moments[2] += m * szz, sums.moments[3] += m * sxy;
+      block_max_speed2_[j * s_ + k] = map_velocities(sys_.v.data() + slice[k], count, mix_.mass[k], s, sc, b, part[j]);
+      visited_in[j] += count;
     }
   }
   BlockPass out;
   out.max_speed2.assign(s_, 0.0);
   std::size_t visited = 0;
   for (std::size_t j = 0; j < blocks; ++j) {  // in block order: the same sums on any number of threads
-    const Sums& p = part[j];
-    visited += p.particles;
+    const FramePassSums& p = part[j];
+    visited += visited_in[j];
     out.mass += p.mass;
     out.momentum.x += p.momentum[0], out.momentum.y += p.momentum[1], out.momentum.z += p.momentum[2];
     for (std::size_t q = 0; q < 4; ++q) out.moments[q] += p.moments[q];

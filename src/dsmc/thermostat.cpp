@@ -96,37 +96,13 @@ void finish_pass(StageStart& out, const particles::Vec3& p) {
 StageStart materialise(const species::Mixture& mix, particles::System& sys, const Frame& f) {
   StageStart out;
   out.max_speed2.assign(sys.n_species(), 0.0);
-  const double s = f.scale, sc = f.scale * f.shear;
-  const particles::Vec3 b = f.offset;
-  double px = 0.0, py = 0.0, pz = 0.0;
-  for (std::size_t k = 0; k < sys.n_species(); ++k) {
-    double sx = 0.0, sy = 0.0, sz = 0.0, sxx = 0.0, syy = 0.0, szz = 0.0, sxy = 0.0, max2 = 0.0;
-    const std::size_t end = sys.first[k] + sys.count[k];
-    for (std::size_t i = sys.first[k]; i < end; ++i) {
-      particles::Vec3& v = sys.v[i];
-      const particles::Vec3 w{s * v.x + sc * v.y + b.x, s * v.y + b.y, s * v.z + b.z};
-      v = w;
-      sx += w.x;
-      sy += w.y;
-      sz += w.z;
-      sxx += w.x * w.x;
-      syy += w.y * w.y;
-      szz += w.z * w.z;
-      sxy += w.x * w.y;
-      max2 = std::max(max2, w.x * w.x + w.y * w.y + w.z * w.z);
-    }
-    const double m = mix.mass[k];
-    out.total_mass += m * static_cast<double>(sys.count[k]);
-    px += m * sx;
-    py += m * sy;
-    pz += m * sz;
-    out.moments[0] += m * sxx;
-    out.moments[1] += m * syy;
-    out.moments[2] += m * szz;
-    out.moments[3] += m * sxy;
-    out.max_speed2[k] = max2;
-  }
-  finish_pass(out, {px, py, pz});
+  collide::FramePassSums sums;
+  for (std::size_t k = 0; k < sys.n_species(); ++k)
+    out.max_speed2[k] = collide::map_velocities(sys.v.data() + sys.first[k], sys.count[k], mix.mass[k], f.scale,
+                                                f.scale * f.shear, f.offset, sums);
+  out.total_mass = sums.mass;
+  out.moments = sums.moments;
+  finish_pass(out, {sums.momentum[0], sums.momentum[1], sums.momentum[2]});
   return out;
 }
 
