@@ -58,7 +58,9 @@ if [ "$mpiexec" != "none" ]; then
     kill -0 $pid 2>/dev/null || { echo "FAIL: the MPI run ended before both ranks wrote a checkpoint"; exit 1; }
     [ $waited -lt 600 ] || { echo "FAIL: no MPI checkpoints after 60 s"; exit 1; }
   done
-  sleep 0.5
+  # (each checkpoint file is renamed into place whole and each rank resumes its own replicas, so any pair
+  # of files is a state to resume from: kill at once, as above, before a fast machine ends the run)
+  sleep 0.05
   pkill -9 -f "^$exe $nml " || true  # the ranks (this run's input name only), then their launcher
   kill -9 $pid 2>/dev/null || true
   wait $pid 2>/dev/null || true
