@@ -792,6 +792,33 @@ TEST(Collide, DealInPlaceIsTheDealing) {
   EXPECT_GT(cut, 0u);
 }
 
+// The order in which the threads take up the blocks (collide.hpp, "Threads inside one replica"): written
+// out by hand for 7 blocks on 2 and 3 threads, the identity on one thread, and for K = 1..40 blocks on
+// 1 to 4 threads a permutation of 0..K-1 whose consecutive entries are never neighbouring blocks when
+// K > 2 T (h = ceil(K/T) apart within a row, at least h - 1 from one row to the next; at K = 4, T = 2 the
+// order 0, 2, 1, 3 has 2 then 1).
+TEST(Collide, BlockVisitOrderKeepsNeighboursApart) {
+  using V = std::vector<std::size_t>;
+  EXPECT_EQ(Collider::visit_order(7, 2), (V{0, 4, 1, 5, 2, 6, 3}));
+  EXPECT_EQ(Collider::visit_order(7, 3), (V{0, 3, 6, 1, 4, 2, 5}));
+  EXPECT_EQ(Collider::visit_order(5, 1), (V{0, 1, 2, 3, 4}));
+  for (int threads = 1; threads <= 4; ++threads)
+    for (std::size_t k = 1; k <= 40; ++k) {
+      SCOPED_TRACE(std::to_string(k) + " blocks, " + std::to_string(threads) + " threads");
+      const V order = Collider::visit_order(k, threads);
+      V sorted = order;
+      std::sort(sorted.begin(), sorted.end());
+      V identity(k);
+      for (std::size_t j = 0; j < k; ++j) identity[j] = j;
+      ASSERT_EQ(sorted, identity);
+      if (threads > 1 && k > 2 * static_cast<std::size_t>(threads))
+        for (std::size_t q = 0; q + 1 < k; ++q) {
+          const std::size_t a = order[q], b = order[q + 1];
+          EXPECT_GT(a > b ? a - b : b - a, 1u) << "at " << q;
+        }
+    }
+}
+
 // Threads inside one replica (collide.hpp): the blocks of a step on 1, 2 or 3 threads give the same
 // velocities, displacements, counts and dissipated energy, bit for bit, for one species (time-driven,
 // with displacements) and a binary mixture with `majorant` and `lowrank` (up to an exact event target,

@@ -142,8 +142,11 @@
  * run on OpenMP threads, each on a copy of the pair tables (a "worker"). At the start of each pass a 64-bit key is
  * drawn from the replica's collision stream, and block j draws from its own xoshiro256++ stream seeded by a hash of
  * (key, j) (rng::Xoshiro256pp::substream): keyed by (seed, replica, pass, block). Each block's counts and sums are
- * added in block order after the pass, so the output is the same bits for any thread count. Whole-gas steps run on one
- * thread; two stages of the remix are split over the threads (deal.hpp, "Threads"). Streams of distinct (key, j), drawn
+ * added in block order after the pass, so the output is the same bits for any thread count. The threads take the blocks
+ * up ceil(K/T) apart (visit_order: neighbouring blocks share cache lines where their slices meet), and a worker
+ * counts its pair events on its own stack. Whole-gas steps run on one thread; two stages of the remix are split over
+ * the threads (deal.hpp, "Threads"), and a mixture's species of fewer than N/(4T) particles are dealt one species per
+ * thread (deal_species). Streams of distinct (key, j), drawn
  * about 1e5 times each per pass from a period of 2^256 - 1, overlap with probability below 1e-60.
  *
  * Units: the user's (time e.g. in sigma sqrt(m/T0)). Namelist group `&dsmc` (scheme, step_fraction, block_size). A new
@@ -363,11 +366,18 @@ class Collider {
   void use_threads(int threads);
   /// The threads set by use_threads (1 by default).
   int threads() const { return threads_; }
+  /// The order in which a pass takes up K blocks on `threads` threads (header, "Threads inside one replica"):
+  /// 0, h, 2h, .., 1, h + 1, .. with h = ceil(K/T), a permutation of 0..K-1 (the identity on one thread).
+  static std::vector<std::size_t> visit_order(std::size_t blocks, int threads);
   /// With blocks: the time the blocks were last dealt (a remix, or the first step; header "Event targets").
   double last_remix_time() const { return remix_time_; }
   /// Memory the collider holds for the particles besides the System, in bytes: the scratch memory of
   /// the blocks' remix, done in place (deal.hpp; about (2 seg + 1) K elements and N/seg bits).
-  std::size_t workspace_bytes() const { return remix_workspace_.bytes(); }
+  std::size_t workspace_bytes() const {
+    std::size_t bytes = remix_workspace_.bytes();
+    for (const deal::Workspace& w : species_workspaces_) bytes += w.bytes();
+    return bytes;
+  }
 
   /// Advances until time `t_target` or until `event_target` events, whichever comes first.
   /// Returns true when the event target stopped it. With blocks and `exact_events`, the steps near
@@ -852,6 +862,10 @@ class Collider {
   static constexpr double max_block_step_candidates = 12582912.0;
   std::size_t range_first_ = 0, range_count_ = 0;
   deal::Workspace remix_workspace_;  ///< remix() deals the particles in place with this (deal.hpp)
+  /// ... and, on several threads, the species of fewer than N/(4 threads) particles with these, one per thread
+  std::vector<deal::Workspace> species_workspaces_;
+  /// remix()'s deal of a mixture's species that are not scattered, from their starting points `offset`.
+  void deal_species(const std::vector<std::size_t>& offset);
   template <class Rule, bool Framed>
   int run_pairs(const Rule& rule, double t_stop, std::uint64_t event_target);
   template <class Rule, bool Framed>

@@ -147,15 +147,58 @@ void Collider::remix() {
   std::vector<std::size_t> offset(s_);
   for (std::size_t k = 0; k < s_; ++k)
     if (!scattered_[k]) offset[k] = gen_.below(sys_.count[k]);
-  sys_.for_each_array([&](const char*, auto& a) {
-    for (std::size_t k = 0; k < s_; ++k)
-      if (!scattered_[k])
-        deal::deal_in_place(a.data() + sys_.first[k], sys_.count[k], blocks, offset[k], remix_workspace_, threads_);
-  });
+  deal_species(offset);
   if (!scattered_any_) return;
   for (std::size_t k = 0; k < s_; ++k)
     if (scattered_[k]) scatter(k);
   set_slices();
+}
+
+void Collider::deal_species(const std::vector<std::size_t>& offset) {
+  // A species of N/(4 threads) particles or more is dealt on all threads, one after another; the others
+  // one species per thread, each with a workspace of its own: a deal on all threads of a species of few
+  // particles is mostly the threads' meeting, and with many species the deal of each would run on one
+  // thread while the others wait. deal_in_place gives the same bytes on any number of threads.
+  const std::size_t n = sys_.size(), blocks = block_first_.size() - 1;
+  const auto shared = [&](std::size_t k) { return threads_ == 1 || 4 * static_cast<std::size_t>(threads_) * sys_.count[k] >= n; };
+  std::vector<std::size_t> apart;  // the species dealt one per thread
+  for (std::size_t k = 0; k < s_; ++k) {
+    if (scattered_[k]) continue;
+    if (!shared(k)) {
+      apart.push_back(k);
+      continue;
+    }
+    sys_.for_each_array([&](const char*, auto& a) {
+      deal::deal_in_place(a.data() + sys_.first[k], sys_.count[k], blocks, offset[k], remix_workspace_, threads_);
+    });
+  }
+  if (apart.empty()) return;
+  // (every workspace sized before the threads start: nothing in the parallel region allocates)
+  species_workspaces_.resize(static_cast<std::size_t>(threads_));
+  std::size_t element = 0;
+  sys_.for_each_array([&](const char*, const auto& a) { element = std::max(element, sizeof(a[0])); });
+  for (deal::Workspace& w : species_workspaces_)
+    for (std::size_t k : apart) w.reserve(sys_.count[k], blocks, element, 1);
+  std::vector<std::exception_ptr> failure(apart.size());  // exceptions must not leave an OpenMP region
+  const auto n_apart = static_cast<std::ptrdiff_t>(apart.size());
+#pragma omp parallel for num_threads(threads_) schedule(dynamic, 1)
+  for (std::ptrdiff_t q = 0; q < n_apart; ++q) {
+#ifdef _OPENMP
+    deal::Workspace& workspace = species_workspaces_[static_cast<std::size_t>(omp_get_thread_num())];
+#else
+    deal::Workspace& workspace = species_workspaces_[0];
+#endif
+    const std::size_t k = apart[static_cast<std::size_t>(q)];
+    try {
+      sys_.for_each_array([&](const char*, auto& a) {
+        deal::deal_in_place(a.data() + sys_.first[k], sys_.count[k], blocks, offset[k], workspace, 1);
+      });
+    } catch (...) {
+      failure[static_cast<std::size_t>(q)] = std::current_exception();
+    }
+  }
+  for (const auto& f : failure)
+    if (f) std::rethrow_exception(f);
 }
 
 void Collider::set_block_max_speed2(std::size_t j, double* out) {
@@ -525,7 +568,9 @@ void Collider::make_workers() {
   // only the master uses) and without workers of its own (workers_ is empty while the copies are made).
   workers_.clear();
   auto remix_workspace = std::move(remix_workspace_);
+  auto species_workspaces = std::move(species_workspaces_);
   remix_workspace_ = {};
+  species_workspaces_ = {};
   std::vector<Collider> made;
   made.reserve(static_cast<std::size_t>(threads_));
   // Nor what only the master holds: a worker reads the slices, bounds and credits of its master's blocks
@@ -541,6 +586,7 @@ void Collider::make_workers() {
   block_max_speed2_ = std::move(block_max_speed2), block_credit_ = std::move(block_credit);
   lowrank_ = std::move(lowrank);
   remix_workspace_ = std::move(remix_workspace);
+  species_workspaces_ = std::move(species_workspaces);
   workers_ = std::move(made);
   block_counters_.assign(block_first_.size() - 1, counters_);
 }
@@ -880,6 +926,21 @@ void Collider::raise_block_factored() {
   build_factored_rows();
 }
 
+std::vector<std::size_t> Collider::visit_order(std::size_t blocks, int threads) {
+  // Blocks next to each other share cache lines: a mixture's block is a slice of every species, and a
+  // slice of a few particles starts and ends inside lines that its neighbours' slices share. Blocks
+  // taken up one after another run at the same time on the threads, so consecutive ones are
+  // ceil(K/T) apart: 0, h, 2h, .., 1, h + 1, .. (threads > 1; the order does not change any result).
+  std::vector<std::size_t> order;
+  order.reserve(blocks);
+  const auto t = static_cast<std::size_t>(std::max(1, threads));
+  const std::size_t h = (blocks + t - 1) / t;
+  for (std::size_t i = 0; i < h; ++i)
+    for (std::size_t r = 0; r < t; ++r)
+      if (r * h + i < blocks) order.push_back(r * h + i);
+  return order;
+}
+
 void Collider::run_blocks_pass(double t_start, double t_stop) {
   if (workers_.size() != static_cast<std::size_t>(threads_)) make_workers();
   const std::size_t blocks = block_first_.size() - 1;
@@ -893,20 +954,21 @@ void Collider::run_blocks_pass(double t_start, double t_stop) {
   if (probing) block_probe_.assign(blocks, {0, 0});
   const std::uint64_t events_before = counters_.events, candidates_before = counters_.candidates;
   std::vector<std::exception_ptr> failure(blocks);  // exceptions must not leave an OpenMP region
+  const std::vector<std::size_t> order = visit_order(blocks, threads_);
   const auto n_blocks = static_cast<std::ptrdiff_t>(blocks);
 #pragma omp parallel for num_threads(threads_) schedule(dynamic, 1) if (threads_ > 1)
-  for (std::ptrdiff_t j = 0; j < n_blocks; ++j) {
+  for (std::ptrdiff_t q = 0; q < n_blocks; ++q) {
 #ifdef _OPENMP
     const auto t = static_cast<std::size_t>(omp_get_thread_num());
 #else
     const std::size_t t = 0;
 #endif
+    const std::size_t j = order[static_cast<std::size_t>(q)];
     if (stop_requested()) continue;  // (interrupted: the run is abandoned, the blocks left are not visited)
     try {
-      workers_[t].run_block(*this, static_cast<std::size_t>(j), t_start, t_stop, first_visit, key,
-                            probing ? probe_time_ : t_stop);
+      workers_[t].run_block(*this, j, t_start, t_stop, first_visit, key, probing ? probe_time_ : t_stop);
     } catch (...) {
-      failure[static_cast<std::size_t>(j)] = std::current_exception();
+      failure[j] = std::current_exception();
     }
   }
   for (const auto& f : failure)

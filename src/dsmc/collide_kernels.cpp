@@ -419,8 +419,14 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
   // (the acceptance's constant of each pair apart: `majorant` (pi sigma^2 chi)^2, `lowrank` w_i + w_k)
   const double* acceptance = Lowrank ? pair_limit_.data() : pair_cross_section2_.data();
   double* speed2 = block_speed2_;
-  std::uint64_t sink = 0, *pair_events = counters_.pair_events.empty() ? &sink : counters_.pair_events.data();
-  [[maybe_unused]] const bool counting_pairs = !counters_.pair_events.empty();
+  // The events per pair are counted on this thread's stack and added to the counters at the end: the
+  // workers' own vectors are small heap blocks that can share a cache line with another thread's data,
+  // and an increment per event on such a line stalls both threads (docs/performance.md, "Threads").
+  const std::size_t counted = counters_.pair_events.size();  // (at most pair_event_limit^2)
+  std::array<std::uint64_t, pair_event_limit * pair_event_limit> local_events;  // (the first `counted` used)
+  std::fill_n(local_events.data(), counted, std::uint64_t{0});
+  std::uint64_t sink = 0, *pair_events = counted == 0 ? &sink : local_events.data();
+  [[maybe_unused]] const bool counting_pairs = counted != 0;
   const BlockIndex index = Lowrank ? BlockIndex{} : block_index(cum, slice, s);
   [[maybe_unused]] const std::uint32_t edge1 = index.edge1, offset0 = index.offset0, offset1 = index.offset1;
   const LowrankCell* cells = lowrank_cells_.data();
@@ -587,6 +593,7 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
     }
   }
   counters_.events += events, counters_.candidates += candidates, counters_.dissipated += dissipated;
+  for (std::size_t p = 0; p < counted; ++p) counters_.pair_events[p] += local_events[p];
   if constexpr (Framed)
     for (std::size_t q = 0; q < 4; ++q) moments_[q] += moments[q];
   gen_ = gen;
