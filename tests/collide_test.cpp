@@ -2210,6 +2210,30 @@ TEST(Collide, SeparableDrawMatchesOneWordDrawAndUnblocked) {
   }
 }
 
+// The pair counts of a saved state must have the collider's own size: S^2 up to pair_event_limit species and none
+// beyond (the block kernel counts them in an array of pair_event_limit^2 on the stack). A state of 2 species with
+// its 4 counts fits; one whose counts were left out, or a 65-species state given 4 counts, is refused.
+TEST(Collide, SavedPairCountsMustFitTheCollider) {
+  const auto mix2 = binary(0.7, 0.9, 0.5);
+  auto sys2 = initial(mix2, {300, 300}, {1.0, 1.0}, 5);
+  Collider two(Scheme::majorant, mix2, sys2, rng::make_stream(5, 0, rng::Purpose::collisions), 1.0);
+  two.advance(1e12, 1000);
+  auto st = two.state();
+  ASSERT_EQ(st.counters.pair_events.size(), 4u);
+  EXPECT_NO_THROW(two.restore(st));
+  st.counters.pair_events.clear();
+  EXPECT_THROW(two.restore(st), std::invalid_argument);
+  const auto mix65 = equal_count_mixture(collide::pair_event_limit + 1, 0.01, false);
+  auto sys65 = initial(mix65, std::vector<std::size_t>(collide::pair_event_limit + 1, 10),
+                       std::vector<double>(collide::pair_event_limit + 1, 1.0), 5);
+  Collider many(Scheme::lowrank, mix65, sys65, rng::make_stream(5, 0, rng::Purpose::collisions), 1.0);
+  auto st65 = many.state();
+  ASSERT_TRUE(st65.counters.pair_events.empty());
+  EXPECT_NO_THROW(many.restore(st65));
+  st65.counters.pair_events.assign(4, 0);
+  EXPECT_THROW(many.restore(st65), std::invalid_argument);
+}
+
 // Which draw a block takes (collide.hpp, "Mixtures in blocks"): up to lowrank_factor_above = 24 species
 // present the one-word draw, the code before the factored draw existed, byte for byte: a 24-species gas
 // (250 particles each, 2 blocks, all species in both) gives bit for bit the velocities and counts of the

@@ -189,7 +189,7 @@ Collider::State Collider::state() const {
 
 void Collider::restore(const State& st) {
   if (st.max_speed.size() != s_ || st.max_speed2.size() != s_ || st.pending.size() != 4 * lookahead ||
-      st.pending_next >= lookahead || (!counters_.pair_events.empty() && st.counters.pair_events.size() != s_ * s_))
+      st.pending_next >= lookahead || st.counters.pair_events.size() != counters_.pair_events.size())
     throw std::invalid_argument("collide: the saved state does not fit this collider");
   time_ = st.time;
   credit_ = st.credit;

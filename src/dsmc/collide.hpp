@@ -143,11 +143,11 @@
  * drawn from the replica's collision stream, and block j draws from its own xoshiro256++ stream seeded by a hash of
  * (key, j) (rng::Xoshiro256pp::substream): keyed by (seed, replica, pass, block). Each block's counts and sums are
  * added in block order after the pass, so the output is the same bits for any thread count. The threads take the blocks
- * up ceil(K/T) apart (visit_order: neighbouring blocks share cache lines where their slices meet), and a worker
- * counts its pair events on its own stack. Whole-gas steps run on one thread; two stages of the remix are split over
- * the threads (deal.hpp, "Threads"), and a mixture's species of fewer than N/(4T) particles are dealt one species per
- * thread (deal_species). Streams of distinct (key, j), drawn
- * about 1e5 times each per pass from a period of 2^256 - 1, overlap with probability below 1e-60.
+ * up in visit_order (consecutive ones ceil(K/T) apart: neighbouring blocks share cache lines where their slices meet).
+ * Whole-gas steps run on one thread; two stages of the remix are split over the threads (deal.hpp, "Threads"), and a
+ * mixture's species of fewer than N/(4T) particles are dealt one species per thread (deal_species). Streams of
+ * distinct (key, j), drawn about 1e5 times each per pass from a period of 2^256 - 1, overlap with probability below
+ * 1e-60.
  *
  * Units: the user's (time e.g. in sigma sqrt(m/T0)). Namelist group `&dsmc` (scheme, step_fraction, block_size). A new
  * collision rule is a type of rules.hpp (\ref ext_rule "docs/extending.md"). Measurements and what was tried:
@@ -372,7 +372,8 @@ class Collider {
   /// With blocks: the time the blocks were last dealt (a remix, or the first step; header "Event targets").
   double last_remix_time() const { return remix_time_; }
   /// Memory the collider holds for the particles besides the System, in bytes: the scratch memory of
-  /// the blocks' remix, done in place (deal.hpp; about (2 seg + 1) K elements and N/seg bits).
+  /// the blocks' remix, done in place (deal.hpp; about (2 seg + 1) K elements and N/seg bits), and on
+  /// several threads, after the first remix, one workspace per thread for a mixture's small species.
   std::size_t workspace_bytes() const {
     std::size_t bytes = remix_workspace_.bytes();
     for (const deal::Workspace& w : species_workspaces_) bytes += w.bytes();

@@ -77,6 +77,7 @@ void Collider::use_blocks(std::size_t block_size, const particles::SetUpCheck& c
   block_credit_.assign(blocks, 0.0);
   // The remix's scratch memory (deal.hpp), for the largest species and the largest particle array.
   remix_workspace_ = {};
+  species_workspaces_ = {};  // (deal_species sizes them at the first remix on several threads)
   std::size_t element = 0;  // (the largest element of the arrays a particle carries; deal_in_place grows it)
   sys_.for_each_array([&](const char*, const auto& a) { element = std::max(element, sizeof(a[0])); });
   for (std::size_t k = 0; k < s_; ++k)
@@ -160,14 +161,17 @@ void Collider::deal_species(const std::vector<std::size_t>& offset) {
   // particles is mostly the threads' meeting, and with many species the deal of each would run on one
   // thread while the others wait. deal_in_place gives the same bytes on any number of threads.
   const std::size_t n = sys_.size(), blocks = block_first_.size() - 1;
-  const auto shared = [&](std::size_t k) { return threads_ == 1 || 4 * static_cast<std::size_t>(threads_) * sys_.count[k] >= n; };
-  std::vector<std::size_t> apart;  // the species dealt one per thread
-  for (std::size_t k = 0; k < s_; ++k) {
-    if (scattered_[k]) continue;
-    if (!shared(k)) {
-      apart.push_back(k);
+  const auto threads = static_cast<std::size_t>(threads_);
+  std::vector<std::size_t> apart;  // the species dealt one per thread (two at least, else none)
+  for (std::size_t k = 0; k < s_; ++k)
+    if (!scattered_[k] && threads > 1 && 4 * threads * sys_.count[k] < n) apart.push_back(k);
+  if (apart.size() < 2) apart.clear();
+  for (std::size_t k = 0, next = 0; k < s_; ++k) {
+    if (next < apart.size() && apart[next] == k) {
+      ++next;
       continue;
     }
+    if (scattered_[k]) continue;
     sys_.for_each_array([&](const char*, auto& a) {
       deal::deal_in_place(a.data() + sys_.first[k], sys_.count[k], blocks, offset[k], remix_workspace_, threads_);
     });

@@ -421,9 +421,10 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
   double* speed2 = block_speed2_;
   // The events per pair are counted on this thread's stack and added to the counters at the end: the
   // workers' own vectors are small heap blocks that can share a cache line with another thread's data,
-  // and an increment per event on such a line stalls both threads (docs/performance.md, "Threads").
-  const std::size_t counted = counters_.pair_events.size();  // (at most pair_event_limit^2)
+  // and an increment per event on such a line stalls both threads (\ref perf_two_threads "docs/performance.md").
   std::array<std::uint64_t, pair_event_limit * pair_event_limit> local_events;  // (the first `counted` used)
+  const std::size_t counted = counters_.pair_events.size();  // S^2 up to pair_event_limit species, else 0 (restore)
+  if (counted > local_events.size()) throw std::logic_error("collide: more pair counts than pair_event_limit^2");
   std::fill_n(local_events.data(), counted, std::uint64_t{0});
   std::uint64_t sink = 0, *pair_events = counted == 0 ? &sink : local_events.data();
   [[maybe_unused]] const bool counting_pairs = counted != 0;
