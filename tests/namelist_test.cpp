@@ -753,3 +753,19 @@ TEST(NamelistMessages, EmptyFileAndDirectory) {
   }
   std::filesystem::remove_all(dir);
 }
+
+// A name whose '=' was forgotten, at the start of a later line, is read as a value of the assignment before
+// it: the error names it, its line and the '=' it lacks, not the variable before it. On the assignment's own
+// line the word is that variable's bad value.
+TEST(Namelist, AWordWithoutEqualsOnALaterLineIsNamed) {
+  const Error later = error_of("&system\n n_species = 2\n mass 1.0, 2.0\n/\n");
+  EXPECT_EQ(later.line, 3);
+  EXPECT_EQ(later.group, "system");
+  EXPECT_EQ(later.variable, "mass");
+  EXPECT_NE(later.message.find("'mass' without '=': expected 'mass = value'"), std::string::npos) << later.what();
+  EXPECT_NE(later.message.find("a value of n_species from line 2"), std::string::npos) << later.what();
+  const Error same = error_of("&system\n n_species = 2 mass 1.0\n/\n");
+  EXPECT_EQ(same.line, 2);
+  EXPECT_EQ(same.variable, "n_species");
+  EXPECT_NE(same.message.find("bad value 'mass': an unquoted word"), std::string::npos) << same.what();
+}

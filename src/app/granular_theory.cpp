@@ -3,6 +3,8 @@
 #include <array>
 #include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <cstdlib>
 #include <csignal>
 #include <cmath>
 #include <cstdio>
@@ -10,6 +12,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -315,6 +318,58 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
 
 }  // namespace
 
+std::atomic<bool> g_announced{false};  // the interrupt's line is printed once (by the waiting thread or compute)
+void announce_interrupt() {
+  if (!g_announced.exchange(true)) std::cerr << "granular-theory: interrupted: nothing printed\n";
+}
+
+/// The theory of the input (one point, or a sweep's points) as the JSON to print, into `printed`; the
+/// exit status (a refusal or failure says why on stderr, and leaves `printed` empty).
+int compute(const gdsmc::io::config::Config& config, std::string& printed) {
+  try {
+    if (!config.is_sweep()) {
+      printed = point_json(config, "") + "\n";
+    } else {
+      // One object per point, in the order of &sweep values (as /sweep/point_K of granular-dsmc).
+      std::ostringstream json;
+      // "variable": the names joined by ", " (one variable: its name); "values": each point's values
+      // joined the same way; "variables" and "points": the same as lists.
+      const auto table = config.sweep.table();
+      json << "{\n  \"sweep\": {\"variable\": \"" << escape(config.sweep.names()) << "\", \"values\": [";
+      for (std::size_t k = 0; k < table.size(); ++k)
+        json << (k ? ", " : "") << "\"" << escape(gdsmc::io::config::Sweep::row_text(table[k])) << "\"";
+      json << "], \"variables\": [";
+      for (std::size_t v = 0; v < config.sweep.variable.size(); ++v)
+        json << (v ? ", " : "") << "\"" << escape(config.sweep.variable[v]) << "\"";
+      json << "], \"numbers\": [";  // each point's values as numbers (null: a string or an array)
+      for (std::size_t k = 0; k < table.size(); ++k) {
+        std::vector<double> row;
+        for (const auto& text : table[k]) row.push_back(gdsmc::analysis::sweep_table::numeric_value(text));
+        json << (k ? ", " : "") << array(row);
+      }
+      json << "]},\n  \"points\": [\n";
+      const auto points = config.sweep_points();
+      for (std::size_t k = 0; k < points.size(); ++k)
+        json << (k ? ",\n" : "") << point_json(points[k], "    ");
+      json << "\n  ]\n}\n";
+      printed = json.str();
+    }
+  } catch (const gdsmc::theory::smoluchowski::Stopped&) {
+    announce_interrupt();
+    return 130;
+  } catch (const gdsmc::io::namelist::Error& e) {  // e.g. an end of the run the ODEs cannot reach
+    std::cerr << "granular-theory: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "granular-theory: " << e.what() << "\n";
+    return 1;
+  } catch (...) {  // (nothing may leave the theory's thread)
+    std::cerr << "granular-theory: the theory failed\n";
+    return 1;
+  }
+  return 0;
+}
+
 int main(int argc, char** argv) {
   std::string input;
   std::vector<std::string> overrides;
@@ -359,46 +414,27 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  // Ctrl-C stops the one long computation, the Smoluchowski integration, at its next right-hand side.
+  // Ctrl-C: the theory runs on a thread of its own while this one looks at the signal every 20 ms; on a
+  // signal the process ends at once, status 130, having printed nothing (it writes no file, only stdout),
+  // whatever the theory was doing (a dense Newton step of thousands of species' partial temperatures takes
+  // seconds and has no place to stop). The Smoluchowski integration also stops at its next right-hand side.
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
-  try {
-    if (!config.is_sweep()) {
-      std::cout << point_json(config, "") << "\n";
-    } else {
-      // One object per point, in the order of &sweep values (as /sweep/point_K of granular-dsmc).
-      std::ostringstream json;
-      // "variable": the names joined by ", " (one variable: its name); "values": each point's values
-      // joined the same way; "variables" and "points": the same as lists.
-      const auto table = config.sweep.table();
-      json << "{\n  \"sweep\": {\"variable\": \"" << escape(config.sweep.names()) << "\", \"values\": [";
-      for (std::size_t k = 0; k < table.size(); ++k)
-        json << (k ? ", " : "") << "\"" << escape(gdsmc::io::config::Sweep::row_text(table[k])) << "\"";
-      json << "], \"variables\": [";
-      for (std::size_t v = 0; v < config.sweep.variable.size(); ++v)
-        json << (v ? ", " : "") << "\"" << escape(config.sweep.variable[v]) << "\"";
-      json << "], \"numbers\": [";  // each point's values as numbers (null: a string or an array)
-      for (std::size_t k = 0; k < table.size(); ++k) {
-        std::vector<double> row;
-        for (const auto& text : table[k]) row.push_back(gdsmc::analysis::sweep_table::numeric_value(text));
-        json << (k ? ", " : "") << array(row);
-      }
-      json << "]},\n  \"points\": [\n";
-      const auto points = config.sweep_points();
-      for (std::size_t k = 0; k < points.size(); ++k)
-        json << (k ? ",\n" : "") << point_json(points[k], "    ");
-      json << "\n  ]\n}\n";
-      std::cout << json.str();
+  std::string printed;
+  std::atomic<bool> done{false};
+  int status = 0;
+  std::thread theory([&] {
+    status = compute(config, printed);
+    done.store(true);
+  });
+  while (!done.load()) {
+    if (g_interrupted.load()) {
+      announce_interrupt();
+      std::_Exit(130);
     }
-  } catch (const gdsmc::theory::smoluchowski::Stopped&) {
-    std::cerr << "granular-theory: interrupted: nothing printed\n";
-    return 130;
-  } catch (const gdsmc::io::namelist::Error& e) {  // e.g. an end of the run the ODEs cannot reach
-    std::cerr << "granular-theory: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "granular-theory: " << e.what() << "\n";
-    return 1;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  return 0;
+  theory.join();
+  std::cout << printed;
+  return status;
 }

@@ -484,6 +484,10 @@ class Parser {
       v.kind = Value::Kind::Real;
       return v;
     }
+    if (is_letter(token.front()) && line != a.line)  // (a word that starts a later line: its '=' forgotten)
+      fail(line, g.name, lowered(v.text),
+           "'" + v.text + "' without '=': expected '" + v.text + " = value' (read as a value of " + a.name +
+               " from line " + std::to_string(a.line) + ", it would be an unquoted word, which is not a value)");
     if (is_letter(token.front())) {
       // (on a shell's command line the quotes of --set need quotes of their own: the form to type)
       const std::string quoted = "'" + v.text + "'";
