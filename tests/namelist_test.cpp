@@ -754,9 +754,10 @@ TEST(NamelistMessages, EmptyFileAndDirectory) {
   std::filesystem::remove_all(dir);
 }
 
-// A name whose '=' was forgotten, at the start of a later line, is read as a value of the assignment before
-// it: the error names it, its line and the '=' it lacks, not the variable before it. On the assignment's own
-// line the word is that variable's bad value.
+// A name whose '=' was forgotten, at the start of a later line after a value with no comma behind it, is read
+// as a value of the assignment before it: the error names it, its line and the '=' it lacks, not the variable
+// before it. On the assignment's own line, after a comma, or as the first value the word is that variable's
+// bad value (NamelistError.BadTokens: 'x = 1,' then 'abc').
 TEST(Namelist, AWordWithoutEqualsOnALaterLineIsNamed) {
   const Error later = error_of("&system\n n_species = 2\n mass 1.0, 2.0\n/\n");
   EXPECT_EQ(later.line, 3);
@@ -768,4 +769,10 @@ TEST(Namelist, AWordWithoutEqualsOnALaterLineIsNamed) {
   EXPECT_EQ(same.line, 2);
   EXPECT_EQ(same.variable, "n_species");
   EXPECT_NE(same.message.find("bad value 'mass': an unquoted word"), std::string::npos) << same.what();
+  for (const char* text : {"&system\n n_species = 2,\n mass 1.0\n/\n", "&system\n n_species =\n mass 1.0\n/\n"}) {
+    const Error value = error_of(text);
+    EXPECT_EQ(value.line, 3) << text;
+    EXPECT_EQ(value.variable, "n_species") << text;
+    EXPECT_NE(value.message.find("bad value 'mass': an unquoted word"), std::string::npos) << value.what();
+  }
 }

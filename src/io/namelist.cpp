@@ -328,7 +328,7 @@ class Parser {
         fail(line, g.name, "",
              "value without a variable name: expected 'name = value', found '" + token + "'");
       }
-      parse_values(g, *current);
+      parse_values(g, *current, after_comma);
       need_value = false;
       after_comma = false;
     }
@@ -384,8 +384,9 @@ class Parser {
     return a;
   }
 
-  // One value item at pos_ (a constant or `r*constant`), appended `r` times to `a`.
-  void parse_values(const Group& g, Assignment& a) {
+  // One value item at pos_ (a constant or `r*constant`), appended `r` times to `a`; `after_comma`: a comma
+  // came after a's last value.
+  void parse_values(const Group& g, Assignment& a, bool after_comma) {
     const int line = line_;
     const std::size_t start = pos_;
     while (!at_end() && !ends_value(peek())) advance();
@@ -420,7 +421,7 @@ class Parser {
       if (is_quote(peek()))
         fail(line, g.name, a.name,
              "bad value '" + std::string(raw) + peek() + "...' (a quote inside a value)");
-      v = convert(constant, g, a, line);
+      v = convert(constant, g, a, line, after_comma);
     }
     if (!at_end() && !ends_value(peek()))
       fail(line_, g.name, a.name, "missing separator after the value '" + v.text + "'");
@@ -453,7 +454,7 @@ class Parser {
     }
   }
 
-  Value convert(std::string_view token, const Group& g, const Assignment& a, int line) const {
+  Value convert(std::string_view token, const Group& g, const Assignment& a, int line, bool after_comma) const {
     Value v;
     v.text = std::string(token);
     v.line = line;
@@ -484,7 +485,8 @@ class Parser {
       v.kind = Value::Kind::Real;
       return v;
     }
-    if (is_letter(token.front()) && line != a.line)  // (a word that starts a later line: its '=' forgotten)
+    // A word that starts a later line after a value not followed by a comma: a name whose '=' was forgotten.
+    if (is_letter(token.front()) && line != a.line && !a.values.empty() && !after_comma)
       fail(line, g.name, lowered(v.text),
            "'" + v.text + "' without '=': expected '" + v.text + " = value' (read as a value of " + a.name +
                " from line " + std::to_string(a.line) + ", it would be an unquoted word, which is not a value)");
