@@ -756,8 +756,9 @@ TEST(NamelistMessages, EmptyFileAndDirectory) {
 
 // A name whose '=' was forgotten, at the start of a later line after a value with no comma behind it, is read
 // as a value of the assignment before it: the error names it, its line and the '=' it lacks, not the variable
-// before it. On the assignment's own line, after a comma, or as the first value the word is that variable's
-// bad value (NamelistError.BadTokens: 'x = 1,' then 'abc').
+// before it. On the assignment's own line, after a comma, as the first value, second on its line, with a repeat
+// count or when it is not a plain name, the word is that variable's bad value (NamelistError.BadTokens: 'x = 1,'
+// then 'abc').
 TEST(Namelist, AWordWithoutEqualsOnALaterLineIsNamed) {
   const Error later = error_of("&system\n n_species = 2\n mass 1.0, 2.0\n/\n");
   EXPECT_EQ(later.line, 3);
@@ -769,10 +770,14 @@ TEST(Namelist, AWordWithoutEqualsOnALaterLineIsNamed) {
   EXPECT_EQ(same.line, 2);
   EXPECT_EQ(same.variable, "n_species");
   EXPECT_NE(same.message.find("bad value 'mass': an unquoted word"), std::string::npos) << same.what();
-  for (const char* text : {"&system\n n_species = 2,\n mass 1.0\n/\n", "&system\n n_species =\n mass 1.0\n/\n"}) {
+  // (after a comma, as the first value, second on its line, repeated, not a plain name)
+  for (const char* text : {"&system\n n_species = 2,\n mass 1.0\n/\n", "&system\n n_species =\n mass 1.0\n/\n",
+                           "&system\n n_species = 2\n 3 mass\n/\n", "&system\n n_species = 2\n 3*mass\n/\n",
+                           "&system\n n_species = 2\n mass-law 1\n/\n"}) {
     const Error value = error_of(text);
     EXPECT_EQ(value.line, 3) << text;
     EXPECT_EQ(value.variable, "n_species") << text;
-    EXPECT_NE(value.message.find("bad value 'mass': an unquoted word"), std::string::npos) << value.what();
+    EXPECT_NE(value.message.find("bad value '"), std::string::npos) << value.what();
+    EXPECT_EQ(value.message.find("without '='"), std::string::npos) << value.what();
   }
 }

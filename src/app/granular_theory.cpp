@@ -12,6 +12,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -316,8 +317,6 @@ std::string point_json(const gdsmc::io::config::Config& config, const std::strin
   return json.str();
 }
 
-}  // namespace
-
 std::atomic<bool> g_announced{false};  // the interrupt's line is printed once (by the waiting thread or compute)
 void announce_interrupt() {
   if (!g_announced.exchange(true)) std::cerr << "granular-theory: interrupted: nothing printed\n";
@@ -369,6 +368,8 @@ int compute(const gdsmc::io::config::Config& config, std::string& printed) {
   }
   return 0;
 }
+
+}  // namespace
 
 int main(int argc, char** argv) {
   std::string input;
@@ -423,10 +424,17 @@ int main(int argc, char** argv) {
   std::string printed;
   std::atomic<bool> done{false};
   int status = 0;
-  std::thread theory([&] {
+  std::thread theory;
+  try {
+    theory = std::thread([&] {
+      status = compute(config, printed);
+      done.store(true);
+    });
+  } catch (const std::system_error&) {  // (no thread to be had: computed here, Ctrl-C as the solvers allow)
     status = compute(config, printed);
-    done.store(true);
-  });
+    std::cout << printed;
+    return status;
+  }
   while (!done.load()) {
     if (g_interrupted.load()) {
       announce_interrupt();

@@ -389,6 +389,12 @@ class Parser {
   void parse_values(const Group& g, Assignment& a, bool after_comma) {
     const int line = line_;
     const std::size_t start = pos_;
+    // The first item of a later line, after a value of `a` with no comma behind it: where a name whose '='
+    // was forgotten lands (convert names it, when it is a plain word).
+    const std::size_t line_start = text_.rfind('\n', start == 0 ? 0 : start - 1);
+    const bool starts_line = line != a.line && text_.find_first_not_of(" \t\r", line_start == std::string_view::npos
+                                                                                   ? 0 : line_start + 1) == start;
+    const bool name_position = starts_line && !a.values.empty() && !after_comma;
     while (!at_end() && !ends_value(peek())) advance();
     const std::string_view raw = text_.substr(start, pos_ - start);
 
@@ -421,7 +427,7 @@ class Parser {
       if (is_quote(peek()))
         fail(line, g.name, a.name,
              "bad value '" + std::string(raw) + peek() + "...' (a quote inside a value)");
-      v = convert(constant, g, a, line, after_comma);
+      v = convert(constant, g, a, line, name_position && constant == raw);
     }
     if (!at_end() && !ends_value(peek()))
       fail(line_, g.name, a.name, "missing separator after the value '" + v.text + "'");
@@ -454,7 +460,7 @@ class Parser {
     }
   }
 
-  Value convert(std::string_view token, const Group& g, const Assignment& a, int line, bool after_comma) const {
+  Value convert(std::string_view token, const Group& g, const Assignment& a, int line, bool name_position) const {
     Value v;
     v.text = std::string(token);
     v.line = line;
@@ -485,8 +491,9 @@ class Parser {
       v.kind = Value::Kind::Real;
       return v;
     }
-    // A word that starts a later line after a value not followed by a comma: a name whose '=' was forgotten.
-    if (is_letter(token.front()) && line != a.line && !a.values.empty() && !after_comma)
+    // A plain word where a name whose '=' was forgotten lands (parse_values; not in a --set, which has no lines).
+    const bool plain_word = is_letter(token.front()) && std::all_of(token.begin(), token.end(), is_name_char);
+    if (name_position && plain_word && file_.rfind("--set ", 0) != 0)
       fail(line, g.name, lowered(v.text),
            "'" + v.text + "' without '=': expected '" + v.text + " = value' (read as a value of " + a.name +
                " from line " + std::to_string(a.line) + ", it would be an unquoted word, which is not a value)");
