@@ -152,6 +152,7 @@ class Parser {
   std::string file_;
   std::size_t pos_ = 0;
   int line_ = 1;
+  std::size_t line_begin_ = 0;  ///< where line_ begins in text_
 
   [[noreturn]] void fail(int line, const std::string& group, const std::string& variable,
                          const std::string& message) const {
@@ -163,7 +164,7 @@ class Parser {
     return pos_ + ahead < text_.size() ? text_[pos_ + ahead] : '\0';
   }
   void advance() {
-    if (text_[pos_] == '\n') ++line_;
+    if (text_[pos_] == '\n') ++line_, line_begin_ = pos_ + 1;
     ++pos_;
   }
   void skip_comment() {
@@ -391,9 +392,8 @@ class Parser {
     const std::size_t start = pos_;
     // The first item of a later line, after a value of `a` with no comma behind it: where a name whose '='
     // was forgotten lands (convert names it, when it is a plain word).
-    const std::size_t line_start = text_.rfind('\n', start == 0 ? 0 : start - 1);
-    const bool starts_line = line != a.line && text_.find_first_not_of(" \t\r", line_start == std::string_view::npos
-                                                                                   ? 0 : line_start + 1) == start;
+    // (only the line's leading blanks are read: a long list on one line stays linear)
+    const bool starts_line = line != a.line && text_.find_first_not_of(" \t\r", line_begin_) == start;
     const bool name_position = starts_line && !a.values.empty() && !after_comma;
     while (!at_end() && !ends_value(peek())) advance();
     const std::string_view raw = text_.substr(start, pos_ - start);
