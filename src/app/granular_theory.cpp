@@ -432,8 +432,7 @@ int main(int argc, char** argv) {
     });
   } catch (const std::system_error&) {  // (no thread to be had: computed here, Ctrl-C as the solvers allow)
     status = compute(config, printed);
-    std::cout << printed;
-    return status;
+    done.store(true);
   }
   while (!done.load()) {
     if (g_interrupted.load()) {
@@ -442,7 +441,7 @@ int main(int argc, char** argv) {
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  theory.join();
+  if (theory.joinable()) theory.join();
   std::cout << printed;
   return status;
 }

@@ -18,6 +18,16 @@ namespace gdsmc::collide {
 
 using event_margin::may_reach;  // near an exact event target with blocks (header "Blocks")
 
+namespace {
+/// The largest element of the arrays a particle carries (particles.hpp System::for_each_array): the
+/// element size the remix's workspaces are sized for (deal.hpp).
+std::size_t largest_element(const particles::System& sys) {
+  std::size_t element = 0;
+  sys.for_each_array([&](const char*, const auto& a) { element = std::max(element, sizeof(a[0])); });
+  return element;
+}
+}  // namespace
+
 void Collider::use_blocks(std::size_t block_size, const particles::SetUpCheck& check) {
   block_first_.clear();
   scattered_.assign(s_, 0);
@@ -78,8 +88,7 @@ void Collider::use_blocks(std::size_t block_size, const particles::SetUpCheck& c
   // The remix's scratch memory (deal.hpp), for the largest species and the largest particle array.
   remix_workspace_ = {};
   species_workspaces_ = {};  // (deal_species sizes them at the first remix on several threads)
-  std::size_t element = 0;  // (the largest element of the arrays a particle carries; deal_in_place grows it)
-  sys_.for_each_array([&](const char*, const auto& a) { element = std::max(element, sizeof(a[0])); });
+  const std::size_t element = largest_element(sys_);  // (deal_in_place grows it)
   for (std::size_t k = 0; k < s_; ++k)
     if (!scattered_[k]) remix_workspace_.reserve(sys_.count[k], blocks, element, threads_);
 }
@@ -162,25 +171,20 @@ void Collider::deal_species(const std::vector<std::size_t>& offset) {
   // thread while the others wait. deal_in_place gives the same bytes on any number of threads.
   const std::size_t n = sys_.size(), blocks = block_first_.size() - 1;
   const auto threads = static_cast<std::size_t>(threads_);
+  const auto small = [&](std::size_t k) { return !scattered_[k] && threads > 1 && 4 * threads * sys_.count[k] < n; };
   std::vector<std::size_t> apart;  // the species dealt one per thread (two at least, else none)
   for (std::size_t k = 0; k < s_; ++k)
-    if (!scattered_[k] && threads > 1 && 4 * threads * sys_.count[k] < n) apart.push_back(k);
+    if (small(k)) apart.push_back(k);
   if (apart.size() < 2) apart.clear();
-  for (std::size_t k = 0, next = 0; k < s_; ++k) {
-    if (next < apart.size() && apart[next] == k) {
-      ++next;
-      continue;
-    }
-    if (scattered_[k]) continue;
-    sys_.for_each_array([&](const char*, auto& a) {
-      deal::deal_in_place(a.data() + sys_.first[k], sys_.count[k], blocks, offset[k], remix_workspace_, threads_);
-    });
-  }
+  for (std::size_t k = 0; k < s_; ++k)
+    if (!scattered_[k] && (apart.empty() || !small(k)))
+      sys_.for_each_array([&](const char*, auto& a) {
+        deal::deal_in_place(a.data() + sys_.first[k], sys_.count[k], blocks, offset[k], remix_workspace_, threads_);
+      });
   if (apart.empty()) return;
   // (every workspace sized before the threads start: nothing in the parallel region allocates)
   species_workspaces_.resize(static_cast<std::size_t>(threads_));
-  std::size_t element = 0;
-  sys_.for_each_array([&](const char*, const auto& a) { element = std::max(element, sizeof(a[0])); });
+  const std::size_t element = largest_element(sys_);
   for (deal::Workspace& w : species_workspaces_)
     for (std::size_t k : apart) w.reserve(sys_.count[k], blocks, element, 1);
   std::vector<std::exception_ptr> failure(apart.size());  // exceptions must not leave an OpenMP region
