@@ -1286,6 +1286,69 @@ TEST(Collide, LongBlockedStepsMeetEventTargetsExactly) {
   expect_event_targets_met(0.3, 200000, 10000, 20, 8, {1000000, 2000000, 2500000});
 }
 
+// A step begun short is judged by its plan (header "Event targets"): one species, alpha = 0.9, N = 1e5 in 20
+// blocks, every speed sqrt(3) at the start (no tail: the first step's exact bound rises as collisions make
+// one), to an exact target of 18 collisions per particle. The first step is begun at block_steps mean free
+// times (250000 candidates) and brings about 1.9 times as many as its bound rises; its acceptance, times
+// that ratio, then sizes the second step, which is long (5.6 collisions per particle at the first step's
+// acceptance: about 3.4 times block_steps; the target stays out of its reach). Judged by its candidates the
+// first step would count as long without a probe, acceptance 1, whose long step might reach the target,
+// and the second step would be cut to block_steps (tests/mutation 101). The target is met exactly, bit for bit on 2 threads and restored
+// after the first step.
+TEST(Collide, AStepBegunShortIsJudgedByItsPlan) {
+  const auto mix = one_species(0.9);
+  const std::uint64_t target = 900000;
+  const double short_candidates = 5.0 * 100000 / 2.0;  // block_steps N step_fraction / 2
+  struct Run {
+    std::vector<particles::Vec3> v;
+    std::vector<collide::Collider::State> steps;  // the state at each step's end
+  };
+  auto run = [&](int threads, bool restart) {
+    auto sys = initial(mix, {100000}, {1.0}, 23);
+    for (auto& v : sys.v) {  // each speed sqrt(3) (the same temperature, no tail)
+      const double scale = std::sqrt(3.0 / (v.x * v.x + v.y * v.y + v.z * v.z));
+      v = {v.x * scale, v.y * scale, v.z * scale};
+    }
+    auto c = std::make_unique<Collider>(Scheme::majorant, mix, sys, rng::make_stream(23, 0, rng::Purpose::collisions), 1.0);
+    c->use_blocks(5000);
+    c->use_threads(threads);
+    Run out;
+    while (c->counters().events < target) {
+      c->advance(1e12, target, true, target, true);
+      out.steps.push_back(c->state());
+      if (restart && c->counters().steps == 1) {
+        state::Record record;
+        c->save(record);
+        auto fresh = std::make_unique<Collider>(Scheme::majorant, mix, sys, rng::make_stream(1, 0, rng::Purpose::collisions), 1.0);
+        fresh->use_blocks(5000);
+        fresh->use_threads(threads);
+        fresh->restore(record);
+        c = std::move(fresh);
+      }
+    }
+    EXPECT_EQ(c->counters().events, target);
+    EXPECT_EQ(c->counters().overshoots, 0u);
+    out.v.assign(sys.v.begin(), sys.v.end());
+    return out;
+  };
+  const Run serial = run(1, false);
+  ASSERT_GE(serial.steps.size(), 2u);
+  const auto& first = serial.steps[0];
+  const double first_candidates = static_cast<double>(first.counters.candidates - first.step_candidates_start);
+  std::printf("[ measured ] first step begun at %.0f candidates, ran %.0f (%llu events); second begun at %.0f; %zu steps\n",
+              first.step_planned_candidates, first_candidates, static_cast<unsigned long long>(first.counters.events),
+              serial.steps[1].step_planned_candidates, serial.steps.size());
+  EXPECT_NEAR(first.step_planned_candidates, short_candidates, 1e-6 * short_candidates);
+  EXPECT_GT(first_candidates, 1.05 * short_candidates);  // the case: the bound rose within the first step
+  EXPECT_GT(serial.steps[1].step_planned_candidates, 2.0 * short_candidates);
+  for (const auto& [threads, restart] : {std::pair{2, false}, {1, true}}) {
+    SCOPED_TRACE(std::to_string(threads) + " threads" + (restart ? ", restored after the first step" : ""));
+    const Run other = run(threads, restart);
+    EXPECT_EQ(other.v, serial.v);
+    EXPECT_EQ(other.steps.size(), serial.steps.size());
+  }
+}
+
 // A checkpoint's collider holds its blocks, whose count N, S and block_size fix: a record another rule wrote
 // (20 blocks restored where the gas makes 10, as from a build whose separable block count differs) is refused as
 // a mismatch (replica.cpp: "does not fit this build"), not read as damage nor run.
@@ -2016,15 +2079,51 @@ TEST(Collide, SeparableBlocksGrowWhenTheTablesWouldOutgrowTheGas) {
   expect_blocks_match_unblocked(gas, Scheme::lowrank, 200, 16, 900, "Blocks.SeparableLarger");
   EXPECT_EQ(blocked_run(gas, 200, 1), blocked_run(gas, 200, 2));
   EXPECT_EQ(Collider::separable_block_count(1000, 1000000, 32768), 30u);     // S K <= N: N div block_size
-  EXPECT_EQ(Collider::separable_block_count(100000, 1000000, 32768), 17u);   // ceil(1e6 / 60000)
+  EXPECT_EQ(Collider::separable_block_count(100000, 1000000, 32768), 16u);   // ceil(1e6 / 62500)
   EXPECT_EQ(Collider::separable_block_count(50000, 1000000, 32768), 16u);    // N div 8 S = 2: at least 16
   EXPECT_EQ(Collider::separable_block_count(10000, 1000000, 32768), 16u);    // N div 8 S = 12: at least 16
   EXPECT_EQ(Collider::separable_block_count(5000, 1000000, 32768), 25u);     // N div 8 S
   EXPECT_EQ(Collider::separable_block_count(4000, 1000000, 32768), 30u);     // N div block_size < N div 8 S
   EXPECT_EQ(Collider::separable_block_count(60000, 200000, 32768), 3u);      // 6 blocks: S K > N, N div S
-  EXPECT_EQ(Collider::separable_block_count(100000, 10000000, 32768), 167u); // ceil(1e7 / 60000), S K <= 2 N
+  EXPECT_EQ(Collider::separable_block_count(100000, 1100000, 32768), 18u);   // ceil(1.1e6 / 62500)
+  EXPECT_EQ(Collider::separable_block_count(100000, 10000000, 32768), 160u); // ceil(1e7 / 62500), S K <= 2 N
   EXPECT_EQ(Collider::separable_block_count(200000, 1000000, 32768), 0u);    // S K = 3.4 N: none
   EXPECT_LT(Collider::separable_block_count(60000, 100000, 64), 2u);         // N div S = 1: none
+}
+
+// The separable draw reads a block's exact bounds at its first visit in the same pass that gathers its
+// species (set_block_separable): the 300-species gas above in 16 blocks, after each of four steps every
+// particle's speed^2 is within its block's bound for its species (each exact at the first visit, then raised
+// by every collision), read through the checkpoint's slices (species k's particles in block order). Bounds
+// kept from the last step's blocks instead miss the particles the remix brought (tests/mutation 102).
+TEST(Collide, SeparableFirstVisitBoundsHoldEveryParticle) {
+  const PowerLawGas gas = power_law_gas(300, 9000.0, 2);
+  auto sys = initial(gas.mix, gas.counts, std::vector<double>(gas.counts.size(), 1.0), 31);
+  Collider c(Scheme::lowrank, gas.mix, sys, rng::make_stream(31, 0, rng::Purpose::collisions), 1.0);
+  c.use_blocks(200);
+  ASSERT_EQ(c.blocks(), 16u);
+  const std::size_t s = gas.counts.size();
+  std::size_t checked = 0;
+  for (int step = 0; step < 4; ++step) {
+    c.advance(1e12, 100 * gas.total, true, 100 * gas.total, true);
+    const Collider::State st = c.state();
+    ASSERT_EQ(st.slice_counts.size(), 16 * s);
+    for (std::size_t k = 0; k < s; ++k) {
+      std::size_t at = sys.first[k];
+      for (std::size_t j = 0; j < 16; ++j) {
+        const auto count = static_cast<std::size_t>(st.slice_counts[j * s + k]);
+        for (std::size_t i = at; i < at + count; ++i, ++checked) {
+          const particles::Vec3& v = sys.v[i];
+          ASSERT_LE(v.x * v.x + v.y * v.y + v.z * v.z, st.block_max_speed2[j * s + k])
+              << "step " << step << ", block " << j << ", species " << k;
+        }
+        at += count;
+      }
+      ASSERT_EQ(at, sys.first[k] + sys.count[k]);
+    }
+  }
+  EXPECT_EQ(checked, 4 * gas.total);
+  EXPECT_EQ(c.counters().overshoots, 0u);
 }
 
 // The factored `lowrank` draw (collide.hpp, "Mixtures in blocks"; \ref sch_factored "docs/schemes.md"),

@@ -175,6 +175,7 @@ Collider::State Collider::state() const {
   st.step_acceptance = step_acceptance_;
   st.step_events_start = step_events_start_;
   st.step_candidates_start = step_candidates_start_;
+  st.step_planned_candidates = step_planned_candidates_;
   st.probe = static_cast<int>(probe_);
   st.probe_time = probe_time_;
   st.probe_events = probe_events_;
@@ -224,6 +225,9 @@ void Collider::restore(const State& st) {
   step_acceptance_ = st.step_acceptance;
   step_events_start_ = st.step_events_start;
   step_candidates_start_ = st.step_candidates_start;
+  if (!(st.step_planned_candidates >= 0.0) || std::isinf(st.step_planned_candidates))
+    throw std::invalid_argument("collide: the saved state's planned candidates of its step are not a count");
+  step_planned_candidates_ = st.step_planned_candidates;
   if (st.probe < 0 || st.probe > 2) throw std::invalid_argument("collide: the saved state's probe is not 0, 1 or 2");
   if (st.probe == 1 && !(st.probe_time > st.step_start && st.probe_time <= st.next_step_time))
     throw std::invalid_argument("collide: the saved state's pending probe is not inside its step");
@@ -284,6 +288,7 @@ void Collider::save(state::Record& r) const {
   r.put_integer("collider/whole_step", s.whole_step);
   r.put_integer("collider/step_events_start", s.step_events_start);
   r.put_integer("collider/step_candidates_start", s.step_candidates_start);
+  r.put("collider/step_planned_candidates", s.step_planned_candidates);
   r.put_integer("collider/probe", static_cast<std::uint64_t>(s.probe));
   r.put("collider/probe_time", s.probe_time);
   r.put_integer("collider/probe_events", s.probe_events);
@@ -337,6 +342,8 @@ void Collider::restore(const state::Record& r) {
   s.whole_step = r.flag("collider/whole_step");
   s.step_events_start = r.integer("collider/step_events_start");
   s.step_candidates_start = r.integer("collider/step_candidates_start");
+  // (written since 2026-12-02; before, 0: the last step judged long or short by its candidates)
+  s.step_planned_candidates = r.has("collider/step_planned_candidates") ? r.real("collider/step_planned_candidates") : 0.0;
   // (written since 2026-11-30; before, no step had a probe)
   if (r.has_integers("collider/probe")) {
     const std::uint64_t probe = r.integer("collider/probe");

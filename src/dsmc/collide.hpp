@@ -123,7 +123,7 @@
  * words and two dependent table reads, so up to 24 species the one-word draw costs less. set_lowrank_factor_above()
  * moves the threshold (tests). *The separable draw* (more than separable_above = 128 species, `lowrank`; blocks of
  * block_size, but of at least 8 S particles where that leaves at least 16 blocks, and while S K <= N (else K = N div
- * S), beyond 65535 species K >= ceil(N/60000), while S K <= 2 N: separable_block_count; \ref sch_separable "docs/schemes.md"): w_i = W_b/sqrt(m_i) with W_b^2 = max m |v|^2 over the block, so that A_ik =
+ * S), beyond 65535 species K >= ceil(N/62500), while S K <= 2 N: separable_block_count; \ref sch_separable "docs/schemes.md"): w_i = W_b/sqrt(m_i) with W_b^2 = max m |v|^2 over the block, so that A_ik =
  * (pi chi_max W_b/(4V)) sum_r u_i^(r) v_k^(r), u_i = N_i (sigma_i^2, 2 sigma_i, 1)/sqrt(m_i), v_k = N_k (1, sigma_k,
  * sigma_k^2) (Bodrova and Osinsky 2024, eqs. (12)-(14)): the term r, then the row from u^(r) and the column from v^(r),
  * from six alias tables over the P species present built once per visit; accepted with chi_ik |g| / (chi_max (w_i +
@@ -490,6 +490,7 @@ class Collider {
     bool whole_step = false;                             ///< with blocks: the step runs on the whole gas
     double step_acceptance = 0.0;
     std::uint64_t step_events_start = 0, step_candidates_start = 0;
+    double step_planned_candidates = 0.0;  ///< with blocks: R dt of the step as begun (0: not known)
     int probe = 0;                     ///< with blocks: the step's probe (Probe: 0 none, 1 pending, 2 measured)
     double probe_time = 0.0;           ///< when the probe is taken
     std::uint64_t probe_events = 0;    ///< the step's events up to the probe, once measured
@@ -556,6 +557,7 @@ class Collider {
   bool whole_step_ = false;         ///< with blocks: this step runs on the whole gas (near an event target)
   double step_acceptance_ = 0.0;    ///< with blocks: events per candidate in the last step
   std::uint64_t step_events_start_ = 0, step_candidates_start_ = 0;  ///< counters at this step's start
+  double step_planned_candidates_ = 0.0;  ///< with blocks: R dt of this step as begun (0: not known, an older checkpoint)
   /// With blocks, a step longer than block_steps mean free times (header "Event targets"): its probe, the
   /// counts of its first block_steps mean free times, taken at probe_time_ (none, pending, measured).
   enum class Probe { none, pending, measured };
@@ -580,6 +582,7 @@ class Collider {
   std::size_t current_block_ = 0;
   /// A worker running block j (run_block): the block's vmax_k^2, in the master's block_max_speed2_.
   double* block_speed2_ = nullptr;
+  double pass_density_ = 0.0;  ///< the gas's number density for a pass's block visits (run_blocks_pass; O(S) to sum)
   // Threads inside one replica (header): the workers, and each block's counts of the current pass.
   int threads_ = 1;
   std::vector<Collider> workers_;
@@ -637,7 +640,8 @@ class Collider {
   /// sum_ik pi sigma_ik^2 chi_ik w_i N_i N_k n/(N - 1) over the gas's species (w_i = sqrt(max_speed2[i])):
   /// the blocks' `lowrank` candidate rate summed over the blocks, to within the slices' rounding.
   double lowrank_block_rate(const double* max_speed2) const;
-  void set_block_lowrank(double n);  ///< on a worker: the current block's A_ik, their alias table and R
+  /// On a worker: the current block's A_ik, their alias table and R (`measure_speeds`: set_block_separable).
+  void set_block_lowrank(double n, bool measure_speeds = false);
   /// The one-word draw's alias cells and outcomes over the P^2 pairs of the P `present_species` (running
   /// counts `cum`), and rate_ = R_b (set_block_lowrank).
   void set_block_one_word(const std::uint32_t* present_species, std::size_t p, const std::size_t* cum);
@@ -732,8 +736,9 @@ class Collider {
   /// separable blocks hold at most separable_block_limit particles on average (separable_block_count).
   static constexpr std::size_t separable_species_limit = 65535;
   /// The separable blocks' mean size beyond separable_species_limit species: a block's count, multinomial
-  /// about its mean when every species is scattered, stays below 2^16 by over 20 standard deviations.
-  static constexpr std::size_t separable_block_limit = 60000;
+  /// about its mean when every species is scattered, stays below 2^16 by over 12 standard deviations (a
+  /// chance below 1e-30); 1e6 particles make 16 blocks, each visit's six tables of 2^16 cells whatever its size.
+  static constexpr std::size_t separable_block_limit = 62500;
   /// The separable blocks hold at least this many particles per species on average (separable_block_count):
   /// a visit builds six tables of about S cells, which blocks of fewer particles would rebuild more often.
   static constexpr std::size_t separable_particles_per_species = 8;
@@ -767,8 +772,10 @@ class Collider {
             separable_.column_fraction.data(), separable_.species.data(), separable_.term0,
             separable_.term01,         separable_.bits};
   }
-  /// The separable tables of the current block (running counts `cum`), and rate_ = R_b.
-  void set_block_separable(const std::size_t* cum);
+  /// The separable tables of the current block (running counts `cum`), and rate_ = R_b; with `measure_speeds`
+  /// (a first visit) the block's exact bounds in the same pass over its slices, as set_block_max_speed2.
+  void set_block_separable(const std::size_t* cum, bool measure_speeds);
+  static constexpr std::size_t separable_prefetch_ahead = 16;  ///< (set_block_separable's reads of the slices)
   /// The candidate rate of the separable blocks summed over them at the gas's bounds max_speed2_ (within
   /// the slices' rounding; W the largest of the blocks' W_b, so a bound of it).
   double separable_block_rate() const;

@@ -363,12 +363,11 @@ double Collider::blocked_step_rate(bool& sampler_changed) {
     for (std::size_t j = 0; j < blocks; ++j) set_block_max_speed2(j, block_max_speed2_.data() + j * s_);
   // The step from the largest block bounds so far, an upper bound of the gas's vmax_k (the blocks'
   // bounds are recomputed when visited): dt = block_step_length().
-  for (std::size_t k = 0; k < s_; ++k) {
-    double global = 0.0;
-    for (std::size_t j = 0; j < blocks; ++j) global = std::max(global, block_max_speed2_[j * s_ + k]);
-    max_speed2_[k] = global;
-    max_speed_[k] = std::sqrt(global);
-  }
+  // (block by block: the K x S array in order)
+  std::fill(max_speed2_.begin(), max_speed2_.end(), 0.0);
+  for (std::size_t j = 0; j < blocks; ++j)
+    for (std::size_t k = 0; k < s_; ++k) max_speed2_[k] = std::max(max_speed2_[k], block_max_speed2_[j * s_ + k]);
+  for (std::size_t k = 0; k < s_; ++k) max_speed_[k] = std::sqrt(max_speed2_[k]);
   // In a frame the stage loop sizes its stages by candidate_rate(): R of these bounds, as a
   // restored collider computes it (restore()).
   if (framed_) rebuild_bounds();
@@ -439,13 +438,18 @@ Collider::ApproachAcceptance Collider::approach_acceptance(double rate, bool sam
   // bounds are raised), so its mean underestimates the next step's: after one, the acceptance of its
   // first block_steps mean free times (its probe, at bounds as tight as the next step's) when its events
   // per unit time fell after the probe (by more than 3 standard deviations of the events after it, of which
-  // at least min(N/64, 4 N/K): a noisy rate is not taken for a falling one), else 1.
+  // at least min(N/64, 4 N/K): a noisy rate is not taken for a falling one), else 1. A step is long when
+  // begun so (R dt) and when run so (its candidates): one begun short brings more candidates when its
+  // bounds rose, and its acceptance is then taken times their ratio (its events over the candidates it was
+  // begun for, as many or more than the next step's tighter bounds would give them).
   const auto last_candidates = static_cast<double>(counters_.candidates - step_candidates_start_);
   if (!(step_acceptance_ > 0.0) || last_candidates < fewest_block_events()) return {1.0, false};
   const double last_elapsed = time_ - step_start_;
   const auto last_events = static_cast<double>(counters_.events - step_events_start_);
-  if (probe_ != Probe::measured && !is_long_step(last_candidates)) {
-    if (!sampler_changed) return {step_acceptance_, false};
+  // (0 begun: an older checkpoint's step, judged by its candidates alone)
+  const double planned = step_planned_candidates_ > 0.0 ? step_planned_candidates_ : last_candidates;
+  if (probe_ != Probe::measured && !(is_long_step(planned) && is_long_step(last_candidates))) {
+    if (!sampler_changed) return {std::min(1.0, step_acceptance_ * std::max(1.0, last_candidates / planned)), false};
     return {last_elapsed > 0.0 ? std::min(1.0, last_events / last_elapsed / rate) : 1.0, false};
   }
   if (sampler_changed || probe_ != Probe::measured || probe_events_ == 0 || !(time_ > probe_time_) ||
@@ -481,6 +485,7 @@ void Collider::begin_blocked_step(double step, double rate, bool exact_target) {
   }
   step_events_start_ = counters_.events;
   step_candidates_start_ = counters_.candidates;
+  step_planned_candidates_ = step * rate;
   step_start_ = time_;
   next_step_time_ = time_ + step;
   // A blocked step longer than block_steps mean free times, on the way to an exact target, measures the
@@ -619,13 +624,14 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
   frame_shear_ = master.frame_shear_;
   speed_factor_ = master.speed_factor_;
   if (framed_) moments_ = {};
+  const bool lowrank = master.block_lowrank_;  // the step's sampler (advance_blocks: choose_block_lowrank)
   // First visit in this step: the block's exact bound, read in order (which also brings the block
-  // into the cache before its random reads).
-  if (first_visit) set_block_max_speed2(j, block_speed2_);
+  // into the cache before its random reads); the separable draw's in the pass that gathers its species.
+  bool measure_speeds = first_visit && lowrank && separable_blocks_;
+  if (first_visit && !measure_speeds) set_block_max_speed2(j, block_speed2_);
   time_ = t_start;
   credit_ = master.block_credit_[j];
-  const double n = mix_.total_density();
-  const bool lowrank = master.block_lowrank_;  // the step's sampler (advance_blocks: choose_block_lowrank)
+  const double n = master.pass_density_;
   // (a probe inside the visit: the block runs to it, its counts noted, then on to t_stop)
   double stop = probe > t_start && probe < t_stop ? probe : t_stop;
   const auto note_probe = [&] {
@@ -634,7 +640,8 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
   };
   for (;;) {
     if (lowrank) {
-      set_block_lowrank(n);
+      set_block_lowrank(n, measure_speeds);
+      measure_speeds = false;  // (a bound raised by run_loop stays raised)
     } else {
       // A block of N_b particles at the gas's density n: R_b = N_b n B_b / 2 (as R, header "Blocks").
       // (a mixture: B_b = max_kj pi sigma_kj^2 chi_kj (vmax_bk + vmax_bj) over the block's slices)
@@ -669,7 +676,7 @@ void Collider::run_block(Collider& master, std::size_t j, double t_start, double
   std::copy(counters_.pair_events.begin(), counters_.pair_events.end(), out.pair_events.begin());
 }
 
-void Collider::set_block_lowrank(double n) {
+void Collider::set_block_lowrank(double n, bool measure_speeds) {
   // The block's own A_ik (header "Mixtures in blocks"): the rank-3 hard-sphere majorant of its slices,
   // N_k the slice's count and V = (N_b - 1)/n, so that each pair's rate is pi sigma_ik^2 chi_ik |g|
   // n/(N_b - 1) as in the majorant blocks; vmax_k the block's. Columns as well as rows: the slices'
@@ -683,7 +690,7 @@ void Collider::set_block_lowrank(double n) {
   const std::size_t* cum = block_slice_cum();
   lowrank_volume_ = static_cast<double>(range_count_ - 1) / n;
   if (separable_blocks_) {  // more than separable_above species: the separable draw
-    set_block_separable(cum);
+    set_block_separable(cum, measure_speeds);
     return;
   }
   for (std::size_t k = 0; k < s_; ++k) max_speed_[k] = std::sqrt(block_speed2_[k]);
@@ -811,7 +818,7 @@ void Collider::set_block_factored(const std::uint32_t* present, std::size_t p, c
   build_factored_rows();
 }
 
-void Collider::set_block_separable(const std::size_t* cum) {
+void Collider::set_block_separable(const std::size_t* cum, bool measure_speeds) {
   // The separable draw (collide.hpp, "Mixtures in blocks"; \ref sch_separable "docs/schemes.md"): A_ik =
   // pi sigma_ik^2 chi_max w_i N_i N_k / V = sum_r u_i^(r) v_k^(r), sigma_ik^2 = (sigma_i^2 + 2 sigma_i
   // sigma_k + sigma_k^2)/4, u_i = (pi chi_max w_i N_i/(4V)) (sigma_i^2, 2 sigma_i, 1), v_k = N_k (1, sigma_k,
@@ -823,16 +830,35 @@ void Collider::set_block_separable(const std::size_t* cum) {
   t.species.clear();
   double energy2 = 0.0;
   bool narrow = true;  // every slice of the block below 2^24 (the 24-bit fields); else every reject is 2^24
-  for (std::size_t k = 0; k < s_; ++k) {
-    const std::size_t count = cum[k + 1] - cum[k];
-    if (count == 0) continue;
-    narrow = narrow && count < (std::size_t{1} << 24);
-    energy2 = std::max(energy2, mix_.mass[k] * block_speed2_[k]);
-    t.species.push_back({static_cast<std::uint32_t>(slice[k]), static_cast<std::uint32_t>(count), 0,
-                         static_cast<std::uint32_t>(k), 1.0 / std::sqrt(mix_.mass[k]), mix_.mass[k]});
-  }
+  // (with measure_speeds, as set_block_max_speed2 in the same pass: with 1e5 species the block's slices are
+  // 1e5 scattered short runs, whose walk costs about what reading them does)
+  const auto gather = [&](auto measure) {
+    for (std::size_t k = 0; k < s_; ++k) {
+      const std::size_t count = cum[k + 1] - cum[k];
+      if constexpr (decltype(measure)::value) {
+        // (the slice some species ahead asked for now: each is a line of its own, and the walk's branches,
+        // taken at random with one or two particles a slice, would keep the reads from overlapping)
+        __builtin_prefetch(sys_.v.data() + slice[std::min(k + separable_prefetch_ahead, s_ - 1)]);
+        double max2 = 0.0;
+        for (std::size_t i = slice[k]; i < slice[k] + count; ++i) {
+          const particles::Vec3& v = sys_.v[i];
+          max2 = std::max(max2, v.x * v.x + v.y * v.y + v.z * v.z);
+        }
+        block_speed2_[k] = max2;
+      }
+      if (count == 0) continue;
+      narrow = narrow && count < (std::size_t{1} << 24);
+      energy2 = std::max(energy2, mix_.mass[k] * block_speed2_[k]);
+      t.species.push_back({static_cast<std::uint32_t>(slice[k]), static_cast<std::uint32_t>(count), 0,
+                           static_cast<std::uint32_t>(k), 1.0 / std::sqrt(mix_.mass[k]), mix_.mass[k]});
+    }
+  };
+  if (measure_speeds)
+    gather(std::true_type{});
+  else
+    gather(std::false_type{});
   const std::size_t p = t.species.size();
-  if (p > separable_species_limit)  // (separable_block_count: over 20 standard deviations beyond a block's mean)
+  if (p > separable_species_limit)  // (separable_block_count: over 12 standard deviations beyond a block's mean)
     throw std::runtime_error("collide: " + std::to_string(p) + " species present in one cache block, more than the " +
                              "separable draw's " + std::to_string(separable_species_limit));
   for (SeparableSpecies& x : t.species) x.reject = narrow ? (1u << 24) % x.count : 1u << 24;
@@ -901,7 +927,7 @@ void Collider::fill_alias_cells(const std::vector<double>& w, std::size_t p, uns
     out[c] = {whole, c < p ? static_cast<Outcome>(c) : other, other};
     fraction[c] = scaled - static_cast<double>(whole);
   };
-  if (!pair_alias_.build_cells(w, cell))  // (all zero: no cell kept, each sends to outcome 0)
+  if (!pair_alias_.build_cells(w, cell, p))  // (all zero: no cell kept, each sends to outcome 0)
     for (std::size_t c = 0; c < w.size(); ++c) cell(c, 0.0, 0);
 }
 
@@ -963,6 +989,7 @@ void Collider::run_blocks_pass(double t_start, double t_stop) {
   const std::uint64_t events_before = counters_.events, candidates_before = counters_.candidates;
   std::vector<std::exception_ptr> failure(blocks);  // exceptions must not leave an OpenMP region
   const std::vector<std::size_t> order = visit_order(blocks, threads_);
+  pass_density_ = mix_.total_density();
   const auto n_blocks = static_cast<std::ptrdiff_t>(blocks);
 #pragma omp parallel for num_threads(threads_) schedule(dynamic, 1) if (threads_ > 1)
   for (std::ptrdiff_t q = 0; q < n_blocks; ++q) {

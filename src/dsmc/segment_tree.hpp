@@ -169,29 +169,50 @@ struct AliasTable {
   /// Vose's construction of the table of `w` (as build()), each cell k handed to `cell(k, threshold_k,
   /// alias_k)` once, in the order the construction settles them, instead of being stored; false (and no
   /// cell) when every weight is zero. The blocks turn the cells into their own tables at each visit
-  /// (collide.hpp, "Mixtures in blocks"): no intermediate table, nor its clearing.
+  /// (collide.hpp, "Mixtures in blocks"): no intermediate table, nor its clearing. The weights from
+  /// `used` on are zero (the blocks' tables are padded to 2^m cells): they are not read.
   template <class Cell>
-  bool build_cells(const std::vector<double>& w, Cell&& cell) {
+  bool build_cells(const std::vector<double>& w, Cell&& cell, std::size_t used = SIZE_MAX) {
     const std::size_t n = w.size();
+    used = std::min(used, n);
     double total = 0.0;
-    for (double x : w) total += x;
+    for (std::size_t k = 0; k < used; ++k) total += w[k];  // (adding the zeros after would not change it)
     if (!(total > 0.0)) return false;
     scaled.resize(n);  // (the scratch arrays kept between builds: the blocks rebuild their tables often)
     small.resize(n), large.resize(n);
     std::size_t smalls = 0, larges = 0;  // the stacks' heights
-    for (std::size_t k = 0; k < n; ++k) {
+    for (std::size_t k = 0; k < used; ++k) {
       scaled[k] = w[k] * static_cast<double>(n) / total;
       const bool below = scaled[k] < 1.0;  // (both written, one kept: no branch on the weights)
       small[smalls] = large[larges] = static_cast<std::uint32_t>(k);
       smalls += below, larges += !below;
     }
-    while (smalls > 0 && larges > 0) {
-      const std::size_t s = small[--smalls], l = large[larges - 1];
-      cell(s, scaled[s], l);
-      scaled[l] -= 1.0 - scaled[s];
-      if (scaled[l] < 1.0) {
-        --larges;
-        small[smalls++] = static_cast<std::uint32_t>(l);
+    for (std::size_t k = used; k < n; ++k) {  // (a zero weight: 0 n/total, below 1)
+      scaled[k] = 0.0;
+      small[smalls++] = static_cast<std::uint32_t>(k);
+    }
+    // Each small cell takes its alias from the top large one, l, whose level drops by what the cell
+    // lacks; below 1 it becomes small itself. (l's level in a register: through memory each step waited
+    // on the last one's store)
+    if (smalls > 0 && larges > 0) {
+      std::size_t l = large[larges - 1];
+      double level = scaled[l];
+      for (;;) {
+        const std::size_t s = small[--smalls];
+        const double kept = scaled[s];
+        cell(s, kept, l);
+        level -= 1.0 - kept;
+        if (level < 1.0) {
+          scaled[l] = level;
+          --larges;
+          small[smalls++] = static_cast<std::uint32_t>(l);
+          if (larges == 0) break;
+          l = large[larges - 1];
+          level = scaled[l];
+        } else if (smalls == 0) {
+          scaled[l] = level;
+          break;
+        }
       }
     }
     // What is left is 1 up to round-off: keep it; a zero weight left over (round-off emptied
