@@ -70,7 +70,8 @@
  * no longer than block_steps, keeps the blocks of the step before, no remix for a fraction of a step's events, while
  * it ends within two full steps' time of the last remix); after a step longer than block_steps the acceptance is that
  * of its first block_steps mean free times (its probe, taken at bounds as tight as a new step's) if its events per unit
- * time fell after the probe, else 1, and only after such a probe may a step near a target be longer than
+ * time fell after the probe, else 1 (long: begun and run so; one begun short that ran more candidates than begun for,
+ * its bounds raised, takes its acceptance times their ratio), and only after such a probe may a step near a target be longer than
  * block_steps (in a heating gas the events per unit time rise within a step), and when
  * that would leave it fewer than min(N/64, 4 N/K) events it runs on the whole gas as one block with the exact bound of
  * all particles, which samples the unblocked process and stops at the target (such a step holds at least 1.25 of the
