@@ -1286,6 +1286,21 @@ TEST(Collide, LongBlockedStepsMeetEventTargetsExactly) {
   expect_event_targets_met(0.3, 200000, 10000, 20, 8, {1000000, 2000000, 2500000});
 }
 
+namespace {
+// A `majorant` collider in blocks of `block_size` on `threads` threads that takes over `from`'s run through
+// a checkpoint's Record (its own stream seeded otherwise: what follows must come from the record alone).
+std::unique_ptr<Collider> restored_majorant_blocks(const Collider& from, const species::Mixture& mix,
+                                                   particles::System& sys, std::size_t block_size, int threads) {
+  state::Record record;
+  from.save(record);
+  auto fresh = std::make_unique<Collider>(Scheme::majorant, mix, sys, rng::make_stream(1, 0, rng::Purpose::collisions), 1.0);
+  fresh->use_blocks(block_size);
+  fresh->use_threads(threads);
+  fresh->restore(record);
+  return fresh;
+}
+}  // namespace
+
 // A step begun short is judged by its plan (header "Event targets"): one species, alpha = 0.9, N = 1e5 in 20
 // blocks, every speed sqrt(3) at the start (no tail: the first step's exact bound rises as collisions make
 // one), to an exact target of 18 collisions per particle. The first step is begun at block_steps mean free
@@ -1316,15 +1331,7 @@ TEST(Collide, AStepBegunShortIsJudgedByItsPlan) {
     while (c->counters().events < target) {
       c->advance(1e12, target, true, target, true);
       out.steps.push_back(c->state());
-      if (restart && c->counters().steps == 1) {
-        state::Record record;
-        c->save(record);
-        auto fresh = std::make_unique<Collider>(Scheme::majorant, mix, sys, rng::make_stream(1, 0, rng::Purpose::collisions), 1.0);
-        fresh->use_blocks(5000);
-        fresh->use_threads(threads);
-        fresh->restore(record);
-        c = std::move(fresh);
-      }
+      if (restart && c->counters().steps == 1) c = restored_majorant_blocks(*c, mix, sys, 5000, threads);
     }
     EXPECT_EQ(c->counters().events, target);
     EXPECT_EQ(c->counters().overshoots, 0u);
@@ -1393,15 +1400,7 @@ TEST(Collide, LongStepsProbeTheirAcceptance) {
     EXPECT_EQ(c->blocks(), 20u);
     while (c->counters().events < target) {
       c->advance(1e12, target, true, target, true);
-      if (c->counters().steps == restart) {
-        state::Record record;
-        c->save(record);
-        auto fresh = std::make_unique<Collider>(Scheme::majorant, mix, sys, rng::make_stream(1, 0, rng::Purpose::collisions), 1.0);
-        fresh->use_blocks(5000);
-        fresh->use_threads(threads);
-        fresh->restore(record);
-        c = std::move(fresh);
-      }
+      if (c->counters().steps == restart) c = restored_majorant_blocks(*c, mix, sys, 5000, threads);
     }
     return Run{{sys.v.begin(), sys.v.end()}, c->counters(), c->time()};
   };
