@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <stdexcept>
@@ -1358,7 +1359,9 @@ TEST(Collide, AStepBegunShortIsJudgedByItsPlan) {
 
 // A checkpoint's collider holds its blocks, whose count N, S and block_size fix: a record another rule wrote
 // (20 blocks restored where the gas makes 10, as from a build whose separable block count differs) is refused as
-// a mismatch (replica.cpp: "does not fit this build"), not read as damage nor run.
+// a mismatch (replica.cpp: "does not fit this build"), not read as damage nor run. Its step's planned candidates
+// (collider/step_planned_candidates, approach_acceptance) must be a count: negative, NaN or infinite is refused
+// as damage; absent (an older build's record) they are 0, the step then judged by its candidates alone.
 TEST(Collide, ARecordOfOtherBlocksIsRefused) {
   const auto mix = one_species(0.9);
   auto sys = initial(mix, {100000}, {1.0}, 21);
@@ -1374,6 +1377,20 @@ TEST(Collide, ARecordOfOtherBlocksIsRefused) {
   Collider same(Scheme::majorant, mix, sys, rng::make_stream(21, 0, rng::Purpose::collisions), 1.0);
   same.use_blocks(5000);
   EXPECT_NO_THROW(same.restore(record));
+  ASSERT_GT(record.real("collider/step_planned_candidates"), 0.0);
+  for (double bad : {-1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    state::Record damaged = record;
+    damaged.put("collider/step_planned_candidates", bad);
+    Collider again(Scheme::majorant, mix, sys, rng::make_stream(21, 0, rng::Purpose::collisions), 1.0);
+    again.use_blocks(5000);
+    EXPECT_THROW(again.restore(damaged), std::invalid_argument) << bad;
+  }
+  state::Record older = record;
+  older.reals.erase("collider/step_planned_candidates");
+  Collider again(Scheme::majorant, mix, sys, rng::make_stream(21, 0, rng::Purpose::collisions), 1.0);
+  again.use_blocks(5000);
+  ASSERT_NO_THROW(again.restore(older));
+  EXPECT_EQ(again.state().step_planned_candidates, 0.0);
 }
 
 // The probe of a long step (header "Event targets"; docs/schemes.md, "Event targets"): one species,
@@ -2091,10 +2108,12 @@ TEST(Collide, SeparableBlocksGrowWhenTheTablesWouldOutgrowTheGas) {
 }
 
 // The separable draw reads a block's exact bounds at its first visit in the same pass that gathers its
-// species (set_block_separable): the 300-species gas above in 16 blocks, after each of four steps every
-// particle's speed^2 is within its block's bound for its species (each exact at the first visit, then raised
-// by every collision), read through the checkpoint's slices (species k's particles in block order). Bounds
-// kept from the last step's blocks instead miss the particles the remix brought (tests/mutation 102).
+// species (set_block_separable): the 300-species gas above in 16 blocks, at 1e-3 time units into each of four
+// steps (its remix done, each block visited once, few collisions yet) every particle's speed^2 is within its
+// block's bound for its species (exact at the first visit, then raised by every collision), read through the
+// checkpoint's slices (species k's particles in block order). Bounds kept from the last step's blocks miss
+// the particles the remix brought (tests/mutation 102; at a step's end the collisions have mostly raised
+// them again).
 TEST(Collide, SeparableFirstVisitBoundsHoldEveryParticle) {
   const PowerLawGas gas = power_law_gas(300, 9000.0, 2);
   auto sys = initial(gas.mix, gas.counts, std::vector<double>(gas.counts.size(), 1.0), 31);
@@ -2104,7 +2123,8 @@ TEST(Collide, SeparableFirstVisitBoundsHoldEveryParticle) {
   const std::size_t s = gas.counts.size();
   std::size_t checked = 0;
   for (int step = 0; step < 4; ++step) {
-    c.advance(1e12, 100 * gas.total, true, 100 * gas.total, true);
+    if (step > 0) c.advance(1e12, 100 * gas.total, true, 100 * gas.total, true);  // (the step before, to its end)
+    c.advance(c.time() + 1e-3);
     const Collider::State st = c.state();
     ASSERT_EQ(st.slice_counts.size(), 16 * s);
     for (std::size_t k = 0; k < s; ++k) {

@@ -439,9 +439,10 @@ Collider::ApproachAcceptance Collider::approach_acceptance(double rate, bool sam
   // first block_steps mean free times (its probe, at bounds as tight as the next step's) when its events
   // per unit time fell after the probe (by more than 3 standard deviations of the events after it, of which
   // at least min(N/64, 4 N/K): a noisy rate is not taken for a falling one), else 1. A step is long when
-  // begun so (R dt) and when run so (its candidates): one begun short brings more candidates when its
-  // bounds rose, and its acceptance is then taken times their ratio (its events over the candidates it was
-  // begun for, as many or more than the next step's tighter bounds would give them).
+  // begun so (R dt; a whole-gas step's at the blocks' R, above its own) and run so (its candidates): one
+  // begun short is judged as a short step, and when its bounds rose within it, so that it ran more
+  // candidates than begun for, its acceptance is taken times their ratio, its events over the candidates
+  // it was begun for (an estimate, as any short step's, never below its own acceptance; before, 1).
   const auto last_candidates = static_cast<double>(counters_.candidates - step_candidates_start_);
   if (!(step_acceptance_ > 0.0) || last_candidates < fewest_block_events()) return {1.0, false};
   const double last_elapsed = time_ - step_start_;

@@ -18,7 +18,7 @@
 
 namespace gdsmc::io::config {
 
-/// The largest element index an assignment may name: above the most species (about 1.2e5), sample times (1e5)
+/// The largest element index an assignment may name: above the most species (about 1.25e5), sample times (1e5)
 /// and sweep values any input holds, below what an array that grows to it would take in memory.
 constexpr long long kLargestIndex = 1000000;
 namespace detail {

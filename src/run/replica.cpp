@@ -391,7 +391,7 @@ FreeGas::FreeGas(const io::config::Config& config, std::size_t r, const ReplicaC
   collider_.set_stop_flag(ctx.options.interrupt);  // a step start notices it (collide.hpp)
   if (collider_.blocks() == 1)
     note_idle_threads(ctx, "this run has no cache blocks (they need 'majorant' or 'lowrank' with at most 256 species, "
-                           "or 'lowrank' with at most N/2 species, beyond 65535 at most about 120000, and N >= 2 block_size)");
+                           "or 'lowrank' with at most N/2 species, beyond 65535 at most about 125000, and N >= 2 block_size)");
   blocked_ = collider_.blocks() > 1;
   const double step_candidates = 0.5 * static_cast<double>(sys_.size()) * config.dsmc.step_fraction;
   chunk_ = blocked_ ? 16777216.0 : std::clamp(step_candidates, chunk_candidates, 16777216.0);
