@@ -3,7 +3,7 @@
 // measured in one process one after another on the same machine.
 //
 // usage: bench_paths [--no-pairs] [--repeat R] [N ...]   (default: 100000 1000000; add 10000000 for the large case)
-//        bench_paths --species [--threads T] [N]   (default N = 1000000)
+//        bench_paths --species [--threads T] [--repeat R] [N]   (default N = 1000000)
 //   --species: the species sweep, M = 1, 2, 8, 32, 100, 128, 129, 256, 257, 1e3, 1e4, 1e5 species, `lowrank`
 //               (masses k, diameters k^(1/3), equal number densities adding up to 0.01, alpha = 0.9,
 //               collisions_per_particle = 10, one replica, one thread), each in a child process: its
@@ -11,7 +11,11 @@
 //               its peak memory (maximum resident set) in bytes per particle, its cache blocks and their draw;
 //               with --threads T (T >= 2) each M runs again on T threads right after, and the speed-up of
 //               its collision loop (events per wall second on T threads over those on one; a run of one
-//               block, unblocked, uses one thread: about 1) follows the draw.
+//               block, unblocked, uses one thread: about 1) follows the draw. With --repeat R (R >= 2) each
+//               M runs R times, each right after a run of M = 1 (and followed by its run on T threads), and
+//               its ratio and speed-up are the medians of the R pairs (their least and largest beside them),
+//               its rate the median of its runs: a machine whose speed drifts over the sweep's minute moves
+//               a pair's two runs alike.
 //   --no-pairs: skip the two `pairs` rows (about 25 s each at N = 1e6), e.g. to repeat the others often.
 //   --repeat R: R rounds (R >= 2) in which every path runs right after a run of the reference (one species,
 //               t_end), its ratio taken against that run: on a machine whose speed drifts from second to
@@ -165,49 +169,93 @@ bool sweep_child(const std::string& text, long m, int threads, ChildReport& repo
   return got == sizeof report && WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
+/// The species sweep's namelist: M species of masses k, diameters k^(1/3), equal densities adding up to 0.01.
+std::string species_namelist(long m, std::size_t n) {
+  char density[32];
+  std::snprintf(density, sizeof density, "%.17g", 0.01 / static_cast<double>(m));
+  return "&system\n n_species = " + std::to_string(m) + "\n mass = 1.0\n diameter = 1.0\n number_density = " +
+         std::string(density) + "\n mass_law = 'linear'\n diameter_law = 'cube_root'\n"
+         " density_law = 'power'\n density_exponent = 0.0\n restitution = 0.9\n/\n&initial\n temperature = 1.0\n/\n"
+         "&dsmc\n scheme = 'lowrank'\n n_particles = " + std::to_string(n) +
+         "\n replicas = 1\n seed = 1\n collisions_per_particle = 10.0\n allow_long_run = .true.\n/\n&output\n n_samples = 2\n/\n";
+}
+
+/// The median of `v` (not empty) and its least and largest value.
+struct Spread {
+  double median, least, largest;
+};
+Spread spread(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t h = v.size() / 2;
+  return {v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]), v.front(), v.back()};
+}
+
+/// One M of the sweep: `repeat` rounds of (with repeat > 1) the M = 1 reference, M on one thread and (with
+/// `threads` > 1) M on that many. Rates per round; false if a run of M failed.
+struct SweepRounds {
+  std::vector<double> rate, ratio, speedup, wall;
+  long peak_kib = 0;
+  ChildReport report{};
+};
+bool sweep_rounds(long m, std::size_t n, int threads, int repeat, double reference, SweepRounds& out) {
+  const std::string text = species_namelist(m, n);
+  for (int r = 0; r < repeat; ++r) {
+    double ref = reference, wall = 0.0;
+    long peak_kib = 0;
+    if (repeat > 1) {  // (the pair's reference, right before it)
+      ChildReport one{};
+      if (!sweep_child(species_namelist(1, n), 1, 1, one, peak_kib, wall)) return false;
+      ref = one.rate;
+    }
+    if (!sweep_child(text, m, 1, out.report, peak_kib, wall)) return false;
+    const double rate = out.report.rate;
+    out.rate.push_back(rate), out.wall.push_back(wall), out.peak_kib = std::max(out.peak_kib, peak_kib);
+    out.ratio.push_back(ref > 0.0 ? rate / ref : 1.0);
+    if (threads > 1) {
+      ChildReport threaded{};
+      long threaded_kib = 0;
+      double threaded_wall = 0.0;
+      if (!sweep_child(text, m, threads, threaded, threaded_kib, threaded_wall)) return false;
+      // (Summary's rate is per thread-second of the collision loop, which runs on min(T, blocks) threads
+      // with more than one block, else on one: its rate per wall second is that many times it)
+      const auto loop_threads = threaded.blocks > 1 ? std::min<std::uint64_t>(threads, threaded.blocks) : 1;
+      out.speedup.push_back(static_cast<double>(loop_threads) * threaded.rate / rate);
+    }
+  }
+  return true;
+}
+
 /// The species sweep (usage above); with `threads` > 1 each M also runs on that many threads, right after
-/// its one-thread run, and the speed-up of its collision loop (wall-clock rates) is printed.
-int species_sweep(std::size_t n, int threads) {
+/// its one-thread run, and the speed-up of its collision loop (wall-clock rates) is printed; with `repeat` > 1
+/// each M's ratio to M = 1 and speed-up are medians of paired runs.
+int species_sweep(std::size_t n, int threads, int repeat) {
   const std::vector<long> counts = {1, 2, 8, 32, 100, 128, 129, 256, 257, 1000, 10000, 100000};
   std::printf("species sweep: N = %zu, lowrank, masses k, diameters k^(1/3), equal densities (0.01 in all), "
-              "alpha = 0.9, 10 collisions per particle, one replica, one thread%s\n", n,
-              threads > 1 ? (", and on " + std::to_string(threads) + " threads").c_str() : "");
+              "alpha = 0.9, 10 collisions per particle, one replica, one thread%s%s\n", n,
+              threads > 1 ? (", and on " + std::to_string(threads) + " threads").c_str() : "",
+              repeat > 1 ? (", " + std::to_string(repeat) + " rounds each, each after a run of one species: medians "
+                            "(least-largest) of the paired ratios").c_str() : "");
   std::printf("%8s %14s %12s %8s %10s %14s %7s  %s\n", "species", "collisions/s", "ns/collision", "ratio", "seconds",
               "bytes/particle", "blocks", threads > 1 ? "draw, speed-up" : "draw");
-  double reference = 0.0;
+  double reference = 0.0;  // (one round: the first M's rate)
   for (long m : counts) {
     if (static_cast<std::size_t>(2 * m) > n) break;  // at least 2 particles a species
-    char density[32];
-    std::snprintf(density, sizeof density, "%.17g", 0.01 / static_cast<double>(m));
-    const std::string text =
-        "&system\n n_species = " + std::to_string(m) + "\n mass = 1.0\n diameter = 1.0\n number_density = " +
-        std::string(density) + "\n mass_law = 'linear'\n diameter_law = 'cube_root'\n"
-        " density_law = 'power'\n density_exponent = 0.0\n restitution = 0.9\n/\n&initial\n temperature = 1.0\n/\n"
-        "&dsmc\n scheme = 'lowrank'\n n_particles = " + std::to_string(n) +
-        "\n replicas = 1\n seed = 1\n collisions_per_particle = 10.0\n allow_long_run = .true.\n/\n&output\n n_samples = 2\n/\n";
-    ChildReport report{};
-    long peak_kib = 0;
-    double wall = 0.0;
-    if (!sweep_child(text, m, 1, report, peak_kib, wall)) {
+    SweepRounds rounds;
+    if (!sweep_rounds(m, n, threads, repeat, reference, rounds)) {
       std::printf("%8ld %14s\n", m, "(failed)");
       continue;
     }
-    const double rate = report.rate;
-    if (reference == 0.0) reference = rate;
-    const double bytes = 1024.0 * static_cast<double>(peak_kib) / static_cast<double>(n);
-    std::printf("%8ld %14.4g %12.1f %8.2f %10.2f %14.0f %7llu  %s", m, rate, 1e9 / rate, rate / reference, wall, bytes,
-                static_cast<unsigned long long>(report.blocks), report.draw);
+    const Spread rate = spread(rounds.rate), ratio = spread(rounds.ratio);
+    if (reference == 0.0) reference = rate.median;
+    const double bytes = 1024.0 * static_cast<double>(rounds.peak_kib) / static_cast<double>(n);
+    std::printf("%8ld %14.4g %12.1f %8.2f %10.2f %14.0f %7llu  %s", m, rate.median, 1e9 / rate.median, ratio.median,
+                spread(rounds.wall).median, bytes, static_cast<unsigned long long>(rounds.report.blocks),
+                rounds.report.draw);
+    if (repeat > 1) std::printf(" (ratio %.2f-%.2f)", ratio.least, ratio.largest);
     if (threads > 1) {
-      ChildReport threaded{};
-      double threaded_wall = 0.0;
-      if (sweep_child(text, m, threads, threaded, peak_kib, threaded_wall)) {
-        // (Summary's rate is per thread-second of the collision loop, which runs on min(T, blocks) threads
-        // with more than one block, else on one: its rate per wall second is that many times it)
-        const auto loop_threads = threaded.blocks > 1 ? std::min<std::uint64_t>(threads, threaded.blocks) : 1;
-        std::printf(", %.2f", static_cast<double>(loop_threads) * threaded.rate / rate);
-      } else {
-        std::printf(", (failed)");
-      }
+      const Spread speedup = spread(rounds.speedup);
+      std::printf(", %.2f", speedup.median);
+      if (repeat > 1) std::printf(" (%.2f-%.2f)", speedup.least, speedup.largest);
     }
     std::printf("\n");
     std::fflush(stdout);
@@ -219,23 +267,26 @@ int species_sweep(std::size_t n, int threads) {
 
 int main(int argc, char** argv) {
   if (argc >= 2 && std::string(argv[1]) == "--species") {
-    const char* usage = "usage: bench_paths --species [--threads T: 1..1024] [N]   (N: 2..1e9; default 1000000)\n";
-    unsigned long long n = 1000000ull, threads = 1;
-    bool sized = false, threaded = false;
+    const char* usage =
+        "usage: bench_paths --species [--threads T: 1..1024] [--repeat R: 1..1000] [N]   (N: 2..1e9; default 1000000)\n";
+    unsigned long long n = 1000000ull, threads = 1, repeat = 1;
+    bool sized = false, threaded = false, repeated = false;
     for (int i = 2; i < argc; ++i) {
       const std::string arg = argv[i];
       if (arg == "--help" || arg == "-h") {
         std::printf("%s", usage);
         return 0;
       }
-      const bool ok = arg == "--threads" ? !threaded && i + 1 < argc && (threaded = bench::parse_whole(argv[++i], 1, 1024, threads))
-                                         : !sized && (sized = bench::parse_whole(argv[i], 2, 1000000000ull, n));
+      const bool ok =
+          arg == "--threads"  ? !threaded && i + 1 < argc && (threaded = bench::parse_whole(argv[++i], 1, 1024, threads))
+          : arg == "--repeat" ? !repeated && i + 1 < argc && (repeated = bench::parse_whole(argv[++i], 1, 1000, repeat))
+                              : !sized && (sized = bench::parse_whole(argv[i], 2, 1000000000ull, n));
       if (!ok) {
         std::fprintf(stderr, "bench_paths: bad or repeated argument '%s'\n%s", argv[i], usage);
         return 2;
       }
     }
-    return species_sweep(n, static_cast<int>(threads));
+    return species_sweep(n, static_cast<int>(threads), static_cast<int>(repeat));
   }
   std::vector<std::size_t> sizes;
   bool pairs = true;
@@ -255,7 +306,7 @@ int main(int argc, char** argv) {
       const bool help = std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h";
       std::fprintf(help ? stdout : stderr,
                    "usage: bench_paths [--no-pairs] [--repeat R: 1..1000] [N ...]   (N: 2..1e9; default 100000 1000000)\n"
-                   "       bench_paths --species [--threads T] [N]\n");
+                   "       bench_paths --species [--threads T] [--repeat R] [N]\n");
       return help ? 0 : 2;
     }
     sizes.push_back(n);
