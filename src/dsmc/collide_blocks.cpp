@@ -26,6 +26,13 @@ std::size_t largest_element(const particles::System& sys) {
   sys.for_each_array([&](const char*, const auto& a) { element = std::max(element, sizeof(a[0])); });
   return element;
 }
+
+/// The largest |v|^2 of `count` particles from `v` (0 for none): a slice's exact bound.
+inline double slice_max_speed2(const particles::Vec3* v, std::size_t count) {
+  double max2 = 0.0;
+  for (std::size_t i = 0; i < count; ++i) max2 = std::max(max2, v[i].x * v[i].x + v[i].y * v[i].y + v[i].z * v[i].z);
+  return max2;
+}
 }  // namespace
 
 void Collider::use_blocks(std::size_t block_size, const particles::SetUpCheck& check) {
@@ -212,16 +219,7 @@ void Collider::deal_species(const std::vector<std::size_t>& offset) {
 void Collider::set_block_max_speed2(std::size_t j, double* out) {
   const std::size_t* slice = slice_first_of(j);
   const std::size_t* cum = slice_cum_of(j);
-  for (std::size_t k = 0; k < s_; ++k) {
-    double max2 = 0.0;
-    const std::size_t first = slice[k];
-    const std::size_t end = first + cum[k + 1] - cum[k];
-    for (std::size_t i = first; i < end; ++i) {
-      const particles::Vec3& v = sys_.v[i];
-      max2 = std::max(max2, v.x * v.x + v.y * v.y + v.z * v.z);
-    }
-    out[k] = max2;
-  }
+  for (std::size_t k = 0; k < s_; ++k) out[k] = slice_max_speed2(sys_.v.data() + slice[k], cum[k + 1] - cum[k]);
 }
 
 Collider::BlockPass Collider::map_blocks(double s, double sc, const particles::Vec3& b) {
@@ -442,7 +440,7 @@ Collider::ApproachAcceptance Collider::approach_acceptance(double rate, bool sam
   // begun so (R dt; a whole-gas step's at the blocks' R, above its own) and run so (its candidates): one
   // begun short is judged as a short step, and when its bounds rose within it, so that it ran more
   // candidates than begun for, its acceptance is taken times their ratio, its events over the candidates
-  // it was begun for (an estimate, as any short step's, never below its own acceptance; before, 1).
+  // it was begun for (an estimate, as any short step's, never below its own acceptance).
   const auto last_candidates = static_cast<double>(counters_.candidates - step_candidates_start_);
   if (!(step_acceptance_ > 0.0) || last_candidates < fewest_block_events()) return {1.0, false};
   const double last_elapsed = time_ - step_start_;
@@ -840,12 +838,7 @@ void Collider::set_block_separable(const std::size_t* cum, bool measure_speeds) 
         // (the slice some species ahead asked for now: each is a line of its own, and the walk's branches,
         // taken at random with one or two particles a slice, would keep the reads from overlapping)
         __builtin_prefetch(sys_.v.data() + slice[std::min(k + separable_prefetch_ahead, s_ - 1)]);
-        double max2 = 0.0;
-        for (std::size_t i = slice[k]; i < slice[k] + count; ++i) {
-          const particles::Vec3& v = sys_.v[i];
-          max2 = std::max(max2, v.x * v.x + v.y * v.y + v.z * v.z);
-        }
-        block_speed2_[k] = max2;
+        block_speed2_[k] = slice_max_speed2(sys_.v.data() + slice[k], count);
       }
       if (count == 0) continue;
       narrow = narrow && count < (std::size_t{1} << 24);
