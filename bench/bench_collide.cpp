@@ -5,7 +5,10 @@
 //   block_size: default &dsmc's; 0: no blocks. Blocks apply to majorant and lowrank; pairs always runs
 //               unblocked.
 //   paths:      comma-separated names of the table below, or "all" (default: every path but the slow
-//               `pairs` ones at N > 1e5).
+//               `pairs` ones at N > 1e5, and but the sweep_M ones).
+//               sweep_M (M = 2, 8, 32, 100, 128, 129, 256, 1000, 10000, 100000): the gas of `bench_paths
+//               --species` (m_k = k, sigma_k = k^(1/3), n_k = 0.01/M, `lowrank`), so that its ratios split
+//               into candidates per collision and the cost of a candidate.
 //   rounds:     the paths run one after another this many times in one process (default 1); with more
 //               than one, each path's best (largest rate, smallest ns/cand) and median figures follow.
 //   sampler:    `cheaper` (default: a mixture's blocks run the cheaper of the two samplers, as a run does;
@@ -52,10 +55,21 @@ struct Result {
 struct Path {
   std::string name;
   collide::Scheme scheme;
-  int gas;  // 0: one species, 1: binary, 2: binary Enskog, 3: 20 species of Bodrova and Osinsky 2024's Fig 8 law
+  int gas;  // 0: one species, 1: binary, 2: binary Enskog, 3: 20 species of Bodrova and Osinsky 2024's Fig 8 law,
+           // 4: bench_paths --species' gas of `species` species
+  long species = 1;
 };
 
-species::Mixture gas_of(int gas, double alpha) {
+species::Mixture gas_of(int gas, double alpha, long m) {
+  if (gas == 4) {  // m_k = k, sigma_k = k^(1/3), n_k = 0.01/M (bench_paths --species)
+    std::vector<double> mass, diameter, density;
+    for (long k = 1; k <= m; ++k) {
+      mass.push_back(static_cast<double>(k));
+      diameter.push_back(std::cbrt(static_cast<double>(k)));
+      density.push_back(0.01 / static_cast<double>(m));
+    }
+    return species::make_mixture(mass, diameter, density, species::PairMatrix::uniform(static_cast<std::size_t>(m), alpha), false);
+  }
   if (gas == 0) return species::make_mixture({1.0}, {1.0}, {0.01}, species::PairMatrix(1, alpha), false);
   if (gas == 3) {  // m_k = k, sigma_k = k^(1/3), n_k = 0.01 k^-3 (bench_paths' "20 species", dilute)
     std::vector<double> mass, diameter, density;
@@ -73,7 +87,7 @@ species::Mixture gas_of(int gas, double alpha) {
 
 Result measure(const Path& path, double alpha, std::size_t n, double per_particle, std::size_t block_size,
                bool scheme_sampler) {
-  const species::Mixture mix = gas_of(path.gas, alpha);
+  const species::Mixture mix = gas_of(path.gas, alpha, path.species);
   auto init = rng::make_stream(1, 0, rng::Purpose::initial_state);
   auto sys = particles::make_system(mix, species::particle_counts(n, mix), std::vector<double>(mix.size(), 1.0),
                                     particles::InitialDistribution::maxwell, init);
@@ -129,16 +143,18 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "bench_collide: sampler must be 'cheaper' or 'scheme', not '%s'\n", sampler.c_str());
     return 2;
   }
-  const std::vector<Path> all = {
+  std::vector<Path> all = {
       {"one_majorant", collide::Scheme::majorant, 0},    {"one_lowrank", collide::Scheme::lowrank, 0},
       {"binary_majorant", collide::Scheme::majorant, 1}, {"binary_lowrank", collide::Scheme::lowrank, 1},
       {"enskog_majorant", collide::Scheme::majorant, 2}, {"enskog_lowrank", collide::Scheme::lowrank, 2},
       {"many_majorant", collide::Scheme::majorant, 3},   {"many_lowrank", collide::Scheme::lowrank, 3},
       {"one_pairs", collide::Scheme::pairs, 0},          {"binary_pairs", collide::Scheme::pairs, 1},
   };
+  for (long m : {2L, 8L, 32L, 100L, 128L, 129L, 256L, 1000L, 10000L, 100000L})
+    all.push_back({"sweep_" + std::to_string(m), collide::Scheme::lowrank, 4, m});
   std::vector<Path> paths;
   for (const Path& p : all) {
-    const bool chosen = selected.empty() ? (p.scheme != collide::Scheme::pairs || n <= 100000)
+    const bool chosen = selected.empty() ? ((p.scheme != collide::Scheme::pairs || n <= 100000) && p.gas != 4)
                                          : selected == "all" || ("," + selected + ",").find("," + p.name + ",") !=
                                                                     std::string::npos;
     if (chosen) paths.push_back(p);
@@ -161,6 +177,12 @@ int main(int argc, char** argv) {
   std::printf("%-16s %14s %10s %9s %9s %10s\n", "path", "collisions/s", "cand/coll", "ns/cand", "seconds",
               "bytes/part");
   std::map<std::string, std::vector<Result>> results;
+  // (a sweep gas needs at least 2 particles a species, as bench_paths --species)
+  std::erase_if(paths, [&](const Path& p) {
+    const bool too_few = p.gas == 4 && static_cast<std::size_t>(2 * p.species) > n;
+    if (too_few) std::fprintf(stderr, "bench_collide: %s skipped: N = %zu is below 2 particles a species\n", p.name.c_str(), n);
+    return too_few;
+  });
   for (int round = 0; round < rounds; ++round)
     for (const Path& p : paths) {
       const Result r = measure(p, alpha, n, per_particle, block_size, sampler == "scheme");
