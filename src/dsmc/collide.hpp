@@ -146,7 +146,9 @@
  * added in block order after the pass, so the output is the same bits for any thread count. The threads take the blocks
  * up in visit_order (consecutive ones ceil(K/T) apart: neighbouring blocks share cache lines where their slices meet).
  * Whole-gas steps run on one thread; two stages of the remix are split over the threads (deal.hpp, "Threads"), and a
- * mixture's species of fewer than N/(4T) particles are dealt one species per thread (deal_species). Streams of
+ * mixture's species of fewer than N/(4T) particles are dealt one species per thread (deal_species), and the
+ * scattered species' shuffles make their draws in the replica's stream and their transpositions one species per
+ * thread (scatter_species; Collide.ScatteredSpeciesAreShuffledAlikeOnAnyThreadCount). Streams of
  * distinct (key, j), drawn about 1e5 times each per pass from a period of 2^256 - 1, overlap with probability below
  * 1e-60.
  *
@@ -374,10 +376,12 @@ class Collider {
   double last_remix_time() const { return remix_time_; }
   /// Memory the collider holds for the particles besides the System, in bytes: the scratch memory of
   /// the blocks' remix, done in place (deal.hpp; about (2 seg + 1) K elements and N/seg bits), and on
-  /// several threads, after the first remix, one workspace per thread for a mixture's small species.
+  /// several threads, after the first remix, one workspace per thread for a mixture's small species; with
+  /// scattered species, the transpositions of a chunk of them (scatter_chunk, 1 MiB, or one larger species').
   std::size_t workspace_bytes() const {
     std::size_t bytes = remix_workspace_.bytes();
     for (const deal::Workspace& w : species_workspaces_) bytes += w.bytes();
+    bytes += scatter_partners_.capacity() * sizeof(std::uint32_t);
     return bytes;
   }
 
@@ -856,7 +860,13 @@ class Collider {
   std::vector<std::uint8_t> scattered_;   ///< per species: 1 if scattered (with blocks)
   bool scattered_any_ = false;
   std::vector<std::size_t> slice_count_;  ///< each block's count of each species, K x S
-  void scatter(std::size_t species);      ///< shuffles the species' particles and draws its slice counts
+  /// Shuffles every scattered species' particles and draws their slice counts (deal.hpp scatter): the draws
+  /// in species order from the stream, in chunks of at most scatter_chunk partners, each chunk's
+  /// transpositions then on the block threads, a species a thread (their ranges are apart), so that the
+  /// result does not depend on the threads.
+  void scatter_species();
+  static constexpr std::size_t scatter_chunk = std::size_t{1} << 18;
+  std::vector<std::uint32_t> scatter_partners_;  ///< a chunk's transpositions (deal.hpp scatter_draws)
   void set_slices();                      ///< slice_first_, slice_cum_ and block_first_ from slice_count_
   /// With blocks a step is this many majorant mean free times (times step_fraction): each block
   /// is then visited for about one collision per particle, which repays bringing it into the cache.

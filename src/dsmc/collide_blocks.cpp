@@ -133,15 +133,38 @@ void Collider::set_slices() {
   }
 }
 
-void Collider::scatter(std::size_t k) {
-  // Each particle of species k to a uniformly random block, independently (header "Mixtures in blocks"):
-  // the particles in a uniformly random order, then cut into slices of multinomial counts (deal.hpp).
-  // (every array a particle carries, the same transpositions: particles.hpp System::for_each_array)
-  const std::size_t first = sys_.first[k];
-  deal::scatter(gen_, sys_.count[k], block_first_.size() - 1, slice_count_.data() + k, s_,
-                [&](std::size_t i, std::size_t q) {
-                  sys_.for_each_array([&](const char*, auto& a) { std::swap(a[first + i], a[first + q]); });
-                });
+void Collider::scatter_species() {
+  // Each particle of a scattered species to a uniformly random block, independently (header "Mixtures in
+  // blocks"): its particles in a uniformly random order, then cut into slices of multinomial counts
+  // (deal.hpp). The draws, species after species, are those of one scatter after another; the
+  // transpositions, at random within each species' range, wait on memory, so they run on the block
+  // threads. (every array a particle carries, the same transpositions: particles.hpp System::for_each_array)
+  const std::size_t blocks = block_first_.size() - 1;
+  std::vector<std::size_t> chunk, first;  // a chunk's species and the first of each one's partners
+  for (std::size_t k = 0; k < s_;) {
+    chunk.clear(), first.clear();
+    std::size_t partners = 0;
+    for (; k < s_ && (chunk.empty() || partners + sys_.count[k] <= scatter_chunk); ++k)
+      if (scattered_[k]) {
+        chunk.push_back(k), first.push_back(partners);
+        partners += sys_.count[k] > 0 ? sys_.count[k] - 1 : 0;
+      }
+    if (scatter_partners_.size() < partners) scatter_partners_.resize(std::max(partners, std::min(scatter_chunk, sys_.size())));
+    rng::Xoshiro256pp gen = gen_;  // (in registers)
+    for (std::size_t c = 0; c < chunk.size(); ++c)
+      deal::scatter_draws(gen, sys_.count[chunk[c]], blocks, slice_count_.data() + chunk[c], s_,
+                          scatter_partners_.data() + first[c]);
+    gen_ = gen;
+    const auto n_chunk = static_cast<std::ptrdiff_t>(chunk.size());
+#pragma omp parallel for num_threads(threads_) schedule(dynamic, 8) if (threads_ > 1 && partners >= 4096)
+    for (std::ptrdiff_t c = 0; c < n_chunk; ++c) {
+      const std::size_t k = chunk[static_cast<std::size_t>(c)], start = sys_.first[k];
+      const std::uint32_t* partner = scatter_partners_.data() + first[static_cast<std::size_t>(c)];
+      sys_.for_each_array([&](const char*, auto& a) {
+        deal::scatter_moves(sys_.count[k], partner, [&](std::size_t i, std::size_t q) { std::swap(a[start + i], a[start + q]); });
+      });
+    }
+  }
 }
 
 void Collider::remix() {
@@ -166,8 +189,7 @@ void Collider::remix() {
     if (!scattered_[k]) offset[k] = gen_.below(sys_.count[k]);
   deal_species(offset);
   if (!scattered_any_) return;
-  for (std::size_t k = 0; k < s_; ++k)
-    if (scattered_[k]) scatter(k);
+  scatter_species();
   set_slices();
 }
 

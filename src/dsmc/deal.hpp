@@ -382,4 +382,22 @@ void scatter(Gen& gen, std::size_t n, std::size_t k, std::size_t* counts, std::s
   for (std::size_t i = 0; i < n; ++i) ++counts[gen.below(k) * stride];
 }
 
+/// scatter() in two halves, so that the transpositions of several scatterings can run on threads while
+/// their draws stay in one stream: scatter_draws makes scatter()'s calls of `gen` in the same order,
+/// writing the partner of transposition i (i = n ... 2, below i) to partners[n - i] (n - 1 of them; n <
+/// 2^32) and setting the counts; scatter_moves then makes scatter()'s transpositions, swap(i - 1,
+/// partners[n - i]) for i = n ... 2. Together: scatter()'s permutation and counts (Collide.ScatterInHalvesIsScatter).
+template <class Gen>
+void scatter_draws(Gen& gen, std::size_t n, std::size_t k, std::size_t* counts, std::size_t stride,
+                   std::uint32_t* partners) {
+  for (std::size_t i = n; i > 1; --i) partners[n - i] = static_cast<std::uint32_t>(gen.below(i));
+  for (std::size_t j = 0; j < k; ++j) counts[j * stride] = 0;
+  for (std::size_t i = 0; i < n; ++i) ++counts[gen.below(k) * stride];
+}
+/// The transpositions of scatter_draws' `partners` for n elements (above).
+template <class Swap>
+void scatter_moves(std::size_t n, const std::uint32_t* partners, Swap&& swap) {
+  for (std::size_t i = n; i > 1; --i) swap(i - 1, static_cast<std::size_t>(partners[n - i]));
+}
+
 }  // namespace gdsmc::deal
