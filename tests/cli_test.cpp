@@ -1520,6 +1520,15 @@ TEST_F(CliDsmc, CompareJsonIsTheOutput) {
                      "--compare=./out.h5: ", {"output file"});
 }
 
+// (the JSON went to the run's checkpoint path, and the next run of the input was refused for a file there
+// that is no checkpoint)
+TEST_F(CliDsmc, CompareJsonIsTheCheckpoint) {
+  write("t.nml", base());
+  expect_input_error(run("granular-dsmc", "t.nml --quiet --compare=out.checkpoint.h5"), "granular-dsmc",
+                     "--compare=out.checkpoint.h5: ", {"where this run's checkpoints go"});
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.checkpoint.h5"));
+}
+
 TEST_F(CliDsmc, CompareJsonUnwritable) {
   write("t.nml", base());
   expect_input_error(run("granular-dsmc", "t.nml --quiet --compare=missing/c.json"), "granular-dsmc",

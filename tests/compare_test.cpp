@@ -230,6 +230,24 @@ TEST(CompareRows, HaffAgainstHandComputedNumbers) {
   EXPECT_EQ(table_rows[1].mark, cmp::Mark::statistics);
 }
 
+// (D-T)/T % of a theory value that is zero up to round-off (the cooling rate of an elastic, perfectly rough
+// gas came out as -3.7e-17 and its percentage as -3e15): not shown (NaN) where |T| <= 1e-12 max(|D|, SE);
+// shown from just above that, and for an ordinary value: 100 (0.101 - 0.1)/0.1 = 1 %.
+TEST(CompareRows, APercentageOfARoundOffZeroIsNotShown) {
+  cmp::Point pt;
+  pt.replicas = 4;
+  const auto one = [](double value, double error, double theory) {
+    return cmp::Quantity{"zeta_star", "zeta*", "maxwellian", "none stated", {}, 1, {value}, {error}, {theory}, {kNaN}, "scaling state"};
+  };
+  pt.quantities = {one(1e-3, 2e-3, -3.7e-17), one(1e-3, 2e-3, 2.1e-15), one(0.101, 1e-3, 0.1), one(0.0, 1e-3, 0.0)};
+  const auto table_rows = cmp::rows(cmp::Comparison{{pt}, false, ""});
+  ASSERT_EQ(table_rows.size(), 4u);
+  EXPECT_TRUE(std::isnan(table_rows[0].percent)) << table_rows[0].percent;  // 3.7e-17 <= 1e-12 x 2e-3
+  EXPECT_NEAR(table_rows[1].percent, 100.0 * (1e-3 - 2.1e-15) / 2.1e-15, 1e3);  // 2.1e-15 > 2e-15: shown
+  EXPECT_NEAR(table_rows[2].percent, 1.0, 1e-9);
+  EXPECT_TRUE(std::isnan(table_rows[3].percent));  // theory exactly 0, as before
+}
+
 // The scaling state of a binary: T_k/T and c_k averaged over the samples past scaling_start = 10
 // collisions per particle, against the first-Sonine HCS; error = r hypot(e_k/T_k, e/T), averaged.
 TEST(CompareRows, BinaryScalingStateAverages) {

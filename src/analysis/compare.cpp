@@ -879,7 +879,10 @@ std::vector<Row> rows(const Comparison& comparison) {
         r.approximation = q.approximation;
         const double d = r.value - r.theory;
         r.z = r.error > 0.0 ? d / r.error : kNaN;
-        r.percent = r.theory != 0.0 ? 100.0 * d / std::abs(r.theory) : kNaN;
+        // (a theory value below round-off of the measured one is a zero computed with round-off, e.g. the
+        // cooling rate of an elastic, perfectly rough gas: no percentage of it)
+        const double measured_scale = std::max(std::abs(r.value), std::isfinite(r.error) ? r.error : 0.0);
+        r.percent = std::abs(r.theory) > kRoundOff * measured_scale ? 100.0 * d / std::abs(r.theory) : kNaN;
         r.threshold = statistical_threshold(pt.replicas);
         r.mark = classify(d, r.error, r.known_error, r.theory, r.threshold);
         if (r.trajectory)
@@ -940,7 +943,7 @@ std::string legend(const Comparison& comparison) {
     if (r == 0)
       std::snprintf(text, sizeof text, "|D-T| <= %g SE", kStatisticalZ);
     else if (std::isnan(z))
-      std::snprintf(text, sizeof text, "%zu replica(s): fewer than %zu, no statistical mark (give &dsmc replicas >= %zu)", r,
+      std::snprintf(text, sizeof text, "%zu replica(s): fewer than %zu, no statistical mark but to round-off agreement (give &dsmc replicas >= %zu)", r,
                     kMinReplicas, kMinReplicas);
     else
       std::snprintf(text, sizeof text, "%zu replicas: |D-T| <= %.3g SE (Student's t, %zu degrees of freedom, at the "
@@ -950,7 +953,7 @@ std::string legend(const Comparison& comparison) {
   return "mark: stat within statistics (" + statistics +
          "); approx within that plus the approximation's known error; off beyond both; ? beyond statistics with no "
          "known error stated, or beyond the known error with no usable SE (docs/physics.md \"Comparison with "
-         "theory\"). (D-T)/T % divides by |T|. \"at t\": the last sample of a trajectory (every sample is in "
+         "theory\"). (D-T)/T % divides by |T| (\"-\": T is 0, or below 1e-12 |D|). \"at t\": the last sample of a trajectory (every sample is in "
          "/comparison), or what a single value averages.\n";
 }
 

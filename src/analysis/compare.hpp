@@ -244,7 +244,7 @@ struct Row {
   double known_error = 0.0;  ///< the approximation's known error
   std::string approximation; ///< Quantity::approximation
   double z = 0.0;        ///< (DSMC - theory)/SE (NaN without SE)
-  double percent = 0.0;  ///< 100 (DSMC - theory)/|theory| (NaN for theory 0)
+  double percent = 0.0;  ///< 100 (DSMC - theory)/|theory| (NaN for |theory| <= kRoundOff max(|DSMC|, SE): 0 up to round-off)
   double threshold = kStatisticalZ;  ///< z_R of the point (NaN: no statistical mark)
   Mark mark = Mark::statistics;  ///< the classification of this row
   std::size_t counts[4] = {0, 0, 0, 0};  ///< samples of a trajectory per Mark

@@ -476,6 +476,10 @@ std::optional<int> check_paths(const Arguments& a, const gdsmc::io::config::Conf
                       "file, or give --force to replace it");
   if (same_file(a.compare_json, path)) return json_error("it is the output file of the run (&output file)");
   if (!a.restart.empty() && same_file(a.compare_json, a.restart)) return json_error("it is the checkpoint given to --restart");
+  for (int rank = 0; rank < gdsmc::parallel::size(); ++rank)  // (the checkpoints of this output, written or not)
+    if (same_file(a.compare_json, gdsmc::simulation::checkpoint_path(path, rank)))
+      return json_error("it is where this run's checkpoints go (" + gdsmc::simulation::checkpoint_path(path, rank) +
+                        "): choose another file");
   if (root)
     if (const std::string reason = unwritable_reason(a.compare_json); !reason.empty())
       return json_error("cannot write the JSON file: " + reason);
