@@ -2456,8 +2456,8 @@ TEST(Collide, SpeciesOfABlockIndex) {
   EXPECT_EQ(species_at(edges.data(), 20, edges[9]), 9u);
 }
 
-// deal::scatter (deal.hpp, "Scattering"): each element goes to a uniformly random block, independently
-// of the others. 5 elements in 6 blocks (fewer than blocks) and 40 in 6, 60000 scatterings each, every
+// deal::scatter_draws and scatter_moves (deal.hpp, "Scattering"), as the remix runs them: each element goes to a
+// uniformly random block, independently of the others. 5 elements in 6 blocks (fewer than blocks) and 40 in 6, 60000 scatterings each, every
 // scattering starting from the order the previous one left (as in the remix): each element's frequency
 // in each block and each pair's frequency of sharing a block are within 4.5 binomial SE of 1/K (a
 // dealing in equal slices never puts two of 5 together; cut without the shuffle, neighbours share a
@@ -2467,11 +2467,14 @@ TEST(Collide, ScatterPlacesEveryParticleUniformly) {
     const std::size_t k = 6, draws = 60000, stride = 3;
     auto gen = rng::make_stream(31, 0, rng::Purpose::collisions);
     std::vector<std::size_t> data(n), second(n), counts(k * stride, 99);
+    std::vector<std::uint32_t> partners(n - 1);
     for (std::size_t i = 0; i < n; ++i) data[i] = second[i] = i;
     std::vector<double> in_block(n * k, 0.0), together(n * n, 0.0);
     std::vector<std::size_t> block_of(n);
     for (std::size_t d = 0; d < draws; ++d) {
-      deal::scatter(gen, n, k, counts.data(), stride, [&](std::size_t i, std::size_t q) {
+      // (the two halves the remix runs: scatter_draws in the stream, scatter_moves on the threads)
+      deal::scatter_draws(gen, n, k, counts.data(), stride, partners.data());
+      deal::scatter_moves(n, partners.data(), [&](std::size_t i, std::size_t q) {
         std::swap(data[i], data[q]);
         std::swap(second[i], second[q]);
       });
