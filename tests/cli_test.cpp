@@ -352,6 +352,28 @@ TEST_F(CliDsmc, DenseGasWithoutEnskogWarns) {
                        ".true. for a dense gas (warned above 0.05)\n");
 }
 
+// Variables no point of the run uses (a new user's trial: both ran silently): a stage length other than the
+// default without &thermostat or &shear, and grid = .true. without a sweep, each one warning line naming where
+// it was set, and the run goes on (an older output that wrote them still reads); the default stage_step, as
+// --print-defaults writes it, and a sweep that stages one of its points warn of nothing.
+TEST_F(CliDsmc, UnusedStageStepAndGridWarn) {
+  Result r = dsmc(base(), "--set dsmc:stage_step=0.5");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "granular-dsmc: warning: --set dsmc:stage_step=0.5: &dsmc: stage_step: only used with &thermostat "
+                   "or &shear (the length of their stages): no effect here\n");
+  std::filesystem::remove(dir / "out.h5");
+  r = dsmc(base() + "&sweep grid = .true. /\n");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "granular-dsmc: warning: t.nml:18: &sweep: grid: only used with variable and values (a sweep): no "
+                   "sweep is run\n");
+  std::filesystem::remove(dir / "out.h5");
+  EXPECT_EQ(dsmc(base(), "--set dsmc:stage_step=0.125").err, "");
+  std::filesystem::remove(dir / "out.h5");
+  r = dsmc(base() + "&sweep variable = 'thermostat:kind', values = 'none', 'gaussian' /\n", "--set dsmc:stage_step=0.5");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "") << "point 2 is staged";
+}
+
 // A sample taken past its exact event target is never silent (src/run/replica.cpp, FreeGas::sample; the
 // summary's warning; docs/schemes.md "Event targets"): an elastic binary with 1 % of its particles at
 // T = 100 and the rest at 0.001, N = 1e5 in 20 blocks, to 2 collisions per particle. Within its blocked
@@ -1527,6 +1549,13 @@ TEST_F(CliDsmc, CompareJsonIsTheCheckpoint) {
   expect_input_error(run("granular-dsmc", "t.nml --quiet --compare=out.checkpoint.h5"), "granular-dsmc",
                      "--compare=out.checkpoint.h5: ", {"where this run's checkpoints go"});
   EXPECT_FALSE(std::filesystem::exists(dir / "out.checkpoint.h5"));
+  // (and its lock file, which the run's end removes: the JSON was lost with --force, and without it the lock
+  // this run had just taken was called a file that is no JSON)
+  for (const char* force : {"", " --force"}) {
+    expect_input_error(run("granular-dsmc", std::string("t.nml --quiet --compare=out.lock") + force), "granular-dsmc",
+                       "--compare=out.lock: ", {"this run's lock file"});
+    EXPECT_FALSE(std::filesystem::exists(dir / "out.h5")) << force;
+  }
 }
 
 TEST_F(CliDsmc, CompareJsonUnwritable) {

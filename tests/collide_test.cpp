@@ -2148,7 +2148,7 @@ TEST(Collide, SeparableFirstVisitBoundsHoldEveryParticle) {
 // The scattered species' shuffles (collide.hpp scatter_species: the draws in one stream, the transpositions on
 // the block threads, species by species) give the same particles, displacements and counters, bit for bit,
 // on 1, 2 and 3 threads: 300 species of the power law in 16 blocks, all but the four commonest scattered
-// (about 8500 transpositions a remix, so the threads share them), displacements tracked, to an exact event
+// (about 7100 transpositions a remix, so the threads share them), displacements tracked, to an exact event
 // target of 20 collisions per particle (several remixes).
 TEST(Collide, ScatteredSpeciesAreShuffledAlikeOnAnyThreadCount) {
   const PowerLawGas gas = power_law_gas(300, 9000.0, 2);

@@ -231,7 +231,8 @@ TEST(CompareRows, HaffAgainstHandComputedNumbers) {
 }
 
 // (D-T)/T % of a theory value that is zero up to round-off (the cooling rate of an elastic, perfectly rough
-// gas came out as -3.7e-17 and its percentage as -3e15): not shown (NaN) where |T| <= 1e-12 max(|D|, SE);
+// gas came out as -3.7e-17 and its percentage as -3e15): not shown (NaN) where |T| <= 1e-12 max(|D|, SE) (the SE
+// too: a T of 1.5e-15 beside D = 1e-3 +- 2e-3);
 // shown from just above that, and for an ordinary value: 100 (0.101 - 0.1)/0.1 = 1 %.
 TEST(CompareRows, APercentageOfARoundOffZeroIsNotShown) {
   cmp::Point pt;
@@ -239,9 +240,11 @@ TEST(CompareRows, APercentageOfARoundOffZeroIsNotShown) {
   const auto one = [](double value, double error, double theory) {
     return cmp::Quantity{"zeta_star", "zeta*", "maxwellian", "none stated", {}, 1, {value}, {error}, {theory}, {kNaN}, "scaling state"};
   };
-  pt.quantities = {one(1e-3, 2e-3, -3.7e-17), one(1e-3, 2e-3, 2.1e-15), one(0.101, 1e-3, 0.1), one(0.0, 1e-3, 0.0)};
+  pt.quantities = {one(1e-3, 2e-3, -3.7e-17), one(1e-3, 2e-3, 2.1e-15), one(0.101, 1e-3, 0.1), one(0.0, 1e-3, 0.0),
+                   one(1e-3, 2e-3, 1.5e-15)};
   const auto table_rows = cmp::rows(cmp::Comparison{{pt}, false, ""});
-  ASSERT_EQ(table_rows.size(), 4u);
+  ASSERT_EQ(table_rows.size(), 5u);
+  EXPECT_TRUE(std::isnan(table_rows[4].percent)) << "1.5e-15 <= 1e-12 x SE 2e-3, though above 1e-12 x |D| 1e-3";
   EXPECT_TRUE(std::isnan(table_rows[0].percent)) << table_rows[0].percent;  // 3.7e-17 <= 1e-12 x 2e-3
   EXPECT_NEAR(table_rows[1].percent, 100.0 * (1e-3 - 2.1e-15) / 2.1e-15, 1e3);  // 2.1e-15 > 2e-15: shown
   EXPECT_NEAR(table_rows[2].percent, 1.0, 1e-9);

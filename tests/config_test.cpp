@@ -943,8 +943,6 @@ TEST(ConfigError, SweepShapeMistakesNameTheVariable) {
       {"&sweep variable = 'system:mass(2)', 'dsmc:seed', grid = .true., values = 1.0, 2.0 /",
        "&sweep: grid: grid = .true. takes one list per variable"},
       {"&sweep variable = 'system:mass(2)', values(2,1) = 1.0 /", "values(1,v) = ..."},
-      // (grid alone ran no sweep, silently)
-      {"&sweep grid = .true. /", "t.nml:18: &sweep: grid: only used with variable and values"},
       // (the run's output file and checkpoint interval: one for every point, never a point's own)
       {"&sweep variable = 'output:file', values = 'a.h5', 'b.h5' /",
        "t.nml:18: &sweep: variable: 'output:file' belongs to the run, not to a point"},
@@ -1086,9 +1084,6 @@ TEST(ConfigShear, BadInputNamesTheVariable) {
                {"below t_end"});
   expect_error(error_of(sheared("&shear average_from = 1.0 /")), 4, "shear", "average_from",
                {"only used with a shear rate"});
-  // (a stage length without stages was accepted, written to /parameters and never used)
-  expect_error(error_of(sheared("", "&dsmc n_particles = 100, t_end = 5.0, stage_step = 0.5 /")), 3, "dsmc",
-               "stage_step", {"only used with &thermostat or &shear"});
   expect_error(error_of(sheared("&thermostat kind = 'nose' /")), 4, "thermostat", "kind", {"'gaussian'"});
   expect_error(error_of(sheared("&shear rate = 0.01 /", "&dsmc n_particles = 100, collisions_per_particle = 5.0 /")),
                3, "dsmc", "collisions_per_particle", {"driven by t_end"});

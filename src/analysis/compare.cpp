@@ -953,7 +953,7 @@ std::string legend(const Comparison& comparison) {
   return "mark: stat within statistics (" + statistics +
          "); approx within that plus the approximation's known error; off beyond both; ? beyond statistics with no "
          "known error stated, or beyond the known error with no usable SE (docs/physics.md \"Comparison with "
-         "theory\"). (D-T)/T % divides by |T| (\"-\": T is 0, or below 1e-12 |D|). \"at t\": the last sample of a trajectory (every sample is in "
+         "theory\"). (D-T)/T % divides by |T| (\"-\": T is 0, or at most 1e-12 max(|D|, SE)). \"at t\": the last sample of a trajectory (every sample is in "
          "/comparison), or what a single value averages.\n";
 }
 

@@ -175,6 +175,18 @@ std::vector<std::string> input_warnings(const io::config::Config& config) {
     out.emplace_back(io::namelist::Error(file, line, by_sweep ? "sweep" : "system", by_sweep ? "values" : "number_density",
                                          message).what());
   }
+  // Variables given that no point of the run uses (a warning, not a refusal: an output of an older build that
+  // wrote them must still read, and a sweep may stage some points only).
+  const auto warn_unused = [&](const std::string& group, const std::string& variable, const std::string& text) {
+    const auto it = config.origin.find(group + ":" + variable);
+    if (it == config.origin.end()) return;
+    out.emplace_back(io::namelist::Error(it->second.first, it->second.second, group, variable, text).what());
+  };
+  if (config.dsmc.stage_step != io::config::Dsmc{}.stage_step &&
+      std::none_of(points.begin(), points.end(), [](const io::config::Config& p) { return p.staged(); }))
+    warn_unused("dsmc", "stage_step", "only used with &thermostat or &shear (the length of their stages): no effect here");
+  if (config.sweep.grid && !config.is_sweep())
+    warn_unused("sweep", "grid", "only used with variable and values (a sweep): no sweep is run");
   return out;
 }
 

@@ -470,16 +470,19 @@ std::optional<int> check_paths(const Arguments& a, const gdsmc::io::config::Conf
     return 2;
   };
   if (same_file(a.compare_json, a.input)) return json_error("it is the input namelist: it would be overwritten");
+  // (the run's own files, before the look at what exists there: this run holds the lock, and its end removes it)
+  if (same_file(a.compare_json, gdsmc::simulation::lock_path(path)))
+    return json_error("it is this run's lock file (" + gdsmc::simulation::lock_path(path) + "): choose another file");
+  for (int rank = 0; rank < gdsmc::parallel::size(); ++rank)  // (the checkpoints of this output, written or not)
+    if (same_file(a.compare_json, gdsmc::simulation::checkpoint_path(path, rank)))
+      return json_error("it is where this run's checkpoints go (" + gdsmc::simulation::checkpoint_path(path, rank) +
+                        "): choose another file");
   if (std::error_code ec; !a.force && std::filesystem::exists(std::filesystem::symlink_status(a.compare_json, ec)) &&
                           special_file_kind(a.compare_json).empty() && !is_earlier_compare_json(a.compare_json))
     return json_error("'" + a.compare_json + "' exists and is not a --compare JSON of granular-dsmc: choose another "
                       "file, or give --force to replace it");
   if (same_file(a.compare_json, path)) return json_error("it is the output file of the run (&output file)");
   if (!a.restart.empty() && same_file(a.compare_json, a.restart)) return json_error("it is the checkpoint given to --restart");
-  for (int rank = 0; rank < gdsmc::parallel::size(); ++rank)  // (the checkpoints of this output, written or not)
-    if (same_file(a.compare_json, gdsmc::simulation::checkpoint_path(path, rank)))
-      return json_error("it is where this run's checkpoints go (" + gdsmc::simulation::checkpoint_path(path, rank) +
-                        "): choose another file");
   if (root)
     if (const std::string reason = unwritable_reason(a.compare_json); !reason.empty())
       return json_error("cannot write the JSON file: " + reason);

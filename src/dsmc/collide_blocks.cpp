@@ -144,7 +144,7 @@ void Collider::scatter_species() {
   for (std::size_t k = 0; k < s_;) {
     chunk.clear(), first.clear();
     std::size_t partners = 0;
-    for (; k < s_ && (chunk.empty() || partners + sys_.count[k] <= scatter_chunk); ++k)
+    for (; k < s_ && (chunk.empty() || !scattered_[k] || partners + sys_.count[k] <= scatter_chunk); ++k)
       if (scattered_[k]) {
         chunk.push_back(k), first.push_back(partners);
         partners += sys_.count[k] > 0 ? sys_.count[k] - 1 : 0;

@@ -70,6 +70,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -390,6 +391,7 @@ void scatter(Gen& gen, std::size_t n, std::size_t k, std::size_t* counts, std::s
 template <class Gen>
 void scatter_draws(Gen& gen, std::size_t n, std::size_t k, std::size_t* counts, std::size_t stride,
                    std::uint32_t* partners) {
+  if (n > std::size_t{UINT32_MAX}) throw std::length_error("deal::scatter_draws: 2^32 elements or more");
   for (std::size_t i = n; i > 1; --i) partners[n - i] = static_cast<std::uint32_t>(gen.below(i));
   for (std::size_t j = 0; j < k; ++j) counts[j * stride] = 0;
   for (std::size_t i = 0; i < n; ++i) ++counts[gen.below(k) * stride];

@@ -462,9 +462,6 @@ void check_staged(const Config& c, std::map<std::string, Provenance>& prov) {
   if (!c.staged()) {
     if (prov["shear"].line.count("average_from"))
       refuse("shear", "average_from", "only used with a shear rate");
-    // (the default itself, as --print-defaults and the resolved namelist write it, is no request)
-    if (prov["dsmc"].line.count("stage_step") && c.dsmc.stage_step != Dsmc{}.stage_step)
-      refuse("dsmc", "stage_step", "only used with &thermostat or &shear (the length of their stages)");
     return;
   }
   const std::string what = c.shear.rate ? "&shear" : "&thermostat";

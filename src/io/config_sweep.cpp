@@ -188,11 +188,7 @@ void check_sweep(const Config& c, const Provenance& prov, const namelist::Docume
   const std::string group = "sweep";
   const auto line_of = [&](const char* v) { return prov.line.count(v) ? prov.line.at(v) : 0; };
   const Sweep& sweep = c.sweep;
-  if (sweep.variable.empty() && sweep.values.empty()) {
-    if (sweep.grid)  // (grid = .false., as --print-defaults writes it, asks for nothing)
-      throw Error(prov.file_of("grid"), line_of("grid"), group, "grid", "only used with variable and values (a sweep)");
-    return;
-  }
+  if (sweep.variable.empty() && sweep.values.empty()) return;  // grid alone: no sweep
   // Messages name where each was set: the namelist line, or the --set that gave it.
   if (sweep.variable.empty())
     throw Error(prov.file_of("values"), line_of("values"), group, "variable", "required with values");
