@@ -48,7 +48,7 @@ def draw(case, title):
     ax.legend(title="DSMC", title_fontsize="small")
     for (ax, ar), (y, dy, key, label) in zip(
         (axes[:, 1], axes[:, 2], axes[:, 3]),
-        ((mono, dmono, "monomer_fraction", r"$N_1/N$"), (size, dsize, "mean_size", r"$\langle k\rangle = N_0/N$"),
+        ((mono, dmono, "monomer_fraction", r"$N_1/N_0$"), (size, dsize, "mean_size", r"$\langle k\rangle = N_0/N$"),
          (temp, dtemp, "total_temperature", r"$T$ per cluster"))):
         y, dy = np.ravel(y), np.ravel(dy)
         yt, yv = np.array(th[key]["time"]), np.ravel(th[key]["value"])

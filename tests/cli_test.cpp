@@ -1633,6 +1633,12 @@ TEST_F(CliSnapshot, EveryParticleAtTheChosenTimesAndARunStartedFromThem) {
   for (std::size_t k = 0; k < 2; ++k) EXPECT_NEAR(tb.value[k], ta.value[ta.value.size() - 2 + k], 1e-13) << k;
   const auto initial = std::get<std::vector<double>>(gdsmc::io::h5md::read_attribute(b, "/parameters/initial", "temperature"));
   for (std::size_t k = 0; k < 2; ++k) EXPECT_NEAR(initial[k], tb.value[k], 1e-13) << k;
+  // Its theory, read later: from /parameters, which a smooth gas's run fills without a rotational temperature
+  // (its absence stopped the theory: "not computed: ... can't locate attribute").
+  const Result t = run("granular-dsmc", "--table b.h5 temperature --theory");
+  EXPECT_EQ(t.status, 0) << t.err;
+  EXPECT_EQ(t.err, "");
+  EXPECT_NE(t.out.find("_theory"), std::string::npos) << t.out;
 }
 
 TEST_F(CliSnapshot, RequestsThatCannotBeMetAreRefusedInOneLine) {
