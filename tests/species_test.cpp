@@ -3,8 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 using namespace gdsmc::species;
 
@@ -53,4 +55,51 @@ TEST(Species, CarnahanStarlingUnequalDiametersHandComputed) {
   EXPECT_NEAR(mix.pair_correlation(0, 0), 1.8176901428193741, 1e-13);
   EXPECT_NEAR(mix.pair_correlation(0, 1), 1.9856686759105446, 1e-13);
   EXPECT_NEAR(mix.pair_correlation(1, 1), 2.342071127245575, 1e-13);
+}
+
+// Above dense_pair_limit species chi is computed on access and its largest entry is known without the S^2
+// pairs (a user's 1e5-species Enskog run spent 40 s per replica in max(), deaf to Ctrl-C): max() equals the
+// largest of all S^2 entries, checked pair by pair, for 600 species with diameters k^(1/3) (the largest unique),
+// with every diameter equal, and with the largest diameter shared by three species and one more 1 ulp below
+// it: for some of the 16 largest diameters and densities tried (the diameters found by a search) the round-off
+// of S_ij then puts that pair's chi above the largest diameters' own, which max() must still find.
+TEST(Species, CarnahanStarlingLargestEntryOfManySpecies) {
+  const std::size_t s = 600;
+  ASSERT_GT(s, dense_pair_limit);
+  const auto largest_by_pairs = [](const PairMatrix& chi) {
+    double m = -1.0;
+    for (std::size_t i = 0; i < chi.size; ++i)
+      for (std::size_t j = 0; j < chi.size; ++j) m = std::max(m, chi(i, j));
+    return m;
+  };
+  const auto expect_largest = [&](const std::vector<double>& diameter, double density) {
+    const PairMatrix chi = carnahan_starling(diameter, std::vector<double>(diameter.size(), density));
+    EXPECT_FALSE(chi.is_dense());
+    EXPECT_TRUE(chi.largest.has_value());
+    const double by_pairs = largest_by_pairs(chi);
+    EXPECT_EQ(chi.max(), by_pairs) << "density " << density;
+    EXPECT_GT(by_pairs, 1.0);
+    return by_pairs;
+  };
+  std::vector<double> rising(s), equal(s, 1.5);
+  for (std::size_t k = 0; k < s; ++k) rising[k] = std::cbrt(static_cast<double>(k + 1));
+  expect_largest(rising, 1e-6);
+  expect_largest(equal, 1e-6);
+  int passed_by_round_off = 0;
+  for (double top : {25.75890720840042, 25.995683065505144, 29.216452176614776, 48.71498657182489})
+    for (double density : {5e-7, 1e-6, 2e-6, 3e-6}) {
+      std::vector<double> shared(s);
+      for (std::size_t k = 0; k < s; ++k) shared[k] = std::cbrt(static_cast<double>(k % 300 + 1));
+      shared[5] = shared[17] = shared[400] = top;
+      shared[401] = std::nextafter(top, 0.0);
+      if (top * top * top * density * 3.0 > 0.5) continue;  // (a packing fraction the test need not reach)
+      const double by_pairs = expect_largest(shared, density);
+      const PairMatrix chi = carnahan_starling(shared, std::vector<double>(s, density));
+      passed_by_round_off += by_pairs > chi(5, 5);
+    }
+  EXPECT_GT(passed_by_round_off, 0) << "no case where the round-off of S_ij passes the largest diameters' chi";
+  // (a write access drops it: the entry may change)
+  PairMatrix written = carnahan_starling(rising, std::vector<double>(s, 1e-6));
+  written(0, 0) = 10.0;
+  EXPECT_EQ(written.max(), 10.0);
 }

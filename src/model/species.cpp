@@ -32,6 +32,7 @@ void PairMatrix::densify() {
 
 double PairMatrix::max() const {
   if (constant && size > 0) return *constant;
+  if (largest && size > 0) return *largest;
   double m = -std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < size; ++k)
     for (std::size_t j = 0; j < size; ++j) m = std::max(m, (*this)(k, j));
@@ -72,15 +73,34 @@ PairMatrix carnahan_starling(const std::vector<double>& diameter,
   }
   phi *= std::numbers::pi / 6.0;
   xi *= std::numbers::pi / 6.0;
-  auto chi = [phi, xi, d = diameter](std::size_t i, std::size_t j) {
-    const double sigma_ij = 0.5 * (d[i] + d[j]);
-    const double s_ij = d[i] * d[j] / sigma_ij;  // S_ij of \ref cm_chi "docs/collision-model.md"
+  const auto chi_of_diameters = [phi, xi](double a, double b) {
+    const double sigma_ij = 0.5 * (a + b);
+    const double s_ij = a * b / sigma_ij;  // S_ij of \ref cm_chi "docs/collision-model.md"
     const double one_minus = 1.0 - phi;
     return 1.0 / one_minus + 1.5 * xi * s_ij / (one_minus * one_minus) +
            0.5 * xi * xi * s_ij * s_ij / (one_minus * one_minus * one_minus);
   };
-  PairMatrix m = PairMatrix::computed(s, chi);
-  if (s <= dense_pair_limit) m.densify();
+  PairMatrix m = PairMatrix::computed(s, [chi_of_diameters, d = diameter](std::size_t i, std::size_t j) {
+    return chi_of_diameters(d[i], d[j]);
+  });
+  if (s <= dense_pair_limit) {
+    m.densify();
+    return m;
+  }
+  // The largest entry without the S^2 pairs (header): chi grows with S_ij and S_ij with either diameter, and
+  // each floating-point operation of chi is monotone in S_ij, so an entry can pass those of the largest
+  // diameters only through the round-off of S_ij, for diameters within a few ulps of the largest: the
+  // largest over every pair of the distinct diameters within 1e-12 of it (one value when it is unique).
+  const double widest = *std::max_element(diameter.begin(), diameter.end());
+  std::vector<double> near;
+  for (double d : diameter)
+    if (d >= widest * (1.0 - 1e-12)) near.push_back(d);
+  std::sort(near.begin(), near.end());
+  near.erase(std::unique(near.begin(), near.end()), near.end());
+  double largest = -std::numeric_limits<double>::infinity();
+  for (double a : near)
+    for (double b : near) largest = std::max(largest, chi_of_diameters(a, b));
+  m.largest = largest;
   return m;
 }
 

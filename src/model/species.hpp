@@ -31,6 +31,9 @@ struct PairMatrix {
   /// Set by uniform() (kept by densify(), dropped by a write access): every entry is this value, so
   /// that max() and min() take O(1), not O(S^2), and the block kernels read no S x S table.
   std::optional<double> constant;
+  /// Set by a builder that knows the largest entry without visiting the S^2 (carnahan_starling: at the
+  /// largest diameters), so that max() takes O(1); dropped by a write access.
+  std::optional<double> largest;
 
   PairMatrix() = default;
   /// A dense n x n matrix with every entry `fill`.
@@ -49,12 +52,12 @@ struct PairMatrix {
   /// Write access: a computed matrix is first stored densely.
   double& operator()(std::size_t k, std::size_t j) {
     if (rule) densify();
-    constant.reset();  // (the entry may be written)
+    constant.reset(), largest.reset();  // (the entry may be written)
     return values[k * size + j];
   }
   /// Stores every entry of a computed matrix and drops the rule (S^2 doubles).
   void densify();
-  double max() const;  ///< largest entry (O(S^2) for a computed matrix other than uniform())
+  double max() const;  ///< largest entry (O(S^2) for a computed matrix other than uniform() and one with `largest`)
   double min() const;  ///< smallest entry
 };
 
@@ -96,6 +99,9 @@ struct Mixture {
 };
 
 /// Carnahan-Starling chi_kj for all pairs (Montanero and Garzo 2002, eq. (26); \ref cm_chi "docs/collision-model.md").
+/// Computed on access above dense_pair_limit species, with its largest entry known: chi_kj grows with
+/// S_kj = sigma_k sigma_j/sigma_kj, which grows with either diameter, so the largest entry is among the pairs
+/// of the largest diameters (those within 1e-12 of the largest, each distinct value once: O(S)).
 PairMatrix carnahan_starling(const std::vector<double>& diameter,
                              const std::vector<double>& number_density);
 
