@@ -411,6 +411,25 @@ TEST_F(CliDsmc, AggFragRunWritesClusterObservables) {
   expect_no_temporary_file();
 }
 
+// A gas that sticks into one cluster before its collisions_per_particle fails (exit 1, one line), and its
+// checkpoints go with it: resumed, the run would fail the same way, and a checkpoint left behind refused the
+// next run of that output with t_end, as the message advises (a user's trial: it needed --force).
+TEST_F(CliDsmc, AnUnreachableEventTargetLeavesNoCheckpoint) {
+  const std::string head =
+      "&system mass = 1.0, diameter = 1.0, number_density = 0.1, restitution = 1.0 /\n"
+      "&output file = 'out.h5', n_samples = 20, checkpoint_every = 0.0001 /\n"
+      "&agg_frag aggregation_energy = 100.0 /\n";
+  const Result r = dsmc(head + "&dsmc scheme = 'lowrank', n_particles = 100, collisions_per_particle = 150, replicas = 2 /\n");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(r.err.rfind("granular-dsmc: the gas aggregated into one cluster after ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("give t_end instead (this run's checkpoint, which would fail the same way, is removed)\n"),
+            std::string::npos) << r.err;
+  EXPECT_EQ(files(), (std::vector<std::string>{"t.nml"}));
+  const Result again = dsmc(head + "&dsmc scheme = 'lowrank', n_particles = 100, t_end = 50.0, replicas = 2 /\n");
+  EXPECT_EQ(again.status, 0) << again.err;
+  EXPECT_EQ(files(), (std::vector<std::string>{"out.h5", "t.nml"}));
+}
+
 TEST_F(CliDsmc, AggFragBadInputLeavesNoFile) {
   const std::string head =
       "&system mass = 1.0, diameter = 1.0, number_density = 0.1, restitution = 0.8 /\n"

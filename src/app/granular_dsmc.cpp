@@ -663,6 +663,9 @@ int run(const Arguments& a, const gdsmc::io::config::Config& config, bool root) 
   } catch (const gdsmc::parallel::AgreedFailure& e) {  // (every rank has it: rank 0 says it)
     if (root) std::cerr << "granular-dsmc: " << e.what() << "\n";
     return 1;
+  } catch (const gdsmc::simulation::UnreachableTarget& e) {  // (as AgreedFailure)
+    if (root) std::cerr << "granular-dsmc: " << e.what() << "\n";
+    return 1;
   } catch (const gdsmc::simulation::OutputPathError& e) {
     if (!root) return 2;
     return output_error(a, config, root, e.what());

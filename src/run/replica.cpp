@@ -765,7 +765,7 @@ void Clusters::advance_to_sample(std::size_t i, const Between& between) {
                   "the gas aggregated into one cluster after %.6g collisions per monomer, before "
                   "collisions_per_particle = %.6g was reached; give t_end instead",
                   2.0 * static_cast<double>(gas_.counters().events) / initial_monomers_, targets_[i]);
-    throw std::runtime_error(text);
+    throw UnreachableTarget(text);
   }
 }
 

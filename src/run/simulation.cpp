@@ -132,7 +132,7 @@ std::vector<ReplicaResult> run_units(const std::vector<io::config::Config>& poin
                                      Progress& progress, const Options& options) {
   std::vector<ReplicaResult> done(mine.size());
   std::string failure;  // first error of a thread (exceptions must not leave an OpenMP region)
-  std::atomic<bool> interrupted{false}, failed{false}, restart_failed{false};
+  std::atomic<bool> interrupted{false}, failed{false}, restart_failed{false}, unreachable{false};
   // Threads serve the units first; when this rank has fewer units than threads, each unit's cache
   // blocks share the rest (collide.hpp, "Threads inside one replica"), and the output is the same.
   const parallel::ThreadSplit split = parallel::split_threads(mine.size());
@@ -154,10 +154,12 @@ std::vector<ReplicaResult> run_units(const std::vector<io::config::Config>& poin
       if (!failed.load()) interrupted.store(true);  // (else abandoned for another unit's failure)
     } catch (const std::exception& e) {
       const bool restart = dynamic_cast<const RestartError*>(&e) != nullptr;
+      const bool unreached = dynamic_cast<const UnreachableTarget*>(&e) != nullptr;
 #pragma omp critical(gdsmc_failure)
       if (!failed.exchange(true)) {
         failure = e.what();
         restart_failed.store(restart);
+        unreachable.store(unreached);
       }
     }
   };
@@ -172,6 +174,7 @@ std::vector<ReplicaResult> run_units(const std::vector<io::config::Config>& poin
   }
   progress.finish();
   if (failed.load() && restart_failed.load()) throw RestartError(failure);
+  if (failed.load() && unreachable.load()) throw UnreachableTarget(failure);
   if (failed.load()) throw std::runtime_error(failure);
   if (interrupted.load()) throw Interrupted();
   return done;
@@ -192,7 +195,7 @@ Gathered gather_results(const std::vector<std::size_t>& mine, std::vector<Replic
   // snapshot twice (seconds for a gigabyte, where an interrupt is not looked at).
   const bool one_rank = parallel::size() == 1;
   std::string packed(1, status);
-  if (status == 'F' || status == 'R') packed += failure;
+  if (status == 'F' || status == 'R' || status == 'U') packed += failure;
   else if (status == 'K' && !one_rank)
     for (std::size_t k = 0; k < mine.size(); ++k) pack(packed, mine[k], done[k]);
   Gathered gathered{parallel::gather_to_root(packed), {}};
@@ -203,6 +206,7 @@ Gathered gather_results(const std::vector<std::size_t>& mine, std::vector<Replic
   verdict = parallel::broadcast_from_root(verdict);
   if (!verdict.empty() && verdict[0] == 'I') throw Interrupted();
   if (!verdict.empty() && verdict[0] == 'R') throw RestartError(verdict.substr(1));
+  if (!verdict.empty() && verdict[0] == 'U') throw UnreachableTarget(verdict.substr(1));
   if (!verdict.empty()) throw parallel::AgreedFailure(verdict.substr(1));
   if (one_rank) gathered.own = std::move(done);
   return gathered;
@@ -486,11 +490,20 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
   } catch (const RestartError& e) {  // a record of the checkpoint refused as its unit resumed
     status = 'R';
     failure = e.what();
+  } catch (const UnreachableTarget& e) {
+    status = 'U';
+    failure = e.what();
   } catch (const std::exception& e) {
     status = 'F';
     failure = e.what();
   }
-  Gathered gathered = gather_results(mine, std::move(done), status, failure);
+  Gathered gathered;
+  try {
+    gathered = gather_results(mine, std::move(done), status, failure);
+  } catch (const UnreachableTarget& e) {  // (every rank: its own checkpoint could only fail again)
+    checkpoints.remove();
+    throw UnreachableTarget(std::string(e.what()) + " (this run's checkpoint, which would fail the same way, is removed)");
+  }
   Summary summary;
   std::exception_ptr write_failure;
   char written = 'K';  // rank 0's output: complete, interrupted (I) or failed (F)

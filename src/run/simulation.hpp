@@ -108,6 +108,12 @@ struct RestartError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A replica cannot reach its event target (an aggregating gas became one cluster before it): the run
+/// fails, and its checkpoints are removed, since a run resumed from them would fail the same way.
+struct UnreachableTarget : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 struct Interrupted : std::runtime_error {
   Interrupted() : std::runtime_error("interrupted: no output written") {}
 };
