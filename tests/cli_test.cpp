@@ -428,6 +428,17 @@ TEST_F(CliDsmc, AnUnreachableEventTargetLeavesNoCheckpoint) {
   const Result again = dsmc(head + "&dsmc scheme = 'lowrank', n_particles = 100, t_end = 50.0, replicas = 2 /\n");
   EXPECT_EQ(again.status, 0) << again.err;
   EXPECT_EQ(files(), (std::vector<std::string>{"out.h5", "t.nml"}));
+  // Without checkpoints there is none to remove, and the message does not say there was; it names the run's
+  // target, not the sample's.
+  fs::remove(dir / "out.h5");
+  const Result plain = dsmc("&system mass = 1.0, diameter = 1.0, number_density = 0.1, restitution = 1.0 /\n"
+                            "&output file = 'out.h5', n_samples = 20 /\n&agg_frag aggregation_energy = 100.0 /\n"
+                            "&dsmc scheme = 'lowrank', n_particles = 100, collisions_per_particle = 150, replicas = 2 /\n");
+  EXPECT_EQ(plain.status, 1) << plain.err;
+  EXPECT_NE(plain.err.find("before collisions_per_particle = 150 was reached (its sample at "), std::string::npos)
+      << plain.err;
+  EXPECT_NE(plain.err.find("); give t_end instead\n"), std::string::npos) << plain.err;
+  EXPECT_EQ(files(), (std::vector<std::string>{"t.nml"}));
 }
 
 TEST_F(CliDsmc, AggFragBadInputLeavesNoFile) {

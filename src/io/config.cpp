@@ -380,13 +380,10 @@ Config read_from_output(const std::string& h5_path) {
         std::erase_if(group.assignments, [](const namelist::Assignment& a) { return a.name == "from_file"; });
     std::erase_if(overrides, [](const std::string& o) { return o.rfind("initial:from_file", 0) == 0; });
     for (const char* name : {"temperature", "rotational_temperature"}) {
-      h5md::ParameterValue stored;
-      try {
-        stored = h5md::read_attribute(h5_path, "/parameters/initial", name);
-      } catch (const std::runtime_error&) {
-        if (std::string(name) == "temperature") throw;
-        continue;  // (smooth spheres have no rotational temperature, and their outputs none)
-      }
+      // (smooth spheres have no rotational temperature, and their outputs none)
+      if (std::string(name) == "rotational_temperature" && !h5md::has_attribute(h5_path, "/parameters/initial", name))
+        continue;
+      const auto stored = h5md::read_attribute(h5_path, "/parameters/initial", name);
       const auto* values = std::get_if<std::vector<double>>(&stored);
       if (!values || values->empty()) continue;
       std::string list;

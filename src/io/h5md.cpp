@@ -992,6 +992,15 @@ ParameterValue read_attribute(const std::string& file, const std::string& object
   });
 }
 
+bool has_attribute(const std::string& file, const std::string& object_path, const std::string& name) {
+  return with_context(read_context(file), [&] {
+    const Handle f = open_for_reading(file);
+    const htri_t exists = H5Aexists_by_name(f.get(), object_path.c_str(), name.c_str(), H5P_DEFAULT);
+    if (exists < 0) fail("H5Aexists_by_name", object_path + "@" + name);
+    return exists > 0;
+  });
+}
+
 std::string read_string_attribute(const std::string& file, const std::string& object_path,
                                   const std::string& name) {
   ParameterValue value = read_attribute(file, object_path, name);

@@ -238,6 +238,9 @@ ParameterValue read_attribute(const std::string& file, const std::string& object
 /// the program that may replace it); false for anything else, without opening a FIFO or a device.
 bool written_by(const std::string& path, const std::string& creator);
 
+/// Whether the object at `object_path` of `file` has an attribute `name` (a missing object or an unreadable
+/// file throws, as read_attribute).
+bool has_attribute(const std::string& file, const std::string& object_path, const std::string& name);
 /// A string attribute (read_attribute holding a std::string; anything else throws).
 std::string read_string_attribute(const std::string& file, const std::string& object_path,
                                   const std::string& name);

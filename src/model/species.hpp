@@ -101,7 +101,8 @@ struct Mixture {
 /// Carnahan-Starling chi_kj for all pairs (Montanero and Garzo 2002, eq. (26); \ref cm_chi "docs/collision-model.md").
 /// Computed on access above dense_pair_limit species, with its largest entry known: chi_kj grows with
 /// S_kj = sigma_k sigma_j/sigma_kj, which grows with either diameter, so the largest entry is among the pairs
-/// of the largest diameters (those within 1e-12 of the largest, each distinct value once: O(S)).
+/// of the largest diameters (those within 1e-12 of the largest, each distinct value once: O(S) with a few
+/// of them, O(D^2) for D distinct diameters that close, D at most some thousands).
 PairMatrix carnahan_starling(const std::vector<double>& diameter,
                              const std::vector<double>& number_density);
 

@@ -227,9 +227,9 @@ std::string new_run_token() {
   return text;
 }
 
-void CheckpointStore::remove() const {
+bool CheckpointStore::remove() const {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path_, ec)) return;
+  if (!std::filesystem::is_regular_file(path_, ec)) return false;
   std::string token;
   try {
     token = io::h5md::read_string_attribute(path_, "/checkpoint", "run");
@@ -239,7 +239,7 @@ void CheckpointStore::remove() const {
   const bool resumed = !resumed_path_.empty() && (token.empty() ? resumed_token_.empty() &&
                                                                       std::filesystem::equivalent(path_, resumed_path_, ec)
                                                                 : token == resumed_token_);
-  if (own || resumed) std::filesystem::remove(path_, ec);
+  return (own || resumed) && std::filesystem::remove(path_, ec);
 }
 
 void CheckpointStore::write() const {

@@ -80,8 +80,9 @@ class CheckpointStore {
   void safe_point(std::size_t unit, const std::function<state::Record()>& snapshot);
   /// The run is complete: deletes the file if it is this run's (written by it: its `/checkpoint@run`
   /// token is this store's) or the checkpoint it resumed (its token, or the very file given to
-  /// --restart when that has no token); a file of another run at the same path is left alone.
-  void remove() const;
+  /// --restart when that has no token); a file of another run at the same path is left alone. Whether a
+  /// file was removed.
+  bool remove() const;
   /// Its files replace whatever is at the path (--force; io/h5md.hpp Writer::commit).
   void replace_any_file() { replace_any_ = true; }
   /// A flag (the caller's interrupt flag) that, once set, abandons a file being written between two of its

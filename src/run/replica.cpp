@@ -760,11 +760,11 @@ void Clusters::advance_to_sample(std::size_t i, const Between& between) {
   }
   if (!time_driven_ && gas_.counters().events < event_target)
   {
-    char text[256];  // (the clock of a gas with nothing left to collide stands at infinity: not shown)
+    char text[320];  // (the clock of a gas with nothing left to collide stands at infinity: not shown)
     std::snprintf(text, sizeof text,
                   "the gas aggregated into one cluster after %.6g collisions per monomer, before "
-                  "collisions_per_particle = %.6g was reached; give t_end instead",
-                  2.0 * static_cast<double>(gas_.counters().events) / initial_monomers_, targets_[i]);
+                  "collisions_per_particle = %.6g was reached (its sample at %.6g); give t_end instead",
+                  2.0 * static_cast<double>(gas_.counters().events) / initial_monomers_, targets_.back(), targets_[i]);
     throw UnreachableTarget(text);
   }
 }

@@ -501,7 +501,7 @@ Summary run(const io::config::Config& config, const std::string& output_path, co
   try {
     gathered = gather_results(mine, std::move(done), status, failure);
   } catch (const UnreachableTarget& e) {  // (every rank: its own checkpoint could only fail again)
-    checkpoints.remove();
+    if (!checkpoints.remove()) throw;
     throw UnreachableTarget(std::string(e.what()) + " (this run's checkpoint, which would fail the same way, is removed)");
   }
   Summary summary;
