@@ -2505,10 +2505,20 @@ TEST(Collide, ScatterPlacesEveryParticleUniformly) {
   }
 }
 
-// deal::scatter_draws and scatter_moves (deal.hpp): scatter() in two halves, with the same calls of the stream,
-// so the same permutation and counts: checked against scatter() for n = 0, 1, 2, 7 and 1000 elements in 5 blocks,
-// three scatterings in a row from one stream each (the stream's state after them the same too).
+// deal::scatter_draws and scatter_moves (deal.hpp): the one-pass scattering in two halves, with the same calls
+// of the stream, so the same permutation and counts: checked against the one-pass Fisher-Yates and multinomial
+// counts written out here, for n = 0, 1, 2, 7 and 1000 elements in 5 blocks, three scatterings in a row from
+// one stream each (the stream's state after them the same too).
 TEST(Collide, ScatterInHalvesIsScatter) {
+  const auto one_pass = [](rng::Xoshiro256pp& gen, std::size_t n, std::size_t k, std::size_t* counts,
+                           std::size_t stride, std::vector<std::size_t>& data) {
+    for (std::size_t i = n; i > 1; --i) {
+      const std::size_t q = gen.below(i);
+      std::swap(data[i - 1], data[q]);
+    }
+    for (std::size_t j = 0; j < k; ++j) counts[j * stride] = 0;
+    for (std::size_t i = 0; i < n; ++i) ++counts[gen.below(k) * stride];
+  };
   for (std::size_t n : {std::size_t{0}, std::size_t{1}, std::size_t{2}, std::size_t{7}, std::size_t{1000}}) {
     const std::size_t k = 5, stride = 2;
     auto one = rng::make_stream(5, 1, rng::Purpose::collisions), halves = one;
@@ -2516,7 +2526,7 @@ TEST(Collide, ScatterInHalvesIsScatter) {
     std::vector<std::uint32_t> partners(n > 0 ? n - 1 : 0);
     for (std::size_t i = 0; i < n; ++i) a[i] = b[i] = i;
     for (int round = 0; round < 3; ++round) {
-      deal::scatter(one, n, k, counts_a.data(), stride, [&](std::size_t i, std::size_t q) { std::swap(a[i], a[q]); });
+      one_pass(one, n, k, counts_a.data(), stride, a);
       deal::scatter_draws(halves, n, k, counts_b.data(), stride, partners.data());
       deal::scatter_moves(n, partners.data(), [&](std::size_t i, std::size_t q) { std::swap(b[i], b[q]); });
       ASSERT_EQ(a, b) << n << " elements, round " << round;

@@ -58,11 +58,13 @@
  * formula above for one species and mixtures, with and without displacements, k not dividing n, on
  * 1 to 3 threads).
  *
- * **Scattering** (scatter(); collide.hpp, "Mixtures in blocks"): a species too rare to be dealt in
- * equal slices is put in a uniformly random order (Fisher-Yates) and cut into k slices of multinomial
+ * **Scattering** (scatter_draws, scatter_moves; collide.hpp, "Mixtures in blocks"): a species too rare to be
+ * dealt in equal slices is put in a uniformly random order (Fisher-Yates) and cut into k slices of multinomial
  * counts, so that each element goes to a uniformly random block independently of the others (any two
- * share a block with probability 1/k). Checked by Collide.ScatterPlacesEveryParticleUniformly (each
- * element's block and every pair's sharing of a block over 60000 scatterings).
+ * share a block with probability 1/k). The draws and the transpositions are apart, so that the
+ * transpositions of several species can run on threads while the draws stay in one stream. Checked by
+ * Collide.ScatterPlacesEveryParticleUniformly (each element's block and every pair's sharing of a block
+ * over 60000 scatterings) and Collide.ScatterInHalvesIsScatter (the one-pass Fisher-Yates).
  */
 #pragma once
 
@@ -369,25 +371,10 @@ void deal_in_place(T* data, std::size_t n, std::size_t k, std::size_t offset, Wo
   dealer.place_aside();
 }
 
-/// Scatters n elements over k blocks (header, "Scattering"): permutes them uniformly at random, each
-/// transposition through `swap(i, q)` (which swaps elements i and q of every array that holds them),
-/// and sets counts[j stride], j < k, to how many of them block j takes,
-/// in order: each element to a uniformly random block, independently. `gen.below(m)` is uniform on [0, m).
-template <class Gen, class Swap>
-void scatter(Gen& gen, std::size_t n, std::size_t k, std::size_t* counts, std::size_t stride, Swap&& swap) {
-  for (std::size_t i = n; i > 1; --i) {
-    const std::size_t q = gen.below(i);
-    swap(i - 1, q);
-  }
-  for (std::size_t j = 0; j < k; ++j) counts[j * stride] = 0;
-  for (std::size_t i = 0; i < n; ++i) ++counts[gen.below(k) * stride];
-}
-
-/// scatter() in two halves, so that the transpositions of several scatterings can run on threads while
-/// their draws stay in one stream: scatter_draws makes scatter()'s calls of `gen` in the same order,
-/// writing the partner of transposition i (i = n ... 2, below i) to partners[n - i] (n - 1 of them; n <
-/// 2^32) and setting the counts; scatter_moves then makes scatter()'s transpositions, swap(i - 1,
-/// partners[n - i]) for i = n ... 2. Together: scatter()'s permutation and counts (Collide.ScatterInHalvesIsScatter).
+/// The draws of scattering n elements over k blocks (header, "Scattering"): the partner of Fisher-Yates
+/// transposition i, i = n ... 2, uniform below i, to partners[n - i] (n - 1 of them; n < 2^32), then
+/// counts[j stride], j < k, the elements block j takes (each element's block uniform, independently).
+/// `gen.below(m)` is uniform on [0, m).
 template <class Gen>
 void scatter_draws(Gen& gen, std::size_t n, std::size_t k, std::size_t* counts, std::size_t stride,
                    std::uint32_t* partners) {
@@ -396,7 +383,8 @@ void scatter_draws(Gen& gen, std::size_t n, std::size_t k, std::size_t* counts, 
   for (std::size_t j = 0; j < k; ++j) counts[j * stride] = 0;
   for (std::size_t i = 0; i < n; ++i) ++counts[gen.below(k) * stride];
 }
-/// The transpositions of scatter_draws' `partners` for n elements (above).
+/// The transpositions of scatter_draws' `partners` for n elements: swap(i - 1, partners[n - i]) for i = n ... 2,
+/// `swap(i, q)` swapping elements i and q of every array that holds them.
 template <class Swap>
 void scatter_moves(std::size_t n, const std::uint32_t* partners, Swap&& swap) {
   for (std::size_t i = n; i > 1; --i) swap(i - 1, static_cast<std::size_t>(partners[n - i]));
