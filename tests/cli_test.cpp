@@ -509,16 +509,17 @@ TEST_F(CliDsmc, NeverOverwritesTheInputOrAForeignFile) {
 }
 
 TEST_F(CliDsmc, StaleTemporariesOfDeadRunsAreRemoved) {
-  // What a SIGKILLed run leaves (its pid gone: 4194300 is above any pid this machine hands out
-  // before wrapping) is removed; the temporary of a live process (this test's) is kept.
-  write("out.h5.tmp.4194300", "stale");
-  const std::string live = "out.h5.tmp." + std::to_string(::getpid());
-  write(live, "live");
+  // What a SIGKILLed run leaves (its pid gone: 4194300 is above any pid this machine hands out before
+  // wrapping) is removed, and so is a temporary of the output or its checkpoint whose pid is a live
+  // process (this test's: a killed run's pid reused since), since the run holds the output's lock; a
+  // name that is not a temporary of the run's files is kept.
+  const std::string live = ".tmp." + std::to_string(::getpid());
+  for (const std::string& f : std::vector<std::string>{"out.h5.tmp.4194300", "out.h5" + live, "out.checkpoint.h5" + live, "out.h5.tmp.7x",
+                              "other.h5" + live})
+    write(f, "left");
   const Result r = dsmc(base());
   EXPECT_EQ(r.status, 0) << r.err;
-  EXPECT_FALSE(fs::exists(dir / "out.h5.tmp.4194300"));
-  EXPECT_TRUE(fs::exists(dir / live));
-  fs::remove(dir / live);
+  EXPECT_EQ(files(), (std::vector<std::string>{"other.h5" + live, "out.h5", "out.h5.tmp.7x", "t.nml"}));
 }
 
 /// Starts an endless run (t_end = 1e30, asked for with allow_long_run, checkpoints every 0.2 s),
@@ -795,12 +796,12 @@ void set_string_attribute(const std::string& file, const std::string& object, co
   H5Fclose(f);
 }
 
-/// Replaces the first value of dataset `name` of the checkpoint unit `unit` (reals or integers) by
-/// `value`, or with `remove_it` removes the dataset and its name from the unit's list, and signs the
-/// result with a valid checksum (run/checkpoint.hpp content_checksum): a forgery that the checksum
-/// cannot catch, only the check of each field.
+/// Replaces the first value (with `every`, every value) of dataset `name` of the checkpoint unit `unit`
+/// (reals or integers) by `value`, or with `remove_it` removes the dataset and its name from the unit's
+/// list, and signs the result with a valid checksum (run/checkpoint.hpp content_checksum): a forgery that
+/// the checksum cannot catch, only the check of each field.
 void forge_checkpoint(const std::string& file, const std::string& unit, const std::string& name, double value,
-                      bool remove_it) {
+                      bool remove_it, bool every = false) {
   const std::string dataset = unit + "/" + name;
   if (remove_it) {
     for (const char* list : {"reals", "integers"}) {
@@ -821,6 +822,7 @@ void forge_checkpoint(const std::string& file, const std::string& unit, const st
     std::vector<double> values(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
     ASSERT_GE(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), 0);
     values.at(0) = value;  // (converted to the dataset's type: uint64 for integers)
+    if (every) std::fill(values.begin(), values.end(), value);
     ASSERT_GE(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), 0);
     H5Sclose(space);
     H5Dclose(d);
@@ -852,22 +854,29 @@ TEST_F(CliDsmc, ARestartWithOtherOptionsSaysWhichDiffer) {
 }
 
 // Checkpoints with a valid checksum but a forged field: velocities of 1e300 (the restart never ended),
-// a next_sample beyond the samples recorded (an output of NaN errors), a missing array. Each is refused
-// in one line with exit 2 before the unit runs.
+// a next_sample beyond the samples recorded (an output of NaN errors), a missing array, a stream of four
+// zero words (its fixed point: a direction drawn by rejection never ended, deaf to Ctrl-C), a gas at rest
+// (no collision could come: infinite times), a credit beyond the time or a negative time or bound. Each is
+// refused in one line with exit 2 before the unit runs.
 TEST_F(CliDsmc, AForgedCheckpointFieldIsRefusedByItsCheck) {
   ASSERT_EQ(interrupt_an_endless_run(*this, 1500000).first, 130);
   const fs::path original = dir / "original.h5";
   fs::copy_file(dir / "out.checkpoint.h5", original);
   const std::string unit = "/checkpoint/running/unit_0";
-  const std::vector<std::tuple<std::string, double, bool, std::string>> forgeries{
-      {"particles/velocity", 1e300, false, "m v^2 beyond 1e30 times the largest initial temperature"},
-      {"replica/next_sample", 99.0, false, "'replica/next_sample' is 99 but the record holds"},
-      {"gas/c_sum", 0.0, true, "'gas/c_sum' is missing"},
-      {"collider/transfer", 0.0, true, "'collider/transfer' is missing"},
+  const std::vector<std::tuple<std::string, double, bool, std::string, bool>> forgeries{
+      {"particles/velocity", 1e300, false, "m v^2 beyond 1e30 times the largest initial temperature", false},
+      {"replica/next_sample", 99.0, false, "'replica/next_sample' is 99 but the record holds", false},
+      {"gas/c_sum", 0.0, true, "'gas/c_sum' is missing", false},
+      {"collider/transfer", 0.0, true, "'collider/transfer' is missing", false},
+      {"collider/generator", 0.0, false, "a generator state of four zero words", true},
+      {"particles/velocity", 0.0, false, "every particle is at rest", true},
+      {"collider/credit", 1e300, false, "a credit exceeds the time", false},
+      {"collider/time", -1.0, false, "the saved time or credit is negative", false},
+      {"collider/max_speed2", -1.0, false, "speed bound is negative", false},
   };
-  for (const auto& [name, value, remove_it, message] : forgeries) {
+  for (const auto& [name, value, remove_it, message, every] : forgeries) {
     fs::copy_file(original, dir / "out.checkpoint.h5", fs::copy_options::overwrite_existing);
-    forge_checkpoint((dir / "out.checkpoint.h5").string(), unit, name, value, remove_it);
+    forge_checkpoint((dir / "out.checkpoint.h5").string(), unit, name, value, remove_it, every);
     const Result r = run("granular-dsmc", "t.nml --quiet --restart out.checkpoint.h5", 60);  // (an endless run)
     EXPECT_EQ(r.status, 2) << name << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;

@@ -2659,3 +2659,10 @@ TEST(EventMargin, HandComputedValues) {
   EXPECT_FALSE(may_reach(mean * (1.0 - 1e-9), 1e6));
   EXPECT_TRUE(may_reach(mean * (1.0 + 1e-9), 1e6));
 }
+
+// A gas whose bounds are all zero (no candidate comes) reaches a time target at once; an event target it
+// would never reach is an error, not a sample at an infinite time.
+TEST(Collide, BoundsOfZeroNeverReachAnEventTarget) {
+  EXPECT_EQ(gdsmc::collide::time_at_rest(12.5), 12.5);
+  EXPECT_THROW(gdsmc::collide::time_at_rest(std::numeric_limits<double>::infinity()), std::runtime_error);
+}

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 #include <hdf5.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -193,6 +194,31 @@ TEST(H5md, TemporaryFileUntilCommit) {
   writer.commit();
   EXPECT_TRUE(fs::exists(path));
   EXPECT_FALSE(fs::exists(writer.temporary_path()));
+}
+
+// A Writer removes the temporaries of its path left by processes that are gone, a zombie (killed, not
+// yet collected by its parent: it still answers kill(pid, 0)) among them, and keeps a live process's;
+// remove_others_temporaries (for the lock's holder) removes the live one too, and nothing of other paths.
+TEST(H5md, TemporariesOfGoneProcessesAreRemoved) {
+  const TempDir dir;
+  const std::string path = dir.file("out.h5");
+  const pid_t zombie = ::fork();
+  if (zombie == 0) ::_exit(0);
+  ASSERT_GT(zombie, 0);
+  ::usleep(100000);  // (it has exited: a zombie until waited for below)
+  const std::string of_zombie = path + ".tmp." + std::to_string(zombie), of_live = path + ".tmp.1";
+  const std::string not_a_pid = path + ".tmp.1x", other_path = dir.file("other.h5") + ".tmp.4194300";
+  for (const std::string& f : {of_zombie, of_live, not_a_pid, other_path}) std::ofstream(f) << "left";
+  {
+    Writer writer(path, "me", "granular-dsmc", "0.1.0");
+    EXPECT_FALSE(fs::exists(of_zombie));
+    EXPECT_TRUE(fs::exists(of_live));
+  }
+  ::waitpid(zombie, nullptr, 0);
+  remove_others_temporaries(path);
+  EXPECT_FALSE(fs::exists(of_live));
+  EXPECT_TRUE(fs::exists(not_a_pid));
+  EXPECT_TRUE(fs::exists(other_path));
 }
 
 // A link planted at the temporary's name (a symlink attack, or a leftover) is removed, never written

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -397,4 +398,13 @@ TEST(Rng, UnitVector32Isotropic) {
   EXPECT_NEAR(sy / n, 0.0, 5.0 * se_mean);
   EXPECT_NEAR(sz / n, 0.0, 5.0 * se_mean);
   EXPECT_NEAR(sz2 / n, 1.0 / 3.0, 5.0 * se_z2);
+}
+
+// Four zero words are xoshiro's fixed point (it draws 0 for ever): a checkpoint holding them is refused.
+TEST(Rng, AStateOfZeroWordsIsRefused) {
+  gdsmc::rng::Xoshiro256pp gen(7);
+  gdsmc::rng::Xoshiro256pp::State zero{{0, 0, 0, 0}, false, 0.0};
+  EXPECT_THROW(gen.set_state(zero), std::invalid_argument);
+  zero.s[3] = 1;
+  EXPECT_NO_THROW(gen.set_state(zero));
 }

@@ -11,6 +11,7 @@
 #include "io/config.hpp"
 #include "io/h5md.hpp"
 #include "io/namelist.hpp"
+#include "run/progress.hpp"
 #include "run/replica.hpp"
 #include "scratch_dir.hpp"
 
@@ -215,4 +216,22 @@ TEST(Simulation, TheEnergyGuardStopsAGasThatHeats) {
     EXPECT_NE(m.find("rose from 0.5 to 0.51 between t = 10 and t = 20"), std::string::npos) << m;
   }
   EXPECT_NO_THROW(gdsmc::simulation::check_energy_does_not_grow(r, "total_energy"));  // no such row
+}
+
+// The progress line's t and T with more replicas than threads: the replicas that have not begun (t = 0)
+// and those done (later t, lower T) are left out while any runs; when none runs, the finished ones'.
+TEST(Progress, PositionOfTheRunningReplicas) {
+  const double none = std::nan("");
+  // 0, 1 finished at t = 8 (T 0.5, 0.7), 2, 3 running at t = 3 and 2 (T 1.0, 2.0), 4 not begun
+  const std::vector<double> fraction{1.0, 1.0, 0.4, 0.3, 0.0}, time{8.0, 8.0, 3.0, 2.0, 0.0},
+      temperature{0.5, 0.7, 1.0, 2.0, none};
+  const std::vector<char> started{1, 1, 1, 1, 0};
+  EXPECT_EQ(gdsmc::simulation::replicas_position(fraction, time, temperature, started), ", t = 2, T = 1.5 at the last sample");
+  // none running: the finished ones' latest t and mean T
+  const std::vector<char> waiting{1, 1, 0, 0, 0};
+  EXPECT_EQ(gdsmc::simulation::replicas_position(fraction, time, temperature, waiting), ", t = 8, T = 0.6 at the last sample");
+  // a running replica without a sample yet: no T
+  EXPECT_EQ(gdsmc::simulation::replicas_position({0.1}, {0.5}, {none}, {1}), ", t = 0.5");
+  // nothing begun
+  EXPECT_EQ(gdsmc::simulation::replicas_position({0.0, 0.0}, {0.0, 0.0}, {none, none}, {0, 0}), ", t = 0");
 }

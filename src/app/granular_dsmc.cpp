@@ -707,6 +707,14 @@ int run_program(int argc, char** argv) {
   std::string busy;
   if (root) try {
       lock.emplace(gdsmc::simulation::lock_path(config.output.file));
+      // Under the lock no other run writes this output or its checkpoints: a temporary of theirs is what a
+      // killed run left, whatever its process id has become since (the other ranks wait below, none of
+      // theirs exists yet).
+      if (lock->held()) {
+        gdsmc::io::h5md::remove_others_temporaries(config.output.file);
+        for (int rank = 0; rank < gdsmc::parallel::size(); ++rank)
+          gdsmc::io::h5md::remove_others_temporaries(gdsmc::simulation::checkpoint_path(config.output.file, rank));
+      }
     } catch (const gdsmc::io::LockRefused& e) {
       busy = e.what();
     }

@@ -188,10 +188,28 @@ Collider::State Collider::state() const {
   return st;
 }
 
+double time_at_rest(double t_target) {
+  // (a gas at rest is no state of a run: particles::restore refuses one; bounds forged to zero remain)
+  if (std::isinf(t_target))
+    throw std::runtime_error("collide: every speed bound is zero, so no collision can come and the event target is "
+                             "never reached (a state no run makes: a damaged checkpoint?)");
+  return t_target;
+}
+
 void Collider::restore(const State& st) {
   if (st.max_speed.size() != s_ || st.max_speed2.size() != s_ || st.pending.size() != 4 * lookahead ||
       st.pending_next >= lookahead || st.counters.pair_events.size() != counters_.pair_events.size())
     throw std::invalid_argument("collide: the saved state does not fit this collider");
+  // What every run keeps: time from 0, a credit (the time since the last candidate) within it, bounds >= 0.
+  const auto within_time = [&](double credit) { return credit >= 0.0 && credit <= st.time; };
+  const auto non_negative = [](const std::vector<double>& v) {
+    return std::all_of(v.begin(), v.end(), [](double x) { return x >= 0.0; });
+  };
+  if (!(st.time >= 0.0) || !within_time(st.credit) || !std::all_of(st.block_credit.begin(), st.block_credit.end(), within_time))
+    throw std::invalid_argument("collide: the saved time or credit is negative, or a credit exceeds the time");
+  if (!(st.next_step_time >= 0.0) || !non_negative(st.max_speed) || !non_negative(st.max_speed2) ||
+      !non_negative(st.block_max_speed2))
+    throw std::invalid_argument("collide: a saved step time or speed bound is negative");
   time_ = st.time;
   credit_ = st.credit;
   next_step_time_ = st.next_step_time;
@@ -419,7 +437,7 @@ bool Collider::advance(double t_target, std::uint64_t event_target, bool exact_e
       recompute_max_speeds();
       rebuild_bounds();
       if (rate_ <= 0.0) {  // all particles at rest: nothing can ever collide
-        time_ = t_target;
+        time_ = time_at_rest(t_target);
         return false;
       }
       // dt = step_fraction / nu_max, nu_max = 2 R / N (header)

@@ -257,6 +257,10 @@ inline double map_velocities(particles::Vec3* v, std::size_t count, double m, do
   return max2;
 }
 
+/// The time a gas whose speed bounds are all zero reaches (no candidate comes): `t_target`; an infinite one
+/// (an event target, never reached) throws std::runtime_error (only a damaged checkpoint makes such bounds).
+double time_at_rest(double t_target);
+
 /// The collision stage of one replica: particles, pair constants, bounds, clock and generator.
 class Collider {
  public:

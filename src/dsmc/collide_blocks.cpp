@@ -557,7 +557,7 @@ bool Collider::advance_blocks(double t_target, std::uint64_t event_target, bool 
       bool sampler_changed = false;
       const double rate = blocked_step_rate(sampler_changed);
       if (rate <= 0.0) {
-        time_ = t_target;
+        time_ = time_at_rest(t_target);
         return false;
       }
       begin_blocked_step(approach_target(block_step_length(rate, sampler_changed), rate, exact_target, sampler_changed),

@@ -156,6 +156,10 @@ void restore(System& sys, const state::Record& r) {
     const auto& values = r.array(key, a.size() * (sizeof(a[0]) / sizeof(double)));
     std::memcpy(a.data(), values.data(), values.size() * sizeof(double));
   });
+  // A gas at rest is no state of a run (it starts at T > 0, and no collision stops both partners): nothing
+  // would collide again, and a collision-driven sample would never come.
+  if (std::all_of(sys.v.begin(), sys.v.end(), [](const Vec3& u) { return u.x == 0.0 && u.y == 0.0 && u.z == 0.0; }))
+    throw state::StateError("every particle is at rest");
 }
 
 }  // namespace gdsmc::particles

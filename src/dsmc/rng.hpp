@@ -20,6 +20,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 #include <limits>
 
 namespace gdsmc::rng {
@@ -97,7 +98,11 @@ class Xoshiro256pp {
     double spare;
   };
   State state() const { return {{s_[0], s_[1], s_[2], s_[3]}, has_spare_, spare_}; }
+  /// Throws std::invalid_argument for four zero words: xoshiro's fixed point, which draws 0 for ever (a
+  /// direction drawn by rejection would never end), never a state of a seeded stream.
   void set_state(const State& state) {
+    if ((state.s[0] | state.s[1] | state.s[2] | state.s[3]) == 0)
+      throw std::invalid_argument("rng: a generator state of four zero words (xoshiro256++'s fixed point)");
     for (int k = 0; k < 4; ++k) s_[k] = state.s[k];
     has_spare_ = state.has_spare;
     spare_ = state.spare;

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 #include <utility>
 
@@ -584,10 +585,21 @@ struct Writer::Impl {
 };
 
 namespace {
-/// Removes `<path>.tmp.<pid>` files whose process no longer exists: what a run killed with SIGKILL
-/// (or a power cut) left behind, which would otherwise pile up over restarts. A temporary of a
-/// process that is still running (another run writing the same file) is left alone.
-void remove_stale_temporaries(const std::string& path) {
+/// Whether process `pid` is alive: it exists and is not a zombie (a process killed a moment ago whose
+/// parent has not yet collected it still answers kill(pid, 0)).
+bool process_alive(long pid) {
+  if (::kill(static_cast<pid_t>(pid), 0) == -1 && errno == ESRCH) return false;
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  if (!std::getline(stat, line)) return true;  // (no /proc: taken as alive)
+  const std::size_t name_end = line.rfind(')');  // "pid (name) S ...": the name may hold spaces and ')'
+  return !(name_end != std::string::npos && name_end + 2 < line.size() &&
+           (line[name_end + 2] == 'Z' || line[name_end + 2] == 'X'));
+}
+
+/// Removes the `<path>.tmp.<pid>` files of other processes; with `only_dead`, only those whose process is
+/// no longer alive (a temporary of a process still running, another run writing the same file, is left).
+void remove_temporaries(const std::string& path, bool only_dead) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::path target(path);
@@ -600,7 +612,10 @@ void remove_stale_temporaries(const std::string& path) {
     if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
     const long pid = std::stol(digits);
     if (pid <= 0 || pid == static_cast<long>(::getpid())) continue;
-    if (::kill(static_cast<pid_t>(pid), 0) == -1 && errno == ESRCH) fs::remove(it->path(), ec);
+    if (!only_dead || !process_alive(pid)) {
+      std::error_code removed;
+      fs::remove(it->path(), removed);
+    }
   }
 }
 
@@ -642,6 +657,8 @@ std::string kept_path(const std::string& final_path) {
 }
 }  // namespace
 
+void remove_others_temporaries(const std::string& path) { remove_temporaries(path, false); }
+
 bool written_by(const std::string& path, const std::string& creator) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) return false;
@@ -665,7 +682,7 @@ Writer::Writer(std::string final_path, std::string author, std::string creator_n
     : impl_(std::make_unique<Impl>()) {
   Impl& d = *impl_;
   d.final_path = std::move(final_path);
-  remove_stale_temporaries(d.final_path);
+  remove_temporaries(d.final_path, true);  // what a run killed with SIGKILL (or a power cut) left behind
   d.temp_path = d.final_path + ".tmp." + std::to_string(::getpid());
   d.creator = creator_name;
   with_context(d.context(), [&] {

@@ -49,7 +49,8 @@
  * and the data are fsync'ed first). A reader therefore sees either the previous file or the
  * complete new one, never a truncated one. A Writer destroyed without commit (an exception, a
  * failed run) deletes its temporary file, so a failed run leaves no half-written output behind;
- * only a killed process can leave a `.tmp.<pid>` file, and never under the final name. The temporary
+ * only a killed process can leave a `.tmp.<pid>` file, and never under the final name; the next Writer of
+ * that path removes it when its process is gone (remove_others_temporaries() whatever the process). The temporary
  * is created exclusively and not through a link (O_EXCL | O_NOFOLLOW): a link planted at its name is
  * removed, never written through. Just before the rename the final path is looked at again: a file
  * that is not this creator's (written_by()) and appeared there during the run is not replaced (unless
@@ -234,6 +235,11 @@ std::vector<std::uint64_t> read_integers(const std::string& file, const std::str
 /// matrices of /parameters).
 ParameterValue read_attribute(const std::string& file, const std::string& object_path,
                               const std::string& name);
+/// Removes every `<path>.tmp.<pid>` file of another process, alive or not: for the holder of the lock that
+/// keeps other runs off `path` (file_lock.hpp), to whom any such file is what a killed run left (its
+/// process id possibly reused since, or of another node). A Writer removes only those of processes no
+/// longer alive.
+void remove_others_temporaries(const std::string& path);
 /// Whether `path` is a regular HDF5 file whose `/h5md/creator@name` is `creator` (an earlier output of
 /// the program that may replace it); false for anything else, without opening a FIFO or a device.
 bool written_by(const std::string& path, const std::string& creator);

@@ -8,6 +8,31 @@
 
 namespace gdsmc::simulation {
 
+std::string replicas_position(const std::vector<double>& fraction, const std::vector<double>& time,
+                              const std::vector<double>& temperature, const std::vector<char>& started) {
+  // The replicas running now (started, not finished): with more replicas than threads the others have not
+  // begun (t = 0) or are done (a later t, a lower T), and a mean over all would mix the waves.
+  const auto position = [&](bool running) {
+    double t = running ? std::numeric_limits<double>::infinity() : 0.0, sum = 0.0;
+    std::size_t units = 0, counted = 0;
+    for (std::size_t u = 0; u < time.size(); ++u) {
+      if (!started[u] || (fraction[u] < 1.0) != running) continue;
+      ++units;
+      t = running ? std::min(t, time[u]) : std::max(t, time[u]);
+      if (!std::isnan(temperature[u])) sum += temperature[u], ++counted;
+    }
+    char text[80] = "";
+    if (units == 0) return std::string();
+    if (counted == 0) std::snprintf(text, sizeof text, ", t = %.4g", t);
+    else std::snprintf(text, sizeof text, ", t = %.4g, T = %.4g at the last sample", t, sum / static_cast<double>(counted));
+    return std::string(text);
+  };
+  const std::string running = position(true);
+  if (!running.empty()) return running;
+  const std::string finished = position(false);
+  return finished.empty() ? ", t = 0" : finished;
+}
+
 bool ProgressLine::due(double fraction_done) const {
   if (!enabled_) return false;
   if (!terminal_ && fraction_done >= 1.0) return false;  // the summary line follows
@@ -47,7 +72,7 @@ void ProgressLine::finish() {
 
 Progress::Progress(bool enabled, bool terminal, std::vector<std::size_t> point_of, std::size_t points)
     : line_(enabled, terminal), partial_(point_of.size(), 0.0), time_(point_of.size(), 0.0),
-      temperature_(point_of.size(), std::nan("")), point_of_(std::move(point_of)), open_(points, 0) {
+      temperature_(point_of.size(), std::nan("")), started_(point_of.size(), 0), point_of_(std::move(point_of)), open_(points, 0) {
   for (std::size_t p : point_of_) ++open_[p];
   for (std::size_t n : open_) points_ += n > 0 ? 1 : 0;
 }
@@ -63,25 +88,13 @@ void Progress::update(std::size_t slot, double fraction, double time, std::uint6
   }
   events_ += new_events;
   time_[slot] = time;
+  started_[slot] = 1;
   if (!std::isnan(temperature)) temperature_[slot] = temperature;
   const double done = std::min(sum_ / static_cast<double>(partial_.size()), units_done_ == partial_.size() ? 1.0 : 0.999);
   if (!line_.due(done)) return;
   std::string what = std::to_string(units_done_) + "/" + std::to_string(partial_.size()) + " replicas";
   if (points_ > 1) what += ", " + std::to_string(points_done_) + "/" + std::to_string(points_) + " sweep points";
-  if (points_ <= 1) {  // one point: where its replicas are (the slowest one's time, their mean T at the last sample)
-    double slowest = std::numeric_limits<double>::infinity(), latest = 0.0, sum = 0.0;
-    std::size_t counted = 0;
-    for (std::size_t u = 0; u < time_.size(); ++u) {
-      if (partial_[u] < 1.0) slowest = std::min(slowest, time_[u]);  // the replicas still running
-      latest = std::max(latest, time_[u]);
-      if (!std::isnan(temperature_[u])) sum += temperature_[u], ++counted;
-    }
-    if (std::isinf(slowest)) slowest = latest;
-    char t[80];
-    if (counted == 0) std::snprintf(t, sizeof t, ", t = %.4g", slowest);
-    else std::snprintf(t, sizeof t, ", t = %.4g, T = %.4g at the last sample", slowest, sum / static_cast<double>(counted));
-    what += t;
-  }
+  if (points_ <= 1) what += replicas_position(partial_, time_, temperature_, started_);
   const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
   line_.update(done, what, elapsed > 0 ? static_cast<double>(events_) / elapsed : 0.0);
 }

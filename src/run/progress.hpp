@@ -8,7 +8,8 @@
  * work done (the mean of the units' fractions), the replicas and sweep points finished, the collision
  * rate since the start over all threads (collisions per wall-clock second: the summary's "overall"
  * rate) and the ETA ("-" until there is a rate to tell it from); for a run that is not a sweep the
- * simulated time of its slowest replica and the mean T of the replicas at their last samples. Every update is O(1), and the text is composed only when a line is due.
+ * simulated time of its slowest running replica and the mean T of the running replicas at their last samples
+ * (replicas_position). Every update is O(1), and the text is composed only when a line is due.
  * Under MPI rank 0 prints its own units.
  */
 #pragma once
@@ -42,6 +43,12 @@ class ProgressLine {
   Clock::time_point start_, last_{};
 };
 
+/// ", t = .., T = .. at the last sample" of the progress line: the slowest running unit's time (started,
+/// `fraction` < 1) and the running units' mean `temperature` at their last samples (NaN: none yet; no T
+/// while none has one); when none is running, the latest time and mean T of the finished units.
+std::string replicas_position(const std::vector<double>& fraction, const std::vector<double>& time,
+                              const std::vector<double>& temperature, const std::vector<char>& started);
+
 /// Progress over all units of this rank (replicas of every sweep point), shared by its threads.
 class Progress {
  public:
@@ -59,6 +66,7 @@ class Progress {
   std::vector<double> partial_;
   std::vector<double> time_;         ///< each unit's simulated time
   std::vector<double> temperature_;  ///< each unit's T at its last sample (NaN: none yet)
+  std::vector<char> started_;        ///< each unit's first update came
   std::vector<std::size_t> point_of_;
   std::vector<std::size_t> open_;  ///< units of each point not finished
   std::size_t points_ = 0, points_done_ = 0, units_done_ = 0;

@@ -833,6 +833,8 @@ ReplicaResult run_replica(const io::config::Config& config, std::size_t replica,
       throw RestartError(std::string("the checkpoint does not fit this build: ") + e.what());
     } catch (const state::StateError& e) {
       throw RestartError(std::string("the checkpoint is damaged: ") + e.what());
+    } catch (const std::invalid_argument& e) {  // (a state the modules refuse: a zero stream, a bound out of range)
+      throw RestartError(std::string("the checkpoint is damaged: ") + e.what());
     }
   } else {
     engine->start();
