@@ -952,6 +952,14 @@ TEST(ConfigError, SweepShapeMistakesNameTheVariable) {
       {"&sweep variable = 'system:restitutoin', values = 0.5 /", "(did you mean 'system:restitution'?)"},
       {"&sweep variable = 'restitution', values = 0.5 /", "(did you mean 'system:restitution'?)"},
       {"&sweep variable = 'system:restitutoin(1,1)', values = 0.5 /", "(did you mean 'system:restitution(1,1)'?)"},
+      // (a right name with an index from 0: the index named, not the name offered back)
+      {"&sweep variable = 'system:mass(0)', values = 1.0 /",
+       "t.nml:18: &sweep: variable: 'system:mass(0)': an index is a whole number from 1, as in 'group:name(i)'"},
+      // (the whole list and one of its elements: the element's value depended on their order)
+      {"&sweep variable = 'system:mass', 'system:mass(2)', values = '1.0, 5.0', 3.0 /",
+       "'system:mass(2)' and 'system:mass' both set system:mass(2): sweep the whole mass or its elements, not both"},
+      {"&sweep variable = 'system:restitution(1,2)', 'system:restitution', values = 0.5, '0.9, 0.9, 0.9, 0.9' /",
+       "'system:restitution' and 'system:restitution(1,2)' both set system:restitution(1,2)"},
   };
   for (const auto& [group, expected] : cases) {
     try {
@@ -1104,6 +1112,10 @@ TEST(ConfigShear, BadInputNamesTheVariable) {
 TEST(ConfigShear, ThermostatWithAggFragIsRefused) {
   const std::string text = monomers("&agg_frag aggregation_energy = 0.5 /\n&thermostat kind = 'gaussian' /");
   expect_error(error_of(text), 6, "thermostat", "kind", {"cannot run with &agg_frag"});
+  // (shear alone: the message names no thermostat)
+  const std::string sheared = monomers("&agg_frag aggregation_energy = 0.5 /\n&shear rate = 0.05 /");
+  expect_error(error_of(sheared), 6, "shear", "rate",
+               {"&shear cannot run with &agg_frag: no forcing acts on the clusters' gas, which cools freely"});
 }
 
 // ---------------------------------------------------------------------------------------------

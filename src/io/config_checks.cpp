@@ -467,7 +467,7 @@ void check_staged(const Config& c, std::map<std::string, Provenance>& prov) {
   const std::string what = c.shear.rate ? "&shear" : "&thermostat";
   if (c.has_agg_frag)
     refuse(c.shear.rate ? "shear" : "thermostat", c.shear.rate ? "rate" : "kind",
-           what + " cannot run with &agg_frag (the thermostat would feed the clusters' energy back)");
+           what + " cannot run with &agg_frag: no forcing acts on the clusters' gas, which cools freely");
   if (c.system.enskog && c.shear.rate && c.dsmc.scheme != Scheme::pairs)
     refuse("dsmc", "scheme",
            "shear flow in the Enskog gas runs with scheme = 'pairs' only: its relative velocity "

@@ -199,6 +199,12 @@ void check_sweep(const Config& c, const Provenance& prov, const namelist::Docume
     const SweepTarget t = parse_target(written);
     if (!t.ok || t.group == "sweep" || owning_group(t.name) != t.group) {
       const std::string hint = closest_target(written);
+      std::string folded;  // (the hint's case and spacing: a hint equal to it leaves the index as the fault)
+      for (char ch : written)
+        if (ch != ' ') folded += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+      if (!hint.empty() && folded == hint)
+        throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
+                    "'" + written + "': an index is a whole number from 1, as in 'group:name(i)' or 'group:name(i,j)'");
       throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
                   "'" + written + "' is not 'group:name' (or 'group:name(i)', 'group:name(i,j)') of a variable of "
                   "&system, &initial, &dsmc, &output, &agg_frag, &thermostat or &shear" +
@@ -213,12 +219,20 @@ void check_sweep(const Config& c, const Provenance& prov, const namelist::Docume
       if (index.size() == 2 && index[0] > index[1]) std::swap(index[0], index[1]);
       return index;
     };
-    for (std::size_t w = 0; w < v; ++w)
-      if (const SweepTarget other = parse_target(sweep.variable[w]);
-          other.group == t.group && other.name == t.name && element(other.index) == element(t.index))
+    for (std::size_t w = 0; w < v; ++w) {
+      const SweepTarget other = parse_target(sweep.variable[w]);
+      if (other.group != t.group || other.name != t.name) continue;
+      if (element(other.index) == element(t.index))
         throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
                     "'" + written + "' is swept twice" +
                         (other.index == t.index ? std::string() : " (as '" + sweep.variable[w] + "': the matrix is symmetric)"));
+      // (the whole variable and one of its elements: which value an element took would depend on their order)
+      if (other.index.empty() != t.index.empty())
+        throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
+                    "'" + written + "' and '" + sweep.variable[w] + "' both set " +
+                        (t.index.empty() ? sweep.variable[w] : written) + ": sweep the whole " + t.name +
+                        " or its elements, not both");
+    }
     const int rank = variable_rank(t.group, t.name);
     if (!t.index.empty() && static_cast<int>(t.index.size()) != rank)
       throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
