@@ -230,6 +230,27 @@ TEST(CompareRows, HaffAgainstHandComputedNumbers) {
   EXPECT_EQ(table_rows[1].mark, cmp::Mark::statistics);
 }
 
+// Viscoelastic restitution has no constant a2, so no known error: its rows name no source of one ("none
+// stated"), as the null known_error and the mark '?' say (a user read the Maxwellian source beside a null).
+TEST(CompareRows, ViscoelasticRowsStateNoKnownError) {
+  const auto c = read_text(
+      "&system\n n_species = 1\n mass = 1.0\n diameter = 1.0\n number_density = 0.01\n"
+      " restitution_model = 'viscoelastic'\n visco_a_kappa = 0.1\n/\n&initial\n temperature = 1.0\n/\n"
+      "&dsmc\n n_particles = 1000\n t_end = 1000.0\n replicas = 8\n/\n&output\n n_samples = 5\n/\n");
+  const auto theory = gdsmc::analysis::predict(c);
+  const std::vector<double> times{0.0, 250.0, 500.0, 750.0, 1000.0};
+  cmp::Measured m;
+  m.observables["total_temperature"] = series(times, theory.total_temperature, std::vector<double>(5, 1e-3), 1);
+  m.observables["collisions_per_particle"] =
+      series(times, theory.collisions_per_particle, std::vector<double>(5, 0.01), 1);
+  const auto pt = cmp::compare_point(c, theory, m);
+  for (const char* name : {"total_temperature", "collisions_per_particle"}) {
+    const auto& q = find(pt, name);
+    EXPECT_EQ(q.known_error_source, "none stated") << name;
+    for (std::size_t i = 1; i < q.known_error.size(); ++i) EXPECT_TRUE(std::isnan(q.known_error[i])) << name << " " << i;
+  }
+}
+
 // (D-T)/T % of a theory value that is zero up to round-off (the cooling rate of an elastic, perfectly rough
 // gas came out as -3.7e-17 and its percentage as -3e15): not shown (NaN) where |T| <= 1e-12 max(|D|, SE) (the SE
 // too: a T of 1.5e-15 beside D = 1e-3 +- 2e-3);

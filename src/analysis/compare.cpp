@@ -175,8 +175,10 @@ void add_free_cooling(Point& pt, const io::config::Config& config, const analysi
     return &o;
   };
   const double t0 = p.total_temperature.front();
+  // (viscoelastic restitution: eps is NaN, no known error, and so no source of one)
+  const std::string ode_source = viscoelastic ? kNone : kMaxwellianOdeSource;
   if (const auto* o = aligned("total_temperature")) {
-    Quantity q{"total_temperature", "T", "maxwellian", kMaxwellianOdeSource, o->time, 1, o->value, errors_or_nan(*o),
+    Quantity q{"total_temperature", "T", "maxwellian", ode_source, o->time, 1, o->value, errors_or_nan(*o),
                p.total_temperature, {}};
     for (std::size_t i = 0; i < nt; ++i)
       q.known_error.push_back((1.0 + kFirstSonineShare) * eps * std::abs(std::log(t0 / p.total_temperature[i])) *
@@ -186,7 +188,7 @@ void add_free_cooling(Point& pt, const io::config::Config& config, const analysi
   if (s > 1)
     if (const auto* o = aligned("temperature")) {
       Quantity q{"temperature", "T_{k}", "maxwellian",
-                 std::string(kMaxwellianOdeSource) + "; plus 1.15 |tau_k^M/tau_k^FS - 1| (mixtures)", o->time, s,
+                 viscoelastic ? ode_source : ode_source + "; plus 1.15 |tau_k^M/tau_k^FS - 1| (mixtures)", o->time, s,
                  o->value, errors_or_nan(*o), {}, {}};
       for (std::size_t i = 0; i < nt; ++i)
         for (std::size_t k = 0; k < s; ++k) {
@@ -201,7 +203,8 @@ void add_free_cooling(Point& pt, const io::config::Config& config, const analysi
     return (1.0 + kFirstSonineShare) * (a2_max / 16.0 + 0.5 * eps * std::abs(std::log(t0 / p.total_temperature[i])));
   };
   const std::string collision_source =
-      "collision frequency (1 - a2/16) along T off by eps |ln(T0/T)| (validation/collision_rate), plus 15 %";
+      viscoelastic ? kNone
+                   : "collision frequency (1 - a2/16) along T off by eps |ln(T0/T)| (validation/collision_rate), plus 15 %";
   if (!config.sample_times().empty()) {
     if (const auto* o = aligned("collisions_per_particle")) {
       Quantity q{"collisions_per_particle", "collisions/particle", "maxwellian", collision_source, o->time, 1,
