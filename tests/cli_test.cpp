@@ -520,6 +520,16 @@ TEST_F(CliDsmc, StaleTemporariesOfDeadRunsAreRemoved) {
   const Result r = dsmc(base());
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(files(), (std::vector<std::string>{"other.h5" + live, "out.h5", "out.h5.tmp.7x", "t.nml"}));
+  // The checkpoint's name as the output of a run at work (this process holds its lock): that run's temporary
+  // is its own, and stays.
+  for (const std::string& f : std::vector<std::string>{"other.h5" + live, "out.h5", "out.h5.tmp.7x"}) fs::remove(dir / f);
+  {
+    const gdsmc::io::FileLock at_work((dir / "out.checkpoint.lock").string());
+    write("out.checkpoint.h5" + live, "at work");
+    const Result again = dsmc(base());
+    EXPECT_EQ(again.status, 0) << again.err;
+    EXPECT_TRUE(fs::exists(dir / ("out.checkpoint.h5" + live)));
+  }
 }
 
 /// Starts an endless run (t_end = 1e30, asked for with allow_long_run, checkpoints every 0.2 s),
@@ -883,6 +893,74 @@ TEST_F(CliDsmc, AForgedCheckpointFieldIsRefusedByItsCheck) {
     EXPECT_EQ(r.err.rfind("granular-dsmc: --restart: the checkpoint is damaged: ", 0), 0u) << r.err;
     EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
   }
+}
+
+// Forged fields of a blocked run's checkpoint (31 blocks of 64 of its 2000 particles): a negative block credit
+// or step time is refused (exit 2); block bounds forged to zero in a collision-driven run, under which no
+// collision can come, end it in one line (exit 1) instead of samples at infinite times.
+TEST_F(CliDsmc, AForgedBlockedCheckpointIsRefusedOrEndsInOneLine) {
+  ASSERT_EQ(interrupt_an_endless_run(*this, 1500000, "  file = 'out.h5', n_samples = 3, checkpoint_every = 0.2",
+                                     "  collisions_per_particle = 1e9, allow_long_run = .true., replicas = 1, "
+                                     "block_size = 64")
+                .first,
+            130);
+  const fs::path original = dir / "original.h5";
+  fs::copy_file(dir / "out.checkpoint.h5", original);
+  const std::string unit = "/checkpoint/running/unit_0";
+  // (the run cooled to t ~ 1e23: a credit's round-off allowance, 1e-12 of the time, is ~1e11 there)
+  const std::vector<std::tuple<std::string, double, int, std::string, bool>> forgeries{
+      {"collider/block_credit", -1e300, 2, "the checkpoint is damaged: collide: the saved time or credit is negative",
+       false},
+      {"collider/next_step_time", -1.0, 2,
+       "the checkpoint is damaged: collide: a saved step time or speed bound is negative", false},
+      {"collider/block_max_speed2", 0.0, 1, "collide: every speed bound is zero, so no collision can come", true},
+  };
+  for (const auto& [name, value, status, message, every] : forgeries) {
+    fs::copy_file(original, dir / "out.checkpoint.h5", fs::copy_options::overwrite_existing);
+    forge_checkpoint((dir / "out.checkpoint.h5").string(), unit, name, value, false, every);
+    const Result r = run("granular-dsmc", "t.nml --quiet --restart out.checkpoint.h5", 60);
+    EXPECT_EQ(r.status, status) << name << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+  }
+}
+
+// A speed forged 1e8-fold in a blocked run's checkpoint makes the one-species kernel's sub-step hours long
+// (its bound rises within it, and the candidates' rate with it): Ctrl-C still ends the resumed run within
+// seconds, as the kernel looks at the flag between chunks of 2^20 candidates.
+TEST_F(CliDsmc, AForgedFastParticleStillStopsAtSigint) {
+  // (elastic: the speeds stay about 1, so that 1e8 raises a block's bound 1e8-fold, some 1e11 candidates; in a
+  // gas cooled for ever the count would pass 2^64)
+  ASSERT_EQ(interrupt_an_endless_run(*this, 1500000, "  file = 'out.h5', n_samples = 3, checkpoint_every = 0.2",
+                                     "  t_end = 1e30, allow_long_run = .true., replicas = 1, block_size = 64",
+                                     "  restitution = 1.0")
+                .first,
+            130);
+  forge_checkpoint((dir / "out.checkpoint.h5").string(), "/checkpoint/running/unit_0", "particles/velocity", 1e8, false);
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    if (::chdir(dir.c_str()) != 0) ::_exit(120);
+    if (!std::freopen((capture / "stderr").c_str(), "w", stderr)) ::_exit(121);
+    const std::string tool = (fs::path(GDSMC_BIN_DIR) / "granular-dsmc").string();
+    ::execl(tool.c_str(), tool.c_str(), "t.nml", "--quiet", "--restart", "out.checkpoint.h5", static_cast<char*>(nullptr));
+    ::_exit(122);
+  }
+  ::usleep(1500000);
+  const auto sent = std::chrono::steady_clock::now();
+  ::kill(pid, SIGINT);
+  int status = 0;
+  pid_t done = 0;
+  while ((done = ::waitpid(pid, &status, WNOHANG)) == 0 && std::chrono::steady_clock::now() - sent < std::chrono::seconds(10))
+    ::usleep(10000);
+  if (done == 0) {
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+  }
+  EXPECT_NE(done, 0) << "the resumed run did not end within 10 s of SIGINT";
+  // (130, or 1 when the sample after the stop finds the energy the forged speed brought: either in one line)
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_TRUE(WEXITSTATUS(status) == 130 || WEXITSTATUS(status) == 1) << WEXITSTATUS(status);
 }
 
 // A whole time series deleted from a running unit's record (valid checksum): which rows a replica writes

@@ -205,7 +205,8 @@ TEST(H5md, TemporariesOfGoneProcessesAreRemoved) {
   const pid_t zombie = ::fork();
   if (zombie == 0) ::_exit(0);
   ASSERT_GT(zombie, 0);
-  ::usleep(100000);  // (it has exited: a zombie until waited for below)
+  siginfo_t exited{};
+  ASSERT_EQ(::waitid(P_PID, static_cast<id_t>(zombie), &exited, WEXITED | WNOWAIT), 0);  // (a zombie until waited for)
   const std::string of_zombie = path + ".tmp." + std::to_string(zombie), of_live = path + ".tmp.1";
   const std::string not_a_pid = path + ".tmp.1x", other_path = dir.file("other.h5") + ".tmp.4194300";
   for (const std::string& f : {of_zombie, of_live, not_a_pid, other_path}) std::ofstream(f) << "left";

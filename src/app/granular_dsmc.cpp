@@ -710,11 +710,18 @@ int run_program(int argc, char** argv) {
       lock.emplace(gdsmc::simulation::lock_path(config.output.file));
       // Under the lock no other run writes this output or its checkpoints: a temporary of theirs is what a
       // killed run left, whatever its process id has become since (the other ranks wait below, none of
-      // theirs exists yet).
+      // theirs exists yet). A checkpoint's name may be another run's output (x.checkpoint.h5 beside x.h5),
+      // whose own lock then says whether that run is at work.
       if (lock->held()) {
         gdsmc::io::h5md::remove_others_temporaries(config.output.file);
-        for (int rank = 0; rank < gdsmc::parallel::size(); ++rank)
-          gdsmc::io::h5md::remove_others_temporaries(gdsmc::simulation::checkpoint_path(config.output.file, rank));
+        for (int rank = 0; rank < gdsmc::parallel::size(); ++rank) {
+          const std::string checkpoint = gdsmc::simulation::checkpoint_path(config.output.file, rank);
+          try {
+            const gdsmc::io::FileLock idle(gdsmc::simulation::lock_path(checkpoint));
+            gdsmc::io::h5md::remove_others_temporaries(checkpoint);
+          } catch (const gdsmc::io::LockRefused&) {  // (a run of that output at work, or a file there: left)
+          }
+        }
       }
     } catch (const gdsmc::io::LockRefused& e) {
       busy = e.what();

@@ -200,8 +200,11 @@ void Collider::restore(const State& st) {
   if (st.max_speed.size() != s_ || st.max_speed2.size() != s_ || st.pending.size() != 4 * lookahead ||
       st.pending_next >= lookahead || st.counters.pair_events.size() != counters_.pair_events.size())
     throw std::invalid_argument("collide: the saved state does not fit this collider");
-  // What every run keeps: time from 0, a credit (the time since the last candidate) within it, bounds >= 0.
-  const auto within_time = [&](double credit) { return credit >= 0.0 && credit <= st.time; };
+  // What every run keeps: time from 0, a credit (the time since the last candidate) within it, bounds >= 0;
+  // up to round-off (before a first candidate the credit sums the cuts' lengths, credit + (t_stop - time),
+  // which can round one step above t_stop; available - n dt a few steps below 0).
+  const double slack = 1e-12 * st.time;
+  const auto within_time = [&](double credit) { return credit >= -slack && credit <= st.time + slack; };
   const auto non_negative = [](const std::vector<double>& v) {
     return std::all_of(v.begin(), v.end(), [](double x) { return x >= 0.0; });
   };

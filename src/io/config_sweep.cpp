@@ -199,10 +199,13 @@ void check_sweep(const Config& c, const Provenance& prov, const namelist::Docume
     const SweepTarget t = parse_target(written);
     if (!t.ok || t.group == "sweep" || owning_group(t.name) != t.group) {
       const std::string hint = closest_target(written);
-      std::string folded;  // (the hint's case and spacing: a hint equal to it leaves the index as the fault)
-      for (char ch : written)
-        if (ch != ' ') folded += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-      if (!hint.empty() && folded == hint)
+      const auto folded = [](const std::string& text) {  // (case and spaces: a hint equal to the name leaves the index)
+        std::string out;
+        for (char ch : text)
+          if (ch != ' ') out += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+        return out;
+      };
+      if (!hint.empty() && folded(written) == folded(hint))
         throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
                     "'" + written + "': an index is a whole number from 1, as in 'group:name(i)' or 'group:name(i,j)'");
       throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
