@@ -907,7 +907,7 @@ TEST_F(CliDsmc, AForgedBlockedCheckpointIsRefusedOrEndsInOneLine) {
   const fs::path original = dir / "original.h5";
   fs::copy_file(dir / "out.checkpoint.h5", original);
   const std::string unit = "/checkpoint/running/unit_0";
-  // (the run cooled to t ~ 1e23: a credit's round-off allowance, 1e-12 of the time, is ~1e11 there)
+  // (the run cooled to t ~ 1e23: a credit's round-off allowance, 1e-9 of the time, is ~1e14 there)
   const std::vector<std::tuple<std::string, double, int, std::string, bool>> forgeries{
       {"collider/block_credit", -1e300, 2, "the checkpoint is damaged: collide: the saved time or credit is negative",
        false},

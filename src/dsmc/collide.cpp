@@ -203,7 +203,7 @@ void Collider::restore(const State& st) {
   // What every run keeps: time from 0, a credit (the time since the last candidate) within it, bounds >= 0;
   // up to round-off (before a first candidate the credit sums the cuts' lengths, credit + (t_stop - time),
   // which can round one step above t_stop; available - n dt a few steps below 0).
-  const double slack = 1e-12 * st.time;
+  const double slack = 1e-9 * st.time;  // (each cut adds an ulp or so: a million cuts before a first candidate)
   const auto within_time = [&](double credit) { return credit >= -slack && credit <= st.time + slack; };
   const auto non_negative = [](const std::vector<double>& v) {
     return std::all_of(v.begin(), v.end(), [](double x) { return x >= 0.0; });
