@@ -2690,3 +2690,15 @@ TEST(Collide, ACreditRoundedAboveTheTimeIsRestored) {
   forged.max_speed2.assign(saved.max_speed2.size(), -1.0);
   EXPECT_THROW(b.restore(forged), std::invalid_argument);
 }
+
+// A sub-step's whole candidates, floor(available R): none for a negative or NaN product, at most 2^63 for one
+// that a checkpoint's forged bounds make larger than a uint64 holds (the conversion would be undefined).
+TEST(Collide, CandidateCountOfASubStep) {
+  using gdsmc::collide::candidate_count;
+  EXPECT_EQ(candidate_count(2.7), 2u);
+  EXPECT_EQ(candidate_count(0.0), 0u);
+  EXPECT_EQ(candidate_count(-1e-17), 0u);
+  EXPECT_EQ(candidate_count(std::nan("")), 0u);
+  EXPECT_EQ(candidate_count(1e30), std::uint64_t{1} << 63);
+  EXPECT_EQ(candidate_count(0x1p62), std::uint64_t{1} << 62);
+}

@@ -261,6 +261,14 @@ inline double map_velocities(particles::Vec3* v, std::size_t count, double m, do
 /// (an event target, never reached) throws std::runtime_error (only a damaged checkpoint makes such bounds).
 double time_at_rest(double t_target);
 
+/// The whole candidates of a sub-step, floor(`expected`) = floor(available R): 0 for none (or NaN), at most
+/// 2^63 (a count past 2^64, from a checkpoint's forged bounds, would overflow the conversion; no run's
+/// sub-step comes near it).
+inline std::uint64_t candidate_count(double expected) {
+  if (!(expected > 0.0)) return 0;
+  return expected < 0x1p63 ? static_cast<std::uint64_t>(expected) : std::uint64_t{1} << 63;
+}
+
 /// The collision stage of one replica: particles, pair constants, bounds, clock and generator.
 class Collider {
  public:

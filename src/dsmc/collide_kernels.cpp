@@ -339,7 +339,7 @@ void Collider::run_block_one_species(const Rule& rule, double t_stop) {
     rate_ = 0.5 * static_cast<double>(n) * n_density * bound_;
     const double dt_candidate = 1.0 / rate_;
     const double available = credit_ + (t_stop - time_);
-    const auto n_candidates = static_cast<std::uint64_t>(available * rate_);
+    const std::uint64_t n_candidates = candidate_count(available * rate_);
     const double t0 = time_ - credit_;
     bool raised = false, stopped = false;
     std::uint64_t c = 0;
@@ -503,7 +503,7 @@ void Collider::run_block_mixture([[maybe_unused]] const Rule& rule, double t_sto
   for (;;) {
     // rate_ (and bound_, or the alias table and w_k) are those of the block's current bounds.
     const double bound = bound_, dt_candidate = 1.0 / rate_, available = credit_ + (t_stop - time_);
-    const auto n_candidates = static_cast<std::uint64_t>(available * rate_);
+    const std::uint64_t n_candidates = candidate_count(available * rate_);
     const double t0 = time_ - credit_;
     bool raised = false, stopped = false;
     std::uint64_t c = 0;

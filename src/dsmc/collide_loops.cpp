@@ -47,7 +47,7 @@ template <class TryCandidate>
 int Collider::run_substep(double t_stop, std::uint64_t event_target, TryCandidate&& try_candidate) {
   const double dt_candidate = 1.0 / rate_;
   const double available = credit_ + (t_stop - time_);
-  const auto n_candidates = static_cast<std::uint64_t>(available * rate_);
+  const std::uint64_t n_candidates = candidate_count(available * rate_);
   const double t0 = time_ - credit_;
   for (std::uint64_t c = 0; c < n_candidates; ++c) {
     // An interrupt (set_stop_flag) seen every 2^16 candidates, however long the step: the run is then
