@@ -411,7 +411,7 @@ class Collider {
                std::uint64_t event_limit = UINT64_MAX, bool to_step_end = false);
   /// A flag (the caller's interrupt flag, set by a signal handler) that, once set, makes advance()
   /// return false at the next step start, before its targets, or within 2^16 candidates of an unblocked
-  /// loop (a long step is then cut: the run is abandoned); the caller sees an unfinished advance and
+  /// loop or a mixture's block, 2^20 of a one-species block (a long step is then cut: the run is abandoned); the caller sees an unfinished advance and
   /// stops. However small `step_fraction` is, a step start comes within one O(N) bound recomputation
   /// (tests/scale_out/interrupt.sh). Read only; nullptr (the default): never.
   void set_stop_flag(const std::atomic<bool>* flag) { stop_flag_ = flag; }
