@@ -343,56 +343,70 @@ void Collider::run_block_one_species(const Rule& rule, double t_stop) {
     const double t0 = time_ - credit_;
     bool raised = false, stopped = false;
     std::uint64_t c = 0;
-    // In chunks of 2^20 candidates (about 10 ms), between which an interrupt is seen: a sub-step is short in a
-    // run, but one begun from an extreme state (a bound raised a millionfold) could take hours; the candidates
-    // themselves do not look at the flag, so that they cost what they did.
-    while (c < n_candidates && !raised) {
-      if (c > 0 && stop_requested()) [[unlikely]] {
-        stopped = true;
-        break;
+    // One candidate, the k-th of the sub-step (from 0): true when a partner passed the bound, which then rises
+    // and ends the sub-step.
+    const auto candidate = [&](std::uint64_t k) __attribute__((always_inline)) {
+      const std::uint32_t a = ahead[2 * next], b = ahead[2 * next + 1];
+      draw(next);
+      next = (next + 1) % block_lookahead<Framed>;
+      double gx = v[a].x - v[b].x, gy = v[a].y - v[b].y, gz = v[a].z - v[b].z;
+      to_actual<Framed>(gx, gy, gz);
+      const double g2 = gx * gx + gy * gy + gz * gz;
+      // Accept with |g| / (2 vmax_b) = pi sigma^2 chi |g| / B_b (\ref sch_majorant "docs/schemes.md"), compared squared.
+      const double threshold = gen.uniform() * limit;
+      if (threshold * threshold >= g2) return false;
+      if (g2 > limit * limit) [[unlikely]] note_overshoot(std::sqrt(g2) / limit);
+      double px, py, pz;
+      const double g_dot_e2 = rules::hemisphere_projection(gen, gx, gy, gz, std::sqrt(g2), px, py, pz);
+      if (g_dot_e2 == 0.0) return false;
+      if constexpr (Track) {
+        const double t_collision = t0 + static_cast<double>(k + 1) * dt_candidate;
+        particles::flush_free_flight(sys_, first + a, t_collision);
+        particles::flush_free_flight(sys_, first + b, t_collision);
       }
-      const std::uint64_t chunk_end = std::min(n_candidates, c + (std::uint64_t{1} << 20));
-      for (; c < chunk_end; ++c) {
-        const std::uint32_t a = ahead[2 * next], b = ahead[2 * next + 1];
-        draw(next);
-        next = (next + 1) % block_lookahead<Framed>;
-        double gx = v[a].x - v[b].x, gy = v[a].y - v[b].y, gz = v[a].z - v[b].z;
-        to_actual<Framed>(gx, gy, gz);
-        const double g2 = gx * gx + gy * gy + gz * gz;
-        // Accept with |g| / (2 vmax_b) = pi sigma^2 chi |g| / B_b (\ref sch_majorant "docs/schemes.md"), compared squared.
-        const double threshold = gen.uniform() * limit;
-        if (threshold * threshold >= g2) continue;
-        if (g2 > limit * limit) [[unlikely]] note_overshoot(std::sqrt(g2) / limit);
-        double px, py, pz;
-        const double g_dot_e2 = rules::hemisphere_projection(gen, gx, gy, gz, std::sqrt(g2), px, py, pz);
-        if (g_dot_e2 == 0.0) continue;
-        if constexpr (Track) {
-          const double t_collision = t0 + static_cast<double>(c + 1) * dt_candidate;
-          particles::flush_free_flight(sys_, first + a, t_collision);
-          particles::flush_free_flight(sys_, first + b, t_collision);
-        }
-        particles::Vec3& va = v[a];
-        particles::Vec3& vb = v[b];
-        if constexpr (Framed) {  // (the mass, common to all, multiplies the sum at the end)
-          add_moments(moments, va, -1.0);
-          add_moments(moments, vb, -1.0);
-          dissipated += Rule::collide_projected(va, vb, {share, share, loss}, g_dot_e2, to_stored(px, py, pz));  // G^-1 (g.e) e
-          add_moments(moments, va, 1.0);
-          add_moments(moments, vb, 1.0);
-        } else if constexpr (Rule::kernel_needs_particles) {
-          dissipated += rule.collide_at(sys_, spin - first, first + a, first + b, 0, 0, g_dot_e2, {px, py, pz}).loss;
-        } else {
-          dissipated += Rule::collide_projected(va, vb, {share, share, loss}, g_dot_e2, {px, py, pz});
-        }
-        ++events;
-        // "(sigma g)_max raised when exceeded" (header), for either partner: a new sub-step from here.
-        const double speed2 = std::max(va.x * va.x + va.y * va.y + va.z * va.z, vb.x * vb.x + vb.y * vb.y + vb.z * vb.z);
-        if (speed2 > max_speed2) {
-          max_speed2 = speed2;
+      particles::Vec3& va = v[a];
+      particles::Vec3& vb = v[b];
+      if constexpr (Framed) {  // (the mass, common to all, multiplies the sum at the end)
+        add_moments(moments, va, -1.0);
+        add_moments(moments, vb, -1.0);
+        dissipated += Rule::collide_projected(va, vb, {share, share, loss}, g_dot_e2, to_stored(px, py, pz));  // G^-1 (g.e) e
+        add_moments(moments, va, 1.0);
+        add_moments(moments, vb, 1.0);
+      } else if constexpr (Rule::kernel_needs_particles) {
+        dissipated += rule.collide_at(sys_, spin - first, first + a, first + b, 0, 0, g_dot_e2, {px, py, pz}).loss;
+      } else {
+        dissipated += Rule::collide_projected(va, vb, {share, share, loss}, g_dot_e2, {px, py, pz});
+      }
+      ++events;
+      // "(sigma g)_max raised when exceeded" (header), for either partner: a new sub-step from here.
+      const double speed2 = std::max(va.x * va.x + va.y * va.y + va.z * va.z, vb.x * vb.x + vb.y * vb.y + vb.z * vb.z);
+      if (speed2 <= max_speed2) return false;
+      max_speed2 = speed2;
+      return true;
+    };
+    // A sub-step is short in a run, but one begun from an extreme state (a bound raised a millionfold) could
+    // take hours: past 2^20 candidates (about 10 ms) it runs in chunks between which an interrupt is seen, so
+    // that the common loop looks at no flag.
+    constexpr std::uint64_t chunk = std::uint64_t{1} << 20;
+    if (n_candidates <= chunk) {
+      for (; c < n_candidates; ++c)
+        if (candidate(c)) {
           raised = true;
           ++c;
           break;
         }
+    } else {
+      while (c < n_candidates && !raised) {
+        if (c > 0 && stop_requested()) [[unlikely]] {
+          stopped = true;
+          break;
+        }
+        for (const std::uint64_t chunk_end = std::min(n_candidates, c + chunk); c < chunk_end; ++c)
+          if (candidate(c)) {
+            raised = true;
+            ++c;
+            break;
+          }
       }
     }
     candidates += c;
