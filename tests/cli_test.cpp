@@ -617,6 +617,37 @@ class ReadLimit {
   ~ReadLimit() { ::unsetenv("GDSMC_READ_LIMIT"); }
 };
 
+/// Starts `granular-dsmc t.nml --quiet --restart out.checkpoint.h5` in the fixture's run folder, its stderr in
+/// capture/stderr: the child's pid (-1: fork failed).
+pid_t start_restart(const CliFixture& f) {
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    if (::chdir(f.dir.c_str()) != 0 || !std::freopen((f.capture / "stderr").c_str(), "w", stderr)) ::_exit(120);
+    const std::string tool = (fs::path(GDSMC_BIN_DIR) / "granular-dsmc").string();
+    ::execl(tool.c_str(), tool.c_str(), "t.nml", "--quiet", "--restart", "out.checkpoint.h5", static_cast<char*>(nullptr));
+    ::_exit(122);
+  }
+  return pid;
+}
+
+/// Sends SIGINT to `pid` and waits up to 10 s for it to end (then SIGKILL): whether it ended by itself, its
+/// wait status, and the seconds from the signal to its end.
+struct Ended {
+  bool by_itself;
+  int status;
+  double seconds;
+};
+Ended interrupt_and_wait(pid_t pid) {
+  const auto sent = std::chrono::steady_clock::now();
+  ::kill(pid, SIGINT);
+  int status = 0;
+  pid_t done = 0;
+  while ((done = ::waitpid(pid, &status, WNOHANG)) == 0 && std::chrono::steady_clock::now() - sent < std::chrono::seconds(10))
+    ::usleep(10000);
+  if (done == 0) ::kill(pid, SIGKILL), ::waitpid(pid, &status, 0);
+  return {done != 0, status, std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count()};
+}
+
 // A checkpoint whose global heap makes HDF5 loop (damage_global_heap) is refused after the read limit in
 // one line, exit status 2, with nothing left behind (no temporary output, no lock file), by --restart and by
 // a fresh run that would replace it; Ctrl-C during such a read ends it within a second (status 130).
@@ -638,14 +669,8 @@ TEST_F(CliDsmc, ADamagedCheckpointThatLoopsHdf5IsRefusedInTime) {
                          "replace): " + unfinished + "; give --force to replace it unread\n");
     EXPECT_EQ(files(), left);
   }
-  const pid_t pid = ::fork();
+  const pid_t pid = start_restart(*this);
   ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    if (::chdir(dir.c_str()) != 0 || !std::freopen((capture / "stderr").c_str(), "w", stderr)) ::_exit(120);
-    const std::string tool = (fs::path(GDSMC_BIN_DIR) / "granular-dsmc").string();
-    ::execl(tool.c_str(), tool.c_str(), "t.nml", "--quiet", "--restart", "out.checkpoint.h5", static_cast<char*>(nullptr));
-    ::_exit(122);
-  }
   // SIGINT once the run has begun (its signal handler installed: the temporary output is made after it), the
   // read looping by then (the limit is 60 s)
   const auto started = std::chrono::steady_clock::now();
@@ -656,16 +681,10 @@ TEST_F(CliDsmc, ADamagedCheckpointThatLoopsHdf5IsRefusedInTime) {
   };
   while (!has_temporary() && std::chrono::steady_clock::now() - started < std::chrono::seconds(30)) ::usleep(10000);
   ::usleep(200000);
-  const auto sent = std::chrono::steady_clock::now();
-  ::kill(pid, SIGINT);
-  int status = 0;
-  pid_t done = 0;
-  while ((done = ::waitpid(pid, &status, WNOHANG)) == 0 && std::chrono::steady_clock::now() - sent < std::chrono::seconds(10))
-    ::usleep(10000);
-  if (done == 0) ::kill(pid, SIGKILL), ::waitpid(pid, &status, 0);
-  ASSERT_NE(done, 0) << "still reading 10 s after SIGINT";
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count(), 2.0);  // (a loaded machine)
-  EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 130);
+  const Ended ended = interrupt_and_wait(pid);
+  ASSERT_TRUE(ended.by_itself) << "still reading 10 s after SIGINT";
+  EXPECT_LT(ended.seconds, 2.0);  // (a loaded machine)
+  EXPECT_EQ(WIFEXITED(ended.status) ? WEXITSTATUS(ended.status) : -1, 130);
   EXPECT_EQ(read_text(capture / "stderr"),
             "granular-dsmc: interrupted while reading the checkpoint 'out.checkpoint.h5': nothing written\n");
   EXPECT_EQ(files(), left);
@@ -937,30 +956,14 @@ TEST_F(CliDsmc, AForgedFastParticleStillStopsAtSigint) {
                 .first,
             130);
   forge_checkpoint((dir / "out.checkpoint.h5").string(), "/checkpoint/running/unit_0", "particles/velocity", 1e8, false);
-  const pid_t pid = ::fork();
+  const pid_t pid = start_restart(*this);
   ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    if (::chdir(dir.c_str()) != 0) ::_exit(120);
-    if (!std::freopen((capture / "stderr").c_str(), "w", stderr)) ::_exit(121);
-    const std::string tool = (fs::path(GDSMC_BIN_DIR) / "granular-dsmc").string();
-    ::execl(tool.c_str(), tool.c_str(), "t.nml", "--quiet", "--restart", "out.checkpoint.h5", static_cast<char*>(nullptr));
-    ::_exit(122);
-  }
   ::usleep(1500000);
-  const auto sent = std::chrono::steady_clock::now();
-  ::kill(pid, SIGINT);
-  int status = 0;
-  pid_t done = 0;
-  while ((done = ::waitpid(pid, &status, WNOHANG)) == 0 && std::chrono::steady_clock::now() - sent < std::chrono::seconds(10))
-    ::usleep(10000);
-  if (done == 0) {
-    ::kill(pid, SIGKILL);
-    ::waitpid(pid, &status, 0);
-  }
-  EXPECT_NE(done, 0) << "the resumed run did not end within 10 s of SIGINT";
+  const Ended ended = interrupt_and_wait(pid);
+  EXPECT_TRUE(ended.by_itself) << "the resumed run did not end within 10 s of SIGINT";
   // (130, or 1 when the sample after the stop finds the energy the forged speed brought: either in one line)
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_TRUE(WEXITSTATUS(status) == 130 || WEXITSTATUS(status) == 1) << WEXITSTATUS(status);
+  ASSERT_TRUE(WIFEXITED(ended.status));
+  EXPECT_TRUE(WEXITSTATUS(ended.status) == 130 || WEXITSTATUS(ended.status) == 1) << WEXITSTATUS(ended.status);
 }
 
 // A whole time series deleted from a running unit's record (valid checksum): which rows a replica writes
