@@ -231,7 +231,7 @@ TEST(CompareRows, HaffAgainstHandComputedNumbers) {
 }
 
 // Viscoelastic restitution has no constant a2, so no known error: its rows name no source of one ("none
-// stated"), as the null known_error and the mark '?' say (a user read the Maxwellian source beside a null).
+// stated"), as the null known_error and the mark '?' say.
 TEST(CompareRows, ViscoelasticRowsStateNoKnownError) {
   const auto c = read_text(
       "&system\n n_species = 1\n mass = 1.0\n diameter = 1.0\n number_density = 0.01\n"

@@ -42,6 +42,14 @@ bool run_only(const std::string& group, const std::string& name) {
   return group == "output" && (name == "file" || name == "checkpoint_every" || name == "author");
 }
 
+/// `text` in lower case without its spaces: how a sweep's variable is read ('System:Mass( 2)' is 'system:mass(2)').
+std::string folded(const std::string& text) {
+  std::string out;
+  for (char ch : text)
+    if (ch != ' ') out += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return out;
+}
+
 /// The swept variable closest to `written` among "group:name" of every variable a sweep may set, with
 /// `written`'s index, for "did you mean"; "" when none is near.
 std::string closest_target(const std::string& written) {
@@ -53,9 +61,7 @@ std::string closest_target(const std::string& written) {
   add("system", system_fields()), add("initial", initial_fields()), add("dsmc", dsmc_fields());
   add("output", output_fields()), add("agg_frag", agg_frag_fields()), add("thermostat", thermostat_fields());
   add("shear", shear_fields());
-  std::string text;
-  for (char ch : written.substr(0, written.find('(')))
-    if (ch != ' ') text += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  const std::string text = folded(written.substr(0, written.find('(')));
   const std::size_t open = written.find('(');
   const std::string index = open == std::string::npos ? "" : written.substr(open);
   if (const std::string home = owning_group(text);
@@ -67,9 +73,7 @@ std::string closest_target(const std::string& written) {
 
 SweepTarget parse_target(const std::string& written) {
   SweepTarget t;
-  std::string text;
-  for (char ch : written)
-    if (ch != ' ') text += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  const std::string text = folded(written);
   const auto colon = text.find(':');
   if (colon == std::string::npos) return t;
   t.group = text.substr(0, colon);
@@ -199,13 +203,7 @@ void check_sweep(const Config& c, const Provenance& prov, const namelist::Docume
     const SweepTarget t = parse_target(written);
     if (!t.ok || t.group == "sweep" || owning_group(t.name) != t.group) {
       const std::string hint = closest_target(written);
-      const auto folded = [](const std::string& text) {  // (case and spaces: a hint equal to the name leaves the index)
-        std::string out;
-        for (char ch : text)
-          if (ch != ' ') out += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-        return out;
-      };
-      if (!hint.empty() && folded(written) == folded(hint))
+      if (!hint.empty() && folded(written) == folded(hint))  // (the name is right: its index is the fault)
         throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
                     "'" + written + "': an index is a whole number from 1, as in 'group:name(i)' or 'group:name(i,j)'");
       throw Error(prov.file_of("variable"), line_of("variable"), group, "variable",
